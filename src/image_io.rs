@@ -1,0 +1,1 @@
+//! Image files: PNG/EXR written atomically, read back for diffs.

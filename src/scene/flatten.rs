@@ -1,0 +1,1 @@
+//! SceneGraph → world-space Scene (filled in by the flatten step).

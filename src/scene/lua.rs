@@ -1,0 +1,1 @@
+//! The `gr` Lua module (see shared/design/scene-language.md).

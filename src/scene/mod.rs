@@ -1,0 +1,152 @@
+//! The scene graph built by a script, in rich Rust types (f64 transforms), and the
+//! requests that `gr.render` issues. Everything here lives above `pack`: the tracers
+//! never see these types, only the packed arrays made from them.
+
+pub mod flatten;
+pub mod lua;
+pub mod obj;
+pub mod options;
+
+use glam::{DMat4, DVec3};
+use std::path::PathBuf;
+
+pub use options::{AaMode, Background, GridMode, RenderOptions};
+
+/// Index of a node in [`SceneGraph::nodes`].
+pub type NodeId = usize;
+/// Index of a material in [`SceneGraph::materials`].
+pub type MaterialId = usize;
+/// Index of a mesh in [`SceneGraph::meshes`].
+pub type MeshId = usize;
+
+/// The analytic or tessellated shape a geometry node carries, in its own object space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Primitive {
+    /// Unit sphere at the origin.
+    Sphere,
+    /// Box from (0,0,0) to (1,1,1).
+    Cube,
+    /// Triangle mesh (fan-triangulated polygons).
+    Mesh(MeshId),
+}
+
+/// What a node is: a pure transform, or geometry with a fixed placement of its primitive.
+#[derive(Clone, Debug)]
+pub enum NodeKind {
+    Transform,
+    Geometry {
+        primitive: Primitive,
+        /// Placement of the primitive inside the node (`nh_sphere`'s centre and radius,
+        /// `nh_box`'s corner and size); identity for the hierarchical primitives. Applied
+        /// before the node's own matrix, so `nh_*` nodes stay transformable.
+        placement: DMat4,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub struct Node {
+    pub name: String,
+    pub kind: NodeKind,
+    /// Object-to-parent transform, built up by `scale`/`rotate`/`translate`.
+    pub matrix: DMat4,
+    pub children: Vec<NodeId>,
+    pub material: Option<MaterialId>,
+}
+
+/// A4 Phong material plus glint's extensions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: String,
+    pub kd: [f32; 3],
+    pub ks: [f32; 3],
+    pub shininess: f32,
+    /// Mirror colour: adds `reflection × colour seen along the reflected ray`.
+    pub reflection: [f32; 3],
+}
+
+impl Default for Material {
+    /// The defaults of `gr.material(name)`: kd 0.5 grey, ks 0, shininess 1, no mirror.
+    fn default() -> Self {
+        Material {
+            name: String::from("default"),
+            kd: [0.5; 3],
+            ks: [0.0; 3],
+            shininess: 1.0,
+            reflection: [0.0; 3],
+        }
+    }
+}
+
+/// A triangle mesh in its own object space. Polygons are already fan-triangulated.
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub name: String,
+    pub positions: Vec<DVec3>,
+    pub triangles: Vec<[u32; 3]>,
+    /// Per-vertex UVs (inline `uvs` table or OBJ `vt` resolved per vertex), if given.
+    pub uvs: Option<Vec<[f32; 2]>>,
+}
+
+/// A light in world space.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Light {
+    pub position: DVec3,
+    pub colour: [f32; 3],
+    /// Attenuation 1/(c0 + c1·d + c2·d²).
+    pub falloff: [f32; 3],
+}
+
+/// Pinhole camera as `gr.render` gives it: `view` is a direction (not normalised), `up`
+/// need not be perpendicular to it, `fov_deg` is the vertical field of view.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    pub eye: DVec3,
+    pub view: DVec3,
+    pub up: DVec3,
+    pub fov_deg: f64,
+}
+
+/// Order in which `scale`/`rotate`/`translate` compose with a node's matrix.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum TransformOrder {
+    /// M = Op·M: calls act on the object in the order written (Fall 2015 and later).
+    #[default]
+    Pre,
+    /// M = M·Op: OpenGL style (A4 scenes up to Summer 2015).
+    Post,
+}
+
+impl TransformOrder {
+    /// Composes `op` into `matrix` in this order.
+    pub fn apply(self, matrix: DMat4, op: DMat4) -> DMat4 {
+        match self {
+            TransformOrder::Pre => op * matrix,
+            TransformOrder::Post => matrix * op,
+        }
+    }
+}
+
+/// Everything a script has built so far. Nodes, materials and meshes live in arenas and
+/// refer to each other by index, so a node may have several parents (instancing).
+#[derive(Clone, Debug, Default)]
+pub struct SceneGraph {
+    pub nodes: Vec<Node>,
+    pub materials: Vec<Material>,
+    pub meshes: Vec<Mesh>,
+}
+
+/// One `gr.render` call: what to render, where, and how.
+#[derive(Clone, Debug)]
+pub struct RenderRequest {
+    pub root: NodeId,
+    /// Output path as the script gave it (resolved against the current directory).
+    pub output: PathBuf,
+    pub width: u32,
+    pub height: u32,
+    pub camera: Camera,
+    pub ambient: [f32; 3],
+    pub lights: Vec<Light>,
+    pub options: RenderOptions,
+    /// `file:line` of the `gr.render` call, for messages.
+    pub location: String,
+}

@@ -1,0 +1,1 @@
+//! Wavefront OBJ loading for `gr.mesh(name, file)` and `readobj`.
