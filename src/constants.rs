@@ -1,0 +1,76 @@
+//! Tags and constants shared by both tracers. Defined once here; the GPU tracer gets them
+//! as a generated WGSL prelude ([`wgsl_prelude`]), so no magic number is repeated in WGSL.
+
+/// Instance kinds (`GpuInstance::kind`).
+pub const KIND_SPHERE: u32 = 0;
+pub const KIND_CUBE: u32 = 1;
+
+/// Light kinds (`GpuLight::kind`).
+pub const LIGHT_POINT: u32 = 0;
+
+/// Material flags (`GpuMaterial::flags`).
+pub const MATERIAL_REFLECTIVE: u32 = 1;
+
+/// Anti-aliasing modes (`GpuGlobals::aa_mode`).
+pub const AA_NONE: u32 = 0;
+pub const AA_UNIFORM: u32 = 1;
+pub const AA_ADAPTIVE: u32 = 2;
+
+/// "No hit" distance: larger than any finite t a scene produces.
+pub const T_MISS: f32 = f32::MAX;
+/// Item index meaning "no item".
+pub const NO_ITEM: u32 = u32::MAX;
+
+/// Capacity of the explicit secondary-ray stack (no recursion in either tracer).
+pub const RAY_STACK_SIZE: u32 = 16;
+/// Largest `max_depth` a scene may ask for.
+pub const MAX_TRACE_DEPTH: u32 = 64;
+
+/// Secondary-ray origins move off the surface by this fraction of the magnitude of the
+/// coordinates that produced the hit point (2⁻¹⁷ ≈ 64 f32 ulps): the hit point's own
+/// rounding error scales with those magnitudes, so the offset is scale-free (a scene
+/// scaled by 1e-3 or 1e3 offsets proportionally) — see `cpu::ray::offset_ray`.
+pub const OFFSET_RELATIVE: f32 = 1.0 / 131072.0;
+
+/// Reciprocal used for a zero direction component in slab tests: huge but finite, so no
+/// IEEE infinity (which WGSL does not guarantee) is ever needed.
+pub const SAFE_RCP_LIMIT: f32 = 1.0e30;
+
+/// WGSL `const` declarations for every constant above (the GPU tracer's prelude).
+pub fn wgsl_prelude() -> String {
+    let u32s: &[(&str, u32)] = &[
+        ("KIND_SPHERE", KIND_SPHERE),
+        ("KIND_CUBE", KIND_CUBE),
+        ("LIGHT_POINT", LIGHT_POINT),
+        ("MATERIAL_REFLECTIVE", MATERIAL_REFLECTIVE),
+        ("AA_NONE", AA_NONE),
+        ("AA_UNIFORM", AA_UNIFORM),
+        ("AA_ADAPTIVE", AA_ADAPTIVE),
+        ("NO_ITEM", NO_ITEM),
+        ("RAY_STACK_SIZE", RAY_STACK_SIZE),
+        ("MAX_TRACE_DEPTH", MAX_TRACE_DEPTH),
+        ("MAX_AA_DEPTH", MAX_AA_DEPTH),
+        ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
+        ("TILE_SIZE", TILE_SIZE),
+    ];
+    let f32s: &[(&str, f32)] = &[
+        ("T_MISS", T_MISS),
+        ("OFFSET_RELATIVE", OFFSET_RELATIVE),
+        ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),
+    ];
+    let mut out = String::from("// Generated from src/constants.rs — do not edit.\n");
+    for (name, value) in u32s {
+        out += &format!("const {name}: u32 = {value}u;\n");
+    }
+    for (name, value) in f32s {
+        out += &format!("const {name}: f32 = {value:e};\n");
+    }
+    out
+}
+
+/// Deepest adaptive anti-aliasing split accepted (`aa_depth`).
+pub const MAX_AA_DEPTH: u32 = 6;
+/// Largest n of uniform n×n anti-aliasing.
+pub const MAX_AA_SAMPLES: u32 = 64;
+/// Square tile side, in pixels, for both tracers' work split.
+pub const TILE_SIZE: u32 = 16;

@@ -1,0 +1,189 @@
+//! Ray–primitive intersection in f32: sphere (stable quadratic), box (slabs), triangle
+//! (watertight). Analytic primitives are intersected in object space with an
+//! unnormalised direction, so t is the world-space t.
+
+use crate::constants::{KIND_CUBE, KIND_SPHERE, SAFE_RCP_LIMIT, T_MISS};
+use crate::pack::{GpuInstance, GpuTriangle};
+use glam::Vec3;
+
+/// 1/x, or ±[`SAFE_RCP_LIMIT`] when |x| is too small to invert without overflow.
+// Mirror of shaders/intersect.wgsl::safe_rcp — change both.
+pub fn safe_rcp(x: f32) -> f32 {
+    if x.abs() > 1.0 / SAFE_RCP_LIMIT {
+        1.0 / x
+    } else {
+        SAFE_RCP_LIMIT.copysign(x)
+    }
+}
+
+/// `safe_rcp` of each component.
+pub fn safe_rcp3(v: Vec3) -> Vec3 {
+    Vec3::new(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z))
+}
+
+/// Nearest t in (0, t_max) where `o + t·d` meets the unit sphere at the origin, else
+/// [`T_MISS`]. Haines et al., Ray Tracing Gems ch. 7: the discriminant from the distance
+/// of the centre to the line (no catastrophic b² − ac), and the root pair from
+/// q = −b − sign(b)·√Δ, t = c/q and q/a (no cancellation in either root).
+// Mirror of shaders/intersect.wgsl::intersect_sphere — change both.
+pub fn intersect_sphere(o: Vec3, d: Vec3, t_max: f32) -> f32 {
+    // Compute the quadratic a·t² + 2b·t + c with f = o (centre at the origin).
+    let a = d.dot(d);
+    let b = o.dot(d);
+    let c = o.dot(o) - 1.0;
+    // Compute the discriminant as a·(r² − |f − (b/a)·d|²).
+    let l = o - d * (b / a);
+    let discriminant = a * (1.0 - l.dot(l));
+    if discriminant < 0.0 {
+        return T_MISS;
+    }
+    // Compute both roots without cancellation.
+    let q = -b - discriminant.sqrt().copysign(b);
+    let (t0, t1) = if q == 0.0 {
+        (0.0, 0.0)
+    } else {
+        let r0 = c / q;
+        let r1 = q / a;
+        (r0.min(r1), r0.max(r1))
+    };
+    if t0 > 0.0 && t0 < t_max {
+        t0
+    } else if t1 > 0.0 && t1 < t_max {
+        t1
+    } else {
+        T_MISS
+    }
+}
+
+/// Nearest t in (0, t_max) where `o + t·d` meets the box [0,1]³, else [`T_MISS`]
+/// (slab test; from inside, the exit point).
+// Mirror of shaders/intersect.wgsl::intersect_box — change both.
+pub fn intersect_box(o: Vec3, d: Vec3, t_max: f32) -> f32 {
+    let inv = safe_rcp3(d);
+    let t0 = (Vec3::ZERO - o) * inv;
+    let t1 = (Vec3::ONE - o) * inv;
+    let t_near = t0.min(t1).max_element();
+    let t_far = t0.max(t1).min_element();
+    if t_near > t_far {
+        return T_MISS;
+    }
+    let t = if t_near > 0.0 { t_near } else { t_far };
+    if t > 0.0 && t < t_max {
+        t
+    } else {
+        T_MISS
+    }
+}
+
+/// Per-ray set-up of the watertight triangle test (Woop, Benthin & Wald, JCGT 2013):
+/// the dominant axis of the direction becomes z, and a shear maps the direction to +z.
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleRay {
+    pub origin: Vec3,
+    pub kx: usize,
+    pub ky: usize,
+    pub kz: usize,
+    pub shear: Vec3,
+}
+
+// Mirror of shaders/intersect.wgsl::triangle_ray_setup — change both.
+pub fn triangle_ray_setup(origin: Vec3, d: Vec3) -> TriangleRay {
+    // Calculate the dimension where the ray direction is maximal.
+    let ad = d.abs();
+    let kz = if ad.x >= ad.y && ad.x >= ad.z {
+        0
+    } else if ad.y >= ad.z {
+        1
+    } else {
+        2
+    };
+    let mut kx = (kz + 1) % 3;
+    let mut ky = (kx + 1) % 3;
+    // Swap kx and ky to preserve the winding direction of triangles.
+    if d[kz] < 0.0 {
+        std::mem::swap(&mut kx, &mut ky);
+    }
+    // Calculate the shear constants.
+    let shear = Vec3::new(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+    TriangleRay {
+        origin,
+        kx,
+        ky,
+        kz,
+        shear,
+    }
+}
+
+/// (t, b1, b2) of the hit with the triangle (p0, p1, p2) in (0, t_max), b1 and b2 the
+/// barycentric weights of p1 and p2; t = [`T_MISS`] on a miss. Two-sided. Edges shared
+/// by two triangles are never missed by both: the edge functions are computed
+/// identically from the shared vertices, and a zero counts as inside.
+// Mirror of shaders/intersect.wgsl::intersect_triangle — change both.
+pub fn intersect_triangle(r: &TriangleRay, p0: Vec3, p1: Vec3, p2: Vec3, t_max: f32) -> Vec3 {
+    let miss = Vec3::new(T_MISS, 0.0, 0.0);
+    // Calculate the vertices relative to the ray origin.
+    let a = p0 - r.origin;
+    let b = p1 - r.origin;
+    let c = p2 - r.origin;
+    // Perform the shear and scale of the vertices.
+    let ax = a[r.kx] - r.shear.x * a[r.kz];
+    let ay = a[r.ky] - r.shear.y * a[r.kz];
+    let bx = b[r.kx] - r.shear.x * b[r.kz];
+    let by = b[r.ky] - r.shear.y * b[r.kz];
+    let cx = c[r.kx] - r.shear.x * c[r.kz];
+    let cy = c[r.ky] - r.shear.y * c[r.kz];
+    // Calculate the scaled barycentric coordinates.
+    let u = cx * by - cy * bx;
+    let v = ax * cy - ay * cx;
+    let w = bx * ay - by * ax;
+    // Perform the edge tests.
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        return miss;
+    }
+    // Calculate the determinant.
+    let det = u + v + w;
+    if det == 0.0 {
+        return miss;
+    }
+    // Calculate the scaled z-coordinates of the vertices and the scaled hit distance.
+    let az = r.shear.z * a[r.kz];
+    let bz = r.shear.z * b[r.kz];
+    let cz = r.shear.z * c[r.kz];
+    let t_scaled = u * az + v * bz + w * cz;
+    let t = t_scaled / det;
+    if !(t > 0.0 && t < t_max) {
+        return miss;
+    }
+    Vec3::new(t, v / det, w / det)
+}
+
+/// Object-space ray of an instance: origin and (unnormalised) direction through the
+/// world→object rows.
+// Mirror of shaders/intersect.wgsl::to_object_space — change both.
+pub fn to_object_space(inst: &GpuInstance, o: Vec3, d: Vec3) -> (Vec3, Vec3) {
+    let rows = &inst.world_to_object;
+    let row = |i: usize| Vec3::new(rows[i][0], rows[i][1], rows[i][2]);
+    let oo = Vec3::new(
+        row(0).dot(o) + rows[0][3],
+        row(1).dot(o) + rows[1][3],
+        row(2).dot(o) + rows[2][3],
+    );
+    let od = Vec3::new(row(0).dot(d), row(1).dot(d), row(2).dot(d));
+    (oo, od)
+}
+
+/// t of the nearest hit in (0, t_max) with an analytic instance, else [`T_MISS`].
+// Mirror of shaders/intersect.wgsl::intersect_instance — change both.
+pub fn intersect_instance(inst: &GpuInstance, o: Vec3, d: Vec3, t_max: f32) -> f32 {
+    let (oo, od) = to_object_space(inst, o, d);
+    match inst.kind {
+        KIND_SPHERE => intersect_sphere(oo, od, t_max),
+        KIND_CUBE => intersect_box(oo, od, t_max),
+        _ => T_MISS,
+    }
+}
+
+/// The triangle's vertices as vectors.
+pub fn triangle_vertices(tri: &GpuTriangle) -> [Vec3; 3] {
+    [tri.p0, tri.p1, tri.p2].map(Vec3::from)
+}

@@ -1,0 +1,13 @@
+//! The CPU reference tracer. Every function here that the GPU tracer also needs has a
+//! WGSL twin of the same name in `shaders/` (see each function's doc comment); the two
+//! follow the same steps with the same constants, in f32.
+
+pub mod intersect;
+pub mod ray;
+pub mod render;
+pub mod rng;
+pub mod shade;
+pub mod trace;
+pub mod traverse;
+
+pub use render::{render, RenderProgress};

@@ -1,0 +1,37 @@
+//! Rays, camera rays and the self-intersection offset.
+
+use crate::constants::OFFSET_RELATIVE;
+use crate::pack::GpuGlobals;
+use glam::Vec3;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    pub origin: Vec3,
+    /// Unit direction in world space (object-space twins are not normalised).
+    pub dir: Vec3,
+}
+
+/// Primary ray through film position (`fx`, `fy`) in pixels (0,0 = top-left corner of
+/// the image, pixel centres at +0.5).
+// Mirror of shaders/camera.wgsl::camera_ray — change both.
+pub fn camera_ray(g: &GpuGlobals, fx: f32, fy: f32) -> Ray {
+    let ndc_x = 2.0 * fx / g.width as f32 - 1.0;
+    let ndc_y = 1.0 - 2.0 * fy / g.height as f32;
+    let dir = Vec3::from(g.forward)
+        + Vec3::from(g.right) * (ndc_x * g.aspect * g.tan_half_fov)
+        + Vec3::from(g.up) * (ndc_y * g.tan_half_fov);
+    Ray {
+        origin: Vec3::from(g.eye),
+        dir: dir.normalize(),
+    }
+}
+
+/// Moves a hit point off its surface along the unit normal `n` (pointing to the side the
+/// new ray leaves towards), by [`OFFSET_RELATIVE`] of `magnitude`, the largest coordinate
+/// magnitude that went into computing `p` (Wächter & Binder, Ray Tracing Gems ch. 6, bound
+/// the error the same way; expressing it per hit rather than per component keeps it
+/// proportional near the origin too, with no scene-scale constant).
+// Mirror of shaders/ray.wgsl::offset_ray — change both.
+pub fn offset_ray(p: Vec3, n: Vec3, magnitude: f32) -> Vec3 {
+    p + n * (magnitude.max(p.abs().max_element()) * OFFSET_RELATIVE)
+}

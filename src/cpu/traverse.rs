@@ -1,0 +1,222 @@
+//! Scene traversal: closest hit and any hit, through the uniform grid by 3D-DDA
+//! (Amanatides & Woo 1987) or by brute force when the grid is off. A closest hit found in
+//! a cell is accepted only if it lies inside that cell (an item may span several cells,
+//! and a nearer item may wait in the next one).
+
+use super::intersect::{intersect_instance, intersect_triangle, safe_rcp3, triangle_ray_setup, triangle_vertices, TriangleRay};
+use super::ray::Ray;
+use crate::constants::{NO_ITEM, T_MISS};
+use crate::pack::PackedScene;
+use glam::{IVec3, Vec3};
+
+/// The nearest hit: distance, item (instances first, then triangles) and, for triangles,
+/// the barycentric weights of p1 and p2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    pub t: f32,
+    pub item: u32,
+    pub b1: f32,
+    pub b2: f32,
+}
+
+impl Hit {
+    pub const MISS: Hit = Hit {
+        t: T_MISS,
+        item: NO_ITEM,
+        b1: 0.0,
+        b2: 0.0,
+    };
+
+    pub fn is_hit(&self) -> bool {
+        self.item != NO_ITEM
+    }
+}
+
+/// Traversal counters (CPU only, for `--stats`); the no-op impl costs nothing.
+pub trait TraversalCounters {
+    fn traversal_started(&mut self) {}
+    fn cell_visited(&mut self) {}
+    fn item_tested(&mut self) {}
+}
+
+/// Counters that count nothing.
+pub struct NoCounters;
+impl TraversalCounters for NoCounters {}
+
+/// Counters that count.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Counters {
+    pub cells_visited: u64,
+    pub items_tested: u64,
+}
+impl TraversalCounters for Counters {
+    fn cell_visited(&mut self) {
+        self.cells_visited += 1;
+    }
+    fn item_tested(&mut self) {
+        self.items_tested += 1;
+    }
+}
+
+/// Tests one item, returning (t, b1, b2) with t = T_MISS on a miss.
+// Mirror of shaders/traverse.wgsl::intersect_item — change both.
+fn intersect_item(scene: &PackedScene, item: u32, ray: &Ray, tri_ray: &TriangleRay, t_max: f32) -> Vec3 {
+    let num_instances = scene.globals.num_instances;
+    if item < num_instances {
+        let t = intersect_instance(&scene.instances[item as usize], ray.origin, ray.dir, t_max);
+        Vec3::new(t, 0.0, 0.0)
+    } else {
+        let [p0, p1, p2] = triangle_vertices(&scene.triangles[(item - num_instances) as usize]);
+        intersect_triangle(tri_ray, p0, p1, p2, t_max)
+    }
+}
+
+/// Tests the items `items` and keeps the nearest hit below `best.t`.
+fn test_items(scene: &PackedScene, items: impl Iterator<Item = u32>, ray: &Ray, tri_ray: &TriangleRay, best: &mut Hit, counters: &mut impl TraversalCounters) {
+    for item in items {
+        counters.item_tested();
+        let h = intersect_item(scene, item, ray, tri_ray, best.t);
+        if h.x < best.t {
+            *best = Hit { t: h.x, item, b1: h.y, b2: h.z };
+        }
+    }
+}
+
+/// The grid's state for one ray: current cell, per-axis step, next boundary t and t per cell.
+struct Dda {
+    cell: IVec3,
+    step: IVec3,
+    t_next: Vec3,
+    t_delta: Vec3,
+    t_exit: f32,
+}
+
+/// Clips the ray to the grid bounds and finds its first cell, or None if it misses them.
+// Mirror of shaders/traverse.wgsl::dda_setup — change both.
+fn dda_setup(scene: &PackedScene, ray: &Ray, t_max: f32) -> Option<Dda> {
+    let g = &scene.globals;
+    let grid_min = Vec3::from(g.grid_min);
+    let cell_size = Vec3::from(g.grid_cell_size);
+    let dims = IVec3::new(g.grid_dims[0] as i32, g.grid_dims[1] as i32, g.grid_dims[2] as i32);
+    let inv = safe_rcp3(ray.dir);
+    let t0 = (grid_min - ray.origin) * inv;
+    let t1 = (Vec3::from(g.grid_max) - ray.origin) * inv;
+    let t_enter = t0.min(t1).max_element().max(0.0);
+    let t_exit = t0.max(t1).min_element().min(t_max);
+    if t_enter > t_exit {
+        return None;
+    }
+    let p = ray.origin + ray.dir * t_enter;
+    let cell = ((p - grid_min) / cell_size).floor().as_ivec3().clamp(IVec3::ZERO, dims - 1);
+    let mut step = IVec3::ZERO;
+    let mut t_next = Vec3::ZERO;
+    let mut t_delta = Vec3::ZERO;
+    for axis in 0..3 {
+        if ray.dir[axis] == 0.0 {
+            // Parallel to this axis's planes: never step along it.
+            step[axis] = 0;
+            t_next[axis] = T_MISS;
+            t_delta[axis] = T_MISS;
+        } else {
+            step[axis] = if ray.dir[axis] > 0.0 { 1 } else { -1 };
+            let boundary_cell = cell[axis] + if ray.dir[axis] > 0.0 { 1 } else { 0 };
+            let boundary = grid_min[axis] + boundary_cell as f32 * cell_size[axis];
+            t_next[axis] = (boundary - ray.origin[axis]) * inv[axis];
+            t_delta[axis] = cell_size[axis] * inv[axis].abs();
+        }
+    }
+    Some(Dda { cell, step, t_next, t_delta, t_exit })
+}
+
+/// Index of the smallest component.
+fn min_axis(v: Vec3) -> usize {
+    if v.x <= v.y && v.x <= v.z {
+        0
+    } else if v.y <= v.z {
+        1
+    } else {
+        2
+    }
+}
+
+/// Nearest hit along `ray` in (0, t_max).
+// Mirror of shaders/traverse.wgsl::closest_hit — change both.
+pub fn closest_hit(scene: &PackedScene, ray: &Ray, t_max: f32, counters: &mut impl TraversalCounters) -> Hit {
+    counters.traversal_started();
+    let tri_ray = triangle_ray_setup(ray.origin, ray.dir);
+    let mut best = Hit { t: t_max, ..Hit::MISS };
+    let g = &scene.globals;
+    if g.grid_enabled == 0 {
+        counters.cell_visited();
+        let n = g.num_instances + g.num_triangles;
+        test_items(scene, 0..n, ray, &tri_ray, &mut best, counters);
+        return if best.is_hit() { best } else { Hit::MISS };
+    }
+    let Some(mut dda) = dda_setup(scene, ray, t_max) else {
+        return Hit::MISS;
+    };
+    let dims = IVec3::new(g.grid_dims[0] as i32, g.grid_dims[1] as i32, g.grid_dims[2] as i32);
+    loop {
+        counters.cell_visited();
+        let cell = (dda.cell.x + dims.x * (dda.cell.y + dims.y * dda.cell.z)) as usize;
+        let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
+        test_items(scene, range.map(|i| scene.cell_items[i as usize]), ray, &tri_ray, &mut best, counters);
+        let axis = min_axis(dda.t_next);
+        let t_cell_exit = dda.t_next[axis];
+        // A hit inside this cell is final; so is leaving the grid or passing t_max.
+        if best.t <= t_cell_exit || t_cell_exit >= dda.t_exit {
+            break;
+        }
+        dda.cell[axis] += dda.step[axis];
+        if dda.cell[axis] < 0 || dda.cell[axis] >= dims[axis] {
+            break;
+        }
+        dda.t_next[axis] += dda.t_delta[axis];
+    }
+    if best.is_hit() {
+        best
+    } else {
+        Hit::MISS
+    }
+}
+
+/// Whether anything blocks `ray` in (0, t_max) (shadow rays).
+// Mirror of shaders/traverse.wgsl::any_hit — change both.
+pub fn any_hit(scene: &PackedScene, ray: &Ray, t_max: f32, counters: &mut impl TraversalCounters) -> bool {
+    counters.traversal_started();
+    let tri_ray = triangle_ray_setup(ray.origin, ray.dir);
+    let g = &scene.globals;
+    let hits = |items: &mut dyn Iterator<Item = u32>, counters: &mut dyn FnMut()| {
+        items.any(|item| {
+            counters();
+            intersect_item(scene, item, ray, &tri_ray, t_max).x < t_max
+        })
+    };
+    if g.grid_enabled == 0 {
+        counters.cell_visited();
+        let mut count = || counters.item_tested();
+        return hits(&mut (0..g.num_instances + g.num_triangles), &mut count);
+    }
+    let Some(mut dda) = dda_setup(scene, ray, t_max) else {
+        return false;
+    };
+    let dims = IVec3::new(g.grid_dims[0] as i32, g.grid_dims[1] as i32, g.grid_dims[2] as i32);
+    loop {
+        counters.cell_visited();
+        let cell = (dda.cell.x + dims.x * (dda.cell.y + dims.y * dda.cell.z)) as usize;
+        let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
+        let mut count = || counters.item_tested();
+        if hits(&mut range.map(|i| scene.cell_items[i as usize]), &mut count) {
+            return true;
+        }
+        let axis = min_axis(dda.t_next);
+        if dda.t_next[axis] >= dda.t_exit {
+            return false;
+        }
+        dda.cell[axis] += dda.step[axis];
+        if dda.cell[axis] < 0 || dda.cell[axis] >= dims[axis] {
+            return false;
+        }
+        dda.t_next[axis] += dda.t_delta[axis];
+    }
+}

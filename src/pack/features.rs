@@ -1,0 +1,52 @@
+//! `SceneFeatures`: which capabilities a packed scene uses. The GPU tracer compiles only
+//! these in; the CPU tracer skips the same work (Cycles' `KERNEL_FEATURE_*` is the model).
+
+use std::fmt;
+
+/// A set of scene features (bit flags).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct SceneFeatures(pub u32);
+
+impl SceneFeatures {
+    pub const SPHERE: SceneFeatures = SceneFeatures(1 << 0);
+    pub const CUBE: SceneFeatures = SceneFeatures(1 << 1);
+    pub const MESH: SceneFeatures = SceneFeatures(1 << 2);
+    pub const REFLECTION: SceneFeatures = SceneFeatures(1 << 3);
+    pub const GRID: SceneFeatures = SceneFeatures(1 << 4);
+
+    /// Every feature with its name, in display order.
+    pub const ALL: &'static [(SceneFeatures, &'static str)] = &[
+        (Self::SPHERE, "sphere"),
+        (Self::CUBE, "cube"),
+        (Self::MESH, "mesh"),
+        (Self::REFLECTION, "reflection"),
+        (Self::GRID, "grid"),
+    ];
+
+    pub const fn empty() -> SceneFeatures {
+        SceneFeatures(0)
+    }
+
+    pub const fn contains(self, other: SceneFeatures) -> bool {
+        self.0 & other.0 == other.0
+    }
+
+    pub fn insert(&mut self, other: SceneFeatures) {
+        self.0 |= other.0;
+    }
+}
+
+impl fmt::Display for SceneFeatures {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let names: Vec<&str> = Self::ALL
+            .iter()
+            .filter(|(flag, _)| self.contains(*flag))
+            .map(|(_, name)| *name)
+            .collect();
+        if names.is_empty() {
+            write!(f, "(none)")
+        } else {
+            write!(f, "{}", names.join(" "))
+        }
+    }
+}

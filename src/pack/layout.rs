@@ -1,0 +1,117 @@
+//! The `#[repr(C)]` Pod structs both tracers read. Each has a WGSL twin of the same name
+//! and field order (std430 storage layout: vec3 aligned to 16 bytes, so each `[f32; 3]`
+//! is followed by a 4-byte scalar). Sizes are asserted here; field offsets are checked
+//! against naga's layout of the WGSL twins by the layout test.
+
+use bytemuck::{Pod, Zeroable};
+
+/// An analytic primitive instance: affine transforms as three rows of a 3×4 matrix.
+/// Normals go to world space through the transpose of `world_to_object`'s linear part.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuInstance {
+    /// Rows of world→object (xyz: linear part, w: translation).
+    pub world_to_object: [[f32; 4]; 3],
+    /// Rows of object→world.
+    pub object_to_world: [[f32; 4]; 3],
+    /// `KIND_*` from `constants`.
+    pub kind: u32,
+    pub material: u32,
+    pub _pad: [u32; 2],
+}
+
+/// A world-space triangle (flat shaded: the normal is the cross product of its edges).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuTriangle {
+    pub p0: [f32; 3],
+    pub material: u32,
+    pub p1: [f32; 3],
+    pub _pad1: u32,
+    pub p2: [f32; 3],
+    pub _pad2: u32,
+}
+
+/// A4 Phong material plus the mirror colour.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuMaterial {
+    pub kd: [f32; 3],
+    pub shininess: f32,
+    pub ks: [f32; 3],
+    /// `MATERIAL_*` bits.
+    pub flags: u32,
+    pub reflection: [f32; 3],
+    pub _pad: u32,
+}
+
+/// A light. Point lights use `position`; area lights (later) add the edge vectors.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuLight {
+    pub position: [f32; 3],
+    /// `LIGHT_*` tag.
+    pub kind: u32,
+    pub colour: [f32; 3],
+    /// n of the n×n shadow samples (area lights).
+    pub samples: u32,
+    /// Attenuation coefficients (c0, c1, c2).
+    pub falloff: [f32; 3],
+    pub _pad0: u32,
+    pub edge_u: [f32; 3],
+    pub _pad1: u32,
+    pub edge_v: [f32; 3],
+    pub _pad2: u32,
+}
+
+/// Per-render uniform: camera, image, options and grid header.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuGlobals {
+    pub eye: [f32; 3],
+    /// tan(fov/2).
+    pub tan_half_fov: f32,
+    /// Unit view direction.
+    pub forward: [f32; 3],
+    /// width / height.
+    pub aspect: f32,
+    /// Unit camera right vector.
+    pub right: [f32; 3],
+    pub width: u32,
+    /// Unit camera up vector (perpendicular to forward).
+    pub up: [f32; 3],
+    pub height: u32,
+    pub ambient: [f32; 3],
+    pub num_lights: u32,
+    pub background_top: [f32; 3],
+    pub max_depth: u32,
+    pub background_bottom: [f32; 3],
+    pub min_weight: f32,
+    /// Lower corner of the grid bounds.
+    pub grid_min: [f32; 3],
+    pub num_instances: u32,
+    /// Size of one grid cell.
+    pub grid_cell_size: [f32; 3],
+    pub num_triangles: u32,
+    /// Cells along each axis.
+    pub grid_dims: [u32; 3],
+    /// 1 = traverse the grid, 0 = brute force over every item.
+    pub grid_enabled: u32,
+    /// Upper corner of the grid bounds.
+    pub grid_max: [f32; 3],
+    /// `AA_*` tag.
+    pub aa_mode: u32,
+    /// n of uniform n×n anti-aliasing.
+    pub aa_samples: u32,
+    /// Adaptive anti-aliasing: corner contrast that splits a square.
+    pub aa_threshold: f32,
+    /// Adaptive anti-aliasing: deepest split.
+    pub aa_depth: u32,
+    pub _pad: u32,
+}
+
+const _: () = assert!(std::mem::size_of::<GpuInstance>() == 112);
+const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuLight>() == 80);
+const _: () = assert!(std::mem::size_of::<GpuGlobals>() == 192);

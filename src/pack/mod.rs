@@ -1,0 +1,248 @@
+//! `pack`: the flattened [`Scene`] laid out as the Pod arrays both tracers read, plus the
+//! uniform grid over them. Below this point there are no enums, only tags and indices.
+
+pub mod features;
+pub mod layout;
+
+use crate::accel::grid::{Grid, GridBuildStats};
+use crate::constants::*;
+use crate::scene::flatten::{ObjectKind, Scene};
+use crate::scene::{AaMode, Background, GridMode};
+use glam::{DMat4, DVec3};
+pub use features::SceneFeatures;
+pub use layout::*;
+
+/// Everything a tracer needs, as flat arrays. Grid items index instances first, then
+/// triangles: item `i < num_instances` is `instances[i]`, else `triangles[i - num_instances]`.
+#[derive(Clone, Debug)]
+pub struct PackedScene {
+    pub globals: GpuGlobals,
+    pub instances: Vec<GpuInstance>,
+    pub triangles: Vec<GpuTriangle>,
+    pub materials: Vec<GpuMaterial>,
+    pub lights: Vec<GpuLight>,
+    /// `cell_start[c]..cell_start[c + 1]` indexes `cell_items` for cell c (x fastest).
+    pub cell_start: Vec<u32>,
+    pub cell_items: Vec<u32>,
+    pub features: SceneFeatures,
+    pub grid_stats: GridBuildStats,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum PackError {
+    #[error("light {index}: attenuation {falloff:?} is zero or negative at some distance (need c0, c1, c2 ≥ 0, not all 0)")]
+    BadFalloff { index: usize, falloff: [f32; 3] },
+    #[error("max_depth {0} is above the limit of {MAX_TRACE_DEPTH}")]
+    DepthTooLarge(u32),
+    #[error("{what} {value} does not fit in f32 (scene coordinates must stay below ~1e38)")]
+    OutOfRange { what: String, value: f64 },
+    #[error("the scene has {0} items; glint supports at most 2^31")]
+    TooManyItems(usize),
+}
+
+/// Packs a flattened scene and builds its grid.
+pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
+    let mut features = SceneFeatures::empty();
+    let instances: Vec<GpuInstance> = scene
+        .objects
+        .iter()
+        .map(|o| {
+            features.insert(match o.kind {
+                ObjectKind::Sphere => SceneFeatures::SPHERE,
+                ObjectKind::Cube => SceneFeatures::CUBE,
+            });
+            GpuInstance {
+                world_to_object: affine_rows(&o.object_to_world.inverse()),
+                object_to_world: affine_rows(&o.object_to_world),
+                kind: match o.kind {
+                    ObjectKind::Sphere => KIND_SPHERE,
+                    ObjectKind::Cube => KIND_CUBE,
+                },
+                material: o.material as u32,
+                _pad: [0; 2],
+            }
+        })
+        .collect();
+    let triangles: Vec<GpuTriangle> = scene
+        .triangles
+        .iter()
+        .filter(|t| !is_degenerate(&t.positions))
+        .map(|t| GpuTriangle {
+            p0: t.positions[0].as_vec3().to_array(),
+            material: t.material as u32,
+            p1: t.positions[1].as_vec3().to_array(),
+            _pad1: 0,
+            p2: t.positions[2].as_vec3().to_array(),
+            _pad2: 0,
+        })
+        .collect();
+    if !triangles.is_empty() {
+        features.insert(SceneFeatures::MESH);
+    }
+    check_finite(&instances, &triangles)?;
+    let materials: Vec<GpuMaterial> = scene
+        .materials
+        .iter()
+        .map(|m| {
+            let reflective = m.reflection.iter().any(|&c| c > 0.0);
+            GpuMaterial {
+                kd: m.kd,
+                shininess: m.shininess,
+                ks: m.ks,
+                flags: if reflective { MATERIAL_REFLECTIVE } else { 0 },
+                reflection: m.reflection,
+                _pad: 0,
+            }
+        })
+        .collect();
+    // Only materials some geometry uses decide the feature set.
+    let used = |m: usize| {
+        scene.objects.iter().any(|o| o.material == m)
+            || scene.triangles.iter().any(|t| t.material == m)
+    };
+    if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFLECTIVE != 0 && used(m)) {
+        features.insert(SceneFeatures::REFLECTION);
+    }
+    let lights = scene
+        .lights
+        .iter()
+        .enumerate()
+        .map(|(index, l)| {
+            let [c0, c1, c2] = l.falloff;
+            if c0 < 0.0 || c1 < 0.0 || c2 < 0.0 || c0 + c1 + c2 <= 0.0 {
+                return Err(PackError::BadFalloff {
+                    index,
+                    falloff: l.falloff,
+                });
+            }
+            Ok(GpuLight {
+                position: l.position.as_vec3().to_array(),
+                kind: LIGHT_POINT,
+                colour: l.colour,
+                samples: 1,
+                falloff: l.falloff,
+                _pad0: 0,
+                edge_u: [0.0; 3],
+                _pad1: 0,
+                edge_v: [0.0; 3],
+                _pad2: 0,
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let options = &scene.options;
+    if options.max_depth > MAX_TRACE_DEPTH {
+        return Err(PackError::DepthTooLarge(options.max_depth));
+    }
+    let item_count = instances.len() + triangles.len();
+    if item_count >= (1 << 31) {
+        return Err(PackError::TooManyItems(item_count));
+    }
+    let density = match options.grid {
+        GridMode::Off => None,
+        GridMode::Auto => Some(crate::accel::grid::DEFAULT_DENSITY),
+        GridMode::Density(d) => Some(d),
+    };
+    let grid = Grid::build(&instances, &triangles, density);
+    if grid.enabled {
+        features.insert(SceneFeatures::GRID);
+    }
+    let globals = make_globals(scene, &instances, &triangles, &lights, &grid);
+    Ok(PackedScene {
+        globals,
+        instances,
+        triangles,
+        materials,
+        lights,
+        cell_start: grid.cell_start,
+        cell_items: grid.cell_items,
+        features,
+        grid_stats: grid.stats,
+    })
+}
+
+fn make_globals(
+    scene: &Scene,
+    instances: &[GpuInstance],
+    triangles: &[GpuTriangle],
+    lights: &[GpuLight],
+    grid: &Grid,
+) -> GpuGlobals {
+    let camera = &scene.camera;
+    let forward = camera.view.normalize();
+    let right = forward.cross(camera.up).normalize();
+    let up = right.cross(forward);
+    let (top, bottom) = match scene.options.background {
+        Background::Solid(c) => (c, c),
+        Background::Gradient { top, bottom } => (top, bottom),
+    };
+    let options = &scene.options;
+    GpuGlobals {
+        eye: camera.eye.as_vec3().to_array(),
+        tan_half_fov: (camera.fov_deg.to_radians() * 0.5).tan() as f32,
+        forward: forward.as_vec3().to_array(),
+        aspect: scene.width as f32 / scene.height as f32,
+        right: right.as_vec3().to_array(),
+        width: scene.width,
+        up: up.as_vec3().to_array(),
+        height: scene.height,
+        ambient: scene.ambient,
+        num_lights: lights.len() as u32,
+        background_top: top,
+        max_depth: options.max_depth,
+        background_bottom: bottom,
+        min_weight: options.min_weight,
+        grid_min: grid.min,
+        num_instances: instances.len() as u32,
+        grid_cell_size: grid.cell_size,
+        num_triangles: triangles.len() as u32,
+        grid_dims: grid.dims,
+        grid_enabled: grid.enabled as u32,
+        grid_max: grid.max,
+        aa_mode: match options.aa {
+            AaMode::None => AA_NONE,
+            AaMode::Uniform => AA_UNIFORM,
+            AaMode::Adaptive => AA_ADAPTIVE,
+        },
+        aa_samples: options.samples.clamp(1, MAX_AA_SAMPLES),
+        aa_threshold: options.aa_threshold,
+        aa_depth: options.aa_depth.min(MAX_AA_DEPTH),
+        _pad: 0,
+    }
+}
+
+/// Rows of the 3×4 affine part of `m` (xyz linear, w translation), in f32.
+fn affine_rows(m: &DMat4) -> [[f32; 4]; 3] {
+    let r = m.transpose();
+    [
+        r.x_axis.as_vec4().to_array(),
+        r.y_axis.as_vec4().to_array(),
+        r.z_axis.as_vec4().to_array(),
+    ]
+}
+
+/// A zero-area triangle can never be hit (the watertight test rejects det = 0) but would
+/// still cost grid space: drop it.
+fn is_degenerate(p: &[DVec3; 3]) -> bool {
+    (p[1] - p[0]).cross(p[2] - p[0]).length_squared() == 0.0
+}
+
+fn check_finite(instances: &[GpuInstance], triangles: &[GpuTriangle]) -> Result<(), PackError> {
+    for (i, inst) in instances.iter().enumerate() {
+        let values = inst.world_to_object.iter().chain(&inst.object_to_world);
+        if let Some(v) = values.flatten().find(|v| !v.is_finite()) {
+            return Err(PackError::OutOfRange {
+                what: format!("instance {i} transform entry"),
+                value: *v as f64,
+            });
+        }
+    }
+    for (i, t) in triangles.iter().enumerate() {
+        if let Some(v) = [t.p0, t.p1, t.p2].iter().flatten().find(|v| !v.is_finite()) {
+            return Err(PackError::OutOfRange {
+                what: format!("triangle {i} coordinate"),
+                value: *v as f64,
+            });
+        }
+    }
+    Ok(())
+}
