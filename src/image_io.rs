@@ -1,1 +1,333 @@
 //! Image files: PNG/EXR written atomically, read back for diffs.
+//!
+//! PNG holds what `Film::to_rgb8` gives (clamped, no gamma); EXR holds the linear f32
+//! film unclamped. Reading maps 8-bit channels back by `/255` with no gamma, so a PNG
+//! we wrote reads back to a film that re-quantises to the same bytes.
+
+use std::ffi::OsString;
+use std::fs::{self, File};
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use image::codecs::openexr::OpenExrEncoder;
+use image::codecs::png::PngEncoder;
+use image::{DynamicImage, ExtendedColorType, ImageEncoder, ImageReader};
+use thiserror::Error;
+
+use crate::film::Film;
+
+/// Everything that can go wrong reading or writing an image; every message names the path.
+#[derive(Debug, Error)]
+pub enum ImageIoError {
+    #[error("cannot write {path}: unsupported extension (supported: .png, .exr)")]
+    UnsupportedExtension { path: PathBuf },
+    #[error("cannot write {path}: directory {dir} does not exist")]
+    MissingDirectory { path: PathBuf, dir: PathBuf },
+    #[error("cannot write {path}: film is {width}x{height} but holds {len} pixels")]
+    MalformedFilm {
+        path: PathBuf,
+        width: u32,
+        height: u32,
+        len: usize,
+    },
+    #[error("I/O error on {path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("cannot encode {path}: {source}")]
+    Encode {
+        path: PathBuf,
+        #[source]
+        source: image::ImageError,
+    },
+    #[error("cannot read image {path}: {source}")]
+    Decode {
+        path: PathBuf,
+        #[source]
+        source: image::ImageError,
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Png,
+    Exr,
+}
+
+fn format_for(path: &Path) -> Option<Format> {
+    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+    match ext.as_str() {
+        "png" => Some(Format::Png),
+        "exr" => Some(Format::Exr),
+        _ => None,
+    }
+}
+
+/// Distinguishes temp files of concurrent writers in one process (pid alone would not).
+static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Writes `film` to `path`, format chosen by extension (`.png` 8-bit RGB, `.exr` f32 RGB).
+///
+/// Atomic: the image goes to a hidden temp file in the target's directory (same
+/// filesystem, so the rename cannot degrade to a copy) and is renamed over `path` only
+/// once complete; on any failure the temp file is removed. A reader therefore sees
+/// either the old file or the whole new one, never a truncated image.
+pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
+    let format = format_for(path).ok_or_else(|| ImageIoError::UnsupportedExtension {
+        path: path.to_path_buf(),
+    })?;
+    let expected = film.width as usize * film.height as usize;
+    if film.pixels.len() != expected {
+        // Checked up front: the encoders assert on buffer length and would panic.
+        return Err(ImageIoError::MalformedFilm {
+            path: path.to_path_buf(),
+            width: film.width,
+            height: film.height,
+            len: film.pixels.len(),
+        });
+    }
+    let file_name = path
+        .file_name()
+        .ok_or_else(|| ImageIoError::UnsupportedExtension {
+            path: path.to_path_buf(),
+        })?;
+    // `Path::parent` of a bare file name is "", meaning the current directory.
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    if !dir.is_dir() {
+        return Err(ImageIoError::MissingDirectory {
+            path: path.to_path_buf(),
+            dir,
+        });
+    }
+
+    let mut temp_name = OsString::from(".");
+    temp_name.push(file_name);
+    temp_name.push(format!(
+        ".tmp-{}-{}",
+        std::process::id(),
+        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    let temp = dir.join(temp_name);
+
+    let result = write_to_temp(film, format, path, &temp).and_then(|()| {
+        fs::rename(&temp, path).map_err(|source| ImageIoError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    });
+    if result.is_err() {
+        // Best effort: the temp may never have been created.
+        let _ = fs::remove_file(&temp);
+    }
+    result
+}
+
+fn write_to_temp(
+    film: &Film,
+    format: Format,
+    path: &Path,
+    temp: &Path,
+) -> Result<(), ImageIoError> {
+    let io_err = |source| ImageIoError::Io {
+        path: temp.to_path_buf(),
+        source,
+    };
+    let encode_err = |source| ImageIoError::Encode {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = File::create(temp).map_err(io_err)?;
+    let mut out = BufWriter::new(file);
+    match format {
+        Format::Png => PngEncoder::new(&mut out)
+            .write_image(
+                &film.to_rgb8(),
+                film.width,
+                film.height,
+                ExtendedColorType::Rgb8,
+            )
+            .map_err(encode_err)?,
+        Format::Exr => OpenExrEncoder::new(&mut out)
+            .write_image(
+                bytemuck::cast_slice(&film.pixels),
+                film.width,
+                film.height,
+                ExtendedColorType::Rgb32F,
+            )
+            .map_err(encode_err)?,
+    }
+    let file = out.into_inner().map_err(|e| io_err(e.into_error()))?;
+    // Data on disk before the rename, so a crash cannot leave a renamed-but-empty file.
+    file.sync_all().map_err(io_err)?;
+    Ok(())
+}
+
+/// Reads a PNG, JPEG or EXR (format sniffed from the content, then the extension) into a
+/// linear film. 8-bit channels map by `/255` with no gamma, the inverse of `to_rgb8`;
+/// float images are taken as-is; alpha is dropped.
+pub fn read_image(path: &Path) -> Result<Film, ImageIoError> {
+    let decode_err = |source| ImageIoError::Decode {
+        path: path.to_path_buf(),
+        source,
+    };
+    let reader = ImageReader::open(path)
+        .map_err(|source| ImageIoError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?
+        .with_guessed_format()
+        .map_err(|source| ImageIoError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    let image = reader.decode().map_err(decode_err)?;
+    let (width, height) = (image.width(), image.height());
+    let pixels = match image {
+        DynamicImage::ImageRgb8(_)
+        | DynamicImage::ImageRgba8(_)
+        | DynamicImage::ImageLuma8(_)
+        | DynamicImage::ImageLumaA8(_) => image
+            .into_rgb8()
+            .pixels()
+            .map(|p| p.0.map(|c| f32::from(c) / 255.0))
+            .collect(),
+        // 16-bit and float sources: image's own conversion (16-bit scales by /65535).
+        other => other.into_rgb32f().pixels().map(|p| p.0).collect(),
+    };
+    Ok(Film {
+        width,
+        height,
+        pixels,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fresh scratch directory per test, under the system temp dir.
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("glint-image-io-{}-{name}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    fn gradient(width: u32, height: u32) -> Film {
+        let mut film = Film::new(width, height);
+        for y in 0..height {
+            for x in 0..width {
+                let fx = x as f32 / width as f32;
+                let fy = y as f32 / height as f32;
+                // Out-of-range values on purpose: EXR must keep them, PNG must clamp.
+                film.set(x, y, [fx * 1.7 - 0.3, fy, 0.123_456_79 + fx * fy * 10.0]);
+            }
+        }
+        film
+    }
+
+    fn dir_entries(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn png_round_trip_is_byte_exact() {
+        let dir = scratch("png");
+        let film = gradient(17, 9);
+        let path = dir.join("out.png");
+        write_image(&film, &path).unwrap();
+        let back = read_image(&path).unwrap();
+        assert_eq!((back.width, back.height), (17, 9));
+        assert_eq!(back.to_rgb8(), film.to_rgb8());
+        // Reading is exactly /255, no gamma.
+        assert_eq!(back.pixels[0][0], f32::from(film.to_rgb8()[0]) / 255.0);
+        assert_eq!(dir_entries(&dir), vec!["out.png"]);
+    }
+
+    #[test]
+    fn exr_round_trip_is_float_exact() {
+        let dir = scratch("exr");
+        let mut film = gradient(13, 7);
+        film.set(3, 2, [1.0e6, -2.5, 1.0e-20]);
+        let path = dir.join("out.EXR");
+        write_image(&film, &path).unwrap();
+        let back = read_image(&path).unwrap();
+        assert_eq!(back, film);
+        assert_eq!(dir_entries(&dir), vec!["out.EXR"]);
+    }
+
+    #[test]
+    fn overwrite_replaces_existing_file() {
+        let dir = scratch("overwrite");
+        let path = dir.join("a.png");
+        write_image(&Film::new(2, 2), &path).unwrap();
+        let mut white = Film::new(3, 1);
+        white.pixels.fill([1.0; 3]);
+        write_image(&white, &path).unwrap();
+        assert_eq!(read_image(&path).unwrap(), white);
+        assert_eq!(dir_entries(&dir), vec!["a.png"]);
+    }
+
+    #[test]
+    fn missing_directory_fails_and_leaves_nothing() {
+        let dir = scratch("missing");
+        let missing = dir.join("nope");
+        let err = write_image(&Film::new(2, 2), &missing.join("x.png")).unwrap_err();
+        assert!(matches!(err, ImageIoError::MissingDirectory { .. }));
+        assert!(
+            err.to_string().contains(&missing.display().to_string()),
+            "{err}"
+        );
+        assert!(!missing.exists());
+        assert!(dir_entries(&dir).is_empty());
+    }
+
+    #[test]
+    fn unknown_extension_fails_and_leaves_nothing() {
+        let dir = scratch("ext");
+        for name in ["x.bmp", "x", "x.png.bak"] {
+            let path = dir.join(name);
+            let err = write_image(&Film::new(2, 2), &path).unwrap_err();
+            let msg = err.to_string();
+            assert!(msg.contains(".png") && msg.contains(".exr"), "{msg}");
+            assert!(msg.contains(name), "{msg}");
+        }
+        assert!(dir_entries(&dir).is_empty());
+    }
+
+    #[test]
+    fn failed_encode_removes_temp_file() {
+        let dir = scratch("badfilm");
+        let mut film = Film::new(4, 4);
+        film.pixels.pop();
+        let err = write_image(&film, &dir.join("x.exr")).unwrap_err();
+        assert!(matches!(err, ImageIoError::MalformedFilm { .. }));
+        // A zero-sized PNG is rejected by the encoder after the temp file exists.
+        assert!(write_image(&Film::new(0, 0), &dir.join("y.png")).is_err());
+        assert!(dir_entries(&dir).is_empty());
+    }
+
+    #[test]
+    fn read_errors_name_the_path() {
+        let dir = scratch("read");
+        let missing = dir.join("absent.png");
+        let err = read_image(&missing).unwrap_err();
+        assert!(err.to_string().contains("absent.png"), "{err}");
+        let junk = dir.join("junk.png");
+        fs::write(&junk, b"not an image").unwrap();
+        let err = read_image(&junk).unwrap_err();
+        assert!(err.to_string().contains("junk.png"), "{err}");
+    }
+}

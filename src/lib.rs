@@ -5,6 +5,8 @@
 //! Pod arrays with a uniform grid from `accel`; `cpu` (the reference) renders those arrays
 //! into a [`film::Film`]; `output` writes it.
 
+pub mod cli;
+pub mod diff;
 pub mod film;
 pub mod image_io;
 pub mod scene;
