@@ -3,10 +3,14 @@
 //! Data flow (see `shared/design/architecture.md`): `scene::lua` runs a script into a
 //! [`scene::SceneGraph`]; `scene::flatten` bakes it to world space; `pack` lays it out as
 //! Pod arrays with a uniform grid from `accel`; `cpu` (the reference) renders those arrays
-//! into a [`film::Film`]; `output` writes it.
+//! into a [`film::Film`]; `image_io` writes it.
 
+pub mod accel;
 pub mod cli;
+pub mod constants;
+pub mod cpu;
 pub mod diff;
 pub mod film;
 pub mod image_io;
+pub mod pack;
 pub mod scene;

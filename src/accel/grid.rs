@@ -100,11 +100,23 @@ pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
     );
     let (centre, half) = match inst.kind {
         // Ellipsoid: the extent along world axis i is the length of row i.
-        KIND_SPHERE => (translation, Vec3::new(rows[0].length(), rows[1].length(), rows[2].length())),
+        KIND_SPHERE => (
+            translation,
+            Vec3::new(rows[0].length(), rows[1].length(), rows[2].length()),
+        ),
         // Unit cube around (½,½,½): half-extent ½·Σ|row i|.
         KIND_CUBE => (
-            translation + Vec3::new(rows[0].dot(Vec3::splat(0.5)), rows[1].dot(Vec3::splat(0.5)), rows[2].dot(Vec3::splat(0.5))),
-            0.5 * Vec3::new(rows[0].abs().element_sum(), rows[1].abs().element_sum(), rows[2].abs().element_sum()),
+            translation
+                + Vec3::new(
+                    rows[0].dot(Vec3::splat(0.5)),
+                    rows[1].dot(Vec3::splat(0.5)),
+                    rows[2].dot(Vec3::splat(0.5)),
+                ),
+            0.5 * Vec3::new(
+                rows[0].abs().element_sum(),
+                rows[1].abs().element_sum(),
+                rows[2].abs().element_sum(),
+            ),
         ),
         other => unreachable!("instance kind {other} has no bounds"),
     };
@@ -139,7 +151,11 @@ pub fn grid_resolution(extent: Vec3, items: usize, density: f32) -> [u32; 3] {
 
 impl Grid {
     /// Builds the grid over every instance and triangle; `density` None means brute force.
-    pub fn build(instances: &[GpuInstance], triangles: &[GpuTriangle], density: Option<f32>) -> Grid {
+    pub fn build(
+        instances: &[GpuInstance],
+        triangles: &[GpuTriangle],
+        density: Option<f32>,
+    ) -> Grid {
         let start = Instant::now();
         let bounds: Vec<Aabb> = instances
             .par_iter()
@@ -162,7 +178,11 @@ impl Grid {
         let dims = grid_resolution(extent, item_count, density);
         let dims_v = Vec3::new(dims[0] as f32, dims[1] as f32, dims[2] as f32);
         let cell_size = extent / dims_v;
-        let geometry = CellGeometry { min, cell_size, dims };
+        let geometry = CellGeometry {
+            min,
+            cell_size,
+            dims,
+        };
 
         // (cell, item) references, produced in parallel chunks kept in item order.
         const CHUNK: usize = 1 << 14;
@@ -197,7 +217,9 @@ impl Grid {
             cell_items[*slot as usize] = item;
             *slot += 1;
         }
-        let empty_cells = (0..cells).filter(|&c| cell_start[c] == cell_start[c + 1]).count();
+        let empty_cells = (0..cells)
+            .filter(|&c| cell_start[c] == cell_start[c + 1])
+            .count();
         let max_items_in_cell = (0..cells)
             .map(|c| (cell_start[c + 1] - cell_start[c]) as usize)
             .max()
@@ -278,12 +300,15 @@ impl CellGeometry {
             for y in lo[1]..=hi[1] {
                 for x in lo[0]..=hi[0] {
                     if let Some((p0, normal)) = plane {
-                        let centre = self.min + (Vec3::new(x as f32, y as f32, z as f32) + 0.5) * self.cell_size;
+                        let centre = self.min
+                            + (Vec3::new(x as f32, y as f32, z as f32) + 0.5) * self.cell_size;
                         // Plane–box overlap: the box's projected radius on the normal
                         // must reach the plane.
                         let radius = half.dot(normal.abs());
                         let distance = normal.dot(centre - p0);
-                        let slack = BOUNDS_PAD * (normal.length() * (centre.abs().max_element() + p0.abs().max_element()));
+                        let slack = BOUNDS_PAD
+                            * (normal.length()
+                                * (centre.abs().max_element() + p0.abs().max_element()));
                         if distance.abs() > radius + slack {
                             continue;
                         }

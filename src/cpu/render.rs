@@ -40,7 +40,14 @@ fn contrast(c: &[Vec3; 4]) -> f32 {
 /// stack — down to `aa_depth`. Sample positions lie on a dyadic lattice, so neighbouring
 /// pixels see the same colour at a shared corner.
 // Mirror of shaders/render.wgsl::adaptive_pixel — change both.
-fn adaptive_pixel(scene: &PackedScene, x: u32, y: u32, threshold: f32, max_depth: u32, counters: &mut impl TraversalCounters) -> Vec3 {
+fn adaptive_pixel(
+    scene: &PackedScene,
+    x: u32,
+    y: u32,
+    threshold: f32,
+    max_depth: u32,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
     let (fx, fy) = (x as f32, y as f32);
     let corners = [
         sample(scene, fx, fy, counters),
@@ -48,7 +55,13 @@ fn adaptive_pixel(scene: &PackedScene, x: u32, y: u32, threshold: f32, max_depth
         sample(scene, fx, fy + 1.0, counters),
         sample(scene, fx + 1.0, fy + 1.0, counters),
     ];
-    let mut stack = [AdaptiveSquare { x: fx, y: fy, size: 1.0, depth: 0, corners }; 3 * MAX_AA_DEPTH as usize + 1];
+    let mut stack = [AdaptiveSquare {
+        x: fx,
+        y: fy,
+        size: 1.0,
+        depth: 0,
+        corners,
+    }; 3 * MAX_AA_DEPTH as usize + 1];
     let mut size = 1;
     let mut sum = Vec3::ZERO;
     while size > 0 {
@@ -75,7 +88,13 @@ fn adaptive_pixel(scene: &PackedScene, x: u32, y: u32, threshold: f32, max_depth
             (sq.x + h, sq.y + h, [centre, right, bottom, br]),
         ];
         for (cx, cy, corners) in children {
-            stack[size] = AdaptiveSquare { x: cx, y: cy, size: h, depth, corners };
+            stack[size] = AdaptiveSquare {
+                x: cx,
+                y: cy,
+                size: h,
+                depth,
+                corners,
+            };
             size += 1;
         }
     }
@@ -84,7 +103,12 @@ fn adaptive_pixel(scene: &PackedScene, x: u32, y: u32, threshold: f32, max_depth
 
 /// Colour of pixel (x, y) under the scene's anti-aliasing mode.
 // Mirror of shaders/render.wgsl::render_pixel — change both.
-pub fn render_pixel(scene: &PackedScene, x: u32, y: u32, counters: &mut impl TraversalCounters) -> Vec3 {
+pub fn render_pixel(
+    scene: &PackedScene,
+    x: u32,
+    y: u32,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
     let g = &scene.globals;
     let pixel = y * g.width + x;
     if g.aa_mode == AA_UNIFORM {
@@ -122,11 +146,17 @@ pub struct RenderCounters {
 
 /// Renders the whole image on the current rayon pool.
 pub fn render(scene: &PackedScene, progress: RenderProgress) -> Film {
-    render_tiles(scene, progress, |x, y| render_pixel(scene, x, y, &mut NoCounters)).0
+    render_tiles(scene, progress, |x, y| {
+        render_pixel(scene, x, y, &mut NoCounters)
+    })
+    .0
 }
 
 /// Renders with traversal counters (slower; for `--stats`).
-pub fn render_with_counters(scene: &PackedScene, progress: RenderProgress) -> (Film, RenderCounters) {
+pub fn render_with_counters(
+    scene: &PackedScene,
+    progress: RenderProgress,
+) -> (Film, RenderCounters) {
     let cells = AtomicU64::new(0);
     let items = AtomicU64::new(0);
     let rays = AtomicU64::new(0);
@@ -166,7 +196,11 @@ impl TraversalCounters for CountingRays {
     }
 }
 
-fn render_tiles(scene: &PackedScene, progress: RenderProgress, pixel: impl Fn(u32, u32) -> Vec3 + Sync) -> (Film, ()) {
+fn render_tiles(
+    scene: &PackedScene,
+    progress: RenderProgress,
+    pixel: impl Fn(u32, u32) -> Vec3 + Sync,
+) -> (Film, ()) {
     let (w, h) = (scene.globals.width, scene.globals.height);
     let tiles_x = w.div_ceil(TILE_SIZE);
     let tiles_y = h.div_ceil(TILE_SIZE);

@@ -110,7 +110,13 @@ pub fn phong_power(base: f32, exponent: f32) -> f32 {
 /// (kd·max(0,N·L) + ks·max(0,R·V)^shininess)·I/(c0 + c1·d + c2·d²). `n` faces the viewer;
 /// `v` points to the viewer.
 // Mirror of shaders/shade.wgsl::shade_phong — change both.
-pub fn shade_phong(scene: &PackedScene, s: &Surface, n: Vec3, v: Vec3, counters: &mut impl TraversalCounters) -> Vec3 {
+pub fn shade_phong(
+    scene: &PackedScene,
+    s: &Surface,
+    n: Vec3,
+    v: Vec3,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
     let m = &scene.materials[s.material as usize];
     let kd = Vec3::from(m.kd);
     let ks = Vec3::from(m.ks);

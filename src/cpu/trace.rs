@@ -38,7 +38,11 @@ pub fn trace_ray(scene: &PackedScene, primary: Ray, counters: &mut impl Traversa
         }
         let s = surface_at(scene, &ray, &hit);
         // Two-sided shading: the normal faces the incoming ray.
-        let n = if s.normal.dot(ray.dir) > 0.0 { -s.normal } else { s.normal };
+        let n = if s.normal.dot(ray.dir) > 0.0 {
+            -s.normal
+        } else {
+            s.normal
+        };
         let v = -ray.dir;
         colour += entry.weight * shade_phong(scene, &s, n, v, counters);
         let m = &scene.materials[s.material as usize];

@@ -3,7 +3,10 @@
 //! a cell is accepted only if it lies inside that cell (an item may span several cells,
 //! and a nearer item may wait in the next one).
 
-use super::intersect::{intersect_instance, intersect_triangle, safe_rcp3, triangle_ray_setup, triangle_vertices, TriangleRay};
+use super::intersect::{
+    intersect_instance, intersect_triangle, safe_rcp3, triangle_ray_setup, triangle_vertices,
+    TriangleRay,
+};
 use super::ray::Ray;
 use crate::constants::{NO_ITEM, T_MISS};
 use crate::pack::PackedScene;
@@ -60,7 +63,13 @@ impl TraversalCounters for Counters {
 
 /// Tests one item, returning (t, b1, b2) with t = T_MISS on a miss.
 // Mirror of shaders/traverse.wgsl::intersect_item — change both.
-fn intersect_item(scene: &PackedScene, item: u32, ray: &Ray, tri_ray: &TriangleRay, t_max: f32) -> Vec3 {
+fn intersect_item(
+    scene: &PackedScene,
+    item: u32,
+    ray: &Ray,
+    tri_ray: &TriangleRay,
+    t_max: f32,
+) -> Vec3 {
     let num_instances = scene.globals.num_instances;
     if item < num_instances {
         let t = intersect_instance(&scene.instances[item as usize], ray.origin, ray.dir, t_max);
@@ -72,12 +81,24 @@ fn intersect_item(scene: &PackedScene, item: u32, ray: &Ray, tri_ray: &TriangleR
 }
 
 /// Tests the items `items` and keeps the nearest hit below `best.t`.
-fn test_items(scene: &PackedScene, items: impl Iterator<Item = u32>, ray: &Ray, tri_ray: &TriangleRay, best: &mut Hit, counters: &mut impl TraversalCounters) {
+fn test_items(
+    scene: &PackedScene,
+    items: impl Iterator<Item = u32>,
+    ray: &Ray,
+    tri_ray: &TriangleRay,
+    best: &mut Hit,
+    counters: &mut impl TraversalCounters,
+) {
     for item in items {
         counters.item_tested();
         let h = intersect_item(scene, item, ray, tri_ray, best.t);
         if h.x < best.t {
-            *best = Hit { t: h.x, item, b1: h.y, b2: h.z };
+            *best = Hit {
+                t: h.x,
+                item,
+                b1: h.y,
+                b2: h.z,
+            };
         }
     }
 }
@@ -97,7 +118,11 @@ fn dda_setup(scene: &PackedScene, ray: &Ray, t_max: f32) -> Option<Dda> {
     let g = &scene.globals;
     let grid_min = Vec3::from(g.grid_min);
     let cell_size = Vec3::from(g.grid_cell_size);
-    let dims = IVec3::new(g.grid_dims[0] as i32, g.grid_dims[1] as i32, g.grid_dims[2] as i32);
+    let dims = IVec3::new(
+        g.grid_dims[0] as i32,
+        g.grid_dims[1] as i32,
+        g.grid_dims[2] as i32,
+    );
     let inv = safe_rcp3(ray.dir);
     let t0 = (grid_min - ray.origin) * inv;
     let t1 = (Vec3::from(g.grid_max) - ray.origin) * inv;
@@ -107,7 +132,10 @@ fn dda_setup(scene: &PackedScene, ray: &Ray, t_max: f32) -> Option<Dda> {
         return None;
     }
     let p = ray.origin + ray.dir * t_enter;
-    let cell = ((p - grid_min) / cell_size).floor().as_ivec3().clamp(IVec3::ZERO, dims - 1);
+    let cell = ((p - grid_min) / cell_size)
+        .floor()
+        .as_ivec3()
+        .clamp(IVec3::ZERO, dims - 1);
     let mut step = IVec3::ZERO;
     let mut t_next = Vec3::ZERO;
     let mut t_delta = Vec3::ZERO;
@@ -125,7 +153,13 @@ fn dda_setup(scene: &PackedScene, ray: &Ray, t_max: f32) -> Option<Dda> {
             t_delta[axis] = cell_size[axis] * inv[axis].abs();
         }
     }
-    Some(Dda { cell, step, t_next, t_delta, t_exit })
+    Some(Dda {
+        cell,
+        step,
+        t_next,
+        t_delta,
+        t_exit,
+    })
 }
 
 /// Index of the smallest component.
@@ -141,10 +175,18 @@ fn min_axis(v: Vec3) -> usize {
 
 /// Nearest hit along `ray` in (0, t_max).
 // Mirror of shaders/traverse.wgsl::closest_hit — change both.
-pub fn closest_hit(scene: &PackedScene, ray: &Ray, t_max: f32, counters: &mut impl TraversalCounters) -> Hit {
+pub fn closest_hit(
+    scene: &PackedScene,
+    ray: &Ray,
+    t_max: f32,
+    counters: &mut impl TraversalCounters,
+) -> Hit {
     counters.traversal_started();
     let tri_ray = triangle_ray_setup(ray.origin, ray.dir);
-    let mut best = Hit { t: t_max, ..Hit::MISS };
+    let mut best = Hit {
+        t: t_max,
+        ..Hit::MISS
+    };
     let g = &scene.globals;
     if g.grid_enabled == 0 {
         counters.cell_visited();
@@ -155,12 +197,23 @@ pub fn closest_hit(scene: &PackedScene, ray: &Ray, t_max: f32, counters: &mut im
     let Some(mut dda) = dda_setup(scene, ray, t_max) else {
         return Hit::MISS;
     };
-    let dims = IVec3::new(g.grid_dims[0] as i32, g.grid_dims[1] as i32, g.grid_dims[2] as i32);
+    let dims = IVec3::new(
+        g.grid_dims[0] as i32,
+        g.grid_dims[1] as i32,
+        g.grid_dims[2] as i32,
+    );
     loop {
         counters.cell_visited();
         let cell = (dda.cell.x + dims.x * (dda.cell.y + dims.y * dda.cell.z)) as usize;
         let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
-        test_items(scene, range.map(|i| scene.cell_items[i as usize]), ray, &tri_ray, &mut best, counters);
+        test_items(
+            scene,
+            range.map(|i| scene.cell_items[i as usize]),
+            ray,
+            &tri_ray,
+            &mut best,
+            counters,
+        );
         let axis = min_axis(dda.t_next);
         let t_cell_exit = dda.t_next[axis];
         // A hit inside this cell is final; so is leaving the grid or passing t_max.
@@ -180,33 +233,66 @@ pub fn closest_hit(scene: &PackedScene, ray: &Ray, t_max: f32, counters: &mut im
     }
 }
 
+/// Whether any of `items` is hit in (0, t_max).
+fn any_item_hit(
+    scene: &PackedScene,
+    items: impl Iterator<Item = u32>,
+    ray: &Ray,
+    tri_ray: &TriangleRay,
+    t_max: f32,
+    counters: &mut impl TraversalCounters,
+) -> bool {
+    for item in items {
+        counters.item_tested();
+        if intersect_item(scene, item, ray, tri_ray, t_max).x < t_max {
+            return true;
+        }
+    }
+    false
+}
+
 /// Whether anything blocks `ray` in (0, t_max) (shadow rays).
 // Mirror of shaders/traverse.wgsl::any_hit — change both.
-pub fn any_hit(scene: &PackedScene, ray: &Ray, t_max: f32, counters: &mut impl TraversalCounters) -> bool {
+pub fn any_hit(
+    scene: &PackedScene,
+    ray: &Ray,
+    t_max: f32,
+    counters: &mut impl TraversalCounters,
+) -> bool {
     counters.traversal_started();
     let tri_ray = triangle_ray_setup(ray.origin, ray.dir);
     let g = &scene.globals;
-    let hits = |items: &mut dyn Iterator<Item = u32>, counters: &mut dyn FnMut()| {
-        items.any(|item| {
-            counters();
-            intersect_item(scene, item, ray, &tri_ray, t_max).x < t_max
-        })
-    };
     if g.grid_enabled == 0 {
         counters.cell_visited();
-        let mut count = || counters.item_tested();
-        return hits(&mut (0..g.num_instances + g.num_triangles), &mut count);
+        return any_item_hit(
+            scene,
+            0..g.num_instances + g.num_triangles,
+            ray,
+            &tri_ray,
+            t_max,
+            counters,
+        );
     }
     let Some(mut dda) = dda_setup(scene, ray, t_max) else {
         return false;
     };
-    let dims = IVec3::new(g.grid_dims[0] as i32, g.grid_dims[1] as i32, g.grid_dims[2] as i32);
+    let dims = IVec3::new(
+        g.grid_dims[0] as i32,
+        g.grid_dims[1] as i32,
+        g.grid_dims[2] as i32,
+    );
     loop {
         counters.cell_visited();
         let cell = (dda.cell.x + dims.x * (dda.cell.y + dims.y * dda.cell.z)) as usize;
         let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
-        let mut count = || counters.item_tested();
-        if hits(&mut range.map(|i| scene.cell_items[i as usize]), &mut count) {
+        if any_item_hit(
+            scene,
+            range.map(|i| scene.cell_items[i as usize]),
+            ray,
+            &tri_ray,
+            t_max,
+            counters,
+        ) {
             return true;
         }
         let axis = min_axis(dda.t_next);

@@ -8,8 +8,8 @@ use crate::accel::grid::{Grid, GridBuildStats};
 use crate::constants::*;
 use crate::scene::flatten::{ObjectKind, Scene};
 use crate::scene::{AaMode, Background, GridMode};
-use glam::{DMat4, DVec3};
 pub use features::SceneFeatures;
+use glam::{DMat4, DVec3};
 pub use layout::*;
 
 /// Everything a tracer needs, as flat arrays. Grid items index instances first, then

@@ -56,7 +56,9 @@ pub enum FlattenError {
     SingularTransform { path: String, det: f64 },
     #[error("node '{path}' has a non-finite transform (NaN or infinity)")]
     NonFiniteTransform { path: String },
-    #[error("node '{path}' is nested deeper than {MAX_NODE_DEPTH} levels: is it added under itself?")]
+    #[error(
+        "node '{path}' is nested deeper than {MAX_NODE_DEPTH} levels: is it added under itself?"
+    )]
     TooDeep { path: String },
     #[error("camera: {0}")]
     Camera(String),
@@ -180,7 +182,8 @@ fn check_camera(camera: &Camera) -> Result<(), FlattenError> {
             "view direction {view} must be a non-zero vector"
         )));
     }
-    if view.cross(camera.up).length_squared() <= 1e-20 * view.length_squared() * camera.up.length_squared()
+    if view.cross(camera.up).length_squared()
+        <= 1e-20 * view.length_squared() * camera.up.length_squared()
         || !camera.up.is_finite()
     {
         return Err(FlattenError::Camera(format!(

@@ -31,7 +31,10 @@ pub enum Background {
     Solid([f32; 3]),
     /// Vertical gradient by ray direction: `bottom` looking straight down (along −up),
     /// `top` looking straight up, linear in between.
-    Gradient { top: [f32; 3], bottom: [f32; 3] },
+    Gradient {
+        top: [f32; 3],
+        bottom: [f32; 3],
+    },
 }
 
 impl Background {
