@@ -66,34 +66,19 @@ fn format_for(path: &Path) -> Option<Format> {
     }
 }
 
-/// Distinguishes temp files of concurrent writers in one process (pid alone would not).
-static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+/// Checks that `path` can be written (known extension, existing directory) without
+/// writing it: a render can fail fast instead of after minutes of work.
+pub fn check_output_path(path: &Path) -> Result<(), ImageIoError> {
+    output_target(path).map(|_| ())
+}
 
-/// Writes `film` to `path`, format chosen by extension (`.png` 8-bit RGB, `.exr` f32 RGB).
-///
-/// Atomic: the image goes to a hidden temp file in the target's directory (same
-/// filesystem, so the rename cannot degrade to a copy) and is renamed over `path` only
-/// once complete; on any failure the temp file is removed. A reader therefore sees
-/// either the old file or the whole new one, never a truncated image.
-pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
-    let format = format_for(path).ok_or_else(|| ImageIoError::UnsupportedExtension {
+/// Format, directory and file name of an output path, or why it cannot be written.
+fn output_target(path: &Path) -> Result<(Format, PathBuf, OsString), ImageIoError> {
+    let unsupported = || ImageIoError::UnsupportedExtension {
         path: path.to_path_buf(),
-    })?;
-    let expected = film.width as usize * film.height as usize;
-    if film.pixels.len() != expected {
-        // Checked up front: the encoders assert on buffer length and would panic.
-        return Err(ImageIoError::MalformedFilm {
-            path: path.to_path_buf(),
-            width: film.width,
-            height: film.height,
-            len: film.pixels.len(),
-        });
-    }
-    let file_name = path
-        .file_name()
-        .ok_or_else(|| ImageIoError::UnsupportedExtension {
-            path: path.to_path_buf(),
-        })?;
+    };
+    let format = format_for(path).ok_or_else(unsupported)?;
+    let file_name = path.file_name().ok_or_else(unsupported)?.to_os_string();
     // `Path::parent` of a bare file name is "", meaning the current directory.
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
@@ -105,9 +90,33 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
             dir,
         });
     }
+    Ok((format, dir, file_name))
+}
+
+/// Distinguishes temp files of concurrent writers in one process (pid alone would not).
+static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Writes `film` to `path`, format chosen by extension (`.png` 8-bit RGB, `.exr` f32 RGB).
+///
+/// Atomic: the image goes to a hidden temp file in the target's directory (same
+/// filesystem, so the rename cannot degrade to a copy) and is renamed over `path` only
+/// once complete; on any failure the temp file is removed. A reader therefore sees
+/// either the old file or the whole new one, never a truncated image.
+pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
+    let (format, dir, file_name) = output_target(path)?;
+    let expected = film.width as usize * film.height as usize;
+    if film.pixels.len() != expected {
+        // Checked up front: the encoders assert on buffer length and would panic.
+        return Err(ImageIoError::MalformedFilm {
+            path: path.to_path_buf(),
+            width: film.width,
+            height: film.height,
+            len: film.pixels.len(),
+        });
+    }
 
     let mut temp_name = OsString::from(".");
-    temp_name.push(file_name);
+    temp_name.push(&file_name);
     temp_name.push(format!(
         ".tmp-{}-{}",
         std::process::id(),

@@ -13,4 +13,5 @@ pub mod diff;
 pub mod film;
 pub mod image_io;
 pub mod pack;
+pub mod pipeline;
 pub mod scene;

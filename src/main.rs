@@ -1,1 +1,189 @@
-fn main() {}
+//! The `glint` command line: `render`, `diff` and `bench`.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use glint::scene::options::{parse_background, parse_grid_mode};
+use glint::scene::{AaMode, Background, GridMode, OptionOverrides, TransformOrder};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "glint", version, about = "A Whitted-style ray tracer for CS488 Lua scenes")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scene script and render each of its gr.render calls.
+    Render(RenderArgs),
+    /// Compare two images: RMSE, PSNR, max difference, FLIP mean.
+    Diff {
+        /// Reference image (PNG, JPEG or EXR).
+        a: PathBuf,
+        /// Test image.
+        b: PathBuf,
+        /// Write FLIP's error map (magma colours) here.
+        #[arg(long)]
+        heatmap: Option<PathBuf>,
+    },
+    /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles.
+    Bench(glint::cli::bench_cmd::BenchArgs),
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum OrderArg {
+    Pre,
+    Post,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq)]
+enum BackendArg {
+    Cpu,
+}
+
+#[derive(Args)]
+struct RenderArgs {
+    /// The scene script (Lua, CS488 `gr` language).
+    scene: PathBuf,
+    /// Output image (.png or .exr); default: the file named in gr.render. Further
+    /// gr.render calls of the same script get -2, -3… before the extension.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Image width (overrides gr.render's).
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height (overrides gr.render's).
+    #[arg(long)]
+    height: Option<u32>,
+    /// Transform order: pre (M = Op·M, 2015 and later) or post (M = M·Op, up to Summer 2015).
+    #[arg(long, value_enum)]
+    transform_order: Option<OrderArg>,
+    /// Worker threads (default: all cores). The image does not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Print grid, feature and ray statistics after each render.
+    #[arg(long)]
+    stats: bool,
+    /// Tracer: cpu (the reference).
+    #[arg(long, value_enum, default_value = "cpu")]
+    backend: BackendArg,
+    /// Anti-aliasing: none, uniform or adaptive.
+    #[arg(long, value_parser = parse_aa)]
+    aa: Option<AaMode>,
+    /// n of uniform n×n anti-aliasing.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
+    samples: Option<u32>,
+    /// Adaptive AA: corner contrast that splits a square.
+    #[arg(long, value_parser = parse_non_negative)]
+    aa_threshold: Option<f32>,
+    /// Adaptive AA: deepest split.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=6))]
+    aa_depth: Option<u32>,
+    /// Overrides every area light's n (n×n shadow samples).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
+    shadow_samples: Option<u32>,
+    /// Deepest reflection/refraction chain.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    max_depth: Option<u32>,
+    /// Drop secondary rays contributing less than this.
+    #[arg(long, value_parser = parse_non_negative)]
+    min_weight: Option<f32>,
+    /// Background: r,g,b (solid) or r,g,b/r,g,b (top/bottom gradient).
+    #[arg(long, value_parser = parse_background)]
+    background: Option<Background>,
+    /// Acceleration: auto, off (brute force) or a density λ (cells ≈ λ × items).
+    #[arg(long, value_parser = parse_grid_mode)]
+    grid: Option<GridMode>,
+}
+
+fn parse_aa(s: &str) -> Result<AaMode, String> {
+    AaMode::parse(s).ok_or_else(|| format!("aa must be {}, got '{s}'", AaMode::CHOICES))
+}
+
+fn parse_non_negative(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err(format!("expected a non-negative number, got '{s}'")),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(args) => render(args),
+        Command::Diff { a, b, heatmap } => glint::cli::diff_cmd::run_diff(&a, &b, heatmap.as_deref())
+            .map(|_| ())
+            .map_err(|e| (format!("{e:#}"), 1)),
+        Command::Bench(args) => glint::cli::bench_cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1)),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err((message, code)) => {
+            eprintln!("glint: error: {message}");
+            ExitCode::from(code)
+        }
+    }
+}
+
+fn render(args: RenderArgs) -> Result<(), (String, u8)> {
+    let settings = glint::pipeline::RenderSettings {
+        transform_order: args.transform_order.map(|o| match o {
+            OrderArg::Pre => TransformOrder::Pre,
+            OrderArg::Post => TransformOrder::Post,
+        }),
+        overrides: OptionOverrides {
+            aa: args.aa,
+            samples: args.samples,
+            aa_threshold: args.aa_threshold,
+            aa_depth: args.aa_depth,
+            shadow_samples: args.shadow_samples,
+            max_depth: args.max_depth,
+            min_weight: args.min_weight,
+            background: args.background,
+            grid: args.grid,
+            width: args.width.filter(|&w| w > 0),
+            height: args.height.filter(|&h| h > 0),
+        },
+        output: args.output,
+        stats: args.stats,
+        progress: true,
+        instruction_limit: None,
+    };
+    if args.width == Some(0) || args.height == Some(0) {
+        return Err(("--width and --height must be positive".into(), 2));
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+        .map_err(|e| (format!("cannot start {:?} threads: {e}", args.threads), 1))?;
+    let _ = args.backend; // The GPU backend arrives with the GPU tracer.
+    let report = pool.install(|| {
+        glint::pipeline::run_scene(&args.scene, &settings, &mut |image| {
+            eprintln!(
+                "glint: wrote {} ({}×{}, {:.2} s)",
+                image.output.display(),
+                image.film.width,
+                image.film.height,
+                image.render_time.as_secs_f64()
+            );
+            if settings.stats {
+                eprint!("{}", glint::cli::stats::format_stats(image));
+            }
+        })
+    });
+    match report {
+        Ok(report) => {
+            if report.looks_pre2015 && !report.order_set_by_script && settings.transform_order.is_none() {
+                eprintln!(
+                    "glint: hint: this scene looks like a pre-2015 CS488 scene (inline meshes, require, bare unpack); if it looks wrong, try --transform-order post"
+                );
+            }
+            if report.renders == 0 {
+                eprintln!("glint: note: {} never called gr.render; nothing written", args.scene.display());
+            }
+            Ok(())
+        }
+        Err(e) => Err((e.to_string(), e.exit_code() as u8)),
+    }
+}

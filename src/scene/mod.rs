@@ -10,7 +10,7 @@ pub mod options;
 use glam::{DMat4, DVec3};
 use std::path::PathBuf;
 
-pub use options::{AaMode, Background, GridMode, RenderOptions};
+pub use options::{AaMode, Background, GridMode, OptionOverrides, RenderOptions};
 
 /// Index of a node in [`SceneGraph::nodes`].
 pub type NodeId = usize;

@@ -88,3 +88,80 @@ impl Default for RenderOptions {
         }
     }
 }
+
+/// Option values given outside the script (CLI flags); each `Some` beats the scene.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OptionOverrides {
+    pub aa: Option<AaMode>,
+    pub samples: Option<u32>,
+    pub aa_threshold: Option<f32>,
+    pub aa_depth: Option<u32>,
+    pub shadow_samples: Option<u32>,
+    pub max_depth: Option<u32>,
+    pub min_weight: Option<f32>,
+    pub background: Option<Background>,
+    pub grid: Option<GridMode>,
+    pub width: Option<u32>,
+    pub height: Option<u32>,
+}
+
+impl OptionOverrides {
+    /// Applies every given value to `options`.
+    pub fn apply(&self, options: &mut RenderOptions) {
+        fn set<T: Clone>(target: &mut T, value: &Option<T>) {
+            if let Some(v) = value {
+                *target = v.clone();
+            }
+        }
+        set(&mut options.aa, &self.aa);
+        set(&mut options.samples, &self.samples);
+        set(&mut options.aa_threshold, &self.aa_threshold);
+        set(&mut options.aa_depth, &self.aa_depth);
+        if self.shadow_samples.is_some() {
+            options.shadow_samples = self.shadow_samples;
+        }
+        set(&mut options.max_depth, &self.max_depth);
+        set(&mut options.min_weight, &self.min_weight);
+        set(&mut options.background, &self.background);
+        set(&mut options.grid, &self.grid);
+    }
+}
+
+/// Parses `auto`, `off` or a density λ (`4`, `density=4`) as a grid mode.
+pub fn parse_grid_mode(s: &str) -> Result<GridMode, String> {
+    match s {
+        "auto" => Ok(GridMode::Auto),
+        "off" => Ok(GridMode::Off),
+        _ => {
+            let number = s.strip_prefix("density=").unwrap_or(s);
+            match number.parse::<f32>() {
+                Ok(d) if d.is_finite() && d > 0.0 => Ok(GridMode::Density(d)),
+                _ => Err(format!(
+                    "grid must be 'auto', 'off' or a positive density λ (e.g. 'density=4'), got '{s}'"
+                )),
+            }
+        }
+    }
+}
+
+/// Parses `r,g,b` (a solid colour) or `r,g,b/r,g,b` (top/bottom gradient).
+pub fn parse_background(s: &str) -> Result<Background, String> {
+    let colour = |part: &str| -> Result<[f32; 3], String> {
+        let values: Vec<f32> = part
+            .split(',')
+            .map(|v| v.trim().parse::<f32>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| format!("background colour '{part}' must be three numbers r,g,b"))?;
+        match values[..] {
+            [r, g, b] if values.iter().all(|v| v.is_finite()) => Ok([r, g, b]),
+            _ => Err(format!("background colour '{part}' must be three numbers r,g,b")),
+        }
+    };
+    match s.split_once('/') {
+        Some((top, bottom)) => Ok(Background::Gradient {
+            top: colour(top)?,
+            bottom: colour(bottom)?,
+        }),
+        None => Ok(Background::Solid(colour(s)?)),
+    }
+}

@@ -1,0 +1,240 @@
+//! `glint bench`: the grid's worth, measured in one run on this machine.
+//! 1. Primary rays on `macho-cows.lua` at 512×512, with the grid and by brute force; the
+//!    error is the number of pixels whose nearest item differs between the two (must be 0).
+//! 2. N random triangles, N = 10³…10⁶: time per ray, grid build time, memory per
+//!    triangle; the error is the share of rays whose hit differs from brute force.
+//! 3. Optionally (`--densities`), time per ray against the grid density λ.
+
+use crate::accel::grid::{Grid, DEFAULT_DENSITY};
+use crate::cpu::ray::camera_ray;
+use crate::cpu::ray::Ray;
+use crate::cpu::traverse::{closest_hit, NoCounters};
+use crate::pack::{pack, GpuTriangle, PackedScene};
+use crate::scene::flatten::{flatten, Scene, Triangle};
+use crate::scene::lua::{run_scene_file, ScriptConfig};
+use crate::scene::{Camera, GridMode, RenderOptions};
+use glam::DVec3;
+use rayon::prelude::*;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+#[derive(clap::Args, Clone, Debug)]
+pub struct BenchArgs {
+    /// The CS488 corpus (macho-cows.lua is taken from its a4-2021plus folder).
+    #[arg(long, default_value = "../shared/cs488")]
+    pub cs488: PathBuf,
+    /// Largest N of the random-triangle sweep (powers of ten from 10³).
+    #[arg(long, default_value_t = 1_000_000)]
+    pub max_triangles: usize,
+    /// Rays per random-triangle measurement.
+    #[arg(long, default_value_t = 200_000)]
+    pub rays: usize,
+    /// Timed repetitions of each measurement (the fastest is reported).
+    #[arg(long, default_value_t = 3)]
+    pub repeat: usize,
+    /// Also sweep the grid density λ.
+    #[arg(long)]
+    pub densities: bool,
+}
+
+pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
+    println!("glint bench on {} threads", rayon::current_num_threads());
+    bench_macho_cows(args)?;
+    bench_random_triangles(args);
+    if args.densities {
+        bench_densities(args)?;
+    }
+    Ok(())
+}
+
+/// Fastest of `repeat` runs of `f`, with its last result.
+fn fastest<T>(repeat: usize, mut f: impl FnMut() -> T) -> (Duration, T) {
+    let mut best = Duration::MAX;
+    let mut result = None;
+    for _ in 0..repeat.max(1) {
+        let start = Instant::now();
+        let r = f();
+        best = best.min(start.elapsed());
+        result = Some(r);
+    }
+    (best, result.expect("at least one run"))
+}
+
+/// Nearest item along each ray (in parallel).
+fn trace_all(scene: &PackedScene, rays: &[Ray]) -> Vec<u32> {
+    rays.par_iter()
+        .map(|r| closest_hit(scene, r, f32::MAX, &mut NoCounters).item)
+        .collect()
+}
+
+fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<Scene> {
+    let mut scene = None;
+    run_scene_file(path, &ScriptConfig::default(), &mut |graph, request| {
+        if scene.is_none() {
+            let mut request = request.clone();
+            request.width = width;
+            request.height = height;
+            scene = Some(flatten(graph, &request)?);
+        }
+        Ok(())
+    })?;
+    scene.ok_or_else(|| anyhow::anyhow!("{} never calls gr.render", path.display()))
+}
+
+fn with_grid(scene: &Scene, grid: GridMode) -> anyhow::Result<PackedScene> {
+    let mut scene = scene.clone();
+    scene.options.grid = grid;
+    Ok(pack(&scene)?)
+}
+
+fn bench_macho_cows(args: &BenchArgs) -> anyhow::Result<()> {
+    let path = args.cs488.join("a4-2021plus/macho-cows.lua");
+    let scene = load_scene(&path, 512, 512)?;
+    let grid = with_grid(&scene, GridMode::Auto)?;
+    let brute = with_grid(&scene, GridMode::Off)?;
+    let g = &grid.globals;
+    let rays: Vec<Ray> = (0..g.width * g.height)
+        .map(|i| camera_ray(g, (i % g.width) as f32 + 0.5, (i / g.width) as f32 + 0.5))
+        .collect();
+    let (t_grid, hits_grid) = fastest(args.repeat, || trace_all(&grid, &rays));
+    let (t_brute, hits_brute) = fastest(args.repeat, || trace_all(&brute, &rays));
+    let differing = hits_grid.iter().zip(&hits_brute).filter(|(a, b)| a != b).count();
+    let mrays = |t: Duration| rays.len() as f64 / t.as_secs_f64() / 1e6;
+    println!("\n## Primary rays, macho-cows.lua at 512×512 ({} items)", grid.grid_stats.items);
+    println!("| tracer | time | Mrays/s |");
+    println!("| --- | ---: | ---: |");
+    println!("| grid (λ = {DEFAULT_DENSITY}) | {:.1} ms | {:.2} |", t_grid.as_secs_f64() * 1e3, mrays(t_grid));
+    println!("| brute force | {:.1} ms | {:.3} |", t_brute.as_secs_f64() * 1e3, mrays(t_brute));
+    println!(
+        "speed-up {:.0}×; pixels whose nearest item differs: {differing} of {}",
+        t_brute.as_secs_f64() / t_grid.as_secs_f64(),
+        rays.len()
+    );
+    Ok(())
+}
+
+/// splitmix64: a tiny seeded generator for benchmark geometry.
+struct SplitMix(u64);
+impl SplitMix {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E3779B97F4A7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58476D1CE4E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D049BB133111EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn vec(&mut self) -> DVec3 {
+        DVec3::new(self.next(), self.next(), self.next())
+    }
+}
+
+/// `n` random triangles in the unit cube, each about as large as the mean spacing
+/// (so every N has the same depth complexity), and a scene around them.
+pub fn random_triangle_scene(n: usize, seed: u64) -> Scene {
+    let mut rng = SplitMix(seed);
+    let size = (n as f64).cbrt().recip();
+    let triangles = (0..n)
+        .map(|_| {
+            let centre = rng.vec();
+            Triangle {
+                positions: [0, 1, 2].map(|_| centre + (rng.vec() - 0.5) * size),
+                material: 0,
+            }
+        })
+        .collect();
+    Scene {
+        objects: Vec::new(),
+        triangles,
+        materials: vec![crate::scene::Material::default()],
+        lights: Vec::new(),
+        camera: Camera {
+            eye: DVec3::new(0.5, 0.5, 3.0),
+            view: DVec3::new(0.0, 0.0, -1.0),
+            up: DVec3::Y,
+            fov_deg: 40.0,
+        },
+        ambient: [0.1; 3],
+        width: 64,
+        height: 64,
+        options: RenderOptions::default(),
+    }
+}
+
+/// Rays from a sphere of radius 2 around the cube's centre towards random points in it.
+fn random_rays(count: usize, seed: u64) -> Vec<Ray> {
+    let mut rng = SplitMix(seed);
+    (0..count)
+        .map(|_| {
+            let target = rng.vec();
+            let dir = loop {
+                let v = rng.vec() * 2.0 - 1.0;
+                if v.length_squared() > 1e-6 && v.length_squared() <= 1.0 {
+                    break v.normalize();
+                }
+            };
+            let origin = DVec3::splat(0.5) + dir * 2.0;
+            Ray {
+                origin: origin.as_vec3(),
+                dir: (target - origin).normalize().as_vec3(),
+            }
+        })
+        .collect()
+}
+
+fn bench_random_triangles(args: &BenchArgs) {
+    println!("\n## Random triangles: {} rays per N", args.rays);
+    println!("| N | grid cells | build | ns/ray | vs N=10³ | bytes/triangle | rays differing from brute force |");
+    println!("| ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    let rays = random_rays(args.rays, 7);
+    let mut base = None;
+    let mut n = 1000;
+    while n <= args.max_triangles {
+        let scene = random_triangle_scene(n, n as u64);
+        let packed = with_grid(&scene, GridMode::Auto).expect("random scene packs");
+        let (build, grid) = fastest(args.repeat, || {
+            Grid::build(&packed.instances, &packed.triangles, Some(DEFAULT_DENSITY))
+        });
+        let (time, hits) = fastest(args.repeat, || trace_all(&packed, &rays));
+        let per_ray = time.as_secs_f64() * 1e9 / rays.len() as f64;
+        let base_cost = *base.get_or_insert(per_ray);
+        // Brute force on a sample of the rays keeps the check affordable at 10⁶.
+        let sample = (2_000_000_000 / n).clamp(100, rays.len()).min(rays.len());
+        let brute = with_grid(&scene, GridMode::Off).expect("random scene packs");
+        let brute_hits = trace_all(&brute, &rays[..sample]);
+        let differing = hits[..sample].iter().zip(&brute_hits).filter(|(a, b)| a != b).count();
+        let bytes = std::mem::size_of::<GpuTriangle>() * n + grid.stats.memory_bytes;
+        println!(
+            "| {n} | {} | {:.1} ms | {per_ray:.0} | {:.2}× | {:.1} | {differing} of {sample} |",
+            grid.stats.cells,
+            build.as_secs_f64() * 1e3,
+            per_ray / base_cost,
+            bytes as f64 / n as f64,
+        );
+        n *= 10;
+    }
+}
+
+fn bench_densities(args: &BenchArgs) -> anyhow::Result<()> {
+    let cows = load_scene(&args.cs488.join("a4-2021plus/macho-cows.lua"), 256, 256)?;
+    let tris = random_triangle_scene(100_000, 5);
+    let rays = random_rays(args.rays, 9);
+    println!("\n## Grid density λ (time per ray, fastest of {})", args.repeat);
+    println!("| λ | macho-cows primary ns/ray | 10⁵ random triangles ns/ray |");
+    println!("| ---: | ---: | ---: |");
+    for density in [0.25f32, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0] {
+        let packed = with_grid(&cows, GridMode::Density(density))?;
+        let g = &packed.globals;
+        let primary: Vec<Ray> = (0..g.width * g.height)
+            .map(|i| camera_ray(g, (i % g.width) as f32 + 0.5, (i / g.width) as f32 + 0.5))
+            .collect();
+        let (t_cows, _) = fastest(args.repeat, || trace_all(&packed, &primary));
+        let packed_tris = with_grid(&tris, GridMode::Density(density))?;
+        let (t_tris, _) = fastest(args.repeat, || trace_all(&packed_tris, &rays));
+        println!(
+            "| {density} | {:.0} | {:.0} |",
+            t_cows.as_secs_f64() * 1e9 / primary.len() as f64,
+            t_tris.as_secs_f64() * 1e9 / rays.len() as f64
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,51 @@
+//! `--stats`: what a render compiled in, how its grid came out, and what its rays cost.
+
+use crate::pipeline::RenderedImage;
+use std::fmt::Write;
+
+/// Multi-line statistics of one render.
+pub fn format_stats(image: &RenderedImage) -> String {
+    let packed = &image.packed;
+    let g = &packed.globals;
+    let grid = &packed.grid_stats;
+    let mut out = String::new();
+    let _ = writeln!(out, "  features: {}", packed.features);
+    let _ = writeln!(
+        out,
+        "  items: {} analytic, {} triangles, {} lights",
+        g.num_instances, g.num_triangles, g.num_lights
+    );
+    if g.grid_enabled != 0 {
+        let [nx, ny, nz] = g.grid_dims;
+        let _ = writeln!(
+            out,
+            "  grid: {nx}×{ny}×{nz} = {} cells, {:.2} items per non-empty cell (max {}), {:.1}% empty, {} references, built in {:.2} ms, {:.2} MiB",
+            grid.cells,
+            grid.mean_items_per_full_cell(),
+            grid.max_items_in_cell,
+            100.0 * grid.empty_share(),
+            grid.references,
+            grid.build_time.as_secs_f64() * 1e3,
+            grid.memory_bytes as f64 / (1 << 20) as f64
+        );
+    } else {
+        let _ = writeln!(out, "  grid: off (brute force over {} items)", grid.items);
+    }
+    if let Some(c) = image.counters {
+        let rays = c.rays.max(1) as f64;
+        let _ = writeln!(
+            out,
+            "  rays: {} (camera, shadow and secondary), {:.2} cells visited and {:.2} items tested per ray",
+            c.rays,
+            c.cells_visited as f64 / rays,
+            c.items_tested as f64 / rays
+        );
+        let _ = writeln!(
+            out,
+            "  time: {:.3} s with counting, {:.3} Mrays/s",
+            image.render_time.as_secs_f64(),
+            rays / image.render_time.as_secs_f64() / 1e6
+        );
+    }
+    out
+}

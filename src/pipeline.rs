@@ -1,0 +1,158 @@
+//! From a scene script to image files: run the script; at each `gr.render`, flatten, pack,
+//! render and write the image atomically. Shared by the CLI, the benchmark and the tests.
+
+use crate::cpu::render::{render, render_with_counters, RenderCounters};
+use crate::film::Film;
+use crate::image_io::{check_output_path, write_image, ImageIoError};
+use crate::pack::{pack, PackedScene};
+use crate::scene::flatten::flatten;
+use crate::scene::lua::{run_scene_file, ScriptConfig, ScriptReport, SceneError};
+use crate::scene::{OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// How to run a scene: everything the CLI can say.
+#[derive(Clone, Debug, Default)]
+pub struct RenderSettings {
+    /// `--transform-order` (beats the script).
+    pub transform_order: Option<TransformOrder>,
+    /// Render-option flags (beat the script).
+    pub overrides: OptionOverrides,
+    /// `-o`: output of the first render; later renders of the same script get `-2`, `-3`…
+    pub output: Option<PathBuf>,
+    /// Print statistics (grid, features, rays) after each render.
+    pub stats: bool,
+    /// Show a progress bar (only drawn on a terminal).
+    pub progress: bool,
+    /// Lua instruction limit (None: the default of [`ScriptConfig`]).
+    pub instruction_limit: Option<u64>,
+}
+
+/// One finished render.
+#[derive(Clone, Debug)]
+pub struct RenderedImage {
+    pub output: PathBuf,
+    pub film: Film,
+    pub packed: PackedScene,
+    pub render_time: Duration,
+    pub counters: Option<RenderCounters>,
+}
+
+/// Why running a scene failed; each kind has its own exit code.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The script, or the scene it built, is wrong (exit code 3).
+    #[error("{0}")]
+    Scene(#[from] SceneError),
+    /// The image could not be written (exit code 4).
+    #[error("{0}")]
+    Output(#[from] ImageIoError),
+}
+
+impl RunError {
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            RunError::Scene(_) => 3,
+            RunError::Output(_) => 4,
+        }
+    }
+}
+
+/// Flattens, packs and renders one request on the CPU (on the current rayon pool).
+pub fn render_request(graph: &SceneGraph, request: &RenderRequest, overrides: &OptionOverrides, stats: bool, progress: bool) -> anyhow::Result<RenderedImage> {
+    let mut request = request.clone();
+    overrides.apply(&mut request.options);
+    request.width = overrides.width.unwrap_or(request.width);
+    request.height = overrides.height.unwrap_or(request.height);
+    let scene = flatten(graph, &request)?;
+    let packed = pack(&scene)?;
+    let bar = progress_bar(progress, &request.output);
+    let tick = |done: u64, total: u64| {
+        bar.set_length(total);
+        bar.set_position(done);
+    };
+    let start = Instant::now();
+    let (film, counters) = if stats {
+        let (film, counters) = render_with_counters(&packed, &tick);
+        (film, Some(counters))
+    } else {
+        (render(&packed, &tick), None)
+    };
+    bar.finish_and_clear();
+    Ok(RenderedImage {
+        output: request.output.clone(),
+        film,
+        packed,
+        render_time: start.elapsed(),
+        counters,
+    })
+}
+
+fn progress_bar(enabled: bool, output: &Path) -> indicatif::ProgressBar {
+    if !enabled {
+        return indicatif::ProgressBar::hidden();
+    }
+    // indicatif draws only when stderr is a terminal.
+    let bar = indicatif::ProgressBar::new(1);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {percent}% ({elapsed} < {eta})")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(format!("rendering {}", output.display()));
+    bar
+}
+
+/// Output path of the `index`-th render (0-based) of a script.
+pub fn output_path(settings_output: Option<&Path>, script_output: &Path, index: usize) -> PathBuf {
+    let Some(base) = settings_output else {
+        return script_output.to_path_buf();
+    };
+    if index == 0 {
+        return base.to_path_buf();
+    }
+    let stem = base.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = match base.extension() {
+        Some(ext) => format!("{stem}-{}.{}", index + 1, ext.to_string_lossy()),
+        None => format!("{stem}-{}", index + 1),
+    };
+    base.with_file_name(name)
+}
+
+/// Runs a scene file, rendering and writing each `gr.render`; `on_image` sees each image
+/// after it is written. Returns the script's report.
+pub fn run_scene(path: &Path, settings: &RenderSettings, on_image: &mut dyn FnMut(&RenderedImage)) -> Result<ScriptReport, RunError> {
+    let mut config = ScriptConfig {
+        transform_order: settings.transform_order,
+        ..ScriptConfig::default()
+    };
+    if let Some(limit) = settings.instruction_limit {
+        config.instruction_limit = limit;
+    }
+    let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
+    let mut index = 0;
+    let mut on_render = |graph: &SceneGraph, request: &RenderRequest| -> anyhow::Result<()> {
+        let output = output_path(settings.output.as_deref(), &request.output, index);
+        index += 1;
+        let fail = |e: ImageIoError| {
+            let message = e.to_string();
+            *output_error.borrow_mut() = Some(e);
+            anyhow::anyhow!(message)
+        };
+        // Refuse an unwritable path before spending time on the render.
+        check_output_path(&output).map_err(fail)?;
+        let mut rendered = render_request(graph, request, &settings.overrides, settings.stats, settings.progress)?;
+        rendered.output = output;
+        write_image(&rendered.film, &rendered.output).map_err(fail)?;
+        on_image(&rendered);
+        Ok(())
+    };
+    match run_scene_file(path, &config, &mut on_render) {
+        Ok(report) => Ok(report),
+        Err(e) => match output_error.into_inner() {
+            Some(io) => Err(RunError::Output(io)),
+            None => Err(RunError::Scene(e)),
+        },
+    }
+}
