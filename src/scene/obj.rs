@@ -1,1 +1,389 @@
-//! Wavefront OBJ loading for `gr.mesh(name, file)` and `readobj`.
+//! Wavefront OBJ loading for `gr.mesh(name, file)` and the `readobj` built-in.
+//!
+//! Our own small parser rather than a crate, so that every error can name the file and
+//! line (`cow.obj:17: face index 912 out of range (file has 300 vertices)`), which is
+//! what a student fixing a scene needs. Supported: `v`, `vt`, `vn` (parsed and checked,
+//! normals not used yet), `f` with `a`, `a/b`, `a/b/c`, `a//c` and negative (relative)
+//! indices, polygons of 3+ corners (fan-triangulated). Grouping, smoothing, material and
+//! line statements are ignored, as are statements this renderer has no use for.
+
+use super::Mesh;
+use glam::DVec3;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Why an OBJ file could not be loaded. `Display` gives the whole message.
+#[derive(Debug, thiserror::Error)]
+pub enum ObjError {
+    #[error("cannot read mesh file '{}': {source}", path.display())]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{}:{line}: {message}", path.display())]
+    Parse {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+}
+
+/// One face corner: 0-based position index and optional 0-based texture index.
+type Corner = (u32, Option<u32>);
+
+/// A parsed, validated OBJ file: every index is checked and 0-based.
+#[derive(Debug, Default)]
+struct ParsedObj {
+    positions: Vec<[f64; 3]>,
+    texcoords: Vec<[f64; 2]>,
+    faces: Vec<Vec<Corner>>,
+}
+
+/// Reads and parses an OBJ file into a triangle mesh named `name`.
+pub fn load_obj(path: &Path, name: &str) -> Result<Mesh, ObjError> {
+    let text = read(path)?;
+    parse_obj(&text, path, name)
+}
+
+/// Parses OBJ text; `path` is only used in error messages.
+pub fn parse_obj(text: &str, path: &Path, name: &str) -> Result<Mesh, ObjError> {
+    let parsed = parse(text, path)?;
+    Ok(to_mesh(parsed, name))
+}
+
+/// Reads an OBJ file as plain tables, for the Lua `readobj` built-in: vertex positions and
+/// polygons with 0-based position indices (texture and normal indices dropped), exactly
+/// the shape of the inline `gr.mesh(name, verts, faces)` form.
+pub fn read_obj_raw(path: &Path) -> Result<(Vec<[f64; 3]>, Vec<Vec<u32>>), ObjError> {
+    let text = read(path)?;
+    let parsed = parse(&text, path)?;
+    let faces = parsed
+        .faces
+        .into_iter()
+        .map(|f| f.into_iter().map(|(v, _)| v).collect())
+        .collect();
+    Ok((parsed.positions, faces))
+}
+
+fn read(path: &Path) -> Result<String, ObjError> {
+    std::fs::read(path)
+        // OBJ files in the wild are not always valid UTF-8 (comments in Latin-1);
+        // the statements we read are ASCII, so a lossy conversion is harmless.
+        .map(|bytes| String::from_utf8_lossy(&bytes).into_owned())
+        .map_err(|source| ObjError::Read {
+            path: path.to_path_buf(),
+            source,
+        })
+}
+
+/// A face corner as written, before the end-of-file range check: positive indices are
+/// kept 1-based (checked against the final counts, so forward references work, as in
+/// most loaders); negative ones are resolved against the counts at that line.
+struct RawFace {
+    line: usize,
+    corners: Vec<(i64, Option<i64>)>,
+}
+
+fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
+    let err = |line: usize, message: String| ObjError::Parse {
+        path: path.to_path_buf(),
+        line,
+        message,
+    };
+    let mut out = ParsedObj::default();
+    let mut normals = 0usize;
+    let mut raw_faces = Vec::new();
+
+    for (i, line) in text.lines().enumerate() {
+        let lineno = i + 1;
+        let line = line.split('#').next().unwrap_or("");
+        let mut words = line.split_whitespace();
+        let Some(keyword) = words.next() else {
+            continue;
+        };
+        match keyword {
+            "v" | "vn" | "vt" => {
+                let mut nums = Vec::with_capacity(4);
+                for w in words {
+                    nums.push(number(w).map_err(|m| err(lineno, m))?);
+                }
+                // `v` may carry w or vertex colours after x y z; `vt` may carry w.
+                let needed = if keyword == "vt" { 1 } else { 3 };
+                if nums.len() < needed {
+                    return Err(err(
+                        lineno,
+                        format!(
+                            "'{keyword}' needs at least {needed} numbers, found {}",
+                            nums.len()
+                        ),
+                    ));
+                }
+                match keyword {
+                    "v" => out.positions.push([nums[0], nums[1], nums[2]]),
+                    "vt" => out
+                        .texcoords
+                        .push([nums[0], nums.get(1).copied().unwrap_or(0.0)]),
+                    _ => normals += 1,
+                }
+            }
+            "f" => {
+                let mut corners = Vec::new();
+                for w in words {
+                    corners.push(
+                        corner(w, out.positions.len(), out.texcoords.len(), normals)
+                            .map_err(|m| err(lineno, m))?,
+                    );
+                }
+                if corners.len() < 3 {
+                    return Err(err(
+                        lineno,
+                        format!(
+                            "face has {} corner{}; a face needs at least 3",
+                            corners.len(),
+                            if corners.len() == 1 { "" } else { "s" }
+                        ),
+                    ));
+                }
+                raw_faces.push(RawFace {
+                    line: lineno,
+                    corners,
+                });
+            }
+            // Grouping, smoothing, materials, lines, points, free-form geometry: not ours.
+            _ => {}
+        }
+    }
+
+    let nv = out.positions.len();
+    let nt = out.texcoords.len();
+    for face in raw_faces {
+        let mut corners = Vec::with_capacity(face.corners.len());
+        for (v, t) in face.corners {
+            let v = check_index(v, nv, "face index", "vertices").map_err(|m| err(face.line, m))?;
+            let t = t
+                .map(|t| check_index(t, nt, "texture index", "texture coordinates"))
+                .transpose()
+                .map_err(|m| err(face.line, m))?;
+            corners.push((v, t));
+        }
+        out.faces.push(corners);
+    }
+    Ok(out)
+}
+
+fn number(word: &str) -> Result<f64, String> {
+    match word.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("bad number '{word}'")),
+    }
+}
+
+/// Parses one `f` corner (`a`, `a/b`, `a/b/c`, `a//c`). Negative indices count back from
+/// the last element defined so far and are resolved here (to 1-based).
+fn corner(word: &str, nv: usize, nt: usize, nn: usize) -> Result<(i64, Option<i64>), String> {
+    let mut parts = word.split('/');
+    let index = |s: &str, count: usize, what: &str| -> Result<i64, String> {
+        let i: i64 = s
+            .parse()
+            .map_err(|_| format!("bad {what} index '{s}' in face corner '{word}'"))?;
+        match i {
+            0 => Err(format!(
+                "{what} index 0 in face corner '{word}' (OBJ indices start at 1)"
+            )),
+            i if i < 0 => {
+                let resolved = count as i64 + i + 1;
+                if resolved < 1 {
+                    Err(format!(
+                        "relative {what} index {i} reaches before the first one ({count} defined so far)"
+                    ))
+                } else {
+                    Ok(resolved)
+                }
+            }
+            i => Ok(i),
+        }
+    };
+    let v = index(parts.next().unwrap_or(""), nv, "vertex")?;
+    let t = match parts.next() {
+        None | Some("") => None,
+        Some(s) => Some(index(s, nt, "texture")?),
+    };
+    match parts.next() {
+        None | Some("") => {}
+        Some(s) => {
+            index(s, nn, "normal")?;
+        }
+    }
+    if parts.next().is_some() {
+        return Err(format!("bad face corner '{word}'"));
+    }
+    Ok((v, t))
+}
+
+/// Checks a resolved 1-based index against the file's count, giving a 0-based index.
+fn check_index(i: i64, count: usize, what: &str, plural: &str) -> Result<u32, String> {
+    if i >= 1 && (i as usize) <= count {
+        Ok((i - 1) as u32)
+    } else {
+        Err(format!(
+            "{what} {i} out of range (file has {count} {plural})"
+        ))
+    }
+}
+
+/// Fan-triangulates the polygons. Without texture coordinates the vertices are kept as
+/// they are; with them, each distinct (position, texcoord) pair becomes one vertex, since
+/// the mesh stores one UV per vertex.
+fn to_mesh(parsed: ParsedObj, name: &str) -> Mesh {
+    let has_uv = parsed.faces.iter().flatten().any(|(_, t)| t.is_some());
+    let mut positions: Vec<DVec3> = Vec::new();
+    let mut uvs: Vec<[f32; 2]> = Vec::new();
+    let mut remap: HashMap<Corner, u32> = HashMap::new();
+    if !has_uv {
+        positions = parsed
+            .positions
+            .iter()
+            .map(|p| DVec3::from_array(*p))
+            .collect();
+    }
+    let mut triangles = Vec::new();
+    for face in &parsed.faces {
+        let ids: Vec<u32> = face
+            .iter()
+            .map(|&(v, t)| {
+                if !has_uv {
+                    return v;
+                }
+                *remap.entry((v, t)).or_insert_with(|| {
+                    positions.push(DVec3::from_array(parsed.positions[v as usize]));
+                    let uv = t.map_or([0.0, 0.0], |t| {
+                        let [u, v] = parsed.texcoords[t as usize];
+                        [u as f32, v as f32]
+                    });
+                    uvs.push(uv);
+                    (positions.len() - 1) as u32
+                })
+            })
+            .collect();
+        for k in 1..ids.len() - 1 {
+            triangles.push([ids[0], ids[k], ids[k + 1]]);
+        }
+    }
+    Mesh {
+        name: name.to_string(),
+        positions,
+        triangles,
+        uvs: has_uv.then_some(uvs),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse_str(text: &str) -> Result<Mesh, ObjError> {
+        parse_obj(text, Path::new("test.obj"), "m")
+    }
+
+    #[test]
+    fn triangles_and_quads_are_fan_triangulated() {
+        let m = parse_str("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 2 3\n").unwrap();
+        assert_eq!(m.positions.len(), 4);
+        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3], [0, 1, 2]]);
+        assert!(m.uvs.is_none());
+    }
+
+    #[test]
+    fn corner_forms_and_negative_indices() {
+        let text = "o x\ng y\ns 1\nusemtl m\nmtllib a.mtl\n# comment\n\
+                    v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n\
+                    f 1//1 2//1 3//1\nf -3 -2 -1\nl 1 2\n";
+        let m = parse_str(text).unwrap();
+        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 1, 2]]);
+    }
+
+    #[test]
+    fn texcoords_give_per_vertex_uvs_duplicating_where_needed() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0.5\n\
+                    f 1/1 2/2 3/3\nf 2/2 4/4 3/4\n";
+        let m = parse_str(text).unwrap();
+        // (3,3) and (3,4) differ, so vertex 3 is duplicated: 5 vertices.
+        assert_eq!(m.positions.len(), 5);
+        let uvs = m.uvs.unwrap();
+        assert_eq!(uvs.len(), 5);
+        assert_eq!(m.triangles[0], [0, 1, 2]);
+        assert_eq!(m.triangles[1][0], 1);
+        assert_eq!(uvs[m.triangles[1][2] as usize], [0.5, 0.5]);
+    }
+
+    #[test]
+    fn out_of_range_index_names_file_line_and_count() {
+        let e = parse_str("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 912\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "test.obj:5: face index 912 out of range (file has 3 vertices)"
+        );
+    }
+
+    #[test]
+    fn bad_number_and_short_faces() {
+        let e = parse_str("v 0 x1 0\n").unwrap_err();
+        assert_eq!(e.to_string(), "test.obj:1: bad number 'x1'");
+        let e = parse_str("v 0 0 0\nv 1 0 0\nf 1 2\n").unwrap_err();
+        assert!(
+            e.to_string().starts_with("test.obj:3: face has 2 corners"),
+            "{e}"
+        );
+        let e = parse_str("v 0 0 0\nf 0 1 1\n").unwrap_err();
+        assert!(e.to_string().contains("index 0"), "{e}");
+        let e = parse_str("v 0 0 0\nf -2 1 1\n").unwrap_err();
+        assert!(e.to_string().contains("relative vertex index -2"), "{e}");
+        let e = parse_str("v 0 0\n").unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("test.obj:1: 'v' needs at least 3"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn missing_file_names_the_path_tried() {
+        let e = load_obj(Path::new("no/such/dir/cow.obj"), "cow").unwrap_err();
+        let s = e.to_string();
+        assert!(
+            s.starts_with("cannot read mesh file 'no/such/dir/cow.obj': "),
+            "{s}"
+        );
+    }
+
+    #[test]
+    fn raw_form_keeps_polygons() {
+        let dir = std::env::temp_dir().join(format!("glint-obj-raw-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("q.obj");
+        std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1/1/1 2/2/2 3/3/3 4/4/4\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\n").ok();
+        // Forward references (elements defined after the face) are accepted.
+        let (v, f) = read_obj_raw(&p).unwrap();
+        assert_eq!((v.len(), f.len()), (4, 1));
+        std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
+        let (v, f) = read_obj_raw(&p).unwrap();
+        assert_eq!(v.len(), 4);
+        assert_eq!(f, vec![vec![0, 1, 2, 3]]);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn corpus_meshes_parse() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/cs488/a4-2021plus");
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            return; // corpus not beside this checkout
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.extension().is_some_and(|x| x == "obj") {
+                let m = load_obj(&p, "m").unwrap_or_else(|e| panic!("{e}"));
+                assert!(!m.triangles.is_empty(), "{}", p.display());
+            }
+        }
+    }
+}

@@ -1,1 +1,0 @@
-//! The `gr` Lua module (see shared/design/scene-language.md).

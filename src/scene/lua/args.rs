@@ -1,0 +1,301 @@
+//! Argument checking for the `gr` calls, and the wording of their errors.
+//!
+//! Every error reads `file:line: function: argument N (name) must be WHAT, got VALUE`, so
+//! a student sees where, which call, which argument and what they passed. The location
+//! is taken from the nearest Lua frame on the stack, since errors raised by Rust
+//! callbacks get no position from Lua itself.
+
+use super::gr::{LightHandle, MaterialHandle, NodeHandle};
+use super::with_state;
+use crate::scene::{MaterialId, NodeId};
+use glam::DVec3;
+use mlua::{Lua, MultiValue, Table, Value};
+
+/// `file:line` of the innermost Lua code running (skipping Rust and C frames).
+pub(crate) fn location(lua: &Lua) -> String {
+    for level in 0..64 {
+        let frame = lua.inspect_stack(level, |d| {
+            let src = d.source();
+            let name = match src.source.as_deref() {
+                Some(s) if s.starts_with('@') || s.starts_with('=') => s[1..].to_string(),
+                _ => src.short_src.as_deref().unwrap_or("?").to_string(),
+            };
+            (name, d.current_line())
+        });
+        match frame {
+            None => break,
+            Some((name, Some(line))) => return format!("{name}:{line}"),
+            Some(_) => {}
+        }
+    }
+    String::from("?")
+}
+
+/// A Lua-style rendering of a value for "got …" in messages.
+pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
+    match v {
+        Value::Nil => "nil".into(),
+        Value::Boolean(b) => b.to_string(),
+        Value::Integer(i) => i.to_string(),
+        Value::Number(x) => format_number(*x),
+        Value::String(s) => {
+            let s = s.to_string_lossy();
+            if s.chars().count() > 40 {
+                format!("'{}…'", s.chars().take(40).collect::<String>())
+            } else {
+                format!("'{s}'")
+            }
+        }
+        Value::Table(t) => match t.raw_len() {
+            0 => "a table".into(),
+            n => format!("a table of {n} elements"),
+        },
+        Value::Function(_) => "a function".into(),
+        Value::UserData(ud) => {
+            if let Ok(n) = ud.borrow::<NodeHandle>() {
+                let id = n.0;
+                with_state(lua, |s| format!("node '{}'", s.graph.nodes[id].name))
+            } else if let Ok(m) = ud.borrow::<MaterialHandle>() {
+                let id = m.0;
+                with_state(lua, |s| {
+                    format!("material '{}'", s.graph.materials[id].name)
+                })
+            } else if ud.is::<LightHandle>() {
+                "a light".into()
+            } else {
+                "a userdata".into()
+            }
+        }
+        other => other.type_name().to_string(),
+    }
+}
+
+/// Numbers as Lua users write them: `-1`, `0.5`, `nan`, `inf`.
+pub(crate) fn format_number(x: f64) -> String {
+    if x.is_nan() {
+        "nan".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.into()
+    } else {
+        x.to_string()
+    }
+}
+
+/// A finite number from a Lua value, or a description of what was wrong.
+pub(crate) fn finite(v: &Value) -> Option<f64> {
+    match v {
+        Value::Integer(i) => Some(*i as f64),
+        Value::Number(x) if x.is_finite() => Some(*x),
+        _ => None,
+    }
+}
+
+/// The arguments of one `gr` call, with the call's name for messages. For methods
+/// (`node:scale(...)`) the receiver is argument 0 and numbering starts after it, as the
+/// user wrote them.
+pub(crate) struct Args<'a> {
+    pub lua: &'a Lua,
+    pub func: String,
+    vals: Vec<Value>,
+    offset: usize,
+}
+
+impl<'a> Args<'a> {
+    pub fn new(lua: &'a Lua, func: &str, args: MultiValue) -> Self {
+        Args {
+            lua,
+            func: func.to_string(),
+            vals: args.into_iter().collect(),
+            offset: 0,
+        }
+    }
+
+    pub fn method(lua: &'a Lua, func: &str, args: MultiValue) -> Self {
+        Args {
+            offset: 1,
+            ..Args::new(lua, func, args)
+        }
+    }
+
+    /// Argument `n` (1-based, as the user counts; 0 is a method's receiver).
+    pub fn get(&self, n: usize) -> &Value {
+        self.vals.get(n + self.offset - 1).unwrap_or(&Value::Nil)
+    }
+
+    pub fn is_nil(&self, n: usize) -> bool {
+        matches!(self.get(n), Value::Nil)
+    }
+
+    /// `file:line: func: msg` as a Lua runtime error.
+    pub fn error(&self, msg: impl std::fmt::Display) -> mlua::Error {
+        mlua::Error::RuntimeError(format!("{}: {}: {msg}", location(self.lua), self.func))
+    }
+
+    /// `… argument n (name) must be WHAT, got VALUE`.
+    pub fn bad(&self, n: usize, name: &str, what: &str) -> mlua::Error {
+        let got = describe(self.lua, self.get(n));
+        self.error(format!("argument {n} ({name}) must be {what}, got {got}"))
+    }
+
+    /// `… argument n (name): DETAIL`, for problems inside a table argument.
+    pub fn bad_in(&self, n: usize, name: &str, detail: impl std::fmt::Display) -> mlua::Error {
+        self.error(format!("argument {n} ({name}): {detail}"))
+    }
+
+    pub fn string(&self, n: usize, name: &str) -> mlua::Result<String> {
+        match self.get(n) {
+            Value::String(s) => Ok(s.to_string_lossy()),
+            // Lua's own string arguments accept numbers (`gr.node(1)`), so do we.
+            Value::Integer(i) => Ok(i.to_string()),
+            Value::Number(x) if x.is_finite() => Ok(format_number(*x)),
+            _ => Err(self.bad(n, name, "a string")),
+        }
+    }
+
+    pub fn number(&self, n: usize, name: &str) -> mlua::Result<f64> {
+        finite(self.get(n)).ok_or_else(|| self.bad(n, name, "a finite number"))
+    }
+
+    pub fn positive(&self, n: usize, name: &str) -> mlua::Result<f64> {
+        match finite(self.get(n)) {
+            Some(x) if x > 0.0 => Ok(x),
+            _ => Err(self.bad(n, name, "a positive number")),
+        }
+    }
+
+    pub fn non_negative(&self, n: usize, name: &str) -> mlua::Result<f64> {
+        match finite(self.get(n)) {
+            Some(x) if x >= 0.0 => Ok(x),
+            _ => Err(self.bad(n, name, "a non-negative number")),
+        }
+    }
+
+    /// A positive integer that fits `max` (image sizes, sample counts).
+    pub fn positive_int(&self, n: usize, name: &str, max: u32) -> mlua::Result<u32> {
+        match int_value(self.get(n)) {
+            Some(i) if i >= 1 && i <= max as i64 => Ok(i as u32),
+            _ => Err(self.bad(n, name, &format!("a positive integer (at most {max})"))),
+        }
+    }
+
+    pub fn table(&self, n: usize, name: &str, what: &str) -> mlua::Result<Table> {
+        match self.get(n) {
+            Value::Table(t) => Ok(t.clone()),
+            _ => Err(self.bad(n, name, what)),
+        }
+    }
+
+    /// `{x, y, z}`: a table whose first three elements are finite numbers.
+    pub fn vec3(&self, n: usize, name: &str) -> mlua::Result<DVec3> {
+        let t = self.table(n, name, "a table of 3 numbers {x, y, z}")?;
+        self.vec3_from(&t, n, name).map(DVec3::from_array)
+    }
+
+    /// `{r, g, b}` as a colour.
+    pub fn colour(&self, n: usize, name: &str) -> mlua::Result<[f32; 3]> {
+        let t = self.table(n, name, "a table of 3 numbers {r, g, b}")?;
+        let [r, g, b] = self.vec3_from(&t, n, name)?;
+        Ok([r as f32, g as f32, b as f32])
+    }
+
+    /// Reads elements 1..=3 of `t` (argument `n`) as finite numbers.
+    pub fn vec3_from(&self, t: &Table, n: usize, name: &str) -> mlua::Result<[f64; 3]> {
+        let mut out = [0.0; 3];
+        for (i, slot) in out.iter_mut().enumerate() {
+            let v: Value = t.raw_get(i + 1)?;
+            *slot = finite(&v).ok_or_else(|| {
+                self.bad_in(
+                    n,
+                    name,
+                    format!(
+                        "element {} must be a finite number, got {}",
+                        i + 1,
+                        describe(self.lua, &v)
+                    ),
+                )
+            })?;
+        }
+        Ok(out)
+    }
+
+    /// A colour given as one table, three numbers, or (when `grey_ok`) one grey number,
+    /// starting at argument `n`.
+    pub fn colour_args(&self, n: usize, grey_ok: bool) -> mlua::Result<[f32; 3]> {
+        match self.get(n) {
+            Value::Table(_) => self.colour(n, "colour"),
+            v if finite(v).is_some() => {
+                let r = self.number(n, "r")? as f32;
+                if grey_ok && self.is_nil(n + 1) && self.is_nil(n + 2) {
+                    return Ok([r; 3]);
+                }
+                let g = self.number(n + 1, "g")? as f32;
+                let b = self.number(n + 2, "b")? as f32;
+                Ok([r, g, b])
+            }
+            Value::String(_) => Err(self.bad(
+                n,
+                "colour",
+                "numbers r, g, b or a table {r, g, b} (image textures are not supported yet)",
+            )),
+            _ => Err(self.bad(
+                n,
+                "colour",
+                if grey_ok {
+                    "a grey number, numbers r, g, b or a table {r, g, b}"
+                } else {
+                    "numbers r, g, b or a table {r, g, b}"
+                },
+            )),
+        }
+    }
+
+    pub fn node(&self, n: usize, name: &str) -> mlua::Result<NodeId> {
+        match self.get(n) {
+            Value::UserData(ud) => match ud.borrow::<NodeHandle>() {
+                Ok(h) => Ok(h.0),
+                Err(_) => Err(self.bad(n, name, "a node")),
+            },
+            _ => Err(self.bad(n, name, "a node")),
+        }
+    }
+
+    pub fn material(&self, n: usize, name: &str) -> mlua::Result<MaterialId> {
+        match self.get(n) {
+            Value::UserData(ud) => match ud.borrow::<MaterialHandle>() {
+                Ok(h) => Ok(h.0),
+                Err(_) => Err(self.bad(n, name, "a material made by gr.material")),
+            },
+            _ => Err(self.bad(n, name, "a material made by gr.material")),
+        }
+    }
+
+    /// The receiver of a method call; a clear error if it was called with `.`.
+    pub fn receiver<T: 'static + Copy>(&self, kind: &str) -> mlua::Result<T> {
+        if let Value::UserData(ud) = self.get(0) {
+            if let Ok(h) = ud.borrow::<T>() {
+                return Ok(*h);
+            }
+        }
+        Err(self.error(format!(
+            "must be called on a {kind} with ':' (x:{}(...)), got {} as the receiver",
+            self.func.rsplit(':').next().unwrap_or(""),
+            describe(self.lua, self.get(0))
+        )))
+    }
+
+    /// The receiver value itself, to return it so that method calls chain.
+    pub fn receiver_value(&self) -> Value {
+        self.get(0).clone()
+    }
+}
+
+/// An integer from an integer or integral float value.
+pub(crate) fn int_value(v: &Value) -> Option<i64> {
+    match v {
+        Value::Integer(i) => Some(*i),
+        Value::Number(x) if x.is_finite() && x.fract() == 0.0 && x.abs() < 9.0e15 => {
+            Some(*x as i64)
+        }
+        _ => None,
+    }
+}

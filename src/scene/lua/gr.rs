@@ -1,0 +1,597 @@
+//! The `gr` table: the A4 core calls, and the node, material and light userdata.
+//!
+//! Userdata carry only an index into the [`SceneGraph`] arenas (or a small value for
+//! lights), so a node can be added under several parents and a material changed after it
+//! was set. Calls not in the contract yet (textures, CSG, extra primitives, area lights)
+//! are simply not defined: Lua then reports `attempt to call a nil value (field 'x')`
+//! with the file and line.
+
+use super::args::{int_value, location, Args};
+use super::{options, with_state, OnRender};
+use crate::scene::{
+    Camera, Light, Material, Mesh, Node, NodeId, NodeKind, Primitive, RenderRequest, TransformOrder,
+};
+use glam::{DMat4, DVec3};
+use mlua::{Lua, MetaMethod, MultiValue, UserData, UserDataMethods, Value};
+use std::path::PathBuf;
+
+/// A node made by `gr.node`, `gr.sphere`, … (index into `SceneGraph::nodes`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NodeHandle(pub NodeId);
+
+/// A material made by `gr.material` (index into `SceneGraph::materials`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MaterialHandle(pub usize);
+
+/// A light made by `gr.light`; lights live in `gr.render`'s list, not in the graph.
+#[derive(Clone, Debug)]
+pub(crate) struct LightHandle(pub Light);
+
+/// Largest image side accepted (a typo guard, not a hardware limit).
+const MAX_IMAGE_SIDE: u32 = 1 << 16;
+
+/// Defines the global `gr` table (all calls but `render`, which `run_scene_source` adds as
+/// a scoped function borrowing the caller's callback).
+pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
+    let gr = lua.create_table()?;
+    macro_rules! def {
+        ($name:literal, $f:expr) => {
+            gr.set(
+                $name,
+                lua.create_function(|lua, args: MultiValue| {
+                    $f(&Args::new(lua, concat!("gr.", $name), args))
+                })?,
+            )?;
+        };
+    }
+    def!("node", |a: &Args| transform_node(a));
+    // A4's joints carry angle ranges for the puppet assignment; here they are plain nodes.
+    def!("joint", |a: &Args| transform_node(a));
+    def!("sphere", |a: &Args| primitive(a, Primitive::Sphere));
+    def!("cube", |a: &Args| primitive(a, Primitive::Cube));
+    def!("nh_sphere", nh_sphere);
+    def!("nh_box", nh_box);
+    def!("mesh", mesh);
+    def!("material", material);
+    def!("light", light);
+    def!("transform_order", transform_order);
+    lua.globals().set("gr", gr)
+}
+
+fn new_node(lua: &Lua, name: String, kind: NodeKind) -> NodeHandle {
+    with_state(lua, |s| {
+        s.graph.nodes.push(Node {
+            name,
+            kind,
+            matrix: DMat4::IDENTITY,
+            children: Vec::new(),
+            material: None,
+        });
+        NodeHandle(s.graph.nodes.len() - 1)
+    })
+}
+
+fn geometry(primitive: Primitive, placement: DMat4) -> NodeKind {
+    NodeKind::Geometry {
+        primitive,
+        placement,
+    }
+}
+
+fn transform_node(a: &Args) -> mlua::Result<NodeHandle> {
+    let name = a.string(1, "name")?;
+    Ok(new_node(a.lua, name, NodeKind::Transform))
+}
+
+fn primitive(a: &Args, p: Primitive) -> mlua::Result<NodeHandle> {
+    let name = a.string(1, "name")?;
+    Ok(new_node(a.lua, name, geometry(p, DMat4::IDENTITY)))
+}
+
+fn nh_sphere(a: &Args) -> mlua::Result<NodeHandle> {
+    let name = a.string(1, "name")?;
+    let centre = a.vec3(2, "centre")?;
+    let radius = a.positive(3, "radius")?;
+    let placement = DMat4::from_translation(centre) * DMat4::from_scale(DVec3::splat(radius));
+    Ok(new_node(
+        a.lua,
+        name,
+        geometry(Primitive::Sphere, placement),
+    ))
+}
+
+fn nh_box(a: &Args) -> mlua::Result<NodeHandle> {
+    let name = a.string(1, "name")?;
+    let corner = a.vec3(2, "corner")?;
+    let size = a.positive(3, "size")?;
+    let placement = DMat4::from_translation(corner) * DMat4::from_scale(DVec3::splat(size));
+    Ok(new_node(a.lua, name, geometry(Primitive::Cube, placement)))
+}
+
+/// `gr.mesh(name, 'file.obj')` or `gr.mesh(name, verts, faces[, uvs])`.
+fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
+    let name = a.string(1, "name")?;
+    let id = match a.get(2) {
+        Value::String(s) => {
+            let file = s.to_string_lossy();
+            let (path, cached) = with_state(a.lua, |s| {
+                let path = s.base_dir.join(&file);
+                let cached = s.mesh_cache.get(&path).copied();
+                (path, cached)
+            });
+            match cached {
+                Some(id) => id,
+                None => {
+                    let mesh = crate::scene::obj::load_obj(&path, &name).map_err(|e| a.error(e))?;
+                    with_state(a.lua, |s| {
+                        s.graph.meshes.push(mesh);
+                        let id = s.graph.meshes.len() - 1;
+                        s.mesh_cache.insert(path, id);
+                        id
+                    })
+                }
+            }
+        }
+        Value::Table(_) => {
+            let mesh = inline_mesh(a, &name)?;
+            with_state(a.lua, |s| {
+                s.report.looks_pre2015 = true;
+                s.graph.meshes.push(mesh);
+                s.graph.meshes.len() - 1
+            })
+        }
+        _ => {
+            return Err(a.bad(
+                2,
+                "vertices",
+                "an OBJ file name or a table of vertices {{x,y,z}, …}",
+            ))
+        }
+    };
+    Ok(new_node(
+        a.lua,
+        name,
+        geometry(Primitive::Mesh(id), DMat4::IDENTITY),
+    ))
+}
+
+/// The inline form: 0-based indices, polygons of 3+ corners fan-triangulated.
+fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
+    let verts = a.table(2, "vertices", "a table of vertices {{x,y,z}, …}")?;
+    let faces = a.table(3, "faces", "a table of faces {{i,j,k,…}, …}")?;
+    let mut positions = Vec::new();
+    for (i, v) in verts.sequence_values::<Value>().enumerate() {
+        let v = v?;
+        let Value::Table(t) = &v else {
+            return Err(a.bad_in(
+                2,
+                "vertices",
+                format!(
+                    "element {} must be a table of 3 numbers {{x, y, z}}, got {}",
+                    i + 1,
+                    super::args::describe(a.lua, &v)
+                ),
+            ));
+        };
+        let p = a.vec3_from(t, 2, "vertices").map_err(|_| {
+            a.bad_in(
+                2,
+                "vertices",
+                format!("element {} must hold 3 finite numbers {{x, y, z}}", i + 1),
+            )
+        })?;
+        positions.push(DVec3::from_array(p));
+    }
+    let n = positions.len();
+    let mut triangles = Vec::new();
+    for (f, face) in faces.sequence_values::<Value>().enumerate() {
+        let face = face?;
+        let Value::Table(t) = &face else {
+            return Err(a.bad_in(
+                3,
+                "faces",
+                format!(
+                    "element {} must be a table of vertex indices, got {}",
+                    f + 1,
+                    super::args::describe(a.lua, &face)
+                ),
+            ));
+        };
+        let mut ids = Vec::new();
+        for (c, idx) in t.sequence_values::<Value>().enumerate() {
+            let idx = idx?;
+            let i = int_value(&idx).ok_or_else(|| {
+                a.bad_in(
+                    3,
+                    "faces",
+                    format!(
+                        "face {}, corner {}: index must be an integer, got {}",
+                        f + 1,
+                        c + 1,
+                        super::args::describe(a.lua, &idx)
+                    ),
+                )
+            })?;
+            if i < 0 || i as usize >= n {
+                return Err(a.bad_in(
+                    3,
+                    "faces",
+                    format!(
+                        "face {}, corner {}: index {i} out of range (indices are 0-based; {n} vertices)",
+                        f + 1,
+                        c + 1
+                    ),
+                ));
+            }
+            ids.push(i as u32);
+        }
+        if ids.len() < 3 {
+            return Err(a.bad_in(
+                3,
+                "faces",
+                format!(
+                    "face {} has {} corners; a face needs at least 3",
+                    f + 1,
+                    ids.len()
+                ),
+            ));
+        }
+        for k in 1..ids.len() - 1 {
+            triangles.push([ids[0], ids[k], ids[k + 1]]);
+        }
+    }
+    let uvs = if a.is_nil(4) {
+        None
+    } else {
+        let t = a.table(4, "uvs", "a table of {u, v} pairs, one per vertex")?;
+        let mut uvs = Vec::with_capacity(n);
+        for (i, uv) in t.sequence_values::<Value>().enumerate() {
+            let uv = uv?;
+            let pair = match &uv {
+                Value::Table(p) => {
+                    let u = p.raw_get::<Value>(1)?;
+                    let v = p.raw_get::<Value>(2)?;
+                    super::args::finite(&u).zip(super::args::finite(&v))
+                }
+                _ => None,
+            };
+            let (u, v) = pair.ok_or_else(|| {
+                a.bad_in(
+                    4,
+                    "uvs",
+                    format!(
+                        "element {} must be a pair of numbers {{u, v}}, got {}",
+                        i + 1,
+                        super::args::describe(a.lua, &uv)
+                    ),
+                )
+            })?;
+            uvs.push([u as f32, v as f32]);
+        }
+        if uvs.len() != n {
+            return Err(a.bad_in(
+                4,
+                "uvs",
+                format!("has {} pairs but there are {n} vertices", uvs.len()),
+            ));
+        }
+        Some(uvs)
+    };
+    Ok(Mesh {
+        name: name.to_string(),
+        positions,
+        triangles,
+        uvs,
+    })
+}
+
+/// `gr.material(kd, ks, shininess)` or `gr.material(name)`.
+fn material(a: &Args) -> mlua::Result<MaterialHandle> {
+    let m = match a.get(1) {
+        Value::String(_) => Material {
+            name: a.string(1, "name")?,
+            ..Material::default()
+        },
+        _ => Material {
+            name: format!("material at {}", location(a.lua)),
+            kd: a.colour(1, "kd")?,
+            ks: a.colour(2, "ks")?,
+            shininess: a.non_negative(3, "shininess")? as f32,
+            reflection: [0.0; 3],
+        },
+    };
+    Ok(with_state(a.lua, |s| {
+        s.graph.materials.push(m);
+        MaterialHandle(s.graph.materials.len() - 1)
+    }))
+}
+
+fn light(a: &Args) -> mlua::Result<LightHandle> {
+    let position = a.vec3(1, "position")?;
+    let colour = a.colour(2, "colour")?;
+    let t = a.table(3, "falloff", "a table of 3 numbers {c0, c1, c2}")?;
+    let c = a.vec3_from(&t, 3, "falloff")?;
+    if c.iter().any(|&x| x < 0.0) || c.iter().all(|&x| x == 0.0) {
+        return Err(a.bad_in(
+            3,
+            "falloff",
+            format!(
+                "coefficients {{c0, c1, c2}} must be non-negative and not all zero, got {{{}, {}, {}}}",
+                c[0], c[1], c[2]
+            ),
+        ));
+    }
+    Ok(LightHandle(Light {
+        position,
+        colour,
+        falloff: c.map(|x| x as f32),
+    }))
+}
+
+fn transform_order(a: &Args) -> mlua::Result<()> {
+    let s = a.string(1, "order")?;
+    let order = match s.to_ascii_lowercase().as_str() {
+        "pre" => TransformOrder::Pre,
+        "post" => TransformOrder::Post,
+        _ => return Err(a.bad(1, "order", "'pre' or 'post'")),
+    };
+    with_state(a.lua, |s| {
+        s.report.order_set_by_script = true;
+        if !s.order_fixed {
+            s.order = order;
+        }
+    });
+    Ok(())
+}
+
+/// `gr.render(root, file, w, h, eye, view, up, fov, ambient, lights[, options])`.
+pub(super) fn render(
+    lua: &Lua,
+    args: MultiValue,
+    on_render: &mut OnRender<'_>,
+) -> mlua::Result<()> {
+    let a = Args::new(lua, "gr.render", args);
+    let root = a.node(1, "root")?;
+    let output = PathBuf::from(a.string(2, "file")?);
+    let width = a.positive_int(3, "width", MAX_IMAGE_SIDE)?;
+    let height = a.positive_int(4, "height", MAX_IMAGE_SIDE)?;
+    let eye = a.vec3(5, "eye")?;
+    let view = a.vec3(6, "view")?;
+    if view == DVec3::ZERO {
+        return Err(a.bad(6, "view", "a non-zero direction"));
+    }
+    let up = a.vec3(7, "up")?;
+    if up.cross(view).length_squared() <= 1e-24 * up.length_squared() * view.length_squared() {
+        return Err(a.bad(7, "up", "a non-zero direction not parallel to view"));
+    }
+    let fov_deg = match super::args::finite(a.get(8)) {
+        Some(f) if f > 0.0 && f < 180.0 => f,
+        _ => return Err(a.bad(8, "fov", "a number of degrees between 0 and 180")),
+    };
+    let ambient = a.colour(9, "ambient")?;
+    let list = a.table(10, "lights", "a table of lights made by gr.light")?;
+    let mut lights = Vec::new();
+    for (i, v) in list.sequence_values::<Value>().enumerate() {
+        let v = v?;
+        let light = match &v {
+            Value::UserData(ud) => ud.borrow::<LightHandle>().ok().map(|l| l.0.clone()),
+            _ => None,
+        };
+        lights.push(light.ok_or_else(|| {
+            a.bad_in(
+                10,
+                "lights",
+                format!(
+                    "element {} must be a light made by gr.light, got {}",
+                    i + 1,
+                    super::args::describe(lua, &v)
+                ),
+            )
+        })?);
+    }
+    let options = options::parse(&a, 11)?;
+    let request = RenderRequest {
+        root,
+        output,
+        width,
+        height,
+        camera: Camera {
+            eye,
+            view,
+            up,
+            fov_deg,
+        },
+        ambient,
+        lights,
+        options,
+        location: location(lua),
+    };
+    let state = lua
+        .app_data_ref::<super::State>()
+        .expect("script state is installed");
+    let result = on_render(&state.graph, &request);
+    drop(state);
+    match result {
+        Ok(()) => {
+            with_state(lua, |s| s.report.renders += 1);
+            Ok(())
+        }
+        Err(error) => {
+            let message = format!("{}: gr.render: {error:#}", request.location);
+            with_state(lua, |s| s.render_error = Some((request.location, error)));
+            Err(mlua::Error::RuntimeError(message))
+        }
+    }
+}
+
+impl UserData for NodeHandle {
+    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
+        macro_rules! method {
+            ($name:literal, $f:expr) => {
+                methods.add_function($name, |lua, args: MultiValue| {
+                    let a = Args::method(lua, concat!("node:", $name), args);
+                    a.receiver::<NodeHandle>("node")?;
+                    $f(&a)?;
+                    Ok(a.receiver_value())
+                });
+            };
+        }
+        method!("add_child", add_child);
+        method!("set_material", set_material);
+        method!("scale", |a: &Args| {
+            let v = [(1, "x"), (2, "y"), (3, "z")].map(|(n, name)| (n, name, a.number(n, name)));
+            let mut f = [0.0; 3];
+            for (k, (n, name, x)) in v.into_iter().enumerate() {
+                let x = x?;
+                if x == 0.0 {
+                    return Err(a.bad(
+                        n,
+                        name,
+                        "a non-zero scale factor (a zero factor makes the transform singular)",
+                    ));
+                }
+                f[k] = x;
+            }
+            compose(a, DMat4::from_scale(DVec3::from_array(f)))
+        });
+        method!("translate", |a: &Args| {
+            let t = DVec3::new(a.number(1, "x")?, a.number(2, "y")?, a.number(3, "z")?);
+            compose(a, DMat4::from_translation(t))
+        });
+        method!("rotate", |a: &Args| {
+            let axis = a.string(1, "axis")?;
+            let deg = a.number(2, "angle")?;
+            let r = deg.to_radians();
+            let op = match axis.to_ascii_lowercase().as_str() {
+                "x" => DMat4::from_rotation_x(r),
+                "y" => DMat4::from_rotation_y(r),
+                "z" => DMat4::from_rotation_z(r),
+                _ => return Err(a.bad(1, "axis", "'x', 'y' or 'z' (any case)")),
+            };
+            compose(a, op)
+        });
+        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
+            let id = this.borrow::<NodeHandle>()?.0;
+            Ok(with_state(lua, |s| {
+                format!("node '{}'", s.graph.nodes[id].name)
+            }))
+        });
+    }
+}
+
+/// Applies `op` to the receiver's matrix in the current transform order.
+fn compose(a: &Args, op: DMat4) -> mlua::Result<()> {
+    let id = a.receiver::<NodeHandle>("node")?.0;
+    with_state(a.lua, |s| {
+        let node = &mut s.graph.nodes[id];
+        node.matrix = s.order.apply(node.matrix, op);
+    });
+    Ok(())
+}
+
+fn add_child(a: &Args) -> mlua::Result<()> {
+    let parent = a.receiver::<NodeHandle>("node")?.0;
+    let child = a.node(1, "child")?;
+    let cycle = with_state(a.lua, |s| {
+        reaches(&s.graph.nodes, child, parent).then(|| {
+            (
+                s.graph.nodes[child].name.clone(),
+                s.graph.nodes[parent].name.clone(),
+            )
+        })
+    });
+    if let Some((c, p)) = cycle {
+        return Err(a.bad_in(
+            1,
+            "child",
+            format!("adding node '{c}' under node '{p}' would make a cycle"),
+        ));
+    }
+    with_state(a.lua, |s| s.graph.nodes[parent].children.push(child));
+    Ok(())
+}
+
+/// Whether `to` is `from` or one of its descendants.
+fn reaches(nodes: &[Node], from: NodeId, to: NodeId) -> bool {
+    let mut stack = vec![from];
+    let mut seen = vec![false; nodes.len()];
+    while let Some(n) = stack.pop() {
+        if n == to {
+            return true;
+        }
+        if !std::mem::replace(&mut seen[n], true) {
+            stack.extend(&nodes[n].children);
+        }
+    }
+    false
+}
+
+fn set_material(a: &Args) -> mlua::Result<()> {
+    let id = a.receiver::<NodeHandle>("node")?.0;
+    let m = a.material(1, "material")?;
+    let err = with_state(a.lua, |s| {
+        let node = &mut s.graph.nodes[id];
+        match node.kind {
+            NodeKind::Geometry { .. } => {
+                node.material = Some(m);
+                None
+            }
+            NodeKind::Transform => Some(node.name.clone()),
+        }
+    });
+    match err {
+        None => Ok(()),
+        Some(name) => Err(a.error(format!(
+            "node '{name}' is a transform node; materials go on geometry nodes (gr.sphere, gr.cube, gr.mesh, …)"
+        ))),
+    }
+}
+
+impl UserData for MaterialHandle {
+    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
+        macro_rules! method {
+            ($name:literal, $f:expr) => {
+                methods.add_function($name, |lua, args: MultiValue| {
+                    let a = Args::method(lua, concat!("material:", $name), args);
+                    let id = a.receiver::<MaterialHandle>("material")?.0;
+                    let edit = $f(&a)?;
+                    with_state(lua, |s| edit(&mut s.graph.materials[id]));
+                    Ok(a.receiver_value())
+                });
+            };
+        }
+        method!("set_diffuse", |a: &Args| {
+            a.colour_args(1, true)
+                .map(|c| move |m: &mut Material| m.kd = c)
+        });
+        method!("set_specular", |a: &Args| {
+            a.colour_args(1, true)
+                .map(|c| move |m: &mut Material| m.ks = c)
+        });
+        method!("set_reflection", |a: &Args| {
+            a.colour_args(1, true)
+                .map(|c| move |m: &mut Material| m.reflection = c)
+        });
+        method!("set_shininess", |a: &Args| {
+            a.non_negative(1, "shininess")
+                .map(|p| move |m: &mut Material| m.shininess = p as f32)
+        });
+        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
+            let id = this.borrow::<MaterialHandle>()?.0;
+            Ok(with_state(lua, |s| {
+                format!("material '{}'", s.graph.materials[id].name)
+            }))
+        });
+    }
+}
+
+impl UserData for LightHandle {
+    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
+        methods.add_meta_method(MetaMethod::ToString, |_, this, ()| {
+            Ok(format!(
+                "light at ({}, {}, {})",
+                this.0.position.x, this.0.position.y, this.0.position.z
+            ))
+        });
+    }
+}

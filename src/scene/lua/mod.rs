@@ -1,0 +1,256 @@
+//! The `gr` Lua module: runs a CS488 A4 scene script (see shared/design/scene-language.md)
+//! into a [`SceneGraph`], handing each `gr.render` call to the caller as it happens.
+//!
+//! Layout: `sandbox` builds the restricted Lua state (limits, `require`, `unpack`,
+//! `readobj`), `gr` defines the scene calls and the node/material/light userdata, `args`
+//! checks arguments and words the errors, `options` parses the render-options table.
+//! The script's state lives in Lua's app data ([`State`]) so that the `'static` callbacks
+//! mlua requires can reach it; only `gr.render`, which borrows the caller's `on_render`,
+//! is a scoped function.
+
+mod args;
+mod gr;
+mod options;
+mod sandbox;
+
+use super::{MeshId, RenderRequest, SceneGraph, TransformOrder};
+use mlua::chunk::ChunkMode;
+use mlua::Lua;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// How to run a script. The defaults suit the command line.
+#[derive(Clone, Debug)]
+pub struct ScriptConfig {
+    /// Transform order forced by the CLI flag; it beats `gr.transform_order` in the script.
+    pub transform_order: Option<TransformOrder>,
+    /// Lua VM instructions a script may execute before it is stopped as a runaway.
+    pub instruction_limit: u64,
+    /// Bytes the Lua heap may grow to (meshes built in Rust do not count).
+    pub memory_limit: usize,
+}
+
+impl Default for ScriptConfig {
+    fn default() -> Self {
+        ScriptConfig {
+            transform_order: None,
+            instruction_limit: 200_000_000,
+            memory_limit: 1 << 30,
+        }
+    }
+}
+
+/// What a finished script did, for the caller's summary and hints.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ScriptReport {
+    /// Number of `gr.render` calls.
+    pub renders: usize,
+    /// The script called `gr.transform_order`.
+    pub order_set_by_script: bool,
+    /// The script used inline meshes, `require` or bare `unpack`: the pre-2015 family,
+    /// which needs `--transform-order post` unless it says so itself.
+    pub looks_pre2015: bool,
+}
+
+/// A scene script failed. `Display` is the whole message, starting with `file:line:`
+/// wherever Lua can tell the line.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The scene file itself could not be read.
+    #[error("cannot read scene file '{}': {source}", path.display())]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    /// Lua could not parse the scene (or a module it requires).
+    #[error("{message}")]
+    Syntax { message: String },
+    /// A runtime error: a bad argument to a `gr` call, a Lua error, a missing file.
+    #[error("{message}")]
+    Runtime {
+        message: String,
+        /// Lua's stack traceback, when there is one.
+        traceback: Option<String>,
+    },
+    /// The instruction or memory limit was reached.
+    #[error("{message}")]
+    Limit { message: String },
+    /// The caller's render callback failed; `location` is the `gr.render` call's `file:line`.
+    #[error("{location}: gr.render: {error:#}")]
+    Render {
+        location: String,
+        error: anyhow::Error,
+    },
+}
+
+/// The callback `gr.render` invokes with the graph built so far and the request.
+pub type OnRender<'a> = dyn FnMut(&SceneGraph, &RenderRequest) -> anyhow::Result<()> + 'a;
+
+/// Runs the scene file at `path`. Meshes and modules resolve against its directory.
+pub fn run_scene_file(
+    path: &Path,
+    config: &ScriptConfig,
+    on_render: &mut OnRender<'_>,
+) -> Result<ScriptReport, SceneError> {
+    let bytes = std::fs::read(path).map_err(|source| SceneError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let source = String::from_utf8_lossy(&bytes);
+    let base_dir = path.parent().unwrap_or(Path::new(""));
+    run_scene_source(
+        &path.display().to_string(),
+        &source,
+        base_dir,
+        config,
+        on_render,
+    )
+}
+
+/// Runs scene source text named `chunk_name` (used in messages as `chunk_name:line:`),
+/// resolving meshes and modules against `base_dir`.
+pub fn run_scene_source(
+    chunk_name: &str,
+    source: &str,
+    base_dir: &Path,
+    config: &ScriptConfig,
+    on_render: &mut OnRender<'_>,
+) -> Result<ScriptReport, SceneError> {
+    let limits = sandbox::Limits::default();
+    let lua = sandbox::new_lua(config, &limits).map_err(|e| SceneError::Runtime {
+        message: format!("{chunk_name}: cannot set up Lua: {e}"),
+        traceback: None,
+    })?;
+    lua.set_app_data(State {
+        graph: SceneGraph::default(),
+        order: config.transform_order.unwrap_or_default(),
+        order_fixed: config.transform_order.is_some(),
+        base_dir: base_dir.to_path_buf(),
+        report: ScriptReport::default(),
+        mesh_cache: HashMap::new(),
+        render_error: None,
+    });
+    let setup = gr::install(&lua).and_then(|()| sandbox::install(&lua));
+    if let Err(e) = setup {
+        return Err(SceneError::Runtime {
+            message: format!("{chunk_name}: cannot set up the gr module: {e}"),
+            traceback: None,
+        });
+    }
+
+    let result = lua.scope(|scope| {
+        let render = scope.create_function_mut(|lua, args: mlua::MultiValue| {
+            gr::render(lua, args, &mut *on_render)
+        })?;
+        lua.globals()
+            .get::<mlua::Table>("gr")?
+            .set("render", render)?;
+        lua.load(source)
+            .set_name(format!("@{chunk_name}"))
+            .set_mode(ChunkMode::Text)
+            .exec()
+    });
+
+    let mut state = lua
+        .remove_app_data::<State>()
+        .expect("the script state outlives the script");
+    match result {
+        Ok(()) => Ok(state.report),
+        Err(e) => {
+            if let Some((location, error)) = state.render_error.take() {
+                return Err(SceneError::Render { location, error });
+            }
+            Err(convert_error(&e, chunk_name, config, &limits))
+        }
+    }
+}
+
+/// Everything the callbacks share while a script runs (kept in Lua's app data).
+pub(crate) struct State {
+    pub graph: SceneGraph,
+    pub order: TransformOrder,
+    /// The CLI flag fixed the order: `gr.transform_order` is recorded but has no effect.
+    pub order_fixed: bool,
+    pub base_dir: PathBuf,
+    pub report: ScriptReport,
+    /// Mesh files already loaded, so instancing a file twice shares the triangles.
+    pub mesh_cache: HashMap<PathBuf, MeshId>,
+    /// The caller's render error, kept whole (Lua can only carry a string of it).
+    pub render_error: Option<(String, anyhow::Error)>,
+}
+
+/// Runs `f` on the script state. Never call Lua inside `f`: the state is borrowed.
+pub(crate) fn with_state<R>(lua: &Lua, f: impl FnOnce(&mut State) -> R) -> R {
+    let mut state = lua
+        .app_data_mut::<State>()
+        .expect("script state is installed before the script runs");
+    f(&mut state)
+}
+
+/// Turns an mlua error into a [`SceneError`], unwrapping the callback layers mlua adds so
+/// that the message is the one written where the error arose.
+fn convert_error(
+    e: &mlua::Error,
+    chunk_name: &str,
+    config: &ScriptConfig,
+    limits: &sandbox::Limits,
+) -> SceneError {
+    let mut traceback = None;
+    let mut e = e;
+    loop {
+        match e {
+            mlua::Error::CallbackError {
+                traceback: t,
+                cause,
+            } => {
+                traceback.get_or_insert_with(|| t.clone());
+                e = cause;
+            }
+            mlua::Error::WithContext { cause, .. } => e = cause,
+            _ => break,
+        }
+    }
+    if limits.instructions_exceeded.get() {
+        let text = match e {
+            mlua::Error::RuntimeError(m) => m.clone(),
+            other => other.to_string(),
+        };
+        return SceneError::Limit {
+            message: split_traceback(&text).0.to_string(),
+        };
+    }
+    match e {
+        mlua::Error::SyntaxError { message, .. } => SceneError::Syntax {
+            message: message.clone(),
+        },
+        mlua::Error::MemoryError(_) => SceneError::Limit {
+            message: format!(
+                "{chunk_name}: the script used more than the memory limit of {} MiB",
+                config.memory_limit >> 20
+            ),
+        },
+        mlua::Error::RuntimeError(message) => {
+            let (message, tb) = split_traceback(message);
+            SceneError::Runtime {
+                message: message.to_string(),
+                traceback: traceback.or(tb),
+            }
+        }
+        other => {
+            let text = other.to_string();
+            let (message, tb) = split_traceback(&text);
+            SceneError::Runtime {
+                message: message.to_string(),
+                traceback: traceback.or(tb),
+            }
+        }
+    }
+}
+
+/// Separates the message from a `stack traceback:` that Lua may have appended.
+fn split_traceback(s: &str) -> (&str, Option<String>) {
+    match s.find("\nstack traceback:") {
+        Some(i) => (s[..i].trim_end(), Some(s[i + 1..].to_string())),
+        None => (s.trim_end(), None),
+    }
+}

@@ -1,0 +1,153 @@
+//! The render-options table, the optional 11th argument of `gr.render`.
+//!
+//! Strict on purpose: a misspelt key (`samlpes`) or value (`aa = 'adaptiv'`) is an error
+//! that lists what is valid, rather than an option silently left at its default.
+
+use super::args::{describe, finite, int_value, Args};
+use crate::scene::{AaMode, Background, GridMode, RenderOptions};
+use mlua::{Table, Value};
+
+const KEYS: &str = "aa, samples, aa_threshold, aa_depth, shadow_samples, max_depth, \
+                    min_weight, background, grid";
+
+/// Parses argument `n` of `a` (nil gives the defaults).
+pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
+    let mut o = RenderOptions::default();
+    let t = match a.get(n) {
+        Value::Nil => return Ok(o),
+        Value::Table(t) => t.clone(),
+        _ => return Err(a.bad(n, "options", "a table of render options")),
+    };
+    // Sorted so that a table with several mistakes always reports the same one first.
+    let mut entries: Vec<(String, Value)> = Vec::new();
+    for pair in t.pairs::<Value, Value>() {
+        let (k, v) = pair?;
+        let Value::String(k) = &k else {
+            return Err(a.bad_in(
+                n,
+                "options",
+                format!(
+                    "keys must be option names ({KEYS}), got {}",
+                    describe(a.lua, &k)
+                ),
+            ));
+        };
+        entries.push((k.to_string_lossy(), v));
+    }
+    entries.sort_by(|x, y| x.0.cmp(&y.0));
+
+    for (key, v) in entries {
+        let bad = |what: &str| {
+            a.bad_in(
+                n,
+                "options",
+                format!("{key} must be {what}, got {}", describe(a.lua, &v)),
+            )
+        };
+        let int_in = |lo: i64, hi: i64| match int_value(&v) {
+            Some(i) if (lo..=hi).contains(&i) => Ok(i as u32),
+            _ => Err(bad(&format!("an integer from {lo} to {hi}"))),
+        };
+        match key.as_str() {
+            "aa" => {
+                o.aa = match &v {
+                    Value::String(s) => AaMode::parse(&s.to_string_lossy()),
+                    _ => None,
+                }
+                .ok_or_else(|| bad(AaMode::CHOICES))?;
+            }
+            "samples" => o.samples = int_in(1, 64)?,
+            "aa_threshold" => {
+                o.aa_threshold = match finite(&v) {
+                    Some(x) if x >= 0.0 => x as f32,
+                    _ => return Err(bad("a non-negative number")),
+                }
+            }
+            "aa_depth" => o.aa_depth = int_in(0, 8)?,
+            "shadow_samples" => o.shadow_samples = Some(int_in(1, 64)?),
+            "max_depth" => o.max_depth = int_in(0, 64)?,
+            "min_weight" => {
+                o.min_weight = match finite(&v) {
+                    Some(x) if (0.0..=1.0).contains(&x) => x as f32,
+                    _ => return Err(bad("a number from 0 to 1")),
+                }
+            }
+            "background" => o.background = background(a, n, &v)?,
+            "grid" => {
+                o.grid = match &v {
+                    Value::String(s) if &*s.to_string_lossy() == "auto" => GridMode::Auto,
+                    Value::String(s) if &*s.to_string_lossy() == "off" => GridMode::Off,
+                    Value::Table(t) => {
+                        let d: Value = t.raw_get("density")?;
+                        match finite(&d) {
+                            Some(x) if x > 0.0 => GridMode::Density(x as f32),
+                            _ => {
+                                return Err(a.bad_in(
+                                    n,
+                                    "options",
+                                    format!(
+                                        "grid.density must be a positive number, got {}",
+                                        describe(a.lua, &d)
+                                    ),
+                                ))
+                            }
+                        }
+                    }
+                    _ => return Err(bad(GridMode::CHOICES)),
+                }
+            }
+            _ => {
+                return Err(a.bad_in(
+                    n,
+                    "options",
+                    format!("unknown key '{key}'; valid keys are {KEYS}"),
+                ))
+            }
+        }
+    }
+    Ok(o)
+}
+
+/// `{r,g,b}` or `{top={r,g,b}, bottom={r,g,b}}`.
+fn background(a: &Args, n: usize, v: &Value) -> mlua::Result<Background> {
+    const WHAT: &str = "{r, g, b} or {top = {r, g, b}, bottom = {r, g, b}}";
+    let Value::Table(t) = v else {
+        return Err(a.bad_in(
+            n,
+            "options",
+            format!("background must be {WHAT}, got {}", describe(a.lua, v)),
+        ));
+    };
+    let colour = |t: &Table, what: &str| -> mlua::Result<[f32; 3]> {
+        let mut c = [0.0f32; 3];
+        for (i, slot) in c.iter_mut().enumerate() {
+            let x: Value = t.raw_get(i + 1)?;
+            *slot = finite(&x).ok_or_else(|| {
+                a.bad_in(
+                    n,
+                    "options",
+                    format!(
+                        "{what} element {} must be a finite number, got {}",
+                        i + 1,
+                        describe(a.lua, &x)
+                    ),
+                )
+            })? as f32;
+        }
+        Ok(c)
+    };
+    let top: Value = t.raw_get("top")?;
+    let bottom: Value = t.raw_get("bottom")?;
+    match (&top, &bottom) {
+        (Value::Nil, Value::Nil) => Ok(Background::Solid(colour(t, "background")?)),
+        (Value::Table(top), Value::Table(bottom)) => Ok(Background::Gradient {
+            top: colour(top, "background.top")?,
+            bottom: colour(bottom, "background.bottom")?,
+        }),
+        _ => Err(a.bad_in(
+            n,
+            "options",
+            format!("background must be {WHAT} (both top and bottom for a gradient)"),
+        )),
+    }
+}
