@@ -2,14 +2,16 @@
 //! into a [`SceneGraph`], handing each `gr.render` call to the caller as it happens.
 //!
 //! Layout: `sandbox` builds the restricted Lua state (limits, `require`, `unpack`,
-//! `readobj`), `gr` defines the scene calls and the node/material/light userdata, `args`
-//! checks arguments and words the errors, `options` parses the render-options table.
+//! `readobj`), `gr` defines the scene calls, `handles` the node/material/light userdata
+//! and their methods, `args` checks arguments and words the errors, `options` parses the
+//! render-options table.
 //! The script's state lives in Lua's app data ([`State`]) so that the `'static` callbacks
 //! mlua requires can reach it; only `gr.render`, which borrows the caller's `on_render`,
 //! is a scoped function.
 
 mod args;
 mod gr;
+mod handles;
 mod options;
 mod sandbox;
 
@@ -231,9 +233,10 @@ fn convert_error(
         },
         mlua::Error::RuntimeError(message) => {
             let (message, tb) = split_traceback(message);
+            let traceback = traceback.or(tb);
             SceneError::Runtime {
-                message: message.to_string(),
-                traceback: traceback.or(tb),
+                message: with_location(message, traceback.as_deref()),
+                traceback,
             }
         }
         other => {
@@ -244,6 +247,30 @@ fn convert_error(
                 traceback: traceback.or(tb),
             }
         }
+    }
+}
+
+/// `error({})` and the like carry no position: borrow the innermost Lua frame of the
+/// traceback (`\tscene.lua:3: in main chunk`) so the message still says where.
+fn with_location(message: &str, traceback: Option<&str>) -> String {
+    let located = message.split(": ").next().is_some_and(|head| {
+        head.rsplit_once(':')
+            .is_some_and(|(_, line)| !line.is_empty() && line.bytes().all(|b| b.is_ascii_digit()))
+    });
+    if located {
+        return message.to_string();
+    }
+    let frame = traceback.and_then(|tb| {
+        tb.lines().map(str::trim).find_map(|l| {
+            let (file, rest) = l.split_once(':')?;
+            let (line, _) = rest.split_once(':')?;
+            (!file.starts_with('[') && line.bytes().all(|b| b.is_ascii_digit()))
+                .then(|| format!("{file}:{line}"))
+        })
+    });
+    match frame {
+        Some(at) => format!("{at}: {message}"),
+        None => message.to_string(),
     }
 }
 
