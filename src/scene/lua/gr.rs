@@ -338,6 +338,9 @@ pub(super) fn render(
     on_render: &mut OnRender<'_>,
 ) -> mlua::Result<()> {
     let a = Args::new(lua, "gr.render", args);
+    if with_state(lua, |s| s.render_error.is_some()) {
+        return Err(a.error("an earlier gr.render failed; no more renders"));
+    }
     let root = a.node(1, "root")?;
     let output = PathBuf::from(a.string(2, "file")?);
     let width = a.positive_int(3, "width", MAX_IMAGE_SIDE)?;

@@ -156,14 +156,17 @@ pub fn run_scene_source(
     let mut state = lua
         .remove_app_data::<State>()
         .expect("the script state outlives the script");
+    // A render failure or a reached limit ends the script even if a `pcall` in the
+    // script caught the Lua error and carried on.
+    if let Some((location, error)) = state.render_error.take() {
+        return Err(SceneError::Render { location, error });
+    }
+    if let Some(message) = limits.instructions_exceeded.take() {
+        return Err(SceneError::Limit { message });
+    }
     match result {
         Ok(()) => Ok(state.report),
-        Err(e) => {
-            if let Some((location, error)) = state.render_error.take() {
-                return Err(SceneError::Render { location, error });
-            }
-            Err(convert_error(&e, chunk_name, config, &limits))
-        }
+        Err(e) => Err(convert_error(&e, chunk_name, config)),
     }
 }
 
@@ -191,12 +194,7 @@ pub(crate) fn with_state<R>(lua: &Lua, f: impl FnOnce(&mut State) -> R) -> R {
 
 /// Turns an mlua error into a [`SceneError`], unwrapping the callback layers mlua adds so
 /// that the message is the one written where the error arose.
-fn convert_error(
-    e: &mlua::Error,
-    chunk_name: &str,
-    config: &ScriptConfig,
-    limits: &sandbox::Limits,
-) -> SceneError {
+fn convert_error(e: &mlua::Error, chunk_name: &str, config: &ScriptConfig) -> SceneError {
     let mut traceback = None;
     let mut e = e;
     loop {
@@ -211,15 +209,6 @@ fn convert_error(
             mlua::Error::WithContext { cause, .. } => e = cause,
             _ => break,
         }
-    }
-    if limits.instructions_exceeded.get() {
-        let text = match e {
-            mlua::Error::RuntimeError(m) => m.clone(),
-            other => other.to_string(),
-        };
-        return SceneError::Limit {
-            message: split_traceback(&text).0.to_string(),
-        };
     }
     match e {
         mlua::Error::SyntaxError { message, .. } => SceneError::Syntax {
@@ -279,5 +268,37 @@ fn split_traceback(s: &str) -> (&str, Option<String>) {
     match s.find("\nstack traceback:") {
         Some(i) => (s[..i].trim_end(), Some(s[i + 1..].to_string())),
         None => (s.trim_end(), None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn traceback_is_split_off() {
+        let (m, tb) = split_traceback("a.lua:3: boom\nstack traceback:\n\ta.lua:3: in main chunk");
+        assert_eq!(m, "a.lua:3: boom");
+        assert_eq!(tb.unwrap(), "stack traceback:\n\ta.lua:3: in main chunk");
+        assert_eq!(split_traceback("plain\n"), ("plain", None));
+    }
+
+    #[test]
+    fn positionless_messages_borrow_the_traceback_frame() {
+        let tb = "stack traceback:\n\t[C]: in function 'error'\n\tdir/a.lua:7: in main chunk";
+        assert_eq!(
+            with_location("table: 0x1", Some(tb)),
+            "dir/a.lua:7: table: 0x1"
+        );
+        assert_eq!(with_location("a.lua:2: x", Some(tb)), "a.lua:2: x");
+        assert_eq!(with_location("boom", None), "boom");
+    }
+
+    #[test]
+    fn config_defaults() {
+        let c = ScriptConfig::default();
+        assert_eq!(c.transform_order, None);
+        assert_eq!(c.instruction_limit, 200_000_000);
+        assert_eq!(c.memory_limit, 1 << 30);
     }
 }
