@@ -584,3 +584,38 @@ fn cycles_and_materials_on_transform_nodes_are_errors() {
     let m = message_of("a = gr.node('a')\na:set_material(gr.material('m'))\n");
     assert!(m.contains("is a transform node"), "{m}");
 }
+
+#[test]
+fn pcall_cannot_hide_a_render_failure_or_a_runaway() {
+    let src = format!(
+        "root = gr.node('root')\nok = pcall(function()\n{RENDER})\nend)\nassert(not ok)\n\
+         assert(not pcall(function()\n{RENDER})\nend))\n"
+    );
+    let e = run_scene_source(
+        "t.lua",
+        &src,
+        Path::new("."),
+        &ScriptConfig::default(),
+        &mut |_, _| anyhow::bail!("no space"),
+    )
+    .unwrap_err();
+    assert_eq!(e.to_string(), "t.lua:3: gr.render: no space");
+
+    let config = ScriptConfig {
+        instruction_limit: 50_000,
+        ..ScriptConfig::default()
+    };
+    let e = run_scene_source(
+        "t.lua",
+        "pcall(function()\n  while true do end\nend)\n",
+        Path::new("."),
+        &config,
+        &mut |_, _| Ok(()),
+    )
+    .unwrap_err();
+    assert!(matches!(e, SceneError::Limit { .. }), "{e:?}");
+    assert_eq!(
+        e.to_string(),
+        "t.lua:2: instruction limit of 50000 exceeded — runaway loop?"
+    );
+}

@@ -51,10 +51,13 @@ pub fn parse_obj(text: &str, path: &Path, name: &str) -> Result<Mesh, ObjError> 
     Ok(to_mesh(parsed, name))
 }
 
+/// An OBJ file as plain tables: vertex positions and 0-based polygons.
+pub type RawObj = (Vec<[f64; 3]>, Vec<Vec<u32>>);
+
 /// Reads an OBJ file as plain tables, for the Lua `readobj` built-in: vertex positions and
 /// polygons with 0-based position indices (texture and normal indices dropped), exactly
 /// the shape of the inline `gr.mesh(name, verts, faces)` form.
-pub fn read_obj_raw(path: &Path) -> Result<(Vec<[f64; 3]>, Vec<Vec<u32>>), ObjError> {
+pub fn read_obj_raw(path: &Path) -> Result<RawObj, ObjError> {
     let text = read(path)?;
     let parsed = parse(&text, path)?;
     let faces = parsed

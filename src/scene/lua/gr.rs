@@ -1,31 +1,18 @@
-//! The `gr` table: the A4 core calls, and the node, material and light userdata.
+//! The `gr` table: the A4 core calls (the methods of what they return are in `handles`).
 //!
-//! Userdata carry only an index into the [`SceneGraph`] arenas (or a small value for
-//! lights), so a node can be added under several parents and a material changed after it
-//! was set. Calls not in the contract yet (textures, CSG, extra primitives, area lights)
+//! Calls not in the contract yet (textures, CSG, extra primitives, area lights)
 //! are simply not defined: Lua then reports `attempt to call a nil value (field 'x')`
 //! with the file and line.
 
 use super::args::{int_value, location, Args};
+use super::handles::{LightHandle, MaterialHandle, NodeHandle};
 use super::{options, with_state, OnRender};
 use crate::scene::{
-    Camera, Light, Material, Mesh, Node, NodeId, NodeKind, Primitive, RenderRequest, TransformOrder,
+    Camera, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest, TransformOrder,
 };
 use glam::{DMat4, DVec3};
-use mlua::{Lua, MetaMethod, MultiValue, UserData, UserDataMethods, Value};
+use mlua::{Lua, MultiValue, Value};
 use std::path::PathBuf;
-
-/// A node made by `gr.node`, `gr.sphere`, … (index into `SceneGraph::nodes`).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct NodeHandle(pub NodeId);
-
-/// A material made by `gr.material` (index into `SceneGraph::materials`).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct MaterialHandle(pub usize);
-
-/// A light made by `gr.light`; lights live in `gr.render`'s list, not in the graph.
-#[derive(Clone, Debug)]
-pub(crate) struct LightHandle(pub Light);
 
 /// Largest image side accepted (a typo guard, not a hardware limit).
 const MAX_IMAGE_SIDE: u32 = 1 << 16;
@@ -351,6 +338,9 @@ pub(super) fn render(
     on_render: &mut OnRender<'_>,
 ) -> mlua::Result<()> {
     let a = Args::new(lua, "gr.render", args);
+    if with_state(lua, |s| s.render_error.is_some()) {
+        return Err(a.error("an earlier gr.render failed; no more renders"));
+    }
     let root = a.node(1, "root")?;
     let output = PathBuf::from(a.string(2, "file")?);
     let width = a.positive_int(3, "width", MAX_IMAGE_SIDE)?;
@@ -421,177 +411,5 @@ pub(super) fn render(
             with_state(lua, |s| s.render_error = Some((request.location, error)));
             Err(mlua::Error::RuntimeError(message))
         }
-    }
-}
-
-impl UserData for NodeHandle {
-    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        macro_rules! method {
-            ($name:literal, $f:expr) => {
-                methods.add_function($name, |lua, args: MultiValue| {
-                    let a = Args::method(lua, concat!("node:", $name), args);
-                    a.receiver::<NodeHandle>("node")?;
-                    $f(&a)?;
-                    Ok(a.receiver_value())
-                });
-            };
-        }
-        method!("add_child", add_child);
-        method!("set_material", set_material);
-        method!("scale", |a: &Args| {
-            let v = [(1, "x"), (2, "y"), (3, "z")].map(|(n, name)| (n, name, a.number(n, name)));
-            let mut f = [0.0; 3];
-            for (k, (n, name, x)) in v.into_iter().enumerate() {
-                let x = x?;
-                if x == 0.0 {
-                    return Err(a.bad(
-                        n,
-                        name,
-                        "a non-zero scale factor (a zero factor makes the transform singular)",
-                    ));
-                }
-                f[k] = x;
-            }
-            compose(a, DMat4::from_scale(DVec3::from_array(f)))
-        });
-        method!("translate", |a: &Args| {
-            let t = DVec3::new(a.number(1, "x")?, a.number(2, "y")?, a.number(3, "z")?);
-            compose(a, DMat4::from_translation(t))
-        });
-        method!("rotate", |a: &Args| {
-            let axis = a.string(1, "axis")?;
-            let deg = a.number(2, "angle")?;
-            let r = deg.to_radians();
-            let op = match axis.to_ascii_lowercase().as_str() {
-                "x" => DMat4::from_rotation_x(r),
-                "y" => DMat4::from_rotation_y(r),
-                "z" => DMat4::from_rotation_z(r),
-                _ => return Err(a.bad(1, "axis", "'x', 'y' or 'z' (any case)")),
-            };
-            compose(a, op)
-        });
-        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
-            let id = this.borrow::<NodeHandle>()?.0;
-            Ok(with_state(lua, |s| {
-                format!("node '{}'", s.graph.nodes[id].name)
-            }))
-        });
-    }
-}
-
-/// Applies `op` to the receiver's matrix in the current transform order.
-fn compose(a: &Args, op: DMat4) -> mlua::Result<()> {
-    let id = a.receiver::<NodeHandle>("node")?.0;
-    with_state(a.lua, |s| {
-        let node = &mut s.graph.nodes[id];
-        node.matrix = s.order.apply(node.matrix, op);
-    });
-    Ok(())
-}
-
-fn add_child(a: &Args) -> mlua::Result<()> {
-    let parent = a.receiver::<NodeHandle>("node")?.0;
-    let child = a.node(1, "child")?;
-    let cycle = with_state(a.lua, |s| {
-        reaches(&s.graph.nodes, child, parent).then(|| {
-            (
-                s.graph.nodes[child].name.clone(),
-                s.graph.nodes[parent].name.clone(),
-            )
-        })
-    });
-    if let Some((c, p)) = cycle {
-        return Err(a.bad_in(
-            1,
-            "child",
-            format!("adding node '{c}' under node '{p}' would make a cycle"),
-        ));
-    }
-    with_state(a.lua, |s| s.graph.nodes[parent].children.push(child));
-    Ok(())
-}
-
-/// Whether `to` is `from` or one of its descendants.
-fn reaches(nodes: &[Node], from: NodeId, to: NodeId) -> bool {
-    let mut stack = vec![from];
-    let mut seen = vec![false; nodes.len()];
-    while let Some(n) = stack.pop() {
-        if n == to {
-            return true;
-        }
-        if !std::mem::replace(&mut seen[n], true) {
-            stack.extend(&nodes[n].children);
-        }
-    }
-    false
-}
-
-fn set_material(a: &Args) -> mlua::Result<()> {
-    let id = a.receiver::<NodeHandle>("node")?.0;
-    let m = a.material(1, "material")?;
-    let err = with_state(a.lua, |s| {
-        let node = &mut s.graph.nodes[id];
-        match node.kind {
-            NodeKind::Geometry { .. } => {
-                node.material = Some(m);
-                None
-            }
-            NodeKind::Transform => Some(node.name.clone()),
-        }
-    });
-    match err {
-        None => Ok(()),
-        Some(name) => Err(a.error(format!(
-            "node '{name}' is a transform node; materials go on geometry nodes (gr.sphere, gr.cube, gr.mesh, …)"
-        ))),
-    }
-}
-
-impl UserData for MaterialHandle {
-    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        macro_rules! method {
-            ($name:literal, $f:expr) => {
-                methods.add_function($name, |lua, args: MultiValue| {
-                    let a = Args::method(lua, concat!("material:", $name), args);
-                    let id = a.receiver::<MaterialHandle>("material")?.0;
-                    let edit = $f(&a)?;
-                    with_state(lua, |s| edit(&mut s.graph.materials[id]));
-                    Ok(a.receiver_value())
-                });
-            };
-        }
-        method!("set_diffuse", |a: &Args| {
-            a.colour_args(1, true)
-                .map(|c| move |m: &mut Material| m.kd = c)
-        });
-        method!("set_specular", |a: &Args| {
-            a.colour_args(1, true)
-                .map(|c| move |m: &mut Material| m.ks = c)
-        });
-        method!("set_reflection", |a: &Args| {
-            a.colour_args(1, true)
-                .map(|c| move |m: &mut Material| m.reflection = c)
-        });
-        method!("set_shininess", |a: &Args| {
-            a.non_negative(1, "shininess")
-                .map(|p| move |m: &mut Material| m.shininess = p as f32)
-        });
-        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
-            let id = this.borrow::<MaterialHandle>()?.0;
-            Ok(with_state(lua, |s| {
-                format!("material '{}'", s.graph.materials[id].name)
-            }))
-        });
-    }
-}
-
-impl UserData for LightHandle {
-    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        methods.add_meta_method(MetaMethod::ToString, |_, this, ()| {
-            Ok(format!(
-                "light at ({}, {}, {})",
-                this.0.position.x, this.0.position.y, this.0.position.z
-            ))
-        });
     }
 }

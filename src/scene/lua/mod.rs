@@ -2,14 +2,16 @@
 //! into a [`SceneGraph`], handing each `gr.render` call to the caller as it happens.
 //!
 //! Layout: `sandbox` builds the restricted Lua state (limits, `require`, `unpack`,
-//! `readobj`), `gr` defines the scene calls and the node/material/light userdata, `args`
-//! checks arguments and words the errors, `options` parses the render-options table.
+//! `readobj`), `gr` defines the scene calls, `handles` the node/material/light userdata
+//! and their methods, `args` checks arguments and words the errors, `options` parses the
+//! render-options table.
 //! The script's state lives in Lua's app data ([`State`]) so that the `'static` callbacks
 //! mlua requires can reach it; only `gr.render`, which borrows the caller's `on_render`,
 //! is a scoped function.
 
 mod args;
 mod gr;
+mod handles;
 mod options;
 mod sandbox;
 
@@ -154,14 +156,17 @@ pub fn run_scene_source(
     let mut state = lua
         .remove_app_data::<State>()
         .expect("the script state outlives the script");
+    // A render failure or a reached limit ends the script even if a `pcall` in the
+    // script caught the Lua error and carried on.
+    if let Some((location, error)) = state.render_error.take() {
+        return Err(SceneError::Render { location, error });
+    }
+    if let Some(message) = limits.instructions_exceeded.take() {
+        return Err(SceneError::Limit { message });
+    }
     match result {
         Ok(()) => Ok(state.report),
-        Err(e) => {
-            if let Some((location, error)) = state.render_error.take() {
-                return Err(SceneError::Render { location, error });
-            }
-            Err(convert_error(&e, chunk_name, config, &limits))
-        }
+        Err(e) => Err(convert_error(&e, chunk_name, config)),
     }
 }
 
@@ -189,12 +194,7 @@ pub(crate) fn with_state<R>(lua: &Lua, f: impl FnOnce(&mut State) -> R) -> R {
 
 /// Turns an mlua error into a [`SceneError`], unwrapping the callback layers mlua adds so
 /// that the message is the one written where the error arose.
-fn convert_error(
-    e: &mlua::Error,
-    chunk_name: &str,
-    config: &ScriptConfig,
-    limits: &sandbox::Limits,
-) -> SceneError {
+fn convert_error(e: &mlua::Error, chunk_name: &str, config: &ScriptConfig) -> SceneError {
     let mut traceback = None;
     let mut e = e;
     loop {
@@ -210,15 +210,6 @@ fn convert_error(
             _ => break,
         }
     }
-    if limits.instructions_exceeded.get() {
-        let text = match e {
-            mlua::Error::RuntimeError(m) => m.clone(),
-            other => other.to_string(),
-        };
-        return SceneError::Limit {
-            message: split_traceback(&text).0.to_string(),
-        };
-    }
     match e {
         mlua::Error::SyntaxError { message, .. } => SceneError::Syntax {
             message: message.clone(),
@@ -231,9 +222,10 @@ fn convert_error(
         },
         mlua::Error::RuntimeError(message) => {
             let (message, tb) = split_traceback(message);
+            let traceback = traceback.or(tb);
             SceneError::Runtime {
-                message: message.to_string(),
-                traceback: traceback.or(tb),
+                message: with_location(message, traceback.as_deref()),
+                traceback,
             }
         }
         other => {
@@ -247,10 +239,66 @@ fn convert_error(
     }
 }
 
+/// `error({})` and the like carry no position: borrow the innermost Lua frame of the
+/// traceback (`\tscene.lua:3: in main chunk`) so the message still says where.
+fn with_location(message: &str, traceback: Option<&str>) -> String {
+    let located = message.split(": ").next().is_some_and(|head| {
+        head.rsplit_once(':')
+            .is_some_and(|(_, line)| !line.is_empty() && line.bytes().all(|b| b.is_ascii_digit()))
+    });
+    if located {
+        return message.to_string();
+    }
+    let frame = traceback.and_then(|tb| {
+        tb.lines().map(str::trim).find_map(|l| {
+            let (file, rest) = l.split_once(':')?;
+            let (line, _) = rest.split_once(':')?;
+            (!file.starts_with('[') && line.bytes().all(|b| b.is_ascii_digit()))
+                .then(|| format!("{file}:{line}"))
+        })
+    });
+    match frame {
+        Some(at) => format!("{at}: {message}"),
+        None => message.to_string(),
+    }
+}
+
 /// Separates the message from a `stack traceback:` that Lua may have appended.
 fn split_traceback(s: &str) -> (&str, Option<String>) {
     match s.find("\nstack traceback:") {
         Some(i) => (s[..i].trim_end(), Some(s[i + 1..].to_string())),
         None => (s.trim_end(), None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn traceback_is_split_off() {
+        let (m, tb) = split_traceback("a.lua:3: boom\nstack traceback:\n\ta.lua:3: in main chunk");
+        assert_eq!(m, "a.lua:3: boom");
+        assert_eq!(tb.unwrap(), "stack traceback:\n\ta.lua:3: in main chunk");
+        assert_eq!(split_traceback("plain\n"), ("plain", None));
+    }
+
+    #[test]
+    fn positionless_messages_borrow_the_traceback_frame() {
+        let tb = "stack traceback:\n\t[C]: in function 'error'\n\tdir/a.lua:7: in main chunk";
+        assert_eq!(
+            with_location("table: 0x1", Some(tb)),
+            "dir/a.lua:7: table: 0x1"
+        );
+        assert_eq!(with_location("a.lua:2: x", Some(tb)), "a.lua:2: x");
+        assert_eq!(with_location("boom", None), "boom");
+    }
+
+    #[test]
+    fn config_defaults() {
+        let c = ScriptConfig::default();
+        assert_eq!(c.transform_order, None);
+        assert_eq!(c.instruction_limit, 200_000_000);
+        assert_eq!(c.memory_limit, 1 << 30);
     }
 }

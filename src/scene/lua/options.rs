@@ -151,3 +151,92 @@ fn background(a: &Args, n: usize, v: &Value) -> mlua::Result<Background> {
         )),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::lua::{run_scene_source, ScriptConfig};
+    use crate::scene::{AaMode, Background, GridMode, RenderOptions};
+    use std::path::Path;
+
+    /// Runs a one-line render with `opts` as the options argument.
+    fn options(opts: &str) -> Result<RenderOptions, String> {
+        let src = format!(
+            "gr.render(gr.node('r'), 'o.png', 8, 8, {{0,0,1}}, {{0,0,-1}}, {{0,1,0}}, 50, \
+             {{0,0,0}}, {{}}, {opts})"
+        );
+        let mut got = None;
+        run_scene_source(
+            "o.lua",
+            &src,
+            Path::new("."),
+            &ScriptConfig::default(),
+            &mut |_, r| {
+                got = Some(r.options.clone());
+                Ok(())
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(got.unwrap())
+    }
+
+    #[test]
+    fn nil_gives_defaults() {
+        assert_eq!(options("nil").unwrap(), RenderOptions::default());
+        assert_eq!(options("{}").unwrap(), RenderOptions::default());
+    }
+
+    #[test]
+    fn every_key_parses() {
+        let o = options(
+            "{aa='none', samples=2, aa_threshold=0.25, aa_depth=1, shadow_samples=9, \
+             max_depth=3, min_weight=0.01, background={0.1,0.2,0.3}, grid='off'}",
+        )
+        .unwrap();
+        assert_eq!(o.aa, AaMode::None);
+        assert_eq!((o.samples, o.aa_depth, o.max_depth), (2, 1, 3));
+        assert_eq!(o.aa_threshold, 0.25);
+        assert_eq!(o.shadow_samples, Some(9));
+        assert_eq!(o.min_weight, 0.01);
+        assert_eq!(o.background, Background::Solid([0.1, 0.2, 0.3]));
+        assert_eq!(o.grid, GridMode::Off);
+        let o = options("{background={top={0,0,1}, bottom={1,1,1}}, grid={density=3}}").unwrap();
+        assert_eq!(
+            o.background,
+            Background::Gradient {
+                top: [0.0, 0.0, 1.0],
+                bottom: [1.0, 1.0, 1.0]
+            }
+        );
+        assert_eq!(o.grid, GridMode::Density(3.0));
+    }
+
+    #[test]
+    fn bad_values_list_the_choices() {
+        let e = options("{grid='fast'}").unwrap_err();
+        assert!(
+            e.ends_with("grid must be 'auto', 'off' or {density=λ}, got 'fast'"),
+            "{e}"
+        );
+        let e = options("{samples=0}").unwrap_err();
+        assert!(
+            e.ends_with("samples must be an integer from 1 to 64, got 0"),
+            "{e}"
+        );
+        let e = options("{min_weight=2}").unwrap_err();
+        assert!(e.contains("min_weight must be a number from 0 to 1"), "{e}");
+        let e = options("{background={top={0,0,1}}}").unwrap_err();
+        assert!(e.contains("both top and bottom"), "{e}");
+        let e = options("{grid={density=-1}}").unwrap_err();
+        assert!(
+            e.contains("grid.density must be a positive number, got -1"),
+            "{e}"
+        );
+        let e = options("{4}").unwrap_err();
+        assert!(e.contains("keys must be option names"), "{e}");
+        let e = options("'fast'").unwrap_err();
+        assert!(
+            e.starts_with("o.lua:1: gr.render: argument 11 (options) must be a table"),
+            "{e}"
+        );
+    }
+}

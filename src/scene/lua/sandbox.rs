@@ -19,10 +19,12 @@ use std::rc::Rc;
 /// Registry key of the `require` cache (also visible as `package.loaded`).
 const LOADED_KEY: &str = "glint.loaded";
 
-/// Flags the hooks raise, so the error can be classified after Lua unwinds.
+/// What the hooks report, so the error can be classified after Lua unwinds (and cannot
+/// be hidden by a `pcall` in the script).
 #[derive(Default)]
 pub(super) struct Limits {
-    pub instructions_exceeded: Rc<Cell<bool>>,
+    /// The instruction-limit message, once the limit is passed.
+    pub instructions_exceeded: Rc<Cell<Option<String>>>,
 }
 
 /// Creates the Lua state with the safe libraries and the limits of `config`.
@@ -50,7 +52,7 @@ pub(super) fn new_lua(config: &ScriptConfig, limits: &Limits) -> mlua::Result<Lu
             if count.get() <= limit {
                 return Ok(VmState::Continue);
             }
-            exceeded.set(true);
+
             let src = debug.source();
             let name = match src.source.as_deref() {
                 Some(s) if s.starts_with('@') => s[1..].to_string(),
@@ -59,9 +61,12 @@ pub(super) fn new_lua(config: &ScriptConfig, limits: &Limits) -> mlua::Result<Lu
             let line = debug
                 .current_line()
                 .map_or(String::new(), |l| format!(":{l}"));
-            Err(mlua::Error::RuntimeError(format!(
-                "{name}{line}: instruction limit of {limit} exceeded — runaway loop?"
-            )))
+            let message =
+                format!("{name}{line}: instruction limit of {limit} exceeded — runaway loop?");
+            // Keep the first place it was noticed; later hook calls only re-raise.
+            let first = exceeded.take().unwrap_or(message);
+            exceeded.set(Some(first.clone()));
+            Err(mlua::Error::RuntimeError(first))
         },
     )?;
     Ok(lua)
