@@ -729,10 +729,23 @@ fn jittered_grid_mesh_is_watertight() {
     let mut by_kind = [0usize; 3];
     let mut worst = 0.0f64;
     let mut examples = Vec::new();
-    for case in 0..10 {
+    let mut axis_parallel = 0usize;
+    for case in 0..14 {
         let seed = case_seed(salt, case);
         let mut rng = Rng::new(seed);
-        let (m, size) = random_transform(&mut rng, false);
+        // The last cases are axis-aligned (scale + translate), for rays with exactly zero
+        // direction components, which take the DDA's "parallel to this axis" path.
+        let aligned = case >= 10;
+        let (m, size) = if aligned {
+            let s = rng.log_uniform(1e-3, 1e4);
+            let centre = rng.unit_vector() * (s * rng.range(0.0, 3.0));
+            (
+                DMat4::from_scale_rotation_translation(DVec3::splat(s), DQuat::IDENTITY, centre),
+                s,
+            )
+        } else {
+            random_transform(&mut rng, false)
+        };
         let normal = m.transform_vector3(DVec3::Z).normalize();
         let (triangles, verts) = jittered_grid(&mut rng, m);
         let with_grid = pack(&scene(Vec::new(), triangles.clone(), GridMode::Auto)).expect("pack");
@@ -783,9 +796,23 @@ fn jittered_grid_mesh_is_watertight() {
             // From either side, at least ~17° off the mesh plane.
             let side = if rng.f64() < 0.5 { 1.0 } else { -1.0 };
             let cos = rng.range(0.3, 1.0);
-            let out = v64(direction_at(&mut rng, normal * side, cos));
-            let origin = v64(target) + out * (size * rng.log_uniform(1e-2, 1e4));
-            let (o, d) = aim(origin, v64(target));
+            let out = direction_at(&mut rng, normal * side, cos);
+            let dist = size * rng.log_uniform(1e-2, 1e4);
+            let (o, d) = if aligned && rng.f64() < 0.6 {
+                // Zero x, y or both exactly; the origin shares those coordinates with the
+                // target exactly.
+                let mut out = out;
+                match rng.below(3) {
+                    0 => out.x = 0.0,
+                    1 => out.y = 0.0,
+                    _ => (out.x, out.y) = (0.0, 0.0),
+                }
+                let out = out.normalize();
+                axis_parallel += 1;
+                (target + out * dist as f32, -out)
+            } else {
+                aim(v64(target) + v64(out) * dist, v64(target))
+            };
             let ray = Ray { origin: o, dir: d };
             let h_grid = closest_hit(&with_grid, &ray, T_MISS, &mut NoCounters);
             let h_brute = closest_hit(&brute, &ray, T_MISS, &mut NoCounters);
@@ -819,7 +846,8 @@ fn jittered_grid_mesh_is_watertight() {
         }
     }
     println!(
-        "grid mesh: {rays} rays (vertex/edge/interior targets {by_kind:?}), {leaks} leaks, \
+        "grid mesh: {rays} rays (vertex/edge/interior targets {by_kind:?}, {axis_parallel} \
+         with zero direction components), {leaks} leaks, \
          {t_mismatch} t mismatches, worst grid-vs-off |Δt|/t {worst:.3e}"
     );
     for e in &examples {
