@@ -7,7 +7,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "glint", version, about = "A Whitted-style ray tracer for CS488 Lua scenes")]
+#[command(
+    name = "glint",
+    version,
+    about = "A Whitted-style ray tracer for CS488 Lua scenes"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -112,10 +116,14 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render(args),
-        Command::Diff { a, b, heatmap } => glint::cli::diff_cmd::run_diff(&a, &b, heatmap.as_deref())
-            .map(|_| ())
-            .map_err(|e| (format!("{e:#}"), 1)),
-        Command::Bench(args) => glint::cli::bench_cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1)),
+        Command::Diff { a, b, heatmap } => {
+            glint::cli::diff_cmd::run_diff(&a, &b, heatmap.as_deref())
+                .map(|_| ())
+                .map_err(|e| (format!("{e:#}"), 1))
+        }
+        Command::Bench(args) => {
+            glint::cli::bench_cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1))
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -174,13 +182,19 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
     });
     match report {
         Ok(report) => {
-            if report.looks_pre2015 && !report.order_set_by_script && settings.transform_order.is_none() {
+            if report.looks_pre2015
+                && !report.order_set_by_script
+                && settings.transform_order.is_none()
+            {
                 eprintln!(
                     "glint: hint: this scene looks like a pre-2015 CS488 scene (inline meshes, require, bare unpack); if it looks wrong, try --transform-order post"
                 );
             }
             if report.renders == 0 {
-                eprintln!("glint: note: {} never called gr.render; nothing written", args.scene.display());
+                eprintln!(
+                    "glint: note: {} never called gr.render; nothing written",
+                    args.scene.display()
+                );
             }
             Ok(())
         }

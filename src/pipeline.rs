@@ -6,7 +6,7 @@ use crate::film::Film;
 use crate::image_io::{check_output_path, write_image, ImageIoError};
 use crate::pack::{pack, PackedScene};
 use crate::scene::flatten::flatten;
-use crate::scene::lua::{run_scene_file, ScriptConfig, ScriptReport, SceneError};
+use crate::scene::lua::{run_scene_file, SceneError, ScriptConfig, ScriptReport};
 use crate::scene::{OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
@@ -60,7 +60,13 @@ impl RunError {
 }
 
 /// Flattens, packs and renders one request on the CPU (on the current rayon pool).
-pub fn render_request(graph: &SceneGraph, request: &RenderRequest, overrides: &OptionOverrides, stats: bool, progress: bool) -> anyhow::Result<RenderedImage> {
+pub fn render_request(
+    graph: &SceneGraph,
+    request: &RenderRequest,
+    overrides: &OptionOverrides,
+    stats: bool,
+    progress: bool,
+) -> anyhow::Result<RenderedImage> {
     let mut request = request.clone();
     overrides.apply(&mut request.options);
     request.width = overrides.width.unwrap_or(request.width);
@@ -112,7 +118,10 @@ pub fn output_path(settings_output: Option<&Path>, script_output: &Path, index: 
     if index == 0 {
         return base.to_path_buf();
     }
-    let stem = base.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = base
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let name = match base.extension() {
         Some(ext) => format!("{stem}-{}.{}", index + 1, ext.to_string_lossy()),
         None => format!("{stem}-{}", index + 1),
@@ -122,7 +131,11 @@ pub fn output_path(settings_output: Option<&Path>, script_output: &Path, index: 
 
 /// Runs a scene file, rendering and writing each `gr.render`; `on_image` sees each image
 /// after it is written. Returns the script's report.
-pub fn run_scene(path: &Path, settings: &RenderSettings, on_image: &mut dyn FnMut(&RenderedImage)) -> Result<ScriptReport, RunError> {
+pub fn run_scene(
+    path: &Path,
+    settings: &RenderSettings,
+    on_image: &mut dyn FnMut(&RenderedImage),
+) -> Result<ScriptReport, RunError> {
     let mut config = ScriptConfig {
         transform_order: settings.transform_order,
         ..ScriptConfig::default()
@@ -142,7 +155,13 @@ pub fn run_scene(path: &Path, settings: &RenderSettings, on_image: &mut dyn FnMu
         };
         // Refuse an unwritable path before spending time on the render.
         check_output_path(&output).map_err(fail)?;
-        let mut rendered = render_request(graph, request, &settings.overrides, settings.stats, settings.progress)?;
+        let mut rendered = render_request(
+            graph,
+            request,
+            &settings.overrides,
+            settings.stats,
+            settings.progress,
+        )?;
         rendered.output = output;
         write_image(&rendered.film, &rendered.output).map_err(fail)?;
         on_image(&rendered);

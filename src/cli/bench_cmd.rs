@@ -98,13 +98,28 @@ fn bench_macho_cows(args: &BenchArgs) -> anyhow::Result<()> {
         .collect();
     let (t_grid, hits_grid) = fastest(args.repeat, || trace_all(&grid, &rays));
     let (t_brute, hits_brute) = fastest(args.repeat, || trace_all(&brute, &rays));
-    let differing = hits_grid.iter().zip(&hits_brute).filter(|(a, b)| a != b).count();
+    let differing = hits_grid
+        .iter()
+        .zip(&hits_brute)
+        .filter(|(a, b)| a != b)
+        .count();
     let mrays = |t: Duration| rays.len() as f64 / t.as_secs_f64() / 1e6;
-    println!("\n## Primary rays, macho-cows.lua at 512×512 ({} items)", grid.grid_stats.items);
+    println!(
+        "\n## Primary rays, macho-cows.lua at 512×512 ({} items)",
+        grid.grid_stats.items
+    );
     println!("| tracer | time | Mrays/s |");
     println!("| --- | ---: | ---: |");
-    println!("| grid (λ = {DEFAULT_DENSITY}) | {:.1} ms | {:.2} |", t_grid.as_secs_f64() * 1e3, mrays(t_grid));
-    println!("| brute force | {:.1} ms | {:.3} |", t_brute.as_secs_f64() * 1e3, mrays(t_brute));
+    println!(
+        "| grid (λ = {DEFAULT_DENSITY}) | {:.1} ms | {:.2} |",
+        t_grid.as_secs_f64() * 1e3,
+        mrays(t_grid)
+    );
+    println!(
+        "| brute force | {:.1} ms | {:.3} |",
+        t_brute.as_secs_f64() * 1e3,
+        mrays(t_brute)
+    );
     println!(
         "speed-up {:.0}×; pixels whose nearest item differs: {differing} of {}",
         t_brute.as_secs_f64() / t_grid.as_secs_f64(),
@@ -201,7 +216,11 @@ fn bench_random_triangles(args: &BenchArgs) {
         let sample = (2_000_000_000 / n).clamp(100, rays.len()).min(rays.len());
         let brute = with_grid(&scene, GridMode::Off).expect("random scene packs");
         let brute_hits = trace_all(&brute, &rays[..sample]);
-        let differing = hits[..sample].iter().zip(&brute_hits).filter(|(a, b)| a != b).count();
+        let differing = hits[..sample]
+            .iter()
+            .zip(&brute_hits)
+            .filter(|(a, b)| a != b)
+            .count();
         let bytes = std::mem::size_of::<GpuTriangle>() * n + grid.stats.memory_bytes;
         println!(
             "| {n} | {} | {:.1} ms | {per_ray:.0} | {:.2}× | {:.1} | {differing} of {sample} |",
@@ -218,7 +237,10 @@ fn bench_densities(args: &BenchArgs) -> anyhow::Result<()> {
     let cows = load_scene(&args.cs488.join("a4-2021plus/macho-cows.lua"), 256, 256)?;
     let tris = random_triangle_scene(100_000, 5);
     let rays = random_rays(args.rays, 9);
-    println!("\n## Grid density λ (time per ray, fastest of {})", args.repeat);
+    println!(
+        "\n## Grid density λ (time per ray, fastest of {})",
+        args.repeat
+    );
     println!("| λ | macho-cows primary ns/ray | 10⁵ random triangles ns/ray |");
     println!("| ---: | ---: | ---: |");
     for density in [0.25f32, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0] {

@@ -128,7 +128,7 @@ pub fn shade_phong(
         let l = to_light / distance;
         let n_dot_l = n.dot(l);
         // Lights behind the surface (as seen from the viewer's side) add nothing.
-        if !(n_dot_l > 0.0) {
+        if n_dot_l.is_nan() || n_dot_l <= 0.0 {
             continue;
         }
         let shadow_dir = Vec3::from(light.position) - origin;

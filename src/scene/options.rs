@@ -154,7 +154,9 @@ pub fn parse_background(s: &str) -> Result<Background, String> {
             .map_err(|_| format!("background colour '{part}' must be three numbers r,g,b"))?;
         match values[..] {
             [r, g, b] if values.iter().all(|v| v.is_finite()) => Ok([r, g, b]),
-            _ => Err(format!("background colour '{part}' must be three numbers r,g,b")),
+            _ => Err(format!(
+                "background colour '{part}' must be three numbers r,g,b"
+            )),
         }
     };
     match s.split_once('/') {
