@@ -69,6 +69,9 @@ struct RenderArgs {
     /// Print grid, feature and ray statistics after each render.
     #[arg(long)]
     stats: bool,
+    /// Lua instructions a script may run before it is stopped as a runaway.
+    #[arg(long, default_value_t = glint::scene::lua::ScriptConfig::default().instruction_limit)]
+    instruction_limit: u64,
     /// Tracer: cpu (the reference).
     #[arg(long, value_enum, default_value = "cpu")]
     backend: BackendArg,
@@ -156,7 +159,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         output: args.output,
         stats: args.stats,
         progress: true,
-        instruction_limit: None,
+        instruction_limit: Some(args.instruction_limit),
     };
     if args.width == Some(0) || args.height == Some(0) {
         return Err(("--width and --height must be positive".into(), 2));

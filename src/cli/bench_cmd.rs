@@ -97,33 +97,40 @@ fn bench_macho_cows(args: &BenchArgs) -> anyhow::Result<()> {
         .map(|i| camera_ray(g, (i % g.width) as f32 + 0.5, (i / g.width) as f32 + 0.5))
         .collect();
     let (t_grid, hits_grid) = fastest(args.repeat, || trace_all(&grid, &rays));
-    let (t_brute, hits_brute) = fastest(args.repeat, || trace_all(&brute, &rays));
+    // Brute force is a few hundred times slower: once, on every 8th row of the image.
+    let width = g.width as usize;
+    let rows: Vec<Ray> = rays.chunks(width).step_by(8).flatten().copied().collect();
+    let (t_brute, hits_brute) = fastest(1, || trace_all(&brute, &rows));
     let differing = hits_grid
-        .iter()
+        .chunks(width)
+        .step_by(8)
+        .flatten()
         .zip(&hits_brute)
         .filter(|(a, b)| a != b)
         .count();
-    let mrays = |t: Duration| rays.len() as f64 / t.as_secs_f64() / 1e6;
+    let mrays = |t: Duration, n: usize| n as f64 / t.as_secs_f64() / 1e6;
     println!(
         "\n## Primary rays, macho-cows.lua at 512×512 ({} items)",
         grid.grid_stats.items
     );
-    println!("| tracer | time | Mrays/s |");
-    println!("| --- | ---: | ---: |");
+    println!("| tracer | rays | time | Mrays/s |");
+    println!("| --- | ---: | ---: | ---: |");
     println!(
-        "| grid (λ = {DEFAULT_DENSITY}) | {:.1} ms | {:.2} |",
+        "| grid (λ = {DEFAULT_DENSITY}) | {} | {:.1} ms | {:.3} |",
+        rays.len(),
         t_grid.as_secs_f64() * 1e3,
-        mrays(t_grid)
+        mrays(t_grid, rays.len())
     );
     println!(
-        "| brute force | {:.1} ms | {:.3} |",
+        "| brute force (every 8th row) | {} | {:.1} ms | {:.4} |",
+        rows.len(),
         t_brute.as_secs_f64() * 1e3,
-        mrays(t_brute)
+        mrays(t_brute, rows.len())
     );
     println!(
-        "speed-up {:.0}×; pixels whose nearest item differs: {differing} of {}",
-        t_brute.as_secs_f64() / t_grid.as_secs_f64(),
-        rays.len()
+        "grid speed-up {:.0}×; pixels whose nearest item differs from brute force: {differing} of {}",
+        mrays(t_grid, rays.len()) / mrays(t_brute, rows.len()),
+        rows.len()
     );
     Ok(())
 }
@@ -196,12 +203,32 @@ fn random_rays(count: usize, seed: u64) -> Vec<Ray> {
         .collect()
 }
 
+/// Camera rays of a `side`×`side` view of the unit cube, row by row (coherent, as a
+/// render traces them).
+fn camera_rays(side: u32) -> Vec<Ray> {
+    let mut scene = random_triangle_scene(1, 1);
+    scene.width = side;
+    scene.height = side;
+    let packed = pack(&scene).expect("one triangle packs");
+    let g = &packed.globals;
+    (0..side * side)
+        .map(|i| camera_ray(g, (i % side) as f32 + 0.5, (i / side) as f32 + 0.5))
+        .collect()
+}
+
 fn bench_random_triangles(args: &BenchArgs) {
-    println!("\n## Random triangles: {} rays per N", args.rays);
-    println!("| N | grid cells | build | ns/ray | vs N=10³ | bytes/triangle | rays differing from brute force |");
-    println!("| ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
-    let rays = random_rays(args.rays, 7);
+    let side = (args.rays as f64).sqrt() as u32;
+    let rays = camera_rays(side);
+    let incoherent = random_rays(args.rays, 7);
+    println!(
+        "\n## Random triangles in the unit cube: {} camera rays ({side}×{side}) and {} random rays per N",
+        rays.len(),
+        incoherent.len()
+    );
+    println!("| N | grid cells | build | camera ns/ray | vs N=10³ | random ns/ray | vs N=10³ | bytes/triangle | rays differing from brute force |");
+    println!("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
     let mut base = None;
+    let mut base_incoherent = None;
     let mut n = 1000;
     while n <= args.max_triangles {
         let scene = random_triangle_scene(n, n as u64);
@@ -212,22 +239,29 @@ fn bench_random_triangles(args: &BenchArgs) {
         let (time, hits) = fastest(args.repeat, || trace_all(&packed, &rays));
         let per_ray = time.as_secs_f64() * 1e9 / rays.len() as f64;
         let base_cost = *base.get_or_insert(per_ray);
-        // Brute force on a sample of the rays keeps the check affordable at 10⁶.
-        let sample = (2_000_000_000 / n).clamp(100, rays.len()).min(rays.len());
+        let (time_incoherent, _) = fastest(args.repeat, || trace_all(&packed, &incoherent));
+        let per_ray_incoherent = time_incoherent.as_secs_f64() * 1e9 / incoherent.len() as f64;
+        let base_incoherent_cost = *base_incoherent.get_or_insert(per_ray_incoherent);
+        // Brute force on every k-th ray keeps the check affordable at 10⁶.
+        let stride = (n * rays.len() / 1_000_000_000).max(1);
         let brute = with_grid(&scene, GridMode::Off).expect("random scene packs");
-        let brute_hits = trace_all(&brute, &rays[..sample]);
-        let differing = hits[..sample]
+        let sample: Vec<Ray> = rays.iter().step_by(stride).copied().collect();
+        let brute_hits = trace_all(&brute, &sample);
+        let differing = hits
             .iter()
+            .step_by(stride)
             .zip(&brute_hits)
             .filter(|(a, b)| a != b)
             .count();
         let bytes = std::mem::size_of::<GpuTriangle>() * n + grid.stats.memory_bytes;
         println!(
-            "| {n} | {} | {:.1} ms | {per_ray:.0} | {:.2}× | {:.1} | {differing} of {sample} |",
+            "| {n} | {} | {:.1} ms | {per_ray:.0} | {:.2}× | {per_ray_incoherent:.0} | {:.2}× | {:.1} | {differing} of {} |",
             grid.stats.cells,
             build.as_secs_f64() * 1e3,
             per_ray / base_cost,
+            per_ray_incoherent / base_incoherent_cost,
             bytes as f64 / n as f64,
+            sample.len(),
         );
         n *= 10;
     }
@@ -241,9 +275,9 @@ fn bench_densities(args: &BenchArgs) -> anyhow::Result<()> {
         "\n## Grid density λ (time per ray, fastest of {})",
         args.repeat
     );
-    println!("| λ | macho-cows primary ns/ray | 10⁵ random triangles ns/ray |");
-    println!("| ---: | ---: | ---: |");
-    for density in [0.25f32, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0] {
+    println!("| λ | macho-cows primary ns/ray | grid bytes/item | 10⁵ random triangles ns/ray | grid bytes/item |");
+    println!("| ---: | ---: | ---: | ---: | ---: |");
+    for density in [0.5f32, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0] {
         let packed = with_grid(&cows, GridMode::Density(density))?;
         let g = &packed.globals;
         let primary: Vec<Ray> = (0..g.width * g.height)
@@ -252,10 +286,13 @@ fn bench_densities(args: &BenchArgs) -> anyhow::Result<()> {
         let (t_cows, _) = fastest(args.repeat, || trace_all(&packed, &primary));
         let packed_tris = with_grid(&tris, GridMode::Density(density))?;
         let (t_tris, _) = fastest(args.repeat, || trace_all(&packed_tris, &rays));
+        let bytes_per_item = |p: &PackedScene| p.grid_stats.memory_bytes as f64 / p.grid_stats.items as f64;
         println!(
-            "| {density} | {:.0} | {:.0} |",
+            "| {density} | {:.0} | {:.1} | {:.0} | {:.1} |",
             t_cows.as_secs_f64() * 1e9 / primary.len() as f64,
-            t_tris.as_secs_f64() * 1e9 / rays.len() as f64
+            bytes_per_item(&packed),
+            t_tris.as_secs_f64() * 1e9 / rays.len() as f64,
+            bytes_per_item(&packed_tris),
         );
     }
     Ok(())
