@@ -1,0 +1,71 @@
+//! The grid changes speed, never the picture: every test scene rendered through the grid
+//! and by brute force gives the same 8-bit image; and the render does not depend on the
+//! number of threads.
+
+mod common;
+
+use common::{corpus_scenes, load_packed, own_scenes, render_cpu, scene_name};
+use glint::scene::{AaMode, GridMode, OptionOverrides};
+
+/// Small renders: brute force over macho-cows' 17 548 items is slow.
+fn overrides(grid: GridMode) -> OptionOverrides {
+    OptionOverrides {
+        grid: Some(grid),
+        aa: Some(AaMode::None),
+        width: Some(48),
+        height: Some(48),
+        ..OptionOverrides::default()
+    }
+}
+
+#[test]
+fn grid_and_brute_force_give_the_same_image() {
+    let mut report = Vec::new();
+    for path in corpus_scenes().into_iter().chain(own_scenes()) {
+        let with_grid = load_packed(&path, &overrides(GridMode::Auto));
+        let brute = load_packed(&path, &overrides(GridMode::Off));
+        assert_eq!(with_grid.globals.grid_enabled, 1);
+        assert_eq!(brute.globals.grid_enabled, 0);
+        let a = render_cpu(&with_grid).to_rgb8();
+        let b = render_cpu(&brute).to_rgb8();
+        let differing = a.chunks(3).zip(b.chunks(3)).filter(|(x, y)| x != y).count();
+        report.push(format!("{}: {differing} pixels differ", scene_name(&path)));
+        assert_eq!(differing, 0, "{}: grid and brute force differ", path.display());
+    }
+    println!("{}", report.join("\n"));
+}
+
+#[test]
+fn grid_densities_give_the_same_image() {
+    let path = common::corpus().join("a4-2021plus/macho-cows.lua");
+    let reference = render_cpu(&load_packed(&path, &overrides(GridMode::Auto))).to_rgb8();
+    for density in [0.1, 1.0, 7.0, 50.0] {
+        let film = render_cpu(&load_packed(&path, &overrides(GridMode::Density(density))));
+        assert!(film.to_rgb8() == reference, "density {density} changes the image");
+    }
+}
+
+#[test]
+fn image_is_independent_of_thread_count() {
+    let path = common::root().join("scenes/demo.lua");
+    let packed = load_packed(
+        &path,
+        &OptionOverrides {
+            width: Some(80),
+            height: Some(50),
+            ..OptionOverrides::default()
+        },
+    );
+    let render_on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| render_cpu(&packed))
+    };
+    let one = render_on(1);
+    for threads in [2, 3, 7] {
+        assert!(render_on(threads).pixels == one.pixels, "{threads} threads differ from 1");
+    }
+    assert!(render_cpu(&packed).pixels == one.pixels, "a second run differs");
+}
