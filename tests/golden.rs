@@ -30,7 +30,8 @@ fn every_scene_matches_its_golden_image() {
             write_image(&film, &golden).unwrap();
             continue;
         }
-        let expected = read_image(&golden).unwrap_or_else(|e| panic!("{e} (run with GLINT_BLESS=1 to create it)"));
+        let expected = read_image(&golden)
+            .unwrap_or_else(|e| panic!("{e} (run with GLINT_BLESS=1 to create it)"));
         // Compare what a PNG holds: the 8-bit quantised render.
         let actual = read_back_8bit(&film);
         match assert_images_match(&name, &actual, &expected, 0.005, 0.999, &failure_dir()) {
@@ -42,7 +43,12 @@ fn every_scene_matches_its_golden_image() {
             Err(message) => failures.push(message),
         }
     }
-    println!("{} scenes; worst FLIP mean {:.5} ({})", scenes.len(), worst.1, worst.0);
+    println!(
+        "{} scenes; worst FLIP mean {:.5} ({})",
+        scenes.len(),
+        worst.1,
+        worst.0
+    );
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 

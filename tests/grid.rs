@@ -30,7 +30,12 @@ fn grid_and_brute_force_give_the_same_image() {
         let b = render_cpu(&brute).to_rgb8();
         let differing = a.chunks(3).zip(b.chunks(3)).filter(|(x, y)| x != y).count();
         report.push(format!("{}: {differing} pixels differ", scene_name(&path)));
-        assert_eq!(differing, 0, "{}: grid and brute force differ", path.display());
+        assert_eq!(
+            differing,
+            0,
+            "{}: grid and brute force differ",
+            path.display()
+        );
     }
     println!("{}", report.join("\n"));
 }
@@ -41,7 +46,10 @@ fn grid_densities_give_the_same_image() {
     let reference = render_cpu(&load_packed(&path, &overrides(GridMode::Auto))).to_rgb8();
     for density in [0.1, 1.0, 7.0, 50.0] {
         let film = render_cpu(&load_packed(&path, &overrides(GridMode::Density(density))));
-        assert!(film.to_rgb8() == reference, "density {density} changes the image");
+        assert!(
+            film.to_rgb8() == reference,
+            "density {density} changes the image"
+        );
     }
 }
 
@@ -65,7 +73,13 @@ fn image_is_independent_of_thread_count() {
     };
     let one = render_on(1);
     for threads in [2, 3, 7] {
-        assert!(render_on(threads).pixels == one.pixels, "{threads} threads differ from 1");
+        assert!(
+            render_on(threads).pixels == one.pixels,
+            "{threads} threads differ from 1"
+        );
     }
-    assert!(render_cpu(&packed).pixels == one.pixels, "a second run differs");
+    assert!(
+        render_cpu(&packed).pixels == one.pixels,
+        "a second run differs"
+    );
 }

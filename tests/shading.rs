@@ -15,7 +15,12 @@ use glint::pack::pack;
 use glint::scene::flatten::{Object, ObjectKind, Scene};
 use glint::scene::{Background, Camera, Light, Material, OptionOverrides, RenderOptions};
 
-fn sphere_scene(material: Material, light: Light, ambient: [f32; 3], options: RenderOptions) -> Scene {
+fn sphere_scene(
+    material: Material,
+    light: Light,
+    ambient: [f32; 3],
+    options: RenderOptions,
+) -> Scene {
     Scene {
         objects: vec![Object {
             name: "s".into(),
@@ -52,11 +57,19 @@ fn phong_at_a_known_point_matches_the_a4_formula() {
         colour: [0.9, 0.8, 0.7],
         falloff: [1.0, 0.1, 0.01],
     };
-    let scene = sphere_scene(material.clone(), light.clone(), [0.2, 0.25, 0.3], RenderOptions::default());
+    let scene = sphere_scene(
+        material.clone(),
+        light.clone(),
+        [0.2, 0.25, 0.3],
+        RenderOptions::default(),
+    );
     let packed = pack(&scene).unwrap();
     // A ray from (0.3, 0.2, 10) straight down -z hits the radius-2 sphere at z = √(4 − 0.13).
     let origin = DVec3::new(0.3, 0.2, 10.0);
-    let ray = Ray { origin: origin.as_vec3(), dir: Vec3::NEG_Z };
+    let ray = Ray {
+        origin: origin.as_vec3(),
+        dir: Vec3::NEG_Z,
+    };
     let got = trace_ray(&packed, ray, &mut NoCounters);
     // The A4 formula in f64.
     let p = DVec3::new(0.3, 0.2, (4.0f64 - 0.13).sqrt());
@@ -72,11 +85,16 @@ fn phong_at_a_known_point_matches_the_a4_formula() {
             let kd = material.kd[i] as f64;
             let ks = material.ks[i] as f64;
             kd * [0.2, 0.25, 0.3][i]
-                + (kd * n.dot(l).max(0.0) + ks * r.dot(v).max(0.0).powf(12.0)) * light.colour[i] as f64 * attenuation
+                + (kd * n.dot(l).max(0.0) + ks * r.dot(v).max(0.0).powf(12.0))
+                    * light.colour[i] as f64
+                    * attenuation
         })
         .collect();
     for i in 0..3 {
-        assert!((got[i] as f64 - expected[i]).abs() < 1e-5, "channel {i}: got {got}, expected {expected:?}");
+        assert!(
+            (got[i] as f64 - expected[i]).abs() < 1e-5,
+            "channel {i}: got {got}, expected {expected:?}"
+        );
     }
 }
 
@@ -85,12 +103,19 @@ fn huge_shininess_gives_no_nan() {
     for exponent in [0.0f32, 1.0, 20.0, 5e7, f32::MAX] {
         for base in [0.0f32, 1e-30, 0.5, 0.999_999, 1.0, -0.5] {
             let v = phong_power(base, exponent);
-            assert!(v.is_finite() && (0.0..=1.0).contains(&v), "phong_power({base}, {exponent}) = {v}");
+            assert!(
+                v.is_finite() && (0.0..=1.0).contains(&v),
+                "phong_power({base}, {exponent}) = {v}"
+            );
         }
     }
     assert_eq!(phong_power(1.0, 5e7), 1.0);
     assert_eq!(phong_power(0.999, 5e7), 0.0);
-    assert_eq!(phong_power(0.0, 0.0), 0.0, "no highlight where R·V = 0, whatever the exponent");
+    assert_eq!(
+        phong_power(0.0, 0.0),
+        0.0,
+        "no highlight where R·V = 0, whatever the exponent"
+    );
 }
 
 /// A mirror sphere seen head-on: the centre pixel reflects the ray straight back, so its
@@ -116,14 +141,34 @@ fn mirror_depth_and_weight_limits() {
             background: Background::Solid(background),
             ..RenderOptions::default()
         };
-        let packed = pack(&sphere_scene(mirror.clone(), light.clone(), [0.0; 3], options)).unwrap();
-        let ray = Ray { origin: Vec3::new(0.0, 0.0, 10.0), dir: Vec3::NEG_Z };
+        let packed = pack(&sphere_scene(
+            mirror.clone(),
+            light.clone(),
+            [0.0; 3],
+            options,
+        ))
+        .unwrap();
+        let ray = Ray {
+            origin: Vec3::new(0.0, 0.0, 10.0),
+            dir: Vec3::NEG_Z,
+        };
         trace_ray(&packed, ray, &mut NoCounters)
     };
-    assert_eq!(colour_with(0, 0.0), Vec3::ZERO, "max_depth 0: no reflection");
+    assert_eq!(
+        colour_with(0, 0.0),
+        Vec3::ZERO,
+        "max_depth 0: no reflection"
+    );
     let one = colour_with(1, 0.0);
-    assert!((one - Vec3::from(background) * 0.5).abs().max_element() < 1e-6, "{one}");
-    assert_eq!(colour_with(1, 0.6), Vec3::ZERO, "weight 0.5 is below min_weight 0.6");
+    assert!(
+        (one - Vec3::from(background) * 0.5).abs().max_element() < 1e-6,
+        "{one}"
+    );
+    assert_eq!(
+        colour_with(1, 0.6),
+        Vec3::ZERO,
+        "weight 0.5 is below min_weight 0.6"
+    );
 }
 
 /// Scales a flattened scene, camera and lights included, by `s`.
@@ -139,7 +184,11 @@ fn scaled(scene: &Scene, s: f64) -> Scene {
     for l in &mut out.lights {
         l.position *= s;
         // Keep the attenuation the same function of the scaled distance.
-        l.falloff = [l.falloff[0], l.falloff[1] / s as f32, l.falloff[2] / (s * s) as f32];
+        l.falloff = [
+            l.falloff[0],
+            l.falloff[1] / s as f32,
+            l.falloff[2] / (s * s) as f32,
+        ];
     }
     out.camera.eye *= s;
     out
@@ -152,15 +201,22 @@ fn images_are_scale_invariant() {
         height: Some(64),
         ..OptionOverrides::default()
     };
-    for path in [common::root().join("scenes/demo.lua"), common::corpus().join("a4-2021plus/macho-cows.lua")] {
+    for path in [
+        common::root().join("scenes/demo.lua"),
+        common::corpus().join("a4-2021plus/macho-cows.lua"),
+    ] {
         let scene = &load_scenes(&path, &overrides)[0];
         let reference = common::render_cpu(&pack(scene).unwrap());
         for s in [1e-3, 1e3] {
             let film = common::render_cpu(&pack(&scaled(scene, s)).unwrap());
-            assert!(film.pixels.iter().flatten().all(|v| v.is_finite()), "NaN at scale {s}");
+            assert!(
+                film.pixels.iter().flatten().all(|v| v.is_finite()),
+                "NaN at scale {s}"
+            );
             let name = format!("scale-{s}-{}", common::scene_name(&path));
-            let report = assert_images_match(&name, &film, &reference, 0.005, 0.999, &failure_dir())
-                .unwrap_or_else(|e| panic!("{e}"));
+            let report =
+                assert_images_match(&name, &film, &reference, 0.005, 0.999, &failure_dir())
+                    .unwrap_or_else(|e| panic!("{e}"));
             println!("{name}: {report}");
         }
     }

@@ -286,7 +286,8 @@ fn bench_densities(args: &BenchArgs) -> anyhow::Result<()> {
         let (t_cows, _) = fastest(args.repeat, || trace_all(&packed, &primary));
         let packed_tris = with_grid(&tris, GridMode::Density(density))?;
         let (t_tris, _) = fastest(args.repeat, || trace_all(&packed_tris, &rays));
-        let bytes_per_item = |p: &PackedScene| p.grid_stats.memory_bytes as f64 / p.grid_stats.items as f64;
+        let bytes_per_item =
+            |p: &PackedScene| p.grid_stats.memory_bytes as f64 / p.grid_stats.items as f64;
         println!(
             "| {density} | {:.0} | {:.1} | {:.0} | {:.1} |",
             t_cows.as_secs_f64() * 1e9 / primary.len() as f64,

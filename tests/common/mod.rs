@@ -73,7 +73,12 @@ pub fn own_scenes() -> Vec<PathBuf> {
 
 /// A short name for a scene path: `family-stem`.
 pub fn scene_name(path: &Path) -> String {
-    let family = path.parent().unwrap().file_name().unwrap().to_string_lossy();
+    let family = path
+        .parent()
+        .unwrap()
+        .file_name()
+        .unwrap()
+        .to_string_lossy();
     let stem = path.file_stem().unwrap().to_string_lossy();
     format!("{family}-{stem}")
 }
