@@ -5,7 +5,7 @@ use super::ray::camera_ray;
 use super::rng::random_unit;
 use super::trace::trace_ray;
 use super::traverse::{Counters, NoCounters, TraversalCounters};
-use crate::constants::{AA_ADAPTIVE, AA_UNIFORM, MAX_AA_DEPTH, TILE_SIZE};
+use crate::constants::{AA_ADAPTIVE, AA_STACK_SIZE, AA_UNIFORM, TILE_SIZE};
 use crate::film::Film;
 use crate::pack::PackedScene;
 use glam::Vec3;
@@ -13,6 +13,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Colour at film position (fx, fy) in pixels.
+// Mirror of shaders/render.wgsl::sample — change both.
 fn sample(scene: &PackedScene, fx: f32, fy: f32, counters: &mut impl TraversalCounters) -> Vec3 {
     trace_ray(scene, camera_ray(&scene.globals, fx, fy), counters)
 }
@@ -29,6 +30,7 @@ struct AdaptiveSquare {
 }
 
 /// Largest per-channel spread of four colours.
+// Mirror of shaders/render.wgsl::contrast — change both.
 fn contrast(c: &[Vec3; 4]) -> f32 {
     let lo = c[0].min(c[1]).min(c[2]).min(c[3]);
     let hi = c[0].max(c[1]).max(c[2]).max(c[3]);
@@ -61,7 +63,7 @@ fn adaptive_pixel(
         size: 1.0,
         depth: 0,
         corners,
-    }; 3 * MAX_AA_DEPTH as usize + 1];
+    }; AA_STACK_SIZE as usize];
     let mut size = 1;
     let mut sum = Vec3::ZERO;
     while size > 0 {
