@@ -115,6 +115,18 @@ fn triangle_ray_setup(origin: vec3<f32>, d: vec3<f32>) -> TriangleRay {
     return TriangleRay(origin, kx, ky, kz, shear);
 }
 
+// p.x·q.y − p.y·q.x for the directed edge (p, q) in the sheared plane, always evaluated
+// with the endpoints in one canonical order and negated when they come swapped, so the two
+// triangles sharing an edge compute exactly opposite values (watertightness) even where
+// the shader compiler fuses one of the products into an FMA (llvmpipe does).
+// Mirror of src/cpu/intersect.rs::edge_function — change both.
+fn edge_function(px: f32, py: f32, qx: f32, qy: f32) -> f32 {
+    if px < qx || (px == qx && py < qy) {
+        return px * qy - py * qx;
+    }
+    return -(qx * py - qy * px);
+}
+
 // (t, b1, b2) of the hit with the triangle (p0, p1, p2) in (0, t_max), b1 and b2 the
 // barycentric weights of p1 and p2; t = T_MISS on a miss. Two-sided. Edges shared by two
 // triangles are never missed by both: the edge functions are computed identically from
@@ -134,9 +146,9 @@ fn intersect_triangle(r: TriangleRay, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32
     let cx = c[r.kx] - r.shear.x * c[r.kz];
     let cy = c[r.ky] - r.shear.y * c[r.kz];
     // Calculate the scaled barycentric coordinates.
-    let u = cx * by - cy * bx;
-    let v = ax * cy - ay * cx;
-    let w = bx * ay - by * ax;
+    let u = edge_function(cx, cy, bx, by);
+    let v = edge_function(ax, ay, cx, cy);
+    let w = edge_function(bx, by, ax, ay);
     // Perform the edge tests.
     if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
         return miss;

@@ -1,6 +1,6 @@
 // probe.wgsl — test-only entry point (tier-3 kernel probes): traces seeded rays from
 // `probe_rays` with closest_hit and reports (hit, t, item, normal) per ray from
-// surface_at, for comparison with the CPU functions ray by ray.
+// surface_at (or, in PROBE_ANY_HIT mode, any_hit's answer alone), for comparison with the CPU functions ray by ray.
 
 // Mirror of src/gpu/probe.rs::ProbeRay — change both.
 struct ProbeRay {
@@ -8,7 +8,8 @@ struct ProbeRay {
     t_max: f32,
     // Unit direction.
     dir: vec3<f32>,
-    _pad: u32,
+    // PROBE_CLOSEST_HIT or PROBE_ANY_HIT.
+    mode: u32,
 }
 
 // Mirror of src/gpu/probe.rs::ProbeResult — change both.
@@ -35,6 +36,10 @@ fn probe(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pr = probe_rays[index];
     let ray = Ray(pr.origin, pr.dir);
+    if pr.mode == PROBE_ANY_HIT {
+        probe_results[index] = ProbeResult(u32(any_hit(ray, pr.t_max)), 0.0, NO_ITEM, 0u, vec3<f32>(0.0), 0u);
+        return;
+    }
     let hit = closest_hit(ray, pr.t_max);
     var result = ProbeResult(0u, hit.t, hit.item, 0u, vec3<f32>(0.0), 0u);
     if is_hit(hit) {

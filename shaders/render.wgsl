@@ -39,12 +39,12 @@ fn contrast(c: array<vec3<f32>, 4>) -> f32 {
 fn adaptive_pixel(x: u32, y: u32, threshold: f32, max_depth: u32) -> vec3<f32> {
     let fx = f32(x);
     let fy = f32(y);
-    let corners = array<vec3<f32>, 4>(
-        sample(fx, fy),
-        sample(fx + 1.0, fy),
-        sample(fx, fy + 1.0),
-        sample(fx + 1.0, fy + 1.0),
-    );
+    // Corner k is (k & 1, k >> 1). (One `sample` call site per loop: the compiler inlines
+    // every call, and the shader's size and compile time grow with the sites.)
+    var corners: array<vec3<f32>, 4>;
+    for (var k = 0u; k < 4u; k++) {
+        corners[k] = sample(fx + f32(k & 1u), fy + f32(k >> 1u));
+    }
     var stack: array<AdaptiveSquare, AA_STACK_SIZE>;
     stack[0] = AdaptiveSquare(fx, fy, 1.0, 0u, corners);
     var size = 1u;
@@ -63,11 +63,23 @@ fn adaptive_pixel(x: u32, y: u32, threshold: f32, max_depth: u32) -> vec3<f32> {
         let tr = sq.corners[1];
         let bl = sq.corners[2];
         let br = sq.corners[3];
-        let top = sample(sq.x + h, sq.y);
-        let left = sample(sq.x, sq.y + h);
-        let centre = sample(sq.x + h, sq.y + h);
-        let right = sample(sq.x + sq.size, sq.y + h);
-        let bottom = sample(sq.x + h, sq.y + sq.size);
+        // Top, left, centre, right and bottom midpoints.
+        let offsets = array<vec2<f32>, 5>(
+            vec2<f32>(h, 0.0),
+            vec2<f32>(0.0, h),
+            vec2<f32>(h, h),
+            vec2<f32>(sq.size, h),
+            vec2<f32>(h, sq.size),
+        );
+        var mid: array<vec3<f32>, 5>;
+        for (var k = 0u; k < 5u; k++) {
+            mid[k] = sample(sq.x + offsets[k].x, sq.y + offsets[k].y);
+        }
+        let top = mid[0];
+        let left = mid[1];
+        let centre = mid[2];
+        let right = mid[3];
+        let bottom = mid[4];
         let depth = sq.depth + 1u;
         stack[size] = AdaptiveSquare(sq.x, sq.y, h, depth, array<vec3<f32>, 4>(tl, top, left, centre));
         stack[size + 1u] = AdaptiveSquare(sq.x + h, sq.y, h, depth, array<vec3<f32>, 4>(top, tr, centre, right));
@@ -82,27 +94,30 @@ fn adaptive_pixel(x: u32, y: u32, threshold: f32, max_depth: u32) -> vec3<f32> {
 // Mirror of src/cpu/render.rs::render_pixel — change both.
 fn render_pixel(x: u32, y: u32) -> vec3<f32> {
     let g = globals;
-    let pixel = y * g.width + x;
-    if g.aa_mode == AA_UNIFORM {
-        // n×n strata, one jittered sample in each.
-        let n = g.aa_samples;
-        var sum = vec3<f32>(0.0);
-        for (var j = 0u; j < n; j++) {
-            for (var i = 0u; i < n; i++) {
-                let s = j * n + i;
-                let jx = random_unit(pixel, s, 0u);
-                let jy = random_unit(pixel, s, 1u);
-                let fx = f32(x) + (f32(i) + jx) / f32(n);
-                let fy = f32(y) + (f32(j) + jy) / f32(n);
-                sum += sample(fx, fy);
-            }
-        }
-        return sum / f32(n * n);
-    }
     if g.aa_mode == AA_ADAPTIVE {
         return adaptive_pixel(x, y, g.aa_threshold, g.aa_depth);
     }
-    return sample(f32(x) + 0.5, f32(y) + 0.5);
+    // Uniform: n×n strata, one jittered sample in each. None: one stratum, its centre
+    // (x + 0.5 exactly). One loop for both keeps one `sample` call site (see above).
+    let uniform = g.aa_mode == AA_UNIFORM;
+    let n = select(1u, g.aa_samples, uniform);
+    let pixel = y * g.width + x;
+    var sum = vec3<f32>(0.0);
+    for (var j = 0u; j < n; j++) {
+        for (var i = 0u; i < n; i++) {
+            let s = j * n + i;
+            var jx = 0.5;
+            var jy = 0.5;
+            if uniform {
+                jx = random_unit(pixel, s, 0u);
+                jy = random_unit(pixel, s, 1u);
+            }
+            let fx = f32(x) + (f32(i) + jx) / f32(n);
+            let fy = f32(y) + (f32(j) + jy) / f32(n);
+            sum += sample(fx, fy);
+        }
+    }
+    return sum / f32(n * n);
 }
 
 // Renders one pixel of the tile at tile.origin; invocations outside the image (edge

@@ -56,6 +56,8 @@ pub fn wgsl_prelude() -> String {
         ("GPU_TILE_SIZE", GPU_TILE_SIZE),
         ("WORKGROUP_SIZE", WORKGROUP_SIZE),
         ("PCG_MULTIPLIER", PCG_MULTIPLIER),
+        ("PROBE_CLOSEST_HIT", PROBE_CLOSEST_HIT),
+        ("PROBE_ANY_HIT", PROBE_ANY_HIT),
         ("PCG_INCREMENT", PCG_INCREMENT),
         ("PCG_WORD_MULTIPLIER", PCG_WORD_MULTIPLIER),
     ];
@@ -99,3 +101,7 @@ pub const PCG_INCREMENT: u32 = 2891336453;
 pub const PCG_WORD_MULTIPLIER: u32 = 277803737;
 /// 2⁻²⁴: maps the top 24 bits of a hash onto [0, 1) exactly.
 pub const RANDOM_UNIT_SCALE: f32 = 1.0 / 16777216.0;
+
+/// Kernel-probe modes (`gpu::probe::ProbeRay::mode`, test support).
+pub const PROBE_CLOSEST_HIT: u32 = 0;
+pub const PROBE_ANY_HIT: u32 = 1;

@@ -72,7 +72,7 @@ fn wgsl_structs_match_rust_layout() {
     let probe = module(Entry::Probe);
     check_struct(
         &probe,
-        rust_fields!(ProbeRay { origin, t_max, dir, _pad }),
+        rust_fields!(ProbeRay { origin, t_max, dir, mode }),
     );
     check_struct(
         &probe,

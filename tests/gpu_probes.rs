@@ -75,7 +75,7 @@ fn random_rays(seed: u64) -> Vec<ProbeRay> {
                 origin: origin.as_vec3().to_array(),
                 t_max: if i % 8 == 0 { rng.range(1.0, 30.0) as f32 } else { T_MISS },
                 dir: dir.as_vec3().to_array(),
-                _pad: 0,
+                mode: 0,
             }
         })
         .collect()

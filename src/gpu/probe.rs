@@ -7,10 +7,11 @@ use super::context::GpuContext;
 use super::pipeline::{get_pipeline, PROBE_RAYS_BINDING, PROBE_RESULTS_BINDING};
 use super::shader::Entry;
 use super::GpuError;
-use crate::constants::WORKGROUP_SIZE;
+use crate::constants::{NO_ITEM, PROBE_ANY_HIT, WORKGROUP_SIZE};
+pub use crate::constants::{PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT};
 use crate::cpu::ray::Ray;
 use crate::cpu::shade::surface_at;
-use crate::cpu::traverse::{closest_hit, NoCounters};
+use crate::cpu::traverse::{any_hit, closest_hit, NoCounters};
 use crate::pack::PackedScene;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -24,7 +25,8 @@ pub struct ProbeRay {
     pub t_max: f32,
     /// Unit direction.
     pub dir: [f32; 3],
-    pub _pad: u32,
+    /// [`PROBE_CLOSEST_HIT`] or [`PROBE_ANY_HIT`].
+    pub mode: u32,
 }
 
 /// What a probe reports for one ray.
@@ -49,6 +51,16 @@ pub fn cpu_probe(scene: &PackedScene, pr: &ProbeRay) -> ProbeResult {
         origin: Vec3::from(pr.origin),
         dir: Vec3::from(pr.dir),
     };
+    if pr.mode == PROBE_ANY_HIT {
+        return ProbeResult {
+            hit: any_hit(scene, &ray, pr.t_max, &mut NoCounters) as u32,
+            t: 0.0,
+            item: NO_ITEM,
+            _pad0: 0,
+            normal: [0.0; 3],
+            _pad1: 0,
+        };
+    }
     let hit = closest_hit(scene, &ray, pr.t_max, &mut NoCounters);
     let mut result = ProbeResult {
         hit: 0,
