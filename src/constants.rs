@@ -93,7 +93,7 @@ pub const GPU_TILE_SIZE: u32 = 64;
 /// Side of the square GPU workgroup (`@workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)`);
 /// divides [`GPU_TILE_SIZE`].
 pub const WORKGROUP_SIZE: u32 = 8;
-const _: () = assert!(GPU_TILE_SIZE % WORKGROUP_SIZE == 0);
+const _: () = assert!(GPU_TILE_SIZE.is_multiple_of(WORKGROUP_SIZE));
 
 /// PCG hash constants (Jarzynski & Olano 2020), see `cpu::rng::pcg_hash`.
 pub const PCG_MULTIPLIER: u32 = 747796405;

@@ -38,8 +38,15 @@ fn compare(ctx: &GpuContext, name: &str, scene: &PackedScene) -> SceneFeatures {
     let start = Instant::now();
     let cpu = glint::cpu::render(scene, &|_, _| {});
     let cpu_time = start.elapsed();
-    let report = assert_images_match(name, &gpu, &cpu, MAX_FLIP_MEAN, MIN_SHARE_WITHIN_2_255, &out_dir())
-        .unwrap_or_else(|message| panic!("{message}"));
+    let report = assert_images_match(
+        name,
+        &gpu,
+        &cpu,
+        MAX_FLIP_MEAN,
+        MIN_SHARE_WITHIN_2_255,
+        &out_dir(),
+    )
+    .unwrap_or_else(|message| panic!("{message}"));
     eprintln!(
         "{name}: features [{}], FLIP mean {:.5}, {:.3}% within 2/255; GPU {:.1} ms (pipeline {:.1} ms), CPU {:.1} ms",
         info.features,
@@ -60,7 +67,11 @@ fn corpus_scene(file: &str, aa: Option<AaMode>) -> PackedScene {
 fn corpus_scenes_match() {
     let Some(ctx) = gpu_context() else { return };
     for file in ["simple.lua", "nonhier.lua", "hier.lua", "instance.lua"] {
-        compare(&ctx, file.trim_end_matches(".lua"), &corpus_scene(file, None));
+        compare(
+            &ctx,
+            file.trim_end_matches(".lua"),
+            &corpus_scene(file, None),
+        );
     }
     // Without anti-aliasing the cows match exactly (see the ignored test below).
     let cows = corpus_scene("macho-cows.lua", Some(AaMode::None));
@@ -81,8 +92,16 @@ fn macho_cows_adaptive_matches() {
 #[test]
 fn anti_aliasing_matches() {
     let Some(ctx) = gpu_context() else { return };
-    compare(&ctx, "nonhier-uniform-aa", &corpus_scene("nonhier.lua", Some(AaMode::Uniform)));
-    compare(&ctx, "nonhier-adaptive-aa", &corpus_scene("nonhier.lua", Some(AaMode::Adaptive)));
+    compare(
+        &ctx,
+        "nonhier-uniform-aa",
+        &corpus_scene("nonhier.lua", Some(AaMode::Uniform)),
+    );
+    compare(
+        &ctx,
+        "nonhier-adaptive-aa",
+        &corpus_scene("nonhier.lua", Some(AaMode::Adaptive)),
+    );
 }
 
 /// Mirrors (the REFLECTION specialisation) over a cube floor, with a triangle.

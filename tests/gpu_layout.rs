@@ -30,7 +30,10 @@ fn check_struct(module: &naga::Module, (name, size, fields): (&str, usize, Vec<(
         .map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize))
         .collect();
     let rust: Vec<(String, usize)> = fields.iter().map(|(n, o)| (n.to_string(), *o)).collect();
-    assert_eq!(wgsl, rust, "{name}: WGSL members (left) vs Rust fields (right)");
+    assert_eq!(
+        wgsl, rust,
+        "{name}: WGSL members (left) vs Rust fields (right)"
+    );
     assert_eq!(*span as usize, size, "{name}: WGSL span vs Rust size_of");
 }
 
@@ -45,38 +48,103 @@ fn wgsl_structs_match_rust_layout() {
     let render = module(Entry::Render);
     check_struct(
         &render,
-        rust_fields!(GpuInstance { world_to_object, object_to_world, kind, material, _pad }),
+        rust_fields!(GpuInstance {
+            world_to_object,
+            object_to_world,
+            kind,
+            material,
+            _pad
+        }),
     );
     check_struct(
         &render,
-        rust_fields!(GpuTriangle { p0, material, p1, _pad1, p2, _pad2 }),
+        rust_fields!(GpuTriangle {
+            p0,
+            material,
+            p1,
+            _pad1,
+            p2,
+            _pad2
+        }),
     );
     check_struct(
         &render,
-        rust_fields!(GpuMaterial { kd, shininess, ks, flags, reflection, _pad }),
+        rust_fields!(GpuMaterial {
+            kd,
+            shininess,
+            ks,
+            flags,
+            reflection,
+            _pad
+        }),
     );
     check_struct(
         &render,
-        rust_fields!(GpuLight { position, kind, colour, samples, falloff, _pad0, edge_u, _pad1, edge_v, _pad2 }),
+        rust_fields!(GpuLight {
+            position,
+            kind,
+            colour,
+            samples,
+            falloff,
+            _pad0,
+            edge_u,
+            _pad1,
+            edge_v,
+            _pad2
+        }),
     );
     check_struct(
         &render,
         rust_fields!(GpuGlobals {
-            eye, tan_half_fov, forward, aspect, right, width, up, height, ambient, num_lights,
-            background_top, max_depth, background_bottom, min_weight, grid_min, num_instances,
-            grid_cell_size, num_triangles, grid_dims, grid_enabled, grid_max, aa_mode,
-            aa_samples, aa_threshold, aa_depth, _pad
+            eye,
+            tan_half_fov,
+            forward,
+            aspect,
+            right,
+            width,
+            up,
+            height,
+            ambient,
+            num_lights,
+            background_top,
+            max_depth,
+            background_bottom,
+            min_weight,
+            grid_min,
+            num_instances,
+            grid_cell_size,
+            num_triangles,
+            grid_dims,
+            grid_enabled,
+            grid_max,
+            aa_mode,
+            aa_samples,
+            aa_threshold,
+            aa_depth,
+            _pad
         }),
     );
     check_struct(&render, rust_fields!(GpuTile { origin, _pad }));
     let probe = module(Entry::Probe);
     check_struct(
         &probe,
-        rust_fields!(ProbeRay { origin, t_max, dir, mode }),
+        rust_fields!(ProbeRay {
+            origin,
+            t_max,
+            dir,
+            mode
+        }),
     );
     check_struct(
         &probe,
-        rust_fields!(ProbeResult { hit, t, item, _pad0, normal, _pad1 }),
+        rust_fields!(ProbeResult {
+            hit,
+            t,
+            item,
+            _pad0,
+            normal,
+            _pad1
+        }),
     );
 }
 
@@ -114,18 +182,39 @@ fn absent_features_are_compiled_out() {
         "dda_setup",
         "min_axis",
     ] {
-        assert!(!source.contains(&format!("fn {absent}(")), "{absent} in the source");
+        assert!(
+            !source.contains(&format!("fn {absent}(")),
+            "{absent} in the source"
+        );
         assert!(!names.contains(&absent), "{absent} in the module");
     }
-    for present in ["intersect_sphere", "closest_hit", "shade_phong", "trace_ray"] {
+    for present in [
+        "intersect_sphere",
+        "closest_hit",
+        "shade_phong",
+        "trace_ray",
+    ] {
         assert!(names.contains(&present), "{present} missing");
     }
-    assert!(!source.contains("MATERIAL_REFLECTIVE) != 0u"), "reflection push present");
+    assert!(
+        !source.contains("MATERIAL_REFLECTIVE) != 0u"),
+        "reflection push present"
+    );
     let with_all = assemble(
-        SceneFeatures(SceneFeatures::CUBE.0 | SceneFeatures::MESH.0 | SceneFeatures::GRID.0 | SceneFeatures::REFLECTION.0),
+        SceneFeatures(
+            SceneFeatures::CUBE.0
+                | SceneFeatures::MESH.0
+                | SceneFeatures::GRID.0
+                | SceneFeatures::REFLECTION.0,
+        ),
         Entry::Render,
     );
-    for present in ["fn intersect_box(", "fn intersect_triangle(", "fn dda_setup(", "MATERIAL_REFLECTIVE) != 0u"] {
+    for present in [
+        "fn intersect_box(",
+        "fn intersect_triangle(",
+        "fn dda_setup(",
+        "MATERIAL_REFLECTIVE) != 0u",
+    ] {
         assert!(with_all.contains(present), "{present} missing");
     }
     assert!(!with_all.contains("fn intersect_sphere("));
@@ -139,7 +228,10 @@ fn preprocessor_directives() {
     let out = preprocess("t", text, SceneFeatures::MESH).unwrap();
     assert_eq!(out, "a\ne\n");
     let err = preprocess("t", "// #if TORUS\n// #endif\n", SceneFeatures::CUBE).unwrap_err();
-    assert!(err.contains("unknown feature 'TORUS'") && err.contains("SPHERE"), "{err}");
+    assert!(
+        err.contains("unknown feature 'TORUS'") && err.contains("SPHERE"),
+        "{err}"
+    );
     assert!(preprocess("t", "// #if CUBE\n", SceneFeatures::CUBE).is_err());
     assert!(preprocess("t", "// #endif\n", SceneFeatures::CUBE).is_err());
 }

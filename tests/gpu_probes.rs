@@ -8,12 +8,12 @@
 mod common;
 
 use common::{gpu_context, packed_from_source, Rng};
+use glam::DVec3;
 use glint::constants::T_MISS;
 use glint::gpu::probe::{cpu_probe, gpu_probe, ProbeRay, ProbeResult};
 use glint::gpu::GpuContext;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{GridMode, OptionOverrides};
-use glam::DVec3;
 use std::fmt::Write;
 
 const RAYS: usize = 4096;
@@ -68,12 +68,24 @@ fn random_rays(seed: u64) -> Vec<ProbeRay> {
     let mut rng = Rng(seed);
     (0..RAYS)
         .map(|i| {
-            let origin = DVec3::new(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
-            let target = DVec3::new(rng.range(-10.0, 10.0), rng.range(-10.0, 10.0), rng.range(-10.0, 10.0));
+            let origin = DVec3::new(
+                rng.range(-15.0, 15.0),
+                rng.range(-15.0, 15.0),
+                rng.range(-15.0, 15.0),
+            );
+            let target = DVec3::new(
+                rng.range(-10.0, 10.0),
+                rng.range(-10.0, 10.0),
+                rng.range(-10.0, 10.0),
+            );
             let dir = (target - origin).normalize();
             ProbeRay {
                 origin: origin.as_vec3().to_array(),
-                t_max: if i % 8 == 0 { rng.range(1.0, 30.0) as f32 } else { T_MISS },
+                t_max: if i % 8 == 0 {
+                    rng.range(1.0, 30.0) as f32
+                } else {
+                    T_MISS
+                },
                 dir: dir.as_vec3().to_array(),
                 mode: 0,
             }
@@ -93,7 +105,11 @@ fn agree(gpu: &ProbeResult, cpu: &ProbeResult) -> (bool, f32, f32) {
     let dn = (0..3)
         .map(|k| (gpu.normal[k] - cpu.normal[k]).abs())
         .fold(0.0, f32::max);
-    (gpu.item == cpu.item && dt <= T_TOLERANCE && dn <= NORMAL_TOLERANCE, dt, dn)
+    (
+        gpu.item == cpu.item && dt <= T_TOLERANCE && dn <= NORMAL_TOLERANCE,
+        dt,
+        dn,
+    )
 }
 
 fn check(ctx: &GpuContext, name: &str, scene: &PackedScene, ray_seed: u64) {
@@ -124,7 +140,10 @@ fn check(ctx: &GpuContext, name: &str, scene: &PackedScene, ray_seed: u64) {
         rate * 100.0,
         rays.len()
     );
-    assert!(hits > rays.len() / 8, "{name}: too few hits ({hits}) to test anything");
+    assert!(
+        hits > rays.len() / 8,
+        "{name}: too few hits ({hits}) to test anything"
+    );
     assert!(
         rate >= REQUIRED_AGREEMENT,
         "{name} (ray seed {ray_seed}): agreement {:.4}% < {}%; first disagreement: {}",
@@ -173,7 +192,11 @@ fn probes_triangles() {
 fn probes_mixed_grid_and_brute_force() {
     let Some(ctx) = gpu_context() else { return };
     let with_grid = scene(4, 60, 60, 600, GridMode::Auto);
-    assert!(with_grid.features.contains(SceneFeatures::GRID), "{}", with_grid.features);
+    assert!(
+        with_grid.features.contains(SceneFeatures::GRID),
+        "{}",
+        with_grid.features
+    );
     check(&ctx, "mixed, grid", &with_grid, 104);
     let brute = scene(4, 60, 60, 600, GridMode::Off);
     assert!(!brute.features.contains(SceneFeatures::GRID));

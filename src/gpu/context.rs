@@ -53,7 +53,9 @@ pub fn list_adapters() -> Vec<AdapterSummary> {
                 name: info.name,
                 backend: format!("{:?}", info.backend),
                 device_type: format!("{:?}", info.device_type),
-                driver: format!("{} {}", info.driver, info.driver_info).trim().to_string(),
+                driver: format!("{} {}", info.driver, info.driver_info)
+                    .trim()
+                    .to_string(),
                 max_storage_buffer_binding_size: l.max_storage_buffer_binding_size,
                 max_storage_buffers_per_shader_stage: l.max_storage_buffers_per_shader_stage,
                 max_compute_invocations_per_workgroup: l.max_compute_invocations_per_workgroup,
@@ -140,7 +142,11 @@ impl GpuContext {
 
     /// Runs `f` inside a validation + out-of-memory error scope, returning its value or
     /// the first error wgpu reported.
-    pub(crate) fn scoped<T>(&self, what: &'static str, f: impl FnOnce() -> T) -> Result<T, GpuError> {
+    pub(crate) fn scoped<T>(
+        &self,
+        what: &'static str,
+        f: impl FnOnce() -> T,
+    ) -> Result<T, GpuError> {
         let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let value = f();

@@ -87,7 +87,13 @@ pub fn get_pipeline(
     entry: Entry,
 ) -> Result<Arc<CompiledPipeline>, GpuError> {
     let key = (features, entry);
-    if let Some(p) = ctx.pipelines.map.lock().ok().and_then(|m| m.get(&key).cloned()) {
+    if let Some(p) = ctx
+        .pipelines
+        .map
+        .lock()
+        .ok()
+        .and_then(|m| m.get(&key).cloned())
+    {
         return Ok(p);
     }
     let start = Instant::now();

@@ -85,7 +85,10 @@ pub fn render_gpu_with_info(
     let total = (tiles_x * tiles_y) as u64;
     let mut film = Film::new(w, h);
     for tile in 0..tiles_x * tiles_y {
-        let (x0, y0) = ((tile % tiles_x) * GPU_TILE_SIZE, (tile / tiles_x) * GPU_TILE_SIZE);
+        let (x0, y0) = (
+            (tile % tiles_x) * GPU_TILE_SIZE,
+            (tile / tiles_x) * GPU_TILE_SIZE,
+        );
         let (tw, th) = ((w - x0).min(GPU_TILE_SIZE), (h - y0).min(GPU_TILE_SIZE));
         ctx.scoped("tile dispatch", || {
             let params = GpuTile {

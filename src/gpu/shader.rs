@@ -31,7 +31,10 @@ const COMMON: &[(&str, &str)] = &[
     ("layout.wgsl", include_str!("../../shaders/layout.wgsl")),
     ("rng.wgsl", include_str!("../../shaders/rng.wgsl")),
     ("ray.wgsl", include_str!("../../shaders/ray.wgsl")),
-    ("intersect.wgsl", include_str!("../../shaders/intersect.wgsl")),
+    (
+        "intersect.wgsl",
+        include_str!("../../shaders/intersect.wgsl"),
+    ),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
 ];
@@ -65,11 +68,12 @@ pub fn preprocess(name: &str, text: &str, features: SceneFeatures) -> Result<Str
     let mut out = String::with_capacity(text.len());
     for (number, line) in text.lines().enumerate() {
         let at = || format!("{name}:{}", number + 1);
-        let active = stack.last().map_or(true, |&(on, parent, _)| on && parent);
+        let active = stack.last().is_none_or(|&(on, parent, _)| on && parent);
         let directive = line.trim().strip_prefix("// #");
         match directive {
             Some(rest) if rest.starts_with("if ") => {
-                let on = condition(rest[3..].trim(), features).map_err(|e| format!("{}: {e}", at()))?;
+                let on =
+                    condition(rest[3..].trim(), features).map_err(|e| format!("{}: {e}", at()))?;
                 stack.push((on, active, false));
             }
             Some("else") => match stack.last_mut() {
@@ -80,7 +84,9 @@ pub fn preprocess(name: &str, text: &str, features: SceneFeatures) -> Result<Str
                 _ => return Err(format!("{}: #else without #if", at())),
             },
             Some("endif") => {
-                stack.pop().ok_or_else(|| format!("{}: #endif without #if", at()))?;
+                stack
+                    .pop()
+                    .ok_or_else(|| format!("{}: #endif without #if", at()))?;
             }
             Some(other) => return Err(format!("{}: unknown directive #{other}", at())),
             None => {
@@ -110,8 +116,10 @@ fn condition(text: &str, features: SceneFeatures) -> Result<bool, String> {
             .find(|(_, n)| n.eq_ignore_ascii_case(name))
             .map(|(f, _)| *f)
             .ok_or_else(|| {
-                let valid: Vec<String> =
-                    SceneFeatures::ALL.iter().map(|(_, n)| n.to_uppercase()).collect();
+                let valid: Vec<String> = SceneFeatures::ALL
+                    .iter()
+                    .map(|(_, n)| n.to_uppercase())
+                    .collect();
                 format!("unknown feature '{name}' (valid: {})", valid.join(", "))
             })?;
         any |= features.contains(flag);
@@ -126,7 +134,8 @@ pub fn validate(source: &str, features: SceneFeatures) -> Result<naga::Module, s
         features: features.to_string(),
         message,
     };
-    let module = naga::front::wgsl::parse_str(source).map_err(|e| fail(e.emit_to_string(source)))?;
+    let module =
+        naga::front::wgsl::parse_str(source).map_err(|e| fail(e.emit_to_string(source)))?;
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::default(),

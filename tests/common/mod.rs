@@ -31,7 +31,11 @@ pub fn corpus() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/cs488/a4-2021plus")
 }
 
-fn pack_request(graph: &SceneGraph, request: &RenderRequest, overrides: &OptionOverrides) -> PackedScene {
+fn pack_request(
+    graph: &SceneGraph,
+    request: &RenderRequest,
+    overrides: &OptionOverrides,
+) -> PackedScene {
     let mut request = request.clone();
     overrides.apply(&mut request.options);
     request.width = overrides.width.unwrap_or(request.width);
@@ -43,10 +47,16 @@ fn pack_request(graph: &SceneGraph, request: &RenderRequest, overrides: &OptionO
 /// Packed scenes of every gr.render in a Lua source, with `overrides` applied.
 pub fn packed_from_source(source: &str, overrides: &OptionOverrides) -> Vec<PackedScene> {
     let mut out = Vec::new();
-    run_scene_source("test.lua", source, &corpus(), &ScriptConfig::default(), &mut |g, r| {
-        out.push(pack_request(g, r, overrides));
-        Ok(())
-    })
+    run_scene_source(
+        "test.lua",
+        source,
+        &corpus(),
+        &ScriptConfig::default(),
+        &mut |g, r| {
+            out.push(pack_request(g, r, overrides));
+            Ok(())
+        },
+    )
     .unwrap_or_else(|e| panic!("{e}\n{source}"));
     out
 }
