@@ -52,11 +52,20 @@ pub fn wgsl_prelude() -> String {
         ("MAX_AA_DEPTH", MAX_AA_DEPTH),
         ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
         ("TILE_SIZE", TILE_SIZE),
+        ("AA_STACK_SIZE", AA_STACK_SIZE),
+        ("GPU_TILE_SIZE", GPU_TILE_SIZE),
+        ("WORKGROUP_SIZE", WORKGROUP_SIZE),
+        ("PCG_MULTIPLIER", PCG_MULTIPLIER),
+        ("PROBE_CLOSEST_HIT", PROBE_CLOSEST_HIT),
+        ("PROBE_ANY_HIT", PROBE_ANY_HIT),
+        ("PCG_INCREMENT", PCG_INCREMENT),
+        ("PCG_WORD_MULTIPLIER", PCG_WORD_MULTIPLIER),
     ];
     let f32s: &[(&str, f32)] = &[
         ("T_MISS", T_MISS),
         ("OFFSET_RELATIVE", OFFSET_RELATIVE),
         ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),
+        ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
     ];
     let mut out = String::from("// Generated from src/constants.rs — do not edit.\n");
     for (name, value) in u32s {
@@ -74,3 +83,25 @@ pub const MAX_AA_DEPTH: u32 = 6;
 pub const MAX_AA_SAMPLES: u32 = 64;
 /// Square tile side, in pixels, for both tracers' work split.
 pub const TILE_SIZE: u32 = 16;
+/// Capacity of adaptive anti-aliasing's explicit square stack: each split pops one square
+/// and pushes four, so depth d needs at most 3·d + 1 entries.
+pub const AA_STACK_SIZE: u32 = 3 * MAX_AA_DEPTH + 1;
+
+/// Square tile side, in pixels, of one GPU dispatch (small enough that a tile never trips
+/// a driver watchdog, large enough that the ~1.5 ms per-dispatch cost stays small).
+pub const GPU_TILE_SIZE: u32 = 64;
+/// Side of the square GPU workgroup (`@workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)`);
+/// divides [`GPU_TILE_SIZE`].
+pub const WORKGROUP_SIZE: u32 = 8;
+const _: () = assert!(GPU_TILE_SIZE.is_multiple_of(WORKGROUP_SIZE));
+
+/// PCG hash constants (Jarzynski & Olano 2020), see `cpu::rng::pcg_hash`.
+pub const PCG_MULTIPLIER: u32 = 747796405;
+pub const PCG_INCREMENT: u32 = 2891336453;
+pub const PCG_WORD_MULTIPLIER: u32 = 277803737;
+/// 2⁻²⁴: maps the top 24 bits of a hash onto [0, 1) exactly.
+pub const RANDOM_UNIT_SCALE: f32 = 1.0 / 16777216.0;
+
+/// Kernel-probe modes (`gpu::probe::ProbeRay::mode`, test support).
+pub const PROBE_CLOSEST_HIT: u32 = 0;
+pub const PROBE_ANY_HIT: u32 = 1;

@@ -11,6 +11,7 @@ pub mod constants;
 pub mod cpu;
 pub mod diff;
 pub mod film;
+pub mod gpu;
 pub mod image_io;
 pub mod pack;
 pub mod pipeline;

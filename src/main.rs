@@ -33,6 +33,8 @@ enum Command {
     },
     /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles.
     Bench(glint::cli::bench_cmd::BenchArgs),
+    /// List the GPU adapters (Vulkan, or the backends WGPU_BACKEND names) and their limits.
+    Info,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -44,6 +46,8 @@ enum OrderArg {
 #[derive(Clone, Copy, ValueEnum, PartialEq)]
 enum BackendArg {
     Cpu,
+    Gpu,
+    Auto,
 }
 
 #[derive(Args)]
@@ -72,9 +76,13 @@ struct RenderArgs {
     /// Lua instructions a script may run before it is stopped as a runaway.
     #[arg(long, default_value_t = glint::scene::lua::ScriptConfig::default().instruction_limit)]
     instruction_limit: u64,
-    /// Tracer: cpu (the reference).
+    /// Tracer: cpu (the reference), gpu (wgpu compute, Vulkan), or auto (the GPU when an
+    /// adapter exists, else the CPU).
     #[arg(long, value_enum, default_value = "cpu")]
     backend: BackendArg,
+    /// GPU adapter to use: a substring of its name (see `glint info`).
+    #[arg(long)]
+    adapter: Option<String>,
     /// Anti-aliasing: none, uniform or adaptive.
     #[arg(long, value_parser = parse_aa)]
     aa: Option<AaMode>,
@@ -127,6 +135,10 @@ fn main() -> ExitCode {
         Command::Bench(args) => {
             glint::cli::bench_cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1))
         }
+        Command::Info => {
+            info();
+            Ok(())
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -160,6 +172,12 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         stats: args.stats,
         progress: true,
         instruction_limit: Some(args.instruction_limit),
+        backend: match args.backend {
+            BackendArg::Cpu => glint::pipeline::Backend::Cpu,
+            BackendArg::Gpu => glint::pipeline::Backend::Gpu,
+            BackendArg::Auto => glint::pipeline::Backend::Auto,
+        },
+        adapter: args.adapter,
     };
     if args.width == Some(0) || args.height == Some(0) {
         return Err(("--width and --height must be positive".into(), 2));
@@ -168,15 +186,15 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         .num_threads(args.threads.unwrap_or(0))
         .build()
         .map_err(|e| (format!("cannot start {:?} threads: {e}", args.threads), 1))?;
-    let _ = args.backend; // The GPU backend arrives with the GPU tracer.
     let report = pool.install(|| {
         glint::pipeline::run_scene(&args.scene, &settings, &mut |image| {
             eprintln!(
-                "glint: wrote {} ({}×{}, {:.2} s)",
+                "glint: wrote {} ({}×{}, {:.2} s on the {})",
                 image.output.display(),
                 image.film.width,
                 image.film.height,
-                image.render_time.as_secs_f64()
+                image.render_time.as_secs_f64(),
+                if image.gpu.is_some() { "GPU" } else { "CPU" }
             );
             if settings.stats {
                 eprint!("{}", glint::cli::stats::format_stats(image));
@@ -202,5 +220,33 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             Ok(())
         }
         Err(e) => Err((e.to_string(), e.exit_code() as u8)),
+    }
+}
+
+/// `glint info`: every adapter with its backend, type and key limits.
+fn info() {
+    let adapters = glint::gpu::list_adapters();
+    if adapters.is_empty() {
+        println!(
+            "no GPU adapters (backends: WGPU_BACKEND or Vulkan); glint renders with --backend cpu"
+        );
+        return;
+    }
+    for (i, a) in adapters.iter().enumerate() {
+        println!("adapter {i}: {}", a.name);
+        println!(
+            "  backend: {}, device type: {}, driver: {}",
+            a.backend, a.device_type, a.driver
+        );
+        println!(
+            "  max storage buffer binding: {} MiB, max buffer: {} MiB, storage buffers per stage: {}",
+            a.max_storage_buffer_binding_size >> 20,
+            a.max_buffer_size >> 20,
+            a.max_storage_buffers_per_shader_stage
+        );
+        println!(
+            "  max invocations per workgroup: {}, max workgroups per dimension: {}",
+            a.max_compute_invocations_per_workgroup, a.max_compute_workgroups_per_dimension
+        );
     }
 }

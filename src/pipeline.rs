@@ -3,6 +3,7 @@
 
 use crate::cpu::render::{render, render_with_counters, RenderCounters};
 use crate::film::Film;
+use crate::gpu::{render_gpu_with_info, GpuContext, GpuRenderInfo};
 use crate::image_io::{check_output_path, write_image, ImageIoError};
 use crate::pack::{pack, PackedScene};
 use crate::scene::flatten::flatten;
@@ -27,6 +28,48 @@ pub struct RenderSettings {
     pub progress: bool,
     /// Lua instruction limit (None: the default of [`ScriptConfig`]).
     pub instruction_limit: Option<u64>,
+    /// Which tracer renders.
+    pub backend: Backend,
+    /// `--adapter`: a substring of the GPU adapter's name.
+    pub adapter: Option<String>,
+}
+
+/// `--backend`: which tracer renders.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Backend {
+    /// The CPU reference tracer.
+    #[default]
+    Cpu,
+    /// The GPU tracer; no adapter is an error.
+    Gpu,
+    /// The GPU when an adapter exists, else the CPU with a one-line notice.
+    Auto,
+}
+
+/// The tracer one render uses (a GPU context made once per script).
+#[derive(Clone, Copy)]
+pub enum Tracer<'a> {
+    Cpu,
+    Gpu(&'a GpuContext),
+}
+
+/// Resolves `backend` to a tracer, making the GPU context when needed; `auto` falls back
+/// to the CPU with a notice on stderr.
+pub fn acquire_gpu(
+    backend: Backend,
+    adapter: Option<&str>,
+) -> Result<Option<GpuContext>, crate::gpu::GpuError> {
+    match backend {
+        Backend::Cpu => Ok(None),
+        Backend::Gpu => Ok(Some(GpuContext::new(adapter)?)),
+        Backend::Auto => match GpuContext::new(adapter) {
+            Ok(ctx) => Ok(Some(ctx)),
+            Err(e) => {
+                eprintln!("glint: note: rendering on the CPU ({e})");
+                Ok(None)
+            }
+        },
+    }
 }
 
 /// One finished render.
@@ -37,6 +80,10 @@ pub struct RenderedImage {
     pub packed: PackedScene,
     pub render_time: Duration,
     pub counters: Option<RenderCounters>,
+    /// Set when the GPU rendered it: features compiled in, pipeline compile time.
+    pub gpu: Option<GpuRenderInfo>,
+    /// The GPU adapter's name, when the GPU rendered it.
+    pub adapter: Option<String>,
 }
 
 /// Why running a scene failed; each kind has its own exit code.
@@ -48,6 +95,9 @@ pub enum RunError {
     /// The image could not be written (exit code 4).
     #[error("{0}")]
     Output(#[from] ImageIoError),
+    /// No usable GPU, or the GPU render failed (exit code 5).
+    #[error("{0}")]
+    Gpu(#[from] crate::gpu::GpuError),
 }
 
 impl RunError {
@@ -55,17 +105,20 @@ impl RunError {
         match self {
             RunError::Scene(_) => 3,
             RunError::Output(_) => 4,
+            RunError::Gpu(_) => 5,
         }
     }
 }
 
-/// Flattens, packs and renders one request on the CPU (on the current rayon pool).
+/// Flattens, packs and renders one request with `tracer` (the CPU on the current rayon
+/// pool, or the GPU).
 pub fn render_request(
     graph: &SceneGraph,
     request: &RenderRequest,
     overrides: &OptionOverrides,
     stats: bool,
     progress: bool,
+    tracer: Tracer,
 ) -> anyhow::Result<RenderedImage> {
     let mut request = request.clone();
     overrides.apply(&mut request.options);
@@ -79,6 +132,19 @@ pub fn render_request(
         bar.set_position(done);
     };
     let start = Instant::now();
+    if let Tracer::Gpu(ctx) = tracer {
+        let (film, info) = render_gpu_with_info(ctx, &packed, &tick)?;
+        bar.finish_and_clear();
+        return Ok(RenderedImage {
+            output: request.output.clone(),
+            film,
+            packed,
+            render_time: start.elapsed(),
+            counters: None,
+            gpu: Some(info),
+            adapter: Some(ctx.info.name.clone()),
+        });
+    }
     let (film, counters) = if stats {
         let (film, counters) = render_with_counters(&packed, &tick);
         (film, Some(counters))
@@ -92,6 +158,8 @@ pub fn render_request(
         packed,
         render_time: start.elapsed(),
         counters,
+        gpu: None,
+        adapter: None,
     })
 }
 
@@ -143,6 +211,8 @@ pub fn run_scene(
     if let Some(limit) = settings.instruction_limit {
         config.instruction_limit = limit;
     }
+    let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref())?;
+    let tracer = gpu.as_ref().map_or(Tracer::Cpu, Tracer::Gpu);
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
     let mut index = 0;
     let mut on_render = |graph: &SceneGraph, request: &RenderRequest| -> anyhow::Result<()> {
@@ -161,6 +231,7 @@ pub fn run_scene(
             &settings.overrides,
             settings.stats,
             settings.progress,
+            tracer,
         )?;
         rendered.output = output;
         write_image(&rendered.film, &rendered.output).map_err(fail)?;

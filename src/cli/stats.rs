@@ -10,6 +10,16 @@ pub fn format_stats(image: &RenderedImage) -> String {
     let grid = &packed.grid_stats;
     let mut out = String::new();
     let _ = writeln!(out, "  features: {}", packed.features);
+    if let Some(gpu) = &image.gpu {
+        let _ = writeln!(
+            out,
+            "  gpu: {} — compiled in: {}; pipeline compiled in {:.1} ms (lavapipe compiles again on the first dispatch; Mesa caches it); {} tiles",
+            image.adapter.as_deref().unwrap_or("?"),
+            gpu.features,
+            gpu.compile_time.as_secs_f64() * 1e3,
+            gpu.tiles
+        );
+    }
     let _ = writeln!(
         out,
         "  items: {} analytic, {} triangles, {} lights",

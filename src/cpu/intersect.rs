@@ -114,6 +114,21 @@ pub fn triangle_ray_setup(origin: Vec3, d: Vec3) -> TriangleRay {
     }
 }
 
+/// p.x·q.y − p.y·q.x for the directed edge (p, q) in the sheared plane, always evaluated
+/// with the endpoints in one canonical order and negated when they come swapped, so the
+/// two triangles sharing an edge compute exactly opposite values (watertightness). In
+/// IEEE arithmetic a·d − b·c = −(c·b − d·a) anyway, so this changes no CPU result; but a
+/// GPU compiler may fuse one of the products into an FMA, and without the fixed order the
+/// two sides of an edge would round differently and let rays slip between them.
+// Mirror of shaders/intersect.wgsl::edge_function — change both.
+pub fn edge_function(px: f32, py: f32, qx: f32, qy: f32) -> f32 {
+    if px < qx || (px == qx && py < qy) {
+        px * qy - py * qx
+    } else {
+        -(qx * py - qy * px)
+    }
+}
+
 /// (t, b1, b2) of the hit with the triangle (p0, p1, p2) in (0, t_max), b1 and b2 the
 /// barycentric weights of p1 and p2; t = [`T_MISS`] on a miss. Two-sided. Edges shared
 /// by two triangles are never missed by both: the edge functions are computed
@@ -133,9 +148,9 @@ pub fn intersect_triangle(r: &TriangleRay, p0: Vec3, p1: Vec3, p2: Vec3, t_max: 
     let cx = c[r.kx] - r.shear.x * c[r.kz];
     let cy = c[r.ky] - r.shear.y * c[r.kz];
     // Calculate the scaled barycentric coordinates.
-    let u = cx * by - cy * bx;
-    let v = ax * cy - ay * cx;
-    let w = bx * ay - by * ax;
+    let u = edge_function(cx, cy, bx, by);
+    let v = edge_function(ax, ay, cx, cy);
+    let w = edge_function(bx, by, ax, ay);
     // Perform the edge tests.
     if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
         return miss;

@@ -5,7 +5,7 @@ use super::ray::camera_ray;
 use super::rng::random_unit;
 use super::trace::trace_ray;
 use super::traverse::{Counters, NoCounters, TraversalCounters};
-use crate::constants::{AA_ADAPTIVE, AA_UNIFORM, MAX_AA_DEPTH, TILE_SIZE};
+use crate::constants::{AA_ADAPTIVE, AA_STACK_SIZE, AA_UNIFORM, TILE_SIZE};
 use crate::film::Film;
 use crate::pack::PackedScene;
 use glam::Vec3;
@@ -13,6 +13,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Colour at film position (fx, fy) in pixels.
+// Mirror of shaders/render.wgsl::sample — change both.
 fn sample(scene: &PackedScene, fx: f32, fy: f32, counters: &mut impl TraversalCounters) -> Vec3 {
     trace_ray(scene, camera_ray(&scene.globals, fx, fy), counters)
 }
@@ -29,6 +30,7 @@ struct AdaptiveSquare {
 }
 
 /// Largest per-channel spread of four colours.
+// Mirror of shaders/render.wgsl::contrast — change both.
 fn contrast(c: &[Vec3; 4]) -> f32 {
     let lo = c[0].min(c[1]).min(c[2]).min(c[3]);
     let hi = c[0].max(c[1]).max(c[2]).max(c[3]);
@@ -49,19 +51,19 @@ fn adaptive_pixel(
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let (fx, fy) = (x as f32, y as f32);
-    let corners = [
-        sample(scene, fx, fy, counters),
-        sample(scene, fx + 1.0, fy, counters),
-        sample(scene, fx, fy + 1.0, counters),
-        sample(scene, fx + 1.0, fy + 1.0, counters),
-    ];
+    // Corner k is (k & 1, k >> 1). (One `sample` call site per loop: the GPU compiler
+    // inlines every call, and the shader's size and compile time grow with the sites.)
+    let mut corners = [Vec3::ZERO; 4];
+    for (k, corner) in corners.iter_mut().enumerate() {
+        *corner = sample(scene, fx + (k & 1) as f32, fy + (k >> 1) as f32, counters);
+    }
     let mut stack = [AdaptiveSquare {
         x: fx,
         y: fy,
         size: 1.0,
         depth: 0,
         corners,
-    }; 3 * MAX_AA_DEPTH as usize + 1];
+    }; AA_STACK_SIZE as usize];
     let mut size = 1;
     let mut sum = Vec3::ZERO;
     while size > 0 {
@@ -75,11 +77,13 @@ fn adaptive_pixel(
         }
         let h = sq.size * 0.5;
         let [tl, tr, bl, br] = sq.corners;
-        let top = sample(scene, sq.x + h, sq.y, counters);
-        let left = sample(scene, sq.x, sq.y + h, counters);
-        let centre = sample(scene, sq.x + h, sq.y + h, counters);
-        let right = sample(scene, sq.x + sq.size, sq.y + h, counters);
-        let bottom = sample(scene, sq.x + h, sq.y + sq.size, counters);
+        // Top, left, centre, right and bottom midpoints.
+        let offsets = [(h, 0.0), (0.0, h), (h, h), (sq.size, h), (h, sq.size)];
+        let mut mid = [Vec3::ZERO; 5];
+        for (m, (ox, oy)) in mid.iter_mut().zip(offsets) {
+            *m = sample(scene, sq.x + ox, sq.y + oy, counters);
+        }
+        let [top, left, centre, right, bottom] = mid;
         let depth = sq.depth + 1;
         let children = [
             (sq.x, sq.y, [tl, top, left, centre]),
@@ -110,27 +114,29 @@ pub fn render_pixel(
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let g = &scene.globals;
-    let pixel = y * g.width + x;
-    if g.aa_mode == AA_UNIFORM {
-        // n×n strata, one jittered sample in each.
-        let n = g.aa_samples;
-        let mut sum = Vec3::ZERO;
-        for j in 0..n {
-            for i in 0..n {
-                let s = j * n + i;
-                let jx = random_unit(pixel, s, 0);
-                let jy = random_unit(pixel, s, 1);
-                let fx = x as f32 + (i as f32 + jx) / n as f32;
-                let fy = y as f32 + (j as f32 + jy) / n as f32;
-                sum += sample(scene, fx, fy, counters);
-            }
-        }
-        return sum / (n * n) as f32;
-    }
     if g.aa_mode == AA_ADAPTIVE {
         return adaptive_pixel(scene, x, y, g.aa_threshold, g.aa_depth, counters);
     }
-    sample(scene, x as f32 + 0.5, y as f32 + 0.5, counters)
+    // Uniform: n×n strata, one jittered sample in each. None: one stratum, its centre
+    // (x + 0.5 exactly). One loop for both keeps one `sample` call site (see above).
+    let uniform = g.aa_mode == AA_UNIFORM;
+    let n = if uniform { g.aa_samples } else { 1 };
+    let pixel = y * g.width + x;
+    let mut sum = Vec3::ZERO;
+    for j in 0..n {
+        for i in 0..n {
+            let s = j * n + i;
+            let (jx, jy) = if uniform {
+                (random_unit(pixel, s, 0), random_unit(pixel, s, 1))
+            } else {
+                (0.5, 0.5)
+            };
+            let fx = x as f32 + (i as f32 + jx) / n as f32;
+            let fy = y as f32 + (j as f32 + jy) / n as f32;
+            sum += sample(scene, fx, fy, counters);
+        }
+    }
+    sum / (n * n) as f32
 }
 
 /// Progress of a render: called with (tiles done, tiles in all) after each tile.

@@ -1,11 +1,13 @@
 //! Stateless random numbers: a hash of (pixel, sample, dimension), identical in Rust and
 //! WGSL, so both tracers draw the same samples (PCG hash, Jarzynski & Olano 2020).
 
+use crate::constants::{PCG_INCREMENT, PCG_MULTIPLIER, PCG_WORD_MULTIPLIER, RANDOM_UNIT_SCALE};
+
 /// PCG-RXS-M-XS 32-bit hash.
 // Mirror of shaders/rng.wgsl::pcg_hash — change both.
 pub fn pcg_hash(x: u32) -> u32 {
-    let state = x.wrapping_mul(747796405).wrapping_add(2891336453);
-    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277803737);
+    let state = x.wrapping_mul(PCG_MULTIPLIER).wrapping_add(PCG_INCREMENT);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(PCG_WORD_MULTIPLIER);
     (word >> 22) ^ word
 }
 
@@ -14,5 +16,5 @@ pub fn pcg_hash(x: u32) -> u32 {
 // Mirror of shaders/rng.wgsl::random_unit — change both.
 pub fn random_unit(pixel: u32, sample: u32, dimension: u32) -> f32 {
     let h = pcg_hash(pixel ^ pcg_hash(sample ^ pcg_hash(dimension)));
-    (h >> 8) as f32 * (1.0 / 16777216.0)
+    (h >> 8) as f32 * RANDOM_UNIT_SCALE
 }

@@ -22,6 +22,7 @@ pub struct Surface {
 
 /// Largest |entry| sum over the rows of an affine 3×4 matrix: bounds the magnitude of
 /// the world coordinates it produces from a point in the unit box.
+// Mirror of shaders/shade.wgsl::affine_magnitude — change both.
 fn affine_magnitude(rows: &[[f32; 4]; 3]) -> f32 {
     rows.iter()
         .map(|r| r[0].abs() + r[1].abs() + r[2].abs() + r[3].abs())

@@ -81,6 +81,7 @@ fn intersect_item(
 }
 
 /// Tests the items `items` and keeps the nearest hit below `best.t`.
+// Mirror of shaders/traverse.wgsl::test_items — change both.
 fn test_items(
     scene: &PackedScene,
     items: impl Iterator<Item = u32>,
@@ -163,6 +164,7 @@ fn dda_setup(scene: &PackedScene, ray: &Ray, t_max: f32) -> Option<Dda> {
 }
 
 /// Index of the smallest component.
+// Mirror of shaders/traverse.wgsl::min_axis — change both.
 fn min_axis(v: Vec3) -> usize {
     if v.x <= v.y && v.x <= v.z {
         0
@@ -234,6 +236,7 @@ pub fn closest_hit(
 }
 
 /// Whether any of `items` is hit in (0, t_max).
+// Mirror of shaders/traverse.wgsl::any_item_hit — change both.
 fn any_item_hit(
     scene: &PackedScene,
     items: impl Iterator<Item = u32>,

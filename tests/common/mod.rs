@@ -112,3 +112,65 @@ pub fn load_packed(path: &Path, overrides: &OptionOverrides) -> PackedScene {
 pub fn render_cpu(scene: &PackedScene) -> Film {
     glint::cpu::render(scene, &|_, _| {})
 }
+
+/// A device on the default (Vulkan) adapter; None (with the reason printed) when there is
+/// none — except under CI (`CI` set), where a missing adapter fails the test: CI installs
+/// lavapipe, so a skip there would pass vacuously.
+pub fn gpu_context() -> Option<glint::gpu::GpuContext> {
+    match glint::gpu::GpuContext::new(None) {
+        Ok(ctx) => Some(ctx),
+        Err(e) => {
+            if std::env::var_os("CI").is_some() {
+                panic!("CI is set but no GPU adapter is usable: {e}");
+            }
+            eprintln!("skipping GPU test: {e}");
+            None
+        }
+    }
+}
+
+/// Packed scenes of every gr.render in a Lua source (run from the 2021+ corpus folder, so
+/// it can load that folder's meshes), with `overrides` applied.
+pub fn packed_from_source(source: &str, overrides: &OptionOverrides) -> Vec<PackedScene> {
+    let mut out = Vec::new();
+    glint::scene::lua::run_scene_source(
+        "test.lua",
+        source,
+        &corpus().join("a4-2021plus"),
+        &ScriptConfig::default(),
+        &mut |graph, request| {
+            let mut request = request.clone();
+            overrides.apply(&mut request.options);
+            request.width = overrides.width.unwrap_or(request.width);
+            request.height = overrides.height.unwrap_or(request.height);
+            out.push(pack(&flatten(graph, &request)?)?);
+            Ok(())
+        },
+    )
+    .unwrap_or_else(|e| panic!("{e}\n{source}"));
+    out
+}
+
+/// Packed scenes of every gr.render in a scene file, with `overrides` applied.
+pub fn packed_from_file(path: &Path, overrides: &OptionOverrides) -> Vec<PackedScene> {
+    load_scenes(path, overrides)
+        .iter()
+        .map(|s| pack(s).unwrap_or_else(|e| panic!("{}: {e}", path.display())))
+        .collect()
+}
+
+/// xorshift64*: small, seeded, reproducible.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545F4914F6CDD1D)
+    }
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}

@@ -1,0 +1,205 @@
+// intersect.wgsl — ray–primitive intersection in f32: sphere (stable quadratic), box
+// (slabs), triangle (watertight). Analytic primitives are intersected in object space
+// with an unnormalised direction, so t is the world-space t.
+
+// #if CUBE|GRID
+// 1/x, or ±SAFE_RCP_LIMIT when |x| is too small to invert without overflow.
+// Mirror of src/cpu/intersect.rs::safe_rcp — change both.
+fn safe_rcp(x: f32) -> f32 {
+    if abs(x) > 1.0 / SAFE_RCP_LIMIT {
+        return 1.0 / x;
+    }
+    return copysign(SAFE_RCP_LIMIT, x);
+}
+
+// safe_rcp of each component.
+// Mirror of src/cpu/intersect.rs::safe_rcp3 — change both.
+fn safe_rcp3(v: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z));
+}
+// #endif
+
+// #if SPHERE
+// Nearest t in (0, t_max) where o + t·d meets the unit sphere at the origin, else T_MISS.
+// Haines et al., Ray Tracing Gems ch. 7: the discriminant from the distance of the centre
+// to the line (no catastrophic b² − ac), and the root pair from q = −b − sign(b)·√Δ,
+// t = c/q and q/a (no cancellation in either root).
+// Mirror of src/cpu/intersect.rs::intersect_sphere — change both.
+fn intersect_sphere(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+    // Compute the quadratic a·t² + 2b·t + c with f = o (centre at the origin).
+    let a = dot(d, d);
+    let b = dot(o, d);
+    let c = dot(o, o) - 1.0;
+    // Compute the discriminant as a·(r² − |f − (b/a)·d|²).
+    let l = o - d * (b / a);
+    let discriminant = a * (1.0 - dot(l, l));
+    if discriminant < 0.0 {
+        return T_MISS;
+    }
+    // Compute both roots without cancellation.
+    let q = -b - copysign(sqrt(discriminant), b);
+    var t0 = 0.0;
+    var t1 = 0.0;
+    if q != 0.0 {
+        let r0 = c / q;
+        let r1 = q / a;
+        t0 = min(r0, r1);
+        t1 = max(r0, r1);
+    }
+    if t0 > 0.0 && t0 < t_max {
+        return t0;
+    } else if t1 > 0.0 && t1 < t_max {
+        return t1;
+    }
+    return T_MISS;
+}
+// #endif
+
+// #if CUBE
+// Nearest t in (0, t_max) where o + t·d meets the box [0,1]³, else T_MISS (slab test;
+// from inside, the exit point).
+// Mirror of src/cpu/intersect.rs::intersect_box — change both.
+fn intersect_box(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+    let inv = safe_rcp3(d);
+    let t0 = (vec3<f32>(0.0) - o) * inv;
+    let t1 = (vec3<f32>(1.0) - o) * inv;
+    let t_near = max_element(min(t0, t1));
+    let t_far = min_element(max(t0, t1));
+    if t_near > t_far {
+        return T_MISS;
+    }
+    var t = t_far;
+    if t_near > 0.0 {
+        t = t_near;
+    }
+    if t > 0.0 && t < t_max {
+        return t;
+    }
+    return T_MISS;
+}
+// #endif
+
+// Per-ray set-up of the watertight triangle test (Woop, Benthin & Wald, JCGT 2013): the
+// dominant axis of the direction becomes z, and a shear maps the direction to +z. (The
+// struct stays in every specialisation: traversal passes one even when it is unused.)
+// Mirror of src/cpu/intersect.rs::TriangleRay — change both.
+struct TriangleRay {
+    origin: vec3<f32>,
+    kx: u32,
+    ky: u32,
+    kz: u32,
+    shear: vec3<f32>,
+}
+
+// #if MESH
+// Mirror of src/cpu/intersect.rs::triangle_ray_setup — change both.
+fn triangle_ray_setup(origin: vec3<f32>, d: vec3<f32>) -> TriangleRay {
+    // Calculate the dimension where the ray direction is maximal.
+    let ad = abs(d);
+    var kz = 2u;
+    if ad.x >= ad.y && ad.x >= ad.z {
+        kz = 0u;
+    } else if ad.y >= ad.z {
+        kz = 1u;
+    }
+    var kx = (kz + 1u) % 3u;
+    var ky = (kx + 1u) % 3u;
+    // Swap kx and ky to preserve the winding direction of triangles.
+    if d[kz] < 0.0 {
+        let swap = kx;
+        kx = ky;
+        ky = swap;
+    }
+    // Calculate the shear constants.
+    let shear = vec3<f32>(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+    return TriangleRay(origin, kx, ky, kz, shear);
+}
+
+// p.x·q.y − p.y·q.x for the directed edge (p, q) in the sheared plane, always evaluated
+// with the endpoints in one canonical order and negated when they come swapped, so the two
+// triangles sharing an edge compute exactly opposite values (watertightness) even where
+// the shader compiler fuses one of the products into an FMA (llvmpipe does).
+// Mirror of src/cpu/intersect.rs::edge_function — change both.
+fn edge_function(px: f32, py: f32, qx: f32, qy: f32) -> f32 {
+    if px < qx || (px == qx && py < qy) {
+        return px * qy - py * qx;
+    }
+    return -(qx * py - qy * px);
+}
+
+// (t, b1, b2) of the hit with the triangle (p0, p1, p2) in (0, t_max), b1 and b2 the
+// barycentric weights of p1 and p2; t = T_MISS on a miss. Two-sided. Edges shared by two
+// triangles are never missed by both: the edge functions are computed identically from
+// the shared vertices, and a zero counts as inside.
+// Mirror of src/cpu/intersect.rs::intersect_triangle — change both.
+fn intersect_triangle(r: TriangleRay, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, t_max: f32) -> vec3<f32> {
+    let miss = vec3<f32>(T_MISS, 0.0, 0.0);
+    // Calculate the vertices relative to the ray origin.
+    let a = p0 - r.origin;
+    let b = p1 - r.origin;
+    let c = p2 - r.origin;
+    // Perform the shear and scale of the vertices.
+    let ax = a[r.kx] - r.shear.x * a[r.kz];
+    let ay = a[r.ky] - r.shear.y * a[r.kz];
+    let bx = b[r.kx] - r.shear.x * b[r.kz];
+    let by = b[r.ky] - r.shear.y * b[r.kz];
+    let cx = c[r.kx] - r.shear.x * c[r.kz];
+    let cy = c[r.ky] - r.shear.y * c[r.kz];
+    // Calculate the scaled barycentric coordinates.
+    let u = edge_function(cx, cy, bx, by);
+    let v = edge_function(ax, ay, cx, cy);
+    let w = edge_function(bx, by, ax, ay);
+    // Perform the edge tests.
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        return miss;
+    }
+    // Calculate the determinant.
+    let det = u + v + w;
+    if det == 0.0 {
+        return miss;
+    }
+    // Calculate the scaled z-coordinates of the vertices and the scaled hit distance.
+    let az = r.shear.z * a[r.kz];
+    let bz = r.shear.z * b[r.kz];
+    let cz = r.shear.z * c[r.kz];
+    let t_scaled = u * az + v * bz + w * cz;
+    let t = t_scaled / det;
+    if !(t > 0.0 && t < t_max) {
+        return miss;
+    }
+    return vec3<f32>(t, v / det, w / det);
+}
+// #endif
+
+// #if SPHERE|CUBE
+// Object-space ray of an instance: origin and (unnormalised) direction through the
+// world→object rows.
+// Mirror of src/cpu/intersect.rs::to_object_space — change both.
+fn to_object_space(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>) -> Ray {
+    let rows = inst.world_to_object;
+    let oo = vec3<f32>(
+        dot(rows[0].xyz, o) + rows[0].w,
+        dot(rows[1].xyz, o) + rows[1].w,
+        dot(rows[2].xyz, o) + rows[2].w,
+    );
+    let od = vec3<f32>(dot(rows[0].xyz, d), dot(rows[1].xyz, d), dot(rows[2].xyz, d));
+    return Ray(oo, od);
+}
+
+// t of the nearest hit in (0, t_max) with an analytic instance, else T_MISS.
+// Mirror of src/cpu/intersect.rs::intersect_instance — change both.
+fn intersect_instance(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+    let local = to_object_space(inst, o, d);
+// #if SPHERE
+    if inst.kind == KIND_SPHERE {
+        return intersect_sphere(local.origin, local.dir, t_max);
+    }
+// #endif
+// #if CUBE
+    if inst.kind == KIND_CUBE {
+        return intersect_box(local.origin, local.dir, t_max);
+    }
+// #endif
+    return T_MISS;
+}
+// #endif

@@ -1,0 +1,114 @@
+// layout.wgsl — twins of the Pod structs in src/pack/layout.rs (same names, same field
+// order; tests/gpu_layout.rs checks every offset and size against Rust) and the bindings
+// both entry points share. Change both.
+
+// Mirror of src/pack/layout.rs::GpuInstance — change both.
+struct GpuInstance {
+    // Rows of world→object (xyz: linear part, w: translation).
+    world_to_object: array<vec4<f32>, 3>,
+    // Rows of object→world.
+    object_to_world: array<vec4<f32>, 3>,
+    // KIND_* tag.
+    kind: u32,
+    material: u32,
+    _pad: array<u32, 2>,
+}
+
+// Mirror of src/pack/layout.rs::GpuTriangle — change both.
+struct GpuTriangle {
+    p0: vec3<f32>,
+    material: u32,
+    p1: vec3<f32>,
+    _pad1: u32,
+    p2: vec3<f32>,
+    _pad2: u32,
+}
+
+// Mirror of src/pack/layout.rs::GpuMaterial — change both.
+struct GpuMaterial {
+    kd: vec3<f32>,
+    shininess: f32,
+    ks: vec3<f32>,
+    // MATERIAL_* bits.
+    flags: u32,
+    reflection: vec3<f32>,
+    _pad: u32,
+}
+
+// Mirror of src/pack/layout.rs::GpuLight — change both.
+struct GpuLight {
+    position: vec3<f32>,
+    // LIGHT_* tag.
+    kind: u32,
+    colour: vec3<f32>,
+    // n of the n×n shadow samples (area lights).
+    samples: u32,
+    // Attenuation coefficients (c0, c1, c2).
+    falloff: vec3<f32>,
+    _pad0: u32,
+    edge_u: vec3<f32>,
+    _pad1: u32,
+    edge_v: vec3<f32>,
+    _pad2: u32,
+}
+
+// Mirror of src/pack/layout.rs::GpuGlobals — change both.
+struct GpuGlobals {
+    eye: vec3<f32>,
+    // tan(fov/2).
+    tan_half_fov: f32,
+    // Unit view direction.
+    forward: vec3<f32>,
+    // width / height.
+    aspect: f32,
+    // Unit camera right vector.
+    right: vec3<f32>,
+    width: u32,
+    // Unit camera up vector (perpendicular to forward).
+    up: vec3<f32>,
+    height: u32,
+    ambient: vec3<f32>,
+    num_lights: u32,
+    background_top: vec3<f32>,
+    max_depth: u32,
+    background_bottom: vec3<f32>,
+    min_weight: f32,
+    // Lower corner of the grid bounds.
+    grid_min: vec3<f32>,
+    num_instances: u32,
+    // Size of one grid cell.
+    grid_cell_size: vec3<f32>,
+    num_triangles: u32,
+    // Cells along each axis.
+    grid_dims: vec3<u32>,
+    // 1 = traverse the grid, 0 = brute force over every item.
+    grid_enabled: u32,
+    // Upper corner of the grid bounds.
+    grid_max: vec3<f32>,
+    // AA_* tag.
+    aa_mode: u32,
+    // n of uniform n×n anti-aliasing.
+    aa_samples: u32,
+    // Adaptive anti-aliasing: corner contrast that splits a square.
+    aa_threshold: f32,
+    // Adaptive anti-aliasing: deepest split.
+    aa_depth: u32,
+    _pad: u32,
+}
+
+// Mirror of src/gpu/buffers.rs::GpuTile — change both.
+struct GpuTile {
+    // Top-left pixel of the tile this dispatch renders.
+    origin: vec2<u32>,
+    _pad: vec2<u32>,
+}
+
+// The packed scene (src/gpu/buffers.rs binds every array; an empty one holds one unused
+// element, since a binding may not be empty).
+@group(0) @binding(0) var<uniform> globals: GpuGlobals;
+@group(0) @binding(1) var<storage, read> instances: array<GpuInstance>;
+@group(0) @binding(2) var<storage, read> triangles: array<GpuTriangle>;
+@group(0) @binding(3) var<storage, read> materials: array<GpuMaterial>;
+@group(0) @binding(4) var<storage, read> lights: array<GpuLight>;
+@group(0) @binding(5) var<storage, read> cell_start: array<u32>;
+@group(0) @binding(6) var<storage, read> cell_items: array<u32>;

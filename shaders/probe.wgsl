@@ -1,0 +1,50 @@
+// probe.wgsl — test-only entry point (tier-3 kernel probes): traces seeded rays from
+// `probe_rays` with closest_hit and reports (hit, t, item, normal) per ray from
+// surface_at (or, in PROBE_ANY_HIT mode, any_hit's answer alone), for comparison with the CPU functions ray by ray.
+
+// Mirror of src/gpu/probe.rs::ProbeRay — change both.
+struct ProbeRay {
+    origin: vec3<f32>,
+    t_max: f32,
+    // Unit direction.
+    dir: vec3<f32>,
+    // PROBE_CLOSEST_HIT or PROBE_ANY_HIT.
+    mode: u32,
+}
+
+// Mirror of src/gpu/probe.rs::ProbeResult — change both.
+struct ProbeResult {
+    // 1 on a hit, 0 on a miss.
+    hit: u32,
+    t: f32,
+    item: u32,
+    _pad0: u32,
+    // surface_at's geometric normal (zero on a miss).
+    normal: vec3<f32>,
+    _pad1: u32,
+}
+
+@group(0) @binding(9) var<storage, read> probe_rays: array<ProbeRay>;
+@group(0) @binding(10) var<storage, read_write> probe_results: array<ProbeResult>;
+
+// Mirror of src/gpu/probe.rs::cpu_probe — change both.
+@compute @workgroup_size(WORKGROUP_SIZE * WORKGROUP_SIZE)
+fn probe(@builtin(global_invocation_id) id: vec3<u32>) {
+    let index = id.x;
+    if index >= arrayLength(&probe_rays) {
+        return;
+    }
+    let pr = probe_rays[index];
+    let ray = Ray(pr.origin, pr.dir);
+    if pr.mode == PROBE_ANY_HIT {
+        probe_results[index] = ProbeResult(u32(any_hit(ray, pr.t_max)), 0.0, NO_ITEM, 0u, vec3<f32>(0.0), 0u);
+        return;
+    }
+    let hit = closest_hit(ray, pr.t_max);
+    var result = ProbeResult(0u, hit.t, hit.item, 0u, vec3<f32>(0.0), 0u);
+    if is_hit(hit) {
+        result.hit = 1u;
+        result.normal = surface_at(ray, hit).normal;
+    }
+    probe_results[index] = result;
+}

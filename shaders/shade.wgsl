@@ -1,0 +1,149 @@
+// shade.wgsl — surface reconstruction at a hit, A4 Phong shading with shadow rays, and the
+// background.
+
+// What shading needs to know about a hit point.
+// Mirror of src/cpu/shade.rs::Surface — change both.
+struct Surface {
+    // World-space point, reprojected onto the surface.
+    p: vec3<f32>,
+    // Unit geometric normal in world space (outward for analytic primitives, by winding
+    // for triangles; not yet turned towards the viewer).
+    normal: vec3<f32>,
+    // Largest coordinate magnitude that went into p (for offset_ray).
+    magnitude: f32,
+    material: u32,
+}
+
+// #if SPHERE|CUBE
+// Largest |entry| sum over the rows of an affine 3×4 matrix: bounds the magnitude of the
+// world coordinates it produces from a point in the unit box.
+// Mirror of src/cpu/shade.rs::affine_magnitude — change both.
+fn affine_magnitude(rows: array<vec4<f32>, 3>) -> f32 {
+    var m = 0.0;
+    for (var i = 0u; i < 3u; i++) {
+        let r = abs(rows[i]);
+        m = max(m, r.x + r.y + r.z + r.w);
+    }
+    return m;
+}
+
+// Point, normal and magnitude of an instance hit, computed in object space (where the
+// point is snapped onto the exact surface) and mapped to world space.
+// Mirror of src/cpu/shade.rs::instance_surface — change both.
+fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
+    let local = to_object_space(inst, ray.origin, ray.dir);
+    var p_obj = local.origin + local.dir * t;
+    var n_obj = vec3<f32>(0.0);
+// #if SPHERE
+    if inst.kind == KIND_SPHERE {
+        // Reproject onto the unit sphere.
+        p_obj = normalize(p_obj);
+        n_obj = p_obj;
+    }
+// #endif
+// #if CUBE
+    if inst.kind == KIND_CUBE {
+        // The face nearest the point: snap the point onto it.
+        let dist = min(abs(p_obj), abs(p_obj - vec3<f32>(1.0)));
+        var axis = 2u;
+        if dist.x <= dist.y && dist.x <= dist.z {
+            axis = 0u;
+        } else if dist.y <= dist.z {
+            axis = 1u;
+        }
+        let upper = p_obj[axis] > 0.5;
+        p_obj[axis] = select(0.0, 1.0, upper);
+        n_obj[axis] = select(-1.0, 1.0, upper);
+    }
+// #endif
+    let o2w = inst.object_to_world;
+    let p = vec3<f32>(
+        dot(o2w[0].xyz, p_obj) + o2w[0].w,
+        dot(o2w[1].xyz, p_obj) + o2w[1].w,
+        dot(o2w[2].xyz, p_obj) + o2w[2].w,
+    );
+    // Normals transform by the inverse transpose: Σ n_obj[i] · (row i of world→object).
+    let w2o = inst.world_to_object;
+    let normal = normalize(w2o[0].xyz * n_obj.x + w2o[1].xyz * n_obj.y + w2o[2].xyz * n_obj.z);
+    return Surface(p, normal, affine_magnitude(o2w), inst.material);
+}
+// #endif
+
+// The surface at a hit (instances first, then triangles, as in the grid's items).
+// Mirror of src/cpu/shade.rs::surface_at — change both.
+fn surface_at(ray: Ray, hit: Hit) -> Surface {
+    let num_instances = globals.num_instances;
+// #if SPHERE|CUBE
+    if hit.item < num_instances {
+        return instance_surface(instances[hit.item], ray, hit.t);
+    }
+// #endif
+// #if MESH
+    let tri = triangles[hit.item - num_instances];
+    let p0 = tri.p0;
+    let p1 = tri.p1;
+    let p2 = tri.p2;
+    // The barycentric point is exact to a few ulps of the vertices (unlike o + t·d).
+    let p = p0 * (1.0 - hit.b1 - hit.b2) + p1 * hit.b1 + p2 * hit.b2;
+    let magnitude = max_element(max(max(abs(p0), abs(p1)), abs(p2)));
+    return Surface(p, normalize(cross(p1 - p0, p2 - p0)), magnitude, tri.material);
+// #else
+    return Surface();
+// #endif
+}
+
+// base^exponent for base in [0, 1] without NaN or overflow for any exponent ≥ 0
+// (shininess can be 5e7): zero unless base > 0.
+// Mirror of src/cpu/shade.rs::phong_power — change both.
+fn phong_power(base: f32, exponent: f32) -> f32 {
+    if base > 0.0 {
+        return exp2(exponent * log2(min(base, 1.0)));
+    }
+    return 0.0;
+}
+
+// A4 lighting at a surface point: kd·ambient plus, for each light a shadow ray reaches,
+// (kd·max(0,N·L) + ks·max(0,R·V)^shininess)·I/(c0 + c1·d + c2·d²). n faces the viewer;
+// v points to the viewer.
+// Mirror of src/cpu/shade.rs::shade_phong — change both.
+fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    let m = materials[s.material];
+    let kd = m.kd;
+    let ks = m.ks;
+    var colour = kd * globals.ambient;
+    let origin = offset_ray(s.p, n, s.magnitude);
+    for (var i = 0u; i < globals.num_lights; i++) {
+        let light = lights[i];
+        let to_light = light.position - s.p;
+        let distance = length(to_light);
+        let l = to_light / distance;
+        let n_dot_l = dot(n, l);
+        // Lights behind the surface (as seen from the viewer's side) add nothing; the
+        // negated test also rejects NaN, like Rust's is_nan check.
+        if !(n_dot_l > 0.0) {
+            continue;
+        }
+        let shadow_dir = light.position - origin;
+        let shadow_distance = length(shadow_dir);
+        let shadow_ray = Ray(origin, shadow_dir / shadow_distance);
+        if any_hit(shadow_ray, shadow_distance) {
+            continue;
+        }
+        let r = n * (2.0 * n_dot_l) - l;
+        let specular = phong_power(dot(r, v), m.shininess);
+        let c0 = light.falloff.x;
+        let c1 = light.falloff.y;
+        let c2 = light.falloff.z;
+        let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
+        colour += (kd * n_dot_l + ks * specular) * light.colour * attenuation;
+    }
+    return colour;
+}
+
+// Colour of a ray that hits nothing: the vertical gradient by direction (solid when
+// top = bottom), "up" being the camera's up.
+// Mirror of src/cpu/shade.rs::background — change both.
+fn background(dir: vec3<f32>) -> vec3<f32> {
+    let t = 0.5 * (dot(dir, globals.up) + 1.0);
+    return globals.background_bottom * (1.0 - t) + globals.background_top * t;
+}

@@ -1,0 +1,129 @@
+//! GPU buffers for a packed scene: a storage buffer for every packed array (never empty:
+//! an empty array is padded to one zeroed element, since a binding may not be empty) and
+//! a uniform for [`GpuGlobals`](crate::pack::GpuGlobals). Sizes are checked against the
+//! adapter's limits first, so an oversized scene is an error that names the array.
+
+use super::context::GpuContext;
+use super::GpuError;
+use crate::pack::PackedScene;
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+/// Per-dispatch uniform of the render entry point.
+// Mirror of shaders/layout.wgsl::GpuTile — change both.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuTile {
+    /// Top-left pixel of the tile.
+    pub origin: [u32; 2],
+    pub _pad: [u32; 2],
+}
+
+/// The scene's buffers, in binding order 0..=6.
+pub struct SceneBuffers {
+    pub globals: wgpu::Buffer,
+    /// instances, triangles, materials, lights, cell_start, cell_items.
+    pub arrays: [wgpu::Buffer; 6],
+}
+
+/// The bytes of `data`, or one zeroed element when it is empty.
+fn padded<T: Pod>(data: &[T]) -> Vec<u8> {
+    if data.is_empty() {
+        vec![0; std::mem::size_of::<T>().max(4)]
+    } else {
+        bytemuck::cast_slice(data).to_vec()
+    }
+}
+
+/// Fails with [`GpuError::SceneTooLarge`] when `bytes` exceeds the binding limit.
+pub fn check_size(ctx: &GpuContext, array: &'static str, bytes: u64) -> Result<(), GpuError> {
+    let limit = ctx
+        .limits
+        .max_storage_buffer_binding_size
+        .min(ctx.limits.max_buffer_size);
+    if bytes > limit {
+        return Err(GpuError::SceneTooLarge {
+            array,
+            bytes,
+            limit,
+            excess: bytes - limit,
+        });
+    }
+    Ok(())
+}
+
+/// Uploads `scene` to `ctx`'s device.
+pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffers, GpuError> {
+    let arrays: [(&'static str, Vec<u8>); 6] = [
+        ("instances", padded(&scene.instances)),
+        ("triangles", padded(&scene.triangles)),
+        ("materials", padded(&scene.materials)),
+        ("lights", padded(&scene.lights)),
+        ("cell_start", padded(&scene.cell_start)),
+        ("cell_items", padded(&scene.cell_items)),
+    ];
+    for (name, bytes) in &arrays {
+        check_size(ctx, name, bytes.len() as u64)?;
+    }
+    let device = &ctx.device;
+    ctx.scoped("scene upload", || {
+        let globals = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("globals"),
+            contents: bytemuck::bytes_of(&scene.globals),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let arrays = arrays.map(|(name, bytes)| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(name),
+                contents: &bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        });
+        SceneBuffers { globals, arrays }
+    })
+}
+
+/// Bind group entries 0..=6 for the scene.
+pub fn scene_entries(buffers: &SceneBuffers) -> Vec<wgpu::BindGroupEntry<'_>> {
+    let mut entries = vec![wgpu::BindGroupEntry {
+        binding: 0,
+        resource: buffers.globals.as_entire_binding(),
+    }];
+    for (i, buffer) in buffers.arrays.iter().enumerate() {
+        entries.push(wgpu::BindGroupEntry {
+            binding: i as u32 + 1,
+            resource: buffer.as_entire_binding(),
+        });
+    }
+    entries
+}
+
+/// Copies `size` bytes of `source` back to the host (waits for the GPU).
+pub fn read_back(ctx: &GpuContext, staging: &wgpu::Buffer, size: u64) -> Result<Vec<u8>, GpuError> {
+    let (tx, rx) = std::sync::mpsc::channel();
+    staging.map_async(wgpu::MapMode::Read, 0..size, move |r| {
+        let _ = tx.send(r);
+    });
+    ctx.wait()?;
+    match rx.recv() {
+        Ok(Ok(())) => {}
+        Ok(Err(e)) => {
+            return Err(GpuError::Wgpu {
+                what: "read-back",
+                message: e.to_string(),
+            })
+        }
+        Err(_) => return Err(GpuError::DeviceLost("the read-back never completed".into())),
+    }
+    let bytes = {
+        let view = staging
+            .get_mapped_range(0..size)
+            .map_err(|e| GpuError::Wgpu {
+                what: "read-back",
+                message: e.to_string(),
+            })?;
+        view.to_vec()
+    };
+    staging.unmap();
+    Ok(bytes)
+}

@@ -1,0 +1,165 @@
+//! Device acquisition, kept apart from the work so tests (and the CLI) can make one
+//! [`GpuContext`] and pass it to every render (wgpu's `execute_gpu_inner` pattern).
+//! Backends: Vulkan only, unless `WGPU_BACKEND` names others — with default backends and
+//! no Vulkan driver, wgpu would silently pick GL llvmpipe, whose output differs.
+
+use super::pipeline::PipelineCache;
+use super::GpuError;
+use std::sync::{Arc, Mutex};
+
+/// A device and queue on one adapter, plus the pipelines compiled on it so far.
+pub struct GpuContext {
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub info: wgpu::AdapterInfo,
+    pub limits: wgpu::Limits,
+    /// Set by the device-lost callback; checked after every wait.
+    pub(crate) lost: Arc<Mutex<Option<String>>>,
+    pub(crate) pipelines: PipelineCache,
+}
+
+/// One adapter, as `glint info` lists it.
+#[derive(Clone, Debug)]
+pub struct AdapterSummary {
+    pub name: String,
+    pub backend: String,
+    pub device_type: String,
+    pub driver: String,
+    pub max_storage_buffer_binding_size: u64,
+    pub max_storage_buffers_per_shader_stage: u32,
+    pub max_compute_invocations_per_workgroup: u32,
+    pub max_compute_workgroups_per_dimension: u32,
+    pub max_buffer_size: u64,
+}
+
+/// The instance: Vulkan, or the backends `WGPU_BACKEND` names.
+fn instance() -> wgpu::Instance {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+    desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+    wgpu::Instance::new(desc)
+}
+
+/// Every adapter on the enabled backends.
+pub fn list_adapters() -> Vec<AdapterSummary> {
+    let instance = instance();
+    let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+    pollster::block_on(instance.enumerate_adapters(backends))
+        .iter()
+        .map(|a| {
+            let info = a.get_info();
+            let l = a.limits();
+            AdapterSummary {
+                name: info.name,
+                backend: format!("{:?}", info.backend),
+                device_type: format!("{:?}", info.device_type),
+                driver: format!("{} {}", info.driver, info.driver_info)
+                    .trim()
+                    .to_string(),
+                max_storage_buffer_binding_size: l.max_storage_buffer_binding_size,
+                max_storage_buffers_per_shader_stage: l.max_storage_buffers_per_shader_stage,
+                max_compute_invocations_per_workgroup: l.max_compute_invocations_per_workgroup,
+                max_compute_workgroups_per_dimension: l.max_compute_workgroups_per_dimension,
+                max_buffer_size: l.max_buffer_size,
+            }
+        })
+        .collect()
+}
+
+impl GpuContext {
+    /// A device on the first adapter whose name contains `adapter_name` (any case), or on
+    /// the default adapter when None; with the adapter's own limits (wgpu's defaults are
+    /// lower than what lavapipe and real GPUs offer).
+    pub fn new(adapter_name: Option<&str>) -> Result<GpuContext, GpuError> {
+        let instance = instance();
+        let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+        let adapters = pollster::block_on(instance.enumerate_adapters(backends));
+        let names: Vec<String> = adapters.iter().map(|a| a.get_info().name).collect();
+        let adapter = match adapter_name {
+            Some(wanted) => {
+                let lower = wanted.to_lowercase();
+                adapters
+                    .into_iter()
+                    .find(|a| a.get_info().name.to_lowercase().contains(&lower))
+            }
+            None => pollster::block_on(
+                instance.request_adapter(&wgpu::RequestAdapterOptions::default()),
+            )
+            .ok(),
+        };
+        let adapter = adapter.ok_or_else(|| GpuError::NoAdapter {
+            wanted: adapter_name.map(str::to_string),
+            available: names,
+        })?;
+        Self::from_adapter(adapter)
+    }
+
+    /// A device on `adapter`.
+    pub fn from_adapter(adapter: wgpu::Adapter) -> Result<GpuContext, GpuError> {
+        let info = adapter.get_info();
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("glint"),
+            required_features: wgpu::Features::empty(),
+            required_limits: limits.clone(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| GpuError::RequestDevice {
+            adapter: info.name.clone(),
+            message: e.to_string(),
+        })?;
+        let lost = Arc::new(Mutex::new(None));
+        let lost_in_callback = Arc::clone(&lost);
+        device.set_device_lost_callback(move |reason, message| {
+            if let Ok(mut slot) = lost_in_callback.lock() {
+                *slot = Some(format!("{reason:?}: {message}"));
+            }
+        });
+        Ok(GpuContext {
+            adapter,
+            device,
+            queue,
+            info,
+            limits,
+            lost,
+            pipelines: PipelineCache::default(),
+        })
+    }
+
+    /// Waits for all submitted work; a device loss or poll failure becomes an error.
+    pub(crate) fn wait(&self) -> Result<(), GpuError> {
+        let polled = self.device.poll(wgpu::PollType::wait_indefinitely());
+        if let Some(reason) = self.lost.lock().ok().and_then(|l| l.clone()) {
+            return Err(GpuError::DeviceLost(reason));
+        }
+        polled.map(|_| ()).map_err(|e| GpuError::Wgpu {
+            what: "wait",
+            message: e.to_string(),
+        })
+    }
+
+    /// Runs `f` inside a validation + out-of-memory error scope, returning its value or
+    /// the first error wgpu reported.
+    pub(crate) fn scoped<T>(
+        &self,
+        what: &'static str,
+        f: impl FnOnce() -> T,
+    ) -> Result<T, GpuError> {
+        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let value = f();
+        let errors = [
+            pollster::block_on(validation.pop()),
+            pollster::block_on(oom.pop()),
+        ];
+        match errors.into_iter().flatten().next() {
+            Some(e) => Err(GpuError::Wgpu {
+                what,
+                message: e.to_string(),
+            }),
+            None => Ok(value),
+        }
+    }
+}

@@ -1,0 +1,15 @@
+//! The GPU tracer: a WGSL mirror of [`crate::cpu`] (`shaders/*.wgsl`), specialised per
+//! scene feature set and run on wgpu (Vulkan) in tiles. Device acquisition
+//! ([`GpuContext`]) is separate from the work ([`render_gpu`]) so tests pass their own.
+
+pub mod buffers;
+pub mod context;
+pub mod error;
+pub mod pipeline;
+pub mod probe;
+pub mod render;
+pub mod shader;
+
+pub use context::{list_adapters, AdapterSummary, GpuContext};
+pub use error::GpuError;
+pub use render::{render_gpu, render_gpu_with_info, GpuRenderInfo};

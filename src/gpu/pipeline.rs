@@ -1,0 +1,135 @@
+//! Compute pipelines specialised per feature set, compiled once per (features, entry) on
+//! a context and cached there. The bind group layout is fixed (every packed array is
+//! always bound), so one layout serves every specialisation.
+
+use super::context::GpuContext;
+use super::shader::{assemble, validate, Entry};
+use super::GpuError;
+use crate::pack::SceneFeatures;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// Bindings 1..=6 (scene arrays, read-only storage), in `shaders/layout.wgsl` order.
+pub const SCENE_ARRAY_BINDINGS: u32 = 6;
+/// Render entry: tile uniform and output buffer.
+pub const TILE_BINDING: u32 = 7;
+pub const OUTPUT_BINDING: u32 = 8;
+/// Probe entry: rays in, results out.
+pub const PROBE_RAYS_BINDING: u32 = 9;
+pub const PROBE_RESULTS_BINDING: u32 = 10;
+
+/// A compiled pipeline and what it cost.
+pub struct CompiledPipeline {
+    pub pipeline: wgpu::ComputePipeline,
+    pub layout: wgpu::BindGroupLayout,
+    /// WGSL assembly, naga validation, shader module and pipeline creation.
+    pub compile_time: Duration,
+    pub features: SceneFeatures,
+}
+
+/// Pipelines compiled on one device, by (features, entry).
+#[derive(Default)]
+pub struct PipelineCache {
+    map: Mutex<HashMap<(SceneFeatures, Entry), Arc<CompiledPipeline>>>,
+}
+
+fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// The bind group layout of `entry`: globals, the scene arrays, then the entry's own.
+fn bind_group_layout(device: &wgpu::Device, entry: Entry) -> wgpu::BindGroupLayout {
+    let mut entries = vec![uniform(0)];
+    entries.extend((1..=SCENE_ARRAY_BINDINGS).map(|b| storage(b, true)));
+    match entry {
+        Entry::Render => {
+            entries.push(uniform(TILE_BINDING));
+            entries.push(storage(OUTPUT_BINDING, false));
+        }
+        Entry::Probe => {
+            entries.push(storage(PROBE_RAYS_BINDING, true));
+            entries.push(storage(PROBE_RESULTS_BINDING, false));
+        }
+    }
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("glint scene"),
+        entries: &entries,
+    })
+}
+
+/// The pipeline for (features, entry) on `ctx`, compiled on first use.
+pub fn get_pipeline(
+    ctx: &GpuContext,
+    features: SceneFeatures,
+    entry: Entry,
+) -> Result<Arc<CompiledPipeline>, GpuError> {
+    let key = (features, entry);
+    if let Some(p) = ctx
+        .pipelines
+        .map
+        .lock()
+        .ok()
+        .and_then(|m| m.get(&key).cloned())
+    {
+        return Ok(p);
+    }
+    let start = Instant::now();
+    let source = assemble(features, entry);
+    // naga first: its messages point into the assembled source.
+    validate(&source, features)?;
+    let device = &ctx.device;
+    let (pipeline, layout) = ctx.scoped("shader compilation", || {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("glint tracer"),
+            source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
+        });
+        let layout = bind_group_layout(device, entry);
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("glint"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("glint tracer"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some(entry.name()),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        (pipeline, layout)
+    })?;
+    let compiled = Arc::new(CompiledPipeline {
+        pipeline,
+        layout,
+        compile_time: start.elapsed(),
+        features,
+    });
+    if let Ok(mut map) = ctx.pipelines.map.lock() {
+        map.insert(key, Arc::clone(&compiled));
+    }
+    Ok(compiled)
+}

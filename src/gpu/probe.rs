@@ -1,0 +1,138 @@
+//! Tier-3 kernel probes (test support): trace seeded rays with the GPU's `closest_hit` +
+//! `surface_at` through the `probe` entry point, and the same with the CPU functions, so
+//! tests compare the two ray by ray.
+
+use super::buffers::{read_back, scene_entries, upload_scene};
+use super::context::GpuContext;
+use super::pipeline::{get_pipeline, PROBE_RAYS_BINDING, PROBE_RESULTS_BINDING};
+use super::shader::Entry;
+use super::GpuError;
+use crate::constants::{NO_ITEM, PROBE_ANY_HIT, WORKGROUP_SIZE};
+pub use crate::constants::{PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT};
+use crate::cpu::ray::Ray;
+use crate::cpu::shade::surface_at;
+use crate::cpu::traverse::{any_hit, closest_hit, NoCounters};
+use crate::pack::PackedScene;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+
+/// A probe ray.
+// Mirror of shaders/probe.wgsl::ProbeRay — change both.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct ProbeRay {
+    pub origin: [f32; 3],
+    pub t_max: f32,
+    /// Unit direction.
+    pub dir: [f32; 3],
+    /// [`PROBE_CLOSEST_HIT`] or [`PROBE_ANY_HIT`].
+    pub mode: u32,
+}
+
+/// What a probe reports for one ray.
+// Mirror of shaders/probe.wgsl::ProbeResult — change both.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct ProbeResult {
+    /// 1 on a hit, 0 on a miss.
+    pub hit: u32,
+    pub t: f32,
+    pub item: u32,
+    pub _pad0: u32,
+    /// `surface_at`'s geometric normal (zero on a miss).
+    pub normal: [f32; 3],
+    pub _pad1: u32,
+}
+
+/// The CPU's answer for one probe ray.
+// Mirror of shaders/probe.wgsl::probe — change both.
+pub fn cpu_probe(scene: &PackedScene, pr: &ProbeRay) -> ProbeResult {
+    let ray = Ray {
+        origin: Vec3::from(pr.origin),
+        dir: Vec3::from(pr.dir),
+    };
+    if pr.mode == PROBE_ANY_HIT {
+        return ProbeResult {
+            hit: any_hit(scene, &ray, pr.t_max, &mut NoCounters) as u32,
+            t: 0.0,
+            item: NO_ITEM,
+            _pad0: 0,
+            normal: [0.0; 3],
+            _pad1: 0,
+        };
+    }
+    let hit = closest_hit(scene, &ray, pr.t_max, &mut NoCounters);
+    let mut result = ProbeResult {
+        hit: 0,
+        t: hit.t,
+        item: hit.item,
+        _pad0: 0,
+        normal: [0.0; 3],
+        _pad1: 0,
+    };
+    if hit.is_hit() {
+        result.hit = 1;
+        result.normal = surface_at(scene, &ray, &hit).normal.to_array();
+    }
+    result
+}
+
+/// The GPU's answers for `rays` (at least one).
+pub fn gpu_probe(
+    ctx: &GpuContext,
+    scene: &PackedScene,
+    rays: &[ProbeRay],
+) -> Result<Vec<ProbeResult>, GpuError> {
+    assert!(!rays.is_empty(), "probe needs at least one ray");
+    let compiled = get_pipeline(ctx, scene.features, Entry::Probe)?;
+    let buffers = upload_scene(ctx, scene)?;
+    let device = &ctx.device;
+    let result_size = (rays.len() * std::mem::size_of::<ProbeResult>()) as u64;
+    let staging = ctx.scoped("probe", || {
+        use wgpu::util::DeviceExt;
+        let ray_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("probe rays"),
+            contents: bytemuck::cast_slice(rays),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let results = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("probe results"),
+            size: result_size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("probe staging"),
+            size: result_size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut entries = scene_entries(&buffers);
+        entries.push(wgpu::BindGroupEntry {
+            binding: PROBE_RAYS_BINDING,
+            resource: ray_buffer.as_entire_binding(),
+        });
+        entries.push(wgpu::BindGroupEntry {
+            binding: PROBE_RESULTS_BINDING,
+            resource: results.as_entire_binding(),
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("glint probe"),
+            layout: &compiled.layout,
+            entries: &entries,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&compiled.pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            let group = WORKGROUP_SIZE * WORKGROUP_SIZE;
+            pass.dispatch_workgroups((rays.len() as u32).div_ceil(group), 1, 1);
+        }
+        encoder.copy_buffer_to_buffer(&results, 0, &staging, 0, result_size);
+        ctx.queue.submit([encoder.finish()]);
+        staging
+    })?;
+    let bytes = read_back(ctx, &staging, result_size)?;
+    Ok(bytemuck::pod_collect_to_vec(&bytes))
+}

@@ -1,0 +1,162 @@
+//! Specialised WGSL: the module source is the constants prelude plus the `shaders/*.wgsl`
+//! files, with every `// #if FEATURE` … `// #else` … `// #endif` block resolved for
+//! exactly the scene's [`SceneFeatures`], so code for absent features never reaches naga
+//! (naga does not remove dead branches, gfx-rs/wgpu#5608). A condition is one feature name
+//! in upper case, or several joined by `|` (any of them), optionally negated by a leading `!`.
+
+use crate::constants::wgsl_prelude;
+use crate::pack::SceneFeatures;
+
+/// Which compute entry point a module is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Entry {
+    /// `main`: renders one tile into the output buffer.
+    Render,
+    /// `probe`: test-only, traces rays from a buffer and reports hits.
+    Probe,
+}
+
+impl Entry {
+    /// The WGSL function name of the entry point.
+    pub fn name(self) -> &'static str {
+        match self {
+            Entry::Render => "main",
+            Entry::Probe => "probe",
+        }
+    }
+}
+
+/// The shader files, in module order (WGSL does not care about order; readers do).
+const COMMON: &[(&str, &str)] = &[
+    ("layout.wgsl", include_str!("../../shaders/layout.wgsl")),
+    ("rng.wgsl", include_str!("../../shaders/rng.wgsl")),
+    ("ray.wgsl", include_str!("../../shaders/ray.wgsl")),
+    (
+        "intersect.wgsl",
+        include_str!("../../shaders/intersect.wgsl"),
+    ),
+    ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
+    ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
+];
+const RENDER: &[(&str, &str)] = &[
+    ("trace.wgsl", include_str!("../../shaders/trace.wgsl")),
+    ("render.wgsl", include_str!("../../shaders/render.wgsl")),
+];
+const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
+
+/// The full WGSL source for `entry` specialised to `features`.
+pub fn assemble(features: SceneFeatures, entry: Entry) -> String {
+    let mut out = wgsl_prelude();
+    out += &format!("// Specialised for features: {features}\n");
+    let files = COMMON.iter().chain(match entry {
+        Entry::Render => RENDER,
+        Entry::Probe => PROBE,
+    });
+    for (name, text) in files {
+        out += &format!("\n// ---- shaders/{name} ----\n");
+        out += &preprocess(name, text, features)
+            .unwrap_or_else(|e| panic!("shaders/{name}: {e} (a bug in the shader source)"));
+    }
+    out
+}
+
+/// Resolves the `// #if` blocks of one file. Errors name the line (unbalanced or
+/// unknown directives are bugs in the shader files, caught by the validation tests).
+pub fn preprocess(name: &str, text: &str, features: SceneFeatures) -> Result<String, String> {
+    // Each open block: (this branch active, parent active, seen #else).
+    let mut stack: Vec<(bool, bool, bool)> = Vec::new();
+    let mut out = String::with_capacity(text.len());
+    for (number, line) in text.lines().enumerate() {
+        let at = || format!("{name}:{}", number + 1);
+        let active = stack.last().is_none_or(|&(on, parent, _)| on && parent);
+        let directive = line.trim().strip_prefix("// #");
+        match directive {
+            Some(rest) if rest.starts_with("if ") => {
+                let on =
+                    condition(rest[3..].trim(), features).map_err(|e| format!("{}: {e}", at()))?;
+                stack.push((on, active, false));
+            }
+            Some("else") => match stack.last_mut() {
+                Some((on, _, seen_else)) if !*seen_else => {
+                    *on = !*on;
+                    *seen_else = true;
+                }
+                _ => return Err(format!("{}: #else without #if", at())),
+            },
+            Some("endif") => {
+                stack
+                    .pop()
+                    .ok_or_else(|| format!("{}: #endif without #if", at()))?;
+            }
+            Some(other) => return Err(format!("{}: unknown directive #{other}", at())),
+            None => {
+                if active {
+                    out += line;
+                    out.push('\n');
+                }
+            }
+        }
+    }
+    if !stack.is_empty() {
+        return Err(format!("{name}: {} unclosed #if", stack.len()));
+    }
+    Ok(out)
+}
+
+/// Evaluates `NAME`, `A|B` or `!A|B` against `features`.
+fn condition(text: &str, features: SceneFeatures) -> Result<bool, String> {
+    let (negate, names) = match text.strip_prefix('!') {
+        Some(rest) => (true, rest),
+        None => (false, text),
+    };
+    let mut any = false;
+    for name in names.split('|').map(str::trim) {
+        let flag = SceneFeatures::ALL
+            .iter()
+            .find(|(_, n)| n.eq_ignore_ascii_case(name))
+            .map(|(f, _)| *f)
+            .ok_or_else(|| {
+                let valid: Vec<String> = SceneFeatures::ALL
+                    .iter()
+                    .map(|(_, n)| n.to_uppercase())
+                    .collect();
+                format!("unknown feature '{name}' (valid: {})", valid.join(", "))
+            })?;
+        any |= features.contains(flag);
+    }
+    Ok(any != negate)
+}
+
+/// Parses and validates `source` with naga (no GPU needed); errors come formatted
+/// against the source, with the features named.
+pub fn validate(source: &str, features: SceneFeatures) -> Result<naga::Module, super::GpuError> {
+    let fail = |message: String| super::GpuError::Shader {
+        features: features.to_string(),
+        message,
+    };
+    let module =
+        naga::front::wgsl::parse_str(source).map_err(|e| fail(e.emit_to_string(source)))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .map_err(|e| fail(e.emit_to_string(source)))?;
+    Ok(module)
+}
+
+/// Every combination of the current features (for validation tests).
+pub fn all_feature_sets() -> Vec<SceneFeatures> {
+    let flags: Vec<SceneFeatures> = SceneFeatures::ALL.iter().map(|(f, _)| *f).collect();
+    (0..1u32 << flags.len())
+        .map(|mask| {
+            let mut set = SceneFeatures::empty();
+            for (i, f) in flags.iter().enumerate() {
+                if mask & (1 << i) != 0 {
+                    set.insert(*f);
+                }
+            }
+            set
+        })
+        .collect()
+}

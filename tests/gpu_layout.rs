@@ -1,0 +1,255 @@
+//! Tiers 1 and 2 of GPU parity (no GPU needed): the WGSL struct twins have the same
+//! member names, order, offsets and sizes as the Rust Pod structs (asked of naga), and
+//! every shader specialisation parses and validates.
+
+use glint::gpu::buffers::GpuTile;
+use glint::gpu::probe::{ProbeRay, ProbeResult};
+use glint::gpu::shader::{all_feature_sets, assemble, preprocess, validate, Entry};
+use glint::pack::{GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuTriangle, SceneFeatures};
+use std::mem::{offset_of, size_of};
+
+/// (name, offset) of each listed field of a Rust struct, in the order given.
+macro_rules! rust_fields {
+    ($t:ty { $($f:ident),* $(,)? }) => {
+        (stringify!($t), size_of::<$t>(), vec![$((stringify!($f), offset_of!($t, $f))),*])
+    };
+}
+
+fn check_struct(module: &naga::Module, (name, size, fields): (&str, usize, Vec<(&str, usize)>)) {
+    let ty = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("WGSL has no struct {name}"))
+        .1;
+    let naga::TypeInner::Struct { members, span } = &ty.inner else {
+        panic!("WGSL {name} is not a struct");
+    };
+    let wgsl: Vec<(String, usize)> = members
+        .iter()
+        .map(|m| (m.name.clone().unwrap_or_default(), m.offset as usize))
+        .collect();
+    let rust: Vec<(String, usize)> = fields.iter().map(|(n, o)| (n.to_string(), *o)).collect();
+    assert_eq!(
+        wgsl, rust,
+        "{name}: WGSL members (left) vs Rust fields (right)"
+    );
+    assert_eq!(*span as usize, size, "{name}: WGSL span vs Rust size_of");
+}
+
+fn module(entry: Entry) -> naga::Module {
+    let all = SceneFeatures(SceneFeatures::ALL.iter().fold(0, |m, (f, _)| m | f.0));
+    let source = assemble(all, entry);
+    validate(&source, all).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn wgsl_structs_match_rust_layout() {
+    let render = module(Entry::Render);
+    check_struct(
+        &render,
+        rust_fields!(GpuInstance {
+            world_to_object,
+            object_to_world,
+            kind,
+            material,
+            _pad
+        }),
+    );
+    check_struct(
+        &render,
+        rust_fields!(GpuTriangle {
+            p0,
+            material,
+            p1,
+            _pad1,
+            p2,
+            _pad2
+        }),
+    );
+    check_struct(
+        &render,
+        rust_fields!(GpuMaterial {
+            kd,
+            shininess,
+            ks,
+            flags,
+            reflection,
+            _pad
+        }),
+    );
+    check_struct(
+        &render,
+        rust_fields!(GpuLight {
+            position,
+            kind,
+            colour,
+            samples,
+            falloff,
+            _pad0,
+            edge_u,
+            _pad1,
+            edge_v,
+            _pad2
+        }),
+    );
+    check_struct(
+        &render,
+        rust_fields!(GpuGlobals {
+            eye,
+            tan_half_fov,
+            forward,
+            aspect,
+            right,
+            width,
+            up,
+            height,
+            ambient,
+            num_lights,
+            background_top,
+            max_depth,
+            background_bottom,
+            min_weight,
+            grid_min,
+            num_instances,
+            grid_cell_size,
+            num_triangles,
+            grid_dims,
+            grid_enabled,
+            grid_max,
+            aa_mode,
+            aa_samples,
+            aa_threshold,
+            aa_depth,
+            _pad
+        }),
+    );
+    check_struct(&render, rust_fields!(GpuTile { origin, _pad }));
+    let probe = module(Entry::Probe);
+    check_struct(
+        &probe,
+        rust_fields!(ProbeRay {
+            origin,
+            t_max,
+            dir,
+            mode
+        }),
+    );
+    check_struct(
+        &probe,
+        rust_fields!(ProbeResult {
+            hit,
+            t,
+            item,
+            _pad0,
+            normal,
+            _pad1
+        }),
+    );
+}
+
+#[test]
+fn every_specialisation_validates() {
+    let sets = all_feature_sets();
+    assert_eq!(sets.len(), 1 << SceneFeatures::ALL.len());
+    let mut failures = Vec::new();
+    for features in sets {
+        for entry in [Entry::Render, Entry::Probe] {
+            let source = assemble(features, entry);
+            if let Err(e) = validate(&source, features) {
+                failures.push(format!("[{features}] {entry:?}:\n{e}"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Functions of absent features are not in the source naga sees.
+#[test]
+fn absent_features_are_compiled_out() {
+    let spheres = SceneFeatures::SPHERE;
+    let source = assemble(spheres, Entry::Render);
+    let module = validate(&source, spheres).unwrap();
+    let names: Vec<&str> = module
+        .functions
+        .iter()
+        .filter_map(|(_, f)| f.name.as_deref())
+        .collect();
+    for absent in [
+        "intersect_box",
+        "intersect_triangle",
+        "triangle_ray_setup",
+        "dda_setup",
+        "min_axis",
+    ] {
+        assert!(
+            !source.contains(&format!("fn {absent}(")),
+            "{absent} in the source"
+        );
+        assert!(!names.contains(&absent), "{absent} in the module");
+    }
+    for present in [
+        "intersect_sphere",
+        "closest_hit",
+        "shade_phong",
+        "trace_ray",
+    ] {
+        assert!(names.contains(&present), "{present} missing");
+    }
+    assert!(
+        !source.contains("MATERIAL_REFLECTIVE) != 0u"),
+        "reflection push present"
+    );
+    let with_all = assemble(
+        SceneFeatures(
+            SceneFeatures::CUBE.0
+                | SceneFeatures::MESH.0
+                | SceneFeatures::GRID.0
+                | SceneFeatures::REFLECTION.0,
+        ),
+        Entry::Render,
+    );
+    for present in [
+        "fn intersect_box(",
+        "fn intersect_triangle(",
+        "fn dda_setup(",
+        "MATERIAL_REFLECTIVE) != 0u",
+    ] {
+        assert!(with_all.contains(present), "{present} missing");
+    }
+    assert!(!with_all.contains("fn intersect_sphere("));
+}
+
+#[test]
+fn preprocessor_directives() {
+    let text = "a\n// #if SPHERE|CUBE\nb\n// #if !MESH\nc\n// #else\nd\n// #endif\n// #endif\ne\n";
+    let out = preprocess("t", text, SceneFeatures::CUBE).unwrap();
+    assert_eq!(out, "a\nb\nc\ne\n");
+    let out = preprocess("t", text, SceneFeatures::MESH).unwrap();
+    assert_eq!(out, "a\ne\n");
+    let err = preprocess("t", "// #if TORUS\n// #endif\n", SceneFeatures::CUBE).unwrap_err();
+    assert!(
+        err.contains("unknown feature 'TORUS'") && err.contains("SPHERE"),
+        "{err}"
+    );
+    assert!(preprocess("t", "// #if CUBE\n", SceneFeatures::CUBE).is_err());
+    assert!(preprocess("t", "// #endif\n", SceneFeatures::CUBE).is_err());
+}
+
+/// The prelude is the only source of constants: no WGSL file defines its own.
+#[test]
+fn shaders_define_no_constants() {
+    for file in std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders")).unwrap() {
+        let path = file.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        for (i, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap().trim_start();
+            assert!(
+                !code.starts_with("const ") && !code.starts_with("override "),
+                "{}:{}: constants belong in src/constants.rs",
+                path.display(),
+                i + 1
+            );
+        }
+    }
+}

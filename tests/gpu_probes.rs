@@ -1,0 +1,204 @@
+//! Tier 3 of GPU parity: kernel probes. For each primitive kind, and for a mixed scene
+//! through the grid and by brute force, ≥ 4096 seeded rays are traced by the GPU's
+//! `closest_hit` + `surface_at` (the test-only `probe` entry point) and by the CPU's;
+//! ≥ 99.9% of rays must agree on hit/miss and item with |Δt|/t ≤ 1e-4 and normals within
+//! 1e-4 (f32 on both sides; the GPU's sqrt/division/normalize may differ by a few ulps,
+//! which moves grazing hits only). Seeds are in the messages.
+
+mod common;
+
+use common::{gpu_context, packed_from_source, Rng};
+use glam::DVec3;
+use glint::constants::T_MISS;
+use glint::gpu::probe::{cpu_probe, gpu_probe, ProbeRay, ProbeResult};
+use glint::gpu::GpuContext;
+use glint::pack::{PackedScene, SceneFeatures};
+use glint::scene::{GridMode, OptionOverrides};
+use std::fmt::Write;
+
+const RAYS: usize = 4096;
+const REQUIRED_AGREEMENT: f64 = 0.999;
+const T_TOLERANCE: f32 = 1e-4;
+const NORMAL_TOLERANCE: f32 = 1e-4;
+
+/// Lua for a random scene in [-10, 10]³: spheres and cubes with random non-uniform scale,
+/// rotation and translation, and a random triangle soup of `triangles` triangles.
+fn random_scene(seed: u64, spheres: usize, cubes: usize, triangles: usize) -> String {
+    let mut rng = Rng(seed);
+    let mut lua = String::from(
+        "m = gr.material({0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, 25)\nroot = gr.node('root')\n",
+    );
+    for (kind, count) in [("sphere", spheres), ("cube", cubes)] {
+        for i in 0..count {
+            let s = [0; 3].map(|_| rng.range(0.3, 2.0));
+            let axis = ["x", "y", "z"][(rng.next_u64() % 3) as usize];
+            let angle = rng.range(0.0, 360.0);
+            let t = [0; 3].map(|_| rng.range(-9.0, 9.0));
+            let _ = writeln!(
+                lua,
+                "n = gr.{kind}('{kind}{i}') n:scale({}, {}, {}) n:rotate('{axis}', {angle}) n:translate({}, {}, {}) n:set_material(m) root:add_child(n)",
+                s[0], s[1], s[2], t[0], t[1], t[2]
+            );
+        }
+    }
+    if triangles > 0 {
+        let mut vertices = Vec::new();
+        let mut faces = Vec::new();
+        for i in 0..triangles {
+            let centre = [0; 3].map(|_| rng.range(-9.0, 9.0));
+            for _ in 0..3 {
+                let v = [0, 1, 2].map(|k| centre[k] + rng.range(-2.0, 2.0));
+                vertices.push(format!("{{{}, {}, {}}}", v[0], v[1], v[2]));
+            }
+            faces.push(format!("{{{}, {}, {}}}", 3 * i, 3 * i + 1, 3 * i + 2));
+        }
+        let _ = writeln!(
+            lua,
+            "t = gr.mesh('soup', {{{}}}, {{{}}}) t:set_material(m) root:add_child(t)",
+            vertices.join(", "),
+            faces.join(", ")
+        );
+    }
+    lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
+}
+
+/// Rays from random points in [-15, 15]³ towards random points in [-10, 10]³, so that
+/// most hit something; one in eight has a finite t_max.
+fn random_rays(seed: u64) -> Vec<ProbeRay> {
+    let mut rng = Rng(seed);
+    (0..RAYS)
+        .map(|i| {
+            let origin = DVec3::new(
+                rng.range(-15.0, 15.0),
+                rng.range(-15.0, 15.0),
+                rng.range(-15.0, 15.0),
+            );
+            let target = DVec3::new(
+                rng.range(-10.0, 10.0),
+                rng.range(-10.0, 10.0),
+                rng.range(-10.0, 10.0),
+            );
+            let dir = (target - origin).normalize();
+            ProbeRay {
+                origin: origin.as_vec3().to_array(),
+                t_max: if i % 8 == 0 {
+                    rng.range(1.0, 30.0) as f32
+                } else {
+                    T_MISS
+                },
+                dir: dir.as_vec3().to_array(),
+                mode: 0,
+            }
+        })
+        .collect()
+}
+
+/// Whether GPU and CPU agree on one ray, and the relative t and normal errors.
+fn agree(gpu: &ProbeResult, cpu: &ProbeResult) -> (bool, f32, f32) {
+    if gpu.hit != cpu.hit {
+        return (false, f32::INFINITY, f32::INFINITY);
+    }
+    if cpu.hit == 0 {
+        return (true, 0.0, 0.0);
+    }
+    let dt = (gpu.t - cpu.t).abs() / cpu.t.abs();
+    let dn = (0..3)
+        .map(|k| (gpu.normal[k] - cpu.normal[k]).abs())
+        .fold(0.0, f32::max);
+    (
+        gpu.item == cpu.item && dt <= T_TOLERANCE && dn <= NORMAL_TOLERANCE,
+        dt,
+        dn,
+    )
+}
+
+fn check(ctx: &GpuContext, name: &str, scene: &PackedScene, ray_seed: u64) {
+    let rays = random_rays(ray_seed);
+    let gpu = gpu_probe(ctx, scene, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!(gpu.len(), rays.len());
+    let mut agreeing = 0;
+    let mut hits = 0;
+    let (mut worst_dt, mut worst_dn) = (0.0f32, 0.0f32);
+    let mut first_bad = None;
+    for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
+        let c = cpu_probe(scene, ray);
+        hits += c.hit as usize;
+        let (ok, dt, dn) = agree(g, &c);
+        if ok {
+            agreeing += 1;
+            worst_dt = worst_dt.max(dt);
+            worst_dn = worst_dn.max(dn);
+        } else if first_bad.is_none() {
+            first_bad = Some(format!("ray {i} {ray:?}: gpu {g:?} cpu {c:?}"));
+        }
+    }
+    let rate = agreeing as f64 / rays.len() as f64;
+    eprintln!(
+        "{name}: features [{}], {hits}/{} CPU hits, agreement {:.4}% ({agreeing}/{}), worst agreeing |Δt|/t {worst_dt:.2e}, |Δn| {worst_dn:.2e}",
+        scene.features,
+        rays.len(),
+        rate * 100.0,
+        rays.len()
+    );
+    assert!(
+        hits > rays.len() / 8,
+        "{name}: too few hits ({hits}) to test anything"
+    );
+    assert!(
+        rate >= REQUIRED_AGREEMENT,
+        "{name} (ray seed {ray_seed}): agreement {:.4}% < {}%; first disagreement: {}",
+        rate * 100.0,
+        REQUIRED_AGREEMENT * 100.0,
+        first_bad.unwrap_or_default()
+    );
+}
+
+fn grid(mode: GridMode) -> OptionOverrides {
+    OptionOverrides {
+        grid: Some(mode),
+        ..OptionOverrides::default()
+    }
+}
+
+fn scene(seed: u64, spheres: usize, cubes: usize, triangles: usize, mode: GridMode) -> PackedScene {
+    packed_from_source(&random_scene(seed, spheres, cubes, triangles), &grid(mode)).remove(0)
+}
+
+#[test]
+fn probes_spheres() {
+    let Some(ctx) = gpu_context() else { return };
+    let s = scene(1, 40, 0, 0, GridMode::Off);
+    assert_eq!(s.features, SceneFeatures::SPHERE);
+    check(&ctx, "spheres", &s, 101);
+}
+
+#[test]
+fn probes_cubes() {
+    let Some(ctx) = gpu_context() else { return };
+    let s = scene(2, 0, 80, 0, GridMode::Off);
+    assert_eq!(s.features, SceneFeatures::CUBE);
+    check(&ctx, "cubes", &s, 102);
+}
+
+#[test]
+fn probes_triangles() {
+    let Some(ctx) = gpu_context() else { return };
+    let s = scene(3, 0, 0, 300, GridMode::Off);
+    assert_eq!(s.features, SceneFeatures::MESH);
+    check(&ctx, "triangles", &s, 103);
+}
+
+#[test]
+fn probes_mixed_grid_and_brute_force() {
+    let Some(ctx) = gpu_context() else { return };
+    let with_grid = scene(4, 60, 60, 600, GridMode::Auto);
+    assert!(
+        with_grid.features.contains(SceneFeatures::GRID),
+        "{}",
+        with_grid.features
+    );
+    check(&ctx, "mixed, grid", &with_grid, 104);
+    let brute = scene(4, 60, 60, 600, GridMode::Off);
+    assert!(!brute.features.contains(SceneFeatures::GRID));
+    check(&ctx, "mixed, brute force", &brute, 104);
+}
