@@ -76,9 +76,9 @@ struct RenderArgs {
     /// Lua instructions a script may run before it is stopped as a runaway.
     #[arg(long, default_value_t = glint::scene::lua::ScriptConfig::default().instruction_limit)]
     instruction_limit: u64,
-    /// Tracer: cpu (the reference), gpu (wgpu compute, Vulkan), or auto (the GPU when an
-    /// adapter exists, else the CPU).
-    #[arg(long, value_enum, default_value = "cpu")]
+    /// Tracer: cpu (the reference), gpu (wgpu compute, Vulkan), or auto (a hardware GPU
+    /// when one exists, else the CPU, with a one-line notice).
+    #[arg(long, value_enum, default_value = "auto")]
     backend: BackendArg,
     /// GPU adapter to use: a substring of its name (see `glint info`).
     #[arg(long)]
@@ -124,6 +124,12 @@ fn parse_non_negative(s: &str) -> Result<f32, String> {
 }
 
 fn main() -> ExitCode {
+    // Mesa's device-select layer complains on stderr when XDG_RUNTIME_DIR is unset; glint
+    // picks adapters itself, so the layer is not needed. Set before any thread starts.
+    if std::env::var_os("NODEVICE_SELECT").is_none() {
+        // SAFETY: single-threaded here, before wgpu, rayon or anything else runs.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    }
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render(args),

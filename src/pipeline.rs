@@ -42,7 +42,8 @@ pub enum Backend {
     Cpu,
     /// The GPU tracer; no adapter is an error.
     Gpu,
-    /// The GPU when an adapter exists, else the CPU with a one-line notice.
+    /// The GPU when a hardware adapter exists (or the one `--adapter` names), else the CPU
+    /// with a one-line notice.
     Auto,
 }
 
@@ -63,6 +64,15 @@ pub fn acquire_gpu(
         Backend::Cpu => Ok(None),
         Backend::Gpu => Ok(Some(GpuContext::new(adapter)?)),
         Backend::Auto => match GpuContext::new(adapter) {
+            // A software rasterizer (lavapipe) is slower than the CPU tracer on the same
+            // cores: auto takes it only when it was asked for by name.
+            Ok(ctx) if ctx.info.device_type == wgpu::DeviceType::Cpu && adapter.is_none() => {
+                eprintln!(
+                    "glint: note: rendering on the CPU tracer; the only GPU adapter, {}, is a software one (slower here; --backend gpu uses it)",
+                    ctx.info.name
+                );
+                Ok(None)
+            }
             Ok(ctx) => Ok(Some(ctx)),
             Err(e) => {
                 eprintln!("glint: note: rendering on the CPU ({e})");

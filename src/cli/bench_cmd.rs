@@ -35,10 +35,19 @@ pub struct BenchArgs {
     /// Also sweep the grid density λ.
     #[arg(long)]
     pub densities: bool,
+    /// Only the GPU-vs-CPU comparison (needs a GPU adapter; lavapipe counts).
+    #[arg(long)]
+    pub gpu: bool,
+    /// GPU adapter to use: a substring of its name.
+    #[arg(long)]
+    pub adapter: Option<String>,
 }
 
 pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
     println!("glint bench on {} threads", rayon::current_num_threads());
+    if args.gpu {
+        return super::bench_gpu::bench_gpu(args);
+    }
     bench_macho_cows(args)?;
     bench_random_triangles(args);
     if args.densities {
@@ -48,7 +57,7 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
 }
 
 /// Fastest of `repeat` runs of `f`, with its last result.
-fn fastest<T>(repeat: usize, mut f: impl FnMut() -> T) -> (Duration, T) {
+pub(super) fn fastest<T>(repeat: usize, mut f: impl FnMut() -> T) -> (Duration, T) {
     let mut best = Duration::MAX;
     let mut result = None;
     for _ in 0..repeat.max(1) {
@@ -67,7 +76,7 @@ fn trace_all(scene: &PackedScene, rays: &[Ray]) -> Vec<u32> {
         .collect()
 }
 
-fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<Scene> {
+pub(super) fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<Scene> {
     let mut scene = None;
     run_scene_file(path, &ScriptConfig::default(), &mut |graph, request| {
         if scene.is_none() {
@@ -81,7 +90,7 @@ fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result
     scene.ok_or_else(|| anyhow::anyhow!("{} never calls gr.render", path.display()))
 }
 
-fn with_grid(scene: &Scene, grid: GridMode) -> anyhow::Result<PackedScene> {
+pub(super) fn with_grid(scene: &Scene, grid: GridMode) -> anyhow::Result<PackedScene> {
     let mut scene = scene.clone();
     scene.options.grid = grid;
     Ok(pack(&scene)?)

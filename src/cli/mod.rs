@@ -1,5 +1,6 @@
 //! Subcommand bodies for the `glint` binary; argument parsing lives in `main.rs`.
 
 pub mod bench_cmd;
+pub mod bench_gpu;
 pub mod diff_cmd;
 pub mod stats;
