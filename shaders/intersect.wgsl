@@ -2,7 +2,7 @@
 // (slabs), triangle (watertight). Analytic primitives are intersected in object space
 // with an unnormalised direction, so t is the world-space t.
 
-// #if CUBE|GRID
+// (Always compiled: enter_scene clips every ray to the scene bounds with it.)
 // 1/x, or ±SAFE_RCP_LIMIT when |x| is too small to invert without overflow.
 // Mirror of src/cpu/intersect.rs::safe_rcp — change both.
 fn safe_rcp(x: f32) -> f32 {
@@ -17,7 +17,6 @@ fn safe_rcp(x: f32) -> f32 {
 fn safe_rcp3(v: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z));
 }
-// #endif
 
 // #if SPHERE
 // Nearest t in (0, t_max) where o + t·d meets the unit sphere at the origin, else T_MISS.

@@ -164,9 +164,53 @@ fn cell_index(cell: vec3<i32>, dims: vec3<i32>) -> u32 {
 }
 // #endif
 
+// A ray moved to where it enters the scene bounds (valid = false: it misses them).
+// Mirror of src/cpu/traverse.rs::EnteredRay — change both.
+struct EnteredRay {
+    ray: Ray,
+    t_moved: f32,
+    t_max: f32,
+    valid: bool,
+}
+
+// A ray that starts outside the scene bounds, moved to where it enters them, so that the
+// grid walk and the item tests all work from an origin near the geometry (a far origin's
+// rounding is taken once, here).
+// Mirror of src/cpu/traverse.rs::enter_scene — change both.
+fn enter_scene(ray: Ray, t_max: f32) -> EnteredRay {
+    let inv = safe_rcp3(ray.dir);
+    let t0 = (globals.grid_min - ray.origin) * inv;
+    let t1 = (globals.grid_max - ray.origin) * inv;
+    let t_enter = max(max_element(min(t0, t1)), 0.0);
+    let t_exit = min(min_element(max(t0, t1)), t_max);
+    if t_enter > t_exit {
+        return EnteredRay(ray, 0.0, t_max, false);
+    }
+    // Stop short of the bounds by more than the rounding of the moved origin.
+    let t_move = t_enter - max_element(abs(ray.origin)) * ENTER_MARGIN_RELATIVE;
+    if t_move <= 0.0 {
+        return EnteredRay(ray, 0.0, t_max, true);
+    }
+    return EnteredRay(Ray(ray.origin + ray.dir * t_move, ray.dir), t_move, t_max - t_move, true);
+}
+
 // Nearest hit along ray in (0, t_max).
 // Mirror of src/cpu/traverse.rs::closest_hit — change both.
 fn closest_hit(ray: Ray, t_max: f32) -> Hit {
+    let entered = enter_scene(ray, t_max);
+    if !entered.valid {
+        return hit_miss();
+    }
+    var hit = closest_hit_inside(entered.ray, entered.t_max);
+    if is_hit(hit) {
+        hit.t += entered.t_moved;
+    }
+    return hit;
+}
+
+// Nearest hit along a ray that starts inside the scene bounds (see enter_scene).
+// Mirror of src/cpu/traverse.rs::closest_hit_inside — change both.
+fn closest_hit_inside(ray: Ray, t_max: f32) -> Hit {
     let tri_ray = traversal_triangle_ray(ray);
     var best = hit_miss();
     best.t = t_max;
@@ -204,6 +248,16 @@ fn closest_hit(ray: Ray, t_max: f32) -> Hit {
 // Whether anything blocks ray in (0, t_max) (shadow rays).
 // Mirror of src/cpu/traverse.rs::any_hit — change both.
 fn any_hit(ray: Ray, t_max: f32) -> bool {
+    let entered = enter_scene(ray, t_max);
+    if !entered.valid {
+        return false;
+    }
+    return any_hit_inside(entered.ray, entered.t_max);
+}
+
+// Whether anything blocks a ray that starts inside the scene bounds.
+// Mirror of src/cpu/traverse.rs::any_hit_inside — change both.
+fn any_hit_inside(ray: Ray, t_max: f32) -> bool {
     let tri_ray = traversal_triangle_ray(ray);
 // #if GRID
     var dda = dda_setup(ray, t_max);

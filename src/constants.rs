@@ -32,6 +32,11 @@ pub const MAX_TRACE_DEPTH: u32 = 64;
 /// scaled by 1e-3 or 1e3 offsets proportionally) — see `cpu::ray::offset_ray`.
 pub const OFFSET_RELATIVE: f32 = 1.0 / 131072.0;
 
+/// `enter_scene` stops short of the scene bounds by this fraction of the origin's largest
+/// coordinate (2⁻²⁰ ≈ 8 f32 ulps), more than the rounding of o + t·d, so the moved origin
+/// never lands past thin geometry at the bounds' edge.
+pub const ENTER_MARGIN_RELATIVE: f32 = 1.0 / 1048576.0;
+
 /// Reciprocal used for a zero direction component in slab tests: huge but finite, so no
 /// IEEE infinity (which WGSL does not guarantee) is ever needed.
 pub const SAFE_RCP_LIMIT: f32 = 1.0e30;
@@ -64,6 +69,7 @@ pub fn wgsl_prelude() -> String {
     let f32s: &[(&str, f32)] = &[
         ("T_MISS", T_MISS),
         ("OFFSET_RELATIVE", OFFSET_RELATIVE),
+        ("ENTER_MARGIN_RELATIVE", ENTER_MARGIN_RELATIVE),
         ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),
         ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
     ];

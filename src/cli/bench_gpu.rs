@@ -21,8 +21,14 @@ const SCENES: &[&str] = &[
 
 pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
     let ctx = GpuContext::new(args.adapter.as_deref())?;
-    println!("GPU adapter: {} ({:?})", ctx.info.name, ctx.info.device_type);
-    println!("\n## GPU vs CPU, 256×256, no anti-aliasing (fastest of {})", args.repeat);
+    println!(
+        "GPU adapter: {} ({:?})",
+        ctx.info.name, ctx.info.device_type
+    );
+    println!(
+        "\n## GPU vs CPU, 256×256, no anti-aliasing (fastest of {})",
+        args.repeat
+    );
     println!("| scene | features | pipeline | first dispatch extra | GPU | CPU | GPU/CPU time | FLIP mean | within 2/255 |");
     println!("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
     let mut paths: Vec<_> = SCENES.iter().map(|s| args.cs488.join(s)).collect();
@@ -35,7 +41,9 @@ pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
         let start = Instant::now();
         let (_, info) = render_gpu_with_info(&ctx, &packed, &|_, _| {})?;
         let first = start.elapsed();
-        let (t_gpu, gpu) = fastest(args.repeat, || render_gpu_with_info(&ctx, &packed, &|_, _| {}));
+        let (t_gpu, gpu) = fastest(args.repeat, || {
+            render_gpu_with_info(&ctx, &packed, &|_, _| {})
+        });
         let (gpu_film, _) = gpu?;
         let (t_cpu, cpu_film) = fastest(args.repeat, || crate::cpu::render(&packed, &|_, _| {}));
         let (report, _) = diff_films(&cpu_film, &gpu_film)?;
@@ -72,7 +80,9 @@ fn bench_specialisation(ctx: &GpuContext, args: &BenchArgs) -> anyhow::Result<()
     let mut reference = None;
     for (label, packed) in [("specialised", &specialised), ("generic", &generic)] {
         let (_, info) = render_gpu_with_info(ctx, packed, &|_, _| {})?;
-        let (t, result) = fastest(args.repeat, || render_gpu_with_info(ctx, packed, &|_, _| {}));
+        let (t, result) = fastest(args.repeat, || {
+            render_gpu_with_info(ctx, packed, &|_, _| {})
+        });
         let (film, _) = result?;
         let flip = match &reference {
             None => 0.0,

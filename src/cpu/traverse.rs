@@ -8,8 +8,8 @@ use super::intersect::{
     TriangleRay,
 };
 use super::ray::Ray;
-use crate::constants::{NO_ITEM, T_MISS};
-use crate::pack::PackedScene;
+use crate::constants::{ENTER_MARGIN_RELATIVE, NO_ITEM, T_MISS};
+use crate::pack::{GpuGlobals, PackedScene};
 use glam::{IVec3, Vec3};
 
 /// The nearest hit: distance, item (instances first, then triangles) and, for triangles,
@@ -175,6 +175,51 @@ fn min_axis(v: Vec3) -> usize {
     }
 }
 
+/// A ray moved to where it enters the scene bounds.
+#[derive(Clone, Copy, Debug)]
+pub struct EnteredRay {
+    pub ray: Ray,
+    /// How far the origin moved along the ray (0 when it started inside the bounds).
+    pub t_moved: f32,
+    /// The caller's t_max, measured from the moved origin.
+    pub t_max: f32,
+}
+
+/// A ray that starts outside the scene bounds, moved to where it enters them; None when
+/// it misses them before t_max. Every later step (grid walk and item tests alike) then
+/// works from an origin near the geometry: a far origin's rounding (an ulp of 10⁷ is a
+/// whole unit) is taken once, here, instead of differently by the cell walk and by each
+/// item test, which could otherwise disagree on which cell a hit lies in and lose it.
+/// Brute force does the same, so both give the same hits.
+// Mirror of shaders/traverse.wgsl::enter_scene — change both.
+pub fn enter_scene(g: &GpuGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
+    let inv = safe_rcp3(ray.dir);
+    let t0 = (Vec3::from(g.grid_min) - ray.origin) * inv;
+    let t1 = (Vec3::from(g.grid_max) - ray.origin) * inv;
+    let t_enter = t0.min(t1).max_element().max(0.0);
+    let t_exit = t0.max(t1).min_element().min(t_max);
+    if t_enter > t_exit {
+        return None;
+    }
+    // Stop short of the bounds by more than the rounding of the moved origin.
+    let t_move = t_enter - ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE;
+    if t_move <= 0.0 {
+        return Some(EnteredRay {
+            ray: *ray,
+            t_moved: 0.0,
+            t_max,
+        });
+    }
+    Some(EnteredRay {
+        ray: Ray {
+            origin: ray.origin + ray.dir * t_move,
+            dir: ray.dir,
+        },
+        t_moved: t_move,
+        t_max: t_max - t_move,
+    })
+}
+
 /// Nearest hit along `ray` in (0, t_max).
 // Mirror of shaders/traverse.wgsl::closest_hit — change both.
 pub fn closest_hit(
@@ -184,6 +229,24 @@ pub fn closest_hit(
     counters: &mut impl TraversalCounters,
 ) -> Hit {
     counters.traversal_started();
+    let Some(entered) = enter_scene(&scene.globals, ray, t_max) else {
+        return Hit::MISS;
+    };
+    let mut hit = closest_hit_inside(scene, &entered.ray, entered.t_max, counters);
+    if hit.is_hit() {
+        hit.t += entered.t_moved;
+    }
+    hit
+}
+
+/// Nearest hit along a ray that starts inside the scene bounds (see `enter_scene`).
+// Mirror of shaders/traverse.wgsl::closest_hit_inside — change both.
+fn closest_hit_inside(
+    scene: &PackedScene,
+    ray: &Ray,
+    t_max: f32,
+    counters: &mut impl TraversalCounters,
+) -> Hit {
     let tri_ray = triangle_ray_setup(ray.origin, ray.dir);
     let mut best = Hit {
         t: t_max,
@@ -263,6 +326,20 @@ pub fn any_hit(
     counters: &mut impl TraversalCounters,
 ) -> bool {
     counters.traversal_started();
+    match enter_scene(&scene.globals, ray, t_max) {
+        Some(entered) => any_hit_inside(scene, &entered.ray, entered.t_max, counters),
+        None => false,
+    }
+}
+
+/// Whether anything blocks a ray that starts inside the scene bounds.
+// Mirror of shaders/traverse.wgsl::any_hit_inside — change both.
+fn any_hit_inside(
+    scene: &PackedScene,
+    ray: &Ray,
+    t_max: f32,
+    counters: &mut impl TraversalCounters,
+) -> bool {
     let tri_ray = triangle_ray_setup(ray.origin, ray.dir);
     let g = &scene.globals;
     if g.grid_enabled == 0 {

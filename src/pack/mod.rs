@@ -7,11 +7,11 @@ pub mod layout;
 use crate::accel::grid::{Grid, GridBuildStats};
 use crate::constants::*;
 use crate::scene::flatten::{ObjectKind, Scene, Triangle};
-use rayon::prelude::*;
 use crate::scene::{AaMode, Background, GridMode};
 pub use features::SceneFeatures;
 use glam::{DMat4, DVec3};
 pub use layout::*;
+use rayon::prelude::*;
 
 /// Everything a tracer needs, as flat arrays. Grid items index instances first, then
 /// triangles: item `i < num_instances` is `instances[i]`, else `triangles[i - num_instances]`.
