@@ -3,11 +3,11 @@
 //! thread count. Adaptive anti-aliasing renders a tile at a time in passes
 //! ([`super::adaptive`]); [`render_pixel`] is the per-pixel reference of every mode.
 
+use super::adaptive::{adaptive_tile, AdaptiveTile, Lattice};
 use super::ray::camera_ray;
 use super::rng::random_unit;
 use super::trace::trace_ray;
 use super::traverse::{Counters, NoCounters, TraversalCounters};
-use super::adaptive::{adaptive_tile, AdaptiveTile, Lattice};
 use crate::constants::{
     adaptive_tile_side, AA_ADAPTIVE, AA_STACK_SIZE, AA_UNIFORM, CPU_ADAPTIVE_LATTICE_SIDE,
     TILE_SIZE,
@@ -20,7 +20,12 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Colour at film position (fx, fy) in pixels.
 // Mirror of shaders/render.wgsl::sample — change both.
-pub(crate) fn sample(scene: &PackedScene, fx: f32, fy: f32, counters: &mut impl TraversalCounters) -> Vec3 {
+pub(crate) fn sample(
+    scene: &PackedScene,
+    fx: f32,
+    fy: f32,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
     trace_ray(scene, camera_ray(&scene.globals, fx, fy), counters)
 }
 
