@@ -9,6 +9,7 @@ mod common;
 use common::{corpus, gpu_context, packed_from_file, packed_from_source};
 use glint::cpu::render::adaptive_leaf_counts;
 use glint::diff::assert_images_match;
+use glint::gpu::render::render_gpu_detailed;
 use glint::gpu::{adaptive_leaf_counts_gpu, render_gpu_with_info, GpuContext};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaMode, OptionOverrides};
@@ -182,4 +183,45 @@ fn reflections_match() {
     let scene = packed_from_source(source, &small(None)).remove(0);
     let features = compare(&ctx, "reflections", &scene);
     assert!(features.contains(SceneFeatures::REFLECTION), "{features}");
+}
+
+/// The loop-limit guard end to end: asking the limiter check for more iterations than
+/// lavapipe's limit (65 535) trips the limiter in every invocation, so on a software
+/// adapter every pixel is flagged and re-rendered on the CPU — and the image is still
+/// right. (On a hardware adapter the check never trips and nothing is re-rendered.)
+#[test]
+fn loop_limit_guard_falls_back_to_the_cpu() {
+    let Some(ctx) = gpu_context() else { return };
+    for aa in [AaMode::None, AaMode::Uniform, AaMode::Adaptive] {
+        let overrides = OptionOverrides {
+            width: Some(24),
+            height: Some(20),
+            aa: Some(aa),
+            samples: Some(2),
+            aa_depth: Some(2),
+            ..OptionOverrides::default()
+        };
+        let scene = packed_from_file(
+            &corpus().join("a4-2021plus").join("nonhier.lua"),
+            &overrides,
+        )
+        .remove(0);
+        let (gpu, info, _) = render_gpu_detailed(&ctx, &scene, &|_, _| {}, 70_000).unwrap();
+        let expected = if info.iteration_guard { 24 * 20 } else { 0 };
+        eprintln!(
+            "{aa:?}: guard {}, {} pixels re-rendered",
+            info.iteration_guard, info.cpu_fallback_pixels
+        );
+        assert_eq!(info.cpu_fallback_pixels, expected, "{aa:?}");
+        let cpu = glint::cpu::render(&scene, &|_, _| {});
+        assert_images_match(
+            &format!("guard-{aa:?}"),
+            &gpu,
+            &cpu,
+            MAX_FLIP_MEAN,
+            MIN_SHARE_WITHIN_2_255,
+            &out_dir(),
+        )
+        .unwrap_or_else(|message| panic!("{message}"));
+    }
 }
