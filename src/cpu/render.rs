@@ -116,8 +116,11 @@ pub fn adaptive_pixel(
     sum
 }
 
-/// Colour of pixel (x, y) under the scene's anti-aliasing mode.
-// Mirror of shaders/render.wgsl::render_pixel — change both.
+/// Colour of pixel (x, y) under the scene's anti-aliasing mode: the per-pixel reference
+/// (the GPU tracer's fallback for pixels it flags). The GPU splits it into passes of one
+/// sample per invocation: AA none is shaders/render.wgsl::main, uniform AA
+/// `uniform_samples` and `uniform_resolve` (same sum order), adaptive AA the lattice
+/// passes of shaders/adaptive.wgsl (mirrored by [`super::adaptive`]).
 pub fn render_pixel(
     scene: &PackedScene,
     x: u32,
