@@ -100,7 +100,16 @@ struct GpuGlobals {
 struct GpuTile {
     // Top-left pixel of the tile this dispatch renders.
     origin: vec2<u32>,
-    _pad: vec2<u32>,
+    // Pixels across and down (at most `side`).
+    size: vec2<u32>,
+    // The tile side the per-tile buffers are laid out for (row stride, in pixels).
+    side: u32,
+    // Adaptive passes: the level of the squares this pass decides or splits.
+    level: u32,
+    // One-dimensional kernels: the invocations that have work.
+    items: u32,
+    // Iterations of the loop-limiter check (always 2; see render.wgsl).
+    sentinel: u32,
 }
 
 // The packed scene (src/gpu/buffers.rs binds every array; an empty one holds one unused

@@ -60,6 +60,7 @@ pub fn wgsl_prelude() -> String {
         ("AA_STACK_SIZE", AA_STACK_SIZE),
         ("GPU_TILE_SIZE", GPU_TILE_SIZE),
         ("WORKGROUP_SIZE", WORKGROUP_SIZE),
+        ("LINEAR_WORKGROUP_SIZE", LINEAR_WORKGROUP_SIZE),
         ("PCG_MULTIPLIER", PCG_MULTIPLIER),
         ("PROBE_CLOSEST_HIT", PROBE_CLOSEST_HIT),
         ("PROBE_ANY_HIT", PROBE_ANY_HIT),
@@ -100,6 +101,32 @@ pub const GPU_TILE_SIZE: u32 = 64;
 /// divides [`GPU_TILE_SIZE`].
 pub const WORKGROUP_SIZE: u32 = 8;
 const _: () = assert!(GPU_TILE_SIZE.is_multiple_of(WORKGROUP_SIZE));
+/// Invocations per workgroup of the one-dimensional GPU kernels (one sample each).
+pub const LINEAR_WORKGROUP_SIZE: u32 = 64;
+
+/// Adaptive anti-aliasing keeps a tile's samples on a lattice of (side·2^d + 1)² points
+/// (d = aa_depth), so a tile's side shrinks as d grows: side·2^d ≤ this. GPU: 1024, so
+/// the lattice buffer stays under 1025² × 16 B ≈ 16.8 MB (at d = 6 and 64-pixel tiles it
+/// would be 4097² × 16 B = 268 MB); tiles are GPU_TILE_SIZE wide up to d = 4, then 32 and
+/// 16 pixels at d = 5 and 6.
+pub const GPU_ADAPTIVE_LATTICE_SIDE: u32 = 1024;
+/// The CPU's lattice bound (per rayon task; 257² × 12 B ≈ 0.8 MB).
+pub const CPU_ADAPTIVE_LATTICE_SIDE: u32 = 256;
+/// Uniform n×n anti-aliasing on the GPU keeps one colour per sample of a tile, so a
+/// tile's side shrinks as n grows: (side·n)² ≤ this² (16.8 MB of samples at most).
+pub const GPU_UNIFORM_SAMPLES_SIDE: u32 = 1024;
+
+/// Side of an adaptive tile (in pixels) for depth `depth` when its lattice may be at most
+/// `lattice_side` + 1 points wide and the tile at most `max_side` pixels.
+pub const fn adaptive_tile_side(max_side: u32, lattice_side: u32, depth: u32) -> u32 {
+    let side = lattice_side >> depth;
+    let side = if side == 0 { 1 } else { side };
+    if side < max_side {
+        side
+    } else {
+        max_side
+    }
+}
 
 /// PCG hash constants (Jarzynski & Olano 2020), see `cpu::rng::pcg_hash`.
 pub const PCG_MULTIPLIER: u32 = 747796405;

@@ -145,6 +145,13 @@ pub fn render_request(
     if let Tracer::Gpu(ctx) = tracer {
         let (film, info) = render_gpu_with_info(ctx, &packed, &tick)?;
         bar.finish_and_clear();
+        if info.cpu_fallback_pixels > 0 {
+            eprintln!(
+                "glint: note: {} pixels of {} re-rendered on the CPU: they passed the software adapter's loop limit (Mesa: 65 535 loop iterations per invocation)",
+                info.cpu_fallback_pixels,
+                request.output.display()
+            );
+        }
         return Ok(RenderedImage {
             output: request.output.clone(),
             film,

@@ -4,7 +4,7 @@
 
 use glint::gpu::buffers::GpuTile;
 use glint::gpu::probe::{ProbeRay, ProbeResult};
-use glint::gpu::shader::{all_feature_sets, assemble, preprocess, validate, Entry};
+use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
 use glint::pack::{GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuTriangle, SceneFeatures};
 use std::mem::{offset_of, size_of};
 
@@ -124,7 +124,17 @@ fn wgsl_structs_match_rust_layout() {
             _pad
         }),
     );
-    check_struct(&render, rust_fields!(GpuTile { origin, _pad }));
+    check_struct(
+        &render,
+        rust_fields!(GpuTile {
+            origin,
+            size,
+            side,
+            level,
+            items,
+            sentinel
+        }),
+    );
     let probe = module(Entry::Probe);
     check_struct(
         &probe,
@@ -154,12 +164,30 @@ fn every_specialisation_validates() {
     assert_eq!(sets.len(), 1 << SceneFeatures::ALL.len());
     let mut failures = Vec::new();
     for features in sets {
-        for entry in [Entry::Render, Entry::Probe] {
-            let source = assemble(features, entry);
+        // Every render kernel is in one module, so Render covers them all.
+        for (entry, guard) in [
+            (Entry::Render, false),
+            (Entry::Render, true),
+            (Entry::Probe, false),
+        ] {
+            let source = assemble_with(features, entry, guard);
             if let Err(e) = validate(&source, features) {
-                failures.push(format!("[{features}] {entry:?}:\n{e}"));
+                failures.push(format!("[{features}] {entry:?} guard {guard}:\n{e}"));
+            } else if guard != source.contains("fn loop_limiter_tripped(") {
+                failures.push(format!(
+                    "[{features}] {entry:?}: guard {guard} not resolved"
+                ));
             }
         }
+    }
+    // Every entry point is in its module.
+    let all = SceneFeatures(SceneFeatures::ALL.iter().fold(0, |m, (f, _)| m | f.0));
+    for entry in Entry::ALL {
+        let module = validate(&assemble(all, entry), all).unwrap();
+        assert!(
+            module.entry_points.iter().any(|e| e.name == entry.name()),
+            "{entry:?}"
+        );
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -13,12 +13,20 @@ pub fn format_stats(image: &RenderedImage) -> String {
     if let Some(gpu) = &image.gpu {
         let _ = writeln!(
             out,
-            "  gpu: {} — compiled in: {}; pipeline compiled in {:.1} ms (lavapipe compiles again on the first dispatch; Mesa caches it); {} tiles",
+            "  gpu: {} — compiled in: {}; pipelines compiled in {:.1} ms (lavapipe compiles again on the first dispatch; Mesa caches it); {} tiles of {}²",
             image.adapter.as_deref().unwrap_or("?"),
             gpu.features,
             gpu.compile_time.as_secs_f64() * 1e3,
-            gpu.tiles
+            gpu.tiles,
+            gpu.tile_side
         );
+        if gpu.iteration_guard {
+            let _ = writeln!(
+                out,
+                "  loop-limit guard (software adapter): {} pixels re-rendered on the CPU",
+                gpu.cpu_fallback_pixels
+            );
+        }
     }
     let _ = writeln!(
         out,

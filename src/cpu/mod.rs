@@ -2,6 +2,7 @@
 //! WGSL twin of the same name in `shaders/` (see each function's doc comment); the two
 //! follow the same steps with the same constants, in f32.
 
+pub mod adaptive;
 pub mod intersect;
 pub mod ray;
 pub mod render;

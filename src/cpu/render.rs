@@ -1,11 +1,17 @@
-//! Pixels and tiles: anti-aliasing per pixel, tiles in parallel with rayon. Every sample
-//! depends only on (pixel, sample) hashes, so the image is the same for any thread count.
+//! Pixels and tiles: anti-aliasing, tiles in parallel with rayon. Every sample depends
+//! only on (pixel, sample) hashes or its film position, so the image is the same for any
+//! thread count. Adaptive anti-aliasing renders a tile at a time in passes
+//! ([`super::adaptive`]); [`render_pixel`] is the per-pixel reference of every mode.
 
+use super::adaptive::{adaptive_tile, AdaptiveTile, Lattice};
 use super::ray::camera_ray;
 use super::rng::random_unit;
 use super::trace::trace_ray;
 use super::traverse::{Counters, NoCounters, TraversalCounters};
-use crate::constants::{AA_ADAPTIVE, AA_STACK_SIZE, AA_UNIFORM, TILE_SIZE};
+use crate::constants::{
+    adaptive_tile_side, AA_ADAPTIVE, AA_STACK_SIZE, AA_UNIFORM, CPU_ADAPTIVE_LATTICE_SIDE,
+    TILE_SIZE,
+};
 use crate::film::Film;
 use crate::pack::PackedScene;
 use glam::Vec3;
@@ -14,7 +20,12 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Colour at film position (fx, fy) in pixels.
 // Mirror of shaders/render.wgsl::sample — change both.
-fn sample(scene: &PackedScene, fx: f32, fy: f32, counters: &mut impl TraversalCounters) -> Vec3 {
+pub(crate) fn sample(
+    scene: &PackedScene,
+    fx: f32,
+    fy: f32,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
     trace_ray(scene, camera_ray(&scene.globals, fx, fy), counters)
 }
 
@@ -31,7 +42,7 @@ struct AdaptiveSquare {
 
 /// Largest per-channel spread of four colours.
 // Mirror of shaders/render.wgsl::contrast — change both.
-fn contrast(c: &[Vec3; 4]) -> f32 {
+pub(crate) fn contrast(c: &[Vec3; 4]) -> f32 {
     let lo = c[0].min(c[1]).min(c[2]).min(c[3]);
     let hi = c[0].max(c[1]).max(c[2]).max(c[3]);
     (hi - lo).max_element()
@@ -40,9 +51,9 @@ fn contrast(c: &[Vec3; 4]) -> f32 {
 /// Adaptive anti-aliasing of pixel (x, y) (Whitted 1980): sample the corners; where they
 /// differ by more than `aa_threshold`, split into four and recurse — here with an explicit
 /// stack — down to `aa_depth`. Sample positions lie on a dyadic lattice, so neighbouring
-/// pixels see the same colour at a shared corner.
-// Mirror of shaders/render.wgsl::adaptive_pixel — change both.
-fn adaptive_pixel(
+/// pixels see the same colour at a shared corner. The renderers run the same walk per
+/// tile in passes ([`super::adaptive`], on both tracers); this is its per-pixel reference.
+pub fn adaptive_pixel(
     scene: &PackedScene,
     x: u32,
     y: u32,
@@ -105,8 +116,11 @@ fn adaptive_pixel(
     sum
 }
 
-/// Colour of pixel (x, y) under the scene's anti-aliasing mode.
-// Mirror of shaders/render.wgsl::render_pixel — change both.
+/// Colour of pixel (x, y) under the scene's anti-aliasing mode: the per-pixel reference
+/// (the GPU tracer's fallback for pixels it flags). The GPU splits it into passes of one
+/// sample per invocation: AA none is shaders/render.wgsl::main, uniform AA
+/// `uniform_samples` and `uniform_resolve` (same sum order), adaptive AA the lattice
+/// passes of shaders/adaptive.wgsl (mirrored by [`super::adaptive`]).
 pub fn render_pixel(
     scene: &PackedScene,
     x: u32,
@@ -121,22 +135,35 @@ pub fn render_pixel(
     // (x + 0.5 exactly). One loop for both keeps one `sample` call site (see above).
     let uniform = g.aa_mode == AA_UNIFORM;
     let n = if uniform { g.aa_samples } else { 1 };
-    let pixel = y * g.width + x;
     let mut sum = Vec3::ZERO;
-    for j in 0..n {
-        for i in 0..n {
-            let s = j * n + i;
-            let (jx, jy) = if uniform {
-                (random_unit(pixel, s, 0), random_unit(pixel, s, 1))
-            } else {
-                (0.5, 0.5)
-            };
-            let fx = x as f32 + (i as f32 + jx) / n as f32;
-            let fy = y as f32 + (j as f32 + jy) / n as f32;
-            sum += sample(scene, fx, fy, counters);
-        }
+    for s in 0..n * n {
+        sum += uniform_sample(scene, x, y, s, n, uniform, counters);
     }
     sum / (n * n) as f32
+}
+
+/// Sample `s` of pixel (x, y) under n×n stratification: stratum (s mod n, s div n),
+/// jittered when `uniform`, else its centre.
+// Mirror of shaders/render.wgsl::uniform_sample — change both.
+fn uniform_sample(
+    scene: &PackedScene,
+    x: u32,
+    y: u32,
+    s: u32,
+    n: u32,
+    uniform: bool,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
+    let pixel = y * scene.globals.width + x;
+    let (i, j) = (s % n, s / n);
+    let (jx, jy) = if uniform {
+        (random_unit(pixel, s, 0), random_unit(pixel, s, 1))
+    } else {
+        (0.5, 0.5)
+    };
+    let fx = x as f32 + (i as f32 + jx) / n as f32;
+    let fy = y as f32 + (j as f32 + jy) / n as f32;
+    sample(scene, fx, fy, counters)
 }
 
 /// Progress of a render: called with (tiles done, tiles in all) after each tile.
@@ -152,10 +179,9 @@ pub struct RenderCounters {
 
 /// Renders the whole image on the current rayon pool.
 pub fn render(scene: &PackedScene, progress: RenderProgress) -> Film {
-    render_tiles(scene, progress, |x, y| {
-        render_pixel(scene, x, y, &mut NoCounters)
+    render_tiles(scene, progress, |x0, y0, w, h| {
+        render_tile(scene, x0, y0, w, h, &mut NoCounters)
     })
-    .0
 }
 
 /// Renders with traversal counters (slower; for `--stats`).
@@ -166,21 +192,91 @@ pub fn render_with_counters(
     let cells = AtomicU64::new(0);
     let items = AtomicU64::new(0);
     let rays = AtomicU64::new(0);
-    let film = render_tiles(scene, progress, |x, y| {
+    let film = render_tiles(scene, progress, |x0, y0, w, h| {
         let mut c = CountingRays::default();
-        let colour = render_pixel(scene, x, y, &mut c);
+        let pixels = render_tile(scene, x0, y0, w, h, &mut c);
         cells.fetch_add(c.inner.cells_visited, Ordering::Relaxed);
         items.fetch_add(c.inner.items_tested, Ordering::Relaxed);
         rays.fetch_add(c.rays, Ordering::Relaxed);
-        colour
-    })
-    .0;
+        pixels
+    });
     let counters = RenderCounters {
         rays: rays.into_inner(),
         cells_visited: cells.into_inner(),
         items_tested: items.into_inner(),
     };
     (film, counters)
+}
+
+/// Side of the CPU's tiles: [`TILE_SIZE`], smaller under deep adaptive anti-aliasing.
+fn tile_side(scene: &PackedScene) -> u32 {
+    let g = &scene.globals;
+    if g.aa_mode == AA_ADAPTIVE {
+        adaptive_tile_side(TILE_SIZE, CPU_ADAPTIVE_LATTICE_SIDE, g.aa_depth)
+    } else {
+        TILE_SIZE
+    }
+}
+
+/// The pixels of the w×h tile at (x0, y0), row-major.
+fn render_tile(
+    scene: &PackedScene,
+    x0: u32,
+    y0: u32,
+    w: u32,
+    h: u32,
+    counters: &mut impl TraversalCounters,
+) -> Vec<[f32; 3]> {
+    let g = &scene.globals;
+    if g.aa_mode == AA_ADAPTIVE {
+        let tile = AdaptiveTile {
+            origin: [x0, y0],
+            size: [w, h],
+            side: w.max(h),
+            depth: g.aa_depth,
+        };
+        let mut lattice = Lattice::new(tile);
+        return adaptive_tile(scene, &mut lattice, g.aa_threshold, counters)
+            .into_iter()
+            .map(|(c, _)| c.to_array())
+            .collect();
+    }
+    let mut out = Vec::with_capacity((w * h) as usize);
+    for y in y0..y0 + h {
+        for x in x0..x0 + w {
+            out.push(render_pixel(scene, x, y, counters).to_array());
+        }
+    }
+    out
+}
+
+/// Leaf squares per pixel of adaptive anti-aliasing (1 where a pixel was not split),
+/// row-major: the split decisions, for comparing tracers. Zeros in other modes.
+pub fn adaptive_leaf_counts(scene: &PackedScene) -> Vec<u32> {
+    let g = &scene.globals;
+    let (w, h) = (g.width, g.height);
+    let mut out = vec![0; (w * h) as usize];
+    if g.aa_mode != AA_ADAPTIVE {
+        return out;
+    }
+    let side = tile_side(scene);
+    for y0 in (0..h).step_by(side as usize) {
+        for x0 in (0..w).step_by(side as usize) {
+            let tile = AdaptiveTile {
+                origin: [x0, y0],
+                size: [side.min(w - x0), side.min(h - y0)],
+                side,
+                depth: g.aa_depth,
+            };
+            let mut lattice = Lattice::new(tile);
+            let pixels = adaptive_tile(scene, &mut lattice, g.aa_threshold, &mut NoCounters);
+            for (k, (_, leaves)) in pixels.into_iter().enumerate() {
+                let (tx, ty) = (k as u32 % tile.size[0], k as u32 / tile.size[0]);
+                out[((y0 + ty) * w + x0 + tx) as usize] = leaves;
+            }
+        }
+    }
+    out
 }
 
 /// Counts traversals (each one a ray) as well as cells and items.
@@ -205,36 +301,33 @@ impl TraversalCounters for CountingRays {
 fn render_tiles(
     scene: &PackedScene,
     progress: RenderProgress,
-    pixel: impl Fn(u32, u32) -> Vec3 + Sync,
-) -> (Film, ()) {
+    tile_pixels: impl Fn(u32, u32, u32, u32) -> Vec<[f32; 3]> + Sync,
+) -> Film {
     let (w, h) = (scene.globals.width, scene.globals.height);
-    let tiles_x = w.div_ceil(TILE_SIZE);
-    let tiles_y = h.div_ceil(TILE_SIZE);
+    let side = tile_side(scene);
+    let tiles_x = w.div_ceil(side);
+    let tiles_y = h.div_ceil(side);
     let total = (tiles_x * tiles_y) as u64;
     let done = AtomicU64::new(0);
+    let origin = |tile: u32| ((tile % tiles_x) * side, (tile / tiles_x) * side);
     let tiles: Vec<(u32, Vec<[f32; 3]>)> = (0..tiles_x * tiles_y)
         .into_par_iter()
         .map(|tile| {
-            let (x0, y0) = ((tile % tiles_x) * TILE_SIZE, (tile / tiles_x) * TILE_SIZE);
-            let mut out = Vec::with_capacity((TILE_SIZE * TILE_SIZE) as usize);
-            for y in y0..(y0 + TILE_SIZE).min(h) {
-                for x in x0..(x0 + TILE_SIZE).min(w) {
-                    out.push(pixel(x, y).to_array());
-                }
-            }
+            let (x0, y0) = origin(tile);
+            let pixels = tile_pixels(x0, y0, side.min(w - x0), side.min(h - y0));
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-            (tile, out)
+            (tile, pixels)
         })
         .collect();
     let mut film = Film::new(w, h);
     for (tile, pixels) in tiles {
-        let (x0, y0) = ((tile % tiles_x) * TILE_SIZE, (tile / tiles_x) * TILE_SIZE);
+        let (x0, y0) = origin(tile);
         let mut it = pixels.into_iter();
-        for y in y0..(y0 + TILE_SIZE).min(h) {
-            for x in x0..(x0 + TILE_SIZE).min(w) {
+        for y in y0..(y0 + side).min(h) {
+            for x in x0..(x0 + side).min(w) {
                 film.set(x, y, it.next().expect("tile pixel count"));
             }
         }
     }
-    (film, ())
+    film
 }

@@ -16,8 +16,21 @@ use wgpu::util::DeviceExt;
 pub struct GpuTile {
     /// Top-left pixel of the tile.
     pub origin: [u32; 2],
-    pub _pad: [u32; 2],
+    /// Pixels across and down (at most `side`).
+    pub size: [u32; 2],
+    /// The tile side the per-tile buffers are laid out for (row stride, in pixels).
+    pub side: u32,
+    /// Adaptive passes: the level of the squares this pass decides or splits.
+    pub level: u32,
+    /// One-dimensional kernels: the invocations that have work.
+    pub items: u32,
+    /// Iterations of the loop-limiter check ([`LIMITER_SENTINEL`]).
+    pub sentinel: u32,
 }
+
+/// `GpuTile::sentinel`: the loop-limiter check runs a loop of this many iterations; it
+/// stops after one when Mesa's limiter has tripped (see `shaders/render.wgsl`).
+pub const LIMITER_SENTINEL: u32 = 2;
 
 /// The scene's buffers, in binding order 0..=6.
 pub struct SceneBuffers {

@@ -12,4 +12,4 @@ pub mod shader;
 
 pub use context::{list_adapters, AdapterSummary, GpuContext};
 pub use error::GpuError;
-pub use render::{render_gpu, render_gpu_with_info, GpuRenderInfo};
+pub use render::{adaptive_leaf_counts_gpu, render_gpu, render_gpu_with_info, GpuRenderInfo};

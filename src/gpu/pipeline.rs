@@ -3,7 +3,7 @@
 //! always bound), so one layout serves every specialisation.
 
 use super::context::GpuContext;
-use super::shader::{assemble, validate, Entry};
+use super::shader::{assemble_with, validate, Entry};
 use super::GpuError;
 use crate::pack::SceneFeatures;
 use std::collections::HashMap;
@@ -18,6 +18,10 @@ pub const OUTPUT_BINDING: u32 = 8;
 /// Probe entry: rays in, results out.
 pub const PROBE_RAYS_BINDING: u32 = 9;
 pub const PROBE_RESULTS_BINDING: u32 = 10;
+/// Render entries: per-sample colours, adaptive split flags, CPU-fallback flags.
+pub const SAMPLES_BINDING: u32 = 11;
+pub const SPLIT_BINDING: u32 = 12;
+pub const GUARD_BINDING: u32 = 13;
 
 /// A compiled pipeline and what it cost.
 pub struct CompiledPipeline {
@@ -26,12 +30,21 @@ pub struct CompiledPipeline {
     /// WGSL assembly, naga validation, shader module and pipeline creation.
     pub compile_time: Duration,
     pub features: SceneFeatures,
+    /// Whether the render kernels check Mesa's loop limiter (software adapters).
+    pub iteration_guard: bool,
 }
 
-/// Pipelines compiled on one device, by (features, entry).
+/// Pipelines compiled on one device, by (features, entry); whether the iteration guard
+/// is in is a property of the device.
 #[derive(Default)]
 pub struct PipelineCache {
     map: Mutex<HashMap<(SceneFeatures, Entry), Arc<CompiledPipeline>>>,
+}
+
+/// Whether pipelines on `ctx` check Mesa's loop limiter: on software adapters (lavapipe,
+/// device type Cpu), whose gallivm caps the loop iterations of one invocation.
+pub fn iteration_guard(ctx: &GpuContext) -> bool {
+    ctx.info.device_type == wgpu::DeviceType::Cpu
 }
 
 fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
@@ -64,15 +77,19 @@ fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
 fn bind_group_layout(device: &wgpu::Device, entry: Entry) -> wgpu::BindGroupLayout {
     let mut entries = vec![uniform(0)];
     entries.extend((1..=SCENE_ARRAY_BINDINGS).map(|b| storage(b, true)));
-    match entry {
-        Entry::Render => {
-            entries.push(uniform(TILE_BINDING));
-            entries.push(storage(OUTPUT_BINDING, false));
+    if entry.is_render() {
+        entries.push(uniform(TILE_BINDING));
+        for b in [
+            OUTPUT_BINDING,
+            SAMPLES_BINDING,
+            SPLIT_BINDING,
+            GUARD_BINDING,
+        ] {
+            entries.push(storage(b, false));
         }
-        Entry::Probe => {
-            entries.push(storage(PROBE_RAYS_BINDING, true));
-            entries.push(storage(PROBE_RESULTS_BINDING, false));
-        }
+    } else {
+        entries.push(storage(PROBE_RAYS_BINDING, true));
+        entries.push(storage(PROBE_RESULTS_BINDING, false));
     }
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("glint scene"),
@@ -97,7 +114,8 @@ pub fn get_pipeline(
         return Ok(p);
     }
     let start = Instant::now();
-    let source = assemble(features, entry);
+    let guard = iteration_guard(ctx);
+    let source = assemble_with(features, entry, guard);
     // naga first: its messages point into the assembled source.
     validate(&source, features)?;
     let device = &ctx.device;
@@ -127,6 +145,7 @@ pub fn get_pipeline(
         layout,
         compile_time: start.elapsed(),
         features,
+        iteration_guard: guard,
     });
     if let Ok(mut map) = ctx.pipelines.map.lock() {
         map.insert(key, Arc::clone(&compiled));

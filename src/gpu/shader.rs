@@ -3,26 +3,61 @@
 //! exactly the scene's [`SceneFeatures`], so code for absent features never reaches naga
 //! (naga does not remove dead branches, gfx-rs/wgpu#5608). A condition is one feature name
 //! in upper case, or several joined by `|` (any of them), optionally negated by a leading `!`.
+//! Besides the scene's features, one flag of the adapter: `ITERATION_GUARD` (software
+//! adapters, whose loop limiter the render kernels check, see `shaders/render.wgsl`).
 
 use crate::constants::wgsl_prelude;
 use crate::pack::SceneFeatures;
 
-/// Which compute entry point a module is for.
+/// Which compute entry point a pipeline is for. Every entry but `Probe` is in the render
+/// module (one source, one bind group layout).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Entry {
-    /// `main`: renders one tile into the output buffer.
+    /// `main`: AA none, one tile into the output buffer.
     Render,
+    /// `uniform_samples`, `uniform_resolve`: uniform AA's two passes.
+    UniformSamples,
+    UniformResolve,
+    /// `adaptive_corners`, `adaptive_decide`, `adaptive_midpoints`, `adaptive_integrate`:
+    /// adaptive AA's passes (`shaders/adaptive.wgsl`).
+    AdaptiveCorners,
+    AdaptiveDecide,
+    AdaptiveMidpoints,
+    AdaptiveIntegrate,
     /// `probe`: test-only, traces rays from a buffer and reports hits.
     Probe,
 }
 
 impl Entry {
+    /// Every entry point.
+    pub const ALL: [Entry; 8] = [
+        Entry::Render,
+        Entry::UniformSamples,
+        Entry::UniformResolve,
+        Entry::AdaptiveCorners,
+        Entry::AdaptiveDecide,
+        Entry::AdaptiveMidpoints,
+        Entry::AdaptiveIntegrate,
+        Entry::Probe,
+    ];
+
     /// The WGSL function name of the entry point.
     pub fn name(self) -> &'static str {
         match self {
             Entry::Render => "main",
+            Entry::UniformSamples => "uniform_samples",
+            Entry::UniformResolve => "uniform_resolve",
+            Entry::AdaptiveCorners => "adaptive_corners",
+            Entry::AdaptiveDecide => "adaptive_decide",
+            Entry::AdaptiveMidpoints => "adaptive_midpoints",
+            Entry::AdaptiveIntegrate => "adaptive_integrate",
             Entry::Probe => "probe",
         }
+    }
+
+    /// Whether the entry is in the render module.
+    pub fn is_render(self) -> bool {
+        self != Entry::Probe
     }
 }
 
@@ -41,20 +76,34 @@ const COMMON: &[(&str, &str)] = &[
 const RENDER: &[(&str, &str)] = &[
     ("trace.wgsl", include_str!("../../shaders/trace.wgsl")),
     ("render.wgsl", include_str!("../../shaders/render.wgsl")),
+    ("adaptive.wgsl", include_str!("../../shaders/adaptive.wgsl")),
 ];
 const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
 
-/// The full WGSL source for `entry` specialised to `features`.
+/// The full WGSL source for `entry` specialised to `features` (without the iteration
+/// guard).
 pub fn assemble(features: SceneFeatures, entry: Entry) -> String {
+    assemble_with(features, entry, false)
+}
+
+/// The full WGSL source for `entry` specialised to `features`, with the loop-limiter
+/// check (`ITERATION_GUARD`) when `iteration_guard`.
+pub fn assemble_with(features: SceneFeatures, entry: Entry, iteration_guard: bool) -> String {
     let mut out = wgsl_prelude();
-    out += &format!("// Specialised for features: {features}\n");
-    let files = COMMON.iter().chain(match entry {
-        Entry::Render => RENDER,
-        Entry::Probe => PROBE,
-    });
+    out += &format!(
+        "// Specialised for features: {features}{}\n",
+        if iteration_guard {
+            "; iteration guard"
+        } else {
+            ""
+        }
+    );
+    let files = COMMON
+        .iter()
+        .chain(if entry.is_render() { RENDER } else { PROBE });
     for (name, text) in files {
         out += &format!("\n// ---- shaders/{name} ----\n");
-        out += &preprocess(name, text, features)
+        out += &preprocess_with(name, text, features, iteration_guard)
             .unwrap_or_else(|e| panic!("shaders/{name}: {e} (a bug in the shader source)"));
     }
     out
@@ -63,6 +112,16 @@ pub fn assemble(features: SceneFeatures, entry: Entry) -> String {
 /// Resolves the `// #if` blocks of one file. Errors name the line (unbalanced or
 /// unknown directives are bugs in the shader files, caught by the validation tests).
 pub fn preprocess(name: &str, text: &str, features: SceneFeatures) -> Result<String, String> {
+    preprocess_with(name, text, features, false)
+}
+
+/// [`preprocess`], with `ITERATION_GUARD` set to `iteration_guard`.
+pub fn preprocess_with(
+    name: &str,
+    text: &str,
+    features: SceneFeatures,
+    iteration_guard: bool,
+) -> Result<String, String> {
     // Each open block: (this branch active, parent active, seen #else).
     let mut stack: Vec<(bool, bool, bool)> = Vec::new();
     let mut out = String::with_capacity(text.len());
@@ -72,8 +131,8 @@ pub fn preprocess(name: &str, text: &str, features: SceneFeatures) -> Result<Str
         let directive = line.trim().strip_prefix("// #");
         match directive {
             Some(rest) if rest.starts_with("if ") => {
-                let on =
-                    condition(rest[3..].trim(), features).map_err(|e| format!("{}: {e}", at()))?;
+                let on = condition(rest[3..].trim(), features, iteration_guard)
+                    .map_err(|e| format!("{}: {e}", at()))?;
                 stack.push((on, active, false));
             }
             Some("else") => match stack.last_mut() {
@@ -103,14 +162,18 @@ pub fn preprocess(name: &str, text: &str, features: SceneFeatures) -> Result<Str
     Ok(out)
 }
 
-/// Evaluates `NAME`, `A|B` or `!A|B` against `features`.
-fn condition(text: &str, features: SceneFeatures) -> Result<bool, String> {
+/// Evaluates `NAME`, `A|B` or `!A|B` against `features` and the iteration guard.
+fn condition(text: &str, features: SceneFeatures, iteration_guard: bool) -> Result<bool, String> {
     let (negate, names) = match text.strip_prefix('!') {
         Some(rest) => (true, rest),
         None => (false, text),
     };
     let mut any = false;
     for name in names.split('|').map(str::trim) {
+        if name == "ITERATION_GUARD" {
+            any |= iteration_guard;
+            continue;
+        }
         let flag = SceneFeatures::ALL
             .iter()
             .find(|(_, n)| n.eq_ignore_ascii_case(name))
@@ -119,6 +182,7 @@ fn condition(text: &str, features: SceneFeatures) -> Result<bool, String> {
                 let valid: Vec<String> = SceneFeatures::ALL
                     .iter()
                     .map(|(_, n)| n.to_uppercase())
+                    .chain(["ITERATION_GUARD".to_string()])
                     .collect();
                 format!("unknown feature '{name}' (valid: {})", valid.join(", "))
             })?;

@@ -1,0 +1,192 @@
+// adaptive.wgsl — adaptive anti-aliasing (Whitted 1980) per tile, in passes over a dyadic
+// lattice of (tile.side·2^d + 1)² points in `samples` (d = aa_depth; lattice point (i, j)
+// is film position (x0 + i/2^d, y0 + j/2^d)), one sample per invocation:
+// adaptive_corners traces the pixel corners; for each level k < d, adaptive_decide flags
+// the level-k squares to split and adaptive_midpoints traces their midpoints; then
+// adaptive_integrate averages each pixel over its quadtree. The decisions, samples and
+// summation order are those of the per-pixel walk, src/cpu/render.rs::adaptive_pixel.
+// Mirror of src/cpu/adaptive.rs — change both.
+
+// Lattice steps per pixel: 2^d.
+fn adaptive_scale() -> u32 {
+    return 1u << globals.aa_depth;
+}
+
+// First split flag of level `level`: side²·(4^level − 1)/3 (level k has (side·2^k)²).
+// Mirror of src/cpu/adaptive.rs::split_offset — change both.
+fn split_offset(side: u32, level: u32) -> u32 {
+    return side * side * (((1u << (2u * level)) - 1u) / 3u);
+}
+
+// Index of level-`level` square (a, b)'s split flag.
+// Mirror of src/cpu/adaptive.rs::split_index — change both.
+fn split_index(level: u32, a: u32, b: u32) -> u32 {
+    return split_offset(tile.side, level) + b * (tile.side << level) + a;
+}
+
+fn is_split(level: u32, a: u32, b: u32) -> bool {
+    return split[split_index(level, a, b)] != 0u;
+}
+
+// Index of lattice point (i, j).
+// Mirror of src/cpu/adaptive.rs::lattice_index — change both.
+fn lattice_index(i: u32, j: u32) -> u32 {
+    return j * (tile.side * adaptive_scale() + 1u) + i;
+}
+
+fn lattice_point(i: u32, j: u32) -> vec3<f32> {
+    return samples[lattice_index(i, j)].xyz;
+}
+
+// Film position of lattice point (i, j), exact (a dyadic fraction of few bits; ldexp
+// rather than a division, which WGSL lets be inexact).
+// Mirror of src/cpu/adaptive.rs::lattice_position — change both.
+fn lattice_position(i: u32, j: u32) -> vec2<f32> {
+    let s = adaptive_scale();
+    let step = ldexp(1.0, -i32(globals.aa_depth));
+    return vec2<f32>(
+        f32(tile.origin.x + i / s) + f32(i % s) * step,
+        f32(tile.origin.y + j / s) + f32(j % s) * step,
+    );
+}
+
+// Traces lattice point (i, j) into the lattice.
+fn trace_lattice_point(i: u32, j: u32) {
+    let pos = lattice_position(i, j);
+    samples[lattice_index(i, j)] = vec4<f32>(sample(pos.x, pos.y), 1.0);
+// #if ITERATION_GUARD
+    // Every pixel whose closed square holds the point (straight-line code: after the
+    // limiter trips, loops run one iteration).
+    if loop_limiter_tripped() {
+        let s = adaptive_scale();
+        let x_hi = min(i / s, tile.size.x - 1u);
+        let y_hi = min(j / s, tile.size.y - 1u);
+        let x_lo = select(x_hi, (i - 1u) / s, i > 0u);
+        let y_lo = select(y_hi, (j - 1u) / s, j > 0u);
+        guard[y_lo * tile.side + x_lo] = 1u;
+        guard[y_lo * tile.side + x_hi] = 1u;
+        guard[y_hi * tile.side + x_lo] = 1u;
+        guard[y_hi * tile.side + x_hi] = 1u;
+    }
+// #endif
+}
+
+// Corner pass: invocation idx traces pixel corner (idx mod (w+1), idx div (w+1)).
+// Mirror of src/cpu/adaptive.rs::adaptive_corners — change both.
+@compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
+fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>) {
+    let idx = id.x;
+    if idx >= tile.items {
+        return;
+    }
+    let s = adaptive_scale();
+    trace_lattice_point((idx % (tile.size.x + 1u)) * s, (idx / (tile.size.x + 1u)) * s);
+}
+
+// Decide pass of tile.level: flags square (idx mod n, idx div n) (n = w·2^level) for
+// splitting when it exists, is above the deepest level and its corners differ by more
+// than aa_threshold (the per-pixel walk's test, NaN included).
+// Mirror of src/cpu/adaptive.rs::adaptive_decide — change both.
+@compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
+fn adaptive_decide(@builtin(global_invocation_id) id: vec3<u32>) {
+    let idx = id.x;
+    if idx >= tile.items {
+        return;
+    }
+    let level = tile.level;
+    let n = tile.size.x << level;
+    let a = idx % n;
+    let b = idx / n;
+    let exists = level == 0u || is_split(level - 1u, a / 2u, b / 2u);
+    let l = adaptive_scale() >> level;
+    var flag = 0u;
+    if exists && level < globals.aa_depth {
+        let i = a * l;
+        let j = b * l;
+        let corners = array<vec3<f32>, 4>(
+            lattice_point(i, j),
+            lattice_point(i + l, j),
+            lattice_point(i, j + l),
+            lattice_point(i + l, j + l),
+        );
+        if !(contrast(corners) <= globals.aa_threshold) {
+            flag = 1u;
+        }
+    }
+    split[split_index(level, a, b)] = flag;
+}
+
+// Midpoint pass of tile.level: midpoint idx mod 5 (top, left, centre, right, bottom) of
+// square idx div 5, when that square is split. A top (left) midpoint is the bottom
+// (right) one of the square above (to the left); when that one is split, it traces it.
+// Mirror of src/cpu/adaptive.rs::adaptive_midpoints — change both.
+@compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
+fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>) {
+    let idx = id.x;
+    if idx >= tile.items {
+        return;
+    }
+    let level = tile.level;
+    let n = tile.size.x << level;
+    let square = idx / 5u;
+    let m = idx % 5u;
+    let a = square % n;
+    let b = square / n;
+    if !is_split(level, a, b) {
+        return;
+    }
+    if (m == 0u && b > 0u && is_split(level, a, b - 1u)) || (m == 1u && a > 0u && is_split(level, a - 1u, b)) {
+        return;
+    }
+    let l = adaptive_scale() >> level;
+    let h = l / 2u;
+    // Offsets (h, 0), (0, h), (h, h), (l, h), (h, l).
+    let ox = select(select(h, l, m == 3u), 0u, m == 1u);
+    let oy = select(select(h, l, m == 4u), 0u, m == 0u);
+    trace_lattice_point(a * l + ox, b * l + oy);
+}
+
+// Integrate pass: pixel (id.x, id.y)'s area-weighted mean over its quadtree, walked with
+// the per-pixel stack (children pushed top-left, top-right, bottom-left, bottom-right),
+// so the sum runs in the per-pixel walk's order; alpha holds its number of leaves.
+// Mirror of src/cpu/adaptive.rs::adaptive_integrate — change both.
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
+fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= tile.size.x || id.y >= tile.size.y {
+        return;
+    }
+    let depth = globals.aa_depth;
+    // (level, a, b)
+    var stack: array<vec3<u32>, AA_STACK_SIZE>;
+    stack[0] = vec3<u32>(0u, id.x, id.y);
+    var size = 1u;
+    var sum = vec3<f32>(0.0);
+    var leaves = 0u;
+    while size > 0u {
+        size -= 1u;
+        let sq = stack[size];
+        let level = sq.x;
+        let a = sq.y;
+        let b = sq.z;
+        if level < depth && is_split(level, a, b) {
+            stack[size] = vec3<u32>(level + 1u, 2u * a, 2u * b);
+            stack[size + 1u] = vec3<u32>(level + 1u, 2u * a + 1u, 2u * b);
+            stack[size + 2u] = vec3<u32>(level + 1u, 2u * a, 2u * b + 1u);
+            stack[size + 3u] = vec3<u32>(level + 1u, 2u * a + 1u, 2u * b + 1u);
+            size += 4u;
+            continue;
+        }
+        let l = adaptive_scale() >> level;
+        let i = a * l;
+        let j = b * l;
+        let c0 = lattice_point(i, j);
+        let c1 = lattice_point(i + l, j);
+        let c2 = lattice_point(i, j + l);
+        let c3 = lattice_point(i + l, j + l);
+        let side = ldexp(1.0, -i32(level));
+        let area = side * side;
+        sum += (c0 + c1 + c2 + c3) * (0.25 * area);
+        leaves += 1u;
+    }
+    output[id.y * tile.side + id.x] = vec4<f32>(sum, f32(leaves));
+}

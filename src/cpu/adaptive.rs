@@ -1,0 +1,251 @@
+//! Adaptive anti-aliasing per tile, in passes over a dyadic lattice (Whitted 1980). The
+//! decisions, samples and summation order are those of [`super::render::adaptive_pixel`]
+//! (which stays as the per-pixel reference); here each sample is traced once, where the
+//! per-pixel walk traces a shared corner up to four times.
+//!
+//! For a tile of `size` pixels and depth d, lattice point (i, j) is film position
+//! (x0 + i/2^d, y0 + j/2^d). Squares of level k have a side of 2^(d−k) lattice steps; the
+//! level-0 squares are the pixels. The passes:
+//! 1. [`adaptive_corners`]: trace every pixel corner;
+//! 2. for k in 0..d: [`adaptive_decide`] flags each level-k square that exists (k = 0 or
+//!    its parent is split) and whose corners differ by more than the threshold, then
+//!    [`adaptive_midpoints`] traces the five midpoints of each flagged square (a midpoint
+//!    shared with a flagged neighbour is traced by one of the two only);
+//! 3. [`adaptive_integrate`]: each pixel walks its quadtree with the per-pixel stack.
+//!
+//! Every function here has a WGSL twin of the same name in `shaders/adaptive.wgsl`, where
+//! each call is one invocation (one ray at most, for Mesa's loop limiter).
+
+use super::render::{contrast, sample};
+use super::traverse::TraversalCounters;
+use crate::constants::AA_STACK_SIZE;
+use crate::pack::PackedScene;
+use glam::Vec3;
+
+/// One tile of the adaptive passes.
+// Mirror of the adaptive fields of shaders/layout.wgsl::GpuTile — change both.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AdaptiveTile {
+    /// Top-left pixel.
+    pub origin: [u32; 2],
+    /// Pixels across and down (at most `side`).
+    pub size: [u32; 2],
+    /// The tile side the arrays are laid out for (row stride, in pixels).
+    pub side: u32,
+    /// aa_depth.
+    pub depth: u32,
+}
+
+impl AdaptiveTile {
+    /// Lattice steps per pixel: 2^d.
+    pub fn scale(&self) -> u32 {
+        1 << self.depth
+    }
+    /// Points per lattice row: side·2^d + 1.
+    pub fn lattice_width(&self) -> u32 {
+        self.side * self.scale() + 1
+    }
+    /// Lattice points of the arrays.
+    pub fn lattice_len(&self) -> usize {
+        (self.lattice_width() as usize).pow(2)
+    }
+    /// Split flags of the arrays: levels 0..d.
+    pub fn split_len(&self) -> usize {
+        split_offset(self.side, self.depth) as usize
+    }
+}
+
+/// First split flag of level `level`: side²·(4^level − 1)/3 (level k has (side·2^k)²).
+// Mirror of shaders/adaptive.wgsl::split_offset — change both.
+pub fn split_offset(side: u32, level: u32) -> u32 {
+    side * side * (((1u32 << (2 * level)) - 1) / 3)
+}
+
+/// Index of level-`level` square (a, b)'s split flag.
+// Mirror of shaders/adaptive.wgsl::split_index — change both.
+fn split_index(tile: &AdaptiveTile, level: u32, a: u32, b: u32) -> usize {
+    (split_offset(tile.side, level) + b * (tile.side << level) + a) as usize
+}
+
+/// Index of lattice point (i, j).
+// Mirror of shaders/adaptive.wgsl::lattice_index — change both.
+fn lattice_index(tile: &AdaptiveTile, i: u32, j: u32) -> usize {
+    (j * tile.lattice_width() + i) as usize
+}
+
+/// Film position of lattice point (i, j): exact (a dyadic fraction of few bits), so it is
+/// the very position the per-pixel walk reaches by halving.
+// Mirror of shaders/adaptive.wgsl::lattice_position — change both.
+fn lattice_position(tile: &AdaptiveTile, i: u32, j: u32) -> (f32, f32) {
+    let s = tile.scale();
+    let scale = s as f32;
+    (
+        (tile.origin[0] + i / s) as f32 + (i % s) as f32 / scale,
+        (tile.origin[1] + j / s) as f32 + (j % s) as f32 / scale,
+    )
+}
+
+/// A tile's lattice colours and split flags.
+pub struct Lattice {
+    pub tile: AdaptiveTile,
+    pub points: Vec<Vec3>,
+    pub split: Vec<u32>,
+}
+
+impl Lattice {
+    pub fn new(tile: AdaptiveTile) -> Lattice {
+        Lattice {
+            tile,
+            points: vec![Vec3::ZERO; tile.lattice_len()],
+            split: vec![0; tile.split_len()],
+        }
+    }
+    fn point(&self, i: u32, j: u32) -> Vec3 {
+        self.points[lattice_index(&self.tile, i, j)]
+    }
+    fn is_split(&self, level: u32, a: u32, b: u32) -> bool {
+        self.split[split_index(&self.tile, level, a, b)] != 0
+    }
+}
+
+/// Invocation `idx` of the corner pass: traces pixel corner (idx mod (w+1), idx div (w+1)).
+// Mirror of shaders/adaptive.wgsl::adaptive_corners — change both.
+fn adaptive_corners(
+    scene: &PackedScene,
+    lat: &mut Lattice,
+    idx: u32,
+    counters: &mut impl TraversalCounters,
+) {
+    let t = lat.tile;
+    let s = t.scale();
+    let (i, j) = ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s);
+    let (fx, fy) = lattice_position(&t, i, j);
+    lat.points[lattice_index(&t, i, j)] = sample(scene, fx, fy, counters);
+}
+
+/// Invocation `idx` of the decide pass of `level`: flags square (idx mod n, idx div n)
+/// (n = w·2^level) for splitting when it exists, is above the deepest level and its
+/// corners differ by more than `threshold` (the per-pixel walk's test, NaN included).
+// Mirror of shaders/adaptive.wgsl::adaptive_decide — change both.
+fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
+    let t = lat.tile;
+    let n = t.size[0] << level;
+    let (a, b) = (idx % n, idx / n);
+    let exists = level == 0 || lat.is_split(level - 1, a / 2, b / 2);
+    let l = t.scale() >> level;
+    let mut split = false;
+    if exists && level < t.depth {
+        let (i, j) = (a * l, b * l);
+        let corners = [
+            lat.point(i, j),
+            lat.point(i + l, j),
+            lat.point(i, j + l),
+            lat.point(i + l, j + l),
+        ];
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        {
+            split = !(contrast(&corners) <= threshold);
+        }
+    }
+    lat.split[split_index(&t, level, a, b)] = split as u32;
+}
+
+/// Invocation `idx` of the midpoint pass of `level`: midpoint idx mod 5 (top, left,
+/// centre, right, bottom) of square idx div 5, when that square is split. A top (left)
+/// midpoint is the bottom (right) one of the square above (to the left); when that one
+/// is split too, it traces the point.
+// Mirror of shaders/adaptive.wgsl::adaptive_midpoints — change both.
+fn adaptive_midpoints(
+    scene: &PackedScene,
+    lat: &mut Lattice,
+    level: u32,
+    idx: u32,
+    counters: &mut impl TraversalCounters,
+) {
+    let t = lat.tile;
+    let n = t.size[0] << level;
+    let (square, m) = (idx / 5, idx % 5);
+    let (a, b) = (square % n, square / n);
+    if !lat.is_split(level, a, b) {
+        return;
+    }
+    if (m == 0 && b > 0 && lat.is_split(level, a, b - 1))
+        || (m == 1 && a > 0 && lat.is_split(level, a - 1, b))
+    {
+        return;
+    }
+    let l = t.scale() >> level;
+    let h = l / 2;
+    let offsets = [(h, 0), (0, h), (h, h), (l, h), (h, l)];
+    let (i, j) = (a * l + offsets[m as usize].0, b * l + offsets[m as usize].1);
+    let (fx, fy) = lattice_position(&t, i, j);
+    lat.points[lattice_index(&t, i, j)] = sample(scene, fx, fy, counters);
+}
+
+/// Colour of tile pixel (tx, ty) and its number of leaf squares: the area-weighted mean
+/// over its quadtree, walked with the per-pixel stack (children pushed top-left,
+/// top-right, bottom-left, bottom-right), so the sum runs in the per-pixel walk's order.
+// Mirror of shaders/adaptive.wgsl::adaptive_integrate — change both.
+fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
+    let t = lat.tile;
+    let mut stack = [[0u32; 3]; AA_STACK_SIZE as usize];
+    stack[0] = [0, tx, ty];
+    let mut size = 1;
+    let mut sum = Vec3::ZERO;
+    let mut leaves = 0;
+    while size > 0 {
+        size -= 1;
+        let [level, a, b] = stack[size];
+        if level < t.depth && lat.is_split(level, a, b) {
+            for (da, db) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                stack[size] = [level + 1, 2 * a + da, 2 * b + db];
+                size += 1;
+            }
+            continue;
+        }
+        let l = t.scale() >> level;
+        let (i, j) = (a * l, b * l);
+        let c = [
+            lat.point(i, j),
+            lat.point(i + l, j),
+            lat.point(i, j + l),
+            lat.point(i + l, j + l),
+        ];
+        let side = 1.0 / (1u32 << level) as f32;
+        let area = side * side;
+        sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
+        leaves += 1;
+    }
+    (sum, leaves)
+}
+
+/// Runs every pass over `lat`'s tile; returns its pixels, row-major, with their leaf
+/// counts.
+pub fn adaptive_tile(
+    scene: &PackedScene,
+    lat: &mut Lattice,
+    threshold: f32,
+    counters: &mut impl TraversalCounters,
+) -> Vec<(Vec3, u32)> {
+    let t = lat.tile;
+    let [w, h] = t.size;
+    for idx in 0..(w + 1) * (h + 1) {
+        adaptive_corners(scene, lat, idx, counters);
+    }
+    for level in 0..t.depth {
+        let squares = (w << level) * (h << level);
+        for idx in 0..squares {
+            adaptive_decide(lat, level, idx, threshold);
+        }
+        for idx in 0..squares * 5 {
+            adaptive_midpoints(scene, lat, level, idx, counters);
+        }
+    }
+    let mut out = Vec::with_capacity((w * h) as usize);
+    for ty in 0..h {
+        for tx in 0..w {
+            out.push(adaptive_integrate(lat, tx, ty));
+        }
+    }
+    out
+}
