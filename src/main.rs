@@ -1,6 +1,7 @@
 //! The `glint` command line: `render`, `diff` and `bench`.
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use glint::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES, MAX_TRACE_DEPTH};
 use glint::scene::options::{parse_background, parse_grid_mode};
 use glint::scene::{AaMode, Background, GridMode, OptionOverrides, TransformOrder};
 use std::path::PathBuf;
@@ -87,19 +88,19 @@ struct RenderArgs {
     #[arg(long, value_parser = parse_aa)]
     aa: Option<AaMode>,
     /// n of uniform n×n anti-aliasing.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_AA_SAMPLES as i64))]
     samples: Option<u32>,
     /// Adaptive AA: corner contrast that splits a square.
     #[arg(long, value_parser = parse_non_negative)]
     aa_threshold: Option<f32>,
     /// Adaptive AA: deepest split.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=6))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=MAX_AA_DEPTH as i64))]
     aa_depth: Option<u32>,
     /// Overrides every area light's n (n×n shadow samples).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_AA_SAMPLES as i64))]
     shadow_samples: Option<u32>,
     /// Deepest reflection/refraction chain.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=64))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=MAX_TRACE_DEPTH as i64))]
     max_depth: Option<u32>,
     /// Drop secondary rays contributing less than this.
     #[arg(long, value_parser = parse_non_negative)]

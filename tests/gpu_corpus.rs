@@ -43,7 +43,10 @@ fn every_scene_matches_on_both_tracers() {
         }
     }
     if let Some((name, flip, share)) = worst {
-        println!("worst: {name}, FLIP mean {flip:.5}, {:.3}% within 2/255", 100.0 * share);
+        println!(
+            "worst: {name}, FLIP mean {flip:.5}, {:.3}% within 2/255",
+            100.0 * share
+        );
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }

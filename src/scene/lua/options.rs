@@ -4,6 +4,7 @@
 //! that lists what is valid, rather than an option silently left at its default.
 
 use super::args::{describe, finite, int_value, Args};
+use crate::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES, MAX_TRACE_DEPTH};
 use crate::scene::{AaMode, Background, GridMode, RenderOptions};
 use mlua::{Table, Value};
 
@@ -56,16 +57,16 @@ pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
                 }
                 .ok_or_else(|| bad(AaMode::CHOICES))?;
             }
-            "samples" => o.samples = int_in(1, 64)?,
+            "samples" => o.samples = int_in(1, MAX_AA_SAMPLES as i64)?,
             "aa_threshold" => {
                 o.aa_threshold = match finite(&v) {
                     Some(x) if x >= 0.0 => x as f32,
                     _ => return Err(bad("a non-negative number")),
                 }
             }
-            "aa_depth" => o.aa_depth = int_in(0, 8)?,
+            "aa_depth" => o.aa_depth = int_in(0, MAX_AA_DEPTH as i64)?,
             "shadow_samples" => o.shadow_samples = Some(int_in(1, 64)?),
-            "max_depth" => o.max_depth = int_in(0, 64)?,
+            "max_depth" => o.max_depth = int_in(0, MAX_TRACE_DEPTH as i64)?,
             "min_weight" => {
                 o.min_weight = match finite(&v) {
                     Some(x) if (0.0..=1.0).contains(&x) => x as f32,
