@@ -103,6 +103,7 @@ struct Dda {
 }
 
 // Cells along each axis, signed.
+// Mirror of src/cpu/traverse.rs::grid_dims_i32 — change both.
 fn grid_dims_i32() -> vec3<i32> {
     return vec3<i32>(globals.grid_dims);
 }
@@ -159,6 +160,7 @@ fn min_axis(v: vec3<f32>) -> u32 {
 }
 
 // Index of a cell in the cell arrays (x fastest).
+// Mirror of src/cpu/traverse.rs::cell_index — change both.
 fn cell_index(cell: vec3<i32>, dims: vec3<i32>) -> u32 {
     return u32(cell.x + dims.x * (cell.y + dims.y * cell.z));
 }

@@ -119,11 +119,7 @@ fn dda_setup(scene: &PackedScene, ray: &Ray, t_max: f32) -> Option<Dda> {
     let g = &scene.globals;
     let grid_min = Vec3::from(g.grid_min);
     let cell_size = Vec3::from(g.grid_cell_size);
-    let dims = IVec3::new(
-        g.grid_dims[0] as i32,
-        g.grid_dims[1] as i32,
-        g.grid_dims[2] as i32,
-    );
+    let dims = grid_dims_i32(g);
     let inv = safe_rcp3(ray.dir);
     let t0 = (grid_min - ray.origin) * inv;
     let t1 = (Vec3::from(g.grid_max) - ray.origin) * inv;
@@ -161,6 +157,22 @@ fn dda_setup(scene: &PackedScene, ray: &Ray, t_max: f32) -> Option<Dda> {
         t_delta,
         t_exit,
     })
+}
+
+/// Cells along each axis, signed.
+// Mirror of shaders/traverse.wgsl::grid_dims_i32 — change both.
+fn grid_dims_i32(g: &GpuGlobals) -> IVec3 {
+    IVec3::new(
+        g.grid_dims[0] as i32,
+        g.grid_dims[1] as i32,
+        g.grid_dims[2] as i32,
+    )
+}
+
+/// Index of a cell in the cell arrays (x fastest).
+// Mirror of shaders/traverse.wgsl::cell_index — change both.
+fn cell_index(cell: IVec3, dims: IVec3) -> usize {
+    (cell.x + dims.x * (cell.y + dims.y * cell.z)) as usize
 }
 
 /// Index of the smallest component.
@@ -262,14 +274,10 @@ fn closest_hit_inside(
     let Some(mut dda) = dda_setup(scene, ray, t_max) else {
         return Hit::MISS;
     };
-    let dims = IVec3::new(
-        g.grid_dims[0] as i32,
-        g.grid_dims[1] as i32,
-        g.grid_dims[2] as i32,
-    );
+    let dims = grid_dims_i32(g);
     loop {
         counters.cell_visited();
-        let cell = (dda.cell.x + dims.x * (dda.cell.y + dims.y * dda.cell.z)) as usize;
+        let cell = cell_index(dda.cell, dims);
         let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
         test_items(
             scene,
@@ -356,14 +364,10 @@ fn any_hit_inside(
     let Some(mut dda) = dda_setup(scene, ray, t_max) else {
         return false;
     };
-    let dims = IVec3::new(
-        g.grid_dims[0] as i32,
-        g.grid_dims[1] as i32,
-        g.grid_dims[2] as i32,
-    );
+    let dims = grid_dims_i32(g);
     loop {
         counters.cell_visited();
-        let cell = (dda.cell.x + dims.x * (dda.cell.y + dims.y * dda.cell.z)) as usize;
+        let cell = cell_index(dda.cell, dims);
         let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
         if any_item_hit(
             scene,
