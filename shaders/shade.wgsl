@@ -14,7 +14,7 @@ struct Surface {
     material: u32,
 }
 
-// #if SPHERE|CUBE
+// #if SPHERE|CUBE|CYLINDER|CONE
 // Largest |entry| sum over the rows of an affine 3×4 matrix: bounds the magnitude of the
 // world coordinates it produces from a point in the unit box.
 // Mirror of src/cpu/shade.rs::affine_magnitude — change both.
@@ -34,6 +34,25 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
     let local = to_object_space(inst, ray.origin, ray.dir);
     var p_obj = local.origin + local.dir * t;
     var n_obj = vec3<f32>(0.0);
+    // Largest |object coordinate| of the primitive, when above 1 (scales the magnitude).
+    var extent = 1.0;
+// #if CYLINDER
+    if inst.kind == KIND_CYLINDER {
+        let s = cylinder_surface(p_obj);
+        p_obj = s.p;
+        n_obj = s.normal;
+    }
+// #endif
+// #if CONE
+    if inst.kind == KIND_CONE {
+        let zmin = inst.params.x;
+        let zmax = inst.params.y;
+        let s = cone_surface(p_obj, zmin, zmax);
+        p_obj = s.p;
+        n_obj = s.normal;
+        extent = max(max(extent, abs(zmin)), abs(zmax));
+    }
+// #endif
 // #if SPHERE
     if inst.kind == KIND_SPHERE {
         // Reproject onto the unit sphere.
@@ -65,7 +84,7 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
     // Normals transform by the inverse transpose: Σ n_obj[i] · (row i of world→object).
     let w2o = inst.world_to_object;
     let normal = normalize(w2o[0].xyz * n_obj.x + w2o[1].xyz * n_obj.y + w2o[2].xyz * n_obj.z);
-    return Surface(p, normal, affine_magnitude(o2w), inst.material);
+    return Surface(p, normal, affine_magnitude(o2w) * extent, inst.material);
 }
 // #endif
 
@@ -73,7 +92,7 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
 // Mirror of src/cpu/shade.rs::surface_at — change both.
 fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let num_instances = globals.num_instances;
-// #if SPHERE|CUBE
+// #if SPHERE|CUBE|CYLINDER|CONE
     if hit.item < num_instances {
         return instance_surface(instances[hit.item], ray, hit.t);
     }

@@ -4,6 +4,8 @@
 /// Instance kinds (`GpuInstance::kind`).
 pub const KIND_SPHERE: u32 = 0;
 pub const KIND_CUBE: u32 = 1;
+pub const KIND_CYLINDER: u32 = 2;
+pub const KIND_CONE: u32 = 3;
 
 /// Light kinds (`GpuLight::kind`).
 pub const LIGHT_POINT: u32 = 0;
@@ -41,11 +43,16 @@ pub const ENTER_MARGIN_RELATIVE: f32 = 1.0 / 1048576.0;
 /// IEEE infinity (which WGSL does not guarantee) is ever needed.
 pub const SAFE_RCP_LIMIT: f32 = 1.0e30;
 
+/// 2π (angles around an axis → u in [0, 1)).
+pub const TWO_PI: f32 = std::f32::consts::TAU;
+
 /// WGSL `const` declarations for every constant above (the GPU tracer's prelude).
 pub fn wgsl_prelude() -> String {
     let u32s: &[(&str, u32)] = &[
         ("KIND_SPHERE", KIND_SPHERE),
         ("KIND_CUBE", KIND_CUBE),
+        ("KIND_CYLINDER", KIND_CYLINDER),
+        ("KIND_CONE", KIND_CONE),
         ("LIGHT_POINT", LIGHT_POINT),
         ("MATERIAL_REFLECTIVE", MATERIAL_REFLECTIVE),
         ("AA_NONE", AA_NONE),
@@ -72,6 +79,7 @@ pub fn wgsl_prelude() -> String {
         ("OFFSET_RELATIVE", OFFSET_RELATIVE),
         ("ENTER_MARGIN_RELATIVE", ENTER_MARGIN_RELATIVE),
         ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),
+        ("TWO_PI", TWO_PI),
         ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
     ];
     let mut out = String::from("// Generated from src/constants.rs — do not edit.\n");

@@ -53,7 +53,7 @@ fn wgsl_structs_match_rust_layout() {
             object_to_world,
             kind,
             material,
-            _pad
+            params
         }),
     );
     check_struct(
@@ -209,6 +209,12 @@ fn absent_features_are_compiled_out() {
         "triangle_ray_setup",
         "dda_setup",
         "min_axis",
+        "intersect_cylinder",
+        "intersect_cone",
+        "cylinder_surface",
+        "cone_surface",
+        "nearest_interval_end",
+        "cylinder_cone_angle_u",
     ] {
         assert!(
             !source.contains(&format!("fn {absent}(")),
@@ -246,6 +252,27 @@ fn absent_features_are_compiled_out() {
         assert!(with_all.contains(present), "{present} missing");
     }
     assert!(!with_all.contains("fn intersect_sphere("));
+    assert!(!with_all.contains("CylinderConeSurface"));
+    // Cylinder and cone each bring their own functions and the shared ones, not the other's.
+    for (feature, present, absent) in [
+        (
+            SceneFeatures::CYLINDER,
+            "fn intersect_cylinder(",
+            "fn intersect_cone(",
+        ),
+        (
+            SceneFeatures::CONE,
+            "fn intersect_cone(",
+            "fn intersect_cylinder(",
+        ),
+    ] {
+        let source = assemble(feature, Entry::Render);
+        validate(&source, feature).unwrap();
+        for shared in [present, "fn nearest_interval_end(", "fn instance_surface("] {
+            assert!(source.contains(shared), "[{feature}] {shared} missing");
+        }
+        assert!(!source.contains(absent), "[{feature}] {absent} present");
+    }
 }
 
 #[test]

@@ -343,6 +343,40 @@ fn wrong_argument_types() {
 }
 
 #[test]
+fn cone_arguments_are_checked() {
+    let m = message_of("x = 0\nc = gr.cone('c', 1, 1)\n");
+    assert_eq!(
+        m,
+        ":2: gr.cone: argument 3 (zmax) must be a number greater than zmin (1), got 1"
+    );
+    let m = message_of("c = gr.cone('c', 0/0, 1)\n");
+    assert_eq!(
+        m,
+        ":1: gr.cone: argument 2 (zmin) must be a finite number, got nan"
+    );
+    let m = message_of("c = gr.cone('c', 0)\n");
+    assert_eq!(
+        m,
+        ":1: gr.cone: argument 3 (zmax) must be a finite number, got nil"
+    );
+    let m = message_of("c = gr.cone('c', -1e39, 1)\n");
+    assert!(
+        m.contains("argument 2 (zmin) must be a finite number (within f32 range)"),
+        "{m}"
+    );
+    // Valid: a cylinder, a cone with its tip at zmin, a double cone.
+    let source = "a = gr.cylinder('a')\nb = gr.cone('b', 0, 2)\nc = gr.cone('c', -1, 1)\n";
+    run_scene_source(
+        "ok.lua",
+        source,
+        Path::new("."),
+        &ScriptConfig::default(),
+        &mut |_, _| Ok(()),
+    )
+    .unwrap();
+}
+
+#[test]
 fn negative_radius_and_nan() {
     let m = message_of("x = 0\ns = gr.nh_sphere('s', {0,0,0}, -1)\n");
     assert_eq!(
@@ -531,9 +565,9 @@ fn sandbox_blocks_processes_and_files() {
 
 #[test]
 fn undefined_gr_function_is_a_readable_error() {
-    let m = message_of("\nc = gr.cylinder('c')\n");
+    let m = message_of("\nc = gr.teapot('c')\n");
     assert!(m.starts_with(":2: "), "{m}");
-    assert!(m.contains("cylinder"), "{m}");
+    assert!(m.contains("teapot"), "{m}");
     let m = message_of("m = gr.material('m')\nm:set_diffuse('wood.png')\n");
     assert!(m.contains("textures are not supported yet"), "{m}");
 }

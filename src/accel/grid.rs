@@ -4,7 +4,7 @@
 //! CSR-style (`cell_start`, `cell_items`), items in ascending order inside each cell so
 //! the build is deterministic.
 
-use crate::constants::{KIND_CUBE, KIND_SPHERE};
+use crate::constants::{KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE};
 use crate::pack::{GpuInstance, GpuTriangle};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -90,7 +90,8 @@ impl Aabb {
     }
 }
 
-/// World bounds of an instance: the unit sphere or unit cube under its transform.
+/// World bounds of an instance: the unit sphere, unit cube, cylinder or cone under its
+/// transform.
 pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
     let rows = inst.object_to_world.map(|r| Vec3::new(r[0], r[1], r[2]));
     let translation = Vec3::new(
@@ -118,6 +119,28 @@ pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
                 rows[2].abs().element_sum(),
             ),
         ),
+        // Cylinder and cone: their object-space box (centre c, half-extent h) under the
+        // transform, half-extent Σ_j |row i|_j · h_j (conservative).
+        KIND_CYLINDER | KIND_CONE => {
+            let (c, h) = if inst.kind == KIND_CYLINDER {
+                (Vec3::new(0.0, 0.0, 0.5), Vec3::new(1.0, 1.0, 0.5))
+            } else {
+                let [zmin, zmax] = inst.params;
+                let r = zmin.abs().max(zmax.abs());
+                (
+                    Vec3::new(0.0, 0.0, 0.5 * (zmin + zmax)),
+                    Vec3::new(r, r, 0.5 * (zmax - zmin)),
+                )
+            };
+            (
+                translation + Vec3::new(rows[0].dot(c), rows[1].dot(c), rows[2].dot(c)),
+                Vec3::new(
+                    rows[0].abs().dot(h),
+                    rows[1].abs().dot(h),
+                    rows[2].abs().dot(h),
+                ),
+            )
+        }
         other => unreachable!("instance kind {other} has no bounds"),
     };
     Aabb {

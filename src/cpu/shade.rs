@@ -1,9 +1,10 @@
 //! Surface reconstruction at a hit, A4 Phong shading with shadow rays, and the background.
 
+use super::cylinder_cone::{cone_surface, cylinder_surface};
 use super::intersect::{to_object_space, triangle_vertices};
 use super::ray::{offset_ray, Ray};
 use super::traverse::{any_hit, Hit, TraversalCounters};
-use crate::constants::KIND_SPHERE;
+use crate::constants::{KIND_CONE, KIND_CYLINDER, KIND_SPHERE};
 use crate::pack::{GpuGlobals, GpuInstance, PackedScene};
 use glam::Vec3;
 
@@ -36,7 +37,19 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
     let (oo, od) = to_object_space(inst, ray.origin, ray.dir);
     let mut p_obj = oo + od * t;
     let n_obj;
-    if inst.kind == KIND_SPHERE {
+    // Largest |object coordinate| of the primitive, when above 1 (scales the magnitude).
+    let mut extent = 1.0f32;
+    if inst.kind == KIND_CYLINDER {
+        let s = cylinder_surface(p_obj);
+        p_obj = s.p;
+        n_obj = s.normal;
+    } else if inst.kind == KIND_CONE {
+        let [zmin, zmax] = inst.params;
+        let s = cone_surface(p_obj, zmin, zmax);
+        p_obj = s.p;
+        n_obj = s.normal;
+        extent = extent.max(zmin.abs()).max(zmax.abs());
+    } else if inst.kind == KIND_SPHERE {
         // Reproject onto the unit sphere.
         p_obj = p_obj.normalize();
         n_obj = p_obj;
@@ -71,7 +84,7 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
     Surface {
         p,
         normal,
-        magnitude: affine_magnitude(o2w),
+        magnitude: affine_magnitude(o2w) * extent,
         material: inst.material,
     }
 }

@@ -70,6 +70,10 @@ const COMMON: &[(&str, &str)] = &[
         "intersect.wgsl",
         include_str!("../../shaders/intersect.wgsl"),
     ),
+    (
+        "cylinder_cone.wgsl",
+        include_str!("../../shaders/cylinder_cone.wgsl"),
+    ),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
 ];

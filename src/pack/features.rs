@@ -13,6 +13,8 @@ impl SceneFeatures {
     pub const MESH: SceneFeatures = SceneFeatures(1 << 2);
     pub const REFLECTION: SceneFeatures = SceneFeatures(1 << 3);
     pub const GRID: SceneFeatures = SceneFeatures(1 << 4);
+    pub const CYLINDER: SceneFeatures = SceneFeatures(1 << 5);
+    pub const CONE: SceneFeatures = SceneFeatures(1 << 6);
 
     /// Every feature with its name, in display order.
     pub const ALL: &'static [(SceneFeatures, &'static str)] = &[
@@ -21,6 +23,8 @@ impl SceneFeatures {
         (Self::MESH, "mesh"),
         (Self::REFLECTION, "reflection"),
         (Self::GRID, "grid"),
+        (Self::CYLINDER, "cylinder"),
+        (Self::CONE, "cone"),
     ];
 
     pub const fn empty() -> SceneFeatures {

@@ -48,19 +48,19 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         .objects
         .iter()
         .map(|o| {
-            features.insert(match o.kind {
-                ObjectKind::Sphere => SceneFeatures::SPHERE,
-                ObjectKind::Cube => SceneFeatures::CUBE,
-            });
+            let (feature, kind, params) = match o.kind {
+                ObjectKind::Sphere => (SceneFeatures::SPHERE, KIND_SPHERE, [0.0; 2]),
+                ObjectKind::Cube => (SceneFeatures::CUBE, KIND_CUBE, [0.0; 2]),
+                ObjectKind::Cylinder => (SceneFeatures::CYLINDER, KIND_CYLINDER, [0.0; 2]),
+                ObjectKind::Cone { zmin, zmax } => (SceneFeatures::CONE, KIND_CONE, [zmin, zmax]),
+            };
+            features.insert(feature);
             GpuInstance {
                 world_to_object: affine_rows(&o.object_to_world.inverse()),
                 object_to_world: affine_rows(&o.object_to_world),
-                kind: match o.kind {
-                    ObjectKind::Sphere => KIND_SPHERE,
-                    ObjectKind::Cube => KIND_CUBE,
-                },
+                kind,
                 material: o.material as u32,
-                _pad: [0; 2],
+                params,
             }
         })
         .collect();

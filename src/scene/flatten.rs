@@ -13,10 +13,12 @@ use glam::{DMat3, DMat4, DVec3};
 pub const MAX_NODE_DEPTH: usize = 256;
 
 /// An analytic primitive kind (meshes become triangles).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ObjectKind {
     Sphere,
     Cube,
+    Cylinder,
+    Cone { zmin: f32, zmax: f32 },
 }
 
 /// One analytic primitive instance in world space.
@@ -122,16 +124,23 @@ fn visit(
         check_transform(&object_to_world, &path_name)?;
         let material = node.material.unwrap_or(default_material);
         match primitive {
-            Primitive::Sphere | Primitive::Cube => scene.objects.push(Object {
-                name: path_name(),
-                kind: if *primitive == Primitive::Sphere {
-                    ObjectKind::Sphere
-                } else {
-                    ObjectKind::Cube
-                },
-                object_to_world,
-                material,
-            }),
+            Primitive::Sphere | Primitive::Cube | Primitive::Cylinder | Primitive::Cone { .. } => {
+                scene.objects.push(Object {
+                    name: path_name(),
+                    kind: match *primitive {
+                        Primitive::Sphere => ObjectKind::Sphere,
+                        Primitive::Cube => ObjectKind::Cube,
+                        Primitive::Cylinder => ObjectKind::Cylinder,
+                        Primitive::Cone { zmin, zmax } => ObjectKind::Cone {
+                            zmin: zmin as f32,
+                            zmax: zmax as f32,
+                        },
+                        Primitive::Mesh(_) => unreachable!(),
+                    },
+                    object_to_world,
+                    material,
+                })
+            }
             Primitive::Mesh(mesh_id) => {
                 let mesh = &graph.meshes[*mesh_id];
                 let world: Vec<DVec3> = mesh

@@ -20,12 +20,17 @@ pub type MaterialId = usize;
 pub type MeshId = usize;
 
 /// The analytic or tessellated shape a geometry node carries, in its own object space.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Primitive {
     /// Unit sphere at the origin.
     Sphere,
     /// Box from (0,0,0) to (1,1,1).
     Cube,
+    /// Solid capped cylinder around the z axis: radius 1, z from 0 to 1.
+    Cylinder,
+    /// Solid capped cone x² + y² = z² between the planes z = zmin and z = zmax
+    /// (zmin < zmax); with zmin < 0 < zmax, both nappes (a double cone meeting at the tip).
+    Cone { zmin: f64, zmax: f64 },
     /// Triangle mesh (fan-triangulated polygons).
     Mesh(MeshId),
 }

@@ -36,6 +36,8 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     def!("joint", |a: &Args| transform_node(a));
     def!("sphere", |a: &Args| primitive(a, Primitive::Sphere));
     def!("cube", |a: &Args| primitive(a, Primitive::Cube));
+    def!("cylinder", |a: &Args| primitive(a, Primitive::Cylinder));
+    def!("cone", cone);
     def!("nh_sphere", nh_sphere);
     def!("nh_box", nh_box);
     def!("mesh", mesh);
@@ -73,6 +75,28 @@ fn transform_node(a: &Args) -> mlua::Result<NodeHandle> {
 fn primitive(a: &Args, p: Primitive) -> mlua::Result<NodeHandle> {
     let name = a.string(1, "name")?;
     Ok(new_node(a.lua, name, geometry(p, DMat4::IDENTITY)))
+}
+
+/// `gr.cone(name, zmin, zmax)`: the solid cone x² + y² ≤ z² between z = zmin and z = zmax.
+/// The bounds must stay distinct (and finite) in f32, which the tracers use.
+fn cone(a: &Args) -> mlua::Result<NodeHandle> {
+    let name = a.string(1, "name")?;
+    let zmin = a.number(2, "zmin")?;
+    if !(zmin as f32).is_finite() {
+        return Err(a.bad(2, "zmin", "a finite number (within f32 range)"));
+    }
+    let zmax = a.number(3, "zmax")?;
+    if !(zmax as f32).is_finite() {
+        return Err(a.bad(3, "zmax", "a finite number (within f32 range)"));
+    }
+    if (zmin as f32) >= (zmax as f32) {
+        return Err(a.bad(3, "zmax", &format!("a number greater than zmin ({zmin})")));
+    }
+    Ok(new_node(
+        a.lua,
+        name,
+        geometry(Primitive::Cone { zmin, zmax }, DMat4::IDENTITY),
+    ))
 }
 
 fn nh_sphere(a: &Args) -> mlua::Result<NodeHandle> {
