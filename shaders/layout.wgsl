@@ -11,7 +11,8 @@ struct GpuInstance {
     // KIND_* tag.
     kind: u32,
     material: u32,
-    _pad: array<u32, 2>,
+    // Kind-specific parameters: cone (zmin, zmax), torus (rin, rout); 0 otherwise.
+    params: vec2<f32>,
 }
 
 // Mirror of src/pack/layout.rs::GpuTriangle — change both.

@@ -4,7 +4,7 @@
 //! CSR-style (`cell_start`, `cell_items`), items in ascending order inside each cell so
 //! the build is deterministic.
 
-use crate::constants::{KIND_CUBE, KIND_SPHERE};
+use crate::constants::{KIND_CUBE, KIND_SPHERE, KIND_TORUS};
 use crate::pack::{GpuInstance, GpuTriangle};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -90,7 +90,7 @@ impl Aabb {
     }
 }
 
-/// World bounds of an instance: the unit sphere or unit cube under its transform.
+/// World bounds of an instance: the unit sphere, unit cube or torus under its transform.
 pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
     let rows = inst.object_to_world.map(|r| Vec3::new(r[0], r[1], r[2]));
     let translation = Vec3::new(
@@ -118,6 +118,20 @@ pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
                 rows[2].abs().element_sum(),
             ),
         ),
+        // Box [−R, R]² × [−rout, rout] (R = rin + rout) around the origin: half-extent
+        // Σ|row i|·(R, R, rout).
+        KIND_TORUS => {
+            let [rin, rout] = inst.params;
+            let extent = Vec3::new(rin + rout, rin + rout, rout);
+            (
+                translation,
+                Vec3::new(
+                    rows[0].abs().dot(extent),
+                    rows[1].abs().dot(extent),
+                    rows[2].abs().dot(extent),
+                ),
+            )
+        }
         other => unreachable!("instance kind {other} has no bounds"),
     };
     Aabb {

@@ -2,7 +2,8 @@
 //! (watertight). Analytic primitives are intersected in object space with an
 //! unnormalised direction, so t is the world-space t.
 
-use crate::constants::{KIND_CUBE, KIND_SPHERE, SAFE_RCP_LIMIT, T_MISS};
+use super::torus::intersect_torus;
+use crate::constants::{KIND_CUBE, KIND_SPHERE, KIND_TORUS, SAFE_RCP_LIMIT, T_MISS};
 use crate::pack::{GpuInstance, GpuTriangle};
 use glam::Vec3;
 
@@ -194,6 +195,7 @@ pub fn intersect_instance(inst: &GpuInstance, o: Vec3, d: Vec3, t_max: f32) -> f
     match inst.kind {
         KIND_SPHERE => intersect_sphere(oo, od, t_max),
         KIND_CUBE => intersect_box(oo, od, t_max),
+        KIND_TORUS => intersect_torus(oo, od, inst.params[0], inst.params[1], t_max),
         _ => T_MISS,
     }
 }

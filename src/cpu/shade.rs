@@ -2,8 +2,9 @@
 
 use super::intersect::{to_object_space, triangle_vertices};
 use super::ray::{offset_ray, Ray};
+use super::torus::torus_surface;
 use super::traverse::{any_hit, Hit, TraversalCounters};
-use crate::constants::KIND_SPHERE;
+use crate::constants::{KIND_SPHERE, KIND_TORUS};
 use crate::pack::{GpuGlobals, GpuInstance, PackedScene};
 use glam::Vec3;
 
@@ -40,6 +41,11 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
         // Reproject onto the unit sphere.
         p_obj = p_obj.normalize();
         n_obj = p_obj;
+    } else if inst.kind == KIND_TORUS {
+        // Project onto the tube (the tangent frame and UV are unused until bump mapping).
+        let s = torus_surface(p_obj, inst.params[0], inst.params[1]);
+        p_obj = s.p;
+        n_obj = s.normal;
     } else {
         // The face nearest the point: snap the point onto it.
         let dist = p_obj.abs().min((p_obj - Vec3::ONE).abs());
@@ -71,7 +77,8 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
     Surface {
         p,
         normal,
-        magnitude: affine_magnitude(o2w),
+        // Object points may lie beyond the unit box (a torus reaches rin + rout).
+        magnitude: affine_magnitude(o2w) * p_obj.abs().max_element().max(1.0),
         material: inst.material,
     }
 }

@@ -70,6 +70,7 @@ const COMMON: &[(&str, &str)] = &[
         "intersect.wgsl",
         include_str!("../../shaders/intersect.wgsl"),
     ),
+    ("torus.wgsl", include_str!("../../shaders/torus.wgsl")),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
 ];

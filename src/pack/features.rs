@@ -13,6 +13,7 @@ impl SceneFeatures {
     pub const MESH: SceneFeatures = SceneFeatures(1 << 2);
     pub const REFLECTION: SceneFeatures = SceneFeatures(1 << 3);
     pub const GRID: SceneFeatures = SceneFeatures(1 << 4);
+    pub const TORUS: SceneFeatures = SceneFeatures(1 << 7);
 
     /// Every feature with its name, in display order.
     pub const ALL: &'static [(SceneFeatures, &'static str)] = &[
@@ -21,6 +22,7 @@ impl SceneFeatures {
         (Self::MESH, "mesh"),
         (Self::REFLECTION, "reflection"),
         (Self::GRID, "grid"),
+        (Self::TORUS, "torus"),
     ];
 
     pub const fn empty() -> SceneFeatures {

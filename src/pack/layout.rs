@@ -17,7 +17,8 @@ pub struct GpuInstance {
     /// `KIND_*` from `constants`.
     pub kind: u32,
     pub material: u32,
-    pub _pad: [u32; 2],
+    /// Kind-specific parameters: cone (zmin, zmax), torus (rin, rout); 0 otherwise.
+    pub params: [f32; 2],
 }
 
 /// A world-space triangle (flat shaded: the normal is the cross product of its edges).

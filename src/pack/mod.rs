@@ -51,6 +51,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
             features.insert(match o.kind {
                 ObjectKind::Sphere => SceneFeatures::SPHERE,
                 ObjectKind::Cube => SceneFeatures::CUBE,
+                ObjectKind::Torus { .. } => SceneFeatures::TORUS,
             });
             GpuInstance {
                 world_to_object: affine_rows(&o.object_to_world.inverse()),
@@ -58,9 +59,13 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
                 kind: match o.kind {
                     ObjectKind::Sphere => KIND_SPHERE,
                     ObjectKind::Cube => KIND_CUBE,
+                    ObjectKind::Torus { .. } => KIND_TORUS,
                 },
                 material: o.material as u32,
-                _pad: [0; 2],
+                params: match o.kind {
+                    ObjectKind::Torus { rin, rout } => [rin, rout],
+                    _ => [0.0; 2],
+                },
             }
         })
         .collect();
@@ -268,6 +273,14 @@ fn check_finite(instances: &[GpuInstance], triangles: &[GpuTriangle]) -> Result<
         if let Some(v) = values.flatten().find(|v| !v.is_finite()) {
             return Err(PackError::OutOfRange {
                 what: format!("instance {i} transform entry"),
+                value: *v as f64,
+            });
+        }
+    }
+    for (i, inst) in instances.iter().enumerate() {
+        if let Some(v) = inst.params.iter().find(|v| !v.is_finite()) {
+            return Err(PackError::OutOfRange {
+                what: format!("instance {i} parameter"),
                 value: *v as f64,
             });
         }

@@ -13,10 +13,15 @@ use glam::{DMat3, DMat4, DVec3};
 pub const MAX_NODE_DEPTH: usize = 256;
 
 /// An analytic primitive kind (meshes become triangles).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ObjectKind {
     Sphere,
     Cube,
+    /// Torus in the XY plane around z (`rin` to the middle of the tube, `rout` its radius).
+    Torus {
+        rin: f32,
+        rout: f32,
+    },
 }
 
 /// One analytic primitive instance in world space.
@@ -122,16 +127,21 @@ fn visit(
         check_transform(&object_to_world, &path_name)?;
         let material = node.material.unwrap_or(default_material);
         match primitive {
-            Primitive::Sphere | Primitive::Cube => scene.objects.push(Object {
-                name: path_name(),
-                kind: if *primitive == Primitive::Sphere {
-                    ObjectKind::Sphere
-                } else {
-                    ObjectKind::Cube
-                },
-                object_to_world,
-                material,
-            }),
+            Primitive::Sphere | Primitive::Cube | Primitive::Torus { .. } => {
+                scene.objects.push(Object {
+                    name: path_name(),
+                    kind: match *primitive {
+                        Primitive::Sphere => ObjectKind::Sphere,
+                        Primitive::Torus { rin, rout } => ObjectKind::Torus {
+                            rin: rin as f32,
+                            rout: rout as f32,
+                        },
+                        Primitive::Cube | Primitive::Mesh(_) => ObjectKind::Cube,
+                    },
+                    object_to_world,
+                    material,
+                })
+            }
             Primitive::Mesh(mesh_id) => {
                 let mesh = &graph.meshes[*mesh_id];
                 let world: Vec<DVec3> = mesh

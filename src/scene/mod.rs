@@ -20,12 +20,15 @@ pub type MaterialId = usize;
 pub type MeshId = usize;
 
 /// The analytic or tessellated shape a geometry node carries, in its own object space.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Primitive {
     /// Unit sphere at the origin.
     Sphere,
     /// Box from (0,0,0) to (1,1,1).
     Cube,
+    /// Torus centred at the origin in the XY plane (axis z): `rin` from the centre to the
+    /// middle of the tube, `rout` the radius of the tube.
+    Torus { rin: f64, rout: f64 },
     /// Triangle mesh (fan-triangulated polygons).
     Mesh(MeshId),
 }
