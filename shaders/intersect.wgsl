@@ -170,7 +170,7 @@ fn intersect_triangle(r: TriangleRay, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32
 }
 // #endif
 
-// #if SPHERE|CUBE|CYLINDER|CONE
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
 // Object-space ray of an instance: origin and (unnormalised) direction through the
 // world→object rows.
 // Mirror of src/cpu/intersect.rs::to_object_space — change both.
@@ -207,6 +207,11 @@ fn intersect_instance(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>, t_max: f32)
 // #if CONE
     if inst.kind == KIND_CONE {
         return intersect_cone(local.origin, local.dir, inst.params.x, inst.params.y, t_max);
+    }
+// #endif
+// #if TORUS
+    if inst.kind == KIND_TORUS {
+        return intersect_torus(local.origin, local.dir, inst.params.x, inst.params.y, t_max);
     }
 // #endif
     return T_MISS;

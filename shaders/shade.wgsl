@@ -14,7 +14,7 @@ struct Surface {
     material: u32,
 }
 
-// #if SPHERE|CUBE|CYLINDER|CONE
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
 // Largest |entry| sum over the rows of an affine 3×4 matrix: bounds the magnitude of the
 // world coordinates it produces from a point in the unit box.
 // Mirror of src/cpu/shade.rs::affine_magnitude — change both.
@@ -34,8 +34,6 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
     let local = to_object_space(inst, ray.origin, ray.dir);
     var p_obj = local.origin + local.dir * t;
     var n_obj = vec3<f32>(0.0);
-    // Largest |object coordinate| of the primitive, when above 1 (scales the magnitude).
-    var extent = 1.0;
 // #if CYLINDER
     if inst.kind == KIND_CYLINDER {
         let s = cylinder_surface(p_obj);
@@ -50,7 +48,6 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
         let s = cone_surface(p_obj, zmin, zmax);
         p_obj = s.p;
         n_obj = s.normal;
-        extent = max(max(extent, abs(zmin)), abs(zmax));
     }
 // #endif
 // #if SPHERE
@@ -75,6 +72,14 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
         n_obj[axis] = select(-1.0, 1.0, upper);
     }
 // #endif
+// #if TORUS
+    if inst.kind == KIND_TORUS {
+        // Project onto the tube (the tangent frame and UV are unused until bump mapping).
+        let s = torus_surface(p_obj, inst.params.x, inst.params.y);
+        p_obj = s.p;
+        n_obj = s.normal;
+    }
+// #endif
     let o2w = inst.object_to_world;
     let p = vec3<f32>(
         dot(o2w[0].xyz, p_obj) + o2w[0].w,
@@ -84,7 +89,9 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
     // Normals transform by the inverse transpose: Σ n_obj[i] · (row i of world→object).
     let w2o = inst.world_to_object;
     let normal = normalize(w2o[0].xyz * n_obj.x + w2o[1].xyz * n_obj.y + w2o[2].xyz * n_obj.z);
-    return Surface(p, normal, affine_magnitude(o2w) * extent, inst.material);
+    // Object points may lie beyond the unit box (a torus reaches rin + rout).
+    let magnitude = affine_magnitude(o2w) * max(max_element(abs(p_obj)), 1.0);
+    return Surface(p, normal, magnitude, inst.material);
 }
 // #endif
 
@@ -92,7 +99,7 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
 // Mirror of src/cpu/shade.rs::surface_at — change both.
 fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let num_instances = globals.num_instances;
-// #if SPHERE|CUBE|CYLINDER|CONE
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
     if hit.item < num_instances {
         return instance_surface(instances[hit.item], ray, hit.t);
     }

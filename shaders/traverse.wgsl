@@ -29,7 +29,7 @@ fn is_hit(hit: Hit) -> bool {
 // Mirror of src/cpu/traverse.rs::intersect_item — change both.
 fn intersect_item(item: u32, ray: Ray, tri_ray: TriangleRay, t_max: f32) -> vec3<f32> {
     let num_instances = globals.num_instances;
-// #if SPHERE|CUBE|CYLINDER|CONE
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
     if item < num_instances {
         let t = intersect_instance(instances[item], ray.origin, ray.dir, t_max);
         return vec3<f32>(t, 0.0, 0.0);

@@ -6,6 +6,7 @@ pub const KIND_SPHERE: u32 = 0;
 pub const KIND_CUBE: u32 = 1;
 pub const KIND_CYLINDER: u32 = 2;
 pub const KIND_CONE: u32 = 3;
+pub const KIND_TORUS: u32 = 4;
 
 /// Light kinds (`GpuLight::kind`).
 pub const LIGHT_POINT: u32 = 0;
@@ -43,6 +44,18 @@ pub const ENTER_MARGIN_RELATIVE: f32 = 1.0 / 1048576.0;
 /// IEEE infinity (which WGSL does not guarantee) is ever needed.
 pub const SAFE_RCP_LIMIT: f32 = 1.0e30;
 
+/// Torus root finder (`cpu::torus`): Newton-with-bisection iterations per root at most.
+/// Every root is bracketed in an interval of at most ~2 units (the bounding sphere's
+/// chord in units of rin + rout), so 24 halvings alone reach f32 precision; Newton
+/// usually stops after 3–6. Small, since lavapipe counts every loop iteration of an
+/// invocation against 65 535 (a torus test costs at most 4 roots × this).
+pub const TORUS_NEWTON_ITERATIONS: u32 = 24;
+/// Newton stops when a step is at most this fraction of the root (2⁻²², ≈ 2 ulps).
+pub const TORUS_ROOT_TOLERANCE: f32 = 1.0 / 4194304.0;
+/// The torus's bounding sphere and slab are grown by this, in units of rin + rout, so
+/// that the rounding of the clipped ray origin (far origins: ~1e-7 × their distance)
+/// never starts the root search past a hit.
+pub const TORUS_BOUND_MARGIN: f32 = 1.0 / 64.0;
 /// 2π (angles around an axis → u in [0, 1)).
 pub const TWO_PI: f32 = std::f32::consts::TAU;
 
@@ -53,6 +66,7 @@ pub fn wgsl_prelude() -> String {
         ("KIND_CUBE", KIND_CUBE),
         ("KIND_CYLINDER", KIND_CYLINDER),
         ("KIND_CONE", KIND_CONE),
+        ("KIND_TORUS", KIND_TORUS),
         ("LIGHT_POINT", LIGHT_POINT),
         ("MATERIAL_REFLECTIVE", MATERIAL_REFLECTIVE),
         ("AA_NONE", AA_NONE),
@@ -73,6 +87,7 @@ pub fn wgsl_prelude() -> String {
         ("PROBE_ANY_HIT", PROBE_ANY_HIT),
         ("PCG_INCREMENT", PCG_INCREMENT),
         ("PCG_WORD_MULTIPLIER", PCG_WORD_MULTIPLIER),
+        ("TORUS_NEWTON_ITERATIONS", TORUS_NEWTON_ITERATIONS),
     ];
     let f32s: &[(&str, f32)] = &[
         ("T_MISS", T_MISS),
@@ -81,6 +96,8 @@ pub fn wgsl_prelude() -> String {
         ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),
         ("TWO_PI", TWO_PI),
         ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
+        ("TORUS_ROOT_TOLERANCE", TORUS_ROOT_TOLERANCE),
+        ("TORUS_BOUND_MARGIN", TORUS_BOUND_MARGIN),
     ];
     let mut out = String::from("// Generated from src/constants.rs — do not edit.\n");
     for (name, value) in u32s {
@@ -146,3 +163,25 @@ pub const RANDOM_UNIT_SCALE: f32 = 1.0 / 16777216.0;
 /// Kernel-probe modes (`gpu::probe::ProbeRay::mode`, test support).
 pub const PROBE_CLOSEST_HIT: u32 = 0;
 pub const PROBE_ANY_HIT: u32 = 1;
+
+#[cfg(test)]
+mod tests {
+    /// Two merges once listed a constant twice; WGSL rejects a redeclared `const`.
+    #[test]
+    fn prelude_declares_each_constant_once() {
+        let prelude = super::wgsl_prelude();
+        let mut names: Vec<&str> = prelude
+            .lines()
+            .filter_map(|l| l.strip_prefix("const "))
+            .filter_map(|l| l.split(':').next())
+            .collect();
+        let count = names.len();
+        names.sort();
+        names.dedup();
+        assert_eq!(
+            names.len(),
+            count,
+            "a constant is declared twice:\n{prelude}"
+        );
+    }
+}

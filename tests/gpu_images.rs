@@ -68,6 +68,15 @@ fn corpus_scene(file: &str, aa: Option<AaMode>) -> PackedScene {
     packed_from_file(&corpus().join("a4-2021plus").join(file), &small(aa)).remove(0)
 }
 
+/// scenes/tori.lua: linked rings, a mirror ring, a fat and a spindle torus.
+#[test]
+fn tori_scene_matches() {
+    let Some(ctx) = gpu_context() else { return };
+    let scene = packed_from_file(&common::root().join("scenes/tori.lua"), &small(None)).remove(0);
+    let features = compare(&ctx, "tori", &scene);
+    assert!(features.contains(SceneFeatures::TORUS), "{features}");
+}
+
 #[test]
 fn corpus_scenes_match() {
     let Some(ctx) = gpu_context() else { return };

@@ -275,6 +275,35 @@ fn absent_features_are_compiled_out() {
     }
 }
 
+/// The torus code (shaders/torus.wgsl and its dispatch arms) is in exactly the
+/// specialisations with TORUS, and every specialisation set includes TORUS.
+#[test]
+fn torus_code_only_with_torus() {
+    let sets = all_feature_sets();
+    assert!(sets.iter().any(|s| s.contains(SceneFeatures::TORUS)));
+    let torus_code = [
+        "fn intersect_torus(",
+        "fn torus_surface(",
+        "fn first_quartic_root(",
+        "fn newton_bisect(",
+        "fn poly_eval(",
+        "struct TorusSurface",
+        "== KIND_TORUS {",
+    ];
+    for features in sets {
+        for entry in [Entry::Render, Entry::Probe] {
+            let source = assemble(features, entry);
+            for code in torus_code {
+                assert_eq!(
+                    source.contains(code),
+                    features.contains(SceneFeatures::TORUS),
+                    "[{features}] {entry:?}: {code}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn preprocessor_directives() {
     let text = "a\n// #if SPHERE|CUBE\nb\n// #if !MESH\nc\n// #else\nd\n// #endif\n// #endif\ne\n";
@@ -282,9 +311,9 @@ fn preprocessor_directives() {
     assert_eq!(out, "a\nb\nc\ne\n");
     let out = preprocess("t", text, SceneFeatures::MESH).unwrap();
     assert_eq!(out, "a\ne\n");
-    let err = preprocess("t", "// #if TORUS\n// #endif\n", SceneFeatures::CUBE).unwrap_err();
+    let err = preprocess("t", "// #if TEAPOT\n// #endif\n", SceneFeatures::CUBE).unwrap_err();
     assert!(
-        err.contains("unknown feature 'TORUS'") && err.contains("SPHERE"),
+        err.contains("unknown feature 'TEAPOT'") && err.contains("TORUS"),
         "{err}"
     );
     assert!(preprocess("t", "// #if CUBE\n", SceneFeatures::CUBE).is_err());

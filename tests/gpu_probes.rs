@@ -164,6 +164,39 @@ fn scene(seed: u64, spheres: usize, cubes: usize, triangles: usize, mode: GridMo
     packed_from_source(&random_scene(seed, spheres, cubes, triangles), &grid(mode)).remove(0)
 }
 
+/// Lua for `count` random tori (ring and spindle, thin to fat tubes) in [-10, 10]³.
+fn torus_scene(seed: u64, count: usize) -> String {
+    let mut rng = Rng(seed);
+    let mut lua = String::from(
+        "m = gr.material({0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, 25)\nroot = gr.node('root')\n",
+    );
+    for i in 0..count {
+        let rin = rng.range(0.5, 2.5);
+        let rout = rin * rng.range(0.05, 1.3);
+        let s = [0; 3].map(|_| rng.range(0.6, 1.5));
+        let axis = ["x", "y", "z"][(rng.next_u64() % 3) as usize];
+        let angle = rng.range(0.0, 360.0);
+        let t = [0; 3].map(|_| rng.range(-8.0, 8.0));
+        let _ = writeln!(
+            lua,
+            "n = gr.torus('torus{i}', {rin}, {rout}) n:scale({}, {}, {}) n:rotate('{axis}', {angle}) n:translate({}, {}, {}) n:set_material(m) root:add_child(n)",
+            s[0], s[1], s[2], t[0], t[1], t[2]
+        );
+    }
+    lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
+}
+
+#[test]
+fn probes_tori() {
+    let Some(ctx) = gpu_context() else { return };
+    for (mode, has_grid) in [(GridMode::Off, false), (GridMode::Auto, true)] {
+        let s = packed_from_source(&torus_scene(5, 30), &grid(mode)).remove(0);
+        assert!(s.features.contains(SceneFeatures::TORUS));
+        assert_eq!(s.features.contains(SceneFeatures::GRID), has_grid);
+        check(&ctx, &format!("tori, grid {has_grid}"), &s, 105);
+    }
+}
+
 #[test]
 fn probes_spheres() {
     let Some(ctx) = gpu_context() else { return };

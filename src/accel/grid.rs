@@ -4,7 +4,7 @@
 //! CSR-style (`cell_start`, `cell_items`), items in ascending order inside each cell so
 //! the build is deterministic.
 
-use crate::constants::{KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE};
+use crate::constants::{KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS};
 use crate::pack::{GpuInstance, GpuTriangle};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -90,8 +90,8 @@ impl Aabb {
     }
 }
 
-/// World bounds of an instance: the unit sphere, unit cube, cylinder or cone under its
-/// transform.
+/// World bounds of an instance: the unit sphere, unit cube, cylinder, cone or torus under
+/// its transform.
 pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
     let rows = inst.object_to_world.map(|r| Vec3::new(r[0], r[1], r[2]));
     let translation = Vec3::new(
@@ -138,6 +138,20 @@ pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
                     rows[0].abs().dot(h),
                     rows[1].abs().dot(h),
                     rows[2].abs().dot(h),
+                ),
+            )
+        }
+        // Box [−R, R]² × [−rout, rout] (R = rin + rout) around the origin: half-extent
+        // Σ|row i|·(R, R, rout).
+        KIND_TORUS => {
+            let [rin, rout] = inst.params;
+            let extent = Vec3::new(rin + rout, rin + rout, rout);
+            (
+                translation,
+                Vec3::new(
+                    rows[0].abs().dot(extent),
+                    rows[1].abs().dot(extent),
+                    rows[2].abs().dot(extent),
                 ),
             )
         }

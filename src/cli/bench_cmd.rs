@@ -4,6 +4,8 @@
 //! 2. N random triangles, N = 10³…10⁶: time per ray, grid build time, memory per
 //!    triangle; the error is the share of rays whose hit differs from brute force.
 //! 3. Optionally (`--densities`), time per ray against the grid density λ.
+//!
+//! `--torus` runs only the ray–torus solver comparison (`bench_torus`).
 
 use crate::accel::grid::{Grid, DEFAULT_DENSITY};
 use crate::cpu::ray::camera_ray;
@@ -38,6 +40,9 @@ pub struct BenchArgs {
     /// Only the GPU-vs-CPU comparison (needs a GPU adapter; lavapipe counts).
     #[arg(long)]
     pub gpu: bool,
+    /// Only the ray–torus solver comparison (glint's against Ferrari's closed form).
+    #[arg(long)]
+    pub torus: bool,
     /// GPU adapter to use: a substring of its name.
     #[arg(long)]
     pub adapter: Option<String>,
@@ -47,6 +52,9 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
     println!("glint bench on {} threads", rayon::current_num_threads());
     if args.gpu {
         return super::bench_gpu::bench_gpu(args);
+    }
+    if args.torus {
+        return super::bench_torus::bench_torus(args);
     }
     bench_macho_cows(args)?;
     bench_random_triangles(args);

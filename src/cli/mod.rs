@@ -2,5 +2,6 @@
 
 pub mod bench_cmd;
 pub mod bench_gpu;
+pub mod bench_torus;
 pub mod diff_cmd;
 pub mod stats;

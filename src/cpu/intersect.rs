@@ -3,7 +3,10 @@
 //! unnormalised direction, so t is the world-space t.
 
 use super::cylinder_cone::{intersect_cone, intersect_cylinder};
-use crate::constants::{KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE, SAFE_RCP_LIMIT, T_MISS};
+use super::torus::intersect_torus;
+use crate::constants::{
+    KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, SAFE_RCP_LIMIT, T_MISS,
+};
 use crate::pack::{GpuInstance, GpuTriangle};
 use glam::Vec3;
 
@@ -197,6 +200,7 @@ pub fn intersect_instance(inst: &GpuInstance, o: Vec3, d: Vec3, t_max: f32) -> f
         KIND_CUBE => intersect_box(oo, od, t_max),
         KIND_CYLINDER => intersect_cylinder(oo, od, t_max),
         KIND_CONE => intersect_cone(oo, od, inst.params[0], inst.params[1], t_max),
+        KIND_TORUS => intersect_torus(oo, od, inst.params[0], inst.params[1], t_max),
         _ => T_MISS,
     }
 }

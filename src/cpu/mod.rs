@@ -9,6 +9,7 @@ pub mod ray;
 pub mod render;
 pub mod rng;
 pub mod shade;
+pub mod torus;
 pub mod trace;
 pub mod traverse;
 

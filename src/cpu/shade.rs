@@ -3,8 +3,9 @@
 use super::cylinder_cone::{cone_surface, cylinder_surface};
 use super::intersect::{to_object_space, triangle_vertices};
 use super::ray::{offset_ray, Ray};
+use super::torus::torus_surface;
 use super::traverse::{any_hit, Hit, TraversalCounters};
-use crate::constants::{KIND_CONE, KIND_CYLINDER, KIND_SPHERE};
+use crate::constants::{KIND_CONE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS};
 use crate::pack::{GpuGlobals, GpuInstance, PackedScene};
 use glam::Vec3;
 
@@ -37,8 +38,6 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
     let (oo, od) = to_object_space(inst, ray.origin, ray.dir);
     let mut p_obj = oo + od * t;
     let n_obj;
-    // Largest |object coordinate| of the primitive, when above 1 (scales the magnitude).
-    let mut extent = 1.0f32;
     if inst.kind == KIND_CYLINDER {
         let s = cylinder_surface(p_obj);
         p_obj = s.p;
@@ -48,11 +47,15 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
         let s = cone_surface(p_obj, zmin, zmax);
         p_obj = s.p;
         n_obj = s.normal;
-        extent = extent.max(zmin.abs()).max(zmax.abs());
     } else if inst.kind == KIND_SPHERE {
         // Reproject onto the unit sphere.
         p_obj = p_obj.normalize();
         n_obj = p_obj;
+    } else if inst.kind == KIND_TORUS {
+        // Project onto the tube (the tangent frame and UV are unused until bump mapping).
+        let s = torus_surface(p_obj, inst.params[0], inst.params[1]);
+        p_obj = s.p;
+        n_obj = s.normal;
     } else {
         // The face nearest the point: snap the point onto it.
         let dist = p_obj.abs().min((p_obj - Vec3::ONE).abs());
@@ -84,7 +87,8 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
     Surface {
         p,
         normal,
-        magnitude: affine_magnitude(o2w) * extent,
+        // Object points may lie beyond the unit box (a torus reaches rin + rout).
+        magnitude: affine_magnitude(o2w) * p_obj.abs().max_element().max(1.0),
         material: inst.material,
     }
 }

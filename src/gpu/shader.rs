@@ -74,6 +74,7 @@ const COMMON: &[(&str, &str)] = &[
         "cylinder_cone.wgsl",
         include_str!("../../shaders/cylinder_cone.wgsl"),
     ),
+    ("torus.wgsl", include_str!("../../shaders/torus.wgsl")),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
 ];

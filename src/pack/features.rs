@@ -15,6 +15,7 @@ impl SceneFeatures {
     pub const GRID: SceneFeatures = SceneFeatures(1 << 4);
     pub const CYLINDER: SceneFeatures = SceneFeatures(1 << 5);
     pub const CONE: SceneFeatures = SceneFeatures(1 << 6);
+    pub const TORUS: SceneFeatures = SceneFeatures(1 << 7);
 
     /// Every feature with its name, in display order.
     pub const ALL: &'static [(SceneFeatures, &'static str)] = &[
@@ -25,6 +26,7 @@ impl SceneFeatures {
         (Self::GRID, "grid"),
         (Self::CYLINDER, "cylinder"),
         (Self::CONE, "cone"),
+        (Self::TORUS, "torus"),
     ];
 
     pub const fn empty() -> SceneFeatures {

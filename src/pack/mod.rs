@@ -53,6 +53,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
                 ObjectKind::Cube => (SceneFeatures::CUBE, KIND_CUBE, [0.0; 2]),
                 ObjectKind::Cylinder => (SceneFeatures::CYLINDER, KIND_CYLINDER, [0.0; 2]),
                 ObjectKind::Cone { zmin, zmax } => (SceneFeatures::CONE, KIND_CONE, [zmin, zmax]),
+                ObjectKind::Torus { rin, rout } => (SceneFeatures::TORUS, KIND_TORUS, [rin, rout]),
             };
             features.insert(feature);
             GpuInstance {
@@ -268,6 +269,14 @@ fn check_finite(instances: &[GpuInstance], triangles: &[GpuTriangle]) -> Result<
         if let Some(v) = values.flatten().find(|v| !v.is_finite()) {
             return Err(PackError::OutOfRange {
                 what: format!("instance {i} transform entry"),
+                value: *v as f64,
+            });
+        }
+    }
+    for (i, inst) in instances.iter().enumerate() {
+        if let Some(v) = inst.params.iter().find(|v| !v.is_finite()) {
+            return Err(PackError::OutOfRange {
+                what: format!("instance {i} parameter"),
                 value: *v as f64,
             });
         }

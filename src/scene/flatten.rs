@@ -18,7 +18,15 @@ pub enum ObjectKind {
     Sphere,
     Cube,
     Cylinder,
-    Cone { zmin: f32, zmax: f32 },
+    Cone {
+        zmin: f32,
+        zmax: f32,
+    },
+    /// Torus in the XY plane around z (`rin` to the middle of the tube, `rout` its radius).
+    Torus {
+        rin: f32,
+        rout: f32,
+    },
 }
 
 /// One analytic primitive instance in world space.
@@ -124,23 +132,29 @@ fn visit(
         check_transform(&object_to_world, &path_name)?;
         let material = node.material.unwrap_or(default_material);
         match primitive {
-            Primitive::Sphere | Primitive::Cube | Primitive::Cylinder | Primitive::Cone { .. } => {
-                scene.objects.push(Object {
-                    name: path_name(),
-                    kind: match *primitive {
-                        Primitive::Sphere => ObjectKind::Sphere,
-                        Primitive::Cube => ObjectKind::Cube,
-                        Primitive::Cylinder => ObjectKind::Cylinder,
-                        Primitive::Cone { zmin, zmax } => ObjectKind::Cone {
-                            zmin: zmin as f32,
-                            zmax: zmax as f32,
-                        },
-                        Primitive::Mesh(_) => unreachable!(),
+            Primitive::Sphere
+            | Primitive::Cube
+            | Primitive::Cylinder
+            | Primitive::Cone { .. }
+            | Primitive::Torus { .. } => scene.objects.push(Object {
+                name: path_name(),
+                kind: match *primitive {
+                    Primitive::Sphere => ObjectKind::Sphere,
+                    Primitive::Cube => ObjectKind::Cube,
+                    Primitive::Cylinder => ObjectKind::Cylinder,
+                    Primitive::Cone { zmin, zmax } => ObjectKind::Cone {
+                        zmin: zmin as f32,
+                        zmax: zmax as f32,
                     },
-                    object_to_world,
-                    material,
-                })
-            }
+                    Primitive::Torus { rin, rout } => ObjectKind::Torus {
+                        rin: rin as f32,
+                        rout: rout as f32,
+                    },
+                    Primitive::Mesh(_) => unreachable!(),
+                },
+                object_to_world,
+                material,
+            }),
             Primitive::Mesh(mesh_id) => {
                 let mesh = &graph.meshes[*mesh_id];
                 let world: Vec<DVec3> = mesh

@@ -31,6 +31,9 @@ pub enum Primitive {
     /// Solid capped cone x² + y² = z² between the planes z = zmin and z = zmax
     /// (zmin < zmax); with zmin < 0 < zmax, both nappes (a double cone meeting at the tip).
     Cone { zmin: f64, zmax: f64 },
+    /// Torus centred at the origin in the XY plane (axis z): `rin` from the centre to the
+    /// middle of the tube, `rout` the radius of the tube.
+    Torus { rin: f64, rout: f64 },
     /// Triangle mesh (fan-triangulated polygons).
     Mesh(MeshId),
 }

@@ -40,6 +40,7 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     def!("cone", cone);
     def!("nh_sphere", nh_sphere);
     def!("nh_box", nh_box);
+    def!("torus", torus);
     def!("mesh", mesh);
     def!("material", material);
     def!("light", light);
@@ -117,6 +118,20 @@ fn nh_box(a: &Args) -> mlua::Result<NodeHandle> {
     let size = a.positive(3, "size")?;
     let placement = DMat4::from_translation(corner) * DMat4::from_scale(DVec3::splat(size));
     Ok(new_node(a.lua, name, geometry(Primitive::Cube, placement)))
+}
+
+/// `gr.torus(name, rin, rout)`: both radii finite and positive. `rout > rin` is allowed
+/// and gives a self-intersecting "spindle" torus (an apple with a lemon inside, both
+/// sheets drawn; `rout == rin` is the horn torus).
+fn torus(a: &Args) -> mlua::Result<NodeHandle> {
+    let name = a.string(1, "name")?;
+    let rin = a.positive(2, "rin")?;
+    let rout = a.positive(3, "rout")?;
+    Ok(new_node(
+        a.lua,
+        name,
+        geometry(Primitive::Torus { rin, rout }, DMat4::IDENTITY),
+    ))
 }
 
 /// `gr.mesh(name, 'file.obj')` or `gr.mesh(name, verts, faces[, uvs])`.

@@ -1,0 +1,280 @@
+//! `glint bench --torus`: ray–torus intersections per second on the CPU for glint's
+//! solver (`cpu::torus`: rescaled, clipped quartic; derivative-split Newton–bisection)
+//! against the textbook closed form (Ferrari via a resolvent cubic, Schwarze's
+//! Graphics Gems I solver, in f32 — here for the comparison only), each with its
+//! accuracy against an f64 oracle on the same rays: hit/miss disagreements (grazing rays
+//! included, so a few are expected for both) and the worst and 99th-percentile |Δt|/t.
+
+use super::bench_cmd::{fastest, BenchArgs};
+use crate::cpu::torus::intersect_torus;
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+
+/// One benchmark ray in object space: origin, unit direction.
+#[derive(Clone, Copy)]
+struct TorusRay {
+    o: Vec3,
+    d: Vec3,
+}
+
+/// splitmix64 in [0, 1).
+struct SplitMix(u64);
+impl SplitMix {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E3779B97F4A7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58476D1CE4E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D049BB133111EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * self.next()
+    }
+    fn unit(&mut self) -> DVec3 {
+        let z = self.range(-1.0, 1.0);
+        let phi = self.range(0.0, std::f64::consts::TAU);
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        DVec3::new(r * phi.cos(), r * phi.sin(), z)
+    }
+}
+
+/// Rays from `near`..`far` bounding radii away (log-uniform) towards random points in
+/// the torus's bounding box.
+fn rays(count: usize, rin: f64, rout: f64, near: f64, far: f64, seed: u64) -> Vec<TorusRay> {
+    let mut rng = SplitMix(seed);
+    let size = rin + rout;
+    (0..count)
+        .map(|_| {
+            let target = DVec3::new(
+                rng.range(-size, size),
+                rng.range(-size, size),
+                rng.range(-rout, rout),
+            );
+            let dist = size * (near.ln() + (far.ln() - near.ln()) * rng.next()).exp();
+            let o = (target + rng.unit() * dist).as_vec3();
+            let d = (target - o.as_dvec3()).normalize().as_vec3().normalize();
+            TorusRay { o, d }
+        })
+        .collect()
+}
+
+/// f64 oracle: first sign change of the factored torus function along the bounding
+/// sphere's chord (1024 samples from the closest approach), bisected to the last bit.
+fn oracle(r: &TorusRay, rin: f64, rout: f64) -> Option<f64> {
+    let (o, d) = (r.o.as_dvec3(), r.d.as_dvec3().normalize());
+    let f = |p: DVec3| {
+        let rho = (p.x * p.x + p.y * p.y).sqrt();
+        let q = ((rho - rin).powi(2) + p.z * p.z).sqrt();
+        (q - rout) * (q + rout) * ((rho + rin).powi(2) + p.z * p.z - rout * rout)
+    };
+    let s_c = -o.dot(d);
+    let c = o + d * s_c;
+    let bound = (rin + rout) * 1.001;
+    let h2 = bound * bound - c.length_squared();
+    if h2 <= 0.0 {
+        return None;
+    }
+    let h = h2.sqrt();
+    let lo_u = (-h).max(-s_c);
+    if lo_u >= h {
+        return None;
+    }
+    const N: usize = 1024;
+    let mut a = lo_u;
+    let mut fa = f(c + d * a);
+    for i in 1..=N {
+        let b = lo_u + (h - lo_u) * (i as f64 / N as f64);
+        let fb = f(c + d * b);
+        if (fa < 0.0) != (fb < 0.0) {
+            let (mut lo, mut hi) = (a, b);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                if (f(c + d * mid) < 0.0) == (fa < 0.0) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let t = s_c + 0.5 * (lo + hi);
+            return (t > 0.0).then_some(t);
+        }
+        a = b;
+        fa = fb;
+    }
+    None
+}
+
+/// Real roots of x³ + a·x² + b·x + c (Cardano / trigonometric; Schwarze, Graphics Gems I).
+fn solve_cubic(a: f32, b: f32, c: f32, roots: &mut [f32; 3]) -> usize {
+    let sq_a = a * a;
+    let p = (1.0 / 3.0) * (-(1.0 / 3.0) * sq_a + b);
+    let q = 0.5 * ((2.0 / 27.0) * a * sq_a - (1.0 / 3.0) * a * b + c);
+    let cb_p = p * p * p;
+    let disc = q * q + cb_p;
+    let n = if disc == 0.0 {
+        if q == 0.0 {
+            roots[0] = 0.0;
+            1
+        } else {
+            let u = (-q).cbrt();
+            roots[0] = 2.0 * u;
+            roots[1] = -u;
+            2
+        }
+    } else if disc < 0.0 {
+        let phi = (1.0 / 3.0) * (-q / (-cb_p).sqrt()).clamp(-1.0, 1.0).acos();
+        let t = 2.0 * (-p).sqrt();
+        roots[0] = t * phi.cos();
+        roots[1] = -t * (phi + std::f32::consts::FRAC_PI_3).cos();
+        roots[2] = -t * (phi - std::f32::consts::FRAC_PI_3).cos();
+        3
+    } else {
+        let sqrt_d = disc.sqrt();
+        roots[0] = (sqrt_d - q).cbrt() - (sqrt_d + q).cbrt();
+        1
+    };
+    for r in roots.iter_mut().take(n) {
+        *r -= a / 3.0;
+    }
+    n
+}
+
+/// Real roots of x⁴ + a·x³ + b·x² + c·x + d by Ferrari's method (Schwarze).
+fn solve_quartic(a: f32, b: f32, c: f32, d: f32, roots: &mut [f32; 4]) -> usize {
+    let sq_a = a * a;
+    let p = -(3.0 / 8.0) * sq_a + b;
+    let q = (1.0 / 8.0) * sq_a * a - 0.5 * a * b + c;
+    let r = -(3.0 / 256.0) * sq_a * sq_a + (1.0 / 16.0) * sq_a * b - 0.25 * a * c + d;
+    let mut n = 0;
+    let mut push = |x: f32, n: &mut usize| {
+        roots[*n] = x - 0.25 * a;
+        *n += 1;
+    };
+    let quadratic = |p1: f32, q1: f32, n: &mut usize, push: &mut dyn FnMut(f32, &mut usize)| {
+        let disc = 0.25 * p1 * p1 - q1;
+        if disc >= 0.0 {
+            let s = disc.sqrt();
+            push(-0.5 * p1 + s, n);
+            push(-0.5 * p1 - s, n);
+        }
+    };
+    if r == 0.0 {
+        let mut cubic = [0.0; 3];
+        let k = solve_cubic(0.0, p, q, &mut cubic);
+        push(0.0, &mut n);
+        for &x in &cubic[..k] {
+            push(x, &mut n);
+        }
+        return n;
+    }
+    // Solve the resolvent cubic and take one real root.
+    let mut cubic = [0.0; 3];
+    solve_cubic(-0.5 * p, -r, 0.5 * r * p - (1.0 / 8.0) * q * q, &mut cubic);
+    let z = cubic[0];
+    let u = z * z - r;
+    let v = 2.0 * z - p;
+    let u = if u.abs() < 1e-12 {
+        0.0
+    } else if u > 0.0 {
+        u.sqrt()
+    } else {
+        return 0;
+    };
+    let v = if v.abs() < 1e-12 {
+        0.0
+    } else if v > 0.0 {
+        v.sqrt()
+    } else {
+        return 0;
+    };
+    let sv = if q < 0.0 { -v } else { v };
+    quadratic(sv, z - u, &mut n, &mut push);
+    quadratic(-sv, z + u, &mut n, &mut push);
+    n
+}
+
+/// The textbook torus test: the quartic's coefficients straight from the ray (Suffern,
+/// "Ray Tracing from the Ground Up", 19.4), solved by Ferrari; the smallest t > 0.
+fn intersect_torus_ferrari(o: Vec3, d: Vec3, rin: f32, rout: f32) -> f32 {
+    let four_r2 = 4.0 * rin * rin;
+    let e = o.dot(o) - rin * rin - rout * rout;
+    let f = o.dot(d);
+    let c3 = 4.0 * f;
+    let c2 = 2.0 * e + 4.0 * f * f + four_r2 * d.z * d.z;
+    let c1 = 4.0 * f * e + 2.0 * four_r2 * o.z * d.z;
+    let c0 = e * e - four_r2 * (rout * rout - o.z * o.z);
+    let mut roots = [0.0; 4];
+    let n = solve_quartic(c3, c2, c1, c0, &mut roots);
+    roots[..n]
+        .iter()
+        .copied()
+        .filter(|&t| t > 0.0 && t.is_finite())
+        .fold(f32::MAX, f32::min)
+}
+
+/// (hit/miss disagreements, worst |Δt|/t, 99th percentile |Δt|/t) against the oracle.
+fn accuracy(ts: &[f32], truth: &[Option<f64>]) -> (usize, f64, f64) {
+    let mut wrong = 0;
+    let mut errors = Vec::new();
+    for (&t, &o) in ts.iter().zip(truth) {
+        match (t < f32::MAX, o) {
+            (true, Some(o)) => errors.push((t as f64 - o).abs() / o),
+            (false, None) => {}
+            _ => wrong += 1,
+        }
+    }
+    errors.sort_by(f64::total_cmp);
+    let worst = errors.last().copied().unwrap_or(0.0);
+    let p99 = errors
+        .get(errors.len().saturating_sub(1) * 99 / 100)
+        .copied()
+        .unwrap_or(0.0);
+    (wrong, worst, p99)
+}
+
+/// A torus test on one ray: (ray, rin, rout) → t or `f32::MAX`.
+type Solver = fn(&TorusRay, f32, f32) -> f32;
+
+pub fn bench_torus(args: &BenchArgs) -> anyhow::Result<()> {
+    let count = args.rays.min(200_000);
+    println!(
+        "\n## Ray–torus intersection, {count} rays per row (CPU, {} threads; fastest of {})",
+        rayon::current_num_threads(),
+        args.repeat
+    );
+    println!("| torus (rin, rout) | origins (sizes away) | solver | Mrays/s | hit/miss wrong | worst \\|Δt\\|/t | p99 \\|Δt\\|/t |");
+    println!("| --- | --- | --- | ---: | ---: | ---: | ---: |");
+    for (rin, rout) in [(1.0f32, 0.4f32), (1.0, 0.05), (1.0, 1.5)] {
+        for (near, far) in [(1.0001, 3.0), (3.0, 1e2), (1e2, 1e4)] {
+            let rays = rays(count, rin as f64, rout as f64, near, far, 17);
+            let truth: Vec<Option<f64>> = rays
+                .par_iter()
+                .map(|r| oracle(r, rin as f64, rout as f64))
+                .collect();
+            let solvers: [(&str, Solver); 2] = [
+                ("glint (bracketed Newton)", |r, a, b| {
+                    intersect_torus(r.o, r.d, a, b, f32::MAX)
+                }),
+                ("Ferrari closed form", |r, a, b| {
+                    intersect_torus_ferrari(r.o, r.d, a, b)
+                }),
+            ];
+            for (name, solve) in solvers {
+                let (time, ts) = fastest(args.repeat, || {
+                    rays.par_iter()
+                        .map(|r| solve(r, rin, rout))
+                        .collect::<Vec<f32>>()
+                });
+                let (wrong, worst, p99) = accuracy(&ts, &truth);
+                println!(
+                    "| ({rin}, {rout}) | {near}–{far:e} | {name} | {:.1} | {wrong} | {worst:.1e} | {p99:.1e} |",
+                    count as f64 / time.as_secs_f64() / 1e6
+                );
+            }
+        }
+    }
+    Ok(())
+}
