@@ -203,6 +203,8 @@ fn images_are_scale_invariant() {
     };
     for path in [
         common::root().join("scenes/demo.lua"),
+        common::root().join("scenes/columns.lua"),
+        common::root().join("scenes/tori.lua"),
         common::corpus().join("a4-2021plus/macho-cows.lua"),
     ] {
         let scene = &load_scenes(&path, &overrides)[0];
