@@ -7,7 +7,10 @@
 //! Every assertion message carries the seed of its case; rerun one case by calling the
 //! case function with that seed.
 
-use glam::{DMat4, DQuat, DVec3, Vec3};
+mod oracle_support;
+use oracle_support::*;
+
+use glam::{DMat4, DVec3, Vec3};
 use glint::constants::T_MISS;
 use glint::cpu::cylinder_cone::{
     cone_surface, cylinder_surface, intersect_cone, intersect_cylinder,
@@ -22,57 +25,6 @@ use glint::scene::{Camera, GridMode, Material, RenderOptions};
 
 // ---------------------------------------------------------------------------------------
 // Seeded randomness (splitmix64), as in intersect_oracle.rs.
-
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    fn f64(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.f64()
-    }
-
-    fn log_uniform(&mut self, a: f64, b: f64) -> f64 {
-        (a.ln() + (b.ln() - a.ln()) * self.f64()).exp()
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-
-    fn unit_vector(&mut self) -> DVec3 {
-        let z = self.range(-1.0, 1.0);
-        let phi = self.range(0.0, std::f64::consts::TAU);
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        DVec3::new(r * phi.cos(), r * phi.sin(), z)
-    }
-
-    /// Uniform random rotation (Shoemake).
-    fn rotation(&mut self) -> DQuat {
-        let (u1, u2, u3) = (
-            self.f64(),
-            self.range(0.0, std::f64::consts::TAU),
-            self.range(0.0, std::f64::consts::TAU),
-        );
-        let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-        DQuat::from_xyzw(a * u2.sin(), a * u2.cos(), b * u3.sin(), b * u3.cos()).normalize()
-    }
-}
-
-fn case_seed(salt: u64, i: u64) -> u64 {
-    let mut r = Rng(salt ^ i.wrapping_mul(0xD1B5_4A32_D192_ED03));
-    r.next_u64()
-}
 
 // ---------------------------------------------------------------------------------------
 // Scenes and rays.
@@ -147,27 +99,6 @@ fn random_cone(rng: &mut Rng) -> ObjectKind {
         zmin: zmin as f32,
         zmax: zmax as f32,
     }
-}
-
-fn v32(v: DVec3) -> Vec3 {
-    v.as_vec3()
-}
-
-fn v64(v: Vec3) -> DVec3 {
-    v.as_dvec3()
-}
-
-fn aim(origin: DVec3, target: DVec3) -> (Vec3, Vec3) {
-    let o = v32(origin);
-    let d = (v64(v32(target)) - v64(o)).normalize();
-    (o, v32(d).normalize())
-}
-
-fn assert_legal_t(t: f32, t_max: f32, what: &str, seed: u64) {
-    assert!(
-        t == T_MISS || (t > 0.0 && t < t_max),
-        "{what}: t = {t} is neither T_MISS nor in (0, {t_max}) (seed {seed:#x})"
-    );
 }
 
 // ---------------------------------------------------------------------------------------
@@ -322,16 +253,6 @@ struct Oracle {
     t: Option<f64>,
     grazing: bool,
     floor: f64,
-}
-
-const MARGIN: f64 = 1e-4;
-
-fn f32_floor(m: f64) -> f64 {
-    8.0 * f32::EPSILON as f64 * m
-}
-
-fn mag(p: DVec3) -> f64 {
-    p.abs().max_element()
 }
 
 fn oracle(kind: ObjectKind, o: DVec3, d: DVec3, t_max: f64, margin: f64, floor: f64) -> Oracle {

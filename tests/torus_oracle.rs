@@ -18,7 +18,10 @@
 //! places the ray only to a few ulps of the origin's magnitude), or its hit is within
 //! the margin of t_max. Seeds are in the messages.
 
-use glam::{DMat4, DQuat, DVec3, Vec3};
+mod oracle_support;
+use oracle_support::*;
+
+use glam::{DMat4, DVec3, Vec3};
 use glint::constants::T_MISS;
 use glint::cpu::intersect::intersect_instance;
 use glint::cpu::ray::offset_ray;
@@ -27,47 +30,6 @@ use glint::cpu::traverse::Hit;
 use glint::pack::{pack, GpuInstance, PackedScene};
 use glint::scene::flatten::{Object, ObjectKind, Scene};
 use glint::scene::{Camera, GridMode, Material, RenderOptions};
-
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn f64(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.f64()
-    }
-    fn log_uniform(&mut self, a: f64, b: f64) -> f64 {
-        (a.ln() + (b.ln() - a.ln()) * self.f64()).exp()
-    }
-    fn unit_vector(&mut self) -> DVec3 {
-        let z = self.range(-1.0, 1.0);
-        let phi = self.range(0.0, std::f64::consts::TAU);
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        DVec3::new(r * phi.cos(), r * phi.sin(), z)
-    }
-    fn rotation(&mut self) -> DQuat {
-        let (u1, u2, u3) = (
-            self.f64(),
-            self.range(0.0, std::f64::consts::TAU),
-            self.range(0.0, std::f64::consts::TAU),
-        );
-        let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-        DQuat::from_xyzw(a * u2.sin(), a * u2.cos(), b * u3.sin(), b * u3.cos()).normalize()
-    }
-}
-
-fn case_seed(salt: u64, i: u64) -> u64 {
-    let mut r = Rng(salt ^ i.wrapping_mul(0xD1B5_4A32_D192_ED03));
-    r.next_u64()
-}
 
 // ---------------------------------------------------------------------------------------
 // The f64 oracle.
