@@ -255,11 +255,19 @@ pub fn run_scene(
         on_image(&rendered);
         Ok(())
     };
-    match run_scene_file(path, &config, &mut on_render) {
-        Ok(report) => Ok(report),
-        Err(e) => match output_error.into_inner() {
-            Some(io) => Err(RunError::Output(io)),
-            None => Err(RunError::Scene(e)),
+    let error = match run_scene_file(path, &config, &mut on_render) {
+        Ok(report) => return Ok(report),
+        Err(e) => e,
+    };
+    if let Some(io) = output_error.into_inner() {
+        return Err(RunError::Output(io));
+    }
+    // A GPU failure during a render is the GPU's, not the scene's (exit code 5).
+    match error {
+        SceneError::Render { location, error } => match error.downcast::<crate::gpu::GpuError>() {
+            Ok(gpu) => Err(RunError::Gpu(gpu)),
+            Err(error) => Err(RunError::Scene(SceneError::Render { location, error })),
         },
+        other => Err(RunError::Scene(other)),
     }
 }
