@@ -53,7 +53,7 @@ fn lattice_position(i: u32, j: u32) -> vec2<f32> {
 // Traces lattice point (i, j) into the lattice.
 fn trace_lattice_point(i: u32, j: u32) {
     let pos = lattice_position(i, j);
-    samples[lattice_index(i, j)] = vec4<f32>(sample(pos.x, pos.y), 1.0);
+    samples[lattice_index(i, j)] = vec4<f32>(sample(pos.x, pos.y, adaptive_seed(pos.x, pos.y)), 1.0);
 // #if ITERATION_GUARD
     // Every pixel whose closed square holds the point (straight-line code: after the
     // limiter trips, loops run one iteration).

@@ -14,10 +14,10 @@
 // 1 where a tile pixel must be re-rendered on the CPU (loop_limiter_tripped).
 @group(0) @binding(13) var<storage, read_write> guard: array<u32>;
 
-// Colour at film position (fx, fy) in pixels.
+// Colour at film position (fx, fy) in pixels; seed names the camera sample.
 // Mirror of src/cpu/render.rs::sample — change both.
-fn sample(fx: f32, fy: f32) -> vec3<f32> {
-    return trace_ray(camera_ray(fx, fy));
+fn sample(fx: f32, fy: f32, seed: SampleSeed) -> vec3<f32> {
+    return trace_ray(camera_ray(fx, fy), seed);
 }
 
 // Largest per-channel spread of four colours.
@@ -43,7 +43,7 @@ fn uniform_sample(x: u32, y: u32, s: u32, n: u32, uniform: bool) -> vec3<f32> {
     }
     let fx = f32(x) + (f32(i) + jx) / f32(n);
     let fy = f32(y) + (f32(j) + jy) / f32(n);
-    return sample(fx, fy);
+    return sample(fx, fy, SampleSeed(pixel, s, 0u));
 }
 
 // #if ITERATION_GUARD

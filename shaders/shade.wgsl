@@ -130,41 +130,72 @@ fn phong_power(base: f32, exponent: f32) -> f32 {
 
 // A4 lighting at a surface point: kd·ambient plus, for each light a shadow ray reaches,
 // (kd·max(0,N·L) + ks·max(0,R·V)^shininess)·I/(c0 + c1·d + c2·d²). n faces the viewer;
-// v points to the viewer.
+// v points to the viewer. An area light is n×n such point lights, one jittered point per
+// stratum of its parallelogram (random numbers from seed), each with 1/n² of its colour.
 // Mirror of src/cpu/shade.rs::shade_phong — change both.
-fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3<f32> {
     let m = materials[s.material];
-    let kd = m.kd;
-    let ks = m.ks;
-    var colour = kd * globals.ambient;
+    var colour = m.kd * globals.ambient;
     let origin = offset_ray(s.p, n, s.magnitude);
     for (var i = 0u; i < globals.num_lights; i++) {
         let light = lights[i];
-        let to_light = light.position - s.p;
-        let distance = length(to_light);
-        let l = to_light / distance;
-        let n_dot_l = dot(n, l);
-        // Lights behind the surface (as seen from the viewer's side) add nothing; the
-        // negated test also rejects NaN, like Rust's is_nan check.
-        if !(n_dot_l > 0.0) {
+// #if AREA_LIGHT
+        if light.kind == LIGHT_AREA {
+            colour += area_light(s, n, v, origin, light, i, seed);
             continue;
         }
-        let shadow_dir = light.position - origin;
-        let shadow_distance = length(shadow_dir);
-        let shadow_ray = Ray(origin, shadow_dir / shadow_distance);
-        if any_hit(shadow_ray, shadow_distance) {
-            continue;
-        }
-        let r = n * (2.0 * n_dot_l) - l;
-        let specular = phong_power(dot(r, v), m.shininess);
-        let c0 = light.falloff.x;
-        let c1 = light.falloff.y;
-        let c2 = light.falloff.z;
-        let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
-        colour += (kd * n_dot_l + ks * specular) * light.colour * attenuation;
+// #endif
+        colour += point_light(s, n, v, origin, light.position, light);
     }
     return colour;
 }
+
+// Light from a point at `position` with light's colour and falloff: the A4 term, or zero
+// when the point is behind the surface or a shadow ray from origin is blocked.
+// Mirror of src/cpu/shade.rs::point_light — change both.
+fn point_light(s: Surface, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: GpuLight) -> vec3<f32> {
+    let m = materials[s.material];
+    let to_light = position - s.p;
+    let distance = length(to_light);
+    let l = to_light / distance;
+    let n_dot_l = dot(n, l);
+    // Lights behind the surface (as seen from the viewer's side) add nothing; the negated
+    // test also rejects NaN, like Rust's is_nan check.
+    if !(n_dot_l > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let shadow_dir = position - origin;
+    let shadow_distance = length(shadow_dir);
+    let shadow_ray = Ray(origin, shadow_dir / shadow_distance);
+    if any_hit(shadow_ray, shadow_distance) {
+        return vec3<f32>(0.0);
+    }
+    let r = n * (2.0 * n_dot_l) - l;
+    let specular = phong_power(dot(r, v), m.shininess);
+    let c0 = light.falloff.x;
+    let c1 = light.falloff.y;
+    let c2 = light.falloff.z;
+    let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
+    return (m.kd * n_dot_l + m.ks * specular) * light.colour * attenuation;
+}
+
+// #if AREA_LIGHT
+// Light from area light number `index`: the mean of point_light over one jittered point
+// in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n).
+// Mirror of src/cpu/shade.rs::area_light — change both.
+fn area_light(s: Surface, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: GpuLight, index: u32, seed: SampleSeed) -> vec3<f32> {
+    let k = light.samples;
+    let scale = 1.0 / f32(k);
+    var sum = vec3<f32>(0.0);
+    for (var stratum = 0u; stratum < k * k; stratum++) {
+        let a = (f32(stratum % k) + shadow_random(seed, index, stratum, 0u)) * scale - 0.5;
+        let b = (f32(stratum / k) + shadow_random(seed, index, stratum, 1u)) * scale - 0.5;
+        let position = light.position + light.edge_u * a + light.edge_v * b;
+        sum += point_light(s, n, v, origin, position, light);
+    }
+    return sum * (scale * scale);
+}
+// #endif
 
 // Colour of a ray that hits nothing: the vertical gradient by direction (solid when
 // top = bottom), "up" being the camera's up.

@@ -9,9 +9,10 @@ struct StackEntry {
 }
 
 // Colour seen along a primary ray, mirrors included (down to max_depth bounces or
-// min_weight contribution).
+// min_weight contribution). seed names the camera sample (its depth is ignored: each
+// shading point gets its own ray's depth).
 // Mirror of src/cpu/trace.rs::trace_ray — change both.
-fn trace_ray(primary: Ray) -> vec3<f32> {
+fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     let g = globals;
     var stack: array<StackEntry, RAY_STACK_SIZE>;
     stack[0] = StackEntry(primary, vec3<f32>(1.0), 0u);
@@ -33,7 +34,7 @@ fn trace_ray(primary: Ray) -> vec3<f32> {
             n = -s.normal;
         }
         let v = -ray.dir;
-        colour += entry.weight * shade_phong(s, n, v);
+        colour += entry.weight * shade_phong(s, n, v, SampleSeed(seed.pixel, seed.sample, entry.depth));
 // #if REFLECTION
         let m = materials[s.material];
         if (m.flags & MATERIAL_REFLECTIVE) != 0u && entry.depth < g.max_depth {

@@ -10,6 +10,14 @@ pub const KIND_TORUS: u32 = 4;
 
 /// Light kinds (`GpuLight::kind`).
 pub const LIGHT_POINT: u32 = 0;
+pub const LIGHT_AREA: u32 = 1;
+
+/// Largest n of an area light's n×n shadow samples (`gr.area_light`, `shadow_samples`).
+pub const MAX_SHADOW_SAMPLES: u32 = 64;
+/// Default n of an area light's n×n shadow samples.
+pub const DEFAULT_SHADOW_SAMPLES: u32 = 4;
+/// First random dimension of the shadow samples (0 and 1 jitter the camera sample).
+pub const SHADOW_DIMENSION_BASE: u32 = 2;
 
 /// Material flags (`GpuMaterial::flags`).
 pub const MATERIAL_REFLECTIVE: u32 = 1;
@@ -68,6 +76,9 @@ pub fn wgsl_prelude() -> String {
         ("KIND_CONE", KIND_CONE),
         ("KIND_TORUS", KIND_TORUS),
         ("LIGHT_POINT", LIGHT_POINT),
+        ("LIGHT_AREA", LIGHT_AREA),
+        ("MAX_SHADOW_SAMPLES", MAX_SHADOW_SAMPLES),
+        ("SHADOW_DIMENSION_BASE", SHADOW_DIMENSION_BASE),
         ("MATERIAL_REFLECTIVE", MATERIAL_REFLECTIVE),
         ("AA_NONE", AA_NONE),
         ("AA_UNIFORM", AA_UNIFORM),

@@ -234,3 +234,41 @@ fn loop_limit_guard_falls_back_to_the_cpu() {
         .unwrap_or_else(|message| panic!("{message}"));
     }
 }
+
+/// An area light's soft shadows (the AREA_LIGHT specialisation) under the default
+/// adaptive AA and under uniform AA: both tracers draw the same shadow samples.
+#[test]
+fn area_light_matches() {
+    let Some(ctx) = gpu_context() else { return };
+    let source = "
+        grey = gr.material({0.7, 0.7, 0.7}, {0.3, 0.3, 0.3}, 25)
+        red = gr.material({0.8, 0.2, 0.2}, {0.5, 0.5, 0.5}, 40)
+        mirror = gr.material({0.1, 0.1, 0.1}, {0.8, 0.8, 0.8}, 80)
+        mirror:set_reflection(0.6, 0.6, 0.6)
+        root = gr.node('root')
+        floor = gr.cube('floor') floor:scale(10, 0.5, 10) floor:translate(-5, -1.5, -9)
+        floor:set_material(grey) root:add_child(floor)
+        s = gr.sphere('s') s:translate(-0.8, 0, -4) s:set_material(red) root:add_child(s)
+        m = gr.sphere('m') m:scale(0.6, 0.6, 0.6) m:translate(1.2, -0.4, -3.5)
+        m:set_material(mirror) root:add_child(m)
+        a = gr.area_light({0, 4, -3}, {2.5, 0, 0}, {0, 0, 2.5}, {0.8, 0.8, 0.8}, {1, 0, 0})
+        p = gr.light({-4, 3, 2}, {0.3, 0.3, 0.3}, {1, 0, 0})
+        gr.render(root, 'area.png', 96, 96, {0, 2, 3}, {0, -0.4, -1}, {0, 1, 0}, 50,
+                  {0.1, 0.1, 0.1}, {a, p})
+    ";
+    for (name, aa) in [
+        ("area-light-adaptive", None),
+        ("area-light-uniform", Some(AaMode::Uniform)),
+    ] {
+        let overrides = OptionOverrides {
+            width: Some(96),
+            height: Some(96),
+            aa,
+            samples: Some(2),
+            ..OptionOverrides::default()
+        };
+        let scene = packed_from_source(source, &overrides).remove(0);
+        let features = compare(&ctx, name, &scene);
+        assert!(features.contains(SceneFeatures::AREA_LIGHT), "{features}");
+    }
+}

@@ -337,3 +337,24 @@ fn shaders_define_no_constants() {
         }
     }
 }
+
+/// The area-light code (shadow sampling in shaders/shade.wgsl and shaders/rng.wgsl) is in
+/// exactly the specialisations with AREA_LIGHT, which every_specialisation_validates
+/// covers.
+#[test]
+fn area_light_code_only_with_area_lights() {
+    let sets = all_feature_sets();
+    assert!(sets.iter().any(|s| s.contains(SceneFeatures::AREA_LIGHT)));
+    for features in sets {
+        for entry in [Entry::Render, Entry::Probe] {
+            let source = assemble(features, entry);
+            for code in ["fn area_light(", "fn shadow_random(", "== LIGHT_AREA {"] {
+                assert_eq!(
+                    source.contains(code),
+                    features.contains(SceneFeatures::AREA_LIGHT),
+                    "[{features}] {entry:?}: {code}"
+                );
+            }
+        }
+    }
+}

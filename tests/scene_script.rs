@@ -653,3 +653,39 @@ fn pcall_cannot_hide_a_render_failure_or_a_runaway() {
         "t.lua:2: instruction limit of 50000 exceeded — runaway loop?"
     );
 }
+
+#[test]
+fn area_light_argument_errors() {
+    let ok = "l = gr.area_light({0, 5, 0}, {1, 0, 0}, {0, 0, 1}, {1, 1, 1}, {1, 0, 0}, 3)\n";
+    run_src(ok, &ScriptConfig::default());
+    let m =
+        message_of("l = gr.area_light({0, 5, 0}, {1, 0, 0}, {2, 0, 0}, {1, 1, 1}, {1, 0, 0})\n");
+    assert!(
+        m.starts_with(":1: gr.area_light: argument 3 (v): edges u and v must not be parallel"),
+        "{m}"
+    );
+    let m =
+        message_of("l = gr.area_light({0, 5, 0}, {0, 0, 0}, {0, 0, 1}, {1, 1, 1}, {1, 0, 0})\n");
+    assert!(m.contains("must not be parallel or zero"), "{m}");
+    let m =
+        message_of("l = gr.area_light({0, 5, 0}, {1, 0, 0/0}, {0, 0, 1}, {1, 1, 1}, {1, 0, 0})\n");
+    assert!(m.starts_with(":1: gr.area_light: argument 2 (u)"), "{m}");
+    let m =
+        message_of("l = gr.area_light({0, 5, 0}, {1, 0, 0}, {0, 0, 1}, {1, 1, 1}, {0, 0, 0})\n");
+    assert!(
+        m.contains(
+            "argument 5 (falloff): coefficients {c0, c1, c2} must be non-negative and not all zero"
+        ),
+        "{m}"
+    );
+    for n in ["0", "65", "2.5", "'x'"] {
+        let m = message_of(&format!(
+            "l = gr.area_light({{0, 5, 0}}, {{1, 0, 0}}, {{0, 0, 1}}, {{1, 1, 1}}, {{1, 0, 0}}, {n})\n"
+        ));
+        assert!(
+            m.starts_with(":1: gr.area_light: argument 6 (n) must be a positive integer")
+                && m.contains("at most 64"),
+            "{n}: {m}"
+        );
+    }
+}

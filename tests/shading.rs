@@ -7,6 +7,7 @@ mod common;
 use common::{failure_dir, load_scenes};
 use glam::{DMat4, DVec3, Vec3};
 use glint::cpu::ray::Ray;
+use glint::cpu::rng::SampleSeed;
 use glint::cpu::shade::phong_power;
 use glint::cpu::trace::trace_ray;
 use glint::cpu::traverse::NoCounters;
@@ -56,6 +57,7 @@ fn phong_at_a_known_point_matches_the_a4_formula() {
         position: DVec3::new(3.0, 4.0, 6.0),
         colour: [0.9, 0.8, 0.7],
         falloff: [1.0, 0.1, 0.01],
+        area: None,
     };
     let scene = sphere_scene(
         material.clone(),
@@ -70,7 +72,7 @@ fn phong_at_a_known_point_matches_the_a4_formula() {
         origin: origin.as_vec3(),
         dir: Vec3::NEG_Z,
     };
-    let got = trace_ray(&packed, ray, &mut NoCounters);
+    let got = trace_ray(&packed, ray, SampleSeed::default(), &mut NoCounters);
     // The A4 formula in f64.
     let p = DVec3::new(0.3, 0.2, (4.0f64 - 0.13).sqrt());
     let n = p.normalize();
@@ -132,6 +134,7 @@ fn mirror_depth_and_weight_limits() {
         position: DVec3::new(0.0, 0.0, 50.0),
         colour: [0.0; 3],
         falloff: [1.0, 0.0, 0.0],
+        area: None,
     };
     let background = [0.2, 0.4, 0.8];
     let colour_with = |max_depth: u32, min_weight: f32| {
@@ -152,7 +155,7 @@ fn mirror_depth_and_weight_limits() {
             origin: Vec3::new(0.0, 0.0, 10.0),
             dir: Vec3::NEG_Z,
         };
-        trace_ray(&packed, ray, &mut NoCounters)
+        trace_ray(&packed, ray, SampleSeed::default(), &mut NoCounters)
     };
     assert_eq!(
         colour_with(0, 0.0),
@@ -183,6 +186,10 @@ fn scaled(scene: &Scene, s: f64) -> Scene {
     }
     for l in &mut out.lights {
         l.position *= s;
+        if let Some(area) = &mut l.area {
+            area.u *= s;
+            area.v *= s;
+        }
         // Keep the attenuation the same function of the scaled distance.
         l.falloff = [
             l.falloff[0],

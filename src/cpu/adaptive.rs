@@ -17,6 +17,7 @@
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
 
 use super::render::{contrast, sample};
+use super::rng::adaptive_seed;
 use super::traverse::TraversalCounters;
 use crate::constants::AA_STACK_SIZE;
 use crate::pack::PackedScene;
@@ -120,7 +121,7 @@ fn adaptive_corners(
     let s = t.scale();
     let (i, j) = ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s);
     let (fx, fy) = lattice_position(&t, i, j);
-    lat.points[lattice_index(&t, i, j)] = sample(scene, fx, fy, counters);
+    lat.points[lattice_index(&t, i, j)] = sample(scene, fx, fy, adaptive_seed(fx, fy), counters);
 }
 
 /// Invocation `idx` of the decide pass of `level`: flags square (idx mod n, idx div n)
@@ -179,7 +180,7 @@ fn adaptive_midpoints(
     let offsets = [(h, 0), (0, h), (h, h), (l, h), (h, l)];
     let (i, j) = (a * l + offsets[m as usize].0, b * l + offsets[m as usize].1);
     let (fx, fy) = lattice_position(&t, i, j);
-    lat.points[lattice_index(&t, i, j)] = sample(scene, fx, fy, counters);
+    lat.points[lattice_index(&t, i, j)] = sample(scene, fx, fy, adaptive_seed(fx, fy), counters);
 }
 
 /// Colour of tile pixel (tx, ty) and its number of leaf squares: the area-weighted mean

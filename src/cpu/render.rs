@@ -5,7 +5,7 @@
 
 use super::adaptive::{adaptive_tile, AdaptiveTile, Lattice};
 use super::ray::camera_ray;
-use super::rng::random_unit;
+use super::rng::{adaptive_seed, random_unit, SampleSeed};
 use super::trace::trace_ray;
 use super::traverse::{Counters, NoCounters, TraversalCounters};
 use crate::constants::{
@@ -18,15 +18,16 @@ use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Colour at film position (fx, fy) in pixels.
+/// Colour at film position (fx, fy) in pixels; `seed` names the camera sample.
 // Mirror of shaders/render.wgsl::sample — change both.
 pub(crate) fn sample(
     scene: &PackedScene,
     fx: f32,
     fy: f32,
+    seed: SampleSeed,
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
-    trace_ray(scene, camera_ray(&scene.globals, fx, fy), counters)
+    trace_ray(scene, camera_ray(&scene.globals, fx, fy), seed, counters)
 }
 
 /// A square of the adaptive subdivision: top-left corner, side, depth, and the colours
@@ -66,7 +67,8 @@ pub fn adaptive_pixel(
     // inlines every call, and the shader's size and compile time grow with the sites.)
     let mut corners = [Vec3::ZERO; 4];
     for (k, corner) in corners.iter_mut().enumerate() {
-        *corner = sample(scene, fx + (k & 1) as f32, fy + (k >> 1) as f32, counters);
+        let (cx, cy) = (fx + (k & 1) as f32, fy + (k >> 1) as f32);
+        *corner = sample(scene, cx, cy, adaptive_seed(cx, cy), counters);
     }
     let mut stack = [AdaptiveSquare {
         x: fx,
@@ -92,7 +94,8 @@ pub fn adaptive_pixel(
         let offsets = [(h, 0.0), (0.0, h), (h, h), (sq.size, h), (h, sq.size)];
         let mut mid = [Vec3::ZERO; 5];
         for (m, (ox, oy)) in mid.iter_mut().zip(offsets) {
-            *m = sample(scene, sq.x + ox, sq.y + oy, counters);
+            let (px, py) = (sq.x + ox, sq.y + oy);
+            *m = sample(scene, px, py, adaptive_seed(px, py), counters);
         }
         let [top, left, centre, right, bottom] = mid;
         let depth = sq.depth + 1;
@@ -163,7 +166,12 @@ fn uniform_sample(
     };
     let fx = x as f32 + (i as f32 + jx) / n as f32;
     let fy = y as f32 + (j as f32 + jy) / n as f32;
-    sample(scene, fx, fy, counters)
+    let seed = SampleSeed {
+        pixel,
+        sample: s,
+        depth: 0,
+    };
+    sample(scene, fx, fy, seed, counters)
 }
 
 /// Progress of a render: called with (tiles done, tiles in all) after each tile.

@@ -3,10 +3,11 @@
 use super::cylinder_cone::{cone_surface, cylinder_surface};
 use super::intersect::{to_object_space, triangle_vertices};
 use super::ray::{offset_ray, Ray};
+use super::rng::{shadow_random, SampleSeed};
 use super::torus::torus_surface;
 use super::traverse::{any_hit, Hit, TraversalCounters};
-use crate::constants::{KIND_CONE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS};
-use crate::pack::{GpuGlobals, GpuInstance, PackedScene};
+use crate::constants::{KIND_CONE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, LIGHT_AREA};
+use crate::pack::{GpuGlobals, GpuInstance, GpuLight, PackedScene};
 use glam::Vec3;
 
 /// What shading needs to know about a hit point.
@@ -126,45 +127,114 @@ pub fn phong_power(base: f32, exponent: f32) -> f32 {
 
 /// A4 lighting at a surface point: kd·ambient plus, for each light a shadow ray reaches,
 /// (kd·max(0,N·L) + ks·max(0,R·V)^shininess)·I/(c0 + c1·d + c2·d²). `n` faces the viewer;
-/// `v` points to the viewer.
+/// `v` points to the viewer. An area light is n×n such point lights, one jittered point
+/// per stratum of its parallelogram (random numbers from `seed`), each with 1/n² of its
+/// colour.
 // Mirror of shaders/shade.wgsl::shade_phong — change both.
 pub fn shade_phong(
     scene: &PackedScene,
     s: &Surface,
     n: Vec3,
     v: Vec3,
+    seed: SampleSeed,
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let m = &scene.materials[s.material as usize];
-    let kd = Vec3::from(m.kd);
-    let ks = Vec3::from(m.ks);
-    let mut colour = kd * Vec3::from(scene.globals.ambient);
+    let mut colour = Vec3::from(m.kd) * Vec3::from(scene.globals.ambient);
     let origin = offset_ray(s.p, n, s.magnitude);
-    for light in &scene.lights[..scene.globals.num_lights as usize] {
-        let to_light = Vec3::from(light.position) - s.p;
-        let distance = to_light.length();
-        let l = to_light / distance;
-        let n_dot_l = n.dot(l);
-        // Lights behind the surface (as seen from the viewer's side) add nothing.
-        if n_dot_l.is_nan() || n_dot_l <= 0.0 {
-            continue;
+    for (index, light) in scene.lights[..scene.globals.num_lights as usize]
+        .iter()
+        .enumerate()
+    {
+        if light.kind == LIGHT_AREA {
+            colour += area_light(scene, s, n, v, origin, light, index as u32, seed, counters);
+        } else {
+            colour += point_light(
+                scene,
+                s,
+                n,
+                v,
+                origin,
+                Vec3::from(light.position),
+                light,
+                counters,
+            );
         }
-        let shadow_dir = Vec3::from(light.position) - origin;
-        let shadow_distance = shadow_dir.length();
-        let shadow_ray = Ray {
-            origin,
-            dir: shadow_dir / shadow_distance,
-        };
-        if any_hit(scene, &shadow_ray, shadow_distance, counters) {
-            continue;
-        }
-        let r = n * (2.0 * n_dot_l) - l;
-        let specular = phong_power(r.dot(v), m.shininess);
-        let [c0, c1, c2] = light.falloff;
-        let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
-        colour += (kd * n_dot_l + ks * specular) * Vec3::from(light.colour) * attenuation;
     }
     colour
+}
+
+/// Light from a point at `position` with `light`'s colour and falloff: the A4 term, or
+/// zero when the point is behind the surface or a shadow ray from `origin` is blocked.
+// Mirror of shaders/shade.wgsl::point_light — change both.
+#[allow(clippy::too_many_arguments)]
+fn point_light(
+    scene: &PackedScene,
+    s: &Surface,
+    n: Vec3,
+    v: Vec3,
+    origin: Vec3,
+    position: Vec3,
+    light: &GpuLight,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
+    let m = &scene.materials[s.material as usize];
+    let to_light = position - s.p;
+    let distance = to_light.length();
+    let l = to_light / distance;
+    let n_dot_l = n.dot(l);
+    // Lights behind the surface (as seen from the viewer's side) add nothing.
+    if n_dot_l.is_nan() || n_dot_l <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let shadow_dir = position - origin;
+    let shadow_distance = shadow_dir.length();
+    let shadow_ray = Ray {
+        origin,
+        dir: shadow_dir / shadow_distance,
+    };
+    if any_hit(scene, &shadow_ray, shadow_distance, counters) {
+        return Vec3::ZERO;
+    }
+    let r = n * (2.0 * n_dot_l) - l;
+    let specular = phong_power(r.dot(v), m.shininess);
+    let [c0, c1, c2] = light.falloff;
+    let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
+    (Vec3::from(m.kd) * n_dot_l + Vec3::from(m.ks) * specular)
+        * Vec3::from(light.colour)
+        * attenuation
+}
+
+/// Light from area light number `index`: the mean of [`point_light`] over one jittered
+/// point in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n).
+// Mirror of shaders/shade.wgsl::area_light — change both.
+#[allow(clippy::too_many_arguments)]
+fn area_light(
+    scene: &PackedScene,
+    s: &Surface,
+    n: Vec3,
+    v: Vec3,
+    origin: Vec3,
+    light: &GpuLight,
+    index: u32,
+    seed: SampleSeed,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
+    let k = light.samples;
+    let scale = 1.0 / k as f32;
+    let (centre, u, w) = (
+        Vec3::from(light.position),
+        Vec3::from(light.edge_u),
+        Vec3::from(light.edge_v),
+    );
+    let mut sum = Vec3::ZERO;
+    for stratum in 0..k * k {
+        let a = ((stratum % k) as f32 + shadow_random(seed, index, stratum, 0)) * scale - 0.5;
+        let b = ((stratum / k) as f32 + shadow_random(seed, index, stratum, 1)) * scale - 0.5;
+        let position = centre + u * a + w * b;
+        sum += point_light(scene, s, n, v, origin, position, light, counters);
+    }
+    sum * (scale * scale)
 }
 
 /// Colour of a ray that hits nothing: the vertical gradient by direction (solid when

@@ -2,6 +2,7 @@
 //! each with the weight of its contribution to the pixel and its depth.
 
 use super::ray::{offset_ray, Ray};
+use super::rng::SampleSeed;
 use super::shade::{background, shade_phong, surface_at};
 use super::traverse::{closest_hit, TraversalCounters};
 use crate::constants::{MATERIAL_REFLECTIVE, RAY_STACK_SIZE, T_MISS};
@@ -16,9 +17,15 @@ struct StackEntry {
 }
 
 /// Colour seen along a primary ray, mirrors included (down to `max_depth` bounces or
-/// `min_weight` contribution).
+/// `min_weight` contribution). `seed` names the camera sample (its `depth` is ignored:
+/// each shading point gets its own ray's depth).
 // Mirror of shaders/trace.wgsl::trace_ray — change both.
-pub fn trace_ray(scene: &PackedScene, primary: Ray, counters: &mut impl TraversalCounters) -> Vec3 {
+pub fn trace_ray(
+    scene: &PackedScene,
+    primary: Ray,
+    seed: SampleSeed,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
     let g = &scene.globals;
     let mut stack = [StackEntry {
         ray: primary,
@@ -44,7 +51,11 @@ pub fn trace_ray(scene: &PackedScene, primary: Ray, counters: &mut impl Traversa
             s.normal
         };
         let v = -ray.dir;
-        colour += entry.weight * shade_phong(scene, &s, n, v, counters);
+        let shade_seed = SampleSeed {
+            depth: entry.depth,
+            ..seed
+        };
+        colour += entry.weight * shade_phong(scene, &s, n, v, shade_seed, counters);
         let m = &scene.materials[s.material as usize];
         if m.flags & MATERIAL_REFLECTIVE != 0 && entry.depth < g.max_depth {
             let weight = entry.weight * Vec3::from(m.reflection);

@@ -2,7 +2,8 @@
 //! files, with every `// #if FEATURE` … `// #else` … `// #endif` block resolved for
 //! exactly the scene's [`SceneFeatures`], so code for absent features never reaches naga
 //! (naga does not remove dead branches, gfx-rs/wgpu#5608). A condition is one feature name
-//! in upper case, or several joined by `|` (any of them), optionally negated by a leading `!`.
+//! in upper case (`-` as `_`: `AREA_LIGHT`), or several joined by `|` (any of them),
+//! optionally negated by a leading `!`.
 //! Besides the scene's features, one flag of the adapter: `ITERATION_GUARD` (software
 //! adapters, whose loop limiter the render kernels check, see `shaders/render.wgsl`).
 
@@ -181,12 +182,12 @@ fn condition(text: &str, features: SceneFeatures, iteration_guard: bool) -> Resu
         }
         let flag = SceneFeatures::ALL
             .iter()
-            .find(|(_, n)| n.eq_ignore_ascii_case(name))
+            .find(|(_, n)| n.replace('-', "_").eq_ignore_ascii_case(name))
             .map(|(f, _)| *f)
             .ok_or_else(|| {
                 let valid: Vec<String> = SceneFeatures::ALL
                     .iter()
-                    .map(|(_, n)| n.to_uppercase())
+                    .map(|(_, n)| n.to_uppercase().replace('-', "_"))
                     .chain(["ITERATION_GUARD".to_string()])
                     .collect();
                 format!("unknown feature '{name}' (valid: {})", valid.join(", "))

@@ -16,6 +16,7 @@ impl SceneFeatures {
     pub const CYLINDER: SceneFeatures = SceneFeatures(1 << 5);
     pub const CONE: SceneFeatures = SceneFeatures(1 << 6);
     pub const TORUS: SceneFeatures = SceneFeatures(1 << 7);
+    pub const AREA_LIGHT: SceneFeatures = SceneFeatures(1 << 8);
 
     /// Every feature with its name, in display order.
     pub const ALL: &'static [(SceneFeatures, &'static str)] = &[
@@ -27,6 +28,7 @@ impl SceneFeatures {
         (Self::CYLINDER, "cylinder"),
         (Self::CONE, "cone"),
         (Self::TORUS, "torus"),
+        (Self::AREA_LIGHT, "area-light"),
     ];
 
     pub const fn empty() -> SceneFeatures {

@@ -46,7 +46,8 @@ pub struct GpuMaterial {
     pub _pad: u32,
 }
 
-/// A light. Point lights use `position`; area lights (later) add the edge vectors.
+/// A light. Point lights use `position`; area lights (`LIGHT_AREA`) are the parallelogram
+/// centred at `position` with edges `edge_u`, `edge_v`, sampled n×n (`samples`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuLight {

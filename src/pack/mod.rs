@@ -105,6 +105,10 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFLECTIVE != 0 && used(m)) {
         features.insert(SceneFeatures::REFLECTION);
     }
+    let shadow_samples = scene.options.shadow_samples;
+    if scene.lights.iter().any(|l| l.area.is_some()) {
+        features.insert(SceneFeatures::AREA_LIGHT);
+    }
     let lights = scene
         .lights
         .iter()
@@ -117,16 +121,27 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
                     falloff: l.falloff,
                 });
             }
+            let (kind, samples, edge_u, edge_v) = match &l.area {
+                None => (LIGHT_POINT, 1, [0.0; 3], [0.0; 3]),
+                Some(a) => (
+                    LIGHT_AREA,
+                    shadow_samples
+                        .unwrap_or(a.samples)
+                        .clamp(1, MAX_SHADOW_SAMPLES),
+                    a.u.as_vec3().to_array(),
+                    a.v.as_vec3().to_array(),
+                ),
+            };
             Ok(GpuLight {
                 position: l.position.as_vec3().to_array(),
-                kind: LIGHT_POINT,
+                kind,
                 colour: l.colour,
-                samples: 1,
+                samples,
                 falloff: l.falloff,
                 _pad0: 0,
-                edge_u: [0.0; 3],
+                edge_u,
                 _pad1: 0,
-                edge_v: [0.0; 3],
+                edge_v,
                 _pad2: 0,
             })
         })

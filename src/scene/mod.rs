@@ -95,13 +95,25 @@ pub struct Mesh {
     pub uvs: Option<Vec<[f32; 2]>>,
 }
 
-/// A light in world space.
+/// A light in world space: a point light at `position`, or, with `area`, a parallelogram
+/// centred there (`colour` is then its total over the area).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
     pub position: DVec3,
     pub colour: [f32; 3],
     /// Attenuation 1/(c0 + c1·d + c2·d²).
     pub falloff: [f32; 3],
+    /// `None` for a point light.
+    pub area: Option<AreaLight>,
+}
+
+/// The shape of an area light (`gr.area_light`): edge vectors `u`, `v` of the
+/// parallelogram centred at the light's position, and n of its n×n shadow samples.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaLight {
+    pub u: DVec3,
+    pub v: DVec3,
+    pub samples: u32,
 }
 
 /// Pinhole camera as `gr.render` gives it: `view` is a direction (not normalised), `up`

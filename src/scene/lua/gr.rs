@@ -1,14 +1,16 @@
 //! The `gr` table: the A4 core calls (the methods of what they return are in `handles`).
 //!
-//! Calls not in the contract yet (textures, CSG, extra primitives, area lights)
+//! Calls not in the contract yet (textures, CSG, extra primitives)
 //! are simply not defined: Lua then reports `attempt to call a nil value (field 'x')`
 //! with the file and line.
 
 use super::args::{int_value, location, Args};
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
 use super::{options, with_state, OnRender};
+use crate::constants::{DEFAULT_SHADOW_SAMPLES, MAX_SHADOW_SAMPLES};
 use crate::scene::{
-    Camera, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest, TransformOrder,
+    AreaLight, Camera, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest,
+    TransformOrder,
 };
 use glam::{DMat4, DVec3};
 use mlua::{Lua, MultiValue, Value};
@@ -44,6 +46,7 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     def!("mesh", mesh);
     def!("material", material);
     def!("light", light);
+    def!("area_light", area_light);
     def!("transform_order", transform_order);
     lua.globals().set("gr", gr)
 }
@@ -335,11 +338,22 @@ fn material(a: &Args) -> mlua::Result<MaterialHandle> {
 fn light(a: &Args) -> mlua::Result<LightHandle> {
     let position = a.vec3(1, "position")?;
     let colour = a.colour(2, "colour")?;
-    let t = a.table(3, "falloff", "a table of 3 numbers {c0, c1, c2}")?;
-    let c = a.vec3_from(&t, 3, "falloff")?;
+    let falloff = falloff(a, 3)?;
+    Ok(LightHandle(Light {
+        position,
+        colour,
+        falloff,
+        area: None,
+    }))
+}
+
+/// Argument `n` of a light: `{c0, c1, c2}`, non-negative and not all zero.
+fn falloff(a: &Args, n: usize) -> mlua::Result<[f32; 3]> {
+    let t = a.table(n, "falloff", "a table of 3 numbers {c0, c1, c2}")?;
+    let c = a.vec3_from(&t, n, "falloff")?;
     if c.iter().any(|&x| x < 0.0) || c.iter().all(|&x| x == 0.0) {
         return Err(a.bad_in(
-            3,
+            n,
             "falloff",
             format!(
                 "coefficients {{c0, c1, c2}} must be non-negative and not all zero, got {{{}, {}, {}}}",
@@ -347,10 +361,39 @@ fn light(a: &Args) -> mlua::Result<LightHandle> {
             ),
         ));
     }
+    Ok(c.map(|x| x as f32))
+}
+
+/// `gr.area_light(centre, u, v, colour, {c0, c1, c2}[, n])`: the parallelogram centred at
+/// `centre` with edges `u`, `v`; n×n shadow samples (default 4).
+fn area_light(a: &Args) -> mlua::Result<LightHandle> {
+    let centre = a.vec3(1, "centre")?;
+    let u = a.vec3(2, "u")?;
+    let v = a.vec3(3, "v")?;
+    // Parallel (or zero) edges span no area.
+    let area = u.cross(v).length();
+    if area.is_nan() || area <= 1e-12 * u.length() * v.length() || area == 0.0 {
+        return Err(a.bad_in(
+            3,
+            "v",
+            format!(
+                "edges u and v must not be parallel or zero, got u = {{{}, {}, {}}}, v = {{{}, {}, {}}}",
+                u.x, u.y, u.z, v.x, v.y, v.z
+            ),
+        ));
+    }
+    let colour = a.colour(4, "colour")?;
+    let falloff = falloff(a, 5)?;
+    let samples = if a.is_nil(6) {
+        DEFAULT_SHADOW_SAMPLES
+    } else {
+        a.positive_int(6, "n", MAX_SHADOW_SAMPLES)?
+    };
     Ok(LightHandle(Light {
-        position,
+        position: centre,
         colour,
-        falloff: c.map(|x| x as f32),
+        falloff,
+        area: Some(AreaLight { u, v, samples }),
     }))
 }
 
