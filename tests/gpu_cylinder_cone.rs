@@ -6,18 +6,13 @@
 
 mod common;
 
+use common::probes::check;
 use common::{gpu_context, packed_from_file, packed_from_source, root, Rng};
-use glam::DVec3;
-use glint::constants::T_MISS;
 use glint::diff::assert_images_match;
-use glint::gpu::probe::{cpu_probe, gpu_probe, ProbeRay};
 use glint::gpu::render_gpu_with_info;
-use glint::gpu::GpuContext;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{GridMode, OptionOverrides};
 use std::fmt::Write;
-
-const RAYS: usize = 4096;
 
 /// Lua for `count` random cylinders (`cone == false`) or cones (random zmin < zmax:
 /// single nappes, tips at z = 0, double cones) in [-10, 10]³.
@@ -52,81 +47,6 @@ fn random_scene(seed: u64, cone: bool, count: usize) -> String {
         );
     }
     lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
-}
-
-fn random_rays(seed: u64) -> Vec<ProbeRay> {
-    let mut rng = Rng(seed);
-    (0..RAYS)
-        .map(|i| {
-            let origin = DVec3::new(
-                rng.range(-15.0, 15.0),
-                rng.range(-15.0, 15.0),
-                rng.range(-15.0, 15.0),
-            );
-            let target = DVec3::new(
-                rng.range(-10.0, 10.0),
-                rng.range(-10.0, 10.0),
-                rng.range(-10.0, 10.0),
-            );
-            ProbeRay {
-                origin: origin.as_vec3().to_array(),
-                t_max: if i % 8 == 0 {
-                    rng.range(1.0, 30.0) as f32
-                } else {
-                    T_MISS
-                },
-                dir: (target - origin).normalize().as_vec3().to_array(),
-                mode: 0,
-            }
-        })
-        .collect()
-}
-
-fn check(ctx: &GpuContext, name: &str, scene: &PackedScene, ray_seed: u64) {
-    let rays = random_rays(ray_seed);
-    let gpu = gpu_probe(ctx, scene, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let (mut agreeing, mut hits) = (0usize, 0usize);
-    let (mut worst_dt, mut worst_dn) = (0.0f32, 0.0f32);
-    let mut first_bad = None;
-    for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
-        let c = cpu_probe(scene, ray);
-        hits += c.hit as usize;
-        let ok = if g.hit != c.hit {
-            false
-        } else if c.hit == 0 {
-            true
-        } else {
-            let dt = (g.t - c.t).abs() / c.t.abs();
-            let dn = (0..3)
-                .map(|k| (g.normal[k] - c.normal[k]).abs())
-                .fold(0.0, f32::max);
-            let ok = g.item == c.item && dt <= 1e-4 && dn <= 1e-4;
-            if ok {
-                worst_dt = worst_dt.max(dt);
-                worst_dn = worst_dn.max(dn);
-            }
-            ok
-        };
-        agreeing += ok as usize;
-        if !ok && first_bad.is_none() {
-            first_bad = Some(format!("ray {i} {ray:?}: gpu {g:?} cpu {c:?}"));
-        }
-    }
-    let rate = agreeing as f64 / rays.len() as f64;
-    eprintln!(
-        "{name}: features [{}], {hits}/{} CPU hits, agreement {:.4}% ({agreeing}/{}), worst agreeing |Δt|/t {worst_dt:.2e}, |Δn| {worst_dn:.2e}",
-        scene.features,
-        rays.len(),
-        rate * 100.0,
-        rays.len()
-    );
-    assert!(hits > rays.len() / 8, "{name}: too few hits ({hits})");
-    assert!(
-        rate >= 0.999,
-        "{name} (ray seed {ray_seed}): agreement {:.4}% < 99.9%; first disagreement: {}",
-        rate * 100.0,
-        first_bad.unwrap_or_default()
-    );
 }
 
 fn scene(seed: u64, cone: bool, count: usize, grid: GridMode) -> PackedScene {

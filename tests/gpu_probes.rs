@@ -7,19 +7,11 @@
 
 mod common;
 
+use common::probes::check;
 use common::{gpu_context, packed_from_source, Rng};
-use glam::DVec3;
-use glint::constants::T_MISS;
-use glint::gpu::probe::{cpu_probe, gpu_probe, ProbeRay, ProbeResult};
-use glint::gpu::GpuContext;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{GridMode, OptionOverrides};
 use std::fmt::Write;
-
-const RAYS: usize = 4096;
-const REQUIRED_AGREEMENT: f64 = 0.999;
-const T_TOLERANCE: f32 = 1e-4;
-const NORMAL_TOLERANCE: f32 = 1e-4;
 
 /// Lua for a random scene in [-10, 10]³: spheres and cubes with random non-uniform scale,
 /// rotation and translation, and a random triangle soup of `triangles` triangles.
@@ -60,97 +52,6 @@ fn random_scene(seed: u64, spheres: usize, cubes: usize, triangles: usize) -> St
         );
     }
     lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
-}
-
-/// Rays from random points in [-15, 15]³ towards random points in [-10, 10]³, so that
-/// most hit something; one in eight has a finite t_max.
-fn random_rays(seed: u64) -> Vec<ProbeRay> {
-    let mut rng = Rng(seed);
-    (0..RAYS)
-        .map(|i| {
-            let origin = DVec3::new(
-                rng.range(-15.0, 15.0),
-                rng.range(-15.0, 15.0),
-                rng.range(-15.0, 15.0),
-            );
-            let target = DVec3::new(
-                rng.range(-10.0, 10.0),
-                rng.range(-10.0, 10.0),
-                rng.range(-10.0, 10.0),
-            );
-            let dir = (target - origin).normalize();
-            ProbeRay {
-                origin: origin.as_vec3().to_array(),
-                t_max: if i % 8 == 0 {
-                    rng.range(1.0, 30.0) as f32
-                } else {
-                    T_MISS
-                },
-                dir: dir.as_vec3().to_array(),
-                mode: 0,
-            }
-        })
-        .collect()
-}
-
-/// Whether GPU and CPU agree on one ray, and the relative t and normal errors.
-fn agree(gpu: &ProbeResult, cpu: &ProbeResult) -> (bool, f32, f32) {
-    if gpu.hit != cpu.hit {
-        return (false, f32::INFINITY, f32::INFINITY);
-    }
-    if cpu.hit == 0 {
-        return (true, 0.0, 0.0);
-    }
-    let dt = (gpu.t - cpu.t).abs() / cpu.t.abs();
-    let dn = (0..3)
-        .map(|k| (gpu.normal[k] - cpu.normal[k]).abs())
-        .fold(0.0, f32::max);
-    (
-        gpu.item == cpu.item && dt <= T_TOLERANCE && dn <= NORMAL_TOLERANCE,
-        dt,
-        dn,
-    )
-}
-
-fn check(ctx: &GpuContext, name: &str, scene: &PackedScene, ray_seed: u64) {
-    let rays = random_rays(ray_seed);
-    let gpu = gpu_probe(ctx, scene, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
-    assert_eq!(gpu.len(), rays.len());
-    let mut agreeing = 0;
-    let mut hits = 0;
-    let (mut worst_dt, mut worst_dn) = (0.0f32, 0.0f32);
-    let mut first_bad = None;
-    for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
-        let c = cpu_probe(scene, ray);
-        hits += c.hit as usize;
-        let (ok, dt, dn) = agree(g, &c);
-        if ok {
-            agreeing += 1;
-            worst_dt = worst_dt.max(dt);
-            worst_dn = worst_dn.max(dn);
-        } else if first_bad.is_none() {
-            first_bad = Some(format!("ray {i} {ray:?}: gpu {g:?} cpu {c:?}"));
-        }
-    }
-    let rate = agreeing as f64 / rays.len() as f64;
-    eprintln!(
-        "{name}: features [{}], {hits}/{} CPU hits, agreement {:.4}% ({agreeing}/{}), worst agreeing |Δt|/t {worst_dt:.2e}, |Δn| {worst_dn:.2e}",
-        scene.features,
-        rays.len(),
-        rate * 100.0,
-        rays.len()
-    );
-    assert!(
-        hits > rays.len() / 8,
-        "{name}: too few hits ({hits}) to test anything"
-    );
-    assert!(
-        rate >= REQUIRED_AGREEMENT,
-        "{name} (ray seed {ray_seed}): agreement {:.4}% < {}%; first disagreement: {}",
-        rate * 100.0,
-        REQUIRED_AGREEMENT * 100.0,
-        first_bad.unwrap_or_default()
-    );
 }
 
 fn grid(mode: GridMode) -> OptionOverrides {

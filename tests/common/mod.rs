@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests: paths, scratch folders, rendering a scene.
 #![allow(dead_code)]
 
+pub mod probes;
+
 use glint::film::Film;
 use glint::pack::{pack, PackedScene};
 use glint::scene::flatten::{flatten, Scene};
