@@ -33,7 +33,16 @@ struct GpuMaterial {
     // MATERIAL_* bits.
     flags: u32,
     reflection: vec3<f32>,
-    _pad: u32,
+    // Index of refraction (MATERIAL_REFRACTIVE); 1 otherwise.
+    ior: f32,
+    // Texture (index into the texture table in `texels`) replacing kd, or NO_TEXTURE.
+    diffuse_texture: u32,
+    // Texture replacing ks, or NO_TEXTURE.
+    specular_texture: u32,
+    // Height field of the bump map, or NO_TEXTURE.
+    bump_texture: u32,
+    // Bump strength (height units per texture-space unit).
+    bump_strength: f32,
 }
 
 // Mirror of src/pack/layout.rs::GpuLight — change both.
@@ -122,3 +131,6 @@ struct GpuTile {
 @group(0) @binding(4) var<storage, read> lights: array<GpuLight>;
 @group(0) @binding(5) var<storage, read> cell_start: array<u32>;
 @group(0) @binding(6) var<storage, read> cell_items: array<u32>;
+// CSG programs (post-order, see intersect_csg) and the texture table + texels.
+@group(0) @binding(14) var<storage, read> csg_program: array<u32>;
+@group(0) @binding(15) var<storage, read> texels: array<u32>;

@@ -21,6 +21,10 @@ pub const SHADOW_DIMENSION_BASE: u32 = 2;
 
 /// Material flags (`GpuMaterial::flags`).
 pub const MATERIAL_REFLECTIVE: u32 = 1;
+pub const MATERIAL_REFRACTIVE: u32 = 2;
+
+/// `GpuMaterial::*_texture` meaning "no texture".
+pub const NO_TEXTURE: u32 = u32::MAX;
 
 /// Anti-aliasing modes (`GpuGlobals::aa_mode`).
 pub const AA_NONE: u32 = 0;
@@ -80,6 +84,8 @@ pub fn wgsl_prelude() -> String {
         ("MAX_SHADOW_SAMPLES", MAX_SHADOW_SAMPLES),
         ("SHADOW_DIMENSION_BASE", SHADOW_DIMENSION_BASE),
         ("MATERIAL_REFLECTIVE", MATERIAL_REFLECTIVE),
+        ("MATERIAL_REFRACTIVE", MATERIAL_REFRACTIVE),
+        ("NO_TEXTURE", NO_TEXTURE),
         ("AA_NONE", AA_NONE),
         ("AA_UNIFORM", AA_UNIFORM),
         ("AA_ADAPTIVE", AA_ADAPTIVE),

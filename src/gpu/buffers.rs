@@ -32,11 +32,16 @@ pub struct GpuTile {
 /// stops after one when Mesa's limiter has tripped (see `shaders/render.wgsl`).
 pub const LIMITER_SENTINEL: u32 = 2;
 
-/// The scene's buffers, in binding order 0..=6.
+/// The bindings of the scene's arrays, in `SceneBuffers::arrays` order (the two added
+/// last sit after the render entry's own bindings, so those kept their numbers).
+pub const SCENE_ARRAY_BINDINGS: [u32; 8] = [1, 2, 3, 4, 5, 6, 14, 15];
+
+/// The scene's buffers: the globals uniform (binding 0) and the arrays.
 pub struct SceneBuffers {
     pub globals: wgpu::Buffer,
-    /// instances, triangles, materials, lights, cell_start, cell_items.
-    pub arrays: [wgpu::Buffer; 6],
+    /// instances, triangles, materials, lights, cell_start, cell_items, csg_program,
+    /// texels, bound at [`SCENE_ARRAY_BINDINGS`].
+    pub arrays: [wgpu::Buffer; 8],
 }
 
 /// The bytes of `data`, or one zeroed element when it is empty.
@@ -67,13 +72,15 @@ pub fn check_size(ctx: &GpuContext, array: &'static str, bytes: u64) -> Result<(
 
 /// Uploads `scene` to `ctx`'s device.
 pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffers, GpuError> {
-    let arrays: [(&'static str, Vec<u8>); 6] = [
+    let arrays: [(&'static str, Vec<u8>); 8] = [
         ("instances", padded(&scene.instances)),
         ("triangles", padded(&scene.triangles)),
         ("materials", padded(&scene.materials)),
         ("lights", padded(&scene.lights)),
         ("cell_start", padded(&scene.cell_start)),
         ("cell_items", padded(&scene.cell_items)),
+        ("csg_program", padded(&scene.csg_program)),
+        ("texels", padded(&scene.texels)),
     ];
     for (name, bytes) in &arrays {
         check_size(ctx, name, bytes.len() as u64)?;
@@ -96,15 +103,15 @@ pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffer
     })
 }
 
-/// Bind group entries 0..=6 for the scene.
+/// Bind group entries of the scene: 0 and [`SCENE_ARRAY_BINDINGS`].
 pub fn scene_entries(buffers: &SceneBuffers) -> Vec<wgpu::BindGroupEntry<'_>> {
     let mut entries = vec![wgpu::BindGroupEntry {
         binding: 0,
         resource: buffers.globals.as_entire_binding(),
     }];
-    for (i, buffer) in buffers.arrays.iter().enumerate() {
+    for (binding, buffer) in SCENE_ARRAY_BINDINGS.iter().zip(&buffers.arrays) {
         entries.push(wgpu::BindGroupEntry {
-            binding: i as u32 + 1,
+            binding: *binding,
             resource: buffer.as_entire_binding(),
         });
     }

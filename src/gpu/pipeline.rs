@@ -10,8 +10,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-/// Bindings 1..=6 (scene arrays, read-only storage), in `shaders/layout.wgsl` order.
-pub const SCENE_ARRAY_BINDINGS: u32 = 6;
+pub use super::buffers::SCENE_ARRAY_BINDINGS;
 /// Render entry: tile uniform and output buffer.
 pub const TILE_BINDING: u32 = 7;
 pub const OUTPUT_BINDING: u32 = 8;
@@ -76,7 +75,7 @@ fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
 /// The bind group layout of `entry`: globals, the scene arrays, then the entry's own.
 fn bind_group_layout(device: &wgpu::Device, entry: Entry) -> wgpu::BindGroupLayout {
     let mut entries = vec![uniform(0)];
-    entries.extend((1..=SCENE_ARRAY_BINDINGS).map(|b| storage(b, true)));
+    entries.extend(SCENE_ARRAY_BINDINGS.iter().map(|&b| storage(b, true)));
     if entry.is_render() {
         entries.push(uniform(TILE_BINDING));
         for b in [

@@ -17,6 +17,10 @@ impl SceneFeatures {
     pub const CONE: SceneFeatures = SceneFeatures(1 << 6);
     pub const TORUS: SceneFeatures = SceneFeatures(1 << 7);
     pub const AREA_LIGHT: SceneFeatures = SceneFeatures(1 << 8);
+    pub const CSG: SceneFeatures = SceneFeatures(1 << 9);
+    pub const REFRACTION: SceneFeatures = SceneFeatures(1 << 10);
+    pub const TEXTURE: SceneFeatures = SceneFeatures(1 << 11);
+    pub const BUMP: SceneFeatures = SceneFeatures(1 << 12);
 
     /// Every feature with its name, in display order.
     pub const ALL: &'static [(SceneFeatures, &'static str)] = &[
@@ -29,6 +33,10 @@ impl SceneFeatures {
         (Self::CONE, "cone"),
         (Self::TORUS, "torus"),
         (Self::AREA_LIGHT, "area-light"),
+        (Self::CSG, "csg"),
+        (Self::REFRACTION, "refraction"),
+        (Self::TEXTURE, "texture"),
+        (Self::BUMP, "bump"),
     ];
 
     pub const fn empty() -> SceneFeatures {

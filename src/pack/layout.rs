@@ -33,7 +33,7 @@ pub struct GpuTriangle {
     pub _pad2: u32,
 }
 
-/// A4 Phong material plus the mirror colour.
+/// A4 Phong material plus the mirror colour, the dielectric's index and texture maps.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuMaterial {
@@ -43,7 +43,16 @@ pub struct GpuMaterial {
     /// `MATERIAL_*` bits.
     pub flags: u32,
     pub reflection: [f32; 3],
-    pub _pad: u32,
+    /// Index of refraction (`MATERIAL_REFRACTIVE`); 1 otherwise.
+    pub ior: f32,
+    /// Texture (index into the texture table in `texels`) replacing kd, or `NO_TEXTURE`.
+    pub diffuse_texture: u32,
+    /// Texture replacing ks, or `NO_TEXTURE`.
+    pub specular_texture: u32,
+    /// Height field of the bump map, or `NO_TEXTURE`.
+    pub bump_texture: u32,
+    /// Bump strength (height units per texture-space unit).
+    pub bump_strength: f32,
 }
 
 /// A light. Point lights use `position`; area lights (`LIGHT_AREA`) are the parallelogram
@@ -114,6 +123,6 @@ pub struct GpuGlobals {
 
 const _: () = assert!(std::mem::size_of::<GpuInstance>() == 112);
 const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 48);
-const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 80);
 const _: () = assert!(std::mem::size_of::<GpuGlobals>() == 192);

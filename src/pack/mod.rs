@@ -25,6 +25,10 @@ pub struct PackedScene {
     /// `cell_start[c]..cell_start[c + 1]` indexes `cell_items` for cell c (x fastest).
     pub cell_start: Vec<u32>,
     pub cell_items: Vec<u32>,
+    /// CSG programs, post-order (see `cpu::csg`); empty without CSG.
+    pub csg_program: Vec<u32>,
+    /// Texture table and texels (see `cpu::texture`); empty without textures.
+    pub texels: Vec<u32>,
     pub features: SceneFeatures,
     pub grid_stats: GridBuildStats,
 }
@@ -93,7 +97,11 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
                 ks: m.ks,
                 flags: if reflective { MATERIAL_REFLECTIVE } else { 0 },
                 reflection: m.reflection,
-                _pad: 0,
+                ior: 1.0,
+                diffuse_texture: NO_TEXTURE,
+                specular_texture: NO_TEXTURE,
+                bump_texture: NO_TEXTURE,
+                bump_strength: 0.0,
             }
         })
         .collect();
@@ -172,6 +180,8 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         lights,
         cell_start: grid.cell_start,
         cell_items: grid.cell_items,
+        csg_program: Vec::new(),
+        texels: Vec::new(),
         features,
         grid_stats: grid.stats,
     })
