@@ -4,9 +4,13 @@
 //! Graphics Gems I solver, in f32 — here for the comparison only), each with its
 //! accuracy against an f64 oracle on the same rays: hit/miss disagreements (grazing rays
 //! included, so a few are expected for both) and the worst and 99th-percentile |Δt|/t.
+//! With a GPU adapter, both solvers also run on the GPU (`bench_torus_gpu`).
 
 use super::bench_cmd::{fastest, BenchArgs};
+use super::bench_torus_gpu::{GpuTorusBench, GpuTorusSolver};
+use super::ferrari::intersect_torus_ferrari;
 use crate::cpu::torus::intersect_torus;
+use crate::gpu::GpuContext;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
@@ -107,114 +111,6 @@ fn oracle(r: &TorusRay, rin: f64, rout: f64) -> Option<f64> {
     None
 }
 
-/// Real roots of x³ + a·x² + b·x + c (Cardano / trigonometric; Schwarze, Graphics Gems I).
-fn solve_cubic(a: f32, b: f32, c: f32, roots: &mut [f32; 3]) -> usize {
-    let sq_a = a * a;
-    let p = (1.0 / 3.0) * (-(1.0 / 3.0) * sq_a + b);
-    let q = 0.5 * ((2.0 / 27.0) * a * sq_a - (1.0 / 3.0) * a * b + c);
-    let cb_p = p * p * p;
-    let disc = q * q + cb_p;
-    let n = if disc == 0.0 {
-        if q == 0.0 {
-            roots[0] = 0.0;
-            1
-        } else {
-            let u = (-q).cbrt();
-            roots[0] = 2.0 * u;
-            roots[1] = -u;
-            2
-        }
-    } else if disc < 0.0 {
-        let phi = (1.0 / 3.0) * (-q / (-cb_p).sqrt()).clamp(-1.0, 1.0).acos();
-        let t = 2.0 * (-p).sqrt();
-        roots[0] = t * phi.cos();
-        roots[1] = -t * (phi + std::f32::consts::FRAC_PI_3).cos();
-        roots[2] = -t * (phi - std::f32::consts::FRAC_PI_3).cos();
-        3
-    } else {
-        let sqrt_d = disc.sqrt();
-        roots[0] = (sqrt_d - q).cbrt() - (sqrt_d + q).cbrt();
-        1
-    };
-    for r in roots.iter_mut().take(n) {
-        *r -= a / 3.0;
-    }
-    n
-}
-
-/// Real roots of x⁴ + a·x³ + b·x² + c·x + d by Ferrari's method (Schwarze).
-fn solve_quartic(a: f32, b: f32, c: f32, d: f32, roots: &mut [f32; 4]) -> usize {
-    let sq_a = a * a;
-    let p = -(3.0 / 8.0) * sq_a + b;
-    let q = (1.0 / 8.0) * sq_a * a - 0.5 * a * b + c;
-    let r = -(3.0 / 256.0) * sq_a * sq_a + (1.0 / 16.0) * sq_a * b - 0.25 * a * c + d;
-    let mut n = 0;
-    let mut push = |x: f32, n: &mut usize| {
-        roots[*n] = x - 0.25 * a;
-        *n += 1;
-    };
-    let quadratic = |p1: f32, q1: f32, n: &mut usize, push: &mut dyn FnMut(f32, &mut usize)| {
-        let disc = 0.25 * p1 * p1 - q1;
-        if disc >= 0.0 {
-            let s = disc.sqrt();
-            push(-0.5 * p1 + s, n);
-            push(-0.5 * p1 - s, n);
-        }
-    };
-    if r == 0.0 {
-        let mut cubic = [0.0; 3];
-        let k = solve_cubic(0.0, p, q, &mut cubic);
-        push(0.0, &mut n);
-        for &x in &cubic[..k] {
-            push(x, &mut n);
-        }
-        return n;
-    }
-    // Solve the resolvent cubic and take one real root.
-    let mut cubic = [0.0; 3];
-    solve_cubic(-0.5 * p, -r, 0.5 * r * p - (1.0 / 8.0) * q * q, &mut cubic);
-    let z = cubic[0];
-    let u = z * z - r;
-    let v = 2.0 * z - p;
-    let u = if u.abs() < 1e-12 {
-        0.0
-    } else if u > 0.0 {
-        u.sqrt()
-    } else {
-        return 0;
-    };
-    let v = if v.abs() < 1e-12 {
-        0.0
-    } else if v > 0.0 {
-        v.sqrt()
-    } else {
-        return 0;
-    };
-    let sv = if q < 0.0 { -v } else { v };
-    quadratic(sv, z - u, &mut n, &mut push);
-    quadratic(-sv, z + u, &mut n, &mut push);
-    n
-}
-
-/// The textbook torus test: the quartic's coefficients straight from the ray (Suffern,
-/// "Ray Tracing from the Ground Up", 19.4), solved by Ferrari; the smallest t > 0.
-fn intersect_torus_ferrari(o: Vec3, d: Vec3, rin: f32, rout: f32) -> f32 {
-    let four_r2 = 4.0 * rin * rin;
-    let e = o.dot(o) - rin * rin - rout * rout;
-    let f = o.dot(d);
-    let c3 = 4.0 * f;
-    let c2 = 2.0 * e + 4.0 * f * f + four_r2 * d.z * d.z;
-    let c1 = 4.0 * f * e + 2.0 * four_r2 * o.z * d.z;
-    let c0 = e * e - four_r2 * (rout * rout - o.z * o.z);
-    let mut roots = [0.0; 4];
-    let n = solve_quartic(c3, c2, c1, c0, &mut roots);
-    roots[..n]
-        .iter()
-        .copied()
-        .filter(|&t| t > 0.0 && t.is_finite())
-        .fold(f32::MAX, f32::min)
-}
-
 /// (hit/miss disagreements, worst |Δt|/t, 99th percentile |Δt|/t) against the oracle.
 fn accuracy(ts: &[f32], truth: &[Option<f64>]) -> (usize, f64, f64) {
     let mut wrong = 0;
@@ -240,9 +136,18 @@ type Solver = fn(&TorusRay, f32, f32) -> f32;
 
 pub fn bench_torus(args: &BenchArgs) -> anyhow::Result<()> {
     let count = args.rays.min(200_000);
+    // The GPU rows need an adapter (lavapipe counts); without one they are skipped.
+    let gpu = match GpuContext::new(args.adapter.as_deref()).and_then(GpuTorusBench::new) {
+        Ok(bench) => Some(bench),
+        Err(e) => {
+            println!("(GPU rows skipped: {e})");
+            None
+        }
+    };
     println!(
-        "\n## Ray–torus intersection, {count} rays per row (CPU, {} threads; fastest of {})",
+        "\n## Ray–torus intersection, {count} rays per row (CPU: {} threads; GPU: {}; fastest of {})",
         rayon::current_num_threads(),
+        gpu.as_ref().map_or("none", |g| g.adapter_name()),
         args.repeat
     );
     println!("| torus (rin, rout) | origins (sizes away) | solver | Mrays/s | hit/miss wrong | worst \\|Δt\\|/t | p99 \\|Δt\\|/t |");
@@ -255,10 +160,10 @@ pub fn bench_torus(args: &BenchArgs) -> anyhow::Result<()> {
                 .map(|r| oracle(r, rin as f64, rout as f64))
                 .collect();
             let solvers: [(&str, Solver); 2] = [
-                ("glint (bracketed Newton)", |r, a, b| {
+                ("glint, CPU", |r, a, b| {
                     intersect_torus(r.o, r.d, a, b, f32::MAX)
                 }),
-                ("Ferrari closed form", |r, a, b| {
+                ("Ferrari, CPU", |r, a, b| {
                     intersect_torus_ferrari(r.o, r.d, a, b)
                 }),
             ];
@@ -273,6 +178,20 @@ pub fn bench_torus(args: &BenchArgs) -> anyhow::Result<()> {
                     "| ({rin}, {rout}) | {near}–{far:e} | {name} | {:.1} | {wrong} | {worst:.1e} | {p99:.1e} |",
                     count as f64 / time.as_secs_f64() / 1e6
                 );
+            }
+            if let Some(gpu) = &gpu {
+                let pairs: Vec<(Vec3, Vec3)> = rays.iter().map(|r| (r.o, r.d)).collect();
+                for (name, solver) in [
+                    ("glint, GPU", GpuTorusSolver::Glint),
+                    ("Ferrari, GPU", GpuTorusSolver::Ferrari),
+                ] {
+                    let (time, ts) = gpu.solve(&pairs, rin, rout, solver, args.repeat)?;
+                    let (wrong, worst, p99) = accuracy(&ts, &truth);
+                    println!(
+                        "| ({rin}, {rout}) | {near}–{far:e} | {name} | {:.1} | {wrong} | {worst:.1e} | {p99:.1e} |",
+                        count as f64 / time.as_secs_f64() / 1e6
+                    );
+                }
             }
         }
     }

@@ -3,5 +3,7 @@
 pub mod bench_cmd;
 pub mod bench_gpu;
 pub mod bench_torus;
+pub mod bench_torus_gpu;
 pub mod diff_cmd;
+pub mod ferrari;
 pub mod stats;

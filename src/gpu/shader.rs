@@ -86,6 +86,19 @@ const RENDER: &[(&str, &str)] = &[
 ];
 const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
 
+/// The common modules (scene layout, intersection, traversal, shading) specialised to
+/// `features`, with `extra` (name, text) appended: for kernels outside the tracer, such
+/// as the torus benchmark's.
+pub fn assemble_common_with(features: SceneFeatures, extra: (&str, &str)) -> String {
+    let mut out = wgsl_prelude();
+    for (name, text) in COMMON.iter().chain([&extra]) {
+        out += &format!("\n// ---- shaders/{name} ----\n");
+        out += &preprocess_with(name, text, features, false)
+            .unwrap_or_else(|e| panic!("shaders/{name}: {e} (a bug in the shader source)"));
+    }
+    out
+}
+
 /// The full WGSL source for `entry` specialised to `features` (without the iteration
 /// guard).
 pub fn assemble(features: SceneFeatures, entry: Entry) -> String {
