@@ -154,8 +154,8 @@ mod tests {
 
     #[test]
     fn quartic_with_four_known_roots() {
-        // (x − 1)(x − 2)(x + 3)(x − 0.5) = x⁴ − 0.5x³ − 7.5x² + 9.5x − 3.
-        let r = solve_quartic(-0.5, -7.5, 9.5, -3.0);
+        // (x − 1)(x − 2)(x + 3)(x − 0.5) = x⁴ − 0.5x³ − 7x² + 9.5x − 3.
+        let r = solve_quartic(-0.5, -7.0, 9.5, -3.0);
         assert_eq!(r.count, 4);
         let mut found: Vec<f32> = (0..4).map(|i| r.roots[i]).collect();
         found.sort_by(f32::total_cmp);
