@@ -368,3 +368,46 @@ fn debug_aa_samples_without_adaptive_aa_is_a_usage_error() {
         &["--debug aa-samples", "'uniform'", "--aa adaptive"],
     );
 }
+
+/// `glint bench --sweep --quick` runs the whole sweep machinery on tiny images: the table,
+/// the reference residuals, the adaptive-vs-uniform and slope figures, and the plot.
+/// (No timing is asserted: performance is measured by the benchmark, not by tests.)
+#[test]
+fn bench_sweep_quick_prints_its_figures_and_writes_the_plot() {
+    let dir = temp_dir("sweep");
+    let plot = dir.join("plot.svg");
+    let out = glint(
+        &[
+            "bench",
+            "--sweep",
+            "--quick",
+            "--cpu-only",
+            "--repeat",
+            "1",
+            "--plot",
+            plot.to_str().unwrap(),
+        ],
+        &common::root(),
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}\n{text}", stderr(&out));
+    for needle in [
+        "| soft-shadows | uniform 2×2 |",
+        "| demo | adaptive t=0.1 d=2 |",
+        "aa none, shadows 4×4",
+        "Reference residuals",
+        "Adaptive AA against uniform 4×4",
+        "slope",
+        "GPU column skipped: --cpu-only",
+    ] {
+        assert!(text.contains(needle), "stdout lacks {needle:?}:\n{text}");
+    }
+    let svg = std::fs::read_to_string(&plot).unwrap();
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    assert!(svg.matches("<polyline").count() >= 4, "{svg}");
+    assert_eq!(
+        outputs(&dir, &[]),
+        vec!["plot.svg"],
+        "temp file left behind"
+    );
+}

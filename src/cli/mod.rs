@@ -2,6 +2,9 @@
 
 pub mod bench_cmd;
 pub mod bench_gpu;
+pub mod bench_sweep;
 pub mod bench_torus;
 pub mod diff_cmd;
+pub mod plot_svg;
 pub mod stats;
+pub mod sweep_analysis;
