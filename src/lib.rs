@@ -5,6 +5,7 @@
 //! Pod arrays with a uniform grid from `accel`; `cpu` (the reference) renders those arrays
 //! into a [`film::Film`]; `image_io` writes it.
 
+pub mod aa_map;
 pub mod accel;
 pub mod cli;
 pub mod constants;

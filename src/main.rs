@@ -111,6 +111,16 @@ struct RenderArgs {
     /// Acceleration: auto, off (brute force) or a density λ (cells ≈ λ × items).
     #[arg(long, value_parser = parse_grid_mode)]
     grid: Option<GridMode>,
+    /// Write a diagnostic image instead of the render. aa-samples: adaptive AA's leaf
+    /// squares per pixel on the magma ramp, log scale (black: 1, not split; pale yellow:
+    /// 4^aa-depth); needs adaptive AA.
+    #[arg(long, value_enum)]
+    debug: Option<DebugArg>,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum DebugArg {
+    AaSamples,
 }
 
 fn parse_aa(s: &str) -> Result<AaMode, String> {
@@ -185,6 +195,9 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             BackendArg::Auto => glint::pipeline::Backend::Auto,
         },
         adapter: args.adapter,
+        debug: args.debug.map(|d| match d {
+            DebugArg::AaSamples => glint::pipeline::DebugView::AaSamples,
+        }),
     };
     if args.width == Some(0) || args.height == Some(0) {
         return Err(("--width and --height must be positive".into(), 2));
@@ -195,6 +208,17 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         .map_err(|e| (format!("cannot start {:?} threads: {e}", args.threads), 1))?;
     let report = pool.install(|| {
         glint::pipeline::run_scene(&args.scene, &settings, &mut |image| {
+            if settings.debug.is_some() {
+                eprintln!(
+                    "glint: wrote {} (adaptive AA leaf squares per pixel, {}×{}, decided on the {} in {:.2} s)",
+                    image.output.display(),
+                    image.film.width,
+                    image.film.height,
+                    if image.adapter.is_some() { "GPU" } else { "CPU" },
+                    image.render_time.as_secs_f64()
+                );
+                return;
+            }
             eprintln!(
                 "glint: wrote {} ({}×{}, {:.2} s on the {})",
                 image.output.display(),

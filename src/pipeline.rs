@@ -1,14 +1,15 @@
 //! From a scene script to image files: run the script; at each `gr.render`, flatten, pack,
 //! render and write the image atomically. Shared by the CLI, the benchmark and the tests.
 
-use crate::cpu::render::{render, render_with_counters, RenderCounters};
+use crate::aa_map::{aa_samples_film, AaMapError};
+use crate::cpu::render::{adaptive_leaf_counts, render, render_with_counters, RenderCounters};
 use crate::film::Film;
-use crate::gpu::{render_gpu_with_info, GpuContext, GpuRenderInfo};
+use crate::gpu::{adaptive_leaf_counts_gpu, render_gpu_with_info, GpuContext, GpuRenderInfo};
 use crate::image_io::{check_output_path, write_image, ImageIoError};
 use crate::pack::{pack, PackedScene};
 use crate::scene::flatten::flatten;
 use crate::scene::lua::{run_scene_file, SceneError, ScriptConfig, ScriptReport};
-use crate::scene::{OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
+use crate::scene::{AaMode, OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -32,6 +33,15 @@ pub struct RenderSettings {
     pub backend: Backend,
     /// `--adapter`: a substring of the GPU adapter's name.
     pub adapter: Option<String>,
+    /// `--debug`: write a diagnostic image instead of the render.
+    pub debug: Option<DebugView>,
+}
+
+/// `--debug`: a diagnostic image written in place of the render.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DebugView {
+    /// Adaptive anti-aliasing's leaf squares per pixel ([`crate::aa_map`]).
+    AaSamples,
 }
 
 /// `--backend`: which tracer renders.
@@ -108,6 +118,9 @@ pub enum RunError {
     /// No usable GPU, or the GPU render failed (exit code 5).
     #[error("{0}")]
     Gpu(#[from] crate::gpu::GpuError),
+    /// The flags ask for something this render cannot give (exit code 2, as clap's).
+    #[error("{0}")]
+    Usage(#[from] AaMapError),
 }
 
 impl RunError {
@@ -116,8 +129,64 @@ impl RunError {
             RunError::Scene(_) => 3,
             RunError::Output(_) => 4,
             RunError::Gpu(_) => 5,
+            RunError::Usage(_) => 2,
         }
     }
+}
+
+/// The request with `overrides` applied, flattened and packed.
+fn prepare_request(
+    graph: &SceneGraph,
+    request: &RenderRequest,
+    overrides: &OptionOverrides,
+) -> anyhow::Result<(RenderRequest, PackedScene)> {
+    let mut request = request.clone();
+    overrides.apply(&mut request.options);
+    request.width = overrides.width.unwrap_or(request.width);
+    request.height = overrides.height.unwrap_or(request.height);
+    let scene = flatten(graph, &request)?;
+    let packed = pack(&scene)?;
+    Ok((request, packed))
+}
+
+/// `--debug aa-samples`: adaptive anti-aliasing's leaf squares per pixel, mapped to
+/// colours ([`crate::aa_map`]), decided by `tracer` (both decide alike). The film of the
+/// returned image is the map; a render without adaptive AA is an [`AaMapError`].
+pub fn render_aa_samples_map(
+    graph: &SceneGraph,
+    request: &RenderRequest,
+    overrides: &OptionOverrides,
+    tracer: Tracer,
+) -> anyhow::Result<RenderedImage> {
+    let (request, packed) = prepare_request(graph, request, overrides)?;
+    let mode = request.options.aa;
+    if mode != AaMode::Adaptive {
+        let mode = if mode == AaMode::None {
+            "none"
+        } else {
+            "uniform"
+        };
+        return Err(AaMapError::NotAdaptive { mode }.into());
+    }
+    let start = Instant::now();
+    let leaves = match tracer {
+        Tracer::Gpu(ctx) => adaptive_leaf_counts_gpu(ctx, &packed)?,
+        Tracer::Cpu => adaptive_leaf_counts(&packed),
+    };
+    let g = &packed.globals;
+    let film = aa_samples_film(&leaves, g.width, g.height, g.aa_depth);
+    Ok(RenderedImage {
+        output: request.output.clone(),
+        film,
+        render_time: start.elapsed(),
+        counters: None,
+        gpu: None,
+        adapter: match tracer {
+            Tracer::Gpu(ctx) => Some(ctx.info.name.clone()),
+            Tracer::Cpu => None,
+        },
+        packed,
+    })
 }
 
 /// Flattens, packs and renders one request with `tracer` (the CPU on the current rayon
@@ -130,12 +199,7 @@ pub fn render_request(
     progress: bool,
     tracer: Tracer,
 ) -> anyhow::Result<RenderedImage> {
-    let mut request = request.clone();
-    overrides.apply(&mut request.options);
-    request.width = overrides.width.unwrap_or(request.width);
-    request.height = overrides.height.unwrap_or(request.height);
-    let scene = flatten(graph, &request)?;
-    let packed = pack(&scene)?;
+    let (request, packed) = prepare_request(graph, request, overrides)?;
     let bar = progress_bar(progress, &request.output);
     let tick = |done: u64, total: u64| {
         bar.set_length(total);
@@ -242,14 +306,19 @@ pub fn run_scene(
         };
         // Refuse an unwritable path before spending time on the render.
         check_output_path(&output).map_err(fail)?;
-        let mut rendered = render_request(
-            graph,
-            request,
-            &settings.overrides,
-            settings.stats,
-            settings.progress,
-            tracer,
-        )?;
+        let mut rendered = match settings.debug {
+            Some(DebugView::AaSamples) => {
+                render_aa_samples_map(graph, request, &settings.overrides, tracer)?
+            }
+            None => render_request(
+                graph,
+                request,
+                &settings.overrides,
+                settings.stats,
+                settings.progress,
+                tracer,
+            )?,
+        };
         rendered.output = output;
         write_image(&rendered.film, &rendered.output).map_err(fail)?;
         on_image(&rendered);
@@ -266,7 +335,10 @@ pub fn run_scene(
     match error {
         SceneError::Render { location, error } => match error.downcast::<crate::gpu::GpuError>() {
             Ok(gpu) => Err(RunError::Gpu(gpu)),
-            Err(error) => Err(RunError::Scene(SceneError::Render { location, error })),
+            Err(error) => match error.downcast::<AaMapError>() {
+                Ok(usage) => Err(RunError::Usage(usage)),
+                Err(error) => Err(RunError::Scene(SceneError::Render { location, error })),
+            },
         },
         other => Err(RunError::Scene(other)),
     }

@@ -294,3 +294,120 @@ fn error_in_a_later_render_keeps_earlier_images_only() {
     assert!(stderr(&out).contains("scene.lua:3:"), "{}", stderr(&out));
     assert_eq!(outputs(&dir, &["scene.lua"]), vec!["out.png"]);
 }
+
+/// `--debug aa-samples` writes the leaf-square map of adaptive AA: the render's size,
+/// several values on a scene with edges, each pixel the ramp colour of its leaf count;
+/// the GPU (when there is one) writes the same map.
+#[test]
+fn debug_aa_samples_maps_adaptive_leaf_counts() {
+    let scene = corpus().join("a4-2021plus/nonhier.lua");
+    let (w, h, depth) = (40u32, 30u32, 3u32);
+    let dir = temp_dir("aa-map");
+    let size = [w.to_string(), h.to_string(), depth.to_string()];
+    let map_on = |backend: &str, name: &str| {
+        let args = [
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            name,
+            "--width",
+            &size[0],
+            "--height",
+            &size[1],
+            "--aa",
+            "adaptive",
+            "--aa-depth",
+            &size[2],
+            "--backend",
+            backend,
+            "--debug",
+            "aa-samples",
+        ];
+        let out = glint(&args, &dir);
+        assert!(out.status.success(), "{backend}: {}", stderr(&out));
+        glint::image_io::read_image(&dir.join(name)).unwrap()
+    };
+    let map = map_on("cpu", "map-cpu.png");
+    assert_eq!((map.width, map.height), (w, h));
+
+    let overrides = glint::scene::OptionOverrides {
+        width: Some(w),
+        height: Some(h),
+        aa: Some(glint::scene::AaMode::Adaptive),
+        aa_depth: Some(depth),
+        ..Default::default()
+    };
+    let packed = common::load_packed(&scene, &overrides);
+    let leaves = glint::cpu::render::adaptive_leaf_counts(&packed);
+    let ramp = glint::aa_map::magma_ramp();
+    let rgb = map.to_rgb8();
+    for (k, &l) in leaves.iter().enumerate() {
+        let expected = glint::aa_map::aa_samples_colour(&ramp, l, depth);
+        assert_eq!(rgb[3 * k..3 * k + 3], expected, "pixel {k}: {l} leaves");
+    }
+    let mut distinct: Vec<[u8; 3]> = rgb.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+    distinct.sort();
+    distinct.dedup();
+    assert!(distinct.len() > 1, "a scene with edges gives a flat map");
+
+    if common::gpu_context().is_some() {
+        let gpu = map_on("gpu", "map-gpu.png");
+        assert_eq!(gpu.to_rgb8(), rgb, "GPU and CPU maps differ");
+    }
+}
+
+#[test]
+fn debug_aa_samples_without_adaptive_aa_is_a_usage_error() {
+    let scene = format!("root = gr.node('root')\n{GOOD_RENDER}");
+    assert_fails(
+        "aa-map-uniform",
+        &scene,
+        &[],
+        &["--aa", "uniform", "--debug", "aa-samples"],
+        2,
+        &["--debug aa-samples", "'uniform'", "--aa adaptive"],
+    );
+}
+
+/// `glint bench --sweep --quick` runs the whole sweep machinery on tiny images: the table,
+/// the reference residuals, the adaptive-vs-uniform and slope figures, and the plot.
+/// (No timing is asserted: performance is measured by the benchmark, not by tests.)
+#[test]
+fn bench_sweep_quick_prints_its_figures_and_writes_the_plot() {
+    let dir = temp_dir("sweep");
+    let plot = dir.join("plot.svg");
+    let out = glint(
+        &[
+            "bench",
+            "--sweep",
+            "--quick",
+            "--cpu-only",
+            "--repeat",
+            "1",
+            "--plot",
+            plot.to_str().unwrap(),
+        ],
+        &common::root(),
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}\n{text}", stderr(&out));
+    for needle in [
+        "| soft-shadows | uniform 2×2 |",
+        "| demo | adaptive t=0.1 d=2 |",
+        "aa none, shadows 4×4",
+        "Reference residuals",
+        "Adaptive AA against uniform 4×4",
+        "slope",
+        "GPU column skipped: --cpu-only",
+    ] {
+        assert!(text.contains(needle), "stdout lacks {needle:?}:\n{text}");
+    }
+    let svg = std::fs::read_to_string(&plot).unwrap();
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    assert!(svg.matches("<polyline").count() >= 4, "{svg}");
+    assert_eq!(
+        outputs(&dir, &[]),
+        vec!["plot.svg"],
+        "temp file left behind"
+    );
+}

@@ -5,7 +5,8 @@
 //!    triangle; the error is the share of rays whose hit differs from brute force.
 //! 3. Optionally (`--densities`), time per ray against the grid density λ.
 //!
-//! `--torus` runs only the ray–torus solver comparison (`bench_torus`).
+//! `--torus` runs only the ray–torus solver comparison (`bench_torus`); `--sweep` only the
+//! error-against-time sweep of the sampling settings (`bench_sweep`).
 
 use crate::accel::grid::{Grid, DEFAULT_DENSITY};
 use crate::cpu::ray::camera_ray;
@@ -46,6 +47,24 @@ pub struct BenchArgs {
     /// GPU adapter to use: a substring of its name.
     #[arg(long)]
     pub adapter: Option<String>,
+    /// Only the error-against-time sweep of the AA and shadow settings (`bench_sweep`).
+    #[arg(long)]
+    pub sweep: bool,
+    /// --sweep: a tiny run (24×24, a few settings) that checks the machinery.
+    #[arg(long, requires = "sweep")]
+    pub quick: bool,
+    /// --sweep: image side in pixels.
+    #[arg(long, default_value_t = 96, value_parser = clap::value_parser!(u32).range(8..=2048))]
+    pub size: u32,
+    /// --sweep: no GPU column.
+    #[arg(long)]
+    pub cpu_only: bool,
+    /// --sweep: seconds the GPU column may take in all (compile runs included).
+    #[arg(long, default_value_t = 120.0)]
+    pub gpu_budget: f64,
+    /// --sweep: where the error-against-time plot (SVG) goes.
+    #[arg(long, default_value = "docs/error-vs-time.svg")]
+    pub plot: PathBuf,
 }
 
 pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
@@ -55,6 +74,9 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
     }
     if args.torus {
         return super::bench_torus::bench_torus(args);
+    }
+    if args.sweep {
+        return super::bench_sweep::bench_sweep(args);
     }
     bench_macho_cows(args)?;
     bench_random_triangles(args);

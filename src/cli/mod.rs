@@ -2,8 +2,11 @@
 
 pub mod bench_cmd;
 pub mod bench_gpu;
+pub mod bench_sweep;
 pub mod bench_torus;
 pub mod bench_torus_gpu;
 pub mod diff_cmd;
 pub mod ferrari;
+pub mod plot_svg;
 pub mod stats;
+pub mod sweep_analysis;

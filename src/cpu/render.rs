@@ -268,8 +268,12 @@ pub fn adaptive_leaf_counts(scene: &PackedScene) -> Vec<u32> {
         return out;
     }
     let side = tile_side(scene);
-    for y0 in (0..h).step_by(side as usize) {
-        for x0 in (0..w).step_by(side as usize) {
+    let tiles_x = w.div_ceil(side);
+    // Tiles in parallel (`--debug aa-samples` maps whole images with this).
+    let tiles: Vec<(AdaptiveTile, Vec<u32>)> = (0..tiles_x * h.div_ceil(side))
+        .into_par_iter()
+        .map(|t| {
+            let (x0, y0) = ((t % tiles_x) * side, (t / tiles_x) * side);
             let tile = AdaptiveTile {
                 origin: [x0, y0],
                 size: [side.min(w - x0), side.min(h - y0)],
@@ -278,10 +282,14 @@ pub fn adaptive_leaf_counts(scene: &PackedScene) -> Vec<u32> {
             };
             let mut lattice = Lattice::new(tile);
             let pixels = adaptive_tile(scene, &mut lattice, g.aa_threshold, &mut NoCounters);
-            for (k, (_, leaves)) in pixels.into_iter().enumerate() {
-                let (tx, ty) = (k as u32 % tile.size[0], k as u32 / tile.size[0]);
-                out[((y0 + ty) * w + x0 + tx) as usize] = leaves;
-            }
+            (tile, pixels.into_iter().map(|(_, leaves)| leaves).collect())
+        })
+        .collect();
+    for (tile, leaves) in tiles {
+        let [x0, y0] = tile.origin;
+        for (k, l) in leaves.into_iter().enumerate() {
+            let (tx, ty) = (k as u32 % tile.size[0], k as u32 / tile.size[0]);
+            out[((y0 + ty) * w + x0 + tx) as usize] = l;
         }
     }
     out

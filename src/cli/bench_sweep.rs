@@ -1,0 +1,617 @@
+//! `glint bench --sweep`: error against time for the sampling settings, so the defaults
+//! can be chosen from measurements.
+//!
+//! For each test scene: a reference far past convergence (uniform 16×16 AA, the scene's
+//! own shadow samples), with its residual stated as its difference from a second one at
+//! 12×12 (other strata, other jitter). Then every setting — no AA, uniform n×n, adaptive
+//! at several thresholds and depths — timed (best of `--repeat`; a setting whose first run
+//! takes over [`SINGLE_RUN_ABOVE`] runs once; settings are compared by core time, which
+//! other load on a shared machine stretches far less than wall time) and compared with the reference (RMSE and
+//! FLIP mean, `crate::diff`). Scenes with area lights also sweep the shadow samples n×n
+//! with AA off against a reference at n = 32 (residual: against n = 24), so that error is
+//! the shadows' alone. The GPU tracer renders a subset where an adapter exists, within a
+//! time budget. Then the figures of [`super::sweep_analysis`] and the plot.
+
+use super::bench_cmd::{load_scene, BenchArgs};
+use super::plot_svg::{loglog_svg, write_atomically, Panel, Series};
+use super::sweep_analysis::{cheapest_within, loglog_slope, Measured, Metric};
+use crate::diff::diff_films;
+use crate::film::Film;
+use crate::gpu::{render_gpu, GpuContext};
+use crate::pack::{pack, SceneFeatures};
+use crate::scene::flatten::Scene;
+use crate::scene::{AaMode, RenderOptions};
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// A setting whose first run is longer than this is timed once (its noise is small next
+/// to its time, and repeating it would dominate the sweep).
+const SINGLE_RUN_ABOVE: Duration = Duration::from_secs(2);
+
+/// FLIP mean below which two images count as the same (the GPU parity tests' bound), the
+/// "stated error" of the default settings' check.
+pub const SAME_IMAGE_FLIP: f64 = 0.01;
+
+/// One sampling setting of the sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Setting {
+    /// One ray through each pixel centre.
+    NoAa,
+    /// Uniform n×n jittered AA.
+    Uniform(u32),
+    /// Adaptive AA with (threshold, depth).
+    Adaptive(f32, u32),
+    /// AA off, every area light at n×n shadow samples.
+    Shadows(u32),
+}
+
+impl Setting {
+    fn name(self) -> String {
+        match self {
+            Setting::NoAa => "aa none".into(),
+            Setting::Uniform(n) => format!("uniform {n}×{n}"),
+            Setting::Adaptive(t, d) => format!("adaptive t={t} d={d}"),
+            Setting::Shadows(n) => format!("aa none, shadows {n}×{n}"),
+        }
+    }
+
+    /// The plot's series this setting belongs to, and its place along it.
+    fn family(self) -> String {
+        match self {
+            Setting::NoAa | Setting::Uniform(_) => "uniform n×n (n = 1…8)".into(),
+            Setting::Adaptive(_, d) => format!("adaptive d={d} (threshold)"),
+            Setting::Shadows(_) => "shadows n×n, aa none (vs shadow reference)".into(),
+        }
+    }
+
+    /// `scene` with this setting's options.
+    fn apply(self, scene: &Scene) -> Scene {
+        let mut scene = scene.clone();
+        let o: &mut RenderOptions = &mut scene.options;
+        match self {
+            Setting::NoAa => o.aa = AaMode::None,
+            Setting::Uniform(n) => {
+                o.aa = AaMode::Uniform;
+                o.samples = n;
+            }
+            Setting::Adaptive(t, d) => {
+                o.aa = AaMode::Adaptive;
+                o.aa_threshold = t;
+                o.aa_depth = d;
+            }
+            Setting::Shadows(n) => {
+                o.aa = AaMode::None;
+                o.shadow_samples = Some(n);
+            }
+        }
+        scene
+    }
+}
+
+/// What one sweep covers: the full run, or `--quick` (tiny, for the tests).
+struct Plan {
+    scenes: Vec<PathBuf>,
+    size: u32,
+    /// Uniform n of the reference and of its residual check.
+    reference: (u32, u32),
+    /// Shadow n of the shadow reference and of its residual check.
+    shadow_reference: (u32, u32),
+    aa: Vec<Setting>,
+    shadows: Vec<Setting>,
+    /// Settings the GPU renders (when it has an adapter and budget).
+    gpu: Vec<Setting>,
+}
+
+fn plan(args: &BenchArgs) -> Plan {
+    let own = |s: &str| PathBuf::from("scenes").join(s);
+    if args.quick {
+        return Plan {
+            scenes: vec![own("demo.lua"), own("soft-shadows.lua")],
+            size: 24,
+            reference: (6, 5),
+            shadow_reference: (8, 6),
+            aa: vec![
+                Setting::NoAa,
+                Setting::Uniform(2),
+                Setting::Uniform(4),
+                Setting::Adaptive(0.1, 2),
+            ],
+            shadows: [1, 2, 4].map(Setting::Shadows).to_vec(),
+            gpu: vec![Setting::NoAa, Setting::Adaptive(0.1, 2)],
+        };
+    }
+    let mut aa = vec![Setting::NoAa];
+    aa.extend([2, 3, 4, 6, 8].map(Setting::Uniform));
+    // Depth 3 (the default) across thresholds; depths 2 and 4 around the default threshold.
+    aa.extend([0.4, 0.2, 0.1, 0.05, 0.025].map(|t| Setting::Adaptive(t, 3)));
+    aa.extend([0.1, 0.05, 0.025].map(|t| Setting::Adaptive(t, 2)));
+    aa.extend([0.2, 0.1, 0.05].map(|t| Setting::Adaptive(t, 4)));
+    Plan {
+        scenes: vec![
+            own("demo.lua"),
+            own("soft-shadows.lua"),
+            args.cs488.join("a4-2021plus/macho-cows.lua"),
+        ],
+        size: args.size,
+        reference: (16, 12),
+        shadow_reference: (32, 24),
+        aa,
+        shadows: [1, 2, 3, 4, 6, 8].map(Setting::Shadows).to_vec(),
+        gpu: vec![
+            Setting::NoAa,
+            Setting::Uniform(2),
+            Setting::Adaptive(0.1, 3),
+            Setting::Shadows(2),
+            Setting::Shadows(4),
+        ],
+    }
+}
+
+/// One row of the table.
+struct Row {
+    setting: Setting,
+    /// The CPU tracer's best wall time (`cpu.seconds` is its core time).
+    wall: Duration,
+    cpu: Measured,
+    /// The GPU's time and error, or why it did not run.
+    gpu: Result<Measured, String>,
+}
+
+/// One scene's sweep.
+struct SceneSweep {
+    name: String,
+    /// Reference against its residual check: (RMSE, FLIP mean).
+    residual: (f64, f64),
+    shadow_residual: Option<(f64, f64)>,
+    rows: Vec<Row>,
+    /// The load average before and after (the timings' context).
+    load: String,
+}
+
+/// CPU time of the whole process so far (every thread), where the platform tells.
+fn process_cpu_time() -> Option<Duration> {
+    #[cfg(unix)]
+    {
+        let mut ts = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: clock_gettime writes one timespec, which we own.
+        let ok = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) } == 0;
+        ok.then(|| Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32))
+    }
+    #[cfg(not(unix))]
+    None
+}
+
+/// Best wall time and best core time of the runs of one setting.
+#[derive(Clone, Copy, Debug)]
+struct Timing {
+    wall: Duration,
+    /// CPU time summed over threads: on a shared machine, other processes stretch the
+    /// wall time but not this, so the sweep compares settings by it.
+    core: Option<Duration>,
+}
+
+impl Timing {
+    /// Seconds the comparisons use: core time where known, else wall time.
+    fn cost(self) -> f64 {
+        self.core.unwrap_or(self.wall).as_secs_f64()
+    }
+}
+
+/// Renders `scene` on the CPU: (best timing, film).
+fn time_cpu(scene: &Scene, repeat: usize) -> anyhow::Result<(Timing, Film)> {
+    let packed = pack(scene)?;
+    let mut best = Timing {
+        wall: Duration::MAX,
+        core: None,
+    };
+    let mut film = None;
+    for run in 0..repeat.max(1) {
+        if run > 0 && best.wall > SINGLE_RUN_ABOVE {
+            break;
+        }
+        let (core0, start) = (process_cpu_time(), Instant::now());
+        film = Some(crate::cpu::render(&packed, &|_, _| {}));
+        let wall = start.elapsed();
+        let core = process_cpu_time()
+            .zip(core0)
+            .map(|(b, a)| b.saturating_sub(a));
+        best.wall = best.wall.min(wall);
+        best.core = match (best.core, core) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (_, c) => c,
+        };
+    }
+    Ok((best, film.expect("at least one run")))
+}
+
+/// The machine's 1-minute load average (Linux; "?" elsewhere), printed with each scene's
+/// timings: on a shared machine it says how far to trust them.
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next().map(str::to_string))
+        .unwrap_or_else(|| "?".into())
+}
+
+fn errors(reference: &Film, film: &Film) -> anyhow::Result<(f64, f64)> {
+    let (report, _) = diff_films(reference, film)?;
+    Ok((report.rmse, report.flip_mean))
+}
+
+fn measured(setting: Setting, seconds: f64, (rmse, flip): (f64, f64)) -> Measured {
+    Measured {
+        name: setting.name(),
+        seconds,
+        rmse,
+        flip,
+    }
+}
+
+/// The GPU's side of the sweep: a context, a time budget and what it has spent.
+struct GpuSide {
+    ctx: Option<GpuContext>,
+    /// Why there is no GPU column, when there is none.
+    absent: String,
+    budget: Duration,
+    spent: Duration,
+}
+
+impl GpuSide {
+    fn new(args: &BenchArgs) -> GpuSide {
+        let (ctx, absent) = if args.cpu_only {
+            (None, "--cpu-only".to_string())
+        } else {
+            match GpuContext::new(args.adapter.as_deref()) {
+                Ok(ctx) => (Some(ctx), String::new()),
+                Err(e) => (None, format!("no GPU adapter ({e})")),
+            }
+        };
+        GpuSide {
+            ctx,
+            absent,
+            budget: Duration::from_secs_f64(args.gpu_budget),
+            spent: Duration::ZERO,
+        }
+    }
+
+    /// Renders `scene` once to compile its pipelines (on an 8×8 copy), then once timed;
+    /// every second counts against the budget.
+    fn render(
+        &mut self,
+        scene: &Scene,
+        reference: &Film,
+        setting: Setting,
+    ) -> Result<Measured, String> {
+        let Some(ctx) = &self.ctx else {
+            return Err(self.absent.clone());
+        };
+        if self.spent >= self.budget {
+            return Err("GPU budget spent".into());
+        }
+        let start = Instant::now();
+        let result = (|| -> anyhow::Result<Measured> {
+            let mut tiny = scene.clone();
+            (tiny.width, tiny.height) = (8, 8);
+            render_gpu(ctx, &pack(&tiny)?, &|_, _| {})?;
+            let packed = pack(scene)?;
+            let t = Instant::now();
+            let film = render_gpu(ctx, &packed, &|_, _| {})?;
+            let time = t.elapsed();
+            Ok(measured(
+                setting,
+                time.as_secs_f64(),
+                errors(reference, &film)?,
+            ))
+        })();
+        self.spent += start.elapsed();
+        result.map_err(|e| format!("GPU error: {e:#}"))
+    }
+}
+
+fn sweep_scene(
+    path: &std::path::Path,
+    plan: &Plan,
+    repeat: usize,
+    gpu: &mut GpuSide,
+) -> anyhow::Result<SceneSweep> {
+    let scene = load_scene(path, plan.size, plan.size)?;
+    let name = path
+        .file_stem()
+        .unwrap_or_default()
+        .to_string_lossy()
+        .into_owned();
+    let start = Instant::now();
+    let load_before = load_average();
+    let (_, reference) = time_cpu(&Setting::Uniform(plan.reference.0).apply(&scene), 1)?;
+    let (_, check) = time_cpu(&Setting::Uniform(plan.reference.1).apply(&scene), 1)?;
+    let residual = errors(&reference, &check)?;
+    eprintln!(
+        "glint: {name}: references rendered in {:.1} s",
+        start.elapsed().as_secs_f64()
+    );
+    let has_area_lights = pack(&scene)?.features.contains(SceneFeatures::AREA_LIGHT);
+    let mut rows = Vec::new();
+    let mut sweep =
+        |settings: &[Setting], reference: &Film, rows: &mut Vec<Row>| -> anyhow::Result<()> {
+            for &setting in settings {
+                let s = setting.apply(&scene);
+                let (timing, film) = time_cpu(&s, repeat)?;
+                let cpu = measured(setting, timing.cost(), errors(reference, &film)?);
+                let gpu = if plan.gpu.contains(&setting) {
+                    gpu.render(&s, reference, setting)
+                } else {
+                    Err("not in the GPU subset".into())
+                };
+                rows.push(Row {
+                    setting,
+                    wall: timing.wall,
+                    cpu,
+                    gpu,
+                });
+            }
+            Ok(())
+        };
+    sweep(&plan.aa, &reference, &mut rows)?;
+    let mut shadow_residual = None;
+    if has_area_lights {
+        let (n, m) = plan.shadow_reference;
+        let (_, shadow_reference) = time_cpu(&Setting::Shadows(n).apply(&scene), 1)?;
+        let (_, shadow_check) = time_cpu(&Setting::Shadows(m).apply(&scene), 1)?;
+        shadow_residual = Some(errors(&shadow_reference, &shadow_check)?);
+        sweep(&plan.shadows, &shadow_reference, &mut rows)?;
+    }
+    let load = format!("{load_before} before, {} after", load_average());
+    eprintln!(
+        "glint: {name}: swept in {:.1} s (load average {load})",
+        start.elapsed().as_secs_f64()
+    );
+    Ok(SceneSweep {
+        name,
+        load,
+        residual,
+        shadow_residual,
+        rows,
+    })
+}
+
+pub fn bench_sweep(args: &BenchArgs) -> anyhow::Result<()> {
+    let plan = plan(args);
+    let mut gpu = GpuSide::new(args);
+    match &gpu.ctx {
+        Some(ctx) => println!(
+            "GPU: {} ({:?}); renders {} settings per scene within a budget of {:.0} s",
+            ctx.info.name,
+            ctx.info.device_type,
+            plan.gpu.len(),
+            gpu.budget.as_secs_f64()
+        ),
+        None => println!("GPU column skipped: {}", gpu.absent),
+    }
+    let (r, c) = plan.reference;
+    let (sr, sc) = plan.shadow_reference;
+    println!(
+        "\n## Error against time, {}×{} (CPU: best of {}, runs over {} s once; comparisons by core time; GPU: one run after a compile run)",
+        plan.size,
+        plan.size,
+        args.repeat,
+        SINGLE_RUN_ABOVE.as_secs()
+    );
+    println!("AA rows: against uniform {r}×{r} with the scene's shadow samples; shadow rows: aa none, against shadows {sr}×{sr}.");
+    let mut sweeps = Vec::new();
+    for path in &plan.scenes {
+        sweeps.push(sweep_scene(path, &plan, args.repeat, &mut gpu)?);
+    }
+    println!("\n| scene | setting | CPU core time | CPU wall time | RMSE | FLIP mean | GPU wall time | GPU FLIP mean |");
+    println!("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |");
+    for s in &sweeps {
+        for row in &s.rows {
+            let (gpu_time, gpu_flip) = match &row.gpu {
+                Ok(g) => (
+                    format!("{:.1} ms", g.seconds * 1e3),
+                    format!("{:.4}", g.flip),
+                ),
+                Err(_) => ("—".into(), "—".into()),
+            };
+            println!(
+                "| {} | {} | {:.1} ms | {:.1} ms | {:.5} | {:.4} | {gpu_time} | {gpu_flip} |",
+                s.name,
+                row.cpu.name,
+                row.cpu.seconds * 1e3,
+                row.wall.as_secs_f64() * 1e3,
+                row.cpu.rmse,
+                row.cpu.flip,
+            );
+        }
+    }
+    println!(
+        "\nLoad average (1 minute) while each scene ran, on {} threads:",
+        rayon::current_num_threads()
+    );
+    for s in &sweeps {
+        println!("- {}: {}", s.name, s.load);
+    }
+    println!("\nReference residuals (reference against its check):");
+    for s in &sweeps {
+        print!(
+            "- {}: uniform {r}×{r} vs {c}×{c}: RMSE {:.5}, FLIP mean {:.4}",
+            s.name, s.residual.0, s.residual.1
+        );
+        if let Some((rmse, flip)) = s.shadow_residual {
+            print!("; shadows {sr}×{sr} vs {sc}×{sc}: RMSE {rmse:.5}, FLIP mean {flip:.4}");
+        }
+        println!();
+    }
+    match &gpu.ctx {
+        Some(_) => println!(
+            "GPU time spent: {:.1} s (budget {:.0} s; compile runs included)",
+            gpu.spent.as_secs_f64(),
+            gpu.budget.as_secs_f64()
+        ),
+        None => println!("GPU column skipped: {}", gpu.absent),
+    }
+    report_adaptive_vs_uniform4(&sweeps);
+    report_shadow_slopes(&sweeps);
+    report_cheapest(&sweeps);
+    let svg = loglog_svg(
+        &format!(
+            "glint: error against render time, {}×{}, CPU tracer",
+            plan.size, plan.size
+        ),
+        &[panel(&sweeps, Metric::Flip), panel(&sweeps, Metric::Rmse)],
+    );
+    write_atomically(&args.plot, &svg)
+        .map_err(|e| anyhow::anyhow!("cannot write the plot {}: {e}", args.plot.display()))?;
+    println!("\nplot written to {}", args.plot.display());
+    Ok(())
+}
+
+/// (a): the cheapest adaptive setting at least as good as uniform 4×4, per metric.
+fn report_adaptive_vs_uniform4(sweeps: &[SceneSweep]) {
+    println!(
+        "\n## Adaptive AA against uniform 4×4 (target: the same error in less than half the time)"
+    );
+    for s in sweeps {
+        let Some(u4) = s.rows.iter().find(|r| r.setting == Setting::Uniform(4)) else {
+            continue;
+        };
+        let adaptive: Vec<Measured> = s
+            .rows
+            .iter()
+            .filter(|r| matches!(r.setting, Setting::Adaptive(..)))
+            .map(|r| r.cpu.clone())
+            .collect();
+        for metric in [Metric::Flip, Metric::Rmse] {
+            let bound = metric.of(&u4.cpu);
+            match cheapest_within(&adaptive, metric, bound) {
+                Some(a) => {
+                    let ratio = a.seconds / u4.cpu.seconds;
+                    println!(
+                        "- {}, {}: uniform 4×4 {:.5} in {:.1} core ms; cheapest adaptive within it: {} ({:.5}) in {:.1} core ms = {ratio:.2}× ({})",
+                        s.name,
+                        metric.name(),
+                        bound,
+                        u4.cpu.seconds * 1e3,
+                        a.name,
+                        metric.of(a),
+                        a.seconds * 1e3,
+                        if ratio < 0.5 { "met" } else { "MISSED" }
+                    );
+                }
+                None => {
+                    let best = adaptive
+                        .iter()
+                        .min_by(|a, b| metric.of(a).total_cmp(&metric.of(b)));
+                    println!(
+                        "- {}, {}: uniform 4×4 {:.5}; no adaptive setting of the sweep reaches it (MISSED; best {})",
+                        s.name,
+                        metric.name(),
+                        bound,
+                        best.map_or("none".into(), |b| format!("{} {:.5}", b.name, metric.of(b)))
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// (b): the log-log slope of the shadow error against n.
+fn report_shadow_slopes(sweeps: &[SceneSweep]) {
+    for s in sweeps.iter().filter(|s| s.shadow_residual.is_some()) {
+        println!(
+            "\n## Soft-shadow error against n (n×n strata), {} (target: slope ≤ −1)",
+            s.name
+        );
+        for metric in [Metric::Rmse, Metric::Flip] {
+            let points: Vec<(f64, f64)> = s
+                .rows
+                .iter()
+                .filter_map(|r| match r.setting {
+                    Setting::Shadows(n) => Some((f64::from(n), metric.of(&r.cpu))),
+                    _ => None,
+                })
+                .collect();
+            match loglog_slope(&points) {
+                Some(slope) => println!(
+                    "- {}: slope {slope:.2} over n = {} ({})",
+                    metric.name(),
+                    points
+                        .iter()
+                        .map(|p| p.0.to_string())
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    if slope <= -1.0 { "met" } else { "MISSED" }
+                ),
+                None => println!("- {}: too few points for a slope", metric.name()),
+            }
+        }
+    }
+}
+
+/// The cheapest setting of each kind whose FLIP mean is below [`SAME_IMAGE_FLIP`].
+fn report_cheapest(sweeps: &[SceneSweep]) {
+    println!("\n## Cheapest setting with FLIP mean ≤ {SAME_IMAGE_FLIP} (against the reference)");
+    for s in sweeps {
+        let pick = |keep: &dyn Fn(Setting) -> bool| -> String {
+            let rows: Vec<Measured> = s
+                .rows
+                .iter()
+                .filter(|r| keep(r.setting))
+                .map(|r| r.cpu.clone())
+                .collect();
+            match cheapest_within(&rows, Metric::Flip, SAME_IMAGE_FLIP) {
+                Some(m) => format!(
+                    "{} ({:.4} in {:.1} core ms)",
+                    m.name,
+                    m.flip,
+                    m.seconds * 1e3
+                ),
+                None => "none in the sweep".into(),
+            }
+        };
+        print!(
+            "- {}: any AA: {}; adaptive: {}",
+            s.name,
+            pick(&|x| !matches!(x, Setting::Shadows(_))),
+            pick(&|x| matches!(x, Setting::Adaptive(..)))
+        );
+        if s.shadow_residual.is_some() {
+            print!("; shadows: {}", pick(&|x| matches!(x, Setting::Shadows(_))));
+        }
+        println!();
+    }
+}
+
+/// The plot's panel for `metric`: one series per (family, scene), CPU times.
+fn panel(sweeps: &[SceneSweep], metric: Metric) -> Panel {
+    let mut series: Vec<Series> = Vec::new();
+    for s in sweeps {
+        for row in &s.rows {
+            let family = row.setting.family();
+            let point = (row.cpu.seconds, metric.of(&row.cpu));
+            match series
+                .iter_mut()
+                .find(|x| x.family == family && x.scene == s.name)
+            {
+                Some(x) => x.points.push(point),
+                None => series.push(Series {
+                    family,
+                    scene: s.name.clone(),
+                    points: vec![point],
+                }),
+            }
+        }
+    }
+    // Each line runs in order of cost.
+    for s in &mut series {
+        s.points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    Panel {
+        title: format!("{} against the reference", metric.name()),
+        x_label: "CPU core time (s)".into(),
+        y_label: metric.name().into(),
+        series,
+    }
+}

@@ -1,0 +1,98 @@
+//! The figures `glint bench --sweep` derives from its measurements: the cheapest setting
+//! whose error is within a bound, and the log-log slope of error against n. Pure
+//! functions of (time, error) pairs, so they are tested without rendering anything.
+
+/// One measured setting: its name, time in seconds, and errors against the reference.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measured {
+    pub name: String,
+    pub seconds: f64,
+    pub rmse: f64,
+    pub flip: f64,
+}
+
+/// Which error a comparison uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Metric {
+    Rmse,
+    Flip,
+}
+
+impl Metric {
+    pub fn of(self, m: &Measured) -> f64 {
+        match self {
+            Metric::Rmse => m.rmse,
+            Metric::Flip => m.flip,
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Metric::Rmse => "RMSE",
+            Metric::Flip => "FLIP mean",
+        }
+    }
+}
+
+/// The fastest of `candidates` whose `metric` is at most `bound`.
+pub fn cheapest_within(candidates: &[Measured], metric: Metric, bound: f64) -> Option<&Measured> {
+    candidates
+        .iter()
+        .filter(|m| metric.of(m) <= bound)
+        .min_by(|a, b| a.seconds.total_cmp(&b.seconds))
+}
+
+/// Least-squares slope of ln y against ln x over the points with x, y > 0; None with
+/// fewer than two such points or no spread in x.
+pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let logs: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    if logs.len() < 2 {
+        return None;
+    }
+    let n = logs.len() as f64;
+    let mx = logs.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = logs.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxx: f64 = logs.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = logs.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn m(name: &str, seconds: f64, rmse: f64, flip: f64) -> Measured {
+        Measured {
+            name: name.into(),
+            seconds,
+            rmse,
+            flip,
+        }
+    }
+
+    #[test]
+    fn slope_of_a_power_law_is_its_exponent() {
+        let points: Vec<(f64, f64)> = [1.0, 2.0, 3.0, 4.0, 6.0, 8.0]
+            .iter()
+            .map(|&n: &f64| (n, 0.3 * n.powf(-1.5)))
+            .collect();
+        assert!((loglog_slope(&points).unwrap() + 1.5).abs() < 1e-12);
+        assert_eq!(loglog_slope(&points[..1]), None);
+        assert_eq!(loglog_slope(&[(2.0, 1.0), (2.0, 0.5)]), None);
+    }
+
+    #[test]
+    fn cheapest_within_takes_the_fastest_under_the_bound() {
+        let ms = [
+            m("a", 3.0, 0.01, 0.02),
+            m("b", 1.0, 0.05, 0.01),
+            m("c", 2.0, 0.02, 0.03),
+        ];
+        assert_eq!(cheapest_within(&ms, Metric::Flip, 0.02).unwrap().name, "b");
+        assert_eq!(cheapest_within(&ms, Metric::Rmse, 0.02).unwrap().name, "c");
+        assert!(cheapest_within(&ms, Metric::Rmse, 0.001).is_none());
+    }
+}
