@@ -125,7 +125,8 @@ fn wgsl_structs_match_rust_layout() {
             aa_samples,
             aa_threshold,
             aa_depth,
-            _pad
+            camera_media_count,
+            camera_media
         }),
     );
     check_struct(
