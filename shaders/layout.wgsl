@@ -103,7 +103,12 @@ struct GpuGlobals {
     aa_threshold: f32,
     // Adaptive anti-aliasing: deepest split.
     aa_depth: u32,
-    _pad: u32,
+    // How many dielectrics contain the eye (may exceed MEDIUM_STACK_SIZE, see
+    // dielectric.wgsl::medium_push); 0 without refraction.
+    camera_media_count: u32,
+    // Their indices, outermost first (MEDIUM_STACK_SIZE = 4 of them, asserted in Rust):
+    // the medium stack primary rays start with.
+    camera_media: vec4<f32>,
 }
 
 // Mirror of src/gpu/buffers.rs::GpuTile — change both.

@@ -151,7 +151,8 @@ fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3
 }
 
 // Light from a point at `position` with light's colour and falloff: the A4 term, or zero
-// when the point is behind the surface or a shadow ray from origin is blocked.
+// when the point is behind the surface or a shadow ray from origin is blocked (dimmed
+// instead by the glass it crosses, in scenes with refraction).
 // Mirror of src/cpu/shade.rs::point_light — change both.
 fn point_light(s: Surface, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: GpuLight) -> vec3<f32> {
     let m = materials[s.material];
@@ -164,10 +165,19 @@ fn point_light(s: Surface, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, positi
     if !(n_dot_l > 0.0) {
         return vec3<f32>(0.0);
     }
+    // With dielectrics, light passes through glass, dimmed (see dielectric.wgsl).
+// #if REFRACTION
+    let transmittance = shadow_transmittance(origin, position);
+// #else
     let shadow_dir = position - origin;
     let shadow_distance = length(shadow_dir);
     let shadow_ray = Ray(origin, shadow_dir / shadow_distance);
+    var transmittance = 1.0;
     if any_hit(shadow_ray, shadow_distance) {
+        transmittance = 0.0;
+    }
+// #endif
+    if transmittance <= 0.0 {
         return vec3<f32>(0.0);
     }
     let r = n * (2.0 * n_dot_l) - l;
@@ -176,7 +186,7 @@ fn point_light(s: Surface, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, positi
     let c1 = light.falloff.y;
     let c2 = light.falloff.z;
     let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
-    return (m.kd * n_dot_l + m.ks * specular) * light.colour * attenuation;
+    return (m.kd * n_dot_l + m.ks * specular) * light.colour * attenuation * transmittance;
 }
 
 // #if AREA_LIGHT

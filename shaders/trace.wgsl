@@ -1,21 +1,32 @@
 // trace.wgsl — Whitted tracing without recursion: an explicit, fixed-size stack of
-// secondary rays, each with the weight of its contribution to the pixel and its depth.
+// secondary rays, each with the weight of its contribution to the pixel, its depth and
+// (with refraction) the media it travels in (see dielectric.wgsl).
 
 // Mirror of src/cpu/trace.rs::StackEntry — change both.
 struct StackEntry {
     ray: Ray,
     weight: vec3<f32>,
     depth: u32,
+// #if REFRACTION
+    media: MediumStack,
+// #endif
 }
 
-// Colour seen along a primary ray, mirrors included (down to max_depth bounces or
-// min_weight contribution). seed names the camera sample (its depth is ignored: each
-// shading point gets its own ray's depth).
+// Colour seen along a primary ray, mirrors and dielectrics included (down to max_depth
+// bounces or min_weight contribution). A dielectric pushes its transmitted ray, (1 − F) of
+// the weight, then the reflected ray, whose weight is the mirror colour plus F (one ray:
+// both go the same way); Phong shading is added as for any material. seed names the
+// camera sample (its depth is ignored: each shading point gets its own ray's depth).
 // Mirror of src/cpu/trace.rs::trace_ray — change both.
 fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     let g = globals;
     var stack: array<StackEntry, RAY_STACK_SIZE>;
-    stack[0] = StackEntry(primary, vec3<f32>(1.0), 0u);
+    stack[0].ray = primary;
+    stack[0].weight = vec3<f32>(1.0);
+    stack[0].depth = 0u;
+// #if REFRACTION
+    stack[0].media = camera_medium_stack();
+// #endif
     var size = 1u;
     var colour = vec3<f32>(0.0);
     while size > 0u {
@@ -34,18 +45,45 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             n = -s.normal;
         }
         let v = -ray.dir;
+// #if REFRACTION
+        shading_media = entry.media;
+// #endif
         colour += entry.weight * shade_phong(s, n, v, SampleSeed(seed.pixel, seed.sample, entry.depth));
-// #if REFLECTION
+// #if REFLECTION|REFRACTION
         let m = materials[s.material];
-        if (m.flags & MATERIAL_REFLECTIVE) != 0u && entry.depth < g.max_depth {
-            let weight = entry.weight * m.reflection;
+        var reflectance = vec3<f32>(0.0);
+        if (m.flags & MATERIAL_REFLECTIVE) != 0u {
+            reflectance = m.reflection;
+        }
+// #endif
+// #if REFRACTION
+        if (m.flags & MATERIAL_REFRACTIVE) != 0u && entry.depth < g.max_depth {
+            let crossing = dielectric_interface(ray.dir, s.normal, m.ior, entry.media);
+            reflectance += vec3<f32>(crossing.reflectance);
+            let weight = entry.weight * (1.0 - crossing.reflectance);
             if max_element(weight) >= g.min_weight && size < RAY_STACK_SIZE {
-                let dir = ray.dir - n * (2.0 * dot(ray.dir, n));
+                // The transmitted ray starts on the far side of the surface.
                 stack[size] = StackEntry(
-                    Ray(offset_ray(s.p, n, s.magnitude), normalize(dir)),
+                    Ray(offset_ray(s.p, -n, s.magnitude), crossing.dir),
                     weight,
                     entry.depth + 1u,
+                    crossing.media,
                 );
+                size += 1u;
+            }
+        }
+// #endif
+// #if REFLECTION|REFRACTION
+        if max_element(reflectance) > 0.0 && entry.depth < g.max_depth {
+            let weight = entry.weight * reflectance;
+            if max_element(weight) >= g.min_weight && size < RAY_STACK_SIZE {
+                let dir = ray.dir - n * (2.0 * dot(ray.dir, n));
+                // A reflected ray stays in the medium it came from.
+                var next = entry;
+                next.ray = Ray(offset_ray(s.p, n, s.magnitude), normalize(dir));
+                next.weight = weight;
+                next.depth = entry.depth + 1u;
+                stack[size] = next;
                 size += 1u;
             }
         }

@@ -41,6 +41,18 @@ pub const RAY_STACK_SIZE: u32 = 16;
 /// Largest `max_depth` a scene may ask for.
 pub const MAX_TRACE_DEPTH: u32 = 64;
 
+/// Index of refraction of the medium outside every dielectric (air, taken as vacuum).
+pub const AIR_IOR: f32 = 1.0;
+/// Dielectrics nested deeper than this per ray (glass in water in …) are counted but not
+/// recorded: a ray inside them sees the index of the deepest recorded level (see
+/// `cpu::dielectric::medium_push`). 4 covers a bubble in glass in water with one to spare.
+/// `GpuGlobals::camera_media` holds exactly this many indices.
+pub const MEDIUM_STACK_SIZE: u32 = 4;
+/// A shadow ray passes through at most this many dielectric surfaces; one more counts as
+/// blocked. Bounded because lavapipe counts every loop iteration of an invocation against
+/// 65 535; 8 crosses a torus (4 surfaces) and two nested spheres.
+pub const MAX_SHADOW_CROSSINGS: u32 = 8;
+
 /// Secondary-ray origins move off the surface by this fraction of the magnitude of the
 /// coordinates that produced the hit point (2⁻¹⁷ ≈ 64 f32 ulps): the hit point's own
 /// rounding error scales with those magnitudes, so the offset is scale-free (a scene
@@ -97,6 +109,8 @@ pub fn wgsl_prelude() -> String {
         ("NO_ITEM", NO_ITEM),
         ("RAY_STACK_SIZE", RAY_STACK_SIZE),
         ("MAX_TRACE_DEPTH", MAX_TRACE_DEPTH),
+        ("MEDIUM_STACK_SIZE", MEDIUM_STACK_SIZE),
+        ("MAX_SHADOW_CROSSINGS", MAX_SHADOW_CROSSINGS),
         ("MAX_AA_DEPTH", MAX_AA_DEPTH),
         ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
         ("TILE_SIZE", TILE_SIZE),
@@ -119,6 +133,7 @@ pub fn wgsl_prelude() -> String {
         ("ENTER_MARGIN_RELATIVE", ENTER_MARGIN_RELATIVE),
         ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),
         ("TWO_PI", TWO_PI),
+        ("AIR_IOR", AIR_IOR),
         ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
         ("TORUS_ROOT_TOLERANCE", TORUS_ROOT_TOLERANCE),
         ("TORUS_BOUND_MARGIN", TORUS_BOUND_MARGIN),

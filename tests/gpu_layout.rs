@@ -125,7 +125,8 @@ fn wgsl_structs_match_rust_layout() {
             aa_samples,
             aa_threshold,
             aa_depth,
-            _pad
+            camera_media_count,
+            camera_media
         }),
     );
     check_struct(
@@ -358,6 +359,41 @@ fn area_light_code_only_with_area_lights() {
                 assert_eq!(
                     source.contains(code),
                     features.contains(SceneFeatures::AREA_LIGHT),
+                    "[{features}] {entry:?}: {code}"
+                );
+            }
+        }
+    }
+}
+
+/// The dielectric code (shaders/dielectric.wgsl, the transmitted push in trace.wgsl and
+/// the shadow walk in shade.wgsl) is in exactly the specialisations with REFRACTION; the
+/// others keep any_hit shadows.
+#[test]
+fn refraction_code_only_with_refraction() {
+    let sets = all_feature_sets();
+    assert!(sets.iter().any(|s| s.contains(SceneFeatures::REFRACTION)));
+    for features in sets {
+        for entry in [Entry::Render, Entry::Probe] {
+            let source = assemble(features, entry);
+            for code in [
+                "fn dielectric_interface(",
+                "fn refract_direction(",
+                "fn schlick_reflectance(",
+                "fn shadow_transmittance(",
+                "fn medium_push(",
+                "struct MediumStack",
+                "(m.flags & MATERIAL_REFRACTIVE) != 0u",
+                "shadow_transmittance(origin, position)",
+                "shading_media = entry.media;",
+            ] {
+                if entry == Entry::Probe && (code.starts_with("(m.") || code.starts_with("shading"))
+                {
+                    continue;
+                }
+                assert_eq!(
+                    source.contains(code),
+                    features.contains(SceneFeatures::REFRACTION),
                     "[{features}] {entry:?}: {code}"
                 );
             }

@@ -4,6 +4,7 @@
 
 pub mod adaptive;
 pub mod cylinder_cone;
+pub mod dielectric;
 pub mod intersect;
 pub mod ray;
 pub mod render;

@@ -1,13 +1,14 @@
 //! Surface reconstruction at a hit, A4 Phong shading with shadow rays, and the background.
 
 use super::cylinder_cone::{cone_surface, cylinder_surface};
+use super::dielectric::{shadow_transmittance, MediumStack};
 use super::intersect::{to_object_space, triangle_vertices};
 use super::ray::{offset_ray, Ray};
 use super::rng::{shadow_random, SampleSeed};
 use super::torus::torus_surface;
 use super::traverse::{any_hit, Hit, TraversalCounters};
 use crate::constants::{KIND_CONE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, LIGHT_AREA};
-use crate::pack::{GpuGlobals, GpuInstance, GpuLight, PackedScene};
+use crate::pack::{GpuGlobals, GpuInstance, GpuLight, PackedScene, SceneFeatures};
 use glam::Vec3;
 
 /// What shading needs to know about a hit point.
@@ -129,13 +130,16 @@ pub fn phong_power(base: f32, exponent: f32) -> f32 {
 /// (kd·max(0,N·L) + ks·max(0,R·V)^shininess)·I/(c0 + c1·d + c2·d²). `n` faces the viewer;
 /// `v` points to the viewer. An area light is n×n such point lights, one jittered point
 /// per stratum of its parallelogram (random numbers from `seed`), each with 1/n² of its
-/// colour.
+/// colour. `media` are the media around the point (shadow rays through glass start
+/// there; the WGSL twin reads them from `shading_media`).
 // Mirror of shaders/shade.wgsl::shade_phong — change both.
+#[allow(clippy::too_many_arguments)]
 pub fn shade_phong(
     scene: &PackedScene,
     s: &Surface,
     n: Vec3,
     v: Vec3,
+    media: &MediumStack,
     seed: SampleSeed,
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
@@ -147,7 +151,18 @@ pub fn shade_phong(
         .enumerate()
     {
         if light.kind == LIGHT_AREA {
-            colour += area_light(scene, s, n, v, origin, light, index as u32, seed, counters);
+            colour += area_light(
+                scene,
+                s,
+                n,
+                v,
+                origin,
+                media,
+                light,
+                index as u32,
+                seed,
+                counters,
+            );
         } else {
             colour += point_light(
                 scene,
@@ -155,6 +170,7 @@ pub fn shade_phong(
                 n,
                 v,
                 origin,
+                media,
                 Vec3::from(light.position),
                 light,
                 counters,
@@ -165,7 +181,8 @@ pub fn shade_phong(
 }
 
 /// Light from a point at `position` with `light`'s colour and falloff: the A4 term, or
-/// zero when the point is behind the surface or a shadow ray from `origin` is blocked.
+/// zero when the point is behind the surface or a shadow ray from `origin` is blocked
+/// (dimmed instead by the glass it crosses, in scenes with refraction).
 // Mirror of shaders/shade.wgsl::point_light — change both.
 #[allow(clippy::too_many_arguments)]
 fn point_light(
@@ -174,6 +191,7 @@ fn point_light(
     n: Vec3,
     v: Vec3,
     origin: Vec3,
+    media: &MediumStack,
     position: Vec3,
     light: &GpuLight,
     counters: &mut impl TraversalCounters,
@@ -187,13 +205,23 @@ fn point_light(
     if n_dot_l.is_nan() || n_dot_l <= 0.0 {
         return Vec3::ZERO;
     }
-    let shadow_dir = position - origin;
-    let shadow_distance = shadow_dir.length();
-    let shadow_ray = Ray {
-        origin,
-        dir: shadow_dir / shadow_distance,
+    // With dielectrics, light passes through glass, dimmed (see dielectric.rs).
+    let transmittance = if scene.features.contains(SceneFeatures::REFRACTION) {
+        shadow_transmittance(scene, origin, position, media, counters)
+    } else {
+        let shadow_dir = position - origin;
+        let shadow_distance = shadow_dir.length();
+        let shadow_ray = Ray {
+            origin,
+            dir: shadow_dir / shadow_distance,
+        };
+        if any_hit(scene, &shadow_ray, shadow_distance, counters) {
+            0.0
+        } else {
+            1.0
+        }
     };
-    if any_hit(scene, &shadow_ray, shadow_distance, counters) {
+    if transmittance <= 0.0 {
         return Vec3::ZERO;
     }
     let r = n * (2.0 * n_dot_l) - l;
@@ -203,6 +231,7 @@ fn point_light(
     (Vec3::from(m.kd) * n_dot_l + Vec3::from(m.ks) * specular)
         * Vec3::from(light.colour)
         * attenuation
+        * transmittance
 }
 
 /// Light from area light number `index`: the mean of [`point_light`] over one jittered
@@ -215,6 +244,7 @@ fn area_light(
     n: Vec3,
     v: Vec3,
     origin: Vec3,
+    media: &MediumStack,
     light: &GpuLight,
     index: u32,
     seed: SampleSeed,
@@ -232,7 +262,7 @@ fn area_light(
         let a = ((stratum % k) as f32 + shadow_random(seed, index, stratum, 0)) * scale - 0.5;
         let b = ((stratum / k) as f32 + shadow_random(seed, index, stratum, 1)) * scale - 0.5;
         let position = centre + u * a + w * b;
-        sum += point_light(scene, s, n, v, origin, position, light, counters);
+        sum += point_light(scene, s, n, v, origin, media, position, light, counters);
     }
     sum * (scale * scale)
 }

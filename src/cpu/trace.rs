@@ -1,12 +1,14 @@
 //! Whitted tracing without recursion: an explicit, fixed-size stack of secondary rays,
-//! each with the weight of its contribution to the pixel and its depth.
+//! each with the weight of its contribution to the pixel, its depth and the media it
+//! travels in (see `dielectric`).
 
+use super::dielectric::{dielectric_interface, MediumStack};
 use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
 use super::shade::{background, shade_phong, surface_at};
 use super::traverse::{closest_hit, TraversalCounters};
-use crate::constants::{MATERIAL_REFLECTIVE, RAY_STACK_SIZE, T_MISS};
-use crate::pack::PackedScene;
+use crate::constants::{MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, RAY_STACK_SIZE, T_MISS};
+use crate::pack::{PackedScene, SceneFeatures};
 use glam::Vec3;
 
 #[derive(Clone, Copy, Debug)]
@@ -14,11 +16,17 @@ struct StackEntry {
     ray: Ray,
     weight: Vec3,
     depth: u32,
+    /// The media the ray travels in (only scenes with refraction change it; the WGSL
+    /// twin has the field only then).
+    media: MediumStack,
 }
 
-/// Colour seen along a primary ray, mirrors included (down to `max_depth` bounces or
-/// `min_weight` contribution). `seed` names the camera sample (its `depth` is ignored:
-/// each shading point gets its own ray's depth).
+/// Colour seen along a primary ray, mirrors and dielectrics included (down to
+/// `max_depth` bounces or `min_weight` contribution). A dielectric pushes its transmitted
+/// ray, (1 − F) of the weight, then the reflected ray, whose weight is the mirror colour
+/// plus F (one ray: both go the same way); Phong shading is added as for any material.
+/// `seed` names the camera sample (its `depth` is ignored: each shading point gets its
+/// own ray's depth).
 // Mirror of shaders/trace.wgsl::trace_ray — change both.
 pub fn trace_ray(
     scene: &PackedScene,
@@ -31,6 +39,7 @@ pub fn trace_ray(
         ray: primary,
         weight: Vec3::ONE,
         depth: 0,
+        media: camera_media_of(&scene.globals),
     }; RAY_STACK_SIZE as usize];
     let mut size = 1;
     let mut colour = Vec3::ZERO;
@@ -55,12 +64,39 @@ pub fn trace_ray(
             depth: entry.depth,
             ..seed
         };
-        colour += entry.weight * shade_phong(scene, &s, n, v, shade_seed, counters);
+        colour += entry.weight * shade_phong(scene, &s, n, v, &entry.media, shade_seed, counters);
         let m = &scene.materials[s.material as usize];
-        if m.flags & MATERIAL_REFLECTIVE != 0 && entry.depth < g.max_depth {
-            let weight = entry.weight * Vec3::from(m.reflection);
+        let mut reflectance = if m.flags & MATERIAL_REFLECTIVE != 0 {
+            Vec3::from(m.reflection)
+        } else {
+            Vec3::ZERO
+        };
+        if scene.features.contains(SceneFeatures::REFRACTION)
+            && m.flags & MATERIAL_REFRACTIVE != 0
+            && entry.depth < g.max_depth
+        {
+            let crossing = dielectric_interface(ray.dir, s.normal, m.ior, &entry.media);
+            reflectance += Vec3::splat(crossing.reflectance);
+            let weight = entry.weight * (1.0 - crossing.reflectance);
+            if weight.max_element() >= g.min_weight && size < RAY_STACK_SIZE as usize {
+                // The transmitted ray starts on the far side of the surface.
+                stack[size] = StackEntry {
+                    ray: Ray {
+                        origin: offset_ray(s.p, -n, s.magnitude),
+                        dir: crossing.dir,
+                    },
+                    weight,
+                    depth: entry.depth + 1,
+                    media: crossing.media,
+                };
+                size += 1;
+            }
+        }
+        if reflectance.max_element() > 0.0 && entry.depth < g.max_depth {
+            let weight = entry.weight * reflectance;
             if weight.max_element() >= g.min_weight && size < RAY_STACK_SIZE as usize {
                 let dir = ray.dir - n * (2.0 * ray.dir.dot(n));
+                // A reflected ray stays in the medium it came from.
                 stack[size] = StackEntry {
                     ray: Ray {
                         origin: offset_ray(s.p, n, s.magnitude),
@@ -68,10 +104,20 @@ pub fn trace_ray(
                     },
                     weight,
                     depth: entry.depth + 1,
+                    ..entry
                 };
                 size += 1;
             }
         }
     }
     colour
+}
+
+/// The media primary rays start in, as packing found them (`dielectric::camera_media`).
+// Mirror of shaders/dielectric.wgsl::camera_medium_stack — change both.
+fn camera_media_of(g: &crate::pack::GpuGlobals) -> MediumStack {
+    MediumStack {
+        iors: g.camera_media,
+        count: g.camera_media_count,
+    }
 }

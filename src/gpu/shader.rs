@@ -78,6 +78,10 @@ const COMMON: &[(&str, &str)] = &[
     ("torus.wgsl", include_str!("../../shaders/torus.wgsl")),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
+    (
+        "dielectric.wgsl",
+        include_str!("../../shaders/dielectric.wgsl"),
+    ),
 ];
 const RENDER: &[(&str, &str)] = &[
     ("trace.wgsl", include_str!("../../shaders/trace.wgsl")),

@@ -3,6 +3,7 @@
 //! is followed by a 4-byte scalar). Sizes are asserted here; field offsets are checked
 //! against naga's layout of the WGSL twins by the layout test.
 
+use crate::constants::MEDIUM_STACK_SIZE;
 use bytemuck::{Pod, Zeroable};
 
 /// An analytic primitive instance: affine transforms as three rows of a 3×4 matrix.
@@ -118,11 +119,17 @@ pub struct GpuGlobals {
     pub aa_threshold: f32,
     /// Adaptive anti-aliasing: deepest split.
     pub aa_depth: u32,
-    pub _pad: u32,
+    /// How many dielectrics contain the eye (may exceed `MEDIUM_STACK_SIZE`, see
+    /// `cpu::dielectric::medium_push`); 0 without refraction.
+    pub camera_media_count: u32,
+    /// Their indices, outermost first: the medium stack primary rays start with.
+    pub camera_media: [f32; MEDIUM_STACK_SIZE as usize],
 }
 
 const _: () = assert!(std::mem::size_of::<GpuInstance>() == 112);
 const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 48);
 const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 80);
-const _: () = assert!(std::mem::size_of::<GpuGlobals>() == 192);
+const _: () = assert!(std::mem::size_of::<GpuGlobals>() == 208);
+// The WGSL twin holds camera_media as one vec4 (a uniform array would need a 16-byte stride).
+const _: () = assert!(MEDIUM_STACK_SIZE == 4);

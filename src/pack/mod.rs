@@ -91,13 +91,18 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         .iter()
         .map(|m| {
             let reflective = m.reflection.iter().any(|&c| c > 0.0);
+            let refractive = if m.ior.is_some() {
+                MATERIAL_REFRACTIVE
+            } else {
+                0
+            };
             GpuMaterial {
                 kd: m.kd,
                 shininess: m.shininess,
                 ks: m.ks,
-                flags: if reflective { MATERIAL_REFLECTIVE } else { 0 },
+                flags: if reflective { MATERIAL_REFLECTIVE } else { 0 } | refractive,
                 reflection: m.reflection,
-                ior: 1.0,
+                ior: m.ior.unwrap_or(AIR_IOR),
                 diffuse_texture: NO_TEXTURE,
                 specular_texture: NO_TEXTURE,
                 bump_texture: NO_TEXTURE,
@@ -112,6 +117,9 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     };
     if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFLECTIVE != 0 && used(m)) {
         features.insert(SceneFeatures::REFLECTION);
+    }
+    if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFRACTIVE != 0 && used(m)) {
+        features.insert(SceneFeatures::REFRACTION);
     }
     let shadow_samples = scene.options.shadow_samples;
     if scene.lights.iter().any(|l| l.area.is_some()) {
@@ -172,7 +180,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         features.insert(SceneFeatures::GRID);
     }
     let globals = make_globals(scene, &instances, &triangles, &lights, &grid);
-    Ok(PackedScene {
+    let mut packed = PackedScene {
         globals,
         instances,
         triangles,
@@ -184,7 +192,14 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         texels: Vec::new(),
         features,
         grid_stats: grid.stats,
-    })
+    };
+    if features.contains(SceneFeatures::REFRACTION) {
+        // Primary rays start in the dielectrics around the eye (camera inside glass).
+        let media = crate::cpu::dielectric::camera_media(&packed);
+        packed.globals.camera_media = media.iors;
+        packed.globals.camera_media_count = media.count;
+    }
+    Ok(packed)
 }
 
 fn make_globals(
@@ -233,7 +248,8 @@ fn make_globals(
         aa_samples: options.samples.clamp(1, MAX_AA_SAMPLES),
         aa_threshold: options.aa_threshold,
         aa_depth: options.aa_depth.min(MAX_AA_DEPTH),
-        _pad: 0,
+        camera_media_count: 0,
+        camera_media: [AIR_IOR; MEDIUM_STACK_SIZE as usize],
     }
 }
 

@@ -70,6 +70,8 @@ pub struct Material {
     pub shininess: f32,
     /// Mirror colour: adds `reflection × colour seen along the reflected ray`.
     pub reflection: [f32; 3],
+    /// Dielectric with this index of refraction (`set_refraction`), if any.
+    pub ior: Option<f32>,
 }
 
 impl Default for Material {
@@ -81,6 +83,7 @@ impl Default for Material {
             ks: [0.0; 3],
             shininess: 1.0,
             reflection: [0.0; 3],
+            ior: None,
         }
     }
 }

@@ -326,7 +326,7 @@ fn material(a: &Args) -> mlua::Result<MaterialHandle> {
             kd: a.colour(1, "kd")?,
             ks: a.colour(2, "ks")?,
             shininess: a.non_negative(3, "shininess")? as f32,
-            reflection: [0.0; 3],
+            ..Material::default()
         },
     };
     Ok(with_state(a.lua, |s| {

@@ -1,6 +1,6 @@
 //! The userdata the `gr` calls return, and their methods: `node:add_child`,
 //! `set_material`, `scale`, `translate`, `rotate`; `material:set_diffuse`, `set_specular`,
-//! `set_shininess`, `set_reflection`.
+//! `set_shininess`, `set_reflection`, `set_refraction`.
 //!
 //! Userdata carry only an index into the [`SceneGraph`](crate::scene::SceneGraph) arenas
 //! (or a small value for lights), so a node can be added under several parents and a
@@ -171,6 +171,17 @@ impl UserData for MaterialHandle {
         method!("set_reflection", |a: &Args| {
             a.colour_args(1, true)
                 .map(|c| move |m: &mut Material| m.reflection = c)
+        });
+        method!("set_refraction", |a: &Args| {
+            a.positive(1, "ior").and_then(|ior| {
+                let ior = ior as f32;
+                if ior.is_finite() && ior > 0.0 {
+                    Ok(move |m: &mut Material| m.ior = Some(ior))
+                } else {
+                    // Positive in f64 but 0 or ∞ in f32 (1e-50, 1e50).
+                    Err(a.bad(1, "ior", "a positive number within f32 range"))
+                }
+            })
         });
         method!("set_shininess", |a: &Args| {
             a.non_negative(1, "shininess")
