@@ -28,11 +28,22 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             continue;
         }
         let s = surface_at(ray, hit);
+// #if TEXTURE
+        // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
+        if g.debug_view == DEBUG_VIEW_UV {
+            let uv = s.uv - floor(s.uv);
+            colour += entry.weight * vec3<f32>(uv.x, uv.y, 0.0);
+            continue;
+        }
+// #endif
         // Two-sided shading: the normal faces the incoming ray.
         var n = s.normal;
         if dot(s.normal, ray.dir) > 0.0 {
             n = -s.normal;
         }
+// #if BUMP
+        n = shading_normal(s, n);
+// #endif
         let v = -ray.dir;
         colour += entry.weight * shade_phong(s, n, v, SampleSeed(seed.pixel, seed.sample, entry.depth));
 // #if REFLECTION

@@ -3,7 +3,7 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES, MAX_TRACE_DEPTH};
 use glint::scene::options::{parse_background, parse_grid_mode};
-use glint::scene::{AaMode, Background, GridMode, OptionOverrides, TransformOrder};
+use glint::scene::{AaMode, Background, DebugView, GridMode, OptionOverrides, TransformOrder};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -111,6 +111,13 @@ struct RenderArgs {
     /// Acceleration: auto, off (brute force) or a density λ (cells ≈ λ × items).
     #[arg(long, value_parser = parse_grid_mode)]
     grid: Option<GridMode>,
+    /// Debug view: uv renders colour = (u mod 1, v mod 1, 0) of the first surface hit.
+    #[arg(long, value_parser = parse_debug_view)]
+    debug: Option<DebugView>,
+}
+
+fn parse_debug_view(s: &str) -> Result<DebugView, String> {
+    DebugView::parse(s).ok_or_else(|| format!("debug must be {}, got '{s}'", DebugView::CHOICES))
 }
 
 fn parse_aa(s: &str) -> Result<AaMode, String> {
@@ -172,6 +179,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             min_weight: args.min_weight,
             background: args.background,
             grid: args.grid,
+            debug: args.debug,
             width: args.width.filter(|&w| w > 0),
             height: args.height.filter(|&h| h > 0),
         },

@@ -4,9 +4,10 @@
 use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
 use super::shade::{background, shade_phong, surface_at};
+use super::texture::shading_normal;
 use super::traverse::{closest_hit, TraversalCounters};
-use crate::constants::{MATERIAL_REFLECTIVE, RAY_STACK_SIZE, T_MISS};
-use crate::pack::PackedScene;
+use crate::constants::{DEBUG_VIEW_UV, MATERIAL_REFLECTIVE, RAY_STACK_SIZE, T_MISS};
+use crate::pack::{PackedScene, SceneFeatures};
 use glam::Vec3;
 
 #[derive(Clone, Copy, Debug)]
@@ -44,12 +45,21 @@ pub fn trace_ray(
             continue;
         }
         let s = surface_at(scene, &ray, &hit);
+        // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
+        if g.debug_view == DEBUG_VIEW_UV {
+            let uv = s.uv - s.uv.floor();
+            colour += entry.weight * Vec3::new(uv.x, uv.y, 0.0);
+            continue;
+        }
         // Two-sided shading: the normal faces the incoming ray.
-        let n = if s.normal.dot(ray.dir) > 0.0 {
+        let mut n = if s.normal.dot(ray.dir) > 0.0 {
             -s.normal
         } else {
             s.normal
         };
+        if scene.features.contains(SceneFeatures::BUMP) {
+            n = shading_normal(scene, &s, n);
+        }
         let v = -ray.dir;
         let shade_seed = SampleSeed {
             depth: entry.depth,

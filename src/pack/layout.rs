@@ -33,6 +33,17 @@ pub struct GpuTriangle {
     pub _pad2: u32,
 }
 
+/// The UVs of a triangle's corners (p0, p1, p2), in a separate array parallel to the
+/// triangles (filled only when the scene has textures or bump maps, so untextured scenes
+/// keep the 48-byte triangles that traversal reads alone).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuTriangleUv {
+    pub uv0: [f32; 2],
+    pub uv1: [f32; 2],
+    pub uv2: [f32; 2],
+}
+
 /// A4 Phong material plus the mirror colour, the dielectric's index and texture maps.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
@@ -118,11 +129,13 @@ pub struct GpuGlobals {
     pub aa_threshold: f32,
     /// Adaptive anti-aliasing: deepest split.
     pub aa_depth: u32,
-    pub _pad: u32,
+    /// `DEBUG_VIEW_*` tag (render option `debug`).
+    pub debug_view: u32,
 }
 
 const _: () = assert!(std::mem::size_of::<GpuInstance>() == 112);
 const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuTriangleUv>() == 24);
 const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 80);
 const _: () = assert!(std::mem::size_of::<GpuGlobals>() == 192);

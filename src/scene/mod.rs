@@ -6,11 +6,15 @@ pub mod flatten;
 pub mod lua;
 pub mod obj;
 pub mod options;
+pub mod texture;
+pub mod uv;
 
 use glam::{DMat4, DVec3};
 use std::path::PathBuf;
+use std::sync::Arc;
 
-pub use options::{AaMode, Background, GridMode, OptionOverrides, RenderOptions};
+pub use options::{AaMode, Background, DebugView, GridMode, OptionOverrides, RenderOptions};
+pub use texture::{Texture, TextureId};
 
 /// Index of a node in [`SceneGraph::nodes`].
 pub type NodeId = usize;
@@ -70,6 +74,14 @@ pub struct Material {
     pub shininess: f32,
     /// Mirror colour: adds `reflection × colour seen along the reflected ray`.
     pub reflection: [f32; 3],
+    /// Texture replacing `kd` (`set_diffuse('img.png')`).
+    pub diffuse_map: Option<TextureId>,
+    /// Texture replacing `ks` (`set_specular('img.png')`).
+    pub specular_map: Option<TextureId>,
+    /// Height field of the bump map (`set_bump('height.png', strength)`).
+    pub bump_map: Option<TextureId>,
+    /// Bump strength: the normal tilts by strength × the height's slope per texture unit.
+    pub bump_strength: f32,
 }
 
 impl Default for Material {
@@ -81,6 +93,10 @@ impl Default for Material {
             ks: [0.0; 3],
             shininess: 1.0,
             reflection: [0.0; 3],
+            diffuse_map: None,
+            specular_map: None,
+            bump_map: None,
+            bump_strength: 0.0,
         }
     }
 }
@@ -153,6 +169,8 @@ pub struct SceneGraph {
     pub nodes: Vec<Node>,
     pub materials: Vec<Material>,
     pub meshes: Vec<Mesh>,
+    /// Images of texture and bump maps (shared, not copied, by each render's scene).
+    pub textures: Vec<Arc<Texture>>,
 }
 
 /// One `gr.render` call: what to render, where, and how.

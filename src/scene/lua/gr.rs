@@ -1,6 +1,6 @@
 //! The `gr` table: the A4 core calls (the methods of what they return are in `handles`).
 //!
-//! Calls not in the contract yet (textures, CSG, extra primitives)
+//! Calls not in the contract yet (CSG)
 //! are simply not defined: Lua then reports `attempt to call a nil value (field 'x')`
 //! with the file and line.
 
@@ -326,7 +326,7 @@ fn material(a: &Args) -> mlua::Result<MaterialHandle> {
             kd: a.colour(1, "kd")?,
             ks: a.colour(2, "ks")?,
             shininess: a.non_negative(3, "shininess")? as f32,
-            reflection: [0.0; 3],
+            ..Material::default()
         },
     };
     Ok(with_state(a.lua, |s| {
