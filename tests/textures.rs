@@ -310,6 +310,20 @@ fn mesh_uvs_interpolate_or_project() {
         Vec3::new(11.5, 0.0, 0.25),
     );
     assert_uv(&s, [0.25, 1.5], "mesh without UVs");
+    // OBJ `vt`, through a file beside the scene.
+    let dir = temp_dir("textures-obj");
+    std::fs::write(
+        dir.join("quad.obj"),
+        "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+         f 1/1 2/2 3/3 4/4\n",
+    )
+    .unwrap();
+    let source = "n = gr.mesh('q', 'quad.obj') \
+                  gr.render(n, 'o.png', 8, 8, {0,0,9}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, {}, \
+                            {debug='uv'})";
+    let obj = packed_in(&dir, source, &OptionOverrides::default());
+    let s = surface_towards(&obj, Vec3::new(1.5, 0.5, 5.0), Vec3::new(1.5, 0.5, 0.0));
+    assert_uv(&s, [0.75, 0.25], "OBJ vt");
 }
 
 /// A surface at the origin facing +z with the frame (dpdu, dpdv) and material `m`.
