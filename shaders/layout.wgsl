@@ -25,6 +25,13 @@ struct GpuTriangle {
     _pad2: u32,
 }
 
+// Mirror of src/pack/layout.rs::GpuTriangleUv — change both.
+struct GpuTriangleUv {
+    uv0: vec2<f32>,
+    uv1: vec2<f32>,
+    uv2: vec2<f32>,
+}
+
 // Mirror of src/pack/layout.rs::GpuMaterial — change both.
 struct GpuMaterial {
     kd: vec3<f32>,
@@ -109,6 +116,11 @@ struct GpuGlobals {
     // Their indices, outermost first (MEDIUM_STACK_SIZE = 4 of them, asserted in Rust):
     // the medium stack primary rays start with.
     camera_media: vec4<f32>,
+    // DEBUG_VIEW_* tag (render option `debug`).
+    debug_view: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // Mirror of src/gpu/buffers.rs::GpuTile — change both.
@@ -139,3 +151,5 @@ struct GpuTile {
 // CSG programs (post-order, see intersect_csg) and the texture table + texels.
 @group(0) @binding(14) var<storage, read> csg_program: array<u32>;
 @group(0) @binding(15) var<storage, read> texels: array<u32>;
+// Corner UVs of each triangle (same order as `triangles`; only with TEXTURE or BUMP).
+@group(0) @binding(16) var<storage, read> triangle_uvs: array<GpuTriangleUv>;

@@ -12,6 +12,19 @@ struct Surface {
     // Largest coordinate magnitude that went into p (for offset_ray).
     magnitude: f32,
     material: u32,
+    // Texture coordinates (conventions in src/cpu/uv.rs; zero on triangles of scenes
+    // without textures or bump maps, which pack no triangle UVs).
+    uv: vec2<f32>,
+    // World-space ∂p/∂u and ∂p/∂v (the tangent frame of bump mapping; unnormalised).
+    dpdu: vec3<f32>,
+    dpdv: vec3<f32>,
+}
+
+// The Phong colours at a shading point (the material's, or its textures' at the UV).
+// Mirror of src/cpu/shade.rs::Phong — change both.
+struct Phong {
+    kd: vec3<f32>,
+    ks: vec3<f32>,
 }
 
 // #if SPHERE|CUBE|CYLINDER|CONE|TORUS
@@ -34,11 +47,17 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
     let local = to_object_space(inst, ray.origin, ray.dir);
     var p_obj = local.origin + local.dir * t;
     var n_obj = vec3<f32>(0.0);
+    var uv = vec2<f32>(0.0);
+    var dpdu_obj = vec3<f32>(0.0);
+    var dpdv_obj = vec3<f32>(0.0);
 // #if CYLINDER
     if inst.kind == KIND_CYLINDER {
         let s = cylinder_surface(p_obj);
         p_obj = s.p;
         n_obj = s.normal;
+        uv = s.uv;
+        dpdu_obj = s.dpdu;
+        dpdv_obj = s.dpdv;
     }
 // #endif
 // #if CONE
@@ -48,36 +67,40 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
         let s = cone_surface(p_obj, zmin, zmax);
         p_obj = s.p;
         n_obj = s.normal;
+        uv = s.uv;
+        dpdu_obj = s.dpdu;
+        dpdv_obj = s.dpdv;
     }
 // #endif
 // #if SPHERE
     if inst.kind == KIND_SPHERE {
-        // Reproject onto the unit sphere.
-        p_obj = normalize(p_obj);
-        n_obj = p_obj;
-    }
-// #endif
-// #if CUBE
-    if inst.kind == KIND_CUBE {
-        // The face nearest the point: snap the point onto it.
-        let dist = min(abs(p_obj), abs(p_obj - vec3<f32>(1.0)));
-        var axis = 2u;
-        if dist.x <= dist.y && dist.x <= dist.z {
-            axis = 0u;
-        } else if dist.y <= dist.z {
-            axis = 1u;
-        }
-        let upper = p_obj[axis] > 0.5;
-        p_obj[axis] = select(0.0, 1.0, upper);
-        n_obj[axis] = select(-1.0, 1.0, upper);
+        let s = sphere_surface(p_obj);
+        p_obj = s.p;
+        n_obj = s.normal;
+        uv = s.uv;
+        dpdu_obj = s.dpdu;
+        dpdv_obj = s.dpdv;
     }
 // #endif
 // #if TORUS
     if inst.kind == KIND_TORUS {
-        // Project onto the tube (the tangent frame and UV are unused until bump mapping).
+        // Project onto the tube.
         let s = torus_surface(p_obj, inst.params.x, inst.params.y);
         p_obj = s.p;
         n_obj = s.normal;
+        uv = s.uv;
+        dpdu_obj = s.dpdu;
+        dpdv_obj = s.dpdv;
+    }
+// #endif
+// #if CUBE
+    if inst.kind == KIND_CUBE {
+        let s = cube_surface(p_obj);
+        p_obj = s.p;
+        n_obj = s.normal;
+        uv = s.uv;
+        dpdu_obj = s.dpdu;
+        dpdv_obj = s.dpdv;
     }
 // #endif
     let o2w = inst.object_to_world;
@@ -91,7 +114,10 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
     let normal = normalize(w2o[0].xyz * n_obj.x + w2o[1].xyz * n_obj.y + w2o[2].xyz * n_obj.z);
     // Object points may lie beyond the unit box (a torus reaches rin + rout).
     let magnitude = affine_magnitude(o2w) * max(max_element(abs(p_obj)), 1.0);
-    return Surface(p, normal, magnitude, inst.material);
+    // Tangents transform like directions: the linear part of object→world.
+    let dpdu = vec3<f32>(dot(o2w[0].xyz, dpdu_obj), dot(o2w[1].xyz, dpdu_obj), dot(o2w[2].xyz, dpdu_obj));
+    let dpdv = vec3<f32>(dot(o2w[0].xyz, dpdv_obj), dot(o2w[1].xyz, dpdv_obj), dot(o2w[2].xyz, dpdv_obj));
+    return Surface(p, normal, magnitude, inst.material, uv, dpdu, dpdv);
 }
 // #endif
 
@@ -105,14 +131,28 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
     }
 // #endif
 // #if MESH
-    let tri = triangles[hit.item - num_instances];
+    let index = hit.item - num_instances;
+    let tri = triangles[index];
     let p0 = tri.p0;
     let p1 = tri.p1;
     let p2 = tri.p2;
     // The barycentric point is exact to a few ulps of the vertices (unlike o + t·d).
-    let p = p0 * (1.0 - hit.b1 - hit.b2) + p1 * hit.b1 + p2 * hit.b2;
+    let b0 = 1.0 - hit.b1 - hit.b2;
+    let p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
     let magnitude = max_element(max(max(abs(p0), abs(p1)), abs(p2)));
-    return Surface(p, normalize(cross(p1 - p0, p2 - p0)), magnitude, tri.material);
+    let normal = normalize(cross(p1 - p0, p2 - p0));
+    var uv = vec2<f32>(0.0);
+    var dpdu = vec3<f32>(0.0);
+    var dpdv = vec3<f32>(0.0);
+// #if TEXTURE|BUMP
+    // Triangle UVs are packed only for scenes that use them.
+    let t = triangle_uvs[index];
+    uv = t.uv0 * b0 + t.uv1 * hit.b1 + t.uv2 * hit.b2;
+    let frame = triangle_frame(p0, p1, p2, t.uv0, t.uv1, t.uv2, normal);
+    dpdu = frame[0];
+    dpdv = frame[1];
+// #endif
+    return Surface(p, normal, magnitude, tri.material, uv, dpdu, dpdv);
 // #else
     return Surface();
 // #endif
@@ -135,17 +175,21 @@ fn phong_power(base: f32, exponent: f32) -> f32 {
 // Mirror of src/cpu/shade.rs::shade_phong — change both.
 fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3<f32> {
     let m = materials[s.material];
-    var colour = m.kd * globals.ambient;
+    var phong = Phong(m.kd, m.ks);
+// #if TEXTURE
+    phong = surface_colours(m, s);
+// #endif
+    var colour = phong.kd * globals.ambient;
     let origin = offset_ray(s.p, n, s.magnitude);
     for (var i = 0u; i < globals.num_lights; i++) {
         let light = lights[i];
 // #if AREA_LIGHT
         if light.kind == LIGHT_AREA {
-            colour += area_light(s, n, v, origin, light, i, seed);
+            colour += area_light(s, phong, n, v, origin, light, i, seed);
             continue;
         }
 // #endif
-        colour += point_light(s, n, v, origin, light.position, light);
+        colour += point_light(s, phong, n, v, origin, light.position, light);
     }
     return colour;
 }
@@ -154,7 +198,7 @@ fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3
 // when the point is behind the surface or a shadow ray from origin is blocked (dimmed
 // instead by the glass it crosses, in scenes with refraction).
 // Mirror of src/cpu/shade.rs::point_light — change both.
-fn point_light(s: Surface, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: GpuLight) -> vec3<f32> {
+fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: GpuLight) -> vec3<f32> {
     let m = materials[s.material];
     let to_light = position - s.p;
     let distance = length(to_light);
@@ -186,14 +230,14 @@ fn point_light(s: Surface, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, positi
     let c1 = light.falloff.y;
     let c2 = light.falloff.z;
     let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
-    return (m.kd * n_dot_l + m.ks * specular) * light.colour * attenuation * transmittance;
+    return (phong.kd * n_dot_l + phong.ks * specular) * light.colour * attenuation * transmittance;
 }
 
 // #if AREA_LIGHT
 // Light from area light number `index`: the mean of point_light over one jittered point
 // in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n).
 // Mirror of src/cpu/shade.rs::area_light — change both.
-fn area_light(s: Surface, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: GpuLight, index: u32, seed: SampleSeed) -> vec3<f32> {
+fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: GpuLight, index: u32, seed: SampleSeed) -> vec3<f32> {
     let k = light.samples;
     let scale = 1.0 / f32(k);
     var sum = vec3<f32>(0.0);
@@ -201,7 +245,7 @@ fn area_light(s: Surface, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: 
         let a = (f32(stratum % k) + shadow_random(seed, index, stratum, 0u)) * scale - 0.5;
         let b = (f32(stratum / k) + shadow_random(seed, index, stratum, 1u)) * scale - 0.5;
         let position = light.position + light.edge_u * a + light.edge_v * b;
-        sum += point_light(s, n, v, origin, position, light);
+        sum += point_light(s, phong, n, v, origin, position, light);
     }
     return sum * (scale * scale);
 }

@@ -39,11 +39,24 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             continue;
         }
         let s = surface_at(ray, hit);
-        // Two-sided shading: the normal faces the incoming ray.
-        var n = s.normal;
-        if dot(s.normal, ray.dir) > 0.0 {
-            n = -s.normal;
+// #if TEXTURE
+        // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
+        if g.debug_view == DEBUG_VIEW_UV {
+            let uv = s.uv - floor(s.uv);
+            colour += entry.weight * vec3<f32>(uv.x, uv.y, 0.0);
+            continue;
         }
+// #endif
+        // Two-sided shading: the normal faces the incoming ray. Secondary rays leave along
+        // this geometric side (a bumped normal may lean across the surface).
+        var facing = s.normal;
+        if dot(s.normal, ray.dir) > 0.0 {
+            facing = -s.normal;
+        }
+        var n = facing;
+// #if BUMP
+        n = shading_normal(s, n);
+// #endif
         let v = -ray.dir;
 // #if REFRACTION
         shading_media = entry.media;
@@ -64,7 +77,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             if max_element(weight) >= g.min_weight && size < RAY_STACK_SIZE {
                 // The transmitted ray starts on the far side of the surface.
                 stack[size] = StackEntry(
-                    Ray(offset_ray(s.p, -n, s.magnitude), crossing.dir),
+                    Ray(offset_ray(s.p, -facing, s.magnitude), crossing.dir),
                     weight,
                     entry.depth + 1u,
                     crossing.media,
@@ -80,7 +93,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
                 let dir = ray.dir - n * (2.0 * dot(ray.dir, n));
                 // A reflected ray stays in the medium it came from.
                 var next = entry;
-                next.ray = Ray(offset_ray(s.p, n, s.magnitude), normalize(dir));
+                next.ray = Ray(offset_ray(s.p, facing, s.magnitude), normalize(dir));
                 next.weight = weight;
                 next.depth = entry.depth + 1u;
                 stack[size] = next;

@@ -26,6 +26,25 @@ pub const MATERIAL_REFRACTIVE: u32 = 2;
 /// `GpuMaterial::*_texture` meaning "no texture".
 pub const NO_TEXTURE: u32 = u32::MAX;
 
+/// The texture table at the start of `PackedScene::texels`: texture i's header is the
+/// words `TEXTURE_HEADER_WORDS·i ..` = (offset of its first texel in `texels`, width,
+/// height); texels follow, row-major from the image's top row, one RGBA8 word each
+/// (r in the low byte). See `pack::texture`.
+pub const TEXTURE_HEADER_WORDS: u32 = 3;
+/// Rec. 709 luminance weights: a bump map's height is the luminance of its texels.
+pub const LUMINANCE_R: f32 = 0.2126;
+pub const LUMINANCE_G: f32 = 0.7152;
+pub const LUMINANCE_B: f32 = 0.0722;
+
+/// Smallest sine of the angle between ∂p/∂u and ∂p/∂v for which bump mapping tilts the
+/// normal (a scale-free test: below it the tangent frame is degenerate).
+pub const BUMP_MIN_FRAME_SINE: f32 = 1.0e-4;
+
+/// Debug views (`GpuGlobals::debug_view`): the normal image, or colour = (u mod 1,
+/// v mod 1, 0) of the first surface each primary ray hits.
+pub const DEBUG_VIEW_NONE: u32 = 0;
+pub const DEBUG_VIEW_UV: u32 = 1;
+
 /// Anti-aliasing modes (`GpuGlobals::aa_mode`).
 pub const AA_NONE: u32 = 0;
 pub const AA_UNIFORM: u32 = 1;
@@ -103,6 +122,9 @@ pub fn wgsl_prelude() -> String {
         ("MATERIAL_REFLECTIVE", MATERIAL_REFLECTIVE),
         ("MATERIAL_REFRACTIVE", MATERIAL_REFRACTIVE),
         ("NO_TEXTURE", NO_TEXTURE),
+        ("TEXTURE_HEADER_WORDS", TEXTURE_HEADER_WORDS),
+        ("DEBUG_VIEW_NONE", DEBUG_VIEW_NONE),
+        ("DEBUG_VIEW_UV", DEBUG_VIEW_UV),
         ("AA_NONE", AA_NONE),
         ("AA_UNIFORM", AA_UNIFORM),
         ("AA_ADAPTIVE", AA_ADAPTIVE),
@@ -134,6 +156,10 @@ pub fn wgsl_prelude() -> String {
         ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),
         ("TWO_PI", TWO_PI),
         ("AIR_IOR", AIR_IOR),
+        ("BUMP_MIN_FRAME_SINE", BUMP_MIN_FRAME_SINE),
+        ("LUMINANCE_R", LUMINANCE_R),
+        ("LUMINANCE_G", LUMINANCE_G),
+        ("LUMINANCE_B", LUMINANCE_B),
         ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
         ("TORUS_ROOT_TOLERANCE", TORUS_ROOT_TOLERANCE),
         ("TORUS_BOUND_MARGIN", TORUS_BOUND_MARGIN),

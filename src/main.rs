@@ -3,7 +3,7 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES, MAX_TRACE_DEPTH};
 use glint::scene::options::{parse_background, parse_grid_mode};
-use glint::scene::{AaMode, Background, GridMode, OptionOverrides, TransformOrder};
+use glint::scene::{AaMode, Background, DebugView, GridMode, OptionOverrides, TransformOrder};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -111,15 +111,19 @@ struct RenderArgs {
     /// Acceleration: auto, off (brute force) or a density λ (cells ≈ λ × items).
     #[arg(long, value_parser = parse_grid_mode)]
     grid: Option<GridMode>,
-    /// Write a diagnostic image instead of the render. aa-samples: adaptive AA's leaf
-    /// squares per pixel on the magma ramp, log scale (black: 1, not split; pale yellow:
-    /// 4^aa-depth); needs adaptive AA.
+    /// Debug output. uv: render colour = (u mod 1, v mod 1, 0) of the first surface hit
+    /// (the scene option `debug = 'uv'`; none turns a scene's debug view off).
+    /// aa-samples: write adaptive AA's leaf squares per pixel instead of the render, on
+    /// the magma ramp, log scale (black: 1, not split; pale yellow: 4^aa-depth); needs
+    /// adaptive AA.
     #[arg(long, value_enum)]
     debug: Option<DebugArg>,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum DebugArg {
+    None,
+    Uv,
     AaSamples,
 }
 
@@ -182,6 +186,11 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             min_weight: args.min_weight,
             background: args.background,
             grid: args.grid,
+            debug: match args.debug {
+                Some(DebugArg::None) => Some(DebugView::None),
+                Some(DebugArg::Uv) => Some(DebugView::Uv),
+                Some(DebugArg::AaSamples) | None => None,
+            },
             width: args.width.filter(|&w| w > 0),
             height: args.height.filter(|&h| h > 0),
         },
@@ -195,9 +204,8 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             BackendArg::Auto => glint::pipeline::Backend::Auto,
         },
         adapter: args.adapter,
-        debug: args.debug.map(|d| match d {
-            DebugArg::AaSamples => glint::pipeline::DebugView::AaSamples,
-        }),
+        debug: (args.debug == Some(DebugArg::AaSamples))
+            .then_some(glint::pipeline::DebugImage::AaSamples),
     };
     if args.width == Some(0) || args.height == Some(0) {
         return Err(("--width and --height must be positive".into(), 2));

@@ -34,12 +34,12 @@ pub struct RenderSettings {
     /// `--adapter`: a substring of the GPU adapter's name.
     pub adapter: Option<String>,
     /// `--debug`: write a diagnostic image instead of the render.
-    pub debug: Option<DebugView>,
+    pub debug: Option<DebugImage>,
 }
 
 /// `--debug`: a diagnostic image written in place of the render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DebugView {
+pub enum DebugImage {
     /// Adaptive anti-aliasing's leaf squares per pixel ([`crate::aa_map`]).
     AaSamples,
 }
@@ -307,7 +307,7 @@ pub fn run_scene(
         // Refuse an unwritable path before spending time on the render.
         check_output_path(&output).map_err(fail)?;
         let mut rendered = match settings.debug {
-            Some(DebugView::AaSamples) => {
+            Some(DebugImage::AaSamples) => {
                 render_aa_samples_map(graph, request, &settings.overrides, tracer)?
             }
             None => render_request(

@@ -179,6 +179,50 @@ fn missing_obj() {
 }
 
 #[test]
+fn missing_and_undecodable_textures() {
+    let scene = format!(
+        "root = gr.node('root')\nm = gr.material('m')\nm:set_diffuse('nothere.png')\n{GOOD_RENDER}"
+    );
+    assert_fails(
+        "missing-texture",
+        &scene,
+        &[],
+        &[],
+        3,
+        &[
+            "scene.lua:3: material:set_diffuse: argument 1 (file): cannot read texture",
+            "nothere.png",
+        ],
+    );
+    let scene = format!(
+        "root = gr.node('root')\nm = gr.material('m')\nm:set_bump('junk.png', 2)\n{GOOD_RENDER}"
+    );
+    assert_fails(
+        "junk-texture",
+        &scene,
+        &[("junk.png", "not a png")],
+        &[],
+        3,
+        &[
+            "scene.lua:3: material:set_bump: argument 1 (file): cannot decode texture",
+            "junk.png",
+        ],
+    );
+}
+
+#[test]
+fn unknown_debug_view_is_a_usage_error() {
+    assert_fails(
+        "debug-view",
+        GOOD_RENDER,
+        &[],
+        &["--debug", "normals"],
+        2,
+        &["none", "uv"],
+    );
+}
+
+#[test]
 fn malformed_obj() {
     let scene = format!(
         "root = gr.node('root')\nm = gr.mesh('m', 'bad.obj')\nroot:add_child(m)\n{GOOD_RENDER}"

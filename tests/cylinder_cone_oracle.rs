@@ -39,6 +39,7 @@ fn pack_one(kind: ObjectKind, m: DMat4) -> PackedScene {
         }],
         triangles: Vec::new(),
         materials: vec![Material::default()],
+        textures: Vec::new(),
         lights: Vec::new(),
         camera: Camera {
             eye: DVec3::new(0.0, 0.0, 10.0),

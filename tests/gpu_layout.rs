@@ -5,7 +5,9 @@
 use glint::gpu::buffers::GpuTile;
 use glint::gpu::probe::{ProbeRay, ProbeResult};
 use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
-use glint::pack::{GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuTriangle, SceneFeatures};
+use glint::pack::{
+    GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuTriangle, GpuTriangleUv, SceneFeatures,
+};
 use std::mem::{offset_of, size_of};
 
 /// (name, offset) of each listed field of a Rust struct, in the order given.
@@ -67,6 +69,7 @@ fn wgsl_structs_match_rust_layout() {
             _pad2
         }),
     );
+    check_struct(&render, rust_fields!(GpuTriangleUv { uv0, uv1, uv2 }));
     check_struct(
         &render,
         rust_fields!(GpuMaterial {
@@ -126,7 +129,11 @@ fn wgsl_structs_match_rust_layout() {
             aa_threshold,
             aa_depth,
             camera_media_count,
-            camera_media
+            camera_media,
+            debug_view,
+            _pad0,
+            _pad1,
+            _pad2
         }),
     );
     check_struct(
@@ -394,6 +401,39 @@ fn refraction_code_only_with_refraction() {
                 assert_eq!(
                     source.contains(code),
                     features.contains(SceneFeatures::REFRACTION),
+                    "[{features}] {entry:?}: {code}"
+                );
+            }
+        }
+    }
+}
+
+/// Texture lookups (and the UV debug view, which pack turns TEXTURE on for) are compiled
+/// only into scenes with textures; the shared texel and UV code with textures or bump
+/// maps; bump mapping only with bump maps.
+#[test]
+fn texture_and_bump_code_only_with_textures_and_bump_maps() {
+    for features in all_feature_sets() {
+        let texture = features.contains(SceneFeatures::TEXTURE);
+        let bump = features.contains(SceneFeatures::BUMP);
+        let mesh = features.contains(SceneFeatures::MESH);
+        for entry in [Entry::Render, Entry::Probe] {
+            let source = assemble(features, entry);
+            let expect = [
+                ("fn surface_colours(", texture),
+                ("fn sample_texture(", texture || bump),
+                ("fn texel(", texture || bump),
+                ("triangle_uvs[", mesh && (texture || bump)),
+                ("fn triangle_frame(", mesh && (texture || bump)),
+                ("fn bump_normal(", bump),
+                ("fn height_gradient(", bump),
+                ("shading_normal(s, n)", bump && entry == Entry::Render),
+                ("DEBUG_VIEW_UV {", texture && entry == Entry::Render),
+            ];
+            for (code, present) in expect {
+                assert_eq!(
+                    source.contains(code),
+                    present,
                     "[{features}] {entry:?}: {code}"
                 );
             }

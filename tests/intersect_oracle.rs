@@ -32,6 +32,7 @@ fn scene(objects: Vec<Object>, triangles: Vec<Triangle>, grid: GridMode) -> Scen
         objects,
         triangles,
         materials: vec![Material::default()],
+        textures: Vec::new(),
         lights: Vec::new(),
         camera: Camera {
             eye: DVec3::new(0.0, 0.0, 10.0),
@@ -424,6 +425,7 @@ fn triangle_agrees_with_f64_oracle() {
             vec![Triangle {
                 positions,
                 material: 0,
+                uvs: [[0.0; 2]; 3],
             }],
             GridMode::Auto,
         ))
@@ -625,6 +627,7 @@ fn jittered_grid(rng: &mut Rng, m: DMat4) -> (Vec<Triangle>, Vec<Vec<Vec3>>) {
             triangles.extend(tris.map(|positions| Triangle {
                 positions,
                 material: 0,
+                uvs: [[0.0; 2]; 3],
             }));
         }
     }

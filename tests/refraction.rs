@@ -56,6 +56,7 @@ fn scene(objects: Vec<Object>, materials: Vec<Material>, eye: DVec3, size: u32) 
         objects,
         triangles: vec![],
         materials,
+        textures: Vec::new(),
         lights: vec![],
         camera: Camera {
             eye,

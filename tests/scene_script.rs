@@ -568,8 +568,19 @@ fn undefined_gr_function_is_a_readable_error() {
     let m = message_of("\nc = gr.teapot('c')\n");
     assert!(m.starts_with(":2: "), "{m}");
     assert!(m.contains("teapot"), "{m}");
+    // Textures are supported now: a missing one names the path tried.
     let m = message_of("m = gr.material('m')\nm:set_diffuse('wood.png')\n");
-    assert!(m.contains("textures are not supported yet"), "{m}");
+    assert!(
+        m.contains(":2: material:set_diffuse: argument 1 (file): cannot read texture")
+            && m.contains("wood.png"),
+        "{m}"
+    );
+    // A mirror colour is no texture.
+    let m = message_of("m = gr.material('m')\nm:set_reflection('wood.png')\n");
+    assert!(
+        m.contains(":2: material:set_reflection: argument 1 (colour) must be a grey number"),
+        "{m}"
+    );
 }
 
 #[test]

@@ -31,6 +31,7 @@ fn sphere_scene(
         }],
         triangles: vec![],
         materials: vec![material],
+        textures: Vec::new(),
         lights: vec![light],
         camera: Camera {
             eye: DVec3::new(0.0, 0.0, 10.0),

@@ -160,6 +160,7 @@ fn pack_torus(rin: f64, rout: f64, m: DMat4) -> PackedScene {
         }],
         triangles: Vec::new(),
         materials: vec![Material::default()],
+        textures: Vec::new(),
         lights: Vec::new(),
         camera: Camera {
             eye: DVec3::new(0.0, 0.0, 10.0),

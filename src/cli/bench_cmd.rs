@@ -200,6 +200,7 @@ pub fn random_triangle_scene(n: usize, seed: u64) -> Scene {
             Triangle {
                 positions: [0, 1, 2].map(|_| centre + (rng.vec() - 0.5) * size),
                 material: 0,
+                uvs: [[0.0; 2]; 3],
             }
         })
         .collect();
@@ -207,6 +208,7 @@ pub fn random_triangle_scene(n: usize, seed: u64) -> Scene {
         objects: Vec::new(),
         triangles,
         materials: vec![crate::scene::Material::default()],
+        textures: Vec::new(),
         lights: Vec::new(),
         camera: Camera {
             eye: DVec3::new(0.5, 0.5, 3.0),

@@ -10,8 +10,10 @@ pub mod ray;
 pub mod render;
 pub mod rng;
 pub mod shade;
+pub mod texture;
 pub mod torus;
 pub mod trace;
 pub mod traverse;
+pub mod uv;
 
 pub use render::{render, RenderProgress};

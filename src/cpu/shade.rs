@@ -5,11 +5,13 @@ use super::dielectric::{shadow_transmittance, MediumStack};
 use super::intersect::{to_object_space, triangle_vertices};
 use super::ray::{offset_ray, Ray};
 use super::rng::{shadow_random, SampleSeed};
+use super::texture::surface_colours;
 use super::torus::torus_surface;
 use super::traverse::{any_hit, Hit, TraversalCounters};
+use super::uv::{cube_surface, sphere_surface, triangle_frame};
 use crate::constants::{KIND_CONE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, LIGHT_AREA};
 use crate::pack::{GpuGlobals, GpuInstance, GpuLight, PackedScene, SceneFeatures};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// What shading needs to know about a hit point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,6 +24,12 @@ pub struct Surface {
     /// Largest coordinate magnitude that went into `p` (for `offset_ray`).
     pub magnitude: f32,
     pub material: u32,
+    /// Texture coordinates (conventions in `cpu::uv`; zero on triangles of scenes without
+    /// textures or bump maps, which pack no triangle UVs).
+    pub uv: Vec2,
+    /// World-space ∂p/∂u and ∂p/∂v (the tangent frame of bump mapping; unnormalised).
+    pub dpdu: Vec3,
+    pub dpdv: Vec3,
 }
 
 /// Largest |entry| sum over the rows of an affine 3×4 matrix: bounds the magnitude of
@@ -39,40 +47,24 @@ fn affine_magnitude(rows: &[[f32; 4]; 3]) -> f32 {
 fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
     let (oo, od) = to_object_space(inst, ray.origin, ray.dir);
     let mut p_obj = oo + od * t;
-    let n_obj;
+    let (n_obj, uv, dpdu_obj, dpdv_obj);
     if inst.kind == KIND_CYLINDER {
         let s = cylinder_surface(p_obj);
-        p_obj = s.p;
-        n_obj = s.normal;
+        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
     } else if inst.kind == KIND_CONE {
         let [zmin, zmax] = inst.params;
         let s = cone_surface(p_obj, zmin, zmax);
-        p_obj = s.p;
-        n_obj = s.normal;
+        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
     } else if inst.kind == KIND_SPHERE {
-        // Reproject onto the unit sphere.
-        p_obj = p_obj.normalize();
-        n_obj = p_obj;
+        let s = sphere_surface(p_obj);
+        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
     } else if inst.kind == KIND_TORUS {
-        // Project onto the tube (the tangent frame and UV are unused until bump mapping).
+        // Project onto the tube.
         let s = torus_surface(p_obj, inst.params[0], inst.params[1]);
-        p_obj = s.p;
-        n_obj = s.normal;
+        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
     } else {
-        // The face nearest the point: snap the point onto it.
-        let dist = p_obj.abs().min((p_obj - Vec3::ONE).abs());
-        let axis = if dist.x <= dist.y && dist.x <= dist.z {
-            0
-        } else if dist.y <= dist.z {
-            1
-        } else {
-            2
-        };
-        let upper = p_obj[axis] > 0.5;
-        p_obj[axis] = if upper { 1.0 } else { 0.0 };
-        let mut n = Vec3::ZERO;
-        n[axis] = if upper { 1.0 } else { -1.0 };
-        n_obj = n;
+        let s = cube_surface(p_obj);
+        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
     }
     let o2w = &inst.object_to_world;
     let p = Vec3::new(
@@ -86,12 +78,23 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
         + Vec3::new(w2o[1][0], w2o[1][1], w2o[1][2]) * n_obj.y
         + Vec3::new(w2o[2][0], w2o[2][1], w2o[2][2]) * n_obj.z)
         .normalize();
+    // Tangents transform like directions: the linear part of object→world.
+    let to_world = |d: Vec3| {
+        Vec3::new(
+            Vec3::new(o2w[0][0], o2w[0][1], o2w[0][2]).dot(d),
+            Vec3::new(o2w[1][0], o2w[1][1], o2w[1][2]).dot(d),
+            Vec3::new(o2w[2][0], o2w[2][1], o2w[2][2]).dot(d),
+        )
+    };
     Surface {
         p,
         normal,
         // Object points may lie beyond the unit box (a torus reaches rin + rout).
         magnitude: affine_magnitude(o2w) * p_obj.abs().max_element().max(1.0),
         material: inst.material,
+        uv,
+        dpdu: to_world(dpdu_obj),
+        dpdv: to_world(dpdv_obj),
     }
 }
 
@@ -102,16 +105,32 @@ pub fn surface_at(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
     if hit.item < num_instances {
         return instance_surface(&scene.instances[hit.item as usize], ray, hit.t);
     }
-    let tri = &scene.triangles[(hit.item - num_instances) as usize];
+    let index = (hit.item - num_instances) as usize;
+    let tri = &scene.triangles[index];
     let [p0, p1, p2] = triangle_vertices(tri);
     // The barycentric point is exact to a few ulps of the vertices (unlike o + t·d).
-    let p = p0 * (1.0 - hit.b1 - hit.b2) + p1 * hit.b1 + p2 * hit.b2;
+    let b0 = 1.0 - hit.b1 - hit.b2;
+    let p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
     let magnitude = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
+    let normal = (p1 - p0).cross(p2 - p0).normalize();
+    let (mut uv, mut dpdu, mut dpdv) = (Vec2::ZERO, Vec3::ZERO, Vec3::ZERO);
+    // Triangle UVs are packed only for scenes that use them.
+    if scene.features.contains(SceneFeatures::TEXTURE)
+        || scene.features.contains(SceneFeatures::BUMP)
+    {
+        let t = &scene.triangle_uvs[index];
+        let (uv0, uv1, uv2) = (Vec2::from(t.uv0), Vec2::from(t.uv1), Vec2::from(t.uv2));
+        uv = uv0 * b0 + uv1 * hit.b1 + uv2 * hit.b2;
+        (dpdu, dpdv) = triangle_frame([p0, p1, p2], [uv0, uv1, uv2], normal);
+    }
     Surface {
         p,
-        normal: (p1 - p0).cross(p2 - p0).normalize(),
+        normal,
         magnitude,
         material: tri.material,
+        uv,
+        dpdu,
+        dpdv,
     }
 }
 
@@ -144,7 +163,14 @@ pub fn shade_phong(
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let m = &scene.materials[s.material as usize];
-    let mut colour = Vec3::from(m.kd) * Vec3::from(scene.globals.ambient);
+    let mut phong = Phong {
+        kd: Vec3::from(m.kd),
+        ks: Vec3::from(m.ks),
+    };
+    if scene.features.contains(SceneFeatures::TEXTURE) {
+        phong = surface_colours(scene, m, s);
+    }
+    let mut colour = phong.kd * Vec3::from(scene.globals.ambient);
     let origin = offset_ray(s.p, n, s.magnitude);
     for (index, light) in scene.lights[..scene.globals.num_lights as usize]
         .iter()
@@ -154,6 +180,7 @@ pub fn shade_phong(
             colour += area_light(
                 scene,
                 s,
+                phong,
                 n,
                 v,
                 origin,
@@ -167,6 +194,7 @@ pub fn shade_phong(
             colour += point_light(
                 scene,
                 s,
+                phong,
                 n,
                 v,
                 origin,
@@ -180,6 +208,14 @@ pub fn shade_phong(
     colour
 }
 
+/// The Phong colours at a shading point (the material's, or its textures' at the UV).
+// Mirror of shaders/shade.wgsl::Phong — change both.
+#[derive(Clone, Copy, Debug)]
+pub struct Phong {
+    pub kd: Vec3,
+    pub ks: Vec3,
+}
+
 /// Light from a point at `position` with `light`'s colour and falloff: the A4 term, or
 /// zero when the point is behind the surface or a shadow ray from `origin` is blocked
 /// (dimmed instead by the glass it crosses, in scenes with refraction).
@@ -188,6 +224,7 @@ pub fn shade_phong(
 fn point_light(
     scene: &PackedScene,
     s: &Surface,
+    phong: Phong,
     n: Vec3,
     v: Vec3,
     origin: Vec3,
@@ -228,7 +265,7 @@ fn point_light(
     let specular = phong_power(r.dot(v), m.shininess);
     let [c0, c1, c2] = light.falloff;
     let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
-    (Vec3::from(m.kd) * n_dot_l + Vec3::from(m.ks) * specular)
+    (phong.kd * n_dot_l + phong.ks * specular)
         * Vec3::from(light.colour)
         * attenuation
         * transmittance
@@ -241,6 +278,7 @@ fn point_light(
 fn area_light(
     scene: &PackedScene,
     s: &Surface,
+    phong: Phong,
     n: Vec3,
     v: Vec3,
     origin: Vec3,
@@ -262,7 +300,9 @@ fn area_light(
         let a = ((stratum % k) as f32 + shadow_random(seed, index, stratum, 0)) * scale - 0.5;
         let b = ((stratum / k) as f32 + shadow_random(seed, index, stratum, 1)) * scale - 0.5;
         let position = centre + u * a + w * b;
-        sum += point_light(scene, s, n, v, origin, media, position, light, counters);
+        sum += point_light(
+            scene, s, phong, n, v, origin, media, position, light, counters,
+        );
     }
     sum * (scale * scale)
 }

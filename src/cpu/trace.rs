@@ -6,8 +6,11 @@ use super::dielectric::{dielectric_interface, MediumStack};
 use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
 use super::shade::{background, shade_phong, surface_at};
+use super::texture::shading_normal;
 use super::traverse::{closest_hit, TraversalCounters};
-use crate::constants::{MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, RAY_STACK_SIZE, T_MISS};
+use crate::constants::{
+    DEBUG_VIEW_UV, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, RAY_STACK_SIZE, T_MISS,
+};
 use crate::pack::{PackedScene, SceneFeatures};
 use glam::Vec3;
 
@@ -53,12 +56,23 @@ pub fn trace_ray(
             continue;
         }
         let s = surface_at(scene, &ray, &hit);
-        // Two-sided shading: the normal faces the incoming ray.
-        let n = if s.normal.dot(ray.dir) > 0.0 {
+        // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
+        if g.debug_view == DEBUG_VIEW_UV {
+            let uv = s.uv - s.uv.floor();
+            colour += entry.weight * Vec3::new(uv.x, uv.y, 0.0);
+            continue;
+        }
+        // Two-sided shading: the normal faces the incoming ray. Secondary rays leave along
+        // this geometric side (a bumped normal may lean across the surface).
+        let facing = if s.normal.dot(ray.dir) > 0.0 {
             -s.normal
         } else {
             s.normal
         };
+        let mut n = facing;
+        if scene.features.contains(SceneFeatures::BUMP) {
+            n = shading_normal(scene, &s, n);
+        }
         let v = -ray.dir;
         let shade_seed = SampleSeed {
             depth: entry.depth,
@@ -82,7 +96,7 @@ pub fn trace_ray(
                 // The transmitted ray starts on the far side of the surface.
                 stack[size] = StackEntry {
                     ray: Ray {
-                        origin: offset_ray(s.p, -n, s.magnitude),
+                        origin: offset_ray(s.p, -facing, s.magnitude),
                         dir: crossing.dir,
                     },
                     weight,
@@ -99,7 +113,7 @@ pub fn trace_ray(
                 // A reflected ray stays in the medium it came from.
                 stack[size] = StackEntry {
                     ray: Ray {
-                        origin: offset_ray(s.p, n, s.magnitude),
+                        origin: offset_ray(s.p, facing, s.magnitude),
                         dir: dir.normalize(),
                     },
                     weight,

@@ -76,12 +76,14 @@ const COMMON: &[(&str, &str)] = &[
         include_str!("../../shaders/cylinder_cone.wgsl"),
     ),
     ("torus.wgsl", include_str!("../../shaders/torus.wgsl")),
+    ("uv.wgsl", include_str!("../../shaders/uv.wgsl")),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
     (
         "dielectric.wgsl",
         include_str!("../../shaders/dielectric.wgsl"),
     ),
+    ("texture.wgsl", include_str!("../../shaders/texture.wgsl")),
 ];
 const RENDER: &[(&str, &str)] = &[
     ("trace.wgsl", include_str!("../../shaders/trace.wgsl")),

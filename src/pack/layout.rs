@@ -34,6 +34,17 @@ pub struct GpuTriangle {
     pub _pad2: u32,
 }
 
+/// The UVs of a triangle's corners (p0, p1, p2), in a separate array parallel to the
+/// triangles (filled only when the scene has textures or bump maps, so untextured scenes
+/// keep the 48-byte triangles that traversal reads alone).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuTriangleUv {
+    pub uv0: [f32; 2],
+    pub uv1: [f32; 2],
+    pub uv2: [f32; 2],
+}
+
 /// A4 Phong material plus the mirror colour, the dielectric's index and texture maps.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
@@ -124,12 +135,18 @@ pub struct GpuGlobals {
     pub camera_media_count: u32,
     /// Their indices, outermost first: the medium stack primary rays start with.
     pub camera_media: [f32; MEDIUM_STACK_SIZE as usize],
+    /// `DEBUG_VIEW_*` tag (render option `debug`).
+    pub debug_view: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
 }
 
 const _: () = assert!(std::mem::size_of::<GpuInstance>() == 112);
 const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuTriangleUv>() == 24);
 const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 80);
-const _: () = assert!(std::mem::size_of::<GpuGlobals>() == 208);
+const _: () = assert!(std::mem::size_of::<GpuGlobals>() == 224);
 // The WGSL twin holds camera_media as one vec4 (a uniform array would need a 16-byte stride).
 const _: () = assert!(MEDIUM_STACK_SIZE == 4);

@@ -3,11 +3,12 @@
 
 pub mod features;
 pub mod layout;
+pub mod texture;
 
 use crate::accel::grid::{Grid, GridBuildStats};
 use crate::constants::*;
 use crate::scene::flatten::{ObjectKind, Scene, Triangle};
-use crate::scene::{AaMode, Background, GridMode};
+use crate::scene::{AaMode, Background, DebugView, GridMode};
 pub use features::SceneFeatures;
 use glam::{DMat4, DVec3};
 pub use layout::*;
@@ -27,8 +28,11 @@ pub struct PackedScene {
     pub cell_items: Vec<u32>,
     /// CSG programs, post-order (see `cpu::csg`); empty without CSG.
     pub csg_program: Vec<u32>,
-    /// Texture table and texels (see `cpu::texture`); empty without textures.
+    /// Texture table and texels (layout in [`texture`]); empty without textures.
     pub texels: Vec<u32>,
+    /// Corner UVs of each triangle, parallel to `triangles`; empty unless the scene has
+    /// the TEXTURE or BUMP feature.
+    pub triangle_uvs: Vec<GpuTriangleUv>,
     pub features: SceneFeatures,
     pub grid_stats: GridBuildStats,
 }
@@ -69,10 +73,13 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
             }
         })
         .collect();
-    let triangles: Vec<GpuTriangle> = spatial_order(&scene.triangles)
+    let triangle_order: Vec<usize> = spatial_order(&scene.triangles)
         .into_iter()
-        .map(|i| &scene.triangles[i])
-        .filter(|t| !is_degenerate(&t.positions))
+        .filter(|&i| !is_degenerate(&scene.triangles[i].positions))
+        .collect();
+    let triangles: Vec<GpuTriangle> = triangle_order
+        .iter()
+        .map(|&i| &scene.triangles[i])
         .map(|t| GpuTriangle {
             p0: t.positions[0].as_vec3().to_array(),
             material: t.material as u32,
@@ -103,10 +110,10 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
                 flags: if reflective { MATERIAL_REFLECTIVE } else { 0 } | refractive,
                 reflection: m.reflection,
                 ior: m.ior.unwrap_or(AIR_IOR),
-                diffuse_texture: NO_TEXTURE,
-                specular_texture: NO_TEXTURE,
-                bump_texture: NO_TEXTURE,
-                bump_strength: 0.0,
+                diffuse_texture: m.diffuse_map.map_or(NO_TEXTURE, |t| t as u32),
+                specular_texture: m.specular_map.map_or(NO_TEXTURE, |t| t as u32),
+                bump_texture: m.bump_map.map_or(NO_TEXTURE, |t| t as u32),
+                bump_strength: m.bump_strength,
             }
         })
         .collect();
@@ -121,6 +128,31 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFRACTIVE != 0 && used(m)) {
         features.insert(SceneFeatures::REFRACTION);
     }
+    let textured =
+        |m: &GpuMaterial| m.diffuse_texture != NO_TEXTURE || m.specular_texture != NO_TEXTURE;
+    // The UV debug view needs the UV code that textures bring.
+    if scene.options.debug == DebugView::Uv
+        || (0..materials.len()).any(|m| textured(&materials[m]) && used(m))
+    {
+        features.insert(SceneFeatures::TEXTURE);
+    }
+    if (0..materials.len()).any(|m| materials[m].bump_texture != NO_TEXTURE && used(m)) {
+        features.insert(SceneFeatures::BUMP);
+    }
+    let needs_uv =
+        features.contains(SceneFeatures::TEXTURE) || features.contains(SceneFeatures::BUMP);
+    let (texels, triangle_uvs) = if needs_uv {
+        let uvs = triangle_order
+            .iter()
+            .map(|&i| {
+                let [uv0, uv1, uv2] = scene.triangles[i].uvs;
+                GpuTriangleUv { uv0, uv1, uv2 }
+            })
+            .collect();
+        (texture::pack_texels(&scene.textures), uvs)
+    } else {
+        (Vec::new(), Vec::new())
+    };
     let shadow_samples = scene.options.shadow_samples;
     if scene.lights.iter().any(|l| l.area.is_some()) {
         features.insert(SceneFeatures::AREA_LIGHT);
@@ -189,7 +221,8 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         cell_start: grid.cell_start,
         cell_items: grid.cell_items,
         csg_program: Vec::new(),
-        texels: Vec::new(),
+        texels,
+        triangle_uvs,
         features,
         grid_stats: grid.stats,
     };
@@ -250,6 +283,13 @@ fn make_globals(
         aa_depth: options.aa_depth.min(MAX_AA_DEPTH),
         camera_media_count: 0,
         camera_media: [AIR_IOR; MEDIUM_STACK_SIZE as usize],
+        debug_view: match options.debug {
+            DebugView::None => DEBUG_VIEW_NONE,
+            DebugView::Uv => DEBUG_VIEW_UV,
+        },
+        _pad0: 0,
+        _pad1: 0,
+        _pad2: 0,
     }
 }
 

@@ -43,6 +43,8 @@ pub struct Object {
 pub struct Triangle {
     pub positions: [DVec3; 3],
     pub material: MaterialId,
+    /// The corners' UVs: the mesh's own, else the planar projection of `scene::uv`.
+    pub uvs: [[f32; 2]; 3],
 }
 
 /// The flattened scene of one `gr.render` call.
@@ -52,6 +54,8 @@ pub struct Scene {
     pub triangles: Vec<Triangle>,
     /// All materials of the graph, plus the default one at index `default_material`.
     pub materials: Vec<Material>,
+    /// The graph's textures (materials index them).
+    pub textures: Vec<std::sync::Arc<super::Texture>>,
     pub lights: Vec<Light>,
     pub camera: Camera,
     pub ambient: [f32; 3],
@@ -84,6 +88,7 @@ pub fn flatten(graph: &SceneGraph, request: &RenderRequest) -> Result<Scene, Fla
         objects: Vec::new(),
         triangles: Vec::new(),
         materials,
+        textures: graph.textures.clone(),
         lights: request.lights.clone(),
         camera: request.camera.clone(),
         ambient: request.ambient,
@@ -167,6 +172,10 @@ fn visit(
                     .extend(mesh.triangles.iter().map(|t| Triangle {
                         positions: t.map(|i| world[i as usize]),
                         material,
+                        uvs: match &mesh.uvs {
+                            Some(uvs) => t.map(|i| uvs[i as usize]),
+                            None => super::uv::planar_uvs(t.map(|i| mesh.positions[i as usize])),
+                        },
                     }));
             }
         }

@@ -6,11 +6,15 @@ pub mod flatten;
 pub mod lua;
 pub mod obj;
 pub mod options;
+pub mod texture;
+pub mod uv;
 
 use glam::{DMat4, DVec3};
 use std::path::PathBuf;
+use std::sync::Arc;
 
-pub use options::{AaMode, Background, GridMode, OptionOverrides, RenderOptions};
+pub use options::{AaMode, Background, DebugView, GridMode, OptionOverrides, RenderOptions};
+pub use texture::{Texture, TextureId};
 
 /// Index of a node in [`SceneGraph::nodes`].
 pub type NodeId = usize;
@@ -72,6 +76,14 @@ pub struct Material {
     pub reflection: [f32; 3],
     /// Dielectric with this index of refraction (`set_refraction`), if any.
     pub ior: Option<f32>,
+    /// Texture replacing `kd` (`set_diffuse('img.png')`).
+    pub diffuse_map: Option<TextureId>,
+    /// Texture replacing `ks` (`set_specular('img.png')`).
+    pub specular_map: Option<TextureId>,
+    /// Height field of the bump map (`set_bump('height.png', strength)`).
+    pub bump_map: Option<TextureId>,
+    /// Bump strength: the normal tilts by strength × the height's slope per texture unit.
+    pub bump_strength: f32,
 }
 
 impl Default for Material {
@@ -84,6 +96,10 @@ impl Default for Material {
             shininess: 1.0,
             reflection: [0.0; 3],
             ior: None,
+            diffuse_map: None,
+            specular_map: None,
+            bump_map: None,
+            bump_strength: 0.0,
         }
     }
 }
@@ -156,6 +172,8 @@ pub struct SceneGraph {
     pub nodes: Vec<Node>,
     pub materials: Vec<Material>,
     pub meshes: Vec<Mesh>,
+    /// Images of texture and bump maps (shared, not copied, by each render's scene).
+    pub textures: Vec<Arc<Texture>>,
 }
 
 /// One `gr.render` call: what to render, where, and how.

@@ -60,6 +60,28 @@ impl GridMode {
     pub const CHOICES: &'static str = "'auto', 'off' or {density=λ}";
 }
 
+/// Debug view (`debug`): what a pixel shows instead of the shaded image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum DebugView {
+    /// The normal image.
+    #[default]
+    None,
+    /// Colour = (u mod 1, v mod 1, 0) of the surface a primary ray hits first.
+    Uv,
+}
+
+impl DebugView {
+    pub const CHOICES: &'static str = "'none' or 'uv'";
+
+    pub fn parse(s: &str) -> Option<DebugView> {
+        match s {
+            "none" => Some(DebugView::None),
+            "uv" => Some(DebugView::Uv),
+            _ => None,
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderOptions {
     pub aa: AaMode,
@@ -71,6 +93,7 @@ pub struct RenderOptions {
     pub min_weight: f32,
     pub background: Background,
     pub grid: GridMode,
+    pub debug: DebugView,
 }
 
 impl Default for RenderOptions {
@@ -85,6 +108,7 @@ impl Default for RenderOptions {
             min_weight: 1.0 / 512.0,
             background: Background::DEFAULT,
             grid: GridMode::Auto,
+            debug: DebugView::None,
         }
     }
 }
@@ -101,6 +125,7 @@ pub struct OptionOverrides {
     pub min_weight: Option<f32>,
     pub background: Option<Background>,
     pub grid: Option<GridMode>,
+    pub debug: Option<DebugView>,
     pub width: Option<u32>,
     pub height: Option<u32>,
 }
@@ -124,6 +149,7 @@ impl OptionOverrides {
         set(&mut options.min_weight, &self.min_weight);
         set(&mut options.background, &self.background);
         set(&mut options.grid, &self.grid);
+        set(&mut options.debug, &self.debug);
     }
 }
 

@@ -232,11 +232,6 @@ impl<'a> Args<'a> {
                 let b = self.number(n + 2, "b")? as f32;
                 Ok([r, g, b])
             }
-            Value::String(_) => Err(self.bad(
-                n,
-                "colour",
-                "numbers r, g, b or a table {r, g, b} (image textures are not supported yet)",
-            )),
             _ => Err(self.bad(
                 n,
                 "colour",

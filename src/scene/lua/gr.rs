@@ -1,6 +1,6 @@
 //! The `gr` table: the A4 core calls (the methods of what they return are in `handles`).
 //!
-//! Calls not in the contract yet (textures, CSG, extra primitives)
+//! Calls not in the contract yet (CSG)
 //! are simply not defined: Lua then reports `attempt to call a nil value (field 'x')`
 //! with the file and line.
 

@@ -1,6 +1,7 @@
 //! The userdata the `gr` calls return, and their methods: `node:add_child`,
 //! `set_material`, `scale`, `translate`, `rotate`; `material:set_diffuse`, `set_specular`,
-//! `set_shininess`, `set_reflection`, `set_refraction`.
+//! `set_shininess`, `set_reflection`, `set_refraction` (texture forms and `set_bump` in
+//! `maps`).
 //!
 //! Userdata carry only an index into the [`SceneGraph`](crate::scene::SceneGraph) arenas
 //! (or a small value for lights), so a node can be added under several parents and a
@@ -160,14 +161,9 @@ impl UserData for MaterialHandle {
                 });
             };
         }
-        method!("set_diffuse", |a: &Args| {
-            a.colour_args(1, true)
-                .map(|c| move |m: &mut Material| m.kd = c)
-        });
-        method!("set_specular", |a: &Args| {
-            a.colour_args(1, true)
-                .map(|c| move |m: &mut Material| m.ks = c)
-        });
+        method!("set_diffuse", super::maps::set_diffuse);
+        method!("set_specular", super::maps::set_specular);
+        method!("set_bump", super::maps::set_bump);
         method!("set_reflection", |a: &Args| {
             a.colour_args(1, true)
                 .map(|c| move |m: &mut Material| m.reflection = c)

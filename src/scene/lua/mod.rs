@@ -12,6 +12,7 @@
 mod args;
 mod gr;
 mod handles;
+mod maps;
 mod options;
 mod sandbox;
 
@@ -130,6 +131,7 @@ pub fn run_scene_source(
         base_dir: base_dir.to_path_buf(),
         report: ScriptReport::default(),
         mesh_cache: HashMap::new(),
+        texture_cache: HashMap::new(),
         render_error: None,
     });
     let setup = gr::install(&lua).and_then(|()| sandbox::install(&lua));
@@ -180,6 +182,8 @@ pub(crate) struct State {
     pub report: ScriptReport,
     /// Mesh files already loaded, so instancing a file twice shares the triangles.
     pub mesh_cache: HashMap<PathBuf, MeshId>,
+    /// Image files already loaded, so materials naming the same file share its texels.
+    pub texture_cache: HashMap<PathBuf, crate::scene::TextureId>,
     /// The caller's render error, kept whole (Lua can only carry a string of it).
     pub render_error: Option<(String, anyhow::Error)>,
 }

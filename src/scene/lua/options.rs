@@ -5,11 +5,11 @@
 
 use super::args::{describe, finite, int_value, Args};
 use crate::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES, MAX_TRACE_DEPTH};
-use crate::scene::{AaMode, Background, GridMode, RenderOptions};
+use crate::scene::{AaMode, Background, DebugView, GridMode, RenderOptions};
 use mlua::{Table, Value};
 
 const KEYS: &str = "aa, samples, aa_threshold, aa_depth, shadow_samples, max_depth, \
-                    min_weight, background, grid";
+                    min_weight, background, grid, debug";
 
 /// Parses argument `n` of `a` (nil gives the defaults).
 pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
@@ -74,6 +74,13 @@ pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
                 }
             }
             "background" => o.background = background(a, n, &v)?,
+            "debug" => {
+                o.debug = match &v {
+                    Value::String(s) => DebugView::parse(&s.to_string_lossy()),
+                    _ => None,
+                }
+                .ok_or_else(|| bad(DebugView::CHOICES))?;
+            }
             "grid" => {
                 o.grid = match &v {
                     Value::String(s) if &*s.to_string_lossy() == "auto" => GridMode::Auto,
@@ -156,7 +163,7 @@ fn background(a: &Args, n: usize, v: &Value) -> mlua::Result<Background> {
 #[cfg(test)]
 mod tests {
     use crate::scene::lua::{run_scene_source, ScriptConfig};
-    use crate::scene::{AaMode, Background, GridMode, RenderOptions};
+    use crate::scene::{AaMode, Background, DebugView, GridMode, RenderOptions};
     use std::path::Path;
 
     /// Runs a one-line render with `opts` as the options argument.
@@ -209,6 +216,12 @@ mod tests {
             }
         );
         assert_eq!(o.grid, GridMode::Density(3.0));
+        assert_eq!(options("{debug='uv'}").unwrap().debug, DebugView::Uv);
+        let e = options("{debug='normals'}").unwrap_err();
+        assert!(
+            e.ends_with("debug must be 'none' or 'uv', got 'normals'"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -1,0 +1,82 @@
+//! The material methods that take images: `set_diffuse` and `set_specular` (a colour, or
+//! a texture file), and `set_bump('height.png'[, strength])`. Files are resolved against
+//! the scene's directory and decoded in Rust (`scene::texture`); each file is loaded once
+//! per script.
+
+use super::args::Args;
+use super::with_state;
+use crate::scene::texture::load_texture;
+use crate::scene::{Material, TextureId};
+use mlua::Value;
+use std::sync::Arc;
+
+/// An edit of the receiver material, applied once the arguments have been checked.
+pub(super) type Edit = Box<dyn FnOnce(&mut Material)>;
+
+/// Default `set_bump` strength: the normal tilts by the height's slope per texture unit.
+pub const DEFAULT_BUMP_STRENGTH: f64 = 1.0;
+
+/// `m:set_diffuse(r, g, b)` / `m:set_diffuse(grey)` / `m:set_diffuse('img.png')`.
+pub(super) fn set_diffuse(a: &Args) -> mlua::Result<Edit> {
+    if let Value::String(_) = a.get(1) {
+        let id = texture(a, 1, "file")?;
+        return Ok(Box::new(move |m: &mut Material| m.diffuse_map = Some(id)));
+    }
+    let c = a.colour_args(1, true)?;
+    Ok(Box::new(move |m: &mut Material| {
+        m.kd = c;
+        m.diffuse_map = None;
+    }))
+}
+
+/// `m:set_specular(r, g, b)` / `m:set_specular(grey)` / `m:set_specular('img.png')`.
+pub(super) fn set_specular(a: &Args) -> mlua::Result<Edit> {
+    if let Value::String(_) = a.get(1) {
+        let id = texture(a, 1, "file")?;
+        return Ok(Box::new(move |m: &mut Material| m.specular_map = Some(id)));
+    }
+    let c = a.colour_args(1, true)?;
+    Ok(Box::new(move |m: &mut Material| {
+        m.ks = c;
+        m.specular_map = None;
+    }))
+}
+
+/// `m:set_bump('height.png'[, strength])`: strength ≥ 0, default
+/// [`DEFAULT_BUMP_STRENGTH`].
+pub(super) fn set_bump(a: &Args) -> mlua::Result<Edit> {
+    if !matches!(a.get(1), Value::String(_)) {
+        return Err(a.bad(1, "file", "the file name of a height map (PNG or JPEG)"));
+    }
+    // Check the strength before reading the file: a cheap error first.
+    let strength = if a.is_nil(2) {
+        DEFAULT_BUMP_STRENGTH
+    } else {
+        a.non_negative(2, "strength")?
+    };
+    let id = texture(a, 1, "file")?;
+    Ok(Box::new(move |m: &mut Material| {
+        m.bump_map = Some(id);
+        m.bump_strength = strength as f32;
+    }))
+}
+
+/// Argument `n`, a file name, as a texture of the scene graph (loaded on first use).
+fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
+    let file = a.string(n, name)?;
+    let (path, cached) = with_state(a.lua, |s| {
+        let path = s.base_dir.join(&file);
+        let cached = s.texture_cache.get(&path).copied();
+        (path, cached)
+    });
+    if let Some(id) = cached {
+        return Ok(id);
+    }
+    let texture = load_texture(&path).map_err(|e| a.bad_in(n, name, e))?;
+    Ok(with_state(a.lua, |s| {
+        s.graph.textures.push(Arc::new(texture));
+        let id = s.graph.textures.len() - 1;
+        s.texture_cache.insert(path, id);
+        id
+    }))
+}

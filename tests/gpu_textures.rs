@@ -1,0 +1,132 @@
+//! Textures, UVs and bump maps on the GPU against the CPU reference (tier 4): the texture
+//! scene (every primitive textured, a bump-mapped sphere, a specular map), its UV debug
+//! view, and the TEXTURE-only and BUMP-only specialisations, each compared with
+//! `diff::assert_images_match` at the thresholds of tests/gpu_images.rs (FLIP mean < 0.01,
+//! ≥ 99.9% of pixels within 2/255). Failures write actual, expected and heat-map PNGs to
+//! `<target tmp>/gpu_textures/`.
+
+mod common;
+#[path = "texture_support/mod.rs"]
+mod texture_support;
+
+use common::{gpu_context, packed_from_file, root, temp_dir};
+use glint::diff::assert_images_match;
+use glint::gpu::{render_gpu_with_info, GpuContext};
+use glint::pack::{PackedScene, SceneFeatures};
+use glint::scene::{AaMode, DebugView, OptionOverrides};
+use std::path::PathBuf;
+
+const MAX_FLIP_MEAN: f64 = 0.01;
+const MIN_SHARE_WITHIN_2_255: f64 = 0.999;
+
+fn compare(ctx: &GpuContext, name: &str, scene: &PackedScene) -> SceneFeatures {
+    let (gpu, info) =
+        render_gpu_with_info(ctx, scene, &|_, _| {}).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let cpu = glint::cpu::render(scene, &|_, _| {});
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu_textures");
+    let report = assert_images_match(
+        name,
+        &gpu,
+        &cpu,
+        MAX_FLIP_MEAN,
+        MIN_SHARE_WITHIN_2_255,
+        &out,
+    )
+    .unwrap_or_else(|message| panic!("{message}"));
+    eprintln!(
+        "{name}: features [{}], FLIP mean {:.5}, {:.3}% within 2/255, max difference {:.4}",
+        info.features,
+        report.flip_mean,
+        report.share_within(2.0 / 255.0) * 100.0,
+        report.max_abs,
+    );
+    info.features
+}
+
+fn small(aa: Option<AaMode>, debug: Option<DebugView>) -> OptionOverrides {
+    OptionOverrides {
+        width: Some(128),
+        height: Some(128),
+        aa,
+        debug,
+        ..OptionOverrides::default()
+    }
+}
+
+/// scenes/textures.lua under its default (adaptive) AA: diffuse and specular textures,
+/// UVs of every primitive and of meshes with and without UVs, a bump map.
+#[test]
+fn texture_scene_matches() {
+    let Some(ctx) = gpu_context() else { return };
+    let path = root().join("scenes/textures.lua");
+    let scene = packed_from_file(&path, &small(None, None)).remove(0);
+    let features = compare(&ctx, "textures", &scene);
+    for f in [
+        SceneFeatures::TEXTURE,
+        SceneFeatures::BUMP,
+        SceneFeatures::MESH,
+    ] {
+        assert!(features.contains(f), "{features}");
+    }
+}
+
+/// The UV debug view of the same scene: every primitive's UVs, pixel by pixel.
+#[test]
+fn uv_debug_view_matches() {
+    let Some(ctx) = gpu_context() else { return };
+    let path = root().join("scenes/textures.lua");
+    let scene = packed_from_file(&path, &small(Some(AaMode::None), Some(DebugView::Uv))).remove(0);
+    compare(&ctx, "textures-uv-view", &scene);
+}
+
+/// Textures without bump maps, and bump maps without textures (each specialisation
+/// alone), on every primitive kind, with a mirror reflecting them.
+#[test]
+fn texture_only_and_bump_only_match() {
+    let Some(ctx) = gpu_context() else { return };
+    let dir = temp_dir("gpu-textures");
+    texture_support::save(&texture_support::uv_grid(), &dir.join("grid.png"));
+    texture_support::save(&texture_support::bumps(), &dir.join("bumps.png"));
+    for (name, set, feature) in [
+        (
+            "texture-only",
+            "m:set_diffuse('grid.png') m:set_specular('bumps.png')",
+            SceneFeatures::TEXTURE,
+        ),
+        (
+            "bump-only",
+            "m:set_bump('bumps.png', 0.02)",
+            SceneFeatures::BUMP,
+        ),
+    ] {
+        let source = format!(
+            "m = gr.material({{0.7, 0.5, 0.3}}, {{0.5, 0.5, 0.5}}, 30) {set}
+             mirror = gr.material({{0.1, 0.1, 0.1}}, {{0, 0, 0}}, 1)
+             mirror:set_reflection(0.5, 0.5, 0.5)
+             root = gr.node('root')
+             local function add(n, x, y) n:set_material(m) n:translate(x, y, 0) root:add_child(n) end
+             add(gr.sphere('s'), -2.5, 1.2)
+             add(gr.cube('c'), -0.5, 0.7)
+             add(gr.cylinder('y'), 1.5, 0.7)
+             add(gr.cone('k', 0.2, 1.2), -2.5, -1.5)
+             add(gr.torus('t', 0.6, 0.25), 0, -1.2)
+             add(gr.mesh('q', {{{{0,0,0}},{{1,0,0}},{{1,1,0}},{{0,1,0}}}}, {{{{0,1,2,3}}}}), 1.5, -1.5)
+             back = gr.cube('back') back:set_material(mirror) back:scale(9, 9, 0.2)
+             back:translate(-4.5, -4.5, -2) root:add_child(back)
+             l = gr.light({{3, 4, 6}}, {{0.9, 0.9, 0.9}}, {{1, 0, 0}})
+             gr.render(root, 'o.png', 96, 96, {{0, 0, 8}}, {{0, 0, -1}}, {{0, 1, 0}}, 50,
+                       {{0.2, 0.2, 0.2}}, {{l}})"
+        );
+        let path = dir.join(format!("{name}.lua"));
+        std::fs::write(&path, source).unwrap();
+        let scene = packed_from_file(&path, &OptionOverrides::default()).remove(0);
+        let features = compare(&ctx, name, &scene);
+        assert!(features.contains(feature), "{name}: {features}");
+        let other = if feature == SceneFeatures::TEXTURE {
+            SceneFeatures::BUMP
+        } else {
+            SceneFeatures::TEXTURE
+        };
+        assert!(!features.contains(other), "{name}: {features}");
+    }
+}

@@ -1,0 +1,496 @@
+//! Textures, UVs and bump maps on the CPU reference tracer: the committed assets against
+//! their generator, texel layout and bilinear filtering, a texture on a fully lit matte
+//! quad reproducing itself (PNG and JPEG), each primitive's UV convention and tangent
+//! frame, the bump direction (a height ramp rising along u tilts the normal towards −u),
+//! the UV debug view, and the scene errors for bad texture arguments.
+
+mod common;
+#[path = "texture_support/mod.rs"]
+mod texture_support;
+
+use common::{packed_from_source, render_cpu, root, temp_dir};
+use glam::{Vec2, Vec3};
+use glint::cpu::ray::Ray;
+use glint::cpu::shade::{surface_at, Surface};
+use glint::cpu::texture::{bump_normal, sample_texture};
+use glint::cpu::traverse::{closest_hit, NoCounters};
+use glint::pack::texture::pack_texels;
+use glint::pack::{GpuMaterial, PackedScene, SceneFeatures};
+use glint::scene::texture::Texture;
+use glint::scene::OptionOverrides;
+use std::path::{Path, PathBuf};
+
+/// `scenes/textures/`'s assets are what the generators make (bless rewrites them).
+#[test]
+fn committed_assets_match_their_generators() {
+    let dir = root().join("scenes/textures");
+    let grid = texture_support::uv_grid();
+    let bumps = texture_support::bumps();
+    if std::env::var_os("GLINT_BLESS").is_some() {
+        texture_support::save(&grid, &dir.join("uv-grid.png"));
+        texture_support::save(&bumps, &dir.join("bumps.png"));
+    }
+    let committed_grid = image::open(dir.join("uv-grid.png")).unwrap().to_rgb8();
+    assert!(
+        committed_grid == grid,
+        "uv-grid.png differs from texture_support::uv_grid"
+    );
+    let committed_bumps = image::open(dir.join("bumps.png")).unwrap().to_luma8();
+    assert!(
+        committed_bumps == bumps,
+        "bumps.png differs from texture_support::bumps"
+    );
+}
+
+/// A texture packed from raw texels (for filtering tests).
+fn texture(width: u32, height: u32, rgba: Vec<[u8; 4]>) -> Texture {
+    Texture {
+        path: PathBuf::from("test.png"),
+        width,
+        height,
+        rgba,
+    }
+}
+
+/// Bilinear with repeat, texel centres at half-integers, v = 0 at the bottom row.
+#[test]
+fn bilinear_filtering_with_repeat() {
+    // 2×2: top row red, green; bottom row blue, white.
+    let t = texture(
+        2,
+        2,
+        vec![
+            [255, 0, 0, 255],
+            [0, 255, 0, 255],
+            [0, 0, 255, 255],
+            [255, 255, 255, 255],
+        ],
+    );
+    let texels = pack_texels(&[Box::new(t)]);
+    let at = |u: f32, v: f32| sample_texture(&texels, 0, Vec2::new(u, v));
+    // Texel centres give the texels exactly.
+    assert_eq!(at(0.25, 0.75), Vec3::new(1.0, 0.0, 0.0));
+    assert_eq!(at(0.75, 0.75), Vec3::new(0.0, 1.0, 0.0));
+    assert_eq!(at(0.25, 0.25), Vec3::new(0.0, 0.0, 1.0));
+    assert_eq!(at(0.75, 0.25), Vec3::ONE);
+    // Half way between the two top texels: their mean.
+    assert!(
+        (at(0.5, 0.75) - Vec3::new(0.5, 0.5, 0.0))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    // u = 0 is half way between the last column and the first (repeat), and so is u = 1.
+    assert!(
+        (at(0.0, 0.75) - Vec3::new(0.5, 0.5, 0.0))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    assert!((at(1.0, 0.75) - at(0.0, 0.75)).abs().max_element() < 1e-6);
+    // Repeat in both directions, negative coordinates included.
+    for (du, dv) in [(1.0, 0.0), (-3.0, 2.0), (7.0, -5.0)] {
+        assert!((at(0.3 + du, 0.6 + dv) - at(0.3, 0.6)).abs().max_element() < 1e-4);
+    }
+    // Not a number: the wrap maps it to 0, no panic, no NaN.
+    assert!(at(f32::NAN, f32::INFINITY).is_finite());
+}
+
+/// Renders `source` (a scene script run from `dir`).
+fn packed_in(dir: &Path, source: &str, overrides: &OptionOverrides) -> PackedScene {
+    let path = dir.join("scene.lua");
+    std::fs::write(&path, source).unwrap();
+    common::packed_from_file(&path, overrides).remove(0)
+}
+
+/// A quad exactly filling a square view, lit by ambient 1 alone, shows its diffuse texture
+/// texel for texel: pixel centres land on texel centres.
+fn quad_reproduces(file: &str, image: &image::RgbImage) {
+    let dir = temp_dir(&format!("textures-quad-{file}"));
+    texture_support::save(image, &dir.join(file));
+    let expected = image::open(dir.join(file)).unwrap().to_rgb8();
+    let (w, h) = expected.dimensions();
+    let source = format!(
+        "m = gr.material('m') m:set_diffuse('{file}') \
+         q = gr.mesh('q', {{{{0,0,0}},{{1,0,0}},{{1,1,0}},{{0,1,0}}}}, {{{{0,1,2,3}}}}, \
+                          {{{{0,0}},{{1,0}},{{1,1}},{{0,1}}}}) \
+         q:set_material(m) \
+         gr.render(q, 'o.png', {w}, {h}, {{0.5,0.5,0.5}}, {{0,0,-1}}, {{0,1,0}}, 90, \
+                   {{1,1,1}}, {{}}, {{aa='none'}})"
+    );
+    let scene = packed_in(&dir, &source, &OptionOverrides::default());
+    assert!(scene.features.contains(SceneFeatures::TEXTURE));
+    let film = render_cpu(&scene);
+    let actual = film.to_rgb8();
+    let worst = actual
+        .iter()
+        .zip(expected.as_raw())
+        .map(|(&a, &b)| (a as i32 - b as i32).abs())
+        .max()
+        .unwrap();
+    assert!(worst <= 1, "{file}: largest texel difference {worst}/255");
+}
+
+#[test]
+fn a_texture_on_a_fully_lit_matte_quad_reproduces_it() {
+    quad_reproduces("noise.png", &texture_support::noise(16, 16, 7));
+    // JPEG is lossy: the reference is the decoded file, which is what gets used.
+    quad_reproduces("noise.jpg", &texture_support::noise(16, 16, 8));
+}
+
+/// The surface a ray from `origin` towards `target` hits first.
+fn surface_towards(scene: &PackedScene, origin: Vec3, target: Vec3) -> Surface {
+    let ray = Ray {
+        origin,
+        dir: (target - origin).normalize(),
+    };
+    let hit = closest_hit(scene, &ray, f32::MAX, &mut NoCounters);
+    assert!(hit.is_hit(), "no hit towards {target}");
+    surface_at(scene, &ray, &hit)
+}
+
+/// One primitive (`make` a gr call) with the UV debug view (which packs the UV code), at
+/// the identity transform.
+fn single(make: &str) -> PackedScene {
+    let source = format!(
+        "n = {make} \
+         gr.render(n, 'o.png', 8, 8, {{0,0,9}}, {{0,0,-1}}, {{0,1,0}}, 50, {{0,0,0}}, {{}}, \
+                   {{debug='uv'}})"
+    );
+    packed_from_source(&source, &OptionOverrides::default()).remove(0)
+}
+
+fn assert_uv(s: &Surface, expected: [f32; 2], what: &str) {
+    let d = (s.uv - Vec2::from(expected)).abs().max_element();
+    assert!(d < 1e-4, "{what}: uv {} expected {expected:?}", s.uv);
+    // The frame is right-handed around the outward normal: ∂p/∂u × ∂p/∂v along it.
+    let g = s.dpdu.cross(s.dpdv);
+    assert!(
+        g.normalize().dot(s.normal) > 0.999,
+        "{what}: dpdu {} × dpdv {} is not along the normal {}",
+        s.dpdu,
+        s.dpdv,
+        s.normal
+    );
+}
+
+/// A finite-difference check of ∂p/∂u and ∂p/∂v: moving along the surface by a small
+/// step of p changes uv by (ε_u, ε_v) with step ≈ ε_u·dpdu + ε_v·dpdv.
+fn assert_frame_matches_uv(scene: &PackedScene, a: &Surface, origin: Vec3, what: &str) {
+    let tangent = a.dpdu.normalize() * 1e-3;
+    let b = surface_towards(scene, origin, a.p + tangent);
+    let du = b.uv - a.uv;
+    let predicted = a.dpdu * du.x + a.dpdv * du.y;
+    let moved = b.p - a.p;
+    assert!(
+        (predicted - moved).length() < 0.05 * moved.length(),
+        "{what}: moved {moved}, the frame predicts {predicted} (duv {du})"
+    );
+}
+
+/// Every analytic primitive's documented convention at known points, with the frame
+/// agreeing with how the UV actually changes.
+#[test]
+fn uv_conventions_of_the_analytic_primitives() {
+    let sphere = single("gr.sphere('s')");
+    let far = 5.0;
+    // Longitude from +x towards +y; latitude from the south pole.
+    for (dir, uv) in [
+        (Vec3::X, [0.0, 0.5]),
+        (Vec3::Y, [0.25, 0.5]),
+        (-Vec3::X, [0.5, 0.5]),
+        (Vec3::new(0.0, -1.0, 1.0), [0.75, 0.75]),
+        (Vec3::new(1.0, 0.0, -1.0), [0.0, 0.25]),
+    ] {
+        let d = dir.normalize();
+        let s = surface_towards(&sphere, d * far, Vec3::ZERO);
+        assert_uv(&s, uv, &format!("sphere towards {dir}"));
+        if uv[0] > 0.1 {
+            assert_frame_matches_uv(&sphere, &s, d * far, "sphere");
+        }
+    }
+    // The north pole: v = 1, no NaN anywhere.
+    let pole = surface_towards(&sphere, Vec3::new(0.0, 0.0, far), Vec3::ZERO);
+    assert!((pole.uv.y - 1.0).abs() < 1e-6 && pole.dpdu.is_finite() && pole.dpdv.is_finite());
+
+    // Box faces, seen from outside: (right, up) as documented.
+    let cube = single("gr.cube('c')");
+    for (origin, target, uv) in [
+        (
+            Vec3::new(0.2, 0.7, 5.0),
+            Vec3::new(0.2, 0.7, 0.5),
+            [0.2, 0.7],
+        ),
+        (
+            Vec3::new(0.2, 0.7, -5.0),
+            Vec3::new(0.2, 0.7, 0.5),
+            [0.8, 0.7],
+        ),
+        (
+            Vec3::new(5.0, 0.7, 0.2),
+            Vec3::new(0.5, 0.7, 0.2),
+            [0.8, 0.7],
+        ),
+        (
+            Vec3::new(-5.0, 0.7, 0.2),
+            Vec3::new(0.5, 0.7, 0.2),
+            [0.2, 0.7],
+        ),
+        (
+            Vec3::new(0.2, 5.0, 0.3),
+            Vec3::new(0.2, 0.5, 0.3),
+            [0.2, 0.7],
+        ),
+        (
+            Vec3::new(0.2, -5.0, 0.3),
+            Vec3::new(0.2, 0.5, 0.3),
+            [0.2, 0.3],
+        ),
+    ] {
+        let s = surface_towards(&cube, origin, target);
+        assert_uv(&s, uv, &format!("box from {origin}"));
+        assert_frame_matches_uv(&cube, &s, origin, "box");
+    }
+
+    // Cylinder: u around z from +x, v = z; caps planar (u to +x, v to +y).
+    let cylinder = single("gr.cylinder('c')");
+    let s = surface_towards(
+        &cylinder,
+        Vec3::new(0.0, 5.0, 0.3),
+        Vec3::new(0.0, 0.0, 0.3),
+    );
+    assert_uv(&s, [0.25, 0.3], "cylinder side");
+    assert_frame_matches_uv(&cylinder, &s, Vec3::new(0.0, 5.0, 0.3), "cylinder");
+    let s = surface_towards(
+        &cylinder,
+        Vec3::new(0.5, 0.0, 5.0),
+        Vec3::new(0.5, 0.0, 0.5),
+    );
+    assert_uv(&s, [0.75, 0.5], "cylinder top cap");
+
+    // Cone: v = (z − zmin)/(zmax − zmin).
+    let cone = single("gr.cone('c', 1, 3)");
+    let s = surface_towards(&cone, Vec3::new(-9.0, 0.0, 2.0), Vec3::new(0.0, 0.0, 2.0));
+    assert_uv(&s, [0.5, 0.5], "cone side");
+    assert_frame_matches_uv(&cone, &s, Vec3::new(-9.0, 0.0, 2.0), "cone");
+
+    // Torus: u around z, v around the tube from its outer equator towards +z.
+    let torus = single("gr.torus('t', 2, 0.5)");
+    let s = surface_towards(&torus, Vec3::new(0.0, 9.0, 0.0), Vec3::ZERO);
+    assert_uv(&s, [0.25, 0.0], "torus outer equator");
+    let s = surface_towards(&torus, Vec3::new(2.0, 0.0, 5.0), Vec3::new(2.0, 0.0, 0.0));
+    assert_uv(&s, [0.0, 0.25], "torus top");
+    assert_frame_matches_uv(&torus, &s, Vec3::new(2.0, 0.0, 5.0), "torus");
+}
+
+/// Meshes: the per-vertex UVs interpolated by the hit's barycentrics; without UVs, the
+/// planar projection by the dominant normal axis (object space).
+#[test]
+fn mesh_uvs_interpolate_or_project() {
+    let with = single(
+        "gr.mesh('q', {{0,0,0},{2,0,0},{2,2,0},{0,2,0}}, {{0,1,2,3}}, \
+                      {{0,0},{1,0},{1,1},{0,1}})",
+    );
+    let s = surface_towards(&with, Vec3::new(0.5, 1.5, 5.0), Vec3::new(0.5, 1.5, 0.0));
+    assert_uv(&s, [0.25, 0.75], "mesh with UVs");
+    // The frame maps a unit of u to the quad's 2 units of x.
+    assert!(
+        (s.dpdu - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-5,
+        "{}",
+        s.dpdu
+    );
+    // A floor without UVs, translated: (u, v) = object (z, x).
+    let without = single(
+        "gr.mesh('f', {{0,0,0},{0,0,3},{3,0,3},{3,0,0}}, {{0,1,2,3}}) \
+         n:translate(10, 1, 0)",
+    );
+    let s = surface_towards(
+        &without,
+        Vec3::new(11.5, 5.0, 0.25),
+        Vec3::new(11.5, 0.0, 0.25),
+    );
+    assert_uv(&s, [0.25, 1.5], "mesh without UVs");
+    // OBJ `vt`, through a file beside the scene.
+    let dir = temp_dir("textures-obj");
+    std::fs::write(
+        dir.join("quad.obj"),
+        "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+         f 1/1 2/2 3/3 4/4\n",
+    )
+    .unwrap();
+    let source = "n = gr.mesh('q', 'quad.obj') \
+                  gr.render(n, 'o.png', 8, 8, {0,0,9}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, {}, \
+                            {debug='uv'})";
+    let obj = packed_in(&dir, source, &OptionOverrides::default());
+    let s = surface_towards(&obj, Vec3::new(1.5, 0.5, 5.0), Vec3::new(1.5, 0.5, 0.0));
+    assert_uv(&s, [0.75, 0.25], "OBJ vt");
+}
+
+/// A surface at the origin facing +z with the frame (dpdu, dpdv) and material `m`.
+fn flat(dpdu: Vec3, dpdv: Vec3) -> Surface {
+    Surface {
+        p: Vec3::ZERO,
+        normal: Vec3::Z,
+        magnitude: 1.0,
+        material: 0,
+        uv: Vec2::new(0.5, 0.5),
+        dpdu,
+        dpdv,
+    }
+}
+
+fn bump_material(strength: f32) -> GpuMaterial {
+    GpuMaterial {
+        bump_texture: 0,
+        bump_strength: strength,
+        ..GpuMaterial::zeroed()
+    }
+}
+
+trait Zeroed {
+    fn zeroed() -> Self;
+}
+impl Zeroed for GpuMaterial {
+    fn zeroed() -> Self {
+        bytemuck::Zeroable::zeroed()
+    }
+}
+
+fn gray_texels(image: &image::GrayImage) -> Vec<u32> {
+    let rgba = image
+        .pixels()
+        .map(|p| [p.0[0], p.0[0], p.0[0], 255])
+        .collect();
+    pack_texels(&[Box::new(texture(image.width(), image.height(), rgba))])
+}
+
+/// The issue's proof of axes: a height ramp rising along u tilts the normal towards −u
+/// (and one rising along v towards −v), by atan(strength × slope), whatever the scale
+/// of the frame; a degenerate frame leaves the normal alone.
+#[test]
+fn a_height_ramp_rising_along_u_tilts_the_normal_towards_minus_u() {
+    let strength = 0.1;
+    // 64 columns from 0 to 1: slope 255·63/… ≈ 1 per unit of u (quantised to bytes).
+    let ramp_u = gray_texels(&texture_support::ramp_u(64));
+    let m = bump_material(strength);
+    for scale in [1.0, 1e-3, 1e3] {
+        let n = bump_normal(&ramp_u, &m, &flat(Vec3::X * scale, Vec3::Y * scale));
+        assert!(n.x < -0.05 && n.y.abs() < 1e-6, "scale {scale}: {n}");
+        let slope = -n.x / n.z;
+        assert!(
+            (slope - strength).abs() < 0.01 * strength + 0.002,
+            "slope {slope}"
+        );
+    }
+    // The frame turned by 90° (u along +y): the normal leans to −y.
+    let n = bump_normal(&ramp_u, &m, &flat(Vec3::Y, -Vec3::X));
+    assert!(n.y < -0.05 && n.x.abs() < 1e-6, "turned frame: {n}");
+    // Along v.
+    let ramp_v = gray_texels(&texture_support::ramp_v(64));
+    let n = bump_normal(&ramp_v, &m, &flat(Vec3::X, Vec3::Y));
+    assert!(n.y < -0.05 && n.x.abs() < 1e-6, "ramp along v: {n}");
+    // A left-handed frame (dpdu × dpdv = −N) still tilts towards −u.
+    let n = bump_normal(&ramp_u, &m, &flat(Vec3::X, -Vec3::Y));
+    assert!(n.x < -0.05, "left-handed frame: {n}");
+    // Degenerate frames: the normal unchanged, never NaN.
+    for (dpdu, dpdv) in [
+        (Vec3::ZERO, Vec3::Y),
+        (Vec3::X, Vec3::X * 2.0),
+        (Vec3::splat(f32::NAN), Vec3::Y),
+    ] {
+        assert_eq!(bump_normal(&ramp_u, &m, &flat(dpdu, dpdv)), Vec3::Z);
+    }
+}
+
+/// The UV debug view shows (u mod 1, v mod 1, 0): on a quad with UVs from (0,0) to
+/// (2,2) filling the view, every pixel's colour is its film position's UV, wrapped.
+#[test]
+fn the_uv_debug_view_shows_wrapped_uvs() {
+    let source = "q = gr.mesh('q', {{0,0,0},{1,0,0},{1,1,0},{0,1,0}}, {{0,1,2,3}}, \
+                                   {{0,0},{2,0},{2,2},{0,2}}) \
+                  gr.render(q, 'o.png', 16, 16, {0.5,0.5,0.5}, {0,0,-1}, {0,1,0}, 90, \
+                            {0,0,0}, {}, {aa='none', debug='uv'})";
+    let scene = packed_from_source(source, &OptionOverrides::default()).remove(0);
+    assert!(scene.features.contains(SceneFeatures::TEXTURE));
+    let film = render_cpu(&scene);
+    for y in 0..16 {
+        for x in 0..16 {
+            let u = ((x as f32 + 0.5) / 16.0 * 2.0).fract();
+            let v = ((16.0 - y as f32 - 0.5) / 16.0 * 2.0).fract();
+            let c = film.pixels[(y * 16 + x) as usize];
+            assert!(
+                (c[0] - u).abs() < 1e-4 && (c[1] - v).abs() < 1e-4 && c[2] == 0.0,
+                "pixel ({x}, {y}): {c:?}, expected ({u}, {v}, 0)"
+            );
+        }
+    }
+}
+
+/// Runs `source` from a directory holding `bumps.png`, returning the error message.
+fn scene_error(source: &str) -> String {
+    let dir = temp_dir("textures-errors");
+    texture_support::save(&texture_support::bumps(), &dir.join("bumps.png"));
+    std::fs::write(dir.join("junk.png"), b"not a png").unwrap();
+    let path = dir.join("bad.lua");
+    std::fs::write(&path, source).unwrap();
+    glint::scene::lua::run_scene_file(
+        &path,
+        &glint::scene::lua::ScriptConfig::default(),
+        &mut |_, _| Ok(()),
+    )
+    .expect_err("the scene must fail")
+    .to_string()
+}
+
+#[test]
+fn bad_texture_arguments_are_errors_naming_file_line_and_argument() {
+    let e = scene_error("m = gr.material('m')\nm:set_diffuse('missing.png')\n");
+    assert!(
+        e.contains("bad.lua:2: material:set_diffuse: argument 1 (file): cannot read texture")
+            && e.contains("missing.png"),
+        "{e}"
+    );
+    let e = scene_error("m = gr.material('m')\nm:set_specular('junk.png')\n");
+    assert!(
+        e.contains("bad.lua:2: material:set_specular: argument 1 (file): cannot decode texture")
+            && e.contains("junk.png"),
+        "{e}"
+    );
+    let e = scene_error("m = gr.material('m')\nm:set_bump('bumps.png', -1)\n");
+    assert!(
+        e.contains("bad.lua:2: material:set_bump: argument 2 (strength) must be a non-negative number, got -1"),
+        "{e}"
+    );
+    let e = scene_error("m = gr.material('m')\nm:set_bump(5)\n");
+    assert!(
+        e.contains("bad.lua:2: material:set_bump: argument 1 (file) must be the file name"),
+        "{e}"
+    );
+    let e = scene_error("m = gr.material('m')\nm:set_bump('bumps.png')\nm:set_diffuse({})\n");
+    assert!(e.contains("bad.lua:3: material:set_diffuse"), "{e}");
+}
+
+/// Scenes without textures keep the plain arrays: no texels, no triangle UVs, no
+/// texture features; a material with a texture that no geometry uses adds nothing.
+#[test]
+fn untextured_scenes_pack_no_texture_data() {
+    let dir = temp_dir("textures-unused");
+    texture_support::save(&texture_support::bumps(), &dir.join("bumps.png"));
+    let source = "m = gr.material('m') m:set_diffuse('bumps.png') m:set_bump('bumps.png') \
+                  q = gr.mesh('q', {{0,0,0},{1,0,0},{1,1,0}}, {{0,1,2}}) \
+                  gr.render(q, 'o.png', 8, 8, {0,0,3}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, {})";
+    let scene = packed_in(&dir, source, &OptionOverrides::default());
+    assert!(!scene.features.contains(SceneFeatures::TEXTURE));
+    assert!(!scene.features.contains(SceneFeatures::BUMP));
+    assert!(scene.texels.is_empty() && scene.triangle_uvs.is_empty());
+    let used = source.replace("gr.render(q", "q:set_material(m) gr.render(q");
+    let scene = packed_in(&dir, &used, &OptionOverrides::default());
+    assert!(scene.features.contains(SceneFeatures::TEXTURE));
+    assert!(scene.features.contains(SceneFeatures::BUMP));
+    assert_eq!(scene.triangle_uvs.len(), 1);
+    assert_eq!(
+        scene.texels.len(),
+        3 + 64 * 64,
+        "one table entry, the texels once"
+    );
+}
