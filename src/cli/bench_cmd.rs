@@ -184,6 +184,7 @@ pub fn random_triangle_scene(n: usize, seed: u64) -> Scene {
     Scene {
         objects: Vec::new(),
         triangles,
+        csg: Vec::new(),
         materials: vec![crate::scene::Material::default()],
         lights: Vec::new(),
         camera: Camera {

@@ -76,6 +76,7 @@ const COMMON: &[(&str, &str)] = &[
         include_str!("../../shaders/cylinder_cone.wgsl"),
     ),
     ("torus.wgsl", include_str!("../../shaders/torus.wgsl")),
+    ("csg.wgsl", include_str!("../../shaders/csg.wgsl")),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
 ];
