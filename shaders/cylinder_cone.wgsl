@@ -54,10 +54,11 @@ fn cylinder_cone_angle_u(x: f32, y: f32) -> f32 {
 // #endif
 
 // #if CYLINDER
-// Nearest t in (0, t_max) where o + t·d meets the solid cylinder x² + y² ≤ 1, 0 ≤ z ≤ 1,
-// else T_MISS (from inside, the exit point).
-// Mirror of src/cpu/cylinder_cone.rs::intersect_cylinder — change both.
-fn intersect_cylinder(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+// The t-interval [lo, hi] where o + t·d is inside the solid cylinder x² + y² ≤ 1,
+// 0 ≤ z ≤ 1, as (lo, hi); empty (lo > hi) when the line misses it.
+// Mirror of src/cpu/cylinder_cone.rs::cylinder_interval — change both.
+fn cylinder_interval(o: vec3<f32>, d: vec3<f32>) -> vec2<f32> {
+    let miss = vec2<f32>(T_MISS, -T_MISS);
     // Compute the side quadratic a·t² + 2b·t + c of x² + y² − 1 (intersect_sphere's
     // stable form, in xy).
     let a = d.x * d.x + d.y * d.y;
@@ -71,7 +72,7 @@ fn intersect_cylinder(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
         let ly = o.y - d.y * (b / a);
         let discriminant = a * (1.0 - (lx * lx + ly * ly));
         if discriminant < 0.0 {
-            return T_MISS;
+            return miss;
         }
         // Compute both roots without cancellation.
         let q = -b - copysign(sqrt(discriminant), b);
@@ -86,15 +87,21 @@ fn intersect_cylinder(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
         }
     } else if c > 0.0 {
         // Parallel to the axis, outside the side.
-        return T_MISS;
+        return miss;
     }
     // Clip to the slab between the caps.
     let inv_dz = safe_rcp(d.z);
     let tz0 = (0.0 - o.z) * inv_dz;
     let tz1 = (1.0 - o.z) * inv_dz;
-    let lo = max(side_lo, min(tz0, tz1));
-    let hi = min(side_hi, max(tz0, tz1));
-    return nearest_interval_end(lo, hi, 0.0, t_max, T_MISS);
+    return vec2<f32>(max(side_lo, min(tz0, tz1)), min(side_hi, max(tz0, tz1)));
+}
+
+// Nearest t in (0, t_max) where o + t·d meets the solid cylinder x² + y² ≤ 1, 0 ≤ z ≤ 1,
+// else T_MISS (from inside, the exit point).
+// Mirror of src/cpu/cylinder_cone.rs::intersect_cylinder — change both.
+fn intersect_cylinder(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+    let interval = cylinder_interval(o, d);
+    return nearest_interval_end(interval.x, interval.y, 0.0, t_max, T_MISS);
 }
 
 // The cylinder's surface at the object-space point p (near the surface): the nearest of
@@ -141,11 +148,20 @@ fn cylinder_surface(p: vec3<f32>) -> CylinderConeSurface {
 // #endif
 
 // #if CONE
-// Nearest t in (0, t_max) where o + t·d meets the solid cone x² + y² ≤ z²,
-// zmin ≤ z ≤ zmax, else T_MISS (from inside, the exit point). With zmin < 0 < zmax, the
-// double cone.
-// Mirror of src/cpu/cylinder_cone.rs::intersect_cone — change both.
-fn intersect_cone(o: vec3<f32>, d: vec3<f32>, zmin: f32, zmax: f32, t_max: f32) -> f32 {
+// Where a line is inside a cone: t = t_shift + t′ over the t′-intervals
+// [spans.x, spans.y] and [spans.z, spans.w] (each empty when its lo > hi; the second after
+// the first).
+// Mirror of src/cpu/cylinder_cone.rs::ConeIntervals — change both.
+struct ConeIntervals {
+    t_shift: f32,
+    spans: vec4<f32>,
+}
+
+// The intervals where o + t·d is inside the solid cone x² + y² ≤ z², zmin ≤ z ≤ zmax (two
+// only for a double cone).
+// Mirror of src/cpu/cylinder_cone.rs::cone_intervals — change both.
+fn cone_intervals(o: vec3<f32>, d: vec3<f32>, zmin: f32, zmax: f32) -> ConeIntervals {
+    let empty = vec4<f32>(T_MISS, -T_MISS, T_MISS, -T_MISS);
     // Move the origin to the line's point nearest the tip: the quadratic's coefficients
     // are then of the size of the hit's distance from the tip, not of the origin's (no
     // catastrophic b² − ac for far origins, and rays passing near the tip keep their
@@ -169,13 +185,13 @@ fn intersect_cone(o: vec3<f32>, d: vec3<f32>, zmin: f32, zmax: f32, t_max: f32) 
         } else if b < 0.0 {
             lo0 = -c / (2.0 * b);
         } else if c > 0.0 {
-            return T_MISS;
+            return ConeIntervals(t_shift, empty);
         }
     } else if a < 0.0 && discriminant <= 0.0 {
         // Steeper than the cone: inside for every t' (through the tip when Δ = 0).
     } else {
         if discriminant < 0.0 {
-            return T_MISS;
+            return ConeIntervals(t_shift, empty);
         }
         // Compute both roots without cancellation.
         let q = -b - copysign(sqrt(discriminant), b);
@@ -204,8 +220,21 @@ fn intersect_cone(o: vec3<f32>, d: vec3<f32>, zmin: f32, zmax: f32, t_max: f32) 
     let tz1 = (zmax - os.z) * inv_dz;
     let slab_lo = min(tz0, tz1);
     let slab_hi = max(tz0, tz1);
-    let best = nearest_interval_end(max(lo0, slab_lo), min(hi0, slab_hi), t_shift, t_max, T_MISS);
-    return nearest_interval_end(max(lo1, slab_lo), min(hi1, slab_hi), t_shift, t_max, best);
+    return ConeIntervals(
+        t_shift,
+        vec4<f32>(max(lo0, slab_lo), min(hi0, slab_hi), max(lo1, slab_lo), min(hi1, slab_hi)),
+    );
+}
+
+// Nearest t in (0, t_max) where o + t·d meets the solid cone x² + y² ≤ z²,
+// zmin ≤ z ≤ zmax, else T_MISS (from inside, the exit point). With zmin < 0 < zmax, the
+// double cone.
+// Mirror of src/cpu/cylinder_cone.rs::intersect_cone — change both.
+fn intersect_cone(o: vec3<f32>, d: vec3<f32>, zmin: f32, zmax: f32, t_max: f32) -> f32 {
+    let c = cone_intervals(o, d, zmin, zmax);
+    let s = c.spans;
+    let best = nearest_interval_end(s.x, s.y, c.t_shift, t_max, T_MISS);
+    return nearest_interval_end(s.z, s.w, c.t_shift, t_max, best);
 }
 
 // The cone's surface at the object-space point p (near the surface): the nearest of side

@@ -19,12 +19,13 @@ fn safe_rcp3(v: vec3<f32>) -> vec3<f32> {
 }
 
 // #if SPHERE
-// Nearest t in (0, t_max) where o + t·d meets the unit sphere at the origin, else T_MISS.
-// Haines et al., Ray Tracing Gems ch. 7: the discriminant from the distance of the centre
-// to the line (no catastrophic b² − ac), and the root pair from q = −b − sign(b)·√Δ,
-// t = c/q and q/a (no cancellation in either root).
-// Mirror of src/cpu/intersect.rs::intersect_sphere — change both.
-fn intersect_sphere(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+// The t-interval [t0, t1] where o + t·d is inside the unit sphere at the origin, as
+// (t0, t1); empty (t0 > t1) when the line misses it. Haines et al., Ray Tracing Gems
+// ch. 7: the discriminant from the distance of the centre to the line (no catastrophic
+// b² − ac), and the root pair from q = −b − sign(b)·√Δ, t = c/q and q/a (no cancellation
+// in either root).
+// Mirror of src/cpu/intersect.rs::sphere_interval — change both.
+fn sphere_interval(o: vec3<f32>, d: vec3<f32>) -> vec2<f32> {
     // Compute the quadratic a·t² + 2b·t + c with f = o (centre at the origin).
     let a = dot(d, d);
     let b = dot(o, d);
@@ -33,18 +34,28 @@ fn intersect_sphere(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
     let l = o - d * (b / a);
     let discriminant = a * (1.0 - dot(l, l));
     if discriminant < 0.0 {
-        return T_MISS;
+        return vec2<f32>(T_MISS, -T_MISS);
     }
     // Compute both roots without cancellation.
     let q = -b - copysign(sqrt(discriminant), b);
-    var t0 = 0.0;
-    var t1 = 0.0;
-    if q != 0.0 {
-        let r0 = c / q;
-        let r1 = q / a;
-        t0 = min(r0, r1);
-        t1 = max(r0, r1);
+    if q == 0.0 {
+        return vec2<f32>(0.0);
     }
+    let r0 = c / q;
+    let r1 = q / a;
+    return vec2<f32>(min(r0, r1), max(r0, r1));
+}
+
+// Nearest t in (0, t_max) where o + t·d meets the unit sphere at the origin, else T_MISS
+// (the nearer end of sphere_interval in range; from inside, the exit).
+// Mirror of src/cpu/intersect.rs::intersect_sphere — change both.
+fn intersect_sphere(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+    let interval = sphere_interval(o, d);
+    if interval.x > interval.y {
+        return T_MISS;
+    }
+    let t0 = interval.x;
+    let t1 = interval.y;
     if t0 > 0.0 && t0 < t_max {
         return t0;
     } else if t1 > 0.0 && t1 < t_max {
@@ -55,15 +66,23 @@ fn intersect_sphere(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
 // #endif
 
 // #if CUBE
+// The slab interval [t_near, t_far] of o + t·d through the box [0,1]³ (empty:
+// t_near > t_far).
+// Mirror of src/cpu/intersect.rs::box_interval — change both.
+fn box_interval(o: vec3<f32>, d: vec3<f32>) -> vec2<f32> {
+    let inv = safe_rcp3(d);
+    let t0 = (vec3<f32>(0.0) - o) * inv;
+    let t1 = (vec3<f32>(1.0) - o) * inv;
+    return vec2<f32>(max_element(min(t0, t1)), min_element(max(t0, t1)));
+}
+
 // Nearest t in (0, t_max) where o + t·d meets the box [0,1]³, else T_MISS (slab test;
 // from inside, the exit point).
 // Mirror of src/cpu/intersect.rs::intersect_box — change both.
 fn intersect_box(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
-    let inv = safe_rcp3(d);
-    let t0 = (vec3<f32>(0.0) - o) * inv;
-    let t1 = (vec3<f32>(1.0) - o) * inv;
-    let t_near = max_element(min(t0, t1));
-    let t_far = min_element(max(t0, t1));
+    let interval = box_interval(o, d);
+    let t_near = interval.x;
+    let t_far = interval.y;
     if t_near > t_far {
         return T_MISS;
     }
@@ -185,7 +204,8 @@ fn to_object_space(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>) -> Ray {
     return Ray(oo, od);
 }
 
-// t of the nearest hit in (0, t_max) with an analytic instance, else T_MISS.
+// t of the nearest hit in (0, t_max) with an analytic instance, else T_MISS (KIND_CSG
+// instances: see intersect_item).
 // Mirror of src/cpu/intersect.rs::intersect_instance — change both.
 fn intersect_instance(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
     let local = to_object_space(inst, o, d);

@@ -1,5 +1,5 @@
 // probe.wgsl — test-only entry point (tier-3 kernel probes): traces seeded rays from
-// `probe_rays` with closest_hit and reports (hit, t, item, normal) per ray from
+// `probe_rays` with closest_hit and reports (hit, t, item, part, normal) per ray from
 // surface_at (or, in PROBE_ANY_HIT mode, any_hit's answer alone), for comparison with the CPU functions ray by ray.
 
 // Mirror of src/gpu/probe.rs::ProbeRay — change both.
@@ -18,7 +18,8 @@ struct ProbeResult {
     hit: u32,
     t: f32,
     item: u32,
-    _pad0: u32,
+    // A CSG hit's surface (leaf instance | CSG_FLIP); NO_ITEM otherwise.
+    part: u32,
     // surface_at's geometric normal (zero on a miss).
     normal: vec3<f32>,
     _pad1: u32,
@@ -37,11 +38,11 @@ fn probe(@builtin(global_invocation_id) id: vec3<u32>) {
     let pr = probe_rays[index];
     let ray = Ray(pr.origin, pr.dir);
     if pr.mode == PROBE_ANY_HIT {
-        probe_results[index] = ProbeResult(u32(any_hit(ray, pr.t_max)), 0.0, NO_ITEM, 0u, vec3<f32>(0.0), 0u);
+        probe_results[index] = ProbeResult(u32(any_hit(ray, pr.t_max)), 0.0, NO_ITEM, NO_ITEM, vec3<f32>(0.0), 0u);
         return;
     }
     let hit = closest_hit(ray, pr.t_max);
-    var result = ProbeResult(0u, hit.t, hit.item, 0u, vec3<f32>(0.0), 0u);
+    var result = ProbeResult(0u, hit.t, hit.item, hit.part, vec3<f32>(0.0), 0u);
     if is_hit(hit) {
         result.hit = 1u;
         result.normal = surface_at(ray, hit).normal;

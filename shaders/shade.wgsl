@@ -121,13 +121,34 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
 }
 // #endif
 
+// #if CSG
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
+// The surface of a CSG hit: that of the leaf it lies on (point, material), the normal
+// negated on a subtracted operand's surface, which bounds the result from the other side.
+// Mirror of src/cpu/shade.rs::csg_surface — change both.
+fn csg_surface(ray: Ray, hit: Hit) -> Surface {
+    var s = instance_surface(instances[hit.part & CSG_INDEX_MASK], ray, hit.t);
+    if (hit.part & CSG_FLIP) != 0u {
+        s.normal = -s.normal;
+    }
+    return s;
+}
+// #endif
+// #endif
+
 // The surface at a hit (instances first, then triangles, as in the grid's items).
 // Mirror of src/cpu/shade.rs::surface_at — change both.
 fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let num_instances = globals.num_instances;
 // #if SPHERE|CUBE|CYLINDER|CONE|TORUS
     if hit.item < num_instances {
-        return instance_surface(instances[hit.item], ray, hit.t);
+        let inst = instances[hit.item];
+// #if CSG
+        if inst.kind == KIND_CSG {
+            return csg_surface(ray, hit);
+        }
+// #endif
+        return instance_surface(inst, ray, hit.t);
     }
 // #endif
 // #if MESH

@@ -52,11 +52,17 @@ fn newton_bisect(a: vec4<f32>, a4: f32, x0: f32, x1: f32, f0: f32) -> f32 {
     return x;
 }
 
-// Smallest root in [0, len] of the monic quartic s⁴ + c.w·s³ + c.z·s² + c.y·s + c.x, or
-// −1 when it has none there (no sign change between monotonic pieces; a double root that
-// only touches zero counts as none).
-// Mirror of src/cpu/torus.rs::first_quartic_root — change both.
-fn first_quartic_root(c: vec4<f32>, len: f32) -> f32 {
+// Knots that split [0, len] into pieces where the monic quartic
+// s⁴ + c.w·s³ + c.z·s² + c.y·s + c.x is monotonic: knots[0..=count], from 0 to len.
+// Mirror of src/cpu/torus.rs::QuarticKnots — change both.
+struct QuarticKnots {
+    knots: array<f32, 5>,
+    count: u32,
+}
+
+// The monotonic pieces of the monic quartic c on [0, len] (see QuarticKnots).
+// Mirror of src/cpu/torus.rs::quartic_knots — change both.
+fn quartic_knots(c: vec4<f32>, len: f32) -> QuarticKnots {
     // Compute the roots of the quartic's second derivative 12s² + 6c₃s + 2c₂ (halved:
     // 6s² + 3c₃s + c₂) in closed form; they split [0, len] into pieces where the cubic
     // (the first derivative) is monotonic.
@@ -93,13 +99,22 @@ fn first_quartic_root(c: vec4<f32>, len: f32) -> f32 {
         y0 = y1;
     }
     knots[count] = len;
+    return QuarticKnots(knots, count);
+}
+
+// Smallest root in [0, len] of the monic quartic s⁴ + c.w·s³ + c.z·s² + c.y·s + c.x, or
+// −1 when it has none there (no sign change between monotonic pieces; a double root that
+// only touches zero counts as none).
+// Mirror of src/cpu/torus.rs::first_quartic_root — change both.
+fn first_quartic_root(c: vec4<f32>, len: f32) -> f32 {
+    let k = quartic_knots(c, len);
     // Find the quartic's first root: in the first monotonic piece whose ends differ in
     // sign.
     let quartic = c;
     var z0 = poly_eval(quartic, 1.0, 0.0).x;
-    for (var i = 0u; i < count; i++) {
-        let x0 = knots[i];
-        let x1 = knots[i + 1u];
+    for (var i = 0u; i < k.count; i++) {
+        let x0 = k.knots[i];
+        let x1 = k.knots[i + 1u];
         let z1 = poly_eval(quartic, 1.0, x1).x;
         if x0 < x1 && (z0 < 0.0) != (z1 < 0.0) {
             return newton_bisect(quartic, 1.0, x0, x1, z0);
@@ -109,10 +124,24 @@ fn first_quartic_root(c: vec4<f32>, len: f32) -> f32 {
     return -1.0;
 }
 
-// Nearest t in (0, t_max) where o + t·d (object space, unnormalised d) meets the torus
-// (rin, rout), else T_MISS.
-// Mirror of src/cpu/torus.rs::intersect_torus — change both.
-fn intersect_torus(o: vec3<f32>, d: vec3<f32>, rin: f32, rout: f32, t_max: f32) -> f32 {
+// The part of a ray inside the torus's bounds, set up for the root finder: the ray enters
+// the bounds at t_near; s = (t − t_near)·speed runs over [0, len], where the torus is the
+// monic quartic c in s ≤ 0. valid is false when the ray misses the bounds between t_min
+// and t_max.
+// Mirror of src/cpu/torus.rs::TorusChord — change both.
+struct TorusChord {
+    t_near: f32,
+    speed: f32,
+    len: f32,
+    c: vec4<f32>,
+    valid: bool,
+}
+
+// The chord of o + t·d (object space, unnormalised d) through the bounds of the torus
+// (rin, rout), clipped to [t_min, t_max], and the quartic along it.
+// Mirror of src/cpu/torus.rs::torus_chord — change both.
+fn torus_chord(o: vec3<f32>, d: vec3<f32>, rin: f32, rout: f32, t_min: f32, t_max: f32) -> TorusChord {
+    var chord = TorusChord(0.0, 1.0, 0.0, vec4<f32>(0.0), false);
     // Work in units of the bounding radius rin + rout (t is unchanged).
     let inv_size = 1.0 / (rin + rout);
     let o1 = o * inv_size;
@@ -126,11 +155,11 @@ fn intersect_torus(o: vec3<f32>, d: vec3<f32>, rin: f32, rout: f32, t_max: f32) 
     let l = o1 - d1 * (b / a);
     let discriminant = a * (bound * bound - dot(l, l));
     if discriminant < 0.0 {
-        return T_MISS;
+        return chord;
     }
     let q = -b - copysign(sqrt(discriminant), b);
     if q == 0.0 {
-        return T_MISS;
+        return chord;
     }
     let r0 = (dot(o1, o1) - bound * bound) / q;
     let r1 = q / a;
@@ -139,10 +168,10 @@ fn intersect_torus(o: vec3<f32>, d: vec3<f32>, rin: f32, rout: f32, t_max: f32) 
     let inv_dz = safe_rcp(d1.z);
     let z0 = (-half_height - o1.z) * inv_dz;
     let z1 = (half_height - o1.z) * inv_dz;
-    let t_near = max(max(min(r0, r1), min(z0, z1)), 0.0);
+    let t_near = max(max(min(r0, r1), min(z0, z1)), t_min);
     let t_far = min(min(max(r0, r1), max(z0, z1)), t_max);
     if t_near >= t_far {
-        return T_MISS;
+        return chord;
     }
     // Move the origin to the entry point and make the direction unit: s = (t − t_near)·|d|.
     let p = o1 + d1 * t_near;
@@ -163,16 +192,72 @@ fn intersect_torus(o: vec3<f32>, d: vec3<f32>, rin: f32, rout: f32, t_max: f32) 
     let near = (tube_dist - r_tube) * (tube_dist + r_tube);
     let far = (rho + r_mid) * (rho + r_mid) + p.z * p.z - r_tube * r_tube;
     let c0 = near * far;
-    let s = first_quartic_root(vec4<f32>(c0, c1, c2, c3), len);
+    chord.t_near = t_near;
+    chord.speed = speed;
+    chord.len = len;
+    chord.c = vec4<f32>(c0, c1, c2, c3);
+    chord.valid = true;
+    return chord;
+}
+
+// Nearest t in (0, t_max) where o + t·d (object space, unnormalised d) meets the torus
+// (rin, rout), else T_MISS.
+// Mirror of src/cpu/torus.rs::intersect_torus — change both.
+fn intersect_torus(o: vec3<f32>, d: vec3<f32>, rin: f32, rout: f32, t_max: f32) -> f32 {
+    let chord = torus_chord(o, d, rin, rout, 0.0, t_max);
+    if !chord.valid {
+        return T_MISS;
+    }
+    let s = first_quartic_root(chord.c, chord.len);
     if s < 0.0 {
         return T_MISS;
     }
-    let t = t_near + s / speed;
+    let t = chord.t_near + s / chord.speed;
     if t > 0.0 && t < t_max {
         return t;
     }
     return T_MISS;
 }
+
+// #if CSG
+// The t-intervals where o + t·d (object space, unnormalised d) is inside the torus
+// (rin, rout) — where its quartic is ≤ 0: [x, y] and [z, w], each empty when its lo > hi,
+// the second after the first (see the CPU twin).
+// Mirror of src/cpu/torus.rs::torus_intervals — change both.
+fn torus_intervals(o: vec3<f32>, d: vec3<f32>, rin: f32, rout: f32) -> vec4<f32> {
+    let empty = vec4<f32>(T_MISS, -T_MISS, T_MISS, -T_MISS);
+    let chord = torus_chord(o, d, rin, rout, -T_MISS, T_MISS);
+    if !chord.valid {
+        return empty;
+    }
+    let k = quartic_knots(chord.c, chord.len);
+    // Every piece whose ends differ in sign holds one crossing.
+    let quartic = chord.c;
+    var ends = array<f32, 4>(chord.len, chord.len, chord.len, chord.len);
+    var count = 0u;
+    var y0 = poly_eval(quartic, 1.0, 0.0).x;
+    for (var i = 0u; i < k.count; i++) {
+        let x0 = k.knots[i];
+        let x1 = k.knots[i + 1u];
+        let y1 = poly_eval(quartic, 1.0, x1).x;
+        if x0 < x1 && (y0 < 0.0) != (y1 < 0.0) {
+            ends[count] = newton_bisect(quartic, 1.0, x0, x1, y0);
+            count += 1u;
+        }
+        y0 = y1;
+    }
+    var out = empty;
+    if count > 0u {
+        out.x = chord.t_near + ends[0] / chord.speed;
+        out.y = chord.t_near + ends[1] / chord.speed;
+    }
+    if count > 2u {
+        out.z = chord.t_near + ends[2] / chord.speed;
+        out.w = chord.t_near + ends[3] / chord.speed;
+    }
+    return out;
+}
+// #endif
 
 // The torus's surface at (near) a point, in object space.
 // Mirror of src/cpu/torus.rs::TorusSurface — change both.

@@ -5,19 +5,21 @@
 // the choice between grid and brute force is made when the shader is specialised: the
 // GRID feature is set exactly when `grid_enabled` is 1.
 
-// The nearest hit: distance, item (instances first, then triangles) and, for triangles,
-// the barycentric weights of p1 and p2.
+// The nearest hit: distance, item (instances first, then triangles), for triangles the
+// barycentric weights of p1 and p2, and for a CSG item the surface hit (part: leaf
+// instance index, with CSG_FLIP when its normal is negated; NO_ITEM otherwise).
 // Mirror of src/cpu/traverse.rs::Hit — change both.
 struct Hit {
     t: f32,
     item: u32,
     b1: f32,
     b2: f32,
+    part: u32,
 }
 
 // Mirror of src/cpu/traverse.rs::Hit::MISS — change both.
 fn hit_miss() -> Hit {
-    return Hit(T_MISS, NO_ITEM, 0.0, 0.0);
+    return Hit(T_MISS, NO_ITEM, 0.0, 0.0, NO_ITEM);
 }
 
 // Mirror of src/cpu/traverse.rs::Hit::is_hit — change both.
@@ -25,21 +27,29 @@ fn is_hit(hit: Hit) -> bool {
     return hit.item != NO_ITEM;
 }
 
-// Tests one item, returning (t, b1, b2) with t = T_MISS on a miss.
+// Tests one item: its hit (t = T_MISS on a miss).
 // Mirror of src/cpu/traverse.rs::intersect_item — change both.
-fn intersect_item(item: u32, ray: Ray, tri_ray: TriangleRay, t_max: f32) -> vec3<f32> {
+fn intersect_item(item: u32, ray: Ray, tri_ray: TriangleRay, t_max: f32) -> Hit {
     let num_instances = globals.num_instances;
 // #if SPHERE|CUBE|CYLINDER|CONE|TORUS
     if item < num_instances {
-        let t = intersect_instance(instances[item], ray.origin, ray.dir, t_max);
-        return vec3<f32>(t, 0.0, 0.0);
+        let inst = instances[item];
+// #if CSG
+        if inst.kind == KIND_CSG {
+            let h = intersect_csg(inst, ray.origin, ray.dir, t_max);
+            return Hit(h.t, item, 0.0, 0.0, h.part);
+        }
+// #endif
+        let t = intersect_instance(inst, ray.origin, ray.dir, t_max);
+        return Hit(t, item, 0.0, 0.0, NO_ITEM);
     }
 // #endif
 // #if MESH
     let tri = triangles[item - num_instances];
-    return intersect_triangle(tri_ray, tri.p0, tri.p1, tri.p2, t_max);
+    let h = intersect_triangle(tri_ray, tri.p0, tri.p1, tri.p2, t_max);
+    return Hit(h.x, item, h.y, h.z, NO_ITEM);
 // #else
-    return vec3<f32>(T_MISS, 0.0, 0.0);
+    return hit_miss();
 // #endif
 }
 
@@ -59,10 +69,9 @@ fn item_at(i: u32) -> u32 {
 fn test_items(first: u32, last: u32, ray: Ray, tri_ray: TriangleRay, best_in: Hit) -> Hit {
     var best = best_in;
     for (var i = first; i < last; i++) {
-        let item = item_at(i);
-        let h = intersect_item(item, ray, tri_ray, best.t);
-        if h.x < best.t {
-            best = Hit(h.x, item, h.y, h.z);
+        let h = intersect_item(item_at(i), ray, tri_ray, best.t);
+        if h.t < best.t {
+            best = h;
         }
     }
     return best;
@@ -72,7 +81,7 @@ fn test_items(first: u32, last: u32, ray: Ray, tri_ray: TriangleRay, best_in: Hi
 // Mirror of src/cpu/traverse.rs::any_item_hit — change both.
 fn any_item_hit(first: u32, last: u32, ray: Ray, tri_ray: TriangleRay, t_max: f32) -> bool {
     for (var i = first; i < last; i++) {
-        if intersect_item(item_at(i), ray, tri_ray, t_max).x < t_max {
+        if intersect_item(item_at(i), ray, tri_ray, t_max).t < t_max {
             return true;
         }
     }

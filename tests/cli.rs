@@ -455,3 +455,38 @@ fn bench_sweep_quick_prints_its_figures_and_writes_the_plot() {
         "temp file left behind"
     );
 }
+
+#[test]
+fn bad_csg_operand_and_too_deep_csg() {
+    let scene = format!(
+        "root = gr.node('root')\nm = gr.mesh('m', {{{{0,0,0}},{{1,0,0}},{{0,1,0}}}}, {{{{0,1,2}}}})\nc = gr.csg('c', 'd', gr.sphere('s'), m)\n{GOOD_RENDER}"
+    );
+    assert_fails(
+        "csg-mesh",
+        &scene,
+        &[],
+        &[],
+        3,
+        &[
+            "scene.lua:3:",
+            "gr.csg: argument 4 (b) must be a primitive or CSG node",
+            "mesh node 'm'",
+        ],
+    );
+    let mut scene = String::from("root = gr.node('root')\nn = gr.sphere('s')\n");
+    for i in 1..=17 {
+        scene += &format!("n = gr.csg('c{i}', 'u', n, gr.sphere('s{i}'))\n");
+    }
+    scene += &format!("root:add_child(n)\n{GOOD_RENDER}");
+    assert_fails(
+        "csg-depth",
+        &scene,
+        &[],
+        &[],
+        3,
+        &[
+            "gr.render",
+            "CSG node 'root/c17' nests CSG operations deeper than 16 levels",
+        ],
+    );
+}

@@ -38,6 +38,7 @@ fn pack_one(kind: ObjectKind, m: DMat4) -> PackedScene {
             material: 0,
         }],
         triangles: Vec::new(),
+        csg: Vec::new(),
         materials: vec![Material::default()],
         textures: Vec::new(),
         lights: Vec::new(),
@@ -616,8 +617,7 @@ fn leave_case(cone: bool, seed: u64, stats: &mut (usize, usize, Vec<String>)) {
         let hit = Hit {
             t,
             item: 0,
-            b1: 0.0,
-            b2: 0.0,
+            ..Hit::MISS
         };
         let s = surface_at(&packed, &ray, &hit);
         let origin = offset_ray(s.p, s.normal, s.magnitude);

@@ -163,7 +163,7 @@ fn wgsl_structs_match_rust_layout() {
             hit,
             t,
             item,
-            _pad0,
+            part,
             normal,
             _pad1
         }),
@@ -439,4 +439,68 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
             }
         }
     }
+}
+
+/// The CSG code (shaders/csg.wgsl, the torus's interval search, the dispatch and surface
+/// arms) is in exactly the specialisations with CSG (and some primitive kind for its
+/// leaves), and absent from every other.
+#[test]
+fn csg_code_only_with_csg() {
+    let sets = all_feature_sets();
+    assert!(sets.iter().any(|s| s.contains(SceneFeatures::CSG)));
+    let kinds = SceneFeatures::SPHERE.0
+        | SceneFeatures::CUBE.0
+        | SceneFeatures::CYLINDER.0
+        | SceneFeatures::CONE.0
+        | SceneFeatures::TORUS.0;
+    let csg_code = [
+        "fn intersect_csg(",
+        "fn csg_evaluate(",
+        "fn csg_combine(",
+        "fn csg_push_leaf(",
+        "fn leaf_intervals(",
+        "fn csg_surface(",
+        "var<private> csg_t:",
+        "== KIND_CSG {",
+    ];
+    for features in sets {
+        let with_csg = features.contains(SceneFeatures::CSG) && features.0 & kinds != 0;
+        for entry in [Entry::Render, Entry::Probe] {
+            let source = assemble(features, entry);
+            for code in csg_code {
+                assert_eq!(
+                    source.contains(code),
+                    with_csg,
+                    "[{features}] {entry:?}: {code}"
+                );
+            }
+            assert_eq!(
+                source.contains("fn torus_intervals("),
+                with_csg && features.contains(SceneFeatures::TORUS),
+                "[{features}] {entry:?}: torus_intervals"
+            );
+        }
+    }
+    // And in naga's module, not only the source.
+    let features = SceneFeatures(SceneFeatures::CSG.0 | SceneFeatures::SPHERE.0);
+    let module = validate(&assemble(features, Entry::Render), features).unwrap();
+    let names: Vec<&str> = module
+        .functions
+        .iter()
+        .filter_map(|(_, f)| f.name.as_deref())
+        .collect();
+    assert!(names.contains(&"intersect_csg") && names.contains(&"csg_combine"));
+    let module = validate(
+        &assemble(SceneFeatures::SPHERE, Entry::Render),
+        SceneFeatures::SPHERE,
+    )
+    .unwrap();
+    assert!(!module
+        .functions
+        .iter()
+        .any(|(_, f)| f.name.as_deref().is_some_and(|n| n.contains("csg"))));
+    assert!(module
+        .global_variables
+        .iter()
+        .all(|(_, g)| g.name.as_deref().is_none_or(|n| !n.starts_with("csg_t"))));
 }

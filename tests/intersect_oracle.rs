@@ -31,6 +31,7 @@ fn scene(objects: Vec<Object>, triangles: Vec<Triangle>, grid: GridMode) -> Scen
     Scene {
         objects,
         triangles,
+        csg: Vec::new(),
         materials: vec![Material::default()],
         textures: Vec::new(),
         lights: Vec::new(),
@@ -502,8 +503,7 @@ fn leave_case(kind: ObjectKind, from_inside: bool, seed: u64, stats: &mut LeaveS
         let hit = Hit {
             t,
             item: 0,
-            b1: 0.0,
-            b2: 0.0,
+            ..Hit::MISS
         };
         let s = surface_at(&packed, &ray, &hit);
         let n = if from_inside { -s.normal } else { s.normal };

@@ -57,6 +57,7 @@ fn scene(objects: Vec<Object>, materials: Vec<Material>, eye: DVec3, size: u32) 
         triangles: vec![],
         materials,
         textures: Vec::new(),
+        csg: Vec::new(),
         lights: vec![],
         camera: Camera {
             eye,

@@ -30,6 +30,7 @@ fn sphere_scene(
             material: 0,
         }],
         triangles: vec![],
+        csg: Vec::new(),
         materials: vec![material],
         textures: Vec::new(),
         lights: vec![light],

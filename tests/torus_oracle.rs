@@ -159,6 +159,7 @@ fn pack_torus(rin: f64, rout: f64, m: DMat4) -> PackedScene {
             material: 0,
         }],
         triangles: Vec::new(),
+        csg: Vec::new(),
         materials: vec![Material::default()],
         textures: Vec::new(),
         lights: Vec::new(),
@@ -477,8 +478,7 @@ fn torus_rays_leaving_the_surface() {
             let hit = Hit {
                 t,
                 item: 0,
-                b1: 0.0,
-                b2: 0.0,
+                ..Hit::MISS
             };
             let s = surface_at(&packed, &ray, &hit);
             let n = s.normal.as_dvec3();

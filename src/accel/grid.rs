@@ -2,9 +2,13 @@
 //! the scene bounds), each item listed in every cell its (padded) bounds overlap; mesh
 //! triangles are individual items and skip cells their plane misses. Cells are stored
 //! CSR-style (`cell_start`, `cell_items`), items in ascending order inside each cell so
-//! the build is deterministic.
+//! the build is deterministic. A CSG object is one item whose bounds follow its tree
+//! ([`csg_bounds`]).
 
-use crate::constants::{KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS};
+use crate::constants::{
+    CSG_DIFFERENCE, CSG_INDEX_MASK, CSG_INTERSECTION, CSG_LEAF, CSG_OP_SHIFT, KIND_CONE, KIND_CUBE,
+    KIND_CYLINDER, KIND_SPHERE, KIND_TORUS,
+};
 use crate::pack::{GpuInstance, GpuTriangle};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -79,8 +83,25 @@ impl Aabb {
         }
     }
 
-    /// Grown by `BOUNDS_PAD` of its largest coordinate magnitude and extent.
+    /// The common part (empty when they do not overlap).
+    pub fn intersection(self, other: Aabb) -> Aabb {
+        Aabb {
+            min: self.min.max(other.min),
+            max: self.max.min(other.max),
+        }
+    }
+
+    /// Whether the box holds no point (min > max on some axis).
+    pub fn is_empty(self) -> bool {
+        self.min.cmpgt(self.max).any()
+    }
+
+    /// Grown by `BOUNDS_PAD` of its largest coordinate magnitude and extent (an empty box
+    /// stays empty).
     fn padded(self) -> Aabb {
+        if self.is_empty() {
+            return Aabb::EMPTY;
+        }
         let magnitude = self.min.abs().max(self.max.abs()).max_element();
         let pad = BOUNDS_PAD * (magnitude + (self.max - self.min).max_element());
         Aabb {
@@ -163,6 +184,36 @@ pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
     }
 }
 
+/// World bounds of a CSG object from its post-order `program` (entries as in
+/// `PackedScene::csg_program`; leaves index `instances`): a union is bounded by the union
+/// of its operands' bounds, an intersection by their intersection, a difference by a's.
+/// Empty when an intersection's operands cannot overlap (the object is then in no cell).
+pub fn csg_bounds(program: &[u32], instances: &[GpuInstance]) -> Aabb {
+    let mut stack: Vec<Aabb> = Vec::new();
+    for &entry in program {
+        let op = entry >> CSG_OP_SHIFT;
+        if op == CSG_LEAF {
+            stack.push(instance_bounds(
+                &instances[(entry & CSG_INDEX_MASK) as usize],
+            ));
+            continue;
+        }
+        let b = stack.pop().expect("CSG program: operand b");
+        let a = stack.pop().expect("CSG program: operand a");
+        stack.push(match op {
+            CSG_INTERSECTION => a.intersection(b),
+            CSG_DIFFERENCE => a,
+            _ => a.union(b),
+        });
+    }
+    let bounds = stack.pop().expect("CSG program: result");
+    if bounds.is_empty() {
+        Aabb::EMPTY
+    } else {
+        bounds
+    }
+}
+
 pub fn triangle_bounds(tri: &GpuTriangle) -> Aabb {
     let [a, b, c] = [tri.p0, tri.p1, tri.p2].map(Vec3::from);
     Aabb {
@@ -187,22 +238,35 @@ pub fn grid_resolution(extent: Vec3, items: usize, density: f32) -> [u32; 3] {
 }
 
 impl Grid {
-    /// Builds the grid over every instance and triangle; `density` None means brute force.
+    /// Builds the grid over every instance and triangle (no CSG objects: see
+    /// [`Grid::build_items`]); `density` None means brute force.
     pub fn build(
         instances: &[GpuInstance],
         triangles: &[GpuTriangle],
         density: Option<f32>,
     ) -> Grid {
+        let bounds = instances.par_iter().map(instance_bounds).collect();
+        Grid::build_items(bounds, triangles, density)
+    }
+
+    /// Builds the grid over items with the given instance bounds (one per instance item,
+    /// CSG objects included), then the triangles. An item with empty bounds is in no cell.
+    pub fn build_items(
+        instance_bounds: Vec<Aabb>,
+        triangles: &[GpuTriangle],
+        density: Option<f32>,
+    ) -> Grid {
         let start = Instant::now();
-        let bounds: Vec<Aabb> = instances
-            .par_iter()
-            .map(instance_bounds)
+        let num_instances = instance_bounds.len();
+        let bounds: Vec<Aabb> = instance_bounds
+            .into_par_iter()
             .chain(triangles.par_iter().map(triangle_bounds))
             .map(Aabb::padded)
             .collect();
         let scene_bounds = bounds.iter().fold(Aabb::EMPTY, |a, &b| a.union(b));
         let item_count = bounds.len();
-        let Some(density) = density.filter(|_| item_count > 0) else {
+        // (Items with empty bounds alone: nothing to grid, and nothing to hit.)
+        let Some(density) = density.filter(|_| item_count > 0 && !scene_bounds.is_empty()) else {
             return Grid::brute_force(scene_bounds, item_count);
         };
         // A flat scene (all items in a plane) still needs a non-zero extent on every axis.
@@ -223,7 +287,6 @@ impl Grid {
 
         // (cell, item) references, produced in parallel chunks kept in item order.
         const CHUNK: usize = 1 << 14;
-        let num_instances = instances.len();
         let pairs: Vec<(u32, u32)> = bounds
             .par_chunks(CHUNK)
             .enumerate()
@@ -231,6 +294,9 @@ impl Grid {
                 let mut out = Vec::new();
                 for (k, b) in chunk_bounds.iter().enumerate() {
                     let item = chunk * CHUNK + k;
+                    if b.is_empty() {
+                        continue;
+                    }
                     let triangle = item.checked_sub(num_instances).map(|t| &triangles[t]);
                     geometry.for_each_cell(b, triangle, |cell| out.push((cell, item as u32)));
                 }
@@ -284,7 +350,7 @@ impl Grid {
 
     /// No grid: one conceptual cell holding every item, traversed by brute force.
     fn brute_force(bounds: Aabb, items: usize) -> Grid {
-        let (min, max) = if items == 0 {
+        let (min, max) = if items == 0 || bounds.is_empty() {
             (Vec3::ZERO, Vec3::ZERO)
         } else {
             (bounds.min, bounds.max)

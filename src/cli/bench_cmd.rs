@@ -207,6 +207,7 @@ pub fn random_triangle_scene(n: usize, seed: u64) -> Scene {
     Scene {
         objects: Vec::new(),
         triangles,
+        csg: Vec::new(),
         materials: vec![crate::scene::Material::default()],
         textures: Vec::new(),
         lights: Vec::new(),

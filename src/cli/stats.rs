@@ -28,9 +28,21 @@ pub fn format_stats(image: &RenderedImage) -> String {
             );
         }
     }
+    let csg_items = packed.instances[..g.num_instances as usize]
+        .iter()
+        .filter(|i| i.kind == crate::constants::KIND_CSG)
+        .count();
+    let csg = if csg_items > 0 {
+        format!(
+            " ({csg_items} CSG objects of {} primitives)",
+            packed.instances.len() - g.num_instances as usize
+        )
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         out,
-        "  items: {} analytic, {} triangles, {} lights",
+        "  items: {} analytic{csg}, {} triangles, {} lights",
         g.num_instances, g.num_triangles, g.num_lights
     );
     if g.grid_enabled != 0 {

@@ -20,7 +20,7 @@
 
 use super::intersect::safe_rcp;
 use crate::constants::{TWO_PI, T_MISS};
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// The surface of a cylinder or cone at a hit, in object space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,10 +67,11 @@ fn cylinder_cone_angle_u(x: f32, y: f32) -> f32 {
     }
 }
 
-/// Nearest t in (0, t_max) where `o + t·d` meets the solid cylinder x² + y² ≤ 1,
-/// 0 ≤ z ≤ 1, else [`T_MISS`] (from inside, the exit point).
-// Mirror of shaders/cylinder_cone.wgsl::intersect_cylinder — change both.
-pub fn intersect_cylinder(o: Vec3, d: Vec3, t_max: f32) -> f32 {
+/// The t-interval [lo, hi] where `o + t·d` is inside the solid cylinder x² + y² ≤ 1,
+/// 0 ≤ z ≤ 1, as (lo, hi); empty (lo > hi) when the line misses it.
+// Mirror of shaders/cylinder_cone.wgsl::cylinder_interval — change both.
+pub fn cylinder_interval(o: Vec3, d: Vec3) -> Vec2 {
+    let miss = Vec2::new(T_MISS, -T_MISS);
     // Compute the side quadratic a·t² + 2b·t + c of x² + y² − 1 (intersect_sphere's
     // stable form, in xy).
     let a = d.x * d.x + d.y * d.y;
@@ -84,7 +85,7 @@ pub fn intersect_cylinder(o: Vec3, d: Vec3, t_max: f32) -> f32 {
         let ly = o.y - d.y * (b / a);
         let discriminant = a * (1.0 - (lx * lx + ly * ly));
         if discriminant < 0.0 {
-            return T_MISS;
+            return miss;
         }
         // Compute both roots without cancellation.
         let q = -b - discriminant.sqrt().copysign(b);
@@ -99,22 +100,38 @@ pub fn intersect_cylinder(o: Vec3, d: Vec3, t_max: f32) -> f32 {
         }
     } else if c > 0.0 {
         // Parallel to the axis, outside the side.
-        return T_MISS;
+        return miss;
     }
     // Clip to the slab between the caps.
     let inv_dz = safe_rcp(d.z);
     let tz0 = (0.0 - o.z) * inv_dz;
     let tz1 = (1.0 - o.z) * inv_dz;
-    let lo = side_lo.max(tz0.min(tz1));
-    let hi = side_hi.min(tz0.max(tz1));
-    nearest_interval_end(lo, hi, 0.0, t_max, T_MISS)
+    Vec2::new(side_lo.max(tz0.min(tz1)), side_hi.min(tz0.max(tz1)))
 }
 
-/// Nearest t in (0, t_max) where `o + t·d` meets the solid cone x² + y² ≤ z²,
-/// zmin ≤ z ≤ zmax, else [`T_MISS`] (from inside, the exit point). With zmin < 0 < zmax,
-/// the double cone (see the module docs).
-// Mirror of shaders/cylinder_cone.wgsl::intersect_cone — change both.
-pub fn intersect_cone(o: Vec3, d: Vec3, zmin: f32, zmax: f32, t_max: f32) -> f32 {
+/// Nearest t in (0, t_max) where `o + t·d` meets the solid cylinder x² + y² ≤ 1,
+/// 0 ≤ z ≤ 1, else [`T_MISS`] (from inside, the exit point).
+// Mirror of shaders/cylinder_cone.wgsl::intersect_cylinder — change both.
+pub fn intersect_cylinder(o: Vec3, d: Vec3, t_max: f32) -> f32 {
+    let interval = cylinder_interval(o, d);
+    nearest_interval_end(interval.x, interval.y, 0.0, t_max, T_MISS)
+}
+
+/// Where a line is inside a cone: t = `t_shift` + t′ over the t′-intervals
+/// [`spans`.x, `spans`.y] and [`spans`.z, `spans`.w] (each empty when its lo > hi; the
+/// second after the first).
+#[derive(Clone, Copy, Debug, PartialEq)]
+// Mirror of shaders/cylinder_cone.wgsl::ConeIntervals — change both.
+pub struct ConeIntervals {
+    pub t_shift: f32,
+    pub spans: Vec4,
+}
+
+/// The intervals where `o + t·d` is inside the solid cone x² + y² ≤ z², zmin ≤ z ≤ zmax
+/// (two only for a double cone, see the module docs).
+// Mirror of shaders/cylinder_cone.wgsl::cone_intervals — change both.
+pub fn cone_intervals(o: Vec3, d: Vec3, zmin: f32, zmax: f32) -> ConeIntervals {
+    let empty = Vec4::new(T_MISS, -T_MISS, T_MISS, -T_MISS);
     // Move the origin to the line's point nearest the tip: the quadratic's coefficients
     // are then of the size of the hit's distance from the tip, not of the origin's (no
     // catastrophic b² − ac for far origins, and rays passing near the tip keep their
@@ -138,13 +155,19 @@ pub fn intersect_cone(o: Vec3, d: Vec3, zmin: f32, zmax: f32, t_max: f32) -> f32
         } else if b < 0.0 {
             lo0 = -c / (2.0 * b);
         } else if c > 0.0 {
-            return T_MISS;
+            return ConeIntervals {
+                t_shift,
+                spans: empty,
+            };
         }
     } else if a < 0.0 && discriminant <= 0.0 {
         // Steeper than the cone: inside for every t' (through the tip when Δ = 0).
     } else {
         if discriminant < 0.0 {
-            return T_MISS;
+            return ConeIntervals {
+                t_shift,
+                spans: empty,
+            };
         }
         // Compute both roots without cancellation.
         let q = -b - discriminant.sqrt().copysign(b);
@@ -172,8 +195,26 @@ pub fn intersect_cone(o: Vec3, d: Vec3, zmin: f32, zmax: f32, t_max: f32) -> f32
     let tz1 = (zmax - os.z) * inv_dz;
     let slab_lo = tz0.min(tz1);
     let slab_hi = tz0.max(tz1);
-    let best = nearest_interval_end(lo0.max(slab_lo), hi0.min(slab_hi), t_shift, t_max, T_MISS);
-    nearest_interval_end(lo1.max(slab_lo), hi1.min(slab_hi), t_shift, t_max, best)
+    ConeIntervals {
+        t_shift,
+        spans: Vec4::new(
+            lo0.max(slab_lo),
+            hi0.min(slab_hi),
+            lo1.max(slab_lo),
+            hi1.min(slab_hi),
+        ),
+    }
+}
+
+/// Nearest t in (0, t_max) where `o + t·d` meets the solid cone x² + y² ≤ z²,
+/// zmin ≤ z ≤ zmax, else [`T_MISS`] (from inside, the exit point). With zmin < 0 < zmax,
+/// the double cone (see the module docs).
+// Mirror of shaders/cylinder_cone.wgsl::intersect_cone — change both.
+pub fn intersect_cone(o: Vec3, d: Vec3, zmin: f32, zmax: f32, t_max: f32) -> f32 {
+    let c = cone_intervals(o, d, zmin, zmax);
+    let s = c.spans;
+    let best = nearest_interval_end(s.x, s.y, c.t_shift, t_max, T_MISS);
+    nearest_interval_end(s.z, s.w, c.t_shift, t_max, best)
 }
 
 /// The cylinder's surface at the object-space point `p` (near the surface): the nearest of

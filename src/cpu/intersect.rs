@@ -8,7 +8,7 @@ use crate::constants::{
     KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, SAFE_RCP_LIMIT, T_MISS,
 };
 use crate::pack::{GpuInstance, GpuTriangle};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// 1/x, or ±[`SAFE_RCP_LIMIT`] when |x| is too small to invert without overflow.
 // Mirror of shaders/intersect.wgsl::safe_rcp — change both.
@@ -25,12 +25,13 @@ pub fn safe_rcp3(v: Vec3) -> Vec3 {
     Vec3::new(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z))
 }
 
-/// Nearest t in (0, t_max) where `o + t·d` meets the unit sphere at the origin, else
-/// [`T_MISS`]. Haines et al., Ray Tracing Gems ch. 7: the discriminant from the distance
-/// of the centre to the line (no catastrophic b² − ac), and the root pair from
-/// q = −b − sign(b)·√Δ, t = c/q and q/a (no cancellation in either root).
-// Mirror of shaders/intersect.wgsl::intersect_sphere — change both.
-pub fn intersect_sphere(o: Vec3, d: Vec3, t_max: f32) -> f32 {
+/// The t-interval [t0, t1] where `o + t·d` is inside the unit sphere at the origin, as
+/// (t0, t1); empty (t0 > t1) when the line misses it. Haines et al., Ray Tracing Gems
+/// ch. 7: the discriminant from the distance of the centre to the line (no catastrophic
+/// b² − ac), and the root pair from q = −b − sign(b)·√Δ, t = c/q and q/a (no cancellation
+/// in either root).
+// Mirror of shaders/intersect.wgsl::sphere_interval — change both.
+pub fn sphere_interval(o: Vec3, d: Vec3) -> Vec2 {
     // Compute the quadratic a·t² + 2b·t + c with f = o (centre at the origin).
     let a = d.dot(d);
     let b = o.dot(d);
@@ -39,17 +40,27 @@ pub fn intersect_sphere(o: Vec3, d: Vec3, t_max: f32) -> f32 {
     let l = o - d * (b / a);
     let discriminant = a * (1.0 - l.dot(l));
     if discriminant < 0.0 {
-        return T_MISS;
+        return Vec2::new(T_MISS, -T_MISS);
     }
     // Compute both roots without cancellation.
     let q = -b - discriminant.sqrt().copysign(b);
-    let (t0, t1) = if q == 0.0 {
-        (0.0, 0.0)
-    } else {
-        let r0 = c / q;
-        let r1 = q / a;
-        (r0.min(r1), r0.max(r1))
-    };
+    if q == 0.0 {
+        return Vec2::ZERO;
+    }
+    let r0 = c / q;
+    let r1 = q / a;
+    Vec2::new(r0.min(r1), r0.max(r1))
+}
+
+/// Nearest t in (0, t_max) where `o + t·d` meets the unit sphere at the origin, else
+/// [`T_MISS`] (the nearer end of [`sphere_interval`] in range; from inside, the exit).
+// Mirror of shaders/intersect.wgsl::intersect_sphere — change both.
+pub fn intersect_sphere(o: Vec3, d: Vec3, t_max: f32) -> f32 {
+    let interval = sphere_interval(o, d);
+    if interval.x > interval.y {
+        return T_MISS;
+    }
+    let (t0, t1) = (interval.x, interval.y);
     if t0 > 0.0 && t0 < t_max {
         t0
     } else if t1 > 0.0 && t1 < t_max {
@@ -59,15 +70,22 @@ pub fn intersect_sphere(o: Vec3, d: Vec3, t_max: f32) -> f32 {
     }
 }
 
+/// The slab interval [t_near, t_far] of `o + t·d` through the box [0,1]³ (empty:
+/// t_near > t_far).
+// Mirror of shaders/intersect.wgsl::box_interval — change both.
+pub fn box_interval(o: Vec3, d: Vec3) -> Vec2 {
+    let inv = safe_rcp3(d);
+    let t0 = (Vec3::ZERO - o) * inv;
+    let t1 = (Vec3::ONE - o) * inv;
+    Vec2::new(t0.min(t1).max_element(), t0.max(t1).min_element())
+}
+
 /// Nearest t in (0, t_max) where `o + t·d` meets the box [0,1]³, else [`T_MISS`]
 /// (slab test; from inside, the exit point).
 // Mirror of shaders/intersect.wgsl::intersect_box — change both.
 pub fn intersect_box(o: Vec3, d: Vec3, t_max: f32) -> f32 {
-    let inv = safe_rcp3(d);
-    let t0 = (Vec3::ZERO - o) * inv;
-    let t1 = (Vec3::ONE - o) * inv;
-    let t_near = t0.min(t1).max_element();
-    let t_far = t0.max(t1).min_element();
+    let interval = box_interval(o, d);
+    let (t_near, t_far) = (interval.x, interval.y);
     if t_near > t_far {
         return T_MISS;
     }
@@ -191,7 +209,8 @@ pub fn to_object_space(inst: &GpuInstance, o: Vec3, d: Vec3) -> (Vec3, Vec3) {
     (oo, od)
 }
 
-/// t of the nearest hit in (0, t_max) with an analytic instance, else [`T_MISS`].
+/// t of the nearest hit in (0, t_max) with an analytic instance, else [`T_MISS`]
+/// (`KIND_CSG` instances need the scene: see `traverse::intersect_item`).
 // Mirror of shaders/intersect.wgsl::intersect_instance — change both.
 pub fn intersect_instance(inst: &GpuInstance, o: Vec3, d: Vec3, t_max: f32) -> f32 {
     let (oo, od) = to_object_space(inst, o, d);

@@ -3,6 +3,7 @@
 //! follow the same steps with the same constants, in f32.
 
 pub mod adaptive;
+pub mod csg;
 pub mod cylinder_cone;
 pub mod dielectric;
 pub mod intersect;

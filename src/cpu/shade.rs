@@ -9,7 +9,10 @@ use super::texture::surface_colours;
 use super::torus::torus_surface;
 use super::traverse::{any_hit, Hit, TraversalCounters};
 use super::uv::{cube_surface, sphere_surface, triangle_frame};
-use crate::constants::{KIND_CONE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, LIGHT_AREA};
+use crate::constants::{
+    CSG_FLIP, CSG_INDEX_MASK, KIND_CONE, KIND_CSG, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS,
+    LIGHT_AREA,
+};
 use crate::pack::{GpuGlobals, GpuInstance, GpuLight, PackedScene, SceneFeatures};
 use glam::{Vec2, Vec3};
 
@@ -103,7 +106,11 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
 pub fn surface_at(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
     let num_instances = scene.globals.num_instances;
     if hit.item < num_instances {
-        return instance_surface(&scene.instances[hit.item as usize], ray, hit.t);
+        let inst = &scene.instances[hit.item as usize];
+        if inst.kind == KIND_CSG {
+            return csg_surface(scene, ray, hit);
+        }
+        return instance_surface(inst, ray, hit.t);
     }
     let index = (hit.item - num_instances) as usize;
     let tri = &scene.triangles[index];
@@ -132,6 +139,20 @@ pub fn surface_at(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
         dpdu,
         dpdv,
     }
+}
+
+/// The surface of a CSG hit: that of the leaf it lies on (point, material — and, with
+/// them, the UV and tangent frame a texture or bump map will read), the normal negated
+/// on a subtracted operand's surface, which bounds the result from the other side.
+// Mirror of shaders/shade.wgsl::csg_surface — change both.
+fn csg_surface(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
+    let leaf = &scene.instances[(hit.part & CSG_INDEX_MASK) as usize];
+    let mut s = instance_surface(leaf, ray, hit.t);
+    if hit.part & CSG_FLIP != 0 {
+        // (When Surface gains uv/dpdu/dpdv, they stay the leaf's; only the normal flips.)
+        s.normal = -s.normal;
+    }
+    s
 }
 
 /// `base^exponent` for base in [0, 1] without NaN or overflow for any exponent ≥ 0

@@ -73,11 +73,18 @@ pub fn newton_bisect(a: Vec4, a4: f32, x0: f32, x1: f32, f0: f32) -> f32 {
     x
 }
 
-/// Smallest root in [0, `len`] of the monic quartic s⁴ + c.w·s³ + c.z·s² + c.y·s + c.x,
-/// or −1 when it has none there (no sign change between monotonic pieces; a double root
-/// that only touches zero counts as none).
-// Mirror of shaders/torus.wgsl::first_quartic_root — change both.
-pub fn first_quartic_root(c: Vec4, len: f32) -> f32 {
+/// Knots that split [0, `len`] into pieces where the monic quartic
+/// s⁴ + c.w·s³ + c.z·s² + c.y·s + c.x is monotonic: `knots[0..=count]`, from 0 to `len`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+// Mirror of shaders/torus.wgsl::QuarticKnots — change both.
+pub struct QuarticKnots {
+    pub knots: [f32; 5],
+    pub count: u32,
+}
+
+/// The monotonic pieces of the monic quartic `c` on [0, `len`] (see [`QuarticKnots`]).
+// Mirror of shaders/torus.wgsl::quartic_knots — change both.
+pub fn quartic_knots(c: Vec4, len: f32) -> QuarticKnots {
     // Compute the roots of the quartic's second derivative 12s² + 6c₃s + 2c₂ (halved:
     // 6s² + 3c₃s + c₂) in closed form; they split [0, len] into pieces where the cubic
     // (the first derivative) is monotonic.
@@ -113,12 +120,24 @@ pub fn first_quartic_root(c: Vec4, len: f32) -> f32 {
         y0 = y1;
     }
     knots[count] = len;
+    QuarticKnots {
+        knots,
+        count: count as u32,
+    }
+}
+
+/// Smallest root in [0, `len`] of the monic quartic s⁴ + c.w·s³ + c.z·s² + c.y·s + c.x,
+/// or −1 when it has none there (no sign change between monotonic pieces; a double root
+/// that only touches zero counts as none).
+// Mirror of shaders/torus.wgsl::first_quartic_root — change both.
+pub fn first_quartic_root(c: Vec4, len: f32) -> f32 {
+    let k = quartic_knots(c, len);
     // Find the quartic's first root: in the first monotonic piece whose ends differ in
     // sign.
     let quartic = c;
     let mut y0 = poly_eval(quartic, 1.0, 0.0).x;
-    for i in 0..count {
-        let (x0, x1) = (knots[i], knots[i + 1]);
+    for i in 0..k.count as usize {
+        let (x0, x1) = (k.knots[i], k.knots[i + 1]);
         let y1 = poly_eval(quartic, 1.0, x1).x;
         if x0 < x1 && (y0 < 0.0) != (y1 < 0.0) {
             return newton_bisect(quartic, 1.0, x0, x1, y0);
@@ -128,10 +147,31 @@ pub fn first_quartic_root(c: Vec4, len: f32) -> f32 {
     -1.0
 }
 
-/// Nearest t in (0, t_max) where `o + t·d` (object space, unnormalised d) meets the torus
-/// (`rin`, `rout`), else [`T_MISS`].
-// Mirror of shaders/torus.wgsl::intersect_torus — change both.
-pub fn intersect_torus(o: Vec3, d: Vec3, rin: f32, rout: f32, t_max: f32) -> f32 {
+/// The part of a ray inside the torus's bounds, set up for the root finder: the ray
+/// enters the bounds at `t_near`; s = (t − t_near)·`speed` runs over [0, `len`], where
+/// the torus is the monic quartic `c` in s ≤ 0. `valid` is false when the ray misses the
+/// bounds between `t_min` and `t_max`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+// Mirror of shaders/torus.wgsl::TorusChord — change both.
+pub struct TorusChord {
+    pub t_near: f32,
+    pub speed: f32,
+    pub len: f32,
+    pub c: Vec4,
+    pub valid: bool,
+}
+
+/// The chord of `o + t·d` (object space, unnormalised d) through the bounds of the torus
+/// (`rin`, `rout`), clipped to [`t_min`, `t_max`], and the quartic along it.
+// Mirror of shaders/torus.wgsl::torus_chord — change both.
+pub fn torus_chord(o: Vec3, d: Vec3, rin: f32, rout: f32, t_min: f32, t_max: f32) -> TorusChord {
+    let mut chord = TorusChord {
+        t_near: 0.0,
+        speed: 1.0,
+        len: 0.0,
+        c: Vec4::ZERO,
+        valid: false,
+    };
     // Work in units of the bounding radius rin + rout (t is unchanged).
     let inv_size = 1.0 / (rin + rout);
     let o1 = o * inv_size;
@@ -145,11 +185,11 @@ pub fn intersect_torus(o: Vec3, d: Vec3, rin: f32, rout: f32, t_max: f32) -> f32
     let l = o1 - d1 * (b / a);
     let discriminant = a * (bound * bound - l.dot(l));
     if discriminant < 0.0 {
-        return T_MISS;
+        return chord;
     }
     let q = -b - discriminant.sqrt().copysign(b);
     if q == 0.0 {
-        return T_MISS;
+        return chord;
     }
     let r0 = (o1.dot(o1) - bound * bound) / q;
     let r1 = q / a;
@@ -158,10 +198,10 @@ pub fn intersect_torus(o: Vec3, d: Vec3, rin: f32, rout: f32, t_max: f32) -> f32
     let inv_dz = safe_rcp(d1.z);
     let z0 = (-half_height - o1.z) * inv_dz;
     let z1 = (half_height - o1.z) * inv_dz;
-    let t_near = r0.min(r1).max(z0.min(z1)).max(0.0);
+    let t_near = r0.min(r1).max(z0.min(z1)).max(t_min);
     let t_far = r0.max(r1).min(z0.max(z1)).min(t_max);
     if t_near >= t_far {
-        return T_MISS;
+        return chord;
     }
     // Move the origin to the entry point and make the direction unit: s = (t − t_near)·|d|.
     let p = o1 + d1 * t_near;
@@ -182,16 +222,74 @@ pub fn intersect_torus(o: Vec3, d: Vec3, rin: f32, rout: f32, t_max: f32) -> f32
     let near = (tube_dist - r_tube) * (tube_dist + r_tube);
     let far = (rho + r_mid) * (rho + r_mid) + p.z * p.z - r_tube * r_tube;
     let c0 = near * far;
-    let s = first_quartic_root(Vec4::new(c0, c1, c2, c3), len);
+    chord.t_near = t_near;
+    chord.speed = speed;
+    chord.len = len;
+    chord.c = Vec4::new(c0, c1, c2, c3);
+    chord.valid = true;
+    chord
+}
+
+/// Nearest t in (0, t_max) where `o + t·d` (object space, unnormalised d) meets the torus
+/// (`rin`, `rout`), else [`T_MISS`].
+// Mirror of shaders/torus.wgsl::intersect_torus — change both.
+pub fn intersect_torus(o: Vec3, d: Vec3, rin: f32, rout: f32, t_max: f32) -> f32 {
+    let chord = torus_chord(o, d, rin, rout, 0.0, t_max);
+    if !chord.valid {
+        return T_MISS;
+    }
+    let s = first_quartic_root(chord.c, chord.len);
     if s < 0.0 {
         return T_MISS;
     }
-    let t = t_near + s / speed;
+    let t = chord.t_near + s / chord.speed;
     if t > 0.0 && t < t_max {
         t
     } else {
         T_MISS
     }
+}
+
+/// The t-intervals where `o + t·d` (object space, unnormalised d) is inside the torus
+/// (`rin`, `rout`) — where its quartic is ≤ 0, so for a spindle torus the apple minus the
+/// lemon, whose boundary is both drawn sheets: [x, y] and [z, w], each empty when its
+/// lo > hi, the second after the first. The whole line is searched: it enters the bounds
+/// outside the torus (they are grown by `TORUS_BOUND_MARGIN`), and every sign change of
+/// the quartic between its monotonic pieces is a crossing, at most four. An unpaired last
+/// crossing (a tangent's rounding) is closed where the line leaves the bounds.
+// Mirror of shaders/torus.wgsl::torus_intervals — change both.
+pub fn torus_intervals(o: Vec3, d: Vec3, rin: f32, rout: f32) -> Vec4 {
+    let empty = Vec4::new(T_MISS, -T_MISS, T_MISS, -T_MISS);
+    let chord = torus_chord(o, d, rin, rout, -T_MISS, T_MISS);
+    if !chord.valid {
+        return empty;
+    }
+    let k = quartic_knots(chord.c, chord.len);
+    // Every piece whose ends differ in sign holds one crossing.
+    let quartic = chord.c;
+    let mut ends = [chord.len; 4];
+    let mut count = 0;
+    let mut y0 = poly_eval(quartic, 1.0, 0.0).x;
+    for i in 0..k.count as usize {
+        let (x0, x1) = (k.knots[i], k.knots[i + 1]);
+        let y1 = poly_eval(quartic, 1.0, x1).x;
+        if x0 < x1 && (y0 < 0.0) != (y1 < 0.0) {
+            ends[count] = newton_bisect(quartic, 1.0, x0, x1, y0);
+            count += 1;
+        }
+        y0 = y1;
+    }
+    let t = |s: f32| chord.t_near + s / chord.speed;
+    let mut out = empty;
+    if count > 0 {
+        out.x = t(ends[0]);
+        out.y = t(ends[1]);
+    }
+    if count > 2 {
+        out.z = t(ends[2]);
+        out.w = t(ends[3]);
+    }
+    out
 }
 
 /// The torus's surface at (near) a point, in object space.

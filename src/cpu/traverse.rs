@@ -3,23 +3,26 @@
 //! a cell is accepted only if it lies inside that cell (an item may span several cells,
 //! and a nearer item may wait in the next one).
 
+use super::csg::intersect_csg;
 use super::intersect::{
     intersect_instance, intersect_triangle, safe_rcp3, triangle_ray_setup, triangle_vertices,
     TriangleRay,
 };
 use super::ray::Ray;
-use crate::constants::{ENTER_MARGIN_RELATIVE, NO_ITEM, T_MISS};
+use crate::constants::{ENTER_MARGIN_RELATIVE, KIND_CSG, NO_ITEM, T_MISS};
 use crate::pack::{GpuGlobals, PackedScene};
 use glam::{IVec3, Vec3};
 
-/// The nearest hit: distance, item (instances first, then triangles) and, for triangles,
-/// the barycentric weights of p1 and p2.
+/// The nearest hit: distance, item (instances first, then triangles), for triangles the
+/// barycentric weights of p1 and p2, and for a CSG item the surface hit (`part`: leaf
+/// instance index, with `CSG_FLIP` when its normal is negated; `NO_ITEM` otherwise).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f32,
     pub item: u32,
     pub b1: f32,
     pub b2: f32,
+    pub part: u32,
 }
 
 impl Hit {
@@ -28,6 +31,7 @@ impl Hit {
         item: NO_ITEM,
         b1: 0.0,
         b2: 0.0,
+        part: NO_ITEM,
     };
 
     pub fn is_hit(&self) -> bool {
@@ -61,7 +65,7 @@ impl TraversalCounters for Counters {
     }
 }
 
-/// Tests one item, returning (t, b1, b2) with t = T_MISS on a miss.
+/// Tests one item: its hit (t = T_MISS on a miss).
 // Mirror of shaders/traverse.wgsl::intersect_item — change both.
 fn intersect_item(
     scene: &PackedScene,
@@ -69,14 +73,35 @@ fn intersect_item(
     ray: &Ray,
     tri_ray: &TriangleRay,
     t_max: f32,
-) -> Vec3 {
+) -> Hit {
     let num_instances = scene.globals.num_instances;
     if item < num_instances {
-        let t = intersect_instance(&scene.instances[item as usize], ray.origin, ray.dir, t_max);
-        Vec3::new(t, 0.0, 0.0)
+        let inst = &scene.instances[item as usize];
+        if inst.kind == KIND_CSG {
+            let h = intersect_csg(scene, inst, ray.origin, ray.dir, t_max);
+            return Hit {
+                t: h.t,
+                item,
+                part: h.part,
+                ..Hit::MISS
+            };
+        }
+        let t = intersect_instance(inst, ray.origin, ray.dir, t_max);
+        Hit {
+            t,
+            item,
+            ..Hit::MISS
+        }
     } else {
         let [p0, p1, p2] = triangle_vertices(&scene.triangles[(item - num_instances) as usize]);
-        intersect_triangle(tri_ray, p0, p1, p2, t_max)
+        let h = intersect_triangle(tri_ray, p0, p1, p2, t_max);
+        Hit {
+            t: h.x,
+            item,
+            b1: h.y,
+            b2: h.z,
+            part: NO_ITEM,
+        }
     }
 }
 
@@ -93,13 +118,8 @@ fn test_items(
     for item in items {
         counters.item_tested();
         let h = intersect_item(scene, item, ray, tri_ray, best.t);
-        if h.x < best.t {
-            *best = Hit {
-                t: h.x,
-                item,
-                b1: h.y,
-                b2: h.z,
-            };
+        if h.t < best.t {
+            *best = h;
         }
     }
 }
@@ -318,7 +338,7 @@ fn any_item_hit(
 ) -> bool {
     for item in items {
         counters.item_tested();
-        if intersect_item(scene, item, ray, tri_ray, t_max).x < t_max {
+        if intersect_item(scene, item, ray, tri_ray, t_max).t < t_max {
             return true;
         }
     }

@@ -38,7 +38,8 @@ pub struct ProbeResult {
     pub hit: u32,
     pub t: f32,
     pub item: u32,
-    pub _pad0: u32,
+    /// A CSG hit's surface (leaf instance | `CSG_FLIP`); `NO_ITEM` otherwise.
+    pub part: u32,
     /// `surface_at`'s geometric normal (zero on a miss).
     pub normal: [f32; 3],
     pub _pad1: u32,
@@ -56,7 +57,7 @@ pub fn cpu_probe(scene: &PackedScene, pr: &ProbeRay) -> ProbeResult {
             hit: any_hit(scene, &ray, pr.t_max, &mut NoCounters) as u32,
             t: 0.0,
             item: NO_ITEM,
-            _pad0: 0,
+            part: NO_ITEM,
             normal: [0.0; 3],
             _pad1: 0,
         };
@@ -66,7 +67,7 @@ pub fn cpu_probe(scene: &PackedScene, pr: &ProbeRay) -> ProbeResult {
         hit: 0,
         t: hit.t,
         item: hit.item,
-        _pad0: 0,
+        part: hit.part,
         normal: [0.0; 3],
         _pad1: 0,
     };

@@ -77,6 +77,7 @@ const COMMON: &[(&str, &str)] = &[
     ),
     ("torus.wgsl", include_str!("../../shaders/torus.wgsl")),
     ("uv.wgsl", include_str!("../../shaders/uv.wgsl")),
+    ("csg.wgsl", include_str!("../../shaders/csg.wgsl")),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
     (

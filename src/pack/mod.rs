@@ -5,10 +5,10 @@ pub mod features;
 pub mod layout;
 pub mod texture;
 
-use crate::accel::grid::{Grid, GridBuildStats};
+use crate::accel::grid::{csg_bounds, instance_bounds, Grid, GridBuildStats};
 use crate::constants::*;
-use crate::scene::flatten::{ObjectKind, Scene, Triangle};
-use crate::scene::{AaMode, Background, DebugView, GridMode};
+use crate::scene::flatten::{CsgStep, Object, ObjectKind, Scene, Triangle};
+use crate::scene::{AaMode, Background, CsgOp, DebugView, GridMode};
 pub use features::SceneFeatures;
 use glam::{DMat4, DVec3};
 pub use layout::*;
@@ -16,6 +16,8 @@ use rayon::prelude::*;
 
 /// Everything a tracer needs, as flat arrays. Grid items index instances first, then
 /// triangles: item `i < num_instances` is `instances[i]`, else `triangles[i - num_instances]`.
+/// The instances of the analytic objects come first, then one `KIND_CSG` instance per CSG
+/// object; the leaves of the CSG programs follow at `num_instances..` (not grid items).
 #[derive(Clone, Debug)]
 pub struct PackedScene {
     pub globals: GpuGlobals,
@@ -47,32 +49,108 @@ pub enum PackError {
     OutOfRange { what: String, value: f64 },
     #[error("the scene has {0} items; glint supports at most 2^31")]
     TooManyItems(usize),
+    #[error("the CSG objects have {0} primitives and program entries in all; glint supports at most 2^24")]
+    CsgTooLarge(usize),
+}
+
+/// The instance of an analytic object, and the feature its kind needs.
+fn instance_of(o: &Object) -> (GpuInstance, SceneFeatures) {
+    let (feature, kind, params) = match o.kind {
+        ObjectKind::Sphere => (SceneFeatures::SPHERE, KIND_SPHERE, [0.0; 2]),
+        ObjectKind::Cube => (SceneFeatures::CUBE, KIND_CUBE, [0.0; 2]),
+        ObjectKind::Cylinder => (SceneFeatures::CYLINDER, KIND_CYLINDER, [0.0; 2]),
+        ObjectKind::Cone { zmin, zmax } => (SceneFeatures::CONE, KIND_CONE, [zmin, zmax]),
+        ObjectKind::Torus { rin, rout } => (SceneFeatures::TORUS, KIND_TORUS, [rin, rout]),
+    };
+    let instance = GpuInstance {
+        world_to_object: affine_rows(&o.object_to_world.inverse()),
+        object_to_world: affine_rows(&o.object_to_world),
+        kind,
+        material: o.material as u32,
+        params,
+    };
+    (instance, feature)
+}
+
+/// The CSG objects packed: one `KIND_CSG` instance each, their leaf instances and the
+/// programs of all of them, with the features the leaves need.
+struct PackedCsg {
+    items: Vec<GpuInstance>,
+    leaves: Vec<GpuInstance>,
+    program: Vec<u32>,
+    features: SceneFeatures,
+}
+
+/// Packs the CSG objects, their leaves numbered from `first_leaf`.
+fn pack_csg(scene: &Scene, first_leaf: usize) -> Result<PackedCsg, PackError> {
+    let mut features = SceneFeatures::empty();
+    let (mut items, mut leaves, mut program) = (Vec::new(), Vec::new(), Vec::new());
+    for c in &scene.csg {
+        let start = program.len();
+        for step in &c.program {
+            program.push(match step {
+                CsgStep::Leaf(o) => {
+                    let (instance, feature) = instance_of(o);
+                    features.insert(feature);
+                    let index = first_leaf + leaves.len();
+                    leaves.push(instance);
+                    if index > CSG_INDEX_MASK as usize {
+                        return Err(PackError::CsgTooLarge(index));
+                    }
+                    (CSG_LEAF << CSG_OP_SHIFT) | index as u32
+                }
+                CsgStep::Op(op) => {
+                    let code = match op {
+                        CsgOp::Union => CSG_UNION,
+                        CsgOp::Intersection => CSG_INTERSECTION,
+                        CsgOp::Difference => CSG_DIFFERENCE,
+                    };
+                    code << CSG_OP_SHIFT
+                }
+            });
+        }
+        // Start and length travel as f32 (exact below 2^24; a bit pattern of a small
+        // integer would be a denormal, which GPUs may flush to zero).
+        if program.len() >= 1 << 24 {
+            return Err(PackError::CsgTooLarge(program.len()));
+        }
+        features.insert(SceneFeatures::CSG);
+        let identity = affine_rows(&DMat4::IDENTITY);
+        items.push(GpuInstance {
+            world_to_object: identity,
+            object_to_world: identity,
+            kind: KIND_CSG,
+            material: c.material as u32,
+            params: [start as f32, (program.len() - start) as f32],
+        });
+    }
+    Ok(PackedCsg {
+        items,
+        leaves,
+        program,
+        features,
+    })
 }
 
 /// Packs a flattened scene and builds its grid.
 pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     let mut features = SceneFeatures::empty();
-    let instances: Vec<GpuInstance> = scene
+    let mut instances: Vec<GpuInstance> = scene
         .objects
         .iter()
         .map(|o| {
-            let (feature, kind, params) = match o.kind {
-                ObjectKind::Sphere => (SceneFeatures::SPHERE, KIND_SPHERE, [0.0; 2]),
-                ObjectKind::Cube => (SceneFeatures::CUBE, KIND_CUBE, [0.0; 2]),
-                ObjectKind::Cylinder => (SceneFeatures::CYLINDER, KIND_CYLINDER, [0.0; 2]),
-                ObjectKind::Cone { zmin, zmax } => (SceneFeatures::CONE, KIND_CONE, [zmin, zmax]),
-                ObjectKind::Torus { rin, rout } => (SceneFeatures::TORUS, KIND_TORUS, [rin, rout]),
-            };
+            let (instance, feature) = instance_of(o);
             features.insert(feature);
-            GpuInstance {
-                world_to_object: affine_rows(&o.object_to_world.inverse()),
-                object_to_world: affine_rows(&o.object_to_world),
-                kind,
-                material: o.material as u32,
-                params,
-            }
+            instance
         })
         .collect();
+    // CSG objects are items after the analytic objects; their leaves follow all items.
+    let num_items = instances.len() + scene.csg.len();
+    let csg = pack_csg(scene, num_items)?;
+    features.insert(csg.features);
+    instances.extend(csg.items);
+    instances.extend(csg.leaves);
+    let csg_program = csg.program;
     let triangle_order: Vec<usize> = spatial_order(&scene.triangles)
         .into_iter()
         .filter(|&i| !is_degenerate(&scene.triangles[i].positions))
@@ -121,6 +199,11 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     let used = |m: usize| {
         scene.objects.iter().any(|o| o.material == m)
             || scene.triangles.iter().any(|t| t.material == m)
+            || scene.csg.iter().any(|c| {
+                c.program
+                    .iter()
+                    .any(|step| matches!(step, CsgStep::Leaf(o) if o.material == m))
+            })
     };
     if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFLECTIVE != 0 && used(m)) {
         features.insert(SceneFeatures::REFLECTION);
@@ -198,7 +281,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     if options.max_depth > MAX_TRACE_DEPTH {
         return Err(PackError::DepthTooLarge(options.max_depth));
     }
-    let item_count = instances.len() + triangles.len();
+    let item_count = num_items + triangles.len();
     if item_count >= (1 << 31) {
         return Err(PackError::TooManyItems(item_count));
     }
@@ -207,11 +290,23 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         GridMode::Auto => Some(crate::accel::grid::DEFAULT_DENSITY),
         GridMode::Density(d) => Some(d),
     };
-    let grid = Grid::build(&instances, &triangles, density);
+    let item_bounds = instances[..num_items]
+        .iter()
+        .map(|inst| {
+            if inst.kind == KIND_CSG {
+                let start = inst.params[0] as usize;
+                let end = start + inst.params[1] as usize;
+                csg_bounds(&csg_program[start..end], &instances)
+            } else {
+                instance_bounds(inst)
+            }
+        })
+        .collect();
+    let grid = Grid::build_items(item_bounds, &triangles, density);
     if grid.enabled {
         features.insert(SceneFeatures::GRID);
     }
-    let globals = make_globals(scene, &instances, &triangles, &lights, &grid);
+    let globals = make_globals(scene, num_items, &triangles, &lights, &grid);
     let mut packed = PackedScene {
         globals,
         instances,
@@ -220,7 +315,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         lights,
         cell_start: grid.cell_start,
         cell_items: grid.cell_items,
-        csg_program: Vec::new(),
+        csg_program,
         texels,
         triangle_uvs,
         features,
@@ -237,7 +332,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
 
 fn make_globals(
     scene: &Scene,
-    instances: &[GpuInstance],
+    num_items: usize,
     triangles: &[GpuTriangle],
     lights: &[GpuLight],
     grid: &Grid,
@@ -267,7 +362,7 @@ fn make_globals(
         background_bottom: bottom,
         min_weight: options.min_weight,
         grid_min: grid.min,
-        num_instances: instances.len() as u32,
+        num_instances: num_items as u32,
         grid_cell_size: grid.cell_size,
         num_triangles: triangles.len() as u32,
         grid_dims: grid.dims,

@@ -2,11 +2,14 @@
 //! f64 matrices, so instancing (a node under several parents) yields one object per path.
 //! Analytic primitives keep their object-to-world transform; mesh triangles are baked to
 //! world space (shared edges stay bit-identical, which keeps the triangle test watertight).
+//! A CSG node becomes one [`CsgObject`]: its tree as a post-order program whose leaves are
+//! primitive objects with their own object-to-world transforms and materials.
 
 use super::{
-    Camera, Light, Material, MaterialId, NodeId, NodeKind, Primitive, RenderOptions, RenderRequest,
-    SceneGraph,
+    Camera, CsgOp, Light, Material, MaterialId, NodeId, NodeKind, Primitive, RenderOptions,
+    RenderRequest, SceneGraph,
 };
+use crate::constants::{CSG_EVENT_CAPACITY, CSG_LIST_CAPACITY, CSG_MAX_DEPTH};
 use glam::{DMat3, DMat4, DVec3};
 
 /// Deepest node nesting accepted; deeper means a cycle (a node added under itself).
@@ -38,6 +41,72 @@ pub struct Object {
     pub material: MaterialId,
 }
 
+/// One step of a CSG object's post-order program: push a leaf's inside intervals, or
+/// combine the top two lists (a below b) by an operation.
+#[derive(Clone, Debug)]
+pub enum CsgStep {
+    /// An analytic primitive with its own object-to-world transform (the CSG node's
+    /// placement composed with the operand's) and its resolved material.
+    Leaf(Object),
+    Op(CsgOp),
+}
+
+/// A CSG node in world space: one solid, one grid item.
+#[derive(Clone, Debug)]
+pub struct CsgObject {
+    pub name: String,
+    /// Post-order: leaves push, operations pop two and push one; one list remains.
+    pub program: Vec<CsgStep>,
+    /// The CSG node's material (or the default): the default of its operands.
+    pub material: MaterialId,
+}
+
+impl ObjectKind {
+    /// Most inside intervals a line can have through this primitive: one for the convex
+    /// solids, two for a double cone (both nappes) and a torus (four crossings).
+    pub fn max_intervals(self) -> u32 {
+        match self {
+            ObjectKind::Sphere | ObjectKind::Cube | ObjectKind::Cylinder => 1,
+            ObjectKind::Cone { zmin, zmax } => {
+                if zmin < 0.0 && zmax > 0.0 {
+                    2
+                } else {
+                    1
+                }
+            }
+            ObjectKind::Torus { .. } => 2,
+        }
+    }
+}
+
+/// The worst case of evaluating `program` (see `cpu::csg`): the most interval ends held
+/// at once (every live list plus the one being built, each at its most) and the most
+/// live lists. Both tracers evaluate in exactly this order, so these bound their use.
+pub fn csg_worst_case(program: &[CsgStep]) -> (u32, u32) {
+    let mut lists: Vec<u32> = Vec::new();
+    let (mut peak_events, mut peak_lists) = (0, 0);
+    for step in program {
+        let used: u32 = lists.iter().sum();
+        match step {
+            CsgStep::Leaf(o) => {
+                let events = 2 * o.kind.max_intervals();
+                peak_events = peak_events.max(used + events);
+                lists.push(events);
+            }
+            CsgStep::Op(_) => {
+                // Every result boundary is one of the operands' (union, intersection and
+                // difference alike): at most |a| + |b| ends, built after both.
+                let b = lists.pop().unwrap_or(0);
+                let a = lists.pop().unwrap_or(0);
+                peak_events = peak_events.max(used + a + b);
+                lists.push(a + b);
+            }
+        }
+        peak_lists = peak_lists.max(lists.len() as u32);
+    }
+    (peak_events, peak_lists)
+}
+
 /// One world-space triangle.
 #[derive(Clone, Debug)]
 pub struct Triangle {
@@ -51,6 +120,8 @@ pub struct Triangle {
 #[derive(Clone, Debug)]
 pub struct Scene {
     pub objects: Vec<Object>,
+    /// CSG objects (grid items after `objects`).
+    pub csg: Vec<CsgObject>,
     pub triangles: Vec<Triangle>,
     /// All materials of the graph, plus the default one at index `default_material`.
     pub materials: Vec<Material>,
@@ -76,6 +147,20 @@ pub enum FlattenError {
     TooDeep { path: String },
     #[error("camera: {0}")]
     Camera(String),
+    #[error(
+        "CSG node '{path}' nests CSG operations deeper than {CSG_MAX_DEPTH} levels (at '{at}')"
+    )]
+    CsgTooDeep { path: String, at: String },
+    #[error("CSG node '{path}': operand '{operand}' has children; an operand is only its own solid (add the CSG node, not its operands, under other nodes)")]
+    CsgOperandHasChildren { path: String, operand: String },
+    #[error("CSG node '{path}': operand '{operand}' must be a primitive or CSG node (sphere, cube, nh_sphere, nh_box, cylinder, cone, torus or csg), not a {what}")]
+    CsgBadOperand {
+        path: String,
+        operand: String,
+        what: &'static str,
+    },
+    #[error("CSG node '{path}' may hold up to {events} interval ends per ray, above glint's fixed capacity of {CSG_EVENT_CAPACITY} (about {} primitives, fewer with tori and double cones): split it into several CSG objects", CSG_EVENT_CAPACITY / 4)]
+    CsgTooManyIntervals { path: String, events: u32 },
 }
 
 /// Flattens the graph below `request.root` into world space.
@@ -86,6 +171,7 @@ pub fn flatten(graph: &SceneGraph, request: &RenderRequest) -> Result<Scene, Fla
     materials.push(Material::default());
     let mut scene = Scene {
         objects: Vec::new(),
+        csg: Vec::new(),
         triangles: Vec::new(),
         materials,
         textures: graph.textures.clone(),
@@ -128,62 +214,173 @@ fn visit(
         return Err(FlattenError::TooDeep { path: path_name() });
     }
     let node_to_world = parent_to_world * node.matrix;
-    if let NodeKind::Geometry {
-        primitive,
-        placement,
-    } = &node.kind
-    {
-        let object_to_world = node_to_world * *placement;
-        check_transform(&object_to_world, &path_name)?;
-        let material = node.material.unwrap_or(default_material);
-        match primitive {
-            Primitive::Sphere
-            | Primitive::Cube
-            | Primitive::Cylinder
-            | Primitive::Cone { .. }
-            | Primitive::Torus { .. } => scene.objects.push(Object {
-                name: path_name(),
-                kind: match *primitive {
-                    Primitive::Sphere => ObjectKind::Sphere,
-                    Primitive::Cube => ObjectKind::Cube,
-                    Primitive::Cylinder => ObjectKind::Cylinder,
-                    Primitive::Cone { zmin, zmax } => ObjectKind::Cone {
-                        zmin: zmin as f32,
-                        zmax: zmax as f32,
-                    },
-                    Primitive::Torus { rin, rout } => ObjectKind::Torus {
-                        rin: rin as f32,
-                        rout: rout as f32,
-                    },
-                    Primitive::Mesh(_) => unreachable!(),
-                },
-                object_to_world,
-                material,
-            }),
-            Primitive::Mesh(mesh_id) => {
-                let mesh = &graph.meshes[*mesh_id];
-                let world: Vec<DVec3> = mesh
-                    .positions
-                    .iter()
-                    .map(|&p| object_to_world.transform_point3(p))
-                    .collect();
-                scene
-                    .triangles
-                    .extend(mesh.triangles.iter().map(|t| Triangle {
-                        positions: t.map(|i| world[i as usize]),
-                        material,
-                        uvs: match &mesh.uvs {
-                            Some(uvs) => t.map(|i| uvs[i as usize]),
-                            None => super::uv::planar_uvs(t.map(|i| mesh.positions[i as usize])),
-                        },
-                    }));
+    match &node.kind {
+        NodeKind::Geometry {
+            primitive,
+            placement,
+        } => {
+            let object_to_world = node_to_world * *placement;
+            check_transform(&object_to_world, &path_name)?;
+            let material = node.material.unwrap_or(default_material);
+            match primitive {
+                Primitive::Mesh(mesh_id) => {
+                    let mesh = &graph.meshes[*mesh_id];
+                    let world: Vec<DVec3> = mesh
+                        .positions
+                        .iter()
+                        .map(|&p| object_to_world.transform_point3(p))
+                        .collect();
+                    scene
+                        .triangles
+                        .extend(mesh.triangles.iter().map(|t| Triangle {
+                            positions: t.map(|i| world[i as usize]),
+                            material,
+                            uvs: match &mesh.uvs {
+                                Some(uvs) => t.map(|i| uvs[i as usize]),
+                                None => {
+                                    super::uv::planar_uvs(t.map(|i| mesh.positions[i as usize]))
+                                }
+                            },
+                        }));
+                }
+                analytic => scene.objects.push(Object {
+                    name: path_name(),
+                    kind: object_kind(analytic).expect("analytic primitive"),
+                    object_to_world,
+                    material,
+                }),
             }
         }
+        NodeKind::Csg { .. } => {
+            let name = path_name();
+            let mut program = Vec::new();
+            csg_program(
+                graph,
+                id,
+                node_to_world,
+                default_material,
+                (&name, &name),
+                1,
+                &mut program,
+            )?;
+            let (events, lists) = csg_worst_case(&program);
+            if lists > CSG_LIST_CAPACITY {
+                // Unreachable within the depth limit; kept so the bound is checked here.
+                return Err(FlattenError::CsgTooDeep {
+                    at: name.clone(),
+                    path: name,
+                });
+            }
+            if events > CSG_EVENT_CAPACITY {
+                return Err(FlattenError::CsgTooManyIntervals { path: name, events });
+            }
+            scene.csg.push(CsgObject {
+                name,
+                program,
+                material: node.material.unwrap_or(default_material),
+            });
+        }
+        NodeKind::Transform => {}
     }
     for &child in &node.children {
         visit(graph, child, node_to_world, default_material, path, scene)?;
     }
     path.pop();
+    Ok(())
+}
+
+/// The object kind of an analytic primitive (None for meshes).
+fn object_kind(primitive: &Primitive) -> Option<ObjectKind> {
+    Some(match *primitive {
+        Primitive::Sphere => ObjectKind::Sphere,
+        Primitive::Cube => ObjectKind::Cube,
+        Primitive::Cylinder => ObjectKind::Cylinder,
+        Primitive::Cone { zmin, zmax } => ObjectKind::Cone {
+            zmin: zmin as f32,
+            zmax: zmax as f32,
+        },
+        Primitive::Torus { rin, rout } => ObjectKind::Torus {
+            rin: rin as f32,
+            rout: rout as f32,
+        },
+        Primitive::Mesh(_) => return None,
+    })
+}
+
+/// Appends the post-order program of CSG node `id` (placed in the world by `to_world`,
+/// `depth` levels deep) to `out`: operand a, operand b, the operation. An operand's
+/// material defaults to the nearest enclosing CSG node's, then to `default_material`.
+/// `paths` are the CSG object's and this node's names.
+fn csg_program(
+    graph: &SceneGraph,
+    id: NodeId,
+    to_world: DMat4,
+    default_material: MaterialId,
+    paths: (&str, &str),
+    depth: u32,
+    out: &mut Vec<CsgStep>,
+) -> Result<(), FlattenError> {
+    let (top, path) = paths;
+    let node = &graph.nodes[id];
+    let NodeKind::Csg { op, a, b } = node.kind else {
+        unreachable!("csg_program is called on CSG nodes")
+    };
+    if depth > CSG_MAX_DEPTH {
+        return Err(FlattenError::CsgTooDeep {
+            path: top.into(),
+            at: path.into(),
+        });
+    }
+    let default_material = node.material.unwrap_or(default_material);
+    for operand in [a, b] {
+        let child = &graph.nodes[operand];
+        let child_path = format!("{path}/{}", child.name);
+        if !child.children.is_empty() {
+            return Err(FlattenError::CsgOperandHasChildren {
+                path: path.into(),
+                operand: child.name.clone(),
+            });
+        }
+        let child_to_world = to_world * child.matrix;
+        match &child.kind {
+            NodeKind::Csg { .. } => csg_program(
+                graph,
+                operand,
+                child_to_world,
+                default_material,
+                (top, &child_path),
+                depth + 1,
+                out,
+            )?,
+            NodeKind::Geometry {
+                primitive,
+                placement,
+            } => {
+                let bad = |what| FlattenError::CsgBadOperand {
+                    path: path.into(),
+                    operand: child.name.clone(),
+                    what,
+                };
+                let kind = object_kind(primitive).ok_or_else(|| bad("mesh"))?;
+                let object_to_world = child_to_world * *placement;
+                check_transform(&object_to_world, &|| child_path.clone())?;
+                out.push(CsgStep::Leaf(Object {
+                    name: child_path.clone(),
+                    kind,
+                    object_to_world,
+                    material: child.material.unwrap_or(default_material),
+                }));
+            }
+            NodeKind::Transform => {
+                return Err(FlattenError::CsgBadOperand {
+                    path: path.into(),
+                    operand: child.name.clone(),
+                    what: "transform node",
+                })
+            }
+        }
+    }
+    out.push(CsgStep::Op(op));
     Ok(())
 }
 

@@ -42,7 +42,19 @@ pub enum Primitive {
     Mesh(MeshId),
 }
 
-/// What a node is: a pure transform, or geometry with a fixed placement of its primitive.
+/// A CSG operation (`gr.csg`'s `op`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CsgOp {
+    /// `'u'`: in a or in b.
+    Union,
+    /// `'i'`: in a and in b.
+    Intersection,
+    /// `'d'`: in a and not in b.
+    Difference,
+}
+
+/// What a node is: a pure transform, geometry with a fixed placement of its primitive, or
+/// a CSG combination of two operand nodes.
 #[derive(Clone, Debug)]
 pub enum NodeKind {
     Transform,
@@ -52,6 +64,13 @@ pub enum NodeKind {
         /// `nh_box`'s corner and size); identity for the hierarchical primitives. Applied
         /// before the node's own matrix, so `nh_*` nodes stay transformable.
         placement: DMat4,
+    },
+    /// `gr.csg(name, op, a, b)`: `a` and `b` are analytic primitive or CSG nodes, each
+    /// placed by its own matrix inside this node (their children are not part of it).
+    Csg {
+        op: CsgOp,
+        a: NodeId,
+        b: NodeId,
     },
 }
 

@@ -176,3 +176,109 @@ impl Rng {
         lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
     }
 }
+
+/// A flattened scene scaled by `s` about the origin, camera, lights and CSG leaves
+/// included; the falloff is rescaled so lighting is the same function of the scaled
+/// distances.
+pub fn scaled_scene(scene: &Scene, s: f64) -> Scene {
+    use glint::scene::flatten::CsgStep;
+    let mut out = scene.clone();
+    let m = glam::DMat4::from_scale(glam::DVec3::splat(s));
+    for o in &mut out.objects {
+        o.object_to_world = m * o.object_to_world;
+    }
+    for c in &mut out.csg {
+        for step in &mut c.program {
+            if let CsgStep::Leaf(o) = step {
+                o.object_to_world = m * o.object_to_world;
+            }
+        }
+    }
+    for t in &mut out.triangles {
+        t.positions = t.positions.map(|p| p * s);
+    }
+    for l in &mut out.lights {
+        l.position *= s;
+        if let Some(area) = &mut l.area {
+            area.u *= s;
+            area.v *= s;
+        }
+        l.falloff = [
+            l.falloff[0],
+            l.falloff[1] / s as f32,
+            l.falloff[2] / (s * s) as f32,
+        ];
+    }
+    out.camera.eye *= s;
+    out
+}
+
+/// Rays from the camera of `scenes/csg.lua` into the glass's bowl, aimed at its rim plane
+/// inside the hollow (radius 0.54 of the bowl's 0.6, their top caps coplanar), and the
+/// test of a speckle: a ray that stops on the bowl's own top cap there.
+pub struct GlassProbe {
+    /// Packed instance index of the bowl's leaf.
+    pub bowl: u32,
+    pub bowl_to_object: glam::DMat4,
+    pub rays: Vec<glint::gpu::probe::ProbeRay>,
+}
+
+impl GlassProbe {
+    pub fn new(scene: &Scene, n: usize) -> GlassProbe {
+        use glint::scene::flatten::CsgStep;
+        let mut index = scene.objects.len() + scene.csg.len();
+        let mut bowl = None;
+        for c in &scene.csg {
+            for step in &c.program {
+                if let CsgStep::Leaf(o) = step {
+                    if o.name.ends_with("/bowl") {
+                        bowl = Some((index, o.object_to_world));
+                    }
+                    index += 1;
+                }
+            }
+        }
+        let (bowl, to_world) = bowl.expect("scenes/csg.lua has a glass with a bowl");
+        let mut rng = Rng(0x61A55);
+        let eye = scene.camera.eye;
+        let rays = (0..n)
+            .map(|_| {
+                let phi = rng.range(0.0, std::f64::consts::TAU);
+                let r = 0.9 * 0.98 * rng.range(0.0, 1.0).sqrt();
+                let target =
+                    to_world.transform_point3(glam::DVec3::new(r * phi.cos(), r * phi.sin(), 1.0));
+                glint::gpu::probe::ProbeRay {
+                    origin: eye.as_vec3().to_array(),
+                    t_max: glint::constants::T_MISS,
+                    dir: (target - eye).normalize().as_vec3().to_array(),
+                    mode: glint::gpu::probe::CLOSEST_HIT,
+                }
+            })
+            .collect();
+        GlassProbe {
+            bowl: bowl as u32,
+            bowl_to_object: to_world.inverse(),
+            rays,
+        }
+    }
+
+    /// Whether a probe's result is a speckle (a hit on the bowl's top cap in the hollow).
+    pub fn speckles(&self, results: &[glint::gpu::probe::ProbeResult]) -> usize {
+        self.rays
+            .iter()
+            .zip(results)
+            .filter(|(ray, r)| {
+                if r.hit == 0
+                    || r.part & glint::constants::CSG_INDEX_MASK != self.bowl
+                    || r.part & glint::constants::CSG_FLIP != 0
+                {
+                    return false;
+                }
+                let p = glam::Vec3::from(ray.origin).as_dvec3()
+                    + glam::Vec3::from(ray.dir).as_dvec3() * r.t as f64;
+                let q = self.bowl_to_object.transform_point3(p);
+                (q.z - 1.0).abs() < 1e-3 && q.x.hypot(q.y) < 0.9 * 0.99
+            })
+            .count()
+    }
+}

@@ -1,15 +1,14 @@
 //! The `gr` table: the A4 core calls (the methods of what they return are in `handles`).
 //!
-//! Calls not in the contract yet (CSG)
-//! are simply not defined: Lua then reports `attempt to call a nil value (field 'x')`
-//! with the file and line.
+//! Every call of the contract is defined; an unknown one is simply not defined: Lua then
+//! reports `attempt to call a nil value (field 'x')` with the file and line.
 
 use super::args::{int_value, location, Args};
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
 use super::{options, with_state, OnRender};
 use crate::constants::{DEFAULT_SHADOW_SAMPLES, MAX_SHADOW_SAMPLES};
 use crate::scene::{
-    AreaLight, Camera, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest,
+    AreaLight, Camera, CsgOp, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest,
     TransformOrder,
 };
 use glam::{DMat4, DVec3};
@@ -44,6 +43,7 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     def!("nh_box", nh_box);
     def!("torus", torus);
     def!("mesh", mesh);
+    def!("csg", csg);
     def!("material", material);
     def!("light", light);
     def!("area_light", area_light);
@@ -135,6 +135,58 @@ fn torus(a: &Args) -> mlua::Result<NodeHandle> {
         name,
         geometry(Primitive::Torus { rin, rout }, DMat4::IDENTITY),
     ))
+}
+
+/// `gr.csg(name, op, a, b)`: `op` is `'u'` (union), `'i'` (intersection) or `'d'`
+/// (difference, a minus b), any case; `a` and `b` are analytic primitive nodes (sphere,
+/// cube, nh_sphere, nh_box, cylinder, cone, torus) or CSG nodes. Meshes and transform
+/// nodes are refused here, naming the argument: a mesh has no inside the tracers could
+/// classify a ray against, and a transform node's children are a group, not one solid
+/// (the operand's own transforms place it inside the CSG node).
+fn csg(a: &Args) -> mlua::Result<NodeHandle> {
+    let name = a.string(1, "name")?;
+    let op = match a.get(2) {
+        Value::String(s) => match s.to_string_lossy().to_ascii_lowercase().as_str() {
+            "u" => Some(CsgOp::Union),
+            "i" => Some(CsgOp::Intersection),
+            "d" => Some(CsgOp::Difference),
+            _ => None,
+        },
+        _ => None,
+    }
+    .ok_or_else(|| {
+        a.bad(
+            2,
+            "op",
+            "'u' (union), 'i' (intersection) or 'd' (difference, a minus b)",
+        )
+    })?;
+    let mut operands = [0; 2];
+    for (slot, (n, arg)) in operands.iter_mut().zip([(3, "a"), (4, "b")]) {
+        let id = a.node(n, arg)?;
+        let refused = with_state(a.lua, |s| {
+            let node = &s.graph.nodes[id];
+            match node.kind {
+                NodeKind::Geometry {
+                    primitive: Primitive::Mesh(_),
+                    ..
+                } => Some(format!("mesh node '{}' (meshes cannot be CSG operands)", node.name)),
+                NodeKind::Transform => Some(format!(
+                    "transform node '{}' (a transform node is a group, not a solid: use the primitive itself, with its own transforms)",
+                    node.name
+                )),
+                _ => None,
+            }
+        });
+        if let Some(got) = refused {
+            return Err(a.error(format!(
+                "argument {n} ({arg}) must be a primitive or CSG node (sphere, cube, nh_sphere, nh_box, cylinder, cone, torus or csg), got {got}"
+            )));
+        }
+        *slot = id;
+    }
+    let [na, nb] = operands;
+    Ok(new_node(a.lua, name, NodeKind::Csg { op, a: na, b: nb }))
 }
 
 /// `gr.mesh(name, 'file.obj')` or `gr.mesh(name, verts, faces[, uvs])`.

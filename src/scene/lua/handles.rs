@@ -112,7 +112,7 @@ fn add_child(a: &Args) -> mlua::Result<()> {
     Ok(())
 }
 
-/// Whether `to` is `from` or one of its descendants.
+/// Whether `to` is `from` or one of its descendants (children, or a CSG node's operands).
 fn reaches(nodes: &[Node], from: NodeId, to: NodeId) -> bool {
     let mut stack = vec![from];
     let mut seen = vec![false; nodes.len()];
@@ -122,6 +122,9 @@ fn reaches(nodes: &[Node], from: NodeId, to: NodeId) -> bool {
         }
         if !std::mem::replace(&mut seen[n], true) {
             stack.extend(&nodes[n].children);
+            if let NodeKind::Csg { a, b, .. } = nodes[n].kind {
+                stack.extend([a, b]);
+            }
         }
     }
     false
@@ -133,7 +136,8 @@ fn set_material(a: &Args) -> mlua::Result<()> {
     let err = with_state(a.lua, |s| {
         let node = &mut s.graph.nodes[id];
         match node.kind {
-            NodeKind::Geometry { .. } => {
+            // On a CSG node: the default of its operands that have none.
+            NodeKind::Geometry { .. } | NodeKind::Csg { .. } => {
                 node.material = Some(m);
                 None
             }
@@ -143,7 +147,7 @@ fn set_material(a: &Args) -> mlua::Result<()> {
     match err {
         None => Ok(()),
         Some(name) => Err(a.error(format!(
-            "node '{name}' is a transform node; materials go on geometry nodes (gr.sphere, gr.cube, gr.mesh, …)"
+            "node '{name}' is a transform node; materials go on geometry nodes (gr.sphere, gr.cube, gr.mesh, …) and CSG nodes"
         ))),
     }
 }

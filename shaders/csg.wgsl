@@ -1,0 +1,228 @@
+// csg.wgsl — CSG by interval lists, without recursion and in fixed memory: a CSG item's
+// post-order program (csg_program) pushes each leaf's inside intervals and combines the
+// top two lists by union, intersection or difference; the first end of the last list in
+// (0, t_max) is the hit. The method, the tags (leaf index | CSG_FLIP) and the coincidence
+// tolerance are described in src/cpu/csg.rs, which this file follows step for step. The
+// lists live in private arrays of CSG_EVENT_CAPACITY ends; flattening rejects any object
+// whose worst case needs more, so nothing is truncated. Every loop is bounded.
+
+// (A CSG scene always has some primitive kind among its leaves; the feature sets of the
+// validation tests need not.)
+// #if CSG
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
+// The nearest CSG hit: t (T_MISS on a miss) and the surface's tag (NO_ITEM on a miss).
+// Mirror of src/cpu/csg.rs::CsgHit — change both.
+struct CsgHit {
+    t: f32,
+    part: u32,
+}
+
+// One ray's evaluation state, per invocation.
+// Mirror of src/cpu/csg.rs::CsgStack — change both.
+var<private> csg_t: array<f32, CSG_EVENT_CAPACITY>;
+var<private> csg_tag: array<u32, CSG_EVENT_CAPACITY>;
+var<private> csg_list_start: array<u32, CSG_LIST_CAPACITY>;
+var<private> csg_list_count: array<u32, CSG_LIST_CAPACITY>;
+var<private> csg_lists: u32;
+
+// The inside intervals of o + t·d (world space) through a leaf instance, in world t:
+// [x, y] and [z, w], each empty when its lo > hi, the second after the first.
+// Mirror of src/cpu/csg.rs::leaf_intervals — change both.
+fn leaf_intervals(leaf: GpuInstance, o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+    let local = to_object_space(leaf, o, d);
+    let oo = local.origin;
+    let od = local.dir;
+    let empty = vec4<f32>(T_MISS, -T_MISS, T_MISS, -T_MISS);
+// #if SPHERE
+    if leaf.kind == KIND_SPHERE {
+        return vec4<f32>(sphere_interval(oo, od), T_MISS, -T_MISS);
+    }
+// #endif
+// #if CUBE
+    if leaf.kind == KIND_CUBE {
+        return vec4<f32>(box_interval(oo, od), T_MISS, -T_MISS);
+    }
+// #endif
+// #if CYLINDER
+    if leaf.kind == KIND_CYLINDER {
+        return vec4<f32>(cylinder_interval(oo, od), T_MISS, -T_MISS);
+    }
+// #endif
+// #if CONE
+    if leaf.kind == KIND_CONE {
+        let c = cone_intervals(oo, od, leaf.params.x, leaf.params.y);
+        var spans = c.spans;
+        // Shift only non-empty spans (an empty one keeps lo > hi).
+        if spans.x <= spans.y {
+            spans.x += c.t_shift;
+            spans.y += c.t_shift;
+        }
+        if spans.z <= spans.w {
+            spans.z += c.t_shift;
+            spans.w += c.t_shift;
+        }
+        return spans;
+    }
+// #endif
+// #if TORUS
+    if leaf.kind == KIND_TORUS {
+        return torus_intervals(oo, od, leaf.params.x, leaf.params.y);
+    }
+// #endif
+    return empty;
+}
+
+// Pushes the list of leaf instance index: its non-empty intervals, ends clamped to
+// ±CSG_T_LIMIT (a NaN interval fails lo ≤ hi and is dropped).
+// Mirror of src/cpu/csg.rs::csg_push_leaf — change both.
+fn csg_push_leaf(index: u32, o: vec3<f32>, d: vec3<f32>) {
+    let intervals = leaf_intervals(instances[index], o, d);
+    var start = 0u;
+    if csg_lists > 0u {
+        let top = csg_lists - 1u;
+        start = csg_list_start[top] + csg_list_count[top];
+    }
+    var count = 0u;
+    for (var k = 0u; k < 2u; k++) {
+        let lo = intervals[2u * k];
+        let hi = intervals[2u * k + 1u];
+        if lo <= hi {
+            let at = start + count;
+            csg_t[at] = clamp(lo, -CSG_T_LIMIT, CSG_T_LIMIT);
+            csg_tag[at] = index;
+            csg_t[at + 1u] = clamp(hi, -CSG_T_LIMIT, CSG_T_LIMIT);
+            csg_tag[at + 1u] = index;
+            count += 2u;
+        }
+    }
+    csg_list_start[csg_lists] = start;
+    csg_list_count[csg_lists] = count;
+    csg_lists += 1u;
+}
+
+// Whether a point inside a (in_a) and/or b (in_b) is inside op's result.
+// Mirror of src/cpu/csg.rs::csg_inside — change both.
+fn csg_inside(op: u32, in_a: bool, in_b: bool) -> bool {
+    if op == CSG_INTERSECTION {
+        return in_a && in_b;
+    } else if op == CSG_DIFFERENCE {
+        return in_a && !in_b;
+    }
+    return in_a || in_b;
+}
+
+// Replaces the top two lists (a below b) by op's result; ends of a and b within
+// CSG_COINCIDENT_RELATIVE of (magnitude + |t|) are one place. The place of a step is its
+// nearer end (a's on a tie); a difference flips the tags of b's ends it emits.
+// Mirror of src/cpu/csg.rs::csg_combine — change both.
+fn csg_combine(op: u32, magnitude: f32) {
+    let a_list = csg_lists - 2u;
+    let b_list = csg_lists - 1u;
+    let a_start = csg_list_start[a_list];
+    let a_count = csg_list_count[a_list];
+    let b_start = csg_list_start[b_list];
+    let b_count = csg_list_count[b_list];
+    // The result is built after b, then moved down to where a starts.
+    let out = b_start + b_count;
+    var b_flip = 0u;
+    if op == CSG_DIFFERENCE {
+        b_flip = CSG_FLIP;
+    }
+    var ia = 0u;
+    var ib = 0u;
+    var n = 0u;
+    var in_a = false;
+    var in_b = false;
+    var inside = false;
+    // Every step takes at least one end.
+    for (var step = 0u; step < a_count + b_count; step++) {
+        if ia >= a_count && ib >= b_count {
+            break;
+        }
+        var take_a = ia < a_count;
+        var take_b = ib < b_count;
+        var ta = T_MISS;
+        var tb = T_MISS;
+        if take_a {
+            ta = csg_t[a_start + ia];
+        }
+        if take_b {
+            tb = csg_t[b_start + ib];
+        }
+        if take_a && take_b {
+            let tolerance = CSG_COINCIDENT_RELATIVE * (magnitude + max(abs(ta), abs(tb)));
+            if abs(ta - tb) > tolerance {
+                take_a = ta < tb;
+                take_b = !take_a;
+            }
+        }
+        // The place of this step: the nearer end taken, a's on a tie.
+        var t = ta;
+        var tag = 0u;
+        if take_a {
+            tag = csg_tag[a_start + ia];
+            in_a = !in_a;
+            ia += 1u;
+        }
+        if take_b {
+            if !take_a || tb < ta {
+                t = tb;
+                tag = csg_tag[b_start + ib] ^ b_flip;
+            }
+            in_b = !in_b;
+            ib += 1u;
+        }
+        let now = csg_inside(op, in_a, in_b);
+        if now != inside {
+            csg_t[out + n] = t;
+            csg_tag[out + n] = tag;
+            n += 1u;
+            inside = now;
+        }
+    }
+    for (var k = 0u; k < n; k++) {
+        csg_t[a_start + k] = csg_t[out + k];
+        csg_tag[a_start + k] = csg_tag[out + k];
+    }
+    csg_list_count[a_list] = n;
+    csg_lists -= 1u;
+}
+
+// Runs the program of CSG instance inst for the ray o + t·d (world space): afterwards one
+// list remains, the object's inside intervals along the whole line.
+// Mirror of src/cpu/csg.rs::csg_evaluate — change both.
+fn csg_evaluate(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>) {
+    let start = u32(inst.params.x);
+    let len = u32(inst.params.y);
+    let magnitude = max_element(abs(o));
+    csg_lists = 0u;
+    for (var i = 0u; i < len; i++) {
+        let entry = csg_program[start + i];
+        let op = entry >> CSG_OP_SHIFT;
+        if op == CSG_LEAF {
+            csg_push_leaf(entry & CSG_INDEX_MASK, o, d);
+        } else {
+            csg_combine(op, magnitude);
+        }
+    }
+}
+
+// Nearest hit in (0, t_max) of o + t·d with CSG instance inst: the first end of its inside
+// intervals past the origin (from inside, where the ray leaves).
+// Mirror of src/cpu/csg.rs::intersect_csg — change both.
+fn intersect_csg(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> CsgHit {
+    csg_evaluate(inst, o, d);
+    let count = csg_list_count[0];
+    for (var k = 0u; k < count; k++) {
+        let t = csg_t[k];
+        if t > 0.0 {
+            if t < t_max {
+                return CsgHit(t, csg_tag[k]);
+            }
+            break;
+        }
+    }
+    return CsgHit(T_MISS, NO_ITEM);
+}
+// #endif
+// #endif
