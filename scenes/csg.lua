@@ -1,5 +1,5 @@
--- glint's CSG scene: a glass made of cylinders minus a cylinder (the bowl's inside is cut
--- with its top cap coplanar with the outside's) with a torus rim, the classic
+-- glint's CSG scene: a glass made of cylinders minus a cylinder (the inside is cut with
+-- its top cap coplanar with the outside's) with a torus rim, the classic
 -- "sphere ∩ cube minus three cylinders" on a pedestal, a lens (sphere ∩ sphere), and a
 -- ring, a cone and a cylinder beside them, on a checkerboard floor.
 -- Render it with:  glint render scenes/csg.lua
@@ -8,9 +8,8 @@ gr.transform_order('pre')
 
 white  = gr.material({0.85, 0.85, 0.85}, {0.2, 0.2, 0.2}, 20)
 dark   = gr.material({0.15, 0.15, 0.18}, {0.2, 0.2, 0.2}, 20)
-glass  = gr.material({0.55, 0.78, 0.85}, {0.9, 0.9, 0.9}, 120)
-glass:set_reflection(0.12, 0.14, 0.15)
-tint   = gr.material({0.35, 0.6, 0.7}, {0.9, 0.9, 0.9}, 120)
+glass  = gr.material({0, 0, 0}, {0.9, 0.9, 0.9}, 120)
+glass:set_refraction(1.5)
 blue   = gr.material({0.15, 0.3, 0.8}, {0.6, 0.6, 0.6}, 60)
 red    = gr.material({0.8, 0.15, 0.1}, {0.6, 0.6, 0.6}, 60)
 gold   = gr.material({0.6, 0.45, 0.1}, {0.7, 0.6, 0.3}, 80)
@@ -39,21 +38,22 @@ local function upright(name, r, y0, y1)
   return c
 end
 
--- The glass: foot, stem and bowl (cylinders) minus the bowl's inside (a cylinder whose
--- top cap is coplanar with the bowl's), plus a torus rim. The inside keeps its own tint.
-local foot = upright('foot', 0.55, 0.0, 0.06)
-local stem = upright('stem', 0.07, 0.05, 0.8)
-local bowl = upright('bowl', 0.6, 0.78, 1.7)
-local hollow = upright('hollow', 0.54, 0.86, 1.7)
-hollow:set_material(tint)
-local body = gr.csg('body', 'u', gr.csg('foot+stem', 'u', foot, stem), bowl)
-local cup = gr.csg('cup', 'd', body, hollow)
+-- The glass: a tumbler of clear glass (index 1.5): a thick base and a bowl (cylinders)
+-- minus the inside (a cylinder whose top cap is coplanar with the wall's), plus a torus
+-- rim. No stem: a thin glass rod or disk is a light guide whose chains of total internal
+-- reflection outlast max_depth and end in black pixels (see tests/refraction.rs). It
+-- stands a hair above the floor: a glass face coplanar with the tiles' tops would leave
+-- each ray to rounding to decide which of the two it meets first.
+local base = upright('base', 0.6, 0.0, 0.35)
+local bowl = upright('bowl', 0.6, 0.3, 1.5)
+local hollow = upright('hollow', 0.54, 0.35, 1.5)
+local cup = gr.csg('cup', 'd', gr.csg('body', 'u', base, bowl), hollow)
 local rim = gr.torus('rim', 0.57, 0.03)
 rim:rotate('x', -90)
-rim:translate(0, 1.7, 0)
+rim:translate(0, 1.5, 0)
 local glass_node = gr.csg('glass', 'u', cup, rim)
 glass_node:set_material(glass)
-glass_node:translate(-2.0, 0, 0.3)
+glass_node:translate(-2.0, 0.003, 0.3)
 root:add_child(glass_node)
 
 -- The classic: a sphere ∩ a cube, minus three crossing cylinders (the holes keep the

@@ -1029,7 +1029,7 @@ fn bad_operands_are_scene_errors() {
 /// scenes/csg.lua (a torus, a cone, a cylinder, the CSG glass and more) with everything,
 /// camera and lights included, scaled by 1e-3 and 1e3 renders the same image as at scale
 /// 1 (FLIP mean < 0.005, ≥ 99.9% of pixels within 2/255), with no NaN, and rays into the
-/// glass (whose bowl is cut with coplanar caps) find no speckle at any scale.
+/// glass (cut with coplanar caps; refractive) find no speckle at any scale.
 #[test]
 fn csg_scene_is_scale_invariant() {
     let overrides = glint::scene::OptionOverrides {
