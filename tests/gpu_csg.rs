@@ -224,20 +224,9 @@ fn op_scene(op: char) -> String {
     )
 }
 
+/// A CSG scene, GPU against CPU.
 fn compare(ctx: &GpuContext, name: &str, scene: &PackedScene, max_flip: f64) {
-    let (gpu, info) =
-        render_gpu_with_info(ctx, scene, &|_, _| {}).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let cpu = glint::cpu::render(scene, &|_, _| {});
-    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu_images");
-    let report = assert_images_match(name, &gpu, &cpu, max_flip, 0.999, &out)
-        .unwrap_or_else(|message| panic!("{message}"));
-    eprintln!(
-        "{name}: features [{}], FLIP mean {:.5}, {:.3}% within 2/255, {} CPU-fallback pixels",
-        info.features,
-        report.flip_mean,
-        report.share_within(2.0 / 255.0) * 100.0,
-        info.cpu_fallback_pixels
-    );
+    let info = common::assert_gpu_matches_cpu(ctx, "gpu_images", name, scene, max_flip);
     assert!(info.features.contains(SceneFeatures::CSG));
 }
 

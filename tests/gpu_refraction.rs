@@ -9,28 +9,14 @@
 mod common;
 
 use common::{gpu_context, packed_from_file, packed_from_source};
-use glint::diff::assert_images_match;
-use glint::gpu::render_gpu_with_info;
 use glint::gpu::GpuContext;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaMode, OptionOverrides};
-use std::path::PathBuf;
 
+/// A dielectric scene, GPU against CPU.
 fn compare(ctx: &GpuContext, name: &str, scene: &PackedScene) {
     assert!(scene.features.contains(SceneFeatures::REFRACTION), "{name}");
-    let (gpu, info) =
-        render_gpu_with_info(ctx, scene, &|_, _| {}).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let cpu = glint::cpu::render(scene, &|_, _| {});
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu_refraction");
-    let report = assert_images_match(name, &gpu, &cpu, 0.01, 0.999, &out)
-        .unwrap_or_else(|message| panic!("{message}"));
-    eprintln!(
-        "{name}: features [{}], FLIP mean {:.5}, {:.3}% within 2/255, {} CPU-fallback pixels",
-        info.features,
-        report.flip_mean,
-        report.share_within(2.0 / 255.0) * 100.0,
-        info.cpu_fallback_pixels
-    );
+    common::assert_gpu_matches_cpu(ctx, "gpu_refraction", name, scene, 0.01);
 }
 
 fn small(size: u32, aa: AaMode) -> OptionOverrides {

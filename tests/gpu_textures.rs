@@ -10,37 +10,13 @@ mod common;
 mod texture_support;
 
 use common::{gpu_context, packed_from_file, root, temp_dir};
-use glint::diff::assert_images_match;
-use glint::gpu::{render_gpu_with_info, GpuContext};
+use glint::gpu::GpuContext;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaMode, DebugView, OptionOverrides};
-use std::path::PathBuf;
 
-const MAX_FLIP_MEAN: f64 = 0.01;
-const MIN_SHARE_WITHIN_2_255: f64 = 0.999;
-
+/// A textured scene, GPU against CPU (FLIP mean ≤ 0.01); the features it compiled.
 fn compare(ctx: &GpuContext, name: &str, scene: &PackedScene) -> SceneFeatures {
-    let (gpu, info) =
-        render_gpu_with_info(ctx, scene, &|_, _| {}).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let cpu = glint::cpu::render(scene, &|_, _| {});
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu_textures");
-    let report = assert_images_match(
-        name,
-        &gpu,
-        &cpu,
-        MAX_FLIP_MEAN,
-        MIN_SHARE_WITHIN_2_255,
-        &out,
-    )
-    .unwrap_or_else(|message| panic!("{message}"));
-    eprintln!(
-        "{name}: features [{}], FLIP mean {:.5}, {:.3}% within 2/255, max difference {:.4}",
-        info.features,
-        report.flip_mean,
-        report.share_within(2.0 / 255.0) * 100.0,
-        report.max_abs,
-    );
-    info.features
+    common::assert_gpu_matches_cpu(ctx, "gpu_textures", name, scene, 0.01).features
 }
 
 fn small(aa: Option<AaMode>, debug: Option<DebugView>) -> OptionOverrides {

@@ -176,33 +176,6 @@ fn mirror_depth_and_weight_limits() {
     );
 }
 
-/// Scales a flattened scene, camera and lights included, by `s`.
-fn scaled(scene: &Scene, s: f64) -> Scene {
-    let mut out = scene.clone();
-    let m = DMat4::from_scale(DVec3::splat(s));
-    for o in &mut out.objects {
-        o.object_to_world = m * o.object_to_world;
-    }
-    for t in &mut out.triangles {
-        t.positions = t.positions.map(|p| p * s);
-    }
-    for l in &mut out.lights {
-        l.position *= s;
-        if let Some(area) = &mut l.area {
-            area.u *= s;
-            area.v *= s;
-        }
-        // Keep the attenuation the same function of the scaled distance.
-        l.falloff = [
-            l.falloff[0],
-            l.falloff[1] / s as f32,
-            l.falloff[2] / (s * s) as f32,
-        ];
-    }
-    out.camera.eye *= s;
-    out
-}
-
 #[test]
 fn images_are_scale_invariant() {
     let overrides = OptionOverrides {
@@ -219,7 +192,7 @@ fn images_are_scale_invariant() {
         let scene = &load_scenes(&path, &overrides)[0];
         let reference = common::render_cpu(&pack(scene).unwrap());
         for s in [1e-3, 1e3] {
-            let film = common::render_cpu(&pack(&scaled(scene, s)).unwrap());
+            let film = common::render_cpu(&pack(&common::scaled_scene(scene, s)).unwrap());
             assert!(
                 film.pixels.iter().flatten().all(|v| v.is_finite()),
                 "NaN at scale {s}"

@@ -282,3 +282,30 @@ impl GlassProbe {
             .count()
     }
 }
+
+/// Tier 4: renders `scene` on the GPU of `ctx` and on the CPU and asserts the images match
+/// (FLIP mean ≤ `max_flip`, ≥ 99.9% of pixels within 2/255), printing the figures; failing
+/// images go to `target/tmp/<dir>/`. Returns what the GPU render reported.
+pub fn assert_gpu_matches_cpu(
+    ctx: &glint::gpu::GpuContext,
+    dir: &str,
+    name: &str,
+    scene: &PackedScene,
+    max_flip: f64,
+) -> glint::gpu::GpuRenderInfo {
+    let (gpu, info) = glint::gpu::render_gpu_with_info(ctx, scene, &|_, _| {})
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    let cpu = glint::cpu::render(scene, &|_, _| {});
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(dir);
+    let report = glint::diff::assert_images_match(name, &gpu, &cpu, max_flip, 0.999, &out)
+        .unwrap_or_else(|message| panic!("{message}"));
+    eprintln!(
+        "{name}: features [{}], FLIP mean {:.5}, {:.3}% within 2/255, max difference {:.4}, {} CPU-fallback pixels",
+        info.features,
+        report.flip_mean,
+        report.share_within(2.0 / 255.0) * 100.0,
+        report.max_abs,
+        info.cpu_fallback_pixels
+    );
+    info
+}
