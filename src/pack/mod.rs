@@ -195,16 +195,29 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
             }
         })
         .collect();
-    // Only materials some geometry uses decide the feature set.
-    let used = |m: usize| {
-        scene.objects.iter().any(|o| o.material == m)
-            || scene.triangles.iter().any(|t| t.material == m)
-            || scene.csg.iter().any(|c| {
-                c.program
-                    .iter()
-                    .any(|step| matches!(step, CsgStep::Leaf(o) if o.material == m))
-            })
-    };
+    // Only materials some geometry uses decide the feature set (marked in one pass: a
+    // scan per material would cost materials × triangles).
+    let mut in_use = vec![false; materials.len()];
+    let leaves = scene
+        .csg
+        .iter()
+        .flat_map(|c| &c.program)
+        .filter_map(|step| match step {
+            CsgStep::Leaf(o) => Some(o.material),
+            CsgStep::Op(_) => None,
+        });
+    for m in scene
+        .objects
+        .iter()
+        .map(|o| o.material)
+        .chain(scene.triangles.iter().map(|t| t.material))
+        .chain(leaves)
+    {
+        if let Some(slot) = in_use.get_mut(m) {
+            *slot = true;
+        }
+    }
+    let used = |m: usize| in_use[m];
     if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFLECTIVE != 0 && used(m)) {
         features.insert(SceneFeatures::REFLECTION);
     }
