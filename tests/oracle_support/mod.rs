@@ -1,6 +1,7 @@
 //! Shared by the f64-oracle stress tests (`intersect_oracle`, `cylinder_cone_oracle`,
 //! `torus_oracle`): a seeded generator, per-case seeds, f32/f64 conversions, the f32
-//! rounding floor and the legality check every traced t must pass.
+//! rounding floor, the legality check every traced t must pass, and the oracle answer and
+//! agreement tally the three share.
 #![allow(dead_code)]
 
 use glam::{DQuat, DVec3, Vec3};
@@ -97,4 +98,119 @@ pub fn assert_legal_t(t: f32, t_max: f32, what: &str, seed: u64) {
         t == T_MISS || (t > 0.0 && t < t_max),
         "{what}: t = {t} is neither T_MISS nor in (0, {t_max}) (seed {seed:#x})"
     );
+}
+
+/// The f64 oracle's answer for one ray.
+pub struct Oracle {
+    /// Nearest hit in (0, t_max), if any.
+    pub t: Option<f64>,
+    /// The ray passes within the test's band around a silhouette: not checked.
+    pub grazing: bool,
+    /// f32 rounding floor of t (world units) for this hit, added to the 1e-4·t tolerance.
+    pub floor: f64,
+}
+
+/// Agreement of a tracer's t with the oracle over many rays.
+#[derive(Default, Debug)]
+pub struct Agreement {
+    pub rays: usize,
+    pub grazing: usize,
+    pub hits: usize,
+    pub misses: usize,
+    /// Oracle hit, tracer missed.
+    pub false_misses: usize,
+    /// Oracle miss, tracer hit.
+    pub false_hits: usize,
+    /// Both hit, |Δt| > 1e-4·t + f32 floor.
+    pub bad_t: usize,
+    pub worst_rel_dt: f64,
+    /// Largest |Δt| / (1e-4·t + f32 floor): the share of the tolerance used.
+    pub worst_tolerance_used: f64,
+    /// (seed, message) of the first few disagreements.
+    pub examples: Vec<(u64, String)>,
+}
+
+/// Hits and misses each must be more than 1/`hits` and 1/`misses` of the checked rays
+/// for the agreement to mean anything.
+pub struct MinMix {
+    pub hits: usize,
+    pub misses: usize,
+}
+
+impl Agreement {
+    pub fn record(&mut self, seed: u64, oracle: &Oracle, t: f32, detail: impl Fn() -> String) {
+        self.rays += 1;
+        if oracle.grazing {
+            self.grazing += 1;
+            return;
+        }
+        let bad = match oracle.t {
+            Some(t_ref) => {
+                self.hits += 1;
+                if t == T_MISS {
+                    self.false_misses += 1;
+                    true
+                } else {
+                    let dt = (t as f64 - t_ref).abs();
+                    self.worst_rel_dt = self.worst_rel_dt.max(dt / t_ref);
+                    let tolerance = 1e-4 * t_ref + oracle.floor;
+                    self.worst_tolerance_used = self.worst_tolerance_used.max(dt / tolerance);
+                    let bad = dt > tolerance;
+                    self.bad_t += bad as usize;
+                    bad
+                }
+            }
+            None => {
+                self.misses += 1;
+                self.false_hits += (t != T_MISS) as usize;
+                t != T_MISS
+            }
+        };
+        if bad && self.examples.len() < 8 {
+            self.examples.push((
+                seed,
+                format!("oracle {:?}, got {t}: {}", oracle.t, detail()),
+            ));
+        }
+    }
+
+    /// Prints the figures and asserts that something was checked, the hit/miss mix (when
+    /// `mix` is given) and at most 1e-4 of the checked rays disagreeing. `context` (a
+    /// salt, say) goes into the failure messages.
+    pub fn check(&self, what: &str, context: &str, mix: Option<MinMix>) {
+        let checked = self.rays - self.grazing;
+        let wrong = self.false_misses + self.false_hits + self.bad_t;
+        let rate = 1.0 - wrong as f64 / checked.max(1) as f64;
+        println!(
+            "{what}: {} rays, {} grazing skipped, {checked} checked ({} hits, {} misses); \
+             {wrong} disagree ({} false misses, {} false hits, {} bad t); \
+             agreement {:.6}%; worst |Δt|/t {:.3e}, worst share of tolerance {:.3}",
+            self.rays,
+            self.grazing,
+            self.hits,
+            self.misses,
+            self.false_misses,
+            self.false_hits,
+            self.bad_t,
+            rate * 100.0,
+            self.worst_rel_dt,
+            self.worst_tolerance_used
+        );
+        for (seed, msg) in &self.examples {
+            println!("  seed {seed:#x}: {msg}");
+        }
+        assert!(checked > 0, "{what}: nothing checked ({context})");
+        if let Some(mix) = mix {
+            assert!(
+                self.hits > checked / mix.hits && self.misses > checked / mix.misses,
+                "{what}: too few hits or misses to mean anything ({context}): {self:?}"
+            );
+        }
+        assert!(
+            wrong as f64 <= 1e-4 * checked as f64,
+            "{what}: {wrong} of {checked} non-grazing rays disagree with the f64 oracle \
+             ({context}; first: {:?})",
+            self.examples
+        );
+    }
 }
