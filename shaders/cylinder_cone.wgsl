@@ -9,19 +9,6 @@
 // nearest end of those in (0, t_max). UVs and the frame: see src/cpu/cylinder_cone.rs.
 
 // #if CYLINDER|CONE
-// The surface of a cylinder or cone at a hit, in object space.
-// Mirror of src/cpu/cylinder_cone.rs::CylinderConeSurface — change both.
-struct CylinderConeSurface {
-    // The hit point snapped onto the surface.
-    p: vec3<f32>,
-    // Unit outward normal.
-    normal: vec3<f32>,
-    uv: vec2<f32>,
-    // ∂p/∂u and ∂p/∂v (for bump mapping).
-    dpdu: vec3<f32>,
-    dpdv: vec3<f32>,
-}
-
 // The nearer of best and the ends of [lo, hi] that lie in (0, t_max), each shifted by
 // t_shift (empty when lo > hi).
 // Mirror of src/cpu/cylinder_cone.rs::nearest_interval_end — change both.
@@ -107,7 +94,7 @@ fn intersect_cylinder(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
 // The cylinder's surface at the object-space point p (near the surface): the nearest of
 // side and caps, with p snapped onto it.
 // Mirror of src/cpu/cylinder_cone.rs::cylinder_surface — change both.
-fn cylinder_surface(p: vec3<f32>) -> CylinderConeSurface {
+fn cylinder_surface(p: vec3<f32>) -> ObjectSurface {
     let r = sqrt(p.x * p.x + p.y * p.y);
     let d_side = abs(r - 1.0);
     let d_bottom = abs(p.z);
@@ -121,7 +108,7 @@ fn cylinder_surface(p: vec3<f32>) -> CylinderConeSurface {
             cy = p.y / r;
         }
         let z = clamp(p.z, 0.0, 1.0);
-        return CylinderConeSurface(
+        return ObjectSurface(
             vec3<f32>(cx, cy, z),
             vec3<f32>(cx, cy, 0.0),
             vec2<f32>(cylinder_cone_angle_u(cx, cy), z),
@@ -137,7 +124,7 @@ fn cylinder_surface(p: vec3<f32>) -> CylinderConeSurface {
     }
     let x = p.x * s;
     let y = p.y * s;
-    return CylinderConeSurface(
+    return ObjectSurface(
         vec3<f32>(x, y, select(0.0, 1.0, top)),
         vec3<f32>(0.0, 0.0, select(-1.0, 1.0, top)),
         vec2<f32>(0.5 * (x + 1.0), 0.5 * (y + 1.0)),
@@ -240,7 +227,7 @@ fn intersect_cone(o: vec3<f32>, d: vec3<f32>, zmin: f32, zmax: f32, t_max: f32) 
 // The cone's surface at the object-space point p (near the surface): the nearest of side
 // and caps (a cap of radius 0, at a tip, is never chosen), with p snapped onto it.
 // Mirror of src/cpu/cylinder_cone.rs::cone_surface — change both.
-fn cone_surface(p: vec3<f32>, zmin: f32, zmax: f32) -> CylinderConeSurface {
+fn cone_surface(p: vec3<f32>, zmin: f32, zmax: f32) -> ObjectSurface {
     let r = sqrt(p.x * p.x + p.y * p.y);
     // Distances to the side (in the (r, z) half-plane, from the generator r = |z|) and to
     // the caps.
@@ -265,7 +252,7 @@ fn cone_surface(p: vec3<f32>, zmin: f32, zmax: f32) -> CylinderConeSurface {
         let z = clamp(s * 0.5 * (r + abs(p.z)), zmin, zmax);
         let rs = abs(z);
         let height = zmax - zmin;
-        return CylinderConeSurface(
+        return ObjectSurface(
             vec3<f32>(cx * rs, cy * rs, z),
             // ∇(x² + y² − z²) ∝ (cx, cy, −s) on the nappe.
             normalize(vec3<f32>(cx, cy, -s)),
@@ -284,7 +271,7 @@ fn cone_surface(p: vec3<f32>, zmin: f32, zmax: f32) -> CylinderConeSurface {
     }
     let x = p.x * k;
     let y = p.y * k;
-    return CylinderConeSurface(
+    return ObjectSurface(
         vec3<f32>(x, y, z),
         vec3<f32>(0.0, 0.0, select(-1.0, 1.0, top)),
         vec2<f32>(0.5 * (x / radius + 1.0), 0.5 * (y / radius + 1.0)),

@@ -45,64 +45,36 @@ fn affine_magnitude(rows: array<vec4<f32>, 3>) -> f32 {
 // Mirror of src/cpu/shade.rs::instance_surface — change both.
 fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
     let local = to_object_space(inst, ray.origin, ray.dir);
-    var p_obj = local.origin + local.dir * t;
-    var n_obj = vec3<f32>(0.0);
-    var uv = vec2<f32>(0.0);
-    var dpdu_obj = vec3<f32>(0.0);
-    var dpdv_obj = vec3<f32>(0.0);
+    let p_hit = local.origin + local.dir * t;
+    // Every kind snaps the point onto its surface; an unknown kind (none) leaves it.
+    var s = ObjectSurface(p_hit, vec3<f32>(0.0), vec2<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0));
 // #if CYLINDER
     if inst.kind == KIND_CYLINDER {
-        let s = cylinder_surface(p_obj);
-        p_obj = s.p;
-        n_obj = s.normal;
-        uv = s.uv;
-        dpdu_obj = s.dpdu;
-        dpdv_obj = s.dpdv;
+        s = cylinder_surface(p_hit);
     }
 // #endif
 // #if CONE
     if inst.kind == KIND_CONE {
-        let zmin = inst.params.x;
-        let zmax = inst.params.y;
-        let s = cone_surface(p_obj, zmin, zmax);
-        p_obj = s.p;
-        n_obj = s.normal;
-        uv = s.uv;
-        dpdu_obj = s.dpdu;
-        dpdv_obj = s.dpdv;
+        s = cone_surface(p_hit, inst.params.x, inst.params.y);
     }
 // #endif
 // #if SPHERE
     if inst.kind == KIND_SPHERE {
-        let s = sphere_surface(p_obj);
-        p_obj = s.p;
-        n_obj = s.normal;
-        uv = s.uv;
-        dpdu_obj = s.dpdu;
-        dpdv_obj = s.dpdv;
+        s = sphere_surface(p_hit);
     }
 // #endif
 // #if TORUS
     if inst.kind == KIND_TORUS {
-        // Project onto the tube.
-        let s = torus_surface(p_obj, inst.params.x, inst.params.y);
-        p_obj = s.p;
-        n_obj = s.normal;
-        uv = s.uv;
-        dpdu_obj = s.dpdu;
-        dpdv_obj = s.dpdv;
+        s = torus_surface(p_hit, inst.params.x, inst.params.y);
     }
 // #endif
 // #if CUBE
     if inst.kind == KIND_CUBE {
-        let s = cube_surface(p_obj);
-        p_obj = s.p;
-        n_obj = s.normal;
-        uv = s.uv;
-        dpdu_obj = s.dpdu;
-        dpdv_obj = s.dpdv;
+        s = cube_surface(p_hit);
     }
 // #endif
+    let p_obj = s.p;
+    let n_obj = s.normal;
     let o2w = inst.object_to_world;
     let p = vec3<f32>(
         dot(o2w[0].xyz, p_obj) + o2w[0].w,
@@ -115,9 +87,9 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
     // Object points may lie beyond the unit box (a torus reaches rin + rout).
     let magnitude = affine_magnitude(o2w) * max(max_element(abs(p_obj)), 1.0);
     // Tangents transform like directions: the linear part of object→world.
-    let dpdu = vec3<f32>(dot(o2w[0].xyz, dpdu_obj), dot(o2w[1].xyz, dpdu_obj), dot(o2w[2].xyz, dpdu_obj));
-    let dpdv = vec3<f32>(dot(o2w[0].xyz, dpdv_obj), dot(o2w[1].xyz, dpdv_obj), dot(o2w[2].xyz, dpdv_obj));
-    return Surface(p, normal, magnitude, inst.material, uv, dpdu, dpdv);
+    let dpdu = vec3<f32>(dot(o2w[0].xyz, s.dpdu), dot(o2w[1].xyz, s.dpdu), dot(o2w[2].xyz, s.dpdu));
+    let dpdv = vec3<f32>(dot(o2w[0].xyz, s.dpdv), dot(o2w[1].xyz, s.dpdv), dot(o2w[2].xyz, s.dpdv));
+    return Surface(p, normal, magnitude, inst.material, s.uv, dpdu, dpdv);
 }
 // #endif
 

@@ -259,24 +259,10 @@ fn torus_intervals(o: vec3<f32>, d: vec3<f32>, rin: f32, rout: f32) -> vec4<f32>
 }
 // #endif
 
-// The torus's surface at (near) a point, in object space.
-// Mirror of src/cpu/torus.rs::TorusSurface — change both.
-struct TorusSurface {
-    // The point projected onto the surface.
-    p: vec3<f32>,
-    // Unit outward normal.
-    normal: vec3<f32>,
-    // u = angle around the axis / 2π, v = angle around the tube / 2π.
-    uv: vec2<f32>,
-    // ∂p/∂u and ∂p/∂v (for bump mapping).
-    dpdu: vec3<f32>,
-    dpdv: vec3<f32>,
-}
-
 // Point, normal, UV and tangent frame at the torus point nearest p (see the CPU twin for
 // the spindle torus's inner sheet).
 // Mirror of src/cpu/torus.rs::torus_surface — change both.
-fn torus_surface(p: vec3<f32>, rin: f32, rout: f32) -> TorusSurface {
+fn torus_surface(p: vec3<f32>, rin: f32, rout: f32) -> ObjectSurface {
     // Compute the radial direction (any one on the axis).
     let rho = length(p.xy);
     var radial = vec2<f32>(1.0, 0.0);
@@ -313,6 +299,6 @@ fn torus_surface(p: vec3<f32>, rin: f32, rout: f32) -> TorusSurface {
     // Tangent frame: ∂p/∂θ = (−y, x, 0), ∂p/∂φ = r·(−sin φ·radial, cos φ).
     let dpdu = vec3<f32>(-on_surface.y, on_surface.x, 0.0) * TWO_PI;
     let dpdv = vec3<f32>(radial * -sin_phi, cos_phi) * (TWO_PI * rout);
-    return TorusSurface(on_surface, normal, vec2<f32>(u, v), dpdu, dpdv);
+    return ObjectSurface(on_surface, normal, vec2<f32>(u, v), dpdu, dpdv);
 }
 // #endif

@@ -2,11 +2,11 @@
 // cylinder, cone and torus have theirs in cylinder_cone.wgsl and torus.wgsl). The
 // conventions are documented in src/cpu/uv.rs and the README ("UV conventions").
 
-// #if SPHERE|CUBE
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
 // An analytic surface at a point, in object space: the point snapped onto it, its unit
-// outward normal, UV and ∂p/∂u, ∂p/∂v.
-// Mirror of src/cpu/uv.rs::UvSurface — change both.
-struct UvSurface {
+// outward normal, UV and ∂p/∂u, ∂p/∂v. What every primitive's *_surface returns.
+// Mirror of src/cpu/uv.rs::ObjectSurface — change both.
+struct ObjectSurface {
     p: vec3<f32>,
     normal: vec3<f32>,
     uv: vec2<f32>,
@@ -19,7 +19,7 @@ struct UvSurface {
 // The unit sphere at p (reprojected onto the sphere). At the poles ∂p/∂u = 0 (bump
 // mapping then leaves the normal alone); nothing divides by the distance to the axis.
 // Mirror of src/cpu/uv.rs::sphere_surface — change both.
-fn sphere_surface(p_in: vec3<f32>) -> UvSurface {
+fn sphere_surface(p_in: vec3<f32>) -> ObjectSurface {
     // Reproject onto the unit sphere.
     let p = normalize(p_in);
     let r = sqrt(p.x * p.x + p.y * p.y);
@@ -30,7 +30,7 @@ fn sphere_surface(p_in: vec3<f32>) -> UvSurface {
         u += 1.0;
     }
     let v = latitude / (0.5 * TWO_PI) + 0.5;
-    return UvSurface(
+    return ObjectSurface(
         p,
         p,
         vec2<f32>(u, v),
@@ -43,7 +43,7 @@ fn sphere_surface(p_in: vec3<f32>) -> UvSurface {
 // #if CUBE
 // The box [0,1]³ at p: the face nearest the point, the point snapped onto it.
 // Mirror of src/cpu/uv.rs::cube_surface — change both.
-fn cube_surface(p_in: vec3<f32>) -> UvSurface {
+fn cube_surface(p_in: vec3<f32>) -> ObjectSurface {
     var p = p_in;
     // The face nearest the point: snap the point onto it.
     let dist = min(abs(p), abs(p - vec3<f32>(1.0)));
@@ -68,7 +68,7 @@ fn cube_surface(p_in: vec3<f32>) -> UvSurface {
         dpdv = vec3<f32>(0.0, 0.0, -sign);
     }
     let centred = p - vec3<f32>(0.5);
-    return UvSurface(p, normal, vec2<f32>(dot(dpdu, centred) + 0.5, dot(dpdv, centred) + 0.5), dpdu, dpdv);
+    return ObjectSurface(p, normal, vec2<f32>(dot(dpdu, centred) + 0.5, dot(dpdv, centred) + 0.5), dpdu, dpdv);
 }
 // #endif
 

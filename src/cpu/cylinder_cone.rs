@@ -19,21 +19,9 @@
 //! v to +y, on both caps). `dpdu`, `dpdv` are the object-space derivatives of the point.
 
 use super::intersect::safe_rcp;
+use super::uv::ObjectSurface;
 use crate::constants::{TWO_PI, T_MISS};
 use glam::{Vec2, Vec3, Vec4};
-
-/// The surface of a cylinder or cone at a hit, in object space.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CylinderConeSurface {
-    /// The hit point snapped onto the surface.
-    pub p: Vec3,
-    /// Unit outward normal.
-    pub normal: Vec3,
-    pub uv: Vec2,
-    /// ∂p/∂u and ∂p/∂v (for bump mapping).
-    pub dpdu: Vec3,
-    pub dpdv: Vec3,
-}
 
 /// The nearer of `best` and the ends of [lo, hi] that lie in (0, t_max), each shifted by
 /// `t_shift` (empty when lo > hi).
@@ -220,7 +208,7 @@ pub fn intersect_cone(o: Vec3, d: Vec3, zmin: f32, zmax: f32, t_max: f32) -> f32
 /// The cylinder's surface at the object-space point `p` (near the surface): the nearest of
 /// side and caps, with `p` snapped onto it.
 // Mirror of shaders/cylinder_cone.wgsl::cylinder_surface — change both.
-pub fn cylinder_surface(p: Vec3) -> CylinderConeSurface {
+pub fn cylinder_surface(p: Vec3) -> ObjectSurface {
     let r = (p.x * p.x + p.y * p.y).sqrt();
     let d_side = (r - 1.0).abs();
     let d_bottom = p.z.abs();
@@ -233,7 +221,7 @@ pub fn cylinder_surface(p: Vec3) -> CylinderConeSurface {
             (1.0, 0.0)
         };
         let z = p.z.clamp(0.0, 1.0);
-        return CylinderConeSurface {
+        return ObjectSurface {
             p: Vec3::new(cx, cy, z),
             normal: Vec3::new(cx, cy, 0.0),
             uv: Vec2::new(cylinder_cone_angle_u(cx, cy), z),
@@ -245,7 +233,7 @@ pub fn cylinder_surface(p: Vec3) -> CylinderConeSurface {
     let top = d_top < d_bottom;
     let s = if r > 1.0 { 1.0 / r } else { 1.0 };
     let (x, y) = (p.x * s, p.y * s);
-    CylinderConeSurface {
+    ObjectSurface {
         p: Vec3::new(x, y, if top { 1.0 } else { 0.0 }),
         normal: Vec3::new(0.0, 0.0, if top { 1.0 } else { -1.0 }),
         uv: Vec2::new(0.5 * (x + 1.0), 0.5 * (y + 1.0)),
@@ -257,7 +245,7 @@ pub fn cylinder_surface(p: Vec3) -> CylinderConeSurface {
 /// The cone's surface at the object-space point `p` (near the surface): the nearest of
 /// side and caps (a cap of radius 0, at a tip, is never chosen), with `p` snapped onto it.
 // Mirror of shaders/cylinder_cone.wgsl::cone_surface — change both.
-pub fn cone_surface(p: Vec3, zmin: f32, zmax: f32) -> CylinderConeSurface {
+pub fn cone_surface(p: Vec3, zmin: f32, zmax: f32) -> ObjectSurface {
     let r = (p.x * p.x + p.y * p.y).sqrt();
     // Distances to the side (in the (r, z) half-plane, from the generator r = |z|) and to
     // the caps.
@@ -284,7 +272,7 @@ pub fn cone_surface(p: Vec3, zmin: f32, zmax: f32) -> CylinderConeSurface {
         let z = (s * 0.5 * (r + p.z.abs())).clamp(zmin, zmax);
         let rs = z.abs();
         let height = zmax - zmin;
-        return CylinderConeSurface {
+        return ObjectSurface {
             p: Vec3::new(cx * rs, cy * rs, z),
             // ∇(x² + y² − z²) ∝ (cx, cy, −s) on the nappe.
             normal: Vec3::new(cx, cy, -s).normalize(),
@@ -299,7 +287,7 @@ pub fn cone_surface(p: Vec3, zmin: f32, zmax: f32) -> CylinderConeSurface {
     let radius = z.abs();
     let k = if r > radius { radius / r } else { 1.0 };
     let (x, y) = (p.x * k, p.y * k);
-    CylinderConeSurface {
+    ObjectSurface {
         p: Vec3::new(x, y, z),
         normal: Vec3::new(0.0, 0.0, if top { 1.0 } else { -1.0 }),
         uv: Vec2::new(0.5 * (x / radius + 1.0), 0.5 * (y / radius + 1.0)),

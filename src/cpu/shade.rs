@@ -49,26 +49,20 @@ fn affine_magnitude(rows: &[[f32; 4]; 3]) -> f32 {
 // Mirror of shaders/shade.wgsl::instance_surface — change both.
 fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
     let (oo, od) = to_object_space(inst, ray.origin, ray.dir);
-    let mut p_obj = oo + od * t;
-    let (n_obj, uv, dpdu_obj, dpdv_obj);
-    if inst.kind == KIND_CYLINDER {
-        let s = cylinder_surface(p_obj);
-        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
+    let p_hit = oo + od * t;
+    // Every kind snaps the point onto its surface.
+    let s = if inst.kind == KIND_CYLINDER {
+        cylinder_surface(p_hit)
     } else if inst.kind == KIND_CONE {
-        let [zmin, zmax] = inst.params;
-        let s = cone_surface(p_obj, zmin, zmax);
-        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
+        cone_surface(p_hit, inst.params[0], inst.params[1])
     } else if inst.kind == KIND_SPHERE {
-        let s = sphere_surface(p_obj);
-        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
+        sphere_surface(p_hit)
     } else if inst.kind == KIND_TORUS {
-        // Project onto the tube.
-        let s = torus_surface(p_obj, inst.params[0], inst.params[1]);
-        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
+        torus_surface(p_hit, inst.params[0], inst.params[1])
     } else {
-        let s = cube_surface(p_obj);
-        (p_obj, n_obj, uv, dpdu_obj, dpdv_obj) = (s.p, s.normal, s.uv, s.dpdu, s.dpdv);
-    }
+        cube_surface(p_hit)
+    };
+    let (p_obj, n_obj) = (s.p, s.normal);
     let o2w = &inst.object_to_world;
     let p = Vec3::new(
         Vec3::new(o2w[0][0], o2w[0][1], o2w[0][2]).dot(p_obj) + o2w[0][3],
@@ -95,9 +89,9 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
         // Object points may lie beyond the unit box (a torus reaches rin + rout).
         magnitude: affine_magnitude(o2w) * p_obj.abs().max_element().max(1.0),
         material: inst.material,
-        uv,
-        dpdu: to_world(dpdu_obj),
-        dpdv: to_world(dpdv_obj),
+        uv: s.uv,
+        dpdu: to_world(s.dpdu),
+        dpdv: to_world(s.dpdv),
     }
 }
 

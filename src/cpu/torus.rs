@@ -23,6 +23,7 @@
 //! recursion, and the twin in `shaders/torus.wgsl` follows this file step for step.
 
 use super::intersect::safe_rcp;
+use super::uv::ObjectSurface;
 use crate::constants::{
     TORUS_BOUND_MARGIN, TORUS_NEWTON_ITERATIONS, TORUS_ROOT_TOLERANCE, TWO_PI, T_MISS,
 };
@@ -292,28 +293,12 @@ pub fn torus_intervals(o: Vec3, d: Vec3, rin: f32, rout: f32) -> Vec4 {
     out
 }
 
-/// The torus's surface at (near) a point, in object space.
-#[derive(Clone, Copy, Debug, PartialEq)]
-// Mirror of shaders/torus.wgsl::TorusSurface — change both.
-pub struct TorusSurface {
-    /// The point projected onto the surface.
-    pub p: Vec3,
-    /// Unit outward normal.
-    pub normal: Vec3,
-    /// u = angle around the axis / 2π, v = angle around the tube / 2π (0 on the outer
-    /// equator, ¼ on top), both in [0, 1).
-    pub uv: Vec2,
-    /// ∂p/∂u and ∂p/∂v (for bump mapping; ∂p/∂u × ∂p/∂v points along the normal).
-    pub dpdu: Vec3,
-    pub dpdv: Vec3,
-}
-
 /// Point, normal, UV and tangent frame at the torus point nearest `p`: `p` moves onto
 /// the tube circle around the nearest point of the centre circle. On a spindle torus's
 /// inner sheet (`rout > rin`) the tube circle is the far one (the sheet is part of the
 /// tube around the opposite centre point), and the normal points into the lemon.
 // Mirror of shaders/torus.wgsl::torus_surface — change both.
-pub fn torus_surface(p: Vec3, rin: f32, rout: f32) -> TorusSurface {
+pub fn torus_surface(p: Vec3, rin: f32, rout: f32) -> ObjectSurface {
     // Compute the radial direction (any one on the axis).
     let rho = Vec2::new(p.x, p.y).length();
     let radial = if rho > 0.0 {
@@ -349,7 +334,7 @@ pub fn torus_surface(p: Vec3, rin: f32, rout: f32) -> TorusSurface {
     // Tangent frame: ∂p/∂θ = (−y, x, 0), ∂p/∂φ = r·(−sin φ·radial, cos φ).
     let dpdu = Vec3::new(-on_surface.y, on_surface.x, 0.0) * TWO_PI;
     let dpdv = (radial * -sin_phi).extend(cos_phi) * (TWO_PI * rout);
-    TorusSurface {
+    ObjectSurface {
         p: on_surface,
         normal,
         uv: Vec2::new(u, v),

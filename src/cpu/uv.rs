@@ -14,9 +14,12 @@ use crate::constants::TWO_PI;
 use glam::{Vec2, Vec3};
 
 /// An analytic surface at a point, in object space: the point snapped onto it, its unit
-/// outward normal, UV and ∂p/∂u, ∂p/∂v.
+/// outward normal, UV and ∂p/∂u, ∂p/∂v (∂p/∂u × ∂p/∂v points along the normal). What
+/// every primitive's `*_surface` returns (sphere and box here; cylinder, cone, torus in
+/// their own files).
+// Mirror of shaders/uv.wgsl::ObjectSurface — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct UvSurface {
+pub struct ObjectSurface {
     pub p: Vec3,
     pub normal: Vec3,
     pub uv: Vec2,
@@ -27,7 +30,7 @@ pub struct UvSurface {
 /// The unit sphere at `p` (reprojected onto the sphere). At the poles ∂p/∂u = 0 (bump
 /// mapping then leaves the normal alone); nothing divides by the distance to the axis.
 // Mirror of shaders/uv.wgsl::sphere_surface — change both.
-pub fn sphere_surface(p: Vec3) -> UvSurface {
+pub fn sphere_surface(p: Vec3) -> ObjectSurface {
     // Reproject onto the unit sphere.
     let p = p.normalize();
     let r = (p.x * p.x + p.y * p.y).sqrt();
@@ -38,7 +41,7 @@ pub fn sphere_surface(p: Vec3) -> UvSurface {
         u += 1.0;
     }
     let v = latitude / (0.5 * TWO_PI) + 0.5;
-    UvSurface {
+    ObjectSurface {
         p,
         normal: p,
         uv: Vec2::new(u, v),
@@ -49,7 +52,7 @@ pub fn sphere_surface(p: Vec3) -> UvSurface {
 
 /// The box [0,1]³ at `p`: the face nearest the point, the point snapped onto it.
 // Mirror of shaders/uv.wgsl::cube_surface — change both.
-pub fn cube_surface(p: Vec3) -> UvSurface {
+pub fn cube_surface(p: Vec3) -> ObjectSurface {
     let mut p = p;
     // The face nearest the point: snap the point onto it.
     let dist = p.abs().min((p - Vec3::ONE).abs());
@@ -74,7 +77,7 @@ pub fn cube_surface(p: Vec3) -> UvSurface {
         (Vec3::new(sign, 0.0, 0.0), Vec3::Y)
     };
     let centred = p - Vec3::splat(0.5);
-    UvSurface {
+    ObjectSurface {
         p,
         normal,
         uv: Vec2::new(dpdu.dot(centred) + 0.5, dpdv.dot(centred) + 0.5),
