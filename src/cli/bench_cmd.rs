@@ -8,6 +8,7 @@
 //! `--torus` runs only the ray–torus solver comparison (`bench_torus`); `--sweep` only the
 //! error-against-time sweep of the sampling settings (`bench_sweep`).
 
+use super::splitmix::SplitMix;
 use crate::accel::grid::{Grid, DEFAULT_DENSITY};
 use crate::cpu::ray::camera_ray;
 use crate::cpu::ray::Ray;
@@ -172,21 +173,6 @@ fn bench_macho_cows(args: &BenchArgs) -> anyhow::Result<()> {
         rows.len()
     );
     Ok(())
-}
-
-/// splitmix64: a tiny seeded generator for benchmark geometry.
-struct SplitMix(u64);
-impl SplitMix {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E3779B97F4A7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58476D1CE4E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D049BB133111EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn vec(&mut self) -> DVec3 {
-        DVec3::new(self.next(), self.next(), self.next())
-    }
 }
 
 /// `n` random triangles in the unit cube, each about as large as the mean spacing

@@ -9,6 +9,7 @@
 use super::bench_cmd::{fastest, BenchArgs};
 use super::bench_torus_gpu::{GpuTorusBench, GpuTorusSolver};
 use super::ferrari::intersect_torus_ferrari;
+use super::splitmix::SplitMix;
 use crate::cpu::torus::intersect_torus;
 use crate::gpu::GpuContext;
 use glam::{DVec3, Vec3};
@@ -19,27 +20,6 @@ use rayon::prelude::*;
 struct TorusRay {
     o: Vec3,
     d: Vec3,
-}
-
-/// splitmix64 in [0, 1).
-struct SplitMix(u64);
-impl SplitMix {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E3779B97F4A7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58476D1CE4E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D049BB133111EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-    fn unit(&mut self) -> DVec3 {
-        let z = self.range(-1.0, 1.0);
-        let phi = self.range(0.0, std::f64::consts::TAU);
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        DVec3::new(r * phi.cos(), r * phi.sin(), z)
-    }
 }
 
 /// Rays from `near`..`far` bounding radii away (log-uniform) towards random points in
@@ -54,7 +34,7 @@ fn rays(count: usize, rin: f64, rout: f64, near: f64, far: f64, seed: u64) -> Ve
                 rng.range(-size, size),
                 rng.range(-rout, rout),
             );
-            let dist = size * (near.ln() + (far.ln() - near.ln()) * rng.next()).exp();
+            let dist = size * (near.ln() + (far.ln() - near.ln()) * rng.unit_f64()).exp();
             let o = (target + rng.unit() * dist).as_vec3();
             let d = (target - o.as_dvec3()).normalize().as_vec3().normalize();
             TorusRay { o, d }

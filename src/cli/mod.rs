@@ -8,5 +8,6 @@ pub mod bench_torus_gpu;
 pub mod diff_cmd;
 pub mod ferrari;
 pub mod plot_svg;
+pub mod splitmix;
 pub mod stats;
 pub mod sweep_analysis;
