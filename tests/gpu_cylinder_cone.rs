@@ -6,13 +6,10 @@
 
 mod common;
 
-use common::probes::check;
+use common::probes::{check, random_placed};
 use common::{gpu_context, packed_from_file, packed_from_source, root, Rng};
-use glint::diff::assert_images_match;
-use glint::gpu::render_gpu_with_info;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{GridMode, OptionOverrides};
-use std::fmt::Write;
 
 /// Lua for `count` random cylinders (`cone == false`) or cones (random zmin < zmax:
 /// single nappes, tips at z = 0, double cones) in [-10, 10]³.
@@ -36,15 +33,8 @@ fn random_scene(seed: u64, cone: bool, count: usize) -> String {
         } else {
             format!("gr.cylinder('c{i}')")
         };
-        let s = [0; 3].map(|_| rng.range(0.3, 2.0));
-        let axis = ["x", "y", "z"][(rng.next_u64() % 3) as usize];
-        let angle = rng.range(0.0, 360.0);
-        let t = [0; 3].map(|_| rng.range(-9.0, 9.0));
-        let _ = writeln!(
-            lua,
-            "n = {ctor} n:scale({}, {}, {}) n:rotate('{axis}', {angle}) n:translate({}, {}, {}) n:set_material(m) root:add_child(n)",
-            s[0], s[1], s[2], t[0], t[1], t[2]
-        );
+        lua += &random_placed(&mut rng, &ctor, (0.3, 2.0), 9.0);
+        lua.push('\n');
     }
     lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
 }
@@ -89,16 +79,5 @@ fn columns_scene_matches() {
     for f in [SceneFeatures::CYLINDER, SceneFeatures::CONE] {
         assert!(scene.features.contains(f), "{}", scene.features);
     }
-    let (gpu, info) = render_gpu_with_info(&ctx, &scene, &|_, _| {}).expect("gpu render");
-    let cpu = glint::cpu::render(&scene, &|_, _| {});
-    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu_images");
-    let report = assert_images_match("columns", &gpu, &cpu, 0.01, 0.999, &out)
-        .unwrap_or_else(|message| panic!("{message}"));
-    eprintln!(
-        "columns: features [{}], FLIP mean {:.5}, {:.3}% within 2/255, {} CPU-fallback pixels",
-        info.features,
-        report.flip_mean,
-        report.share_within(2.0 / 255.0) * 100.0,
-        info.cpu_fallback_pixels
-    );
+    common::assert_gpu_matches_cpu(&ctx, "gpu_images", "columns", &scene, 0.01);
 }

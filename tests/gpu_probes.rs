@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::probes::check;
+use common::probes::{check, random_placed};
 use common::{gpu_context, packed_from_source, Rng};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{GridMode, OptionOverrides};
@@ -74,15 +74,9 @@ fn torus_scene(seed: u64, count: usize) -> String {
     for i in 0..count {
         let rin = rng.range(0.5, 2.5);
         let rout = rin * rng.range(0.05, 1.3);
-        let s = [0; 3].map(|_| rng.range(0.6, 1.5));
-        let axis = ["x", "y", "z"][(rng.next_u64() % 3) as usize];
-        let angle = rng.range(0.0, 360.0);
-        let t = [0; 3].map(|_| rng.range(-8.0, 8.0));
-        let _ = writeln!(
-            lua,
-            "n = gr.torus('torus{i}', {rin}, {rout}) n:scale({}, {}, {}) n:rotate('{axis}', {angle}) n:translate({}, {}, {}) n:set_material(m) root:add_child(n)",
-            s[0], s[1], s[2], t[0], t[1], t[2]
-        );
+        let ctor = format!("gr.torus('torus{i}', {rin}, {rout})");
+        lua += &random_placed(&mut rng, &ctor, (0.6, 1.5), 8.0);
+        lua.push('\n');
     }
     lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
 }

@@ -108,3 +108,17 @@ pub fn check(ctx: &GpuContext, name: &str, scene: &PackedScene, ray_seed: u64) {
         first_bad.unwrap_or_default()
     );
 }
+
+/// One Lua line that adds `ctor` (a `gr` call) to `root` with material `m`, scaled by a
+/// random factor in `scale` on each axis, rotated by a random angle about a random axis
+/// and moved to a random point within ±`extent` on each axis.
+pub fn random_placed(rng: &mut Rng, ctor: &str, scale: (f64, f64), extent: f64) -> String {
+    let s = [0; 3].map(|_| rng.range(scale.0, scale.1));
+    let axis = ["x", "y", "z"][(rng.next_u64() % 3) as usize];
+    let angle = rng.range(0.0, 360.0);
+    let t = [0; 3].map(|_| rng.range(-extent, extent));
+    format!(
+        "n = {ctor} n:scale({}, {}, {}) n:rotate('{axis}', {angle}) n:translate({}, {}, {}) n:set_material(m) root:add_child(n)",
+        s[0], s[1], s[2], t[0], t[1], t[2]
+    )
+}
