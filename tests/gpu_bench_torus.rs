@@ -5,35 +5,12 @@
 
 mod common;
 
-use common::{gpu_context, Rng};
-use glam::{DVec3, Vec3};
+use common::gpu_context;
+use glint::cli::bench_torus;
 use glint::cli::bench_torus_gpu::{GpuTorusBench, GpuTorusSolver};
 use glint::cli::ferrari::intersect_torus_ferrari;
 use glint::constants::T_MISS;
 use glint::cpu::torus::intersect_torus;
-
-/// Rays from 1.5–4 bounding radii away towards random points of the torus's bounding box
-/// (where Ferrari in f32 is still mostly right, so its twins can be compared).
-fn rays(rng: &mut Rng, count: usize, rin: f64, rout: f64) -> Vec<(Vec3, Vec3)> {
-    let size = rin + rout;
-    (0..count)
-        .map(|_| {
-            let target = DVec3::new(
-                rng.range(-size, size),
-                rng.range(-size, size),
-                rng.range(-rout, rout),
-            );
-            let dir = DVec3::new(
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-            )
-            .normalize();
-            let o = target - dir * size * rng.range(1.5, 4.0);
-            (o.as_vec3(), dir.as_vec3())
-        })
-        .collect()
-}
 
 /// Share of rays on which `a` and `b` agree: both miss, or both hit within `rel` of t.
 fn agreement(a: &[f32], b: &[f32], rel: f32) -> f64 {
@@ -52,12 +29,13 @@ fn agreement(a: &[f32], b: &[f32], rel: f32) -> f64 {
 fn gpu_torus_kernels_match_their_cpu_twins() {
     let Some(ctx) = gpu_context() else { return };
     let bench = GpuTorusBench::new(ctx).expect("torus bench kernel");
-    let mut rng = Rng(0x7025_B3AC);
     for (rin, rout) in [(1.0f32, 0.4f32), (1.0, 1.5)] {
-        let rays = rays(&mut rng, 4096, rin as f64, rout as f64);
+        // The benchmark's own rays, 1.5–4 bounding radii away (where Ferrari in f32 is
+        // still mostly right, so its twins can be compared).
+        let rays = bench_torus::rays(4096, rin as f64, rout as f64, 1.5, 4.0, 0x7025_B3AC);
         let hits = rays
             .iter()
-            .filter(|(o, d)| intersect_torus(*o, *d, rin, rout, T_MISS) != T_MISS)
+            .filter(|r| intersect_torus(r.o, r.d, rin, rout, T_MISS) != T_MISS)
             .count();
         assert!(
             hits > 400 && hits < 3700,
@@ -66,7 +44,7 @@ fn gpu_torus_kernels_match_their_cpu_twins() {
 
         let cpu: Vec<f32> = rays
             .iter()
-            .map(|(o, d)| intersect_torus(*o, *d, rin, rout, T_MISS))
+            .map(|r| intersect_torus(r.o, r.d, rin, rout, T_MISS))
             .collect();
         let (_, gpu) = bench
             .solve(&rays, rin, rout, GpuTorusSolver::Glint, 1)
@@ -80,7 +58,7 @@ fn gpu_torus_kernels_match_their_cpu_twins() {
 
         let cpu: Vec<f32> = rays
             .iter()
-            .map(|(o, d)| intersect_torus_ferrari(*o, *d, rin, rout))
+            .map(|r| intersect_torus_ferrari(r.o, r.d, rin, rout))
             .collect();
         let (_, gpu) = bench
             .solve(&rays, rin, rout, GpuTorusSolver::Ferrari, 1)

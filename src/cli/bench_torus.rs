@@ -16,15 +16,15 @@ use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
 /// One benchmark ray in object space: origin, unit direction.
-#[derive(Clone, Copy)]
-struct TorusRay {
-    o: Vec3,
-    d: Vec3,
+#[derive(Clone, Copy, Debug)]
+pub struct TorusRay {
+    pub o: Vec3,
+    pub d: Vec3,
 }
 
 /// Rays from `near`..`far` bounding radii away (log-uniform) towards random points in
 /// the torus's bounding box.
-fn rays(count: usize, rin: f64, rout: f64, near: f64, far: f64, seed: u64) -> Vec<TorusRay> {
+pub fn rays(count: usize, rin: f64, rout: f64, near: f64, far: f64, seed: u64) -> Vec<TorusRay> {
     let mut rng = SplitMix(seed);
     let size = rin + rout;
     (0..count)
@@ -160,12 +160,11 @@ pub fn bench_torus(args: &BenchArgs) -> anyhow::Result<()> {
                 );
             }
             if let Some(gpu) = &gpu {
-                let pairs: Vec<(Vec3, Vec3)> = rays.iter().map(|r| (r.o, r.d)).collect();
                 for (name, solver) in [
                     ("glint, GPU", GpuTorusSolver::Glint),
                     ("Ferrari, GPU", GpuTorusSolver::Ferrari),
                 ] {
-                    let (time, ts) = gpu.solve(&pairs, rin, rout, solver, args.repeat)?;
+                    let (time, ts) = gpu.solve(&rays, rin, rout, solver, args.repeat)?;
                     let (wrong, worst, p99) = accuracy(&ts, &truth);
                     println!(
                         "| ({rin}, {rout}) | {near}–{far:e} | {name} | {:.1} | {wrong} | {worst:.1e} | {p99:.1e} |",

@@ -4,13 +4,13 @@
 //! Timed from submit to completion (the rays are uploaded once, the results read back
 //! once, outside the timing), so the rate is the kernel's.
 
+use super::bench_torus::TorusRay;
 use crate::constants::{BENCH_SOLVER_FERRARI, BENCH_SOLVER_GLINT, LINEAR_WORKGROUP_SIZE};
 use crate::gpu::buffers::read_back;
 use crate::gpu::shader::{assemble_common_with, validate};
 use crate::gpu::{GpuContext, GpuError};
 use crate::pack::SceneFeatures;
 use bytemuck::{Pod, Zeroable};
-use glam::Vec3;
 use std::time::{Duration, Instant};
 use wgpu::util::DeviceExt;
 
@@ -86,7 +86,7 @@ impl GpuTorusBench {
     /// dispatches.
     pub fn solve(
         &self,
-        rays: &[(Vec3, Vec3)],
+        rays: &[TorusRay],
         rin: f32,
         rout: f32,
         solver: GpuTorusSolver,
@@ -104,10 +104,10 @@ impl GpuTorusBench {
         };
         let bench_rays: Vec<BenchRay> = rays
             .iter()
-            .map(|(o, d)| BenchRay {
-                o: o.to_array(),
+            .map(|r| BenchRay {
+                o: r.o.to_array(),
                 _pad0: 0.0,
-                d: d.to_array(),
+                d: r.d.to_array(),
                 _pad1: 0.0,
             })
             .collect();
