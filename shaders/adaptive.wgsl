@@ -34,8 +34,25 @@ fn lattice_index(i: u32, j: u32) -> u32 {
     return j * (tile.side * adaptive_scale() + 1u) + i;
 }
 
+// The sample at lattice point (i, j).
+// Mirror of src/cpu/adaptive.rs::Lattice::point — change both.
 fn lattice_point(i: u32, j: u32) -> vec3<f32> {
     return samples[lattice_index(i, j)].xyz;
+}
+
+// The samples at the corners of square (a, b) of `level`: top-left, top-right,
+// bottom-left, bottom-right.
+// Mirror of src/cpu/adaptive.rs::square_corners — change both.
+fn square_corners(level: u32, a: u32, b: u32) -> array<vec3<f32>, 4> {
+    let l = adaptive_scale() >> level;
+    let i = a * l;
+    let j = b * l;
+    return array<vec3<f32>, 4>(
+        lattice_point(i, j),
+        lattice_point(i + l, j),
+        lattice_point(i, j + l),
+        lattice_point(i + l, j + l),
+    );
 }
 
 // Film position of lattice point (i, j), exact (a dyadic fraction of few bits; ldexp
@@ -98,18 +115,9 @@ fn adaptive_decide(@builtin(global_invocation_id) id: vec3<u32>) {
     let a = idx % n;
     let b = idx / n;
     let exists = level == 0u || is_split(level - 1u, a / 2u, b / 2u);
-    let l = adaptive_scale() >> level;
     var flag = 0u;
     if exists && level < globals.aa_depth {
-        let i = a * l;
-        let j = b * l;
-        let corners = array<vec3<f32>, 4>(
-            lattice_point(i, j),
-            lattice_point(i + l, j),
-            lattice_point(i, j + l),
-            lattice_point(i + l, j + l),
-        );
-        if !(contrast(corners) <= globals.aa_threshold) {
+        if !(contrast(square_corners(level, a, b)) <= globals.aa_threshold) {
             flag = 1u;
         }
     }
@@ -176,16 +184,10 @@ fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {
             size += 4u;
             continue;
         }
-        let l = adaptive_scale() >> level;
-        let i = a * l;
-        let j = b * l;
-        let c0 = lattice_point(i, j);
-        let c1 = lattice_point(i + l, j);
-        let c2 = lattice_point(i, j + l);
-        let c3 = lattice_point(i + l, j + l);
+        let c = square_corners(level, a, b);
         let side = ldexp(1.0, -i32(level));
         let area = side * side;
-        sum += (c0 + c1 + c2 + c3) * (0.25 * area);
+        sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
         leaves += 1u;
     }
     output[id.y * tile.side + id.x] = vec4<f32>(sum, f32(leaves));

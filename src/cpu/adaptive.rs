@@ -101,6 +101,7 @@ impl Lattice {
             split: vec![0; tile.split_len()],
         }
     }
+    // Mirror of shaders/adaptive.wgsl::lattice_point — change both.
     fn point(&self, i: u32, j: u32) -> Vec3 {
         self.points[lattice_index(&self.tile, i, j)]
     }
@@ -124,6 +125,20 @@ fn adaptive_corners(
     lat.points[lattice_index(&t, i, j)] = sample(scene, fx, fy, adaptive_seed(fx, fy), counters);
 }
 
+/// The samples at the corners of square (a, b) of `level`: top-left, top-right,
+/// bottom-left, bottom-right.
+// Mirror of shaders/adaptive.wgsl::square_corners — change both.
+fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
+    let l = lat.tile.scale() >> level;
+    let (i, j) = (a * l, b * l);
+    [
+        lat.point(i, j),
+        lat.point(i + l, j),
+        lat.point(i, j + l),
+        lat.point(i + l, j + l),
+    ]
+}
+
 /// Invocation `idx` of the decide pass of `level`: flags square (idx mod n, idx div n)
 /// (n = w·2^level) for splitting when it exists, is above the deepest level and its
 /// corners differ by more than `threshold` (the per-pixel walk's test, NaN included).
@@ -133,19 +148,11 @@ fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
     let n = t.size[0] << level;
     let (a, b) = (idx % n, idx / n);
     let exists = level == 0 || lat.is_split(level - 1, a / 2, b / 2);
-    let l = t.scale() >> level;
     let mut split = false;
     if exists && level < t.depth {
-        let (i, j) = (a * l, b * l);
-        let corners = [
-            lat.point(i, j),
-            lat.point(i + l, j),
-            lat.point(i, j + l),
-            lat.point(i + l, j + l),
-        ];
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
         {
-            split = !(contrast(&corners) <= threshold);
+            split = !(contrast(&square_corners(lat, level, a, b)) <= threshold);
         }
     }
     lat.split[split_index(&t, level, a, b)] = split as u32;
@@ -204,14 +211,7 @@ fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
             }
             continue;
         }
-        let l = t.scale() >> level;
-        let (i, j) = (a * l, b * l);
-        let c = [
-            lat.point(i, j),
-            lat.point(i + l, j),
-            lat.point(i, j + l),
-            lat.point(i + l, j + l),
-        ];
+        let c = square_corners(lat, level, a, b);
         let side = 1.0 / (1u32 << level) as f32;
         let area = side * side;
         sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
