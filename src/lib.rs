@@ -1,6 +1,6 @@
 //! glint: a Whitted-style ray tracer for CS488 Lua scenes.
 //!
-//! Data flow (see `shared/design/architecture.md`): `scene::lua` runs a script into a
+//! Data flow (see `docs/architecture.md`): `scene::lua` runs a script into a
 //! [`scene::SceneGraph`]; `scene::flatten` bakes it to world space; `pack` lays it out as
 //! Pod arrays with a uniform grid from `accel`; `cpu` (the reference) renders those arrays
 //! into a [`film::Film`]; `image_io` writes it.

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 fn corpus() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/cs488")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cs488")
 }
 
 /// Runs a scene file, returning the report, the graph at each render and the requests.

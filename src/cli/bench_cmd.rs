@@ -25,7 +25,7 @@ use std::time::{Duration, Instant};
 #[derive(clap::Args, Clone, Debug)]
 pub struct BenchArgs {
     /// The CS488 corpus (macho-cows.lua is taken from its a4-2021plus folder).
-    #[arg(long, default_value = "../shared/cs488")]
+    #[arg(long, default_value = "scenes/cs488")]
     pub cs488: PathBuf,
     /// Largest N of the random-triangle sweep (powers of ten from 10³).
     #[arg(long, default_value_t = 1_000_000)]

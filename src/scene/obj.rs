@@ -377,7 +377,7 @@ mod tests {
 
     #[test]
     fn corpus_meshes_parse() {
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/cs488/a4-2021plus");
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cs488/a4-2021plus");
         let Ok(entries) = std::fs::read_dir(&dir) else {
             return; // corpus not beside this checkout
         };

@@ -13,7 +13,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The CS488 sample corpus beside the repository.
 pub fn corpus() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/cs488")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cs488")
 }
 
 /// The repository root.
