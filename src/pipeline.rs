@@ -2,12 +2,14 @@
 //! render and write the image atomically. Shared by the CLI, the benchmark and the tests.
 
 use crate::aa_map::{aa_samples_film, AaMapError};
+use crate::cpu::camera_media::fill_camera_media;
 use crate::cpu::render::{adaptive_leaf_counts, render, render_with_counters, RenderCounters};
 use crate::film::Film;
 use crate::gpu::{adaptive_leaf_counts_gpu, render_gpu_with_info, GpuContext, GpuRenderInfo};
 use crate::image_io::{check_output_path, write_image, ImageIoError};
-use crate::pack::{pack, PackedScene};
+use crate::pack::{pack, PackError, PackedScene, SceneFeatures};
 use crate::scene::flatten::flatten;
+use crate::scene::flatten::Scene;
 use crate::scene::lua::{run_scene_file, SceneError, ScriptConfig, ScriptReport};
 use crate::scene::{AaMode, OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
 use std::cell::RefCell;
@@ -134,6 +136,17 @@ impl RunError {
     }
 }
 
+/// `scene` packed for rendering: [`pack`], then, in scenes with refraction, the media
+/// around the eye that primary rays start in (found by tracing the packed scene, so it
+/// comes after packing).
+pub fn pack_scene(scene: &Scene) -> Result<PackedScene, PackError> {
+    let mut packed = pack(scene)?;
+    if packed.features.contains(SceneFeatures::REFRACTION) {
+        fill_camera_media(&mut packed);
+    }
+    Ok(packed)
+}
+
 /// The request with `overrides` applied, flattened and packed.
 fn prepare_request(
     graph: &SceneGraph,
@@ -145,7 +158,7 @@ fn prepare_request(
     request.width = overrides.width.unwrap_or(request.width);
     request.height = overrides.height.unwrap_or(request.height);
     let scene = flatten(graph, &request)?;
-    let packed = pack(&scene)?;
+    let packed = pack_scene(&scene)?;
     Ok((request, packed))
 }
 

@@ -700,7 +700,7 @@ fn check_normals(name: &str, tree: &Tree, seed: u64) {
         if !hit.is_hit() {
             continue;
         }
-        let s = glint::cpu::shade::surface_at(&packed, &ray, &hit);
+        let s = glint::cpu::surface::surface_at(&packed, &ray, &hit);
         let (p, n) = (s.p.as_dvec3(), s.normal.as_dvec3());
         let own = ((hit.part & CSG_INDEX_MASK) - first_leaf) as usize;
         let edge = leaves.iter().enumerate().any(|(k, (kind, inv))| {

@@ -17,7 +17,7 @@ use glint::cpu::cylinder_cone::{
 };
 use glint::cpu::intersect::intersect_instance;
 use glint::cpu::ray::{offset_ray, Ray};
-use glint::cpu::shade::surface_at;
+use glint::cpu::surface::surface_at;
 use glint::cpu::traverse::Hit;
 use glint::pack::{pack, PackedScene};
 use glint::scene::flatten::{Object, ObjectKind, Scene};

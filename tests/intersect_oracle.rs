@@ -15,7 +15,7 @@ use glint::cpu::intersect::{
     triangle_vertices,
 };
 use glint::cpu::ray::{offset_ray, Ray};
-use glint::cpu::shade::surface_at;
+use glint::cpu::surface::surface_at;
 use glint::cpu::traverse::{closest_hit, Hit, NoCounters};
 use glint::pack::{pack, PackedScene};
 use glint::scene::flatten::{Object, ObjectKind, Scene, Triangle};

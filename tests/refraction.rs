@@ -10,17 +10,20 @@ mod common;
 use common::{failure_dir, load_scenes, render_cpu};
 use glam::{DMat4, DVec3, Vec3};
 use glint::constants::{AIR_IOR, MATERIAL_REFRACTIVE, MEDIUM_STACK_SIZE};
+use glint::cpu::camera_media::camera_media;
 use glint::cpu::dielectric::{
-    camera_media, dielectric_interface, medium_ior, medium_pop, medium_push, normal_transmission,
+    dielectric_interface, medium_ior, medium_pop, medium_push, normal_transmission,
     refract_direction, schlick_reflectance, MediumStack,
 };
 use glint::cpu::ray::{offset_ray, Ray};
 use glint::cpu::rng::SampleSeed;
-use glint::cpu::shade::{shade_phong, surface_at};
+use glint::cpu::shade::shade_phong;
+use glint::cpu::surface::surface_at;
 use glint::cpu::traverse::{closest_hit, NoCounters};
 use glint::diff::assert_images_match;
 use glint::film::Film;
-use glint::pack::{pack, PackedScene, SceneFeatures};
+use glint::pack::{PackedScene, SceneFeatures};
+use glint::pipeline::pack_scene;
 use glint::scene::flatten::{Object, ObjectKind, Scene};
 use glint::scene::{AaMode, Background, Camera, Light, Material, OptionOverrides, RenderOptions};
 
@@ -86,7 +89,7 @@ fn slab_shift(s: f64, d: f64, angle_deg: f64, ior: f32) -> (Vec3, Vec3, f64, f64
             * DMat4::from_scale(DVec3::new(20.0 * s, d, 20.0 * s)),
         0,
     );
-    let packed = pack(&scene(vec![slab], vec![glass(ior)], DVec3::ZERO, 4)).unwrap();
+    let packed = pack_scene(&scene(vec![slab], vec![glass(ior)], DVec3::ZERO, 4)).unwrap();
     let theta = angle_deg.to_radians();
     let dir = DVec3::new(theta.sin(), -theta.cos(), 0.0);
     // Start above the entry point (0, 0, 0).
@@ -262,7 +265,7 @@ fn glass_ball_inverts_the_background() {
         64,
     );
     s.options.background = sky();
-    let film = render_cpu(&pack(&s).unwrap());
+    let film = render_cpu(&pack_scene(&s).unwrap());
     let red = |row: usize| film.pixels[row * 64 + 32][0];
     // Outside the ball (top and bottom rows) red grows upwards (lower rows numbers).
     assert!(
@@ -327,7 +330,7 @@ fn camera_media_are_the_solids_around_the_eye() {
         ball(DVec3::new(0.0, 0.0, -20.0), 1.0, 3), // an opaque ball elsewhere
     ];
     let media_at = |eye: DVec3| {
-        let packed = pack(&scene(nested.clone(), materials.clone(), eye, 4)).unwrap();
+        let packed = pack_scene(&scene(nested.clone(), materials.clone(), eye, 4)).unwrap();
         assert!(packed.features.contains(SceneFeatures::REFRACTION));
         let m = camera_media(&packed);
         assert_eq!(packed.globals.camera_media_count, m.count);
@@ -346,7 +349,7 @@ fn camera_media_are_the_solids_around_the_eye() {
                 ..o.clone()
             })
             .collect();
-        let packed = pack(&scene(
+        let packed = pack_scene(&scene(
             scaled,
             materials.clone(),
             DVec3::new(0.6, 0.3, 0.1) * s,
@@ -410,13 +413,13 @@ fn same_image(name: &str, a: &Film, b: &Film) {
 fn equal_indices_are_no_interface() {
     let eye = DVec3::new(0.0, 3.0, 3.0);
     let outer = ball(DVec3::new(0.0, -1.0, 0.0), 1.5, 2);
-    let alone = render_cpu(&pack(&floor_scene(vec![outer.clone()], eye)).unwrap());
+    let alone = render_cpu(&pack_scene(&floor_scene(vec![outer.clone()], eye)).unwrap());
     let inner = ball(DVec3::new(0.3, -1.1, 0.0), 0.6, 2);
-    let nested = render_cpu(&pack(&floor_scene(vec![outer.clone(), inner], eye)).unwrap());
+    let nested = render_cpu(&pack_scene(&floor_scene(vec![outer.clone(), inner], eye)).unwrap());
     same_image("glass-in-glass", &nested, &alone);
     // In air, clear of the glass ball.
     let air = ball(DVec3::new(1.2, -1.2, 1.6), 0.4, 3);
-    let with_air = render_cpu(&pack(&floor_scene(vec![outer, air], eye)).unwrap());
+    let with_air = render_cpu(&pack_scene(&floor_scene(vec![outer, air], eye)).unwrap());
     same_image("index-1-ball", &with_air, &alone);
 }
 
@@ -426,16 +429,16 @@ fn equal_indices_are_no_interface() {
 fn camera_inside_glass_starts_in_glass() {
     let eye = DVec3::new(0.0, 2.0, 1.0);
     let room = ball(DVec3::new(0.0, 0.0, 0.0), 6.0, 2);
-    let alone = pack(&floor_scene(vec![room.clone()], eye)).unwrap();
+    let alone = pack_scene(&floor_scene(vec![room.clone()], eye)).unwrap();
     assert_eq!(alone.globals.camera_media_count, 1);
     let around_eye = ball(eye, 0.5, 2);
-    let nested = pack(&floor_scene(vec![room, around_eye], eye)).unwrap();
+    let nested = pack_scene(&floor_scene(vec![room, around_eye], eye)).unwrap();
     assert_eq!(nested.globals.camera_media_count, 2);
     same_image("camera-in-glass", &render_cpu(&nested), &render_cpu(&alone));
     // Without the outer glass the floor is seen through one glass ball around the eye,
     // which (leaving it into air) bends the view: a different image.
-    let only_eye_ball = pack(&floor_scene(vec![ball(eye, 0.5, 2)], eye)).unwrap();
-    let flat = pack(&floor_scene(vec![], eye)).unwrap();
+    let only_eye_ball = pack_scene(&floor_scene(vec![ball(eye, 0.5, 2)], eye)).unwrap();
+    let flat = pack_scene(&floor_scene(vec![], eye)).unwrap();
     assert!(assert_images_match(
         "eye-ball",
         &render_cpu(&only_eye_ball),
@@ -461,7 +464,7 @@ fn shadows_through_glass_lose_one_minus_r0_per_surface() {
         let mut s = floor_scene(objects, DVec3::new(0.0, 3.0, 3.0));
         s.lights[0].position = DVec3::new(0.5, 8.0, 0.5);
         s.lights[0].falloff = [1.0, 0.0, 0.0];
-        let packed = pack(&s).unwrap();
+        let packed = pack_scene(&s).unwrap();
         // Hit the floor (top at y = -2) from below the blocker.
         let ray = Ray {
             origin: Vec3::new(0.5, -1.0, 0.5),
@@ -597,10 +600,10 @@ gr.render(root, 'smooth.png', 192, 64, {0, 2, 7}, {0, -0.25, -1}, {0, 1, 0}, 40,
 
 /// Renders `scene` at scales 1, 1e-3 and 1e3: the same image, and no NaN.
 fn scale_invariant(name: &str, scene: &Scene) -> Vec<Film> {
-    let reference = render_cpu(&pack(scene).unwrap());
+    let reference = render_cpu(&pack_scene(scene).unwrap());
     let mut films = vec![reference.clone()];
     for s in [1e-3, 1e3] {
-        let film = render_cpu(&pack(&common::scaled_scene(scene, s)).unwrap());
+        let film = render_cpu(&pack_scene(&common::scaled_scene(scene, s)).unwrap());
         same_image(&format!("{name}-scale-{s}"), &film, &reference);
         films.push(film);
     }

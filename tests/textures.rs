@@ -11,7 +11,7 @@ mod texture_support;
 use common::{packed_from_source, render_cpu, root, temp_dir};
 use glam::{Vec2, Vec3};
 use glint::cpu::ray::Ray;
-use glint::cpu::shade::{surface_at, Surface};
+use glint::cpu::surface::{surface_at, Surface};
 use glint::cpu::texture::{bump_normal, sample_texture};
 use glint::cpu::traverse::{closest_hit, NoCounters};
 use glint::pack::texture::pack_texels;

@@ -25,7 +25,7 @@ use glam::{DMat4, DVec3, Vec3};
 use glint::constants::T_MISS;
 use glint::cpu::intersect::intersect_instance;
 use glint::cpu::ray::offset_ray;
-use glint::cpu::shade::surface_at;
+use glint::cpu::surface::surface_at;
 use glint::cpu::traverse::Hit;
 use glint::pack::{pack, GpuInstance, PackedScene};
 use glint::scene::flatten::{Object, ObjectKind, Scene};

@@ -13,7 +13,8 @@ use crate::accel::grid::{Grid, DEFAULT_DENSITY};
 use crate::cpu::ray::camera_ray;
 use crate::cpu::ray::Ray;
 use crate::cpu::traverse::{closest_hit, NoCounters};
-use crate::pack::{pack, GpuTriangle, PackedScene};
+use crate::pack::{GpuTriangle, PackedScene};
+use crate::pipeline::pack_scene;
 use crate::scene::flatten::{flatten, Scene, Triangle};
 use crate::scene::lua::{run_scene_file, ScriptConfig};
 use crate::scene::{Camera, GridMode, RenderOptions};
@@ -124,7 +125,7 @@ pub(super) fn load_scene(path: &std::path::Path, width: u32, height: u32) -> any
 pub(super) fn with_grid(scene: &Scene, grid: GridMode) -> anyhow::Result<PackedScene> {
     let mut scene = scene.clone();
     scene.options.grid = grid;
-    Ok(pack(&scene)?)
+    Ok(pack_scene(&scene)?)
 }
 
 fn bench_macho_cows(args: &BenchArgs) -> anyhow::Result<()> {
@@ -237,7 +238,7 @@ fn camera_rays(side: u32) -> Vec<Ray> {
     let mut scene = random_triangle_scene(1, 1);
     scene.width = side;
     scene.height = side;
-    let packed = pack(&scene).expect("one triangle packs");
+    let packed = pack_scene(&scene).expect("one triangle packs");
     let g = &packed.globals;
     (0..side * side)
         .map(|i| camera_ray(g, (i % side) as f32 + 0.5, (i / side) as f32 + 0.5))

@@ -7,7 +7,8 @@
 use super::bench_cmd::{fastest, load_scene, BenchArgs};
 use crate::diff::diff_films;
 use crate::gpu::{render_gpu_with_info, GpuContext};
-use crate::pack::{pack, PackedScene, SceneFeatures};
+use crate::pack::{PackedScene, SceneFeatures};
+use crate::pipeline::pack_scene;
 use crate::scene::AaMode;
 use std::time::Instant;
 
@@ -36,7 +37,7 @@ pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
     for path in &paths {
         let mut scene = load_scene(path, 256, 256)?;
         scene.options.aa = AaMode::None;
-        let packed = pack(&scene)?;
+        let packed = pack_scene(&scene)?;
         let name = path.file_stem().unwrap_or_default().to_string_lossy();
         let start = Instant::now();
         let (_, info) = render_gpu_with_info(&ctx, &packed, &|_, _| {})?;
@@ -66,7 +67,7 @@ pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
 fn bench_specialisation(ctx: &GpuContext, args: &BenchArgs) -> anyhow::Result<()> {
     let mut scene = load_scene(&args.cs488.join("a4-2021plus/simple.lua"), 256, 256)?;
     scene.options.aa = AaMode::None;
-    let specialised = pack(&scene)?;
+    let specialised = pack_scene(&scene)?;
     let mut generic: PackedScene = specialised.clone();
     // Every feature but the grid, which follows the scene's data.
     for (flag, _) in SceneFeatures::ALL {

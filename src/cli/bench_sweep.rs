@@ -18,7 +18,8 @@ use super::sweep_analysis::{cheapest_within, loglog_slope, Measured, Metric};
 use crate::diff::diff_films;
 use crate::film::Film;
 use crate::gpu::{render_gpu, GpuContext};
-use crate::pack::{pack, SceneFeatures};
+use crate::pack::SceneFeatures;
+use crate::pipeline::pack_scene;
 use crate::scene::flatten::Scene;
 use crate::scene::{AaMode, RenderOptions};
 use std::path::PathBuf;
@@ -202,7 +203,7 @@ impl Timing {
 
 /// Renders `scene` on the CPU: (best timing, film).
 fn time_cpu(scene: &Scene, repeat: usize) -> anyhow::Result<(Timing, Film)> {
-    let packed = pack(scene)?;
+    let packed = pack_scene(scene)?;
     let mut best = Timing {
         wall: Duration::MAX,
         core: None,
@@ -295,8 +296,8 @@ impl GpuSide {
         let result = (|| -> anyhow::Result<Measured> {
             let mut tiny = scene.clone();
             (tiny.width, tiny.height) = (8, 8);
-            render_gpu(ctx, &pack(&tiny)?, &|_, _| {})?;
-            let packed = pack(scene)?;
+            render_gpu(ctx, &pack_scene(&tiny)?, &|_, _| {})?;
+            let packed = pack_scene(scene)?;
             let t = Instant::now();
             let film = render_gpu(ctx, &packed, &|_, _| {})?;
             let time = t.elapsed();
@@ -332,7 +333,9 @@ fn sweep_scene(
         "glint: {name}: references rendered in {:.1} s",
         start.elapsed().as_secs_f64()
     );
-    let has_area_lights = pack(&scene)?.features.contains(SceneFeatures::AREA_LIGHT);
+    let has_area_lights = pack_scene(&scene)?
+        .features
+        .contains(SceneFeatures::AREA_LIGHT);
     let mut rows = Vec::new();
     let mut sweep =
         |settings: &[Setting], reference: &Film, rows: &mut Vec<Row>| -> anyhow::Result<()> {

@@ -105,6 +105,7 @@ fn index_of(list: &mut Vec<String>, name: &str) -> usize {
 
 /// The SVG document of `panels` side by side, with a legend at the right.
 pub fn loglog_svg(title: &str, panels: &[Panel]) -> String {
+    // Colours and markers are handed out in order of first appearance across panels.
     let mut families = Vec::new();
     let mut scenes = Vec::new();
     let width = MARGIN_L + panels.len() as f64 * (PANEL_W + GAP + MARGIN_L) + LEGEND_W;
@@ -122,83 +123,135 @@ pub fn loglog_svg(title: &str, panels: &[Panel]) -> String {
     );
     for (p, panel) in panels.iter().enumerate() {
         let x0 = MARGIN_L + p as f64 * (PANEL_W + GAP + MARGIN_L);
-        let y0 = MARGIN_T;
+        let axes = PanelAxes::new(panel, x0, MARGIN_T);
+        draw_panel_frame(&mut svg, panel, &axes);
+        draw_panel_series(&mut svg, panel, &axes, &mut families, &mut scenes);
+    }
+    draw_legend(&mut svg, panels.len(), &families, &scenes);
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// A panel's place on the page and its log-log scale (whole decades on both axes).
+struct PanelAxes {
+    x0: f64,
+    y0: f64,
+    x_decades: (i32, i32),
+    y_decades: (i32, i32),
+}
+
+impl PanelAxes {
+    fn new(panel: &Panel, x0: f64, y0: f64) -> Self {
         let all = || panel.series.iter().flat_map(|s| s.points.iter());
-        let (xl, xh) = decades(all().map(|p| p.0));
-        let (yl, yh) = decades(all().map(|p| p.1));
-        let sx = |x: f64| x0 + (x.log10() - xl as f64) / (xh - xl) as f64 * PANEL_W;
-        let sy = |y: f64| y0 + PANEL_H - (y.log10() - yl as f64) / (yh - yl) as f64 * PANEL_H;
-        let _ = writeln!(
-            svg,
-            r##"<rect x="{x0:.1}" y="{y0:.1}" width="{PANEL_W}" height="{PANEL_H}" fill="none" stroke="#444"/>"##
-        );
-        // Grid lines and labels at each decade.
-        for k in xl..=xh {
-            let x = sx(10f64.powi(k));
-            let _ = writeln!(
-                svg,
-                r##"<line x1="{x:.1}" y1="{y0:.1}" x2="{x:.1}" y2="{:.1}" stroke="#ddd"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-                y0 + PANEL_H,
-                y0 + PANEL_H + 16.0,
-                10f64.powi(k)
-            );
-        }
-        for k in yl..=yh {
-            let y = sy(10f64.powi(k));
-            let _ = writeln!(
-                svg,
-                r##"<line x1="{x0:.1}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#ddd"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
-                x0 + PANEL_W,
-                x0 - 6.0,
-                y + 4.0,
-                10f64.powi(k)
-            );
-        }
-        let _ = writeln!(
-            svg,
-            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle" font-weight="bold">{}</text>"#,
-            x0 + PANEL_W / 2.0,
-            y0 - 10.0,
-            escape(&panel.title)
-        );
-        let _ = writeln!(
-            svg,
-            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
-            x0 + PANEL_W / 2.0,
-            y0 + PANEL_H + 38.0,
-            escape(&panel.x_label)
-        );
-        let (lx, ly) = (x0 - 52.0, y0 + PANEL_H / 2.0);
-        let _ = writeln!(
-            svg,
-            r#"<text x="{lx:.1}" y="{ly:.1}" text-anchor="middle" transform="rotate(-90 {lx:.1} {ly:.1})">{}</text>"#,
-            escape(&panel.y_label)
-        );
-        for series in &panel.series {
-            let colour = COLOURS[index_of(&mut families, &series.family) % COLOURS.len()];
-            let shape = MARKERS[index_of(&mut scenes, &series.scene) % MARKERS.len()];
-            let points: Vec<(f64, f64)> = series
-                .points
-                .iter()
-                .filter(|(x, y)| *x > 0.0 && *y > 0.0)
-                .map(|&(x, y)| (sx(x), sy(y)))
-                .collect();
-            let path: Vec<String> = points
-                .iter()
-                .map(|(x, y)| format!("{x:.1},{y:.1}"))
-                .collect();
-            let _ = writeln!(
-                svg,
-                r#"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="1.5"/>"#,
-                path.join(" ")
-            );
-            for (x, y) in points {
-                let _ = writeln!(svg, "{}", marker(shape, x, y, colour));
-            }
+        let x_decades = decades(all().map(|p| p.0));
+        let y_decades = decades(all().map(|p| p.1));
+        PanelAxes {
+            x0,
+            y0,
+            x_decades,
+            y_decades,
         }
     }
-    // Legend: colours for families, markers for scenes.
-    let lx = MARGIN_L + panels.len() as f64 * (PANEL_W + GAP + MARGIN_L) - GAP;
+
+    fn sx(&self, x: f64) -> f64 {
+        let (xl, xh) = self.x_decades;
+        self.x0 + (x.log10() - xl as f64) / (xh - xl) as f64 * PANEL_W
+    }
+
+    fn sy(&self, y: f64) -> f64 {
+        let (yl, yh) = self.y_decades;
+        self.y0 + PANEL_H - (y.log10() - yl as f64) / (yh - yl) as f64 * PANEL_H
+    }
+}
+
+/// The panel's box, decade grid lines with labels, title and axis labels.
+fn draw_panel_frame(svg: &mut String, panel: &Panel, axes: &PanelAxes) {
+    let (x0, y0) = (axes.x0, axes.y0);
+    let (xl, xh) = axes.x_decades;
+    let (yl, yh) = axes.y_decades;
+    let _ = writeln!(
+        svg,
+        r##"<rect x="{x0:.1}" y="{y0:.1}" width="{PANEL_W}" height="{PANEL_H}" fill="none" stroke="#444"/>"##
+    );
+    // Grid lines and labels at each decade.
+    for k in xl..=xh {
+        let x = axes.sx(10f64.powi(k));
+        let _ = writeln!(
+            svg,
+            r##"<line x1="{x:.1}" y1="{y0:.1}" x2="{x:.1}" y2="{:.1}" stroke="#ddd"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
+            y0 + PANEL_H,
+            y0 + PANEL_H + 16.0,
+            10f64.powi(k)
+        );
+    }
+    for k in yl..=yh {
+        let y = axes.sy(10f64.powi(k));
+        let _ = writeln!(
+            svg,
+            r##"<line x1="{x0:.1}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#ddd"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
+            x0 + PANEL_W,
+            x0 - 6.0,
+            y + 4.0,
+            10f64.powi(k)
+        );
+    }
+    let _ = writeln!(
+        svg,
+        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle" font-weight="bold">{}</text>"#,
+        x0 + PANEL_W / 2.0,
+        y0 - 10.0,
+        escape(&panel.title)
+    );
+    let _ = writeln!(
+        svg,
+        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+        x0 + PANEL_W / 2.0,
+        y0 + PANEL_H + 38.0,
+        escape(&panel.x_label)
+    );
+    let (lx, ly) = (x0 - 52.0, y0 + PANEL_H / 2.0);
+    let _ = writeln!(
+        svg,
+        r#"<text x="{lx:.1}" y="{ly:.1}" text-anchor="middle" transform="rotate(-90 {lx:.1} {ly:.1})">{}</text>"#,
+        escape(&panel.y_label)
+    );
+}
+
+/// Each series as a polyline with a marker per point (colour: family, marker: scene).
+fn draw_panel_series(
+    svg: &mut String,
+    panel: &Panel,
+    axes: &PanelAxes,
+    families: &mut Vec<String>,
+    scenes: &mut Vec<String>,
+) {
+    for series in &panel.series {
+        let colour = COLOURS[index_of(families, &series.family) % COLOURS.len()];
+        let shape = MARKERS[index_of(scenes, &series.scene) % MARKERS.len()];
+        let points: Vec<(f64, f64)> = series
+            .points
+            .iter()
+            .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+            .map(|&(x, y)| (axes.sx(x), axes.sy(y)))
+            .collect();
+        let path: Vec<String> = points
+            .iter()
+            .map(|(x, y)| format!("{x:.1},{y:.1}"))
+            .collect();
+        let _ = writeln!(
+            svg,
+            r#"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="1.5"/>"#,
+            path.join(" ")
+        );
+        for (x, y) in points {
+            let _ = writeln!(svg, "{}", marker(shape, x, y, colour));
+        }
+    }
+}
+
+/// The legend right of the panels: colours for settings families, markers for scenes.
+fn draw_legend(svg: &mut String, panel_count: usize, families: &[String], scenes: &[String]) {
+    let lx = MARGIN_L + panel_count as f64 * (PANEL_W + GAP + MARGIN_L) - GAP;
     let mut y = MARGIN_T;
     let _ = writeln!(
         svg,
@@ -232,8 +285,6 @@ pub fn loglog_svg(title: &str, panels: &[Panel]) -> String {
             escape(scene)
         );
     }
-    svg.push_str("</svg>\n");
-    svg
 }
 
 /// Writes `text` to `path` atomically: a temp file beside it, then a rename (as

@@ -18,7 +18,7 @@
 //! radius R maps to [0, 1]² by u = (x/R + 1)/2, v = (y/R + 1)/2 (seen from +z, u to +x and
 //! v to +y, on both caps). `dpdu`, `dpdv` are the object-space derivatives of the point.
 
-use super::intersect::safe_rcp;
+use super::math::safe_rcp;
 use super::uv::ObjectSurface;
 use crate::constants::{TWO_PI, T_MISS};
 use glam::{Vec2, Vec3, Vec4};

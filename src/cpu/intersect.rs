@@ -3,27 +3,11 @@
 //! unnormalised direction, so t is the world-space t.
 
 use super::cylinder_cone::{intersect_cone, intersect_cylinder};
+use super::math::safe_rcp3;
 use super::torus::intersect_torus;
-use crate::constants::{
-    KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, SAFE_RCP_LIMIT, T_MISS,
-};
+use crate::constants::{KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, T_MISS};
 use crate::pack::{GpuInstance, GpuTriangle};
 use glam::{Vec2, Vec3};
-
-/// 1/x, or ±[`SAFE_RCP_LIMIT`] when |x| is too small to invert without overflow.
-// Mirror of shaders/intersect.wgsl::safe_rcp — change both.
-pub fn safe_rcp(x: f32) -> f32 {
-    if x.abs() > 1.0 / SAFE_RCP_LIMIT {
-        1.0 / x
-    } else {
-        SAFE_RCP_LIMIT.copysign(x)
-    }
-}
-
-/// `safe_rcp` of each component.
-pub fn safe_rcp3(v: Vec3) -> Vec3 {
-    Vec3::new(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z))
-}
 
 /// The t-interval [t0, t1] where `o + t·d` is inside the unit sphere at the origin, as
 /// (t0, t1); empty (t0 > t1) when the line misses it. Haines et al., Ray Tracing Gems

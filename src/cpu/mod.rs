@@ -3,14 +3,17 @@
 //! follow the same steps with the same constants, in f32.
 
 pub mod adaptive;
+pub mod camera_media;
 pub mod csg;
 pub mod cylinder_cone;
 pub mod dielectric;
 pub mod intersect;
+pub mod math;
 pub mod ray;
 pub mod render;
 pub mod rng;
 pub mod shade;
+pub mod surface;
 pub mod texture;
 pub mod torus;
 pub mod trace;

@@ -20,7 +20,7 @@
 //! component with the u slope; here each slope goes with its own tangent. Scale: s is the
 //! height per unit of texture space, so the look does not change when an object is scaled.
 
-use super::shade::{Phong, Surface};
+use super::surface::{Phong, Surface};
 use crate::constants::{
     BUMP_MIN_FRAME_SINE, LUMINANCE_B, LUMINANCE_G, LUMINANCE_R, NO_TEXTURE, TEXTURE_HEADER_WORDS,
 };

@@ -22,7 +22,7 @@
 //! The degree recursion is unrolled by hand (quadratic → cubic → quartic): WGSL has no
 //! recursion, and the twin in `shaders/torus.wgsl` follows this file step for step.
 
-use super::intersect::safe_rcp;
+use super::math::safe_rcp;
 use super::uv::ObjectSurface;
 use crate::constants::{
     TORUS_BOUND_MARGIN, TORUS_NEWTON_ITERATIONS, TORUS_ROOT_TOLERANCE, TWO_PI, T_MISS,

@@ -5,7 +5,8 @@
 use super::dielectric::{dielectric_interface, MediumStack};
 use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
-use super::shade::{background, shade_phong, surface_at};
+use super::shade::{background, shade_phong};
+use super::surface::surface_at;
 use super::texture::shading_normal;
 use super::traverse::{closest_hit, TraversalCounters};
 use crate::constants::{

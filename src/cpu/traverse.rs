@@ -5,9 +5,9 @@
 
 use super::csg::intersect_csg;
 use super::intersect::{
-    intersect_instance, intersect_triangle, safe_rcp3, triangle_ray_setup, triangle_vertices,
-    TriangleRay,
+    intersect_instance, intersect_triangle, triangle_ray_setup, triangle_vertices, TriangleRay,
 };
+use super::math::safe_rcp3;
 use super::ray::Ray;
 use crate::constants::{ENTER_MARGIN_RELATIVE, KIND_CSG, NO_ITEM, T_MISS};
 use crate::pack::{GpuGlobals, PackedScene};

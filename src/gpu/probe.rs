@@ -10,7 +10,7 @@ use super::GpuError;
 use crate::constants::{NO_ITEM, PROBE_ANY_HIT, WORKGROUP_SIZE};
 pub use crate::constants::{PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT};
 use crate::cpu::ray::Ray;
-use crate::cpu::shade::surface_at;
+use crate::cpu::surface::surface_at;
 use crate::cpu::traverse::{any_hit, closest_hit, NoCounters};
 use crate::pack::PackedScene;
 use bytemuck::{Pod, Zeroable};

@@ -320,7 +320,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         features.insert(SceneFeatures::GRID);
     }
     let globals = make_globals(scene, num_items, &triangles, &lights, &grid);
-    let mut packed = PackedScene {
+    let packed = PackedScene {
         globals,
         instances,
         triangles,
@@ -334,12 +334,6 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         features,
         grid_stats: grid.stats,
     };
-    if features.contains(SceneFeatures::REFRACTION) {
-        // Primary rays start in the dielectrics around the eye (camera inside glass).
-        let media = crate::cpu::dielectric::camera_media(&packed);
-        packed.globals.camera_media = media.iors;
-        packed.globals.camera_media_count = media.count;
-    }
     Ok(packed)
 }
 

@@ -4,7 +4,8 @@
 pub mod probes;
 
 use glint::film::Film;
-use glint::pack::{pack, PackedScene};
+use glint::pack::PackedScene;
+use glint::pipeline::pack_scene;
 use glint::scene::flatten::{flatten, Scene};
 use glint::scene::lua::{run_scene_file, ScriptConfig};
 use glint::scene::{OptionOverrides, TransformOrder};
@@ -107,7 +108,7 @@ pub fn load_scenes(path: &Path, overrides: &OptionOverrides) -> Vec<Scene> {
 /// The first render of a script, packed.
 pub fn load_packed(path: &Path, overrides: &OptionOverrides) -> PackedScene {
     let scenes = load_scenes(path, overrides);
-    pack(&scenes[0]).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    pack_scene(&scenes[0]).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 /// Renders on the CPU with the current rayon pool.
@@ -145,7 +146,7 @@ pub fn packed_from_source(source: &str, overrides: &OptionOverrides) -> Vec<Pack
             overrides.apply(&mut request.options);
             request.width = overrides.width.unwrap_or(request.width);
             request.height = overrides.height.unwrap_or(request.height);
-            out.push(pack(&flatten(graph, &request)?)?);
+            out.push(pack_scene(&flatten(graph, &request)?)?);
             Ok(())
         },
     )
@@ -157,7 +158,7 @@ pub fn packed_from_source(source: &str, overrides: &OptionOverrides) -> Vec<Pack
 pub fn packed_from_file(path: &Path, overrides: &OptionOverrides) -> Vec<PackedScene> {
     load_scenes(path, overrides)
         .iter()
-        .map(|s| pack(s).unwrap_or_else(|e| panic!("{}: {e}", path.display())))
+        .map(|s| pack_scene(s).unwrap_or_else(|e| panic!("{}: {e}", path.display())))
         .collect()
 }
 

@@ -1,0 +1,20 @@
+//! Small numeric helpers that several intersection routines share (a leaf module: it
+//! depends on nothing else in the tracer).
+
+use crate::constants::SAFE_RCP_LIMIT;
+use glam::Vec3;
+
+/// 1/x, or ±[`SAFE_RCP_LIMIT`] when |x| is too small to invert without overflow.
+// Mirror of shaders/intersect.wgsl::safe_rcp — change both.
+pub fn safe_rcp(x: f32) -> f32 {
+    if x.abs() > 1.0 / SAFE_RCP_LIMIT {
+        1.0 / x
+    } else {
+        SAFE_RCP_LIMIT.copysign(x)
+    }
+}
+
+/// `safe_rcp` of each component.
+pub fn safe_rcp3(v: Vec3) -> Vec3 {
+    Vec3::new(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z))
+}
