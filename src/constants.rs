@@ -280,7 +280,7 @@ pub const PCG_WORD_MULTIPLIER: u32 = 277803737;
 /// 2⁻²⁴: maps the top 24 bits of a hash onto [0, 1) exactly.
 pub const RANDOM_UNIT_SCALE: f32 = 1.0 / 16777216.0;
 
-/// Kernel-probe modes (`gpu::probe::ProbeRay::mode`, test support).
+/// Kernel-probe modes (`testing::probe::ProbeRay::mode`, a test hook).
 pub const PROBE_CLOSEST_HIT: u32 = 0;
 pub const PROBE_ANY_HIT: u32 = 1;
 

@@ -220,7 +220,7 @@ pub struct GlassProbe {
     /// Packed instance index of the bowl's leaf.
     pub bowl: u32,
     pub bowl_to_object: glam::DMat4,
-    pub rays: Vec<glint::gpu::probe::ProbeRay>,
+    pub rays: Vec<glint::testing::probe::ProbeRay>,
 }
 
 impl GlassProbe {
@@ -247,11 +247,11 @@ impl GlassProbe {
                 let r = 0.9 * 0.98 * rng.range(0.0, 1.0).sqrt();
                 let target =
                     to_world.transform_point3(glam::DVec3::new(r * phi.cos(), r * phi.sin(), 1.0));
-                glint::gpu::probe::ProbeRay {
+                glint::testing::probe::ProbeRay {
                     origin: eye.as_vec3().to_array(),
                     t_max: glint::constants::T_MISS,
                     dir: (target - eye).normalize().as_vec3().to_array(),
-                    mode: glint::gpu::probe::CLOSEST_HIT,
+                    mode: glint::testing::probe::CLOSEST_HIT,
                 }
             })
             .collect();
@@ -263,7 +263,7 @@ impl GlassProbe {
     }
 
     /// Whether a probe's result is a speckle (a hit on the bowl's top cap in the hollow).
-    pub fn speckles(&self, results: &[glint::gpu::probe::ProbeResult]) -> usize {
+    pub fn speckles(&self, results: &[glint::testing::probe::ProbeResult]) -> usize {
         self.rays
             .iter()
             .zip(results)
