@@ -21,6 +21,7 @@ pub fn safe_rcp(x: f32) -> f32 {
 }
 
 /// `safe_rcp` of each component.
+// Mirror of shaders/intersect.wgsl::safe_rcp3 — change both.
 pub fn safe_rcp3(v: Vec3) -> Vec3 {
     Vec3::new(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z))
 }
@@ -99,6 +100,7 @@ pub fn intersect_box(o: Vec3, d: Vec3, t_max: f32) -> f32 {
 
 /// Per-ray set-up of the watertight triangle test (Woop, Benthin & Wald, JCGT 2013):
 /// the dominant axis of the direction becomes z, and a shear maps the direction to +z.
+// Mirror of shaders/intersect.wgsl::TriangleRay — change both.
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleRay {
     pub origin: Vec3,
