@@ -8,6 +8,7 @@
 // Mirror of src/cpu/adaptive.rs — change both.
 
 // Lattice steps per pixel: 2^d.
+// Mirror of src/cpu/adaptive.rs::AdaptiveTile::scale — change both.
 fn adaptive_scale() -> u32 {
     return 1u << globals.aa_depth;
 }
@@ -24,6 +25,7 @@ fn split_index(level: u32, a: u32, b: u32) -> u32 {
     return split_offset(tile.side, level) + b * (tile.side << level) + a;
 }
 
+// Mirror of src/cpu/adaptive.rs::Lattice::is_split — change both.
 fn is_split(level: u32, a: u32, b: u32) -> bool {
     return split[split_index(level, a, b)] != 0u;
 }

@@ -3,6 +3,7 @@
 // Ferrari closed form below, twin of src/cli/ferrari.rs. Not part of the tracer; it is
 // appended to the common modules only by the benchmark.
 
+// Mirror of src/cli/bench_torus_gpu.rs::BenchTorusParams — change both.
 struct BenchTorusParams {
     rin: f32,
     rout: f32,
@@ -11,6 +12,7 @@ struct BenchTorusParams {
     count: u32,
 }
 
+// Mirror of src/cli/bench_torus_gpu.rs::BenchRay — change both.
 struct BenchRay {
     o: vec3<f32>,
     _pad0: f32,
@@ -106,14 +108,14 @@ fn solve_quartic(a: f32, b: f32, c: f32, d: f32) -> Roots {
     let z = solve_cubic(-0.5 * p, -r, 0.5 * r * p - (1.0 / 8.0) * q * q).roots.x;
     var u = z * z - r;
     var v = 2.0 * z - p;
-    if abs(u) < 1e-12 {
+    if abs(u) < FERRARI_ZERO {
         u = 0.0;
     } else if u > 0.0 {
         u = sqrt(u);
     } else {
         return out;
     }
-    if abs(v) < 1e-12 {
+    if abs(v) < FERRARI_ZERO {
         v = 0.0;
     } else if v > 0.0 {
         v = sqrt(v);

@@ -2,7 +2,7 @@
 // `probe_rays` with closest_hit and reports (hit, t, item, part, normal) per ray from
 // surface_at (or, in PROBE_ANY_HIT mode, any_hit's answer alone), for comparison with the CPU functions ray by ray.
 
-// Mirror of src/gpu/probe.rs::ProbeRay — change both.
+// Mirror of src/testing/probe.rs::ProbeRay — change both.
 struct ProbeRay {
     origin: vec3<f32>,
     t_max: f32,
@@ -12,7 +12,7 @@ struct ProbeRay {
     mode: u32,
 }
 
-// Mirror of src/gpu/probe.rs::ProbeResult — change both.
+// Mirror of src/testing/probe.rs::ProbeResult — change both.
 struct ProbeResult {
     // 1 on a hit, 0 on a miss.
     hit: u32,
@@ -28,7 +28,7 @@ struct ProbeResult {
 @group(0) @binding(9) var<storage, read> probe_rays: array<ProbeRay>;
 @group(0) @binding(10) var<storage, read_write> probe_results: array<ProbeResult>;
 
-// Mirror of src/gpu/probe.rs::cpu_probe — change both.
+// Mirror of src/testing/probe.rs::cpu_probe — change both.
 @compute @workgroup_size(WORKGROUP_SIZE * WORKGROUP_SIZE)
 fn probe(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = id.x;

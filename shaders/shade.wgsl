@@ -2,7 +2,7 @@
 // background.
 
 // What shading needs to know about a hit point.
-// Mirror of src/cpu/shade.rs::Surface — change both.
+// Mirror of src/cpu/surface.rs::Surface — change both.
 struct Surface {
     // World-space point, reprojected onto the surface.
     p: vec3<f32>,
@@ -21,7 +21,7 @@ struct Surface {
 }
 
 // The Phong colours at a shading point (the material's, or its textures' at the UV).
-// Mirror of src/cpu/shade.rs::Phong — change both.
+// Mirror of src/cpu/surface.rs::Phong — change both.
 struct Phong {
     kd: vec3<f32>,
     ks: vec3<f32>,
@@ -30,7 +30,7 @@ struct Phong {
 // #if SPHERE|CUBE|CYLINDER|CONE|TORUS
 // Largest |entry| sum over the rows of an affine 3×4 matrix: bounds the magnitude of the
 // world coordinates it produces from a point in the unit box.
-// Mirror of src/cpu/shade.rs::affine_magnitude — change both.
+// Mirror of src/cpu/surface.rs::affine_magnitude — change both.
 fn affine_magnitude(rows: array<vec4<f32>, 3>) -> f32 {
     var m = 0.0;
     for (var i = 0u; i < 3u; i++) {
@@ -42,7 +42,7 @@ fn affine_magnitude(rows: array<vec4<f32>, 3>) -> f32 {
 
 // Point, normal and magnitude of an instance hit, computed in object space (where the
 // point is snapped onto the exact surface) and mapped to world space.
-// Mirror of src/cpu/shade.rs::instance_surface — change both.
+// Mirror of src/cpu/surface.rs::instance_surface — change both.
 fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
     let local = to_object_space(inst, ray.origin, ray.dir);
     let p_hit = local.origin + local.dir * t;
@@ -97,7 +97,7 @@ fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
 // #if SPHERE|CUBE|CYLINDER|CONE|TORUS
 // The surface of a CSG hit: that of the leaf it lies on (point, material), the normal
 // negated on a subtracted operand's surface, which bounds the result from the other side.
-// Mirror of src/cpu/shade.rs::csg_surface — change both.
+// Mirror of src/cpu/surface.rs::csg_surface — change both.
 fn csg_surface(ray: Ray, hit: Hit) -> Surface {
     var s = instance_surface(instances[hit.part & CSG_INDEX_MASK], ray, hit.t);
     if (hit.part & CSG_FLIP) != 0u {
@@ -109,7 +109,7 @@ fn csg_surface(ray: Ray, hit: Hit) -> Surface {
 // #endif
 
 // The surface at a hit (instances first, then triangles, as in the grid's items).
-// Mirror of src/cpu/shade.rs::surface_at — change both.
+// Mirror of src/cpu/surface.rs::surface_at — change both.
 fn surface_at(ray: Ray, hit: Hit) -> Surface {
     let num_instances = globals.num_instances;
 // #if SPHERE|CUBE|CYLINDER|CONE|TORUS

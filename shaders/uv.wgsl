@@ -76,8 +76,8 @@ fn cube_surface(p_in: vec3<f32>) -> ObjectSurface {
 // #if TEXTURE|BUMP
 // (∂p/∂u, ∂p/∂v) of the triangle (p0, p1, p2) with corner UVs (uv0, uv1, uv2) and unit
 // normal `normal`, as the two halves of a mat2x3 (columns dpdu, dpdv). When the UV
-// triangle is degenerate (its area below 10⁻⁶ of the product of its edges — a scale-free
-// test), an orthonormal frame around the normal.
+// triangle is degenerate (its doubled area at most TRIANGLE_FRAME_MIN_UV_SINE of the
+// product of its edges — a scale-free test), an orthonormal frame around the normal.
 // Mirror of src/cpu/uv.rs::triangle_frame — change both.
 fn triangle_frame(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, uv0: vec2<f32>, uv1: vec2<f32>, uv2: vec2<f32>, normal: vec3<f32>) -> mat2x3<f32> {
     let e1 = p1 - p0;
@@ -86,13 +86,13 @@ fn triangle_frame(p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, uv0: vec2<f32>, u
     let d2 = uv2 - uv0;
     let det = d1.x * d2.y - d1.y * d2.x;
     let scale = length(d1) * length(d2);
-    if abs(det) > 1.0e-6 * scale {
+    if abs(det) > TRIANGLE_FRAME_MIN_UV_SINE * scale {
         let inv = 1.0 / det;
         return mat2x3<f32>((e1 * d2.y - e2 * d1.y) * inv, (e2 * d1.x - e1 * d2.x) * inv);
     }
     // Any axis not along the normal gives a perpendicular; dpdu × dpdv = normal.
     var axis = vec3<f32>(1.0, 0.0, 0.0);
-    if abs(normal.x) > 0.9 {
+    if abs(normal.x) > TRIANGLE_FRAME_AXIS_SWITCH {
         axis = vec3<f32>(0.0, 1.0, 0.0);
     }
     let dpdu = normalize(cross(normal, axis));

@@ -82,6 +82,15 @@ pub const LUMINANCE_B: f32 = 0.0722;
 /// normal (a scale-free test: below it the tangent frame is degenerate).
 pub const BUMP_MIN_FRAME_SINE: f32 = 1.0e-4;
 
+/// `triangle_frame`: a mesh triangle's UV triangle is degenerate (no ∂p/∂u, ∂p/∂v can be
+/// solved from it) when its doubled signed area is at most this fraction of the product
+/// of its two edge lengths, a scale-free test (the sine of the angle between the edges).
+pub const TRIANGLE_FRAME_MIN_UV_SINE: f32 = 1.0e-6;
+/// `triangle_frame`'s fallback frame crosses the normal with the x axis, or with the y
+/// axis when the normal's |x| exceeds this (x then lies too close to the normal for a
+/// well-conditioned cross product).
+pub const TRIANGLE_FRAME_AXIS_SWITCH: f32 = 0.9;
+
 /// Debug views (`GpuGlobals::debug_view`): the normal image, or colour = (u mod 1,
 /// v mod 1, 0) of the first surface each primary ray hits.
 pub const DEBUG_VIEW_NONE: u32 = 0;
@@ -140,6 +149,9 @@ pub const TORUS_NEWTON_ITERATIONS: u32 = 24;
 /// runs.
 pub const BENCH_SOLVER_GLINT: u32 = 0;
 pub const BENCH_SOLVER_FERRARI: u32 = 1;
+/// Ferrari's quartic solver (`cli::ferrari`, the benchmark's textbook baseline): |u| or
+/// |v| of the resolvent's factorisation below this counts as zero (a double root).
+pub const FERRARI_ZERO: f32 = 1.0e-12;
 /// Newton stops when a step is at most this fraction of the root (2⁻²², ≈ 2 ulps).
 pub const TORUS_ROOT_TOLERANCE: f32 = 1.0 / 4194304.0;
 /// The torus's bounding sphere and slab are grown by this, in units of rin + rout, so
@@ -218,6 +230,9 @@ pub fn wgsl_prelude() -> String {
         ("TORUS_BOUND_MARGIN", TORUS_BOUND_MARGIN),
         ("CSG_COINCIDENT_RELATIVE", CSG_COINCIDENT_RELATIVE),
         ("CSG_T_LIMIT", CSG_T_LIMIT),
+        ("TRIANGLE_FRAME_MIN_UV_SINE", TRIANGLE_FRAME_MIN_UV_SINE),
+        ("TRIANGLE_FRAME_AXIS_SWITCH", TRIANGLE_FRAME_AXIS_SWITCH),
+        ("FERRARI_ZERO", FERRARI_ZERO),
     ];
     let mut out = String::from("// Generated from src/constants.rs — do not edit.\n");
     for (name, value) in u32s {
@@ -280,7 +295,7 @@ pub const PCG_WORD_MULTIPLIER: u32 = 277803737;
 /// 2⁻²⁴: maps the top 24 bits of a hash onto [0, 1) exactly.
 pub const RANDOM_UNIT_SCALE: f32 = 1.0 / 16777216.0;
 
-/// Kernel-probe modes (`gpu::probe::ProbeRay::mode`, test support).
+/// Kernel-probe modes (`testing::probe::ProbeRay::mode`, a test hook).
 pub const PROBE_CLOSEST_HIT: u32 = 0;
 pub const PROBE_ANY_HIT: u32 = 1;
 

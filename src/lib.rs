@@ -17,3 +17,5 @@ pub mod image_io;
 pub mod pack;
 pub mod pipeline;
 pub mod scene;
+#[doc(hidden)]
+pub mod testing;

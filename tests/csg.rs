@@ -371,7 +371,7 @@ fn classify(name: &str, tree: &Tree, seed: u64) {
         );
         let (o32, d32) = (o.as_vec3(), (target - o).normalize().as_vec3());
         let (o, d) = (o32.as_dvec3(), d32.as_dvec3());
-        let ends = glint::cpu::csg::csg_interval_ends(&packed, 0, o32, d32);
+        let ends = glint::testing::csg_interval_ends(&packed, 0, o32, d32);
         assert!(ends.len().is_multiple_of(2), "{name}: odd list {ends:?}");
         assert!(
             ends.windows(2).all(|w| w[0].0 <= w[1].0),
@@ -1047,7 +1047,7 @@ fn csg_scene_is_scale_invariant() {
         let results: Vec<_> = probe
             .rays
             .iter()
-            .map(|r| glint::gpu::probe::cpu_probe(&packed, r))
+            .map(|r| glint::testing::probe::cpu_probe(&packed, r))
             .collect();
         let hits = results.iter().filter(|r| r.hit == 1).count();
         assert_eq!(

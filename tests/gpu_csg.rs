@@ -12,10 +12,10 @@ mod common;
 use common::probes::{agree, random_rays, RAYS};
 use common::{gpu_context, packed_from_file, packed_from_source, root, Rng};
 use glint::diff::assert_images_match;
-use glint::gpu::probe::{cpu_probe, gpu_probe};
 use glint::gpu::{render_gpu_with_info, GpuContext};
 use glint::pack::{pack, PackedScene, SceneFeatures};
 use glint::scene::{GridMode, OptionOverrides};
+use glint::testing::probe::{cpu_probe, gpu_probe};
 use std::fmt::Write;
 
 /// Lua statements making a random primitive (any kind CSG takes) of size about 1 near the

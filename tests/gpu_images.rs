@@ -9,10 +9,10 @@ mod common;
 use common::{corpus, gpu_context, packed_from_file, packed_from_source};
 use glint::cpu::render::adaptive_leaf_counts;
 use glint::diff::assert_images_match;
-use glint::gpu::render::render_gpu_detailed;
 use glint::gpu::{adaptive_leaf_counts_gpu, render_gpu_with_info, GpuContext};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaMode, OptionOverrides};
+use glint::testing::render_gpu_detailed;
 use std::path::PathBuf;
 use std::time::Instant;
 

@@ -3,11 +3,11 @@
 //! every shader specialisation parses and validates.
 
 use glint::gpu::buffers::GpuTile;
-use glint::gpu::probe::{ProbeRay, ProbeResult};
 use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
 use glint::pack::{
     GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuTriangle, GpuTriangleUv, SceneFeatures,
 };
+use glint::testing::probe::{ProbeRay, ProbeResult};
 use std::mem::{offset_of, size_of};
 
 /// (name, offset) of each listed field of a Rust struct, in the order given.

@@ -6,10 +6,11 @@
 //! closures or out-parameters so that its WGSL twin (shaders/bench_torus.wgsl) can
 //! follow it step for step.
 
-use crate::constants::{TWO_PI, T_MISS};
+use crate::constants::{FERRARI_ZERO, TWO_PI, T_MISS};
 use glam::{Vec3, Vec4};
 
 /// Up to four real roots: the first `count` entries of `roots` are valid.
+// Mirror of shaders/bench_torus.wgsl::Roots — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Roots {
     pub roots: Vec4,
@@ -106,14 +107,14 @@ pub fn solve_quartic(a: f32, b: f32, c: f32, d: f32) -> Roots {
         .x;
     let mut u = z * z - r;
     let mut v = 2.0 * z - p;
-    if u.abs() < 1e-12 {
+    if u.abs() < FERRARI_ZERO {
         u = 0.0;
     } else if u > 0.0 {
         u = u.sqrt();
     } else {
         return out;
     }
-    if v.abs() < 1e-12 {
+    if v.abs() < FERRARI_ZERO {
         v = 0.0;
     } else if v > 0.0 {
         v = v.sqrt();

@@ -39,6 +39,7 @@ pub struct AdaptiveTile {
 
 impl AdaptiveTile {
     /// Lattice steps per pixel: 2^d.
+    // Mirror of shaders/adaptive.wgsl::adaptive_scale — change both.
     pub fn scale(&self) -> u32 {
         1 << self.depth
     }
@@ -105,6 +106,7 @@ impl Lattice {
     fn point(&self, i: u32, j: u32) -> Vec3 {
         self.points[lattice_index(&self.tile, i, j)]
     }
+    // Mirror of shaders/adaptive.wgsl::is_split — change both.
     fn is_split(&self, level: u32, a: u32, b: u32) -> bool {
         self.split[split_index(&self.tile, level, a, b)] != 0
     }

@@ -268,13 +268,3 @@ pub fn intersect_csg(
         part: NO_ITEM,
     }
 }
-
-/// The inside intervals of CSG item `item` along `o + t·d` (world space) as
-/// (t, tag) ends — entering, leaving, entering… (test support; not mirrored).
-pub fn csg_interval_ends(scene: &PackedScene, item: u32, o: Vec3, d: Vec3) -> Vec<(f32, u32)> {
-    let mut stack = CsgStack::default();
-    csg_evaluate(&mut stack, scene, &scene.instances[item as usize], o, d);
-    (0..stack.list_count[0] as usize)
-        .map(|k| (stack.t[k], stack.tag[k]))
-        .collect()
-}

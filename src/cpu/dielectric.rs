@@ -24,6 +24,7 @@ use glam::Vec3;
 
 /// The media a ray travels in, innermost last. Nesting deeper than [`MEDIUM_STACK_SIZE`]
 /// is counted in `count` but not recorded (see [`medium_push`]).
+// Mirror of shaders/dielectric.wgsl::MediumStack — change both.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MediumStack {
     pub iors: [f32; MEDIUM_STACK_SIZE as usize],
@@ -114,6 +115,7 @@ pub fn refract_direction(dir: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
 }
 
 /// What happens to a ray at a dielectric surface.
+// Mirror of shaders/dielectric.wgsl::Interface — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Interface {
     /// Share of the weight that is reflected (1 at total internal reflection).
@@ -126,6 +128,7 @@ pub struct Interface {
 
 /// The indices on both sides of a surface of index `ior` with geometric (outward)
 /// normal `normal`, for a ray in `media`, and the media beyond it.
+// Mirror of shaders/dielectric.wgsl::Sides — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sides {
     /// The normal turned to face the incoming ray.

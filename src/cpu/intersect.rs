@@ -83,6 +83,7 @@ pub fn intersect_box(o: Vec3, d: Vec3, t_max: f32) -> f32 {
 
 /// Per-ray set-up of the watertight triangle test (Woop, Benthin & Wald, JCGT 2013):
 /// the dominant axis of the direction becomes z, and a shear maps the direction to +z.
+// Mirror of shaders/intersect.wgsl::TriangleRay — change both.
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleRay {
     pub origin: Vec3,

@@ -15,6 +15,7 @@ pub fn safe_rcp(x: f32) -> f32 {
 }
 
 /// `safe_rcp` of each component.
+// Mirror of shaders/intersect.wgsl::safe_rcp3 — change both.
 pub fn safe_rcp3(v: Vec3) -> Vec3 {
     Vec3::new(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z))
 }

@@ -4,6 +4,7 @@ use crate::constants::OFFSET_RELATIVE;
 use crate::pack::GpuGlobals;
 use glam::Vec3;
 
+// Mirror of shaders/ray.wgsl::Ray — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
     pub origin: Vec3,

@@ -15,6 +15,7 @@ use crate::pack::{GpuInstance, PackedScene, SceneFeatures};
 use glam::{Vec2, Vec3};
 
 /// What shading needs to know about a hit point.
+// Mirror of shaders/shade.wgsl::Surface — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surface {
     /// World-space point, reprojected onto the surface.

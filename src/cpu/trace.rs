@@ -15,6 +15,7 @@ use crate::constants::{
 use crate::pack::{PackedScene, SceneFeatures};
 use glam::Vec3;
 
+// Mirror of shaders/trace.wgsl::StackEntry — change both.
 #[derive(Clone, Copy, Debug)]
 struct StackEntry {
     ray: Ray,

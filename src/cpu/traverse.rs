@@ -16,6 +16,7 @@ use glam::{IVec3, Vec3};
 /// The nearest hit: distance, item (instances first, then triangles), for triangles the
 /// barycentric weights of p1 and p2, and for a CSG item the surface hit (`part`: leaf
 /// instance index, with `CSG_FLIP` when its normal is negated; `NO_ITEM` otherwise).
+// Mirror of shaders/traverse.wgsl::Hit — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f32,
@@ -26,6 +27,7 @@ pub struct Hit {
 }
 
 impl Hit {
+    // Mirror of shaders/traverse.wgsl::hit_miss — change both.
     pub const MISS: Hit = Hit {
         t: T_MISS,
         item: NO_ITEM,
@@ -34,6 +36,7 @@ impl Hit {
         part: NO_ITEM,
     };
 
+    // Mirror of shaders/traverse.wgsl::is_hit — change both.
     pub fn is_hit(&self) -> bool {
         self.item != NO_ITEM
     }
@@ -125,6 +128,7 @@ fn test_items(
 }
 
 /// The grid's state for one ray: current cell, per-axis step, next boundary t and t per cell.
+// Mirror of shaders/traverse.wgsl::Dda — change both.
 struct Dda {
     cell: IVec3,
     step: IVec3,
@@ -208,6 +212,7 @@ fn min_axis(v: Vec3) -> usize {
 }
 
 /// A ray moved to where it enters the scene bounds.
+// Mirror of shaders/traverse.wgsl::EnteredRay — change both.
 #[derive(Clone, Copy, Debug)]
 pub struct EnteredRay {
     pub ray: Ray,

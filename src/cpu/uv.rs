@@ -10,7 +10,7 @@
 //!   solves p1 − p0 = Δu₁·∂p/∂u + Δv₁·∂p/∂v (likewise for p2), falling back to an
 //!   orthonormal frame around the normal when the UVs are degenerate.
 
-use crate::constants::TWO_PI;
+use crate::constants::{TRIANGLE_FRAME_AXIS_SWITCH, TRIANGLE_FRAME_MIN_UV_SINE, TWO_PI};
 use glam::{Vec2, Vec3};
 
 /// An analytic surface at a point, in object space: the point snapped onto it, its unit
@@ -87,8 +87,9 @@ pub fn cube_surface(p: Vec3) -> ObjectSurface {
 }
 
 /// (∂p/∂u, ∂p/∂v) of the triangle (p0, p1, p2) with corner UVs (uv0, uv1, uv2) and unit
-/// normal `normal`. When the UV triangle is degenerate (its area below 10⁻⁶ of the
-/// product of its edges — a scale-free test), an orthonormal frame around the normal.
+/// normal `normal`. When the UV triangle is degenerate (its doubled area at most
+/// [`TRIANGLE_FRAME_MIN_UV_SINE`] of the product of its edges — a scale-free test), an
+/// orthonormal frame around the normal.
 // Mirror of shaders/uv.wgsl::triangle_frame — change both.
 pub fn triangle_frame(p: [Vec3; 3], uv: [Vec2; 3], normal: Vec3) -> (Vec3, Vec3) {
     let e1 = p[1] - p[0];
@@ -97,12 +98,12 @@ pub fn triangle_frame(p: [Vec3; 3], uv: [Vec2; 3], normal: Vec3) -> (Vec3, Vec3)
     let d2 = uv[2] - uv[0];
     let det = d1.x * d2.y - d1.y * d2.x;
     let scale = d1.length() * d2.length();
-    if det.abs() > 1.0e-6 * scale {
+    if det.abs() > TRIANGLE_FRAME_MIN_UV_SINE * scale {
         let inv = 1.0 / det;
         return ((e1 * d2.y - e2 * d1.y) * inv, (e2 * d1.x - e1 * d2.x) * inv);
     }
     // Any axis not along the normal gives a perpendicular; dpdu × dpdv = normal.
-    let axis = if normal.x.abs() > 0.9 {
+    let axis = if normal.x.abs() > TRIANGLE_FRAME_AXIS_SWITCH {
         Vec3::Y
     } else {
         Vec3::X

@@ -6,8 +6,8 @@ pub mod buffers;
 pub mod context;
 pub mod error;
 pub mod pipeline;
-pub mod probe;
-pub mod render;
+// Crate-visible so `testing` can re-export its test hook `render_gpu_detailed`.
+pub(crate) mod render;
 pub mod shader;
 
 pub use context::{list_adapters, AdapterSummary, GpuContext};

@@ -8,6 +8,7 @@ use bytemuck::{Pod, Zeroable};
 
 /// An analytic primitive instance: affine transforms as three rows of a 3×4 matrix.
 /// Normals go to world space through the transpose of `world_to_object`'s linear part.
+// Mirror of shaders/layout.wgsl::GpuInstance — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuInstance {
@@ -23,6 +24,7 @@ pub struct GpuInstance {
 }
 
 /// A world-space triangle (flat shaded: the normal is the cross product of its edges).
+// Mirror of shaders/layout.wgsl::GpuTriangle — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuTriangle {
@@ -37,6 +39,7 @@ pub struct GpuTriangle {
 /// The UVs of a triangle's corners (p0, p1, p2), in a separate array parallel to the
 /// triangles (filled only when the scene has textures or bump maps, so untextured scenes
 /// keep the 48-byte triangles that traversal reads alone).
+// Mirror of shaders/layout.wgsl::GpuTriangleUv — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuTriangleUv {
@@ -46,6 +49,7 @@ pub struct GpuTriangleUv {
 }
 
 /// A4 Phong material plus the mirror colour, the dielectric's index and texture maps.
+// Mirror of shaders/layout.wgsl::GpuMaterial — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuMaterial {
@@ -69,6 +73,7 @@ pub struct GpuMaterial {
 
 /// A light. Point lights use `position`; area lights (`LIGHT_AREA`) are the parallelogram
 /// centred at `position` with edges `edge_u`, `edge_v`, sampled n×n (`samples`).
+// Mirror of shaders/layout.wgsl::GpuLight — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuLight {
@@ -88,6 +93,7 @@ pub struct GpuLight {
 }
 
 /// Per-render uniform: camera, image, options and grid header.
+// Mirror of shaders/layout.wgsl::GpuGlobals — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuGlobals {

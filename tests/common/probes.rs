@@ -6,9 +6,9 @@
 use super::Rng;
 use glam::DVec3;
 use glint::constants::T_MISS;
-use glint::gpu::probe::{cpu_probe, gpu_probe, ProbeRay, ProbeResult};
 use glint::gpu::GpuContext;
 use glint::pack::PackedScene;
+use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay, ProbeResult};
 
 pub const RAYS: usize = 4096;
 

@@ -1,17 +1,16 @@
-//! Tier-3 kernel probes (test support): trace seeded rays with the GPU's `closest_hit` +
+//! Tier-3 kernel probes: trace seeded rays with the GPU's `closest_hit` +
 //! `surface_at` through the `probe` entry point, and the same with the CPU functions, so
 //! tests compare the two ray by ray.
 
-use super::buffers::{read_back, scene_entries, upload_scene};
-use super::context::GpuContext;
-use super::pipeline::{get_pipeline, PROBE_RAYS_BINDING, PROBE_RESULTS_BINDING};
-use super::shader::Entry;
-use super::GpuError;
 use crate::constants::{NO_ITEM, PROBE_ANY_HIT, WORKGROUP_SIZE};
 pub use crate::constants::{PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT};
 use crate::cpu::ray::Ray;
 use crate::cpu::surface::surface_at;
 use crate::cpu::traverse::{any_hit, closest_hit, NoCounters};
+use crate::gpu::buffers::{read_back, scene_entries, upload_scene};
+use crate::gpu::pipeline::{get_pipeline, PROBE_RAYS_BINDING, PROBE_RESULTS_BINDING};
+use crate::gpu::shader::Entry;
+use crate::gpu::{GpuContext, GpuError};
 use crate::pack::PackedScene;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;

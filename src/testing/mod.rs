@@ -1,0 +1,27 @@
+//! Test hooks: entry points that exist so the tests can look inside the tracers. They are
+//! not part of glint's API (a renderer calls [`crate::cpu`], [`crate::gpu`] and
+//! [`crate::pipeline`]) and may change with the tests that use them.
+//!
+//! - [`probe`]: tier-3 kernel probes, the same rays traced by the GPU's and the CPU's
+//!   `closest_hit` + `surface_at`, compared ray by ray.
+//! - [`csg_interval_ends`]: one CSG object's inside intervals along a line.
+//! - [`render_gpu_detailed`]: a GPU render with the iteration limiter's sentinel chosen by
+//!   the caller (tests trip it on purpose to exercise the CPU fallback).
+
+pub mod probe;
+
+pub use crate::gpu::render::render_gpu_detailed;
+
+use crate::cpu::csg::{csg_evaluate, CsgStack};
+use crate::pack::PackedScene;
+use glam::Vec3;
+
+/// The inside intervals of CSG item `item` along `o + t·d` (world space) as
+/// (t, tag) ends — entering, leaving, entering… (not mirrored: the WGSL has no such function).
+pub fn csg_interval_ends(scene: &PackedScene, item: u32, o: Vec3, d: Vec3) -> Vec<(f32, u32)> {
+    let mut stack = CsgStack::default();
+    csg_evaluate(&mut stack, scene, &scene.instances[item as usize], o, d);
+    (0..stack.list_count[0] as usize)
+        .map(|k| (stack.t[k], stack.tag[k]))
+        .collect()
+}
