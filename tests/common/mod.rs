@@ -116,6 +116,17 @@ pub fn render_cpu(scene: &PackedScene) -> Film {
     glint::cpu::render(scene, &|_, _| {})
 }
 
+/// Whether `GLINT_BLESS=1` asks the golden tests to rewrite their references. Only `1`
+/// blesses; any other value is an error (a typo must not silently compare instead).
+pub fn bless_requested() -> bool {
+    match std::env::var("GLINT_BLESS") {
+        Err(std::env::VarError::NotPresent) => false,
+        Ok(v) if v == "1" => true,
+        Ok(v) => panic!("GLINT_BLESS must be 1 (rewrite the golden images) or unset, got '{v}'"),
+        Err(e) => panic!("GLINT_BLESS must be 1 (rewrite the golden images) or unset: {e}"),
+    }
+}
+
 /// How to get the software Vulkan GPU the GPU tests run on (Debian/Ubuntu).
 pub const GPU_INSTALL_HINT: &str = "apt-get install mesa-vulkan-drivers libvulkan1";
 
