@@ -32,7 +32,14 @@ pub enum DiffError {
     },
     #[error("malformed film: {width}x{height} but {len} pixels")]
     MalformedFilm { width: u32, height: u32, len: usize },
+    #[error("images of {width}x{height} are over the {limit} pixels FLIP can compare here (its error maps would not fit in memory)")]
+    TooLarge { width: u32, height: u32, limit: u64 },
 }
+
+/// Most pixels a comparison may have: FLIP's C++ keeps about a dozen float images of
+/// the input's size (colour and feature pipelines, filters), and does not survive an
+/// allocation failure.
+pub const MAX_DIFF_PIXELS: u64 = 1 << 24;
 
 /// The figures of one comparison.
 #[derive(Clone, Debug, PartialEq)]
@@ -95,6 +102,18 @@ fn shown(c: f32) -> f32 {
     }
 }
 
+/// Refuses images over [`MAX_DIFF_PIXELS`].
+pub fn check_diff_size(width: u32, height: u32) -> Result<(), DiffError> {
+    if u64::from(width) * u64::from(height) > MAX_DIFF_PIXELS {
+        return Err(DiffError::TooLarge {
+            width,
+            height,
+            limit: MAX_DIFF_PIXELS,
+        });
+    }
+    Ok(())
+}
+
 fn check_film(film: &Film) -> Result<(), DiffError> {
     if film.pixels.len() != film.width as usize * film.height as usize {
         return Err(DiffError::MalformedFilm {
@@ -111,6 +130,7 @@ fn check_film(film: &Film) -> Result<(), DiffError> {
 /// Returns the figures and FLIP's error map through its magma colour map, as a film
 /// whose `to_rgb8` gives the LUT's bytes exactly.
 pub fn diff_films(a: &Film, b: &Film) -> Result<(DiffReport, Film), DiffError> {
+    check_diff_size(a.width, a.height)?;
     if (a.width, a.height) != (b.width, b.height) {
         return Err(DiffError::SizeMismatch {
             a_width: a.width,

@@ -8,7 +8,7 @@ use std::ffi::OsString;
 use std::fs::{self, File};
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicPtr, AtomicU64, Ordering};
 
 use image::codecs::openexr::OpenExrEncoder;
 use image::codecs::png::PngEncoder;
@@ -31,8 +31,14 @@ pub enum ImageIoError {
         height: u32,
         len: usize,
     },
-    #[error("I/O error on {path}: {source}")]
+    #[error("cannot write {path}: {source}")]
     Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("cannot read image {path}: {source}")]
+    Read {
         path: PathBuf,
         #[source]
         source: std::io::Error,
@@ -115,6 +121,12 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
         });
     }
 
+    // Everything big is allocated before the temporary file exists, so running out of
+    // memory cannot strand it.
+    let pixels = match format {
+        Format::Png => Pixels::Rgb8(film.to_rgb8()),
+        Format::Exr => Pixels::Rgb32F(bytemuck::cast_slice(&film.pixels)),
+    };
     let mut temp_name = OsString::from(".");
     temp_name.push(&file_name);
     temp_name.push(format!(
@@ -124,7 +136,8 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
     ));
     let temp = dir.join(temp_name);
 
-    let result = write_to_temp(film, format, path, &temp).and_then(|()| {
+    let armed = arm_signal_cleanup(&temp);
+    let result = write_to_temp(film, &pixels, path, &temp).and_then(|()| {
         fs::rename(&temp, path).map_err(|source| ImageIoError::Io {
             path: path.to_path_buf(),
             source,
@@ -134,17 +147,89 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
         // Best effort: the temp may never have been created.
         let _ = fs::remove_file(&temp);
     }
+    if let Some(armed) = armed {
+        disarm_signal_cleanup(armed);
+    }
     result
+}
+
+/// The encoded-ready pixels of a film.
+enum Pixels<'a> {
+    Rgb8(Vec<u8>),
+    Rgb32F(&'a [u8]),
+}
+
+/// The temporary file being written, as a C string, for the signal handler (null when
+/// none). Each string is leaked (a few bytes per image written) so that a handler
+/// running on another thread can never read freed memory.
+static SIGNAL_TEMP: AtomicPtr<libc::c_char> = AtomicPtr::new(std::ptr::null_mut());
+
+/// Makes SIGINT, SIGTERM, SIGHUP and SIGABRT (also raised when an allocation fails)
+/// remove the temporary image being written, if any, then end the process as the
+/// signal would have. Signals the process ignores stay ignored. For the command line.
+pub fn remove_temp_files_on_signals() {
+    for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP, libc::SIGABRT] {
+        // SAFETY: installs an async-signal-safe handler (atomic load, unlink, signal,
+        // raise); `signal` is called before any thread writes an image.
+        unsafe {
+            let old = libc::signal(
+                sig,
+                on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t,
+            );
+            if old == libc::SIG_IGN {
+                libc::signal(sig, libc::SIG_IGN);
+            }
+        }
+    }
+}
+
+extern "C" fn on_signal(sig: libc::c_int) {
+    let temp = SIGNAL_TEMP.load(Ordering::SeqCst);
+    // SAFETY: `temp` is null or a leaked, NUL-terminated string; unlink, signal and
+    // raise are async-signal-safe.
+    unsafe {
+        if !temp.is_null() {
+            libc::unlink(temp);
+        }
+        libc::signal(sig, libc::SIG_DFL);
+        libc::raise(sig);
+    }
+}
+
+/// Points the signal handler at `temp` (when no other write holds it).
+fn arm_signal_cleanup(temp: &Path) -> Option<*mut libc::c_char> {
+    use std::os::unix::ffi::OsStrExt;
+    let c = std::ffi::CString::new(temp.as_os_str().as_bytes()).ok()?;
+    let ptr = c.into_raw();
+    SIGNAL_TEMP
+        .compare_exchange(
+            std::ptr::null_mut(),
+            ptr,
+            Ordering::SeqCst,
+            Ordering::SeqCst,
+        )
+        .ok()
+        .map(|_| ptr)
+}
+
+fn disarm_signal_cleanup(ptr: *mut libc::c_char) {
+    let _ = SIGNAL_TEMP.compare_exchange(
+        ptr,
+        std::ptr::null_mut(),
+        Ordering::SeqCst,
+        Ordering::SeqCst,
+    );
 }
 
 fn write_to_temp(
     film: &Film,
-    format: Format,
+    pixels: &Pixels,
     path: &Path,
     temp: &Path,
 ) -> Result<(), ImageIoError> {
+    // Errors name the output, not the internal temporary file.
     let io_err = |source| ImageIoError::Io {
-        path: temp.to_path_buf(),
+        path: path.to_path_buf(),
         source,
     };
     let encode_err = |source| ImageIoError::Encode {
@@ -153,22 +238,12 @@ fn write_to_temp(
     };
     let file = File::create(temp).map_err(io_err)?;
     let mut out = BufWriter::new(file);
-    match format {
-        Format::Png => PngEncoder::new(&mut out)
-            .write_image(
-                &film.to_rgb8(),
-                film.width,
-                film.height,
-                ExtendedColorType::Rgb8,
-            )
+    match pixels {
+        Pixels::Rgb8(rgb) => PngEncoder::new(&mut out)
+            .write_image(rgb, film.width, film.height, ExtendedColorType::Rgb8)
             .map_err(encode_err)?,
-        Format::Exr => OpenExrEncoder::new(&mut out)
-            .write_image(
-                bytemuck::cast_slice(&film.pixels),
-                film.width,
-                film.height,
-                ExtendedColorType::Rgb32F,
-            )
+        Pixels::Rgb32F(bytes) => OpenExrEncoder::new(&mut out)
+            .write_image(bytes, film.width, film.height, ExtendedColorType::Rgb32F)
             .map_err(encode_err)?,
     }
     let file = out.into_inner().map_err(|e| io_err(e.into_error()))?;
@@ -186,12 +261,12 @@ pub fn read_image(path: &Path) -> Result<Film, ImageIoError> {
         source,
     };
     let reader = ImageReader::open(path)
-        .map_err(|source| ImageIoError::Io {
+        .map_err(|source| ImageIoError::Read {
             path: path.to_path_buf(),
             source,
         })?
         .with_guessed_format()
-        .map_err(|source| ImageIoError::Io {
+        .map_err(|source| ImageIoError::Read {
             path: path.to_path_buf(),
             source,
         })?;

@@ -2,10 +2,17 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES, MAX_TRACE_DEPTH};
+use glint::scene::flatten::MAX_PIXELS;
+use glint::scene::lua::{DEFAULT_MEMORY_LIMIT, DEFAULT_TIME_LIMIT, MAX_IMAGE_SIDE};
 use glint::scene::options::{parse_background, parse_grid_mode};
 use glint::scene::{AaMode, Background, DebugView, GridMode, OptionOverrides, TransformOrder};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Duration;
+
+/// Most worker threads `--threads` accepts (each has its own stack; thousands would
+/// only cost memory and start-up time).
+const MAX_THREADS: u32 = 256;
 
 #[derive(Parser)]
 #[command(
@@ -60,23 +67,35 @@ struct RenderArgs {
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Image width (overrides gr.render's).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_IMAGE_SIDE as i64))]
     width: Option<u32>,
     /// Image height (overrides gr.render's).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_IMAGE_SIDE as i64))]
     height: Option<u32>,
     /// Transform order: pre (M = Op·M, 2015 and later) or post (M = M·Op, up to Summer 2015).
     #[arg(long, value_enum)]
     transform_order: Option<OrderArg>,
     /// Worker threads (default: all cores). The image does not depend on it.
-    #[arg(long)]
-    threads: Option<usize>,
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_THREADS as i64))]
+    threads: Option<u32>,
     /// Print grid, feature and ray statistics after each render.
     #[arg(long)]
     stats: bool,
     /// Lua instructions a script may run before it is stopped as a runaway.
     #[arg(long, default_value_t = glint::scene::lua::ScriptConfig::default().instruction_limit)]
     instruction_limit: u64,
+    /// Wall-clock seconds the script may run (renders not counted).
+    #[arg(long, value_name = "SECONDS", default_value_t = DEFAULT_TIME_LIMIT.as_secs(),
+          value_parser = clap::value_parser!(u64).range(1..=86_400))]
+    script_timeout: u64,
+    /// Memory budget in MiB: the Lua heap, the scene and each render's build.
+    #[arg(long, value_name = "MIB", default_value_t = (DEFAULT_MEMORY_LIMIT >> 20) as u64,
+          value_parser = clap::value_parser!(u64).range(16..=1 << 20))]
+    memory_limit: u64,
+    /// A folder the scene may read meshes, textures and modules from, besides its own
+    /// (repeatable).
+    #[arg(long, value_name = "DIR")]
+    allow_read: Vec<PathBuf>,
     /// Tracer: cpu (the reference), gpu (wgpu compute, Vulkan), or auto (a hardware GPU
     /// when one exists, else the CPU, with a one-line notice).
     #[arg(long, value_enum, default_value = "auto")]
@@ -145,13 +164,14 @@ fn main() -> ExitCode {
         // SAFETY: single-threaded here, before wgpu, rayon or anything else runs.
         unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
     }
+    glint::image_io::remove_temp_files_on_signals();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render(args),
         Command::Diff { a, b, heatmap } => {
             glint::cli::diff_cmd::run_diff(&a, &b, heatmap.as_deref())
                 .map(|_| ())
-                .map_err(|e| (format!("{e:#}"), 1))
+                .map_err(|e| (e.to_string(), e.exit_code()))
         }
         Command::Bench(args) => {
             glint::cli::bench_cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1))
@@ -198,6 +218,10 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         stats: args.stats,
         progress: true,
         instruction_limit: Some(args.instruction_limit),
+        script_timeout: Some(Duration::from_secs(args.script_timeout)),
+        memory_limit: Some((args.memory_limit << 20) as usize),
+        allow_read: args.allow_read.clone(),
+        hard_time_limit: true,
         backend: match args.backend {
             BackendArg::Cpu => glint::pipeline::Backend::Cpu,
             BackendArg::Gpu => glint::pipeline::Backend::Gpu,
@@ -207,11 +231,24 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         debug: (args.debug == Some(DebugArg::AaSamples))
             .then_some(glint::pipeline::DebugImage::AaSamples),
     };
-    if args.width == Some(0) || args.height == Some(0) {
-        return Err(("--width and --height must be positive".into(), 2));
+    if let (Some(w), Some(h)) = (args.width, args.height) {
+        if u64::from(w) * u64::from(h) > MAX_PIXELS {
+            return Err((
+                format!(
+                    "--width {w} --height {h} is {} pixels, over glint's limit of {MAX_PIXELS}",
+                    u64::from(w) * u64::from(h)
+                ),
+                2,
+            ));
+        }
+    }
+    for dir in &args.allow_read {
+        if !dir.is_dir() {
+            return Err((format!("--allow-read {}: not a folder", dir.display()), 2));
+        }
     }
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
+        .num_threads(args.threads.unwrap_or(0) as usize)
         .build()
         .map_err(|e| (format!("cannot start {:?} threads: {e}", args.threads), 1))?;
     let report = pool.install(|| {

@@ -31,6 +31,15 @@ pub struct RenderSettings {
     pub progress: bool,
     /// Lua instruction limit (None: the default of [`ScriptConfig`]).
     pub instruction_limit: Option<u64>,
+    /// `--script-timeout`: the script's wall-clock limit (None: the default).
+    pub script_timeout: Option<Duration>,
+    /// `--memory-limit`: the memory budget in bytes (None: the default).
+    pub memory_limit: Option<usize>,
+    /// `--allow-read`: folders the scene may read besides its own.
+    pub allow_read: Vec<PathBuf>,
+    /// End the process (exit code 3) when the script overruns its time where it cannot
+    /// be interrupted (the command line sets it).
+    pub hard_time_limit: bool,
     /// Which tracer renders.
     pub backend: Backend,
     /// `--adapter`: a substring of the GPU adapter's name.
@@ -117,6 +126,12 @@ pub enum RunError {
     /// The image could not be written (exit code 4).
     #[error("{0}")]
     Output(#[from] ImageIoError),
+    /// The image of the `gr.render` call at `location` could not be written (exit code 4).
+    #[error("{location}: gr.render: {error}")]
+    OutputAt {
+        location: String,
+        error: ImageIoError,
+    },
     /// No usable GPU, or the GPU render failed (exit code 5).
     #[error("{0}")]
     Gpu(#[from] crate::gpu::GpuError),
@@ -129,7 +144,7 @@ impl RunError {
     pub fn exit_code(&self) -> i32 {
         match self {
             RunError::Scene(_) => 3,
-            RunError::Output(_) => 4,
+            RunError::Output(_) | RunError::OutputAt { .. } => 4,
             RunError::Gpu(_) => 5,
             RunError::Usage(_) => 2,
         }
@@ -305,6 +320,14 @@ pub fn run_scene(
     if let Some(limit) = settings.instruction_limit {
         config.instruction_limit = limit;
     }
+    if let Some(limit) = settings.script_timeout {
+        config.time_limit = limit;
+    }
+    if let Some(limit) = settings.memory_limit {
+        config.memory_limit = limit;
+    }
+    config.allow_read = settings.allow_read.clone();
+    config.hard_time_limit = settings.hard_time_limit;
     let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref())?;
     let tracer = gpu.as_ref().map_or(Tracer::Cpu, Tracer::Gpu);
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
@@ -342,7 +365,14 @@ pub fn run_scene(
         Err(e) => e,
     };
     if let Some(io) = output_error.into_inner() {
-        return Err(RunError::Output(io));
+        // The script named the output: say where.
+        return Err(match &error {
+            SceneError::Render { location, .. } => RunError::OutputAt {
+                location: location.clone(),
+                error: io,
+            },
+            _ => RunError::Output(io),
+        });
     }
     // A GPU failure during a render is the GPU's, not the scene's (exit code 5).
     match error {

@@ -276,14 +276,9 @@ impl Grid {
         let min = scene_bounds.min - grow;
         let max = scene_bounds.max + grow;
         let extent = max - min;
-        let dims = grid_resolution(extent, item_count, density);
-        let dims_v = Vec3::new(dims[0] as f32, dims[1] as f32, dims[2] as f32);
-        let cell_size = extent / dims_v;
-        let geometry = CellGeometry {
-            min,
-            cell_size,
-            dims,
-        };
+        let geometry = bounded_geometry(min, extent, &bounds, item_count, density);
+        let dims = geometry.dims;
+        let cell_size = geometry.cell_size;
 
         // (cell, item) references, produced in parallel chunks kept in item order.
         const CHUNK: usize = 1 << 14;
@@ -370,6 +365,48 @@ impl Grid {
                 ..Default::default()
             },
         }
+    }
+}
+
+/// Most (cell, item) references a grid may hold (8 bytes each while building, 4 after):
+/// big items overlapping many cells (a fan-triangulated disk of thousands of corners,
+/// thousands of concentric spheres) would otherwise ask for gigabytes.
+pub const MAX_REFERENCES: u64 = 1 << 25;
+
+/// The grid's placement for λ = `density`, made coarser (7/8 per axis at a time) while
+/// the items' bounding boxes would overlap more than [`MAX_REFERENCES`] cells in all.
+/// Counted from the boxes, before any reference is made; the boxes bound the references
+/// from above (a triangle's plane test only removes cells).
+fn bounded_geometry(
+    min: Vec3,
+    extent: Vec3,
+    bounds: &[Aabb],
+    items: usize,
+    density: f32,
+) -> CellGeometry {
+    let mut dims = grid_resolution(extent, items, density);
+    loop {
+        let dims_v = Vec3::new(dims[0] as f32, dims[1] as f32, dims[2] as f32);
+        let geometry = CellGeometry {
+            min,
+            cell_size: extent / dims_v,
+            dims,
+        };
+        let references: u64 = bounds
+            .par_iter()
+            .filter(|b| !b.is_empty())
+            .map(|b| {
+                (0..3)
+                    .map(|a| {
+                        u64::from(geometry.cell_coord(b.max, a) - geometry.cell_coord(b.min, a) + 1)
+                    })
+                    .product::<u64>()
+            })
+            .sum();
+        if references <= MAX_REFERENCES || dims == [1, 1, 1] {
+            return geometry;
+        }
+        dims = dims.map(|d| (d * 7 / 8).max(1));
     }
 }
 

@@ -2,21 +2,63 @@
 
 use std::path::Path;
 
-use anyhow::Context;
+use crate::diff::{check_diff_size, diff_films, DiffError, DiffReport};
+use crate::image_io::{read_image, write_image, ImageIoError};
 
-use crate::diff::{diff_films, DiffReport};
-use crate::image_io::{read_image, write_image};
+/// Why `glint diff` failed; each kind has its exit code.
+#[derive(Debug, thiserror::Error)]
+pub enum DiffCmdError {
+    /// An input is missing, unreadable or too big (exit code 2: a bad argument).
+    #[error("{0}")]
+    Input(String),
+    /// The images cannot be compared (exit code 3).
+    #[error("cannot compare {a} with {b}: {error}")]
+    Compare {
+        a: String,
+        b: String,
+        error: DiffError,
+    },
+    /// The heat map cannot be written (exit code 4).
+    #[error("{0}")]
+    Output(ImageIoError),
+}
+
+impl DiffCmdError {
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            DiffCmdError::Input(_) => 2,
+            DiffCmdError::Compare { .. } => 3,
+            DiffCmdError::Output(_) => 4,
+        }
+    }
+}
+
+/// Reads one input: its size is checked from the header before it is decoded.
+fn read_input(path: &Path) -> Result<crate::film::Film, DiffCmdError> {
+    let (width, height) = image::image_dimensions(path)
+        .map_err(|e| DiffCmdError::Input(format!("cannot read image {}: {e}", path.display())))?;
+    check_diff_size(width, height)
+        .map_err(|e| DiffCmdError::Input(format!("{}: {e}", path.display())))?;
+    read_image(path).map_err(|e| DiffCmdError::Input(e.to_string()))
+}
 
 /// Reads `a` (the reference) and `b`, prints the report to stdout and, if asked, writes
 /// FLIP's magma heat map to `heatmap` (atomically, format by extension).
-pub fn run_diff(a: &Path, b: &Path, heatmap: Option<&Path>) -> anyhow::Result<DiffReport> {
-    let film_a = read_image(a)?;
-    let film_b = read_image(b)?;
-    let (report, heat_map) = diff_films(&film_a, &film_b)
-        .with_context(|| format!("cannot compare {} with {}", a.display(), b.display()))?;
+pub fn run_diff(a: &Path, b: &Path, heatmap: Option<&Path>) -> Result<DiffReport, DiffCmdError> {
+    if let Some(path) = heatmap {
+        crate::image_io::check_output_path(path).map_err(DiffCmdError::Output)?;
+    }
+    let film_a = read_input(a)?;
+    let film_b = read_input(b)?;
+    let (report, heat_map) =
+        diff_films(&film_a, &film_b).map_err(|error| DiffCmdError::Compare {
+            a: a.display().to_string(),
+            b: b.display().to_string(),
+            error,
+        })?;
     println!("{report}");
     if let Some(path) = heatmap {
-        write_image(&heat_map, path)?;
+        write_image(&heat_map, path).map_err(DiffCmdError::Output)?;
     }
     Ok(report)
 }
@@ -43,11 +85,17 @@ mod tests {
 
         write_image(&Film::new(4, 4), &dir.join("small.png")).unwrap();
         let err = run_diff(&dir.join("a.png"), &dir.join("small.png"), None).unwrap_err();
-        let msg = format!("{err:#}");
+        assert_eq!(err.exit_code(), 3);
+        let msg = err.to_string();
         assert!(
             msg.contains("small.png") && msg.contains("8x8 vs 4x4"),
             "{msg}"
         );
+        let err = run_diff(&dir.join("absent.png"), &dir.join("a.png"), None).unwrap_err();
+        assert_eq!(err.exit_code(), 2);
+        let msg = err.to_string();
+        assert_eq!(msg.matches("absent.png").count(), 1, "{msg}");
+        assert_eq!(msg.matches("No such file").count(), 1, "{msg}");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -5,6 +5,7 @@
 //! A CSG node becomes one [`CsgObject`]: its tree as a post-order program whose leaves are
 //! primitive objects with their own object-to-world transforms and materials.
 
+use super::cost::{scene_cost, MAX_PATHS, PIXEL_BYTES, TEXEL_BYTES};
 use super::{
     Camera, CsgOp, Light, Material, MaterialId, NodeId, NodeKind, Primitive, RenderOptions,
     RenderRequest, SceneGraph,
@@ -14,6 +15,9 @@ use glam::{DMat3, DMat4, DVec3};
 
 /// Deepest node nesting accepted; deeper means a cycle (a node added under itself).
 pub const MAX_NODE_DEPTH: usize = 256;
+
+/// Most pixels one image may have (a typo guard that also bounds the film's memory).
+pub const MAX_PIXELS: u64 = 1 << 27;
 
 /// An analytic primitive kind (meshes become triangles).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -159,6 +163,23 @@ pub enum FlattenError {
         operand: String,
         what: &'static str,
     },
+    #[error("the scene graph below the render root has {paths} paths (node visits) to flatten, over glint's limit of {limit}: instances nest too many times")]
+    TooManyPaths { paths: u64, limit: u64 },
+    #[error("the image is {width}×{height} = {pixels} pixels, over glint's limit of {limit} pixels (gr.render's size, or --width/--height)")]
+    TooManyPixels {
+        width: u32,
+        height: u32,
+        pixels: u64,
+        limit: u64,
+    },
+    #[error("the scene would take about {needed_mib} MiB to build and render ({objects} objects, {triangles} triangles, {pixels} pixels), over the {left_mib} MiB left of the memory budget (--memory-limit MIB)")]
+    OverBudget {
+        needed_mib: u64,
+        left_mib: u64,
+        objects: u64,
+        triangles: u64,
+        pixels: u64,
+    },
     #[error("CSG node '{path}' may hold up to {events} interval ends per ray, above glint's fixed capacity of {CSG_EVENT_CAPACITY} (about {} primitives, fewer with tori and double cones): split it into several CSG objects", CSG_EVENT_CAPACITY / 4)]
     CsgTooManyIntervals { path: String, events: u32 },
 }
@@ -166,6 +187,7 @@ pub enum FlattenError {
 /// Flattens the graph below `request.root` into world space.
 pub fn flatten(graph: &SceneGraph, request: &RenderRequest) -> Result<Scene, FlattenError> {
     check_camera(&request.camera)?;
+    check_cost(graph, request)?;
     let mut materials = graph.materials.clone();
     let default_material = materials.len();
     materials.push(Material::default());
@@ -176,7 +198,13 @@ pub fn flatten(graph: &SceneGraph, request: &RenderRequest) -> Result<Scene, Fla
         materials,
         textures: graph.textures.clone(),
         lights: request.lights.clone(),
-        camera: request.camera.clone(),
+        // Directions scaled to unit max-norm, so that normalising them downstream cannot
+        // overflow (a 1e200 view) or underflow (1e-200).
+        camera: Camera {
+            view: unit_max_norm(request.camera.view),
+            up: unit_max_norm(request.camera.up),
+            ..request.camera.clone()
+        },
         ambient: request.ambient,
         width: request.width,
         height: request.height,
@@ -404,17 +432,75 @@ fn check_transform(m: &DMat4, path_name: &dyn Fn() -> String) -> Result<(), Flat
     Ok(())
 }
 
+/// Counts what the render will make (see [`scene_cost`]) and refuses it before anything
+/// is built when it has too many paths or pixels, or would not fit the memory budget.
+fn check_cost(graph: &SceneGraph, request: &RenderRequest) -> Result<(), FlattenError> {
+    let pixels = u64::from(request.width) * u64::from(request.height);
+    if pixels > MAX_PIXELS {
+        return Err(FlattenError::TooManyPixels {
+            width: request.width,
+            height: request.height,
+            pixels,
+            limit: MAX_PIXELS,
+        });
+    }
+    let cost = scene_cost(graph, request.root)?;
+    if cost.paths > MAX_PATHS {
+        return Err(FlattenError::TooManyPaths {
+            paths: cost.paths,
+            limit: MAX_PATHS,
+        });
+    }
+    let texels: u64 = graph
+        .textures
+        .iter()
+        .map(|t| u64::from(t.width) * u64::from(t.height))
+        .sum();
+    let needed = cost
+        .bytes()
+        .saturating_add(pixels * PIXEL_BYTES)
+        .saturating_add(texels * TEXEL_BYTES);
+    if needed > request.memory_left {
+        return Err(FlattenError::OverBudget {
+            needed_mib: needed.div_ceil(1 << 20),
+            left_mib: request.memory_left >> 20,
+            objects: cost.objects,
+            triangles: cost.triangles,
+            pixels,
+        });
+    }
+    Ok(())
+}
+
+/// `v` scaled so that its largest component is ±1 (zero stays zero): directions can be
+/// compared without their squared lengths overflowing (1e200) or underflowing (1e-200).
+pub fn unit_max_norm(v: DVec3) -> DVec3 {
+    let m = v.abs().max_element();
+    if m > 0.0 && m.is_finite() {
+        v / m
+    } else {
+        v
+    }
+}
+
+/// sin² of the smallest angle accepted between the camera's `view` and `up`.
+pub const CAMERA_PARALLEL_SIN2: f64 = 1e-20;
+
+/// Whether directions `a` and `b` (finite) are zero or parallel: sin² of their angle at
+/// most `sin2`. Scale-free: neither huge nor tiny vectors overflow or underflow it.
+pub fn parallel_or_zero(a: DVec3, b: DVec3, sin2: f64) -> bool {
+    let (a, b) = (unit_max_norm(a), unit_max_norm(b));
+    a.cross(b).length_squared() <= sin2 * a.length_squared() * b.length_squared()
+}
+
 fn check_camera(camera: &Camera) -> Result<(), FlattenError> {
     let view = camera.view;
-    if view.length_squared() == 0.0 || !view.is_finite() {
+    if view == DVec3::ZERO || !view.is_finite() {
         return Err(FlattenError::Camera(format!(
             "view direction {view} must be a non-zero vector"
         )));
     }
-    if view.cross(camera.up).length_squared()
-        <= 1e-20 * view.length_squared() * camera.up.length_squared()
-        || !camera.up.is_finite()
-    {
+    if !camera.up.is_finite() || parallel_or_zero(view, camera.up, CAMERA_PARALLEL_SIN2) {
         return Err(FlattenError::Camera(format!(
             "up vector {} must be non-zero and not parallel to view {view}",
             camera.up

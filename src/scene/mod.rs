@@ -2,6 +2,8 @@
 //! requests that `gr.render` issues. Everything here lives above `pack`: the tracers
 //! never see these types, only the packed arrays made from them.
 
+pub mod cost;
+pub mod files;
 pub mod flatten;
 pub mod lua;
 pub mod obj;
@@ -209,4 +211,7 @@ pub struct RenderRequest {
     pub options: RenderOptions,
     /// `file:line` of the `gr.render` call, for messages.
     pub location: String,
+    /// Bytes of the script's memory budget left for flattening, packing and rendering
+    /// this request (flattening refuses a scene that would need more).
+    pub memory_left: u64,
 }

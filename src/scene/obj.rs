@@ -7,6 +7,7 @@
 //! indices, polygons of 3+ corners (fan-triangulated). Grouping, smoothing, material and
 //! line statements are ignored, as are statements this renderer has no use for.
 
+use super::files::{excerpt, read_regular, MAX_FILE_BYTES};
 use super::Mesh;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -15,11 +16,16 @@ use std::path::{Path, PathBuf};
 /// Why an OBJ file could not be loaded. `Display` gives the whole message.
 #[derive(Debug, thiserror::Error)]
 pub enum ObjError {
-    #[error("cannot read mesh file '{}': {source}", path.display())]
-    Read {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    /// The file could not be read (missing, not a regular file, too big); the message
+    /// names the path.
+    #[error("{message}")]
+    Read { message: String },
+    /// The file is not OBJ text (NUL bytes: a binary file, or UTF-16 text).
+    #[error("mesh file '{}' is not an OBJ text file (it holds NUL bytes: a binary or UTF-16 file?)", path.display())]
+    NotText { path: PathBuf },
+    /// The file parsed but holds no face: there is nothing to render.
+    #[error("mesh file '{}' has no faces ('f' lines): there is nothing to render", path.display())]
+    NoFaces { path: PathBuf },
     #[error("{}:{line}: {message}", path.display())]
     Parse {
         path: PathBuf,
@@ -68,15 +74,18 @@ pub fn read_obj_raw(path: &Path) -> Result<RawObj, ObjError> {
     Ok((parsed.positions, faces))
 }
 
+/// Reads a mesh file: a regular file of at most [`MAX_FILE_BYTES`], OBJ text.
 fn read(path: &Path) -> Result<String, ObjError> {
-    std::fs::read(path)
-        // OBJ files in the wild are not always valid UTF-8 (comments in Latin-1);
-        // the statements we read are ASCII, so a lossy conversion is harmless.
-        .map(|bytes| String::from_utf8_lossy(&bytes).into_owned())
-        .map_err(|source| ObjError::Read {
+    let bytes = read_regular(path, "mesh file", MAX_FILE_BYTES)
+        .map_err(|message| ObjError::Read { message })?;
+    if bytes.contains(&0) {
+        return Err(ObjError::NotText {
             path: path.to_path_buf(),
-            source,
-        })
+        });
+    }
+    // OBJ files in the wild are not always valid UTF-8 (comments in Latin-1); the
+    // statements we read are ASCII, so a lossy conversion is harmless.
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 /// A face corner as written, before the end-of-file range check: positive indices are
@@ -171,13 +180,18 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
         }
         out.faces.push(corners);
     }
+    if out.faces.is_empty() {
+        return Err(ObjError::NoFaces {
+            path: path.to_path_buf(),
+        });
+    }
     Ok(out)
 }
 
 fn number(word: &str) -> Result<f64, String> {
     match word.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(format!("bad number '{word}'")),
+        _ => Err(format!("bad number '{}'", excerpt(word))),
     }
 }
 
@@ -186,12 +200,17 @@ fn number(word: &str) -> Result<f64, String> {
 fn corner(word: &str, nv: usize, nt: usize, nn: usize) -> Result<(i64, Option<i64>), String> {
     let mut parts = word.split('/');
     let index = |s: &str, count: usize, what: &str| -> Result<i64, String> {
-        let i: i64 = s
-            .parse()
-            .map_err(|_| format!("bad {what} index '{s}' in face corner '{word}'"))?;
+        let i: i64 = s.parse().map_err(|_| {
+            format!(
+                "bad {what} index '{}' in face corner '{}'",
+                excerpt(s),
+                excerpt(word)
+            )
+        })?;
         match i {
             0 => Err(format!(
-                "{what} index 0 in face corner '{word}' (OBJ indices start at 1)"
+                "{what} index 0 in face corner '{}' (OBJ indices start at 1)",
+                excerpt(word)
             )),
             i if i < 0 => {
                 let resolved = count as i64 + i + 1;
@@ -218,7 +237,7 @@ fn corner(word: &str, nv: usize, nt: usize, nn: usize) -> Result<(i64, Option<i6
         }
     }
     if parts.next().is_some() {
-        return Err(format!("bad face corner '{word}'"));
+        return Err(format!("bad face corner '{}'", excerpt(word)));
     }
     Ok((v, t))
 }

@@ -3,6 +3,8 @@
 //! stored (8-bit RGBA, no gamma decoding): the scene language's colours are linear values
 //! written as computed, so a texture on a fully lit matte surface reproduces itself.
 
+use super::files::{read_regular, MAX_FILE_BYTES};
+use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 /// Index of a texture in [`SceneGraph::textures`](super::SceneGraph::textures).
@@ -21,28 +23,77 @@ pub struct Texture {
     pub rgba: Vec<[u8; 4]>,
 }
 
-/// Reads and decodes `path`. Errors name the path that was tried and what went wrong.
-pub fn load_texture(path: &Path) -> Result<Texture, String> {
-    let image = image::ImageReader::open(path)
-        .map_err(|e| format!("cannot read texture '{}': {e}", path.display()))?
-        .with_guessed_format()
-        .map_err(|e| format!("cannot read texture '{}': {e}", path.display()))?
-        .decode()
-        .map_err(|e| format!("cannot decode texture '{}': {e}", path.display()))?
-        .to_rgba8();
-    let (width, height) = image.dimensions();
+/// Bytes a texture of `width`×`height` holds once decoded (RGBA8).
+pub fn texture_bytes(width: u32, height: u32) -> u64 {
+    4 * u64::from(width) * u64::from(height)
+}
+
+/// Reads and decodes `path`, a regular file of at most [`MAX_FILE_BYTES`]. The size in the
+/// header is checked before decoding: each side at most [`MAX_TEXTURE_SIDE`], the decoded
+/// texels at most `max_bytes`, and a JPEG must be long enough to hold that many pixels
+/// (a 700-byte file claiming 8000×8000 is a truncated or forged one). Errors name the
+/// path that was tried and what went wrong.
+pub fn load_texture(path: &Path, max_bytes: u64) -> Result<Texture, String> {
+    let bytes = read_regular(path, "texture", MAX_FILE_BYTES)?;
+    let reader = || {
+        image::ImageReader::new(Cursor::new(&bytes[..]))
+            .with_guessed_format()
+            .map_err(|e| format!("cannot read texture '{}': {e}", path.display()))
+    };
+    let format = reader()?.format();
+    let (width, height) = reader()?
+        .into_dimensions()
+        .map_err(|e| format!("cannot decode texture '{}': {e}", path.display()))?;
     if width == 0 || height == 0 || width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
         return Err(format!(
             "texture '{}' is {width}×{height}; sides must be from 1 to {MAX_TEXTURE_SIDE}",
             path.display()
         ));
     }
+    let needed = texture_bytes(width, height);
+    if needed > max_bytes {
+        return Err(format!(
+            "texture '{}' is {width}×{height} ({} MiB decoded), over the {} MiB left of the memory budget (--memory-limit MIB)",
+            path.display(),
+            needed.div_ceil(1 << 20),
+            max_bytes >> 20
+        ));
+    }
+    if format == Some(image::ImageFormat::Jpeg) {
+        check_jpeg_length(path, bytes.len() as u64, width, height)?;
+    }
+    let mut reader = reader()?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(width);
+    limits.max_image_height = Some(height);
+    // The decoder's own buffers: the image in its stored layout, then the RGBA copy.
+    limits.max_alloc = Some(2 * needed + (1 << 20));
+    reader.limits(limits);
+    let image = reader
+        .decode()
+        .map_err(|e| format!("cannot decode texture '{}': {e}", path.display()))?
+        .to_rgba8();
     Ok(Texture {
         path: path.to_path_buf(),
         width,
         height,
         rgba: image.pixels().map(|p| p.0).collect(),
     })
+}
+
+/// Fewest bytes a baseline JPEG of `width`×`height` can take: each 8×8 block of the
+/// luma channel codes at least its DC difference and an end-of-block (2 bits each in the
+/// shortest Huffman codes), i.e. 1/128 byte per pixel; a file shorter than half that
+/// cannot hold the image its header claims.
+fn check_jpeg_length(path: &Path, len: u64, width: u32, height: u32) -> Result<(), String> {
+    let minimum = u64::from(width) * u64::from(height) / 256;
+    if len < minimum {
+        return Err(format!(
+            "texture '{}' claims {width}×{height} pixels in a {len}-byte JPEG (at least {minimum} bytes are needed): the file is truncated or not what its header says",
+            path.display()
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -54,14 +105,14 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("glint-texture-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let missing = dir.join("missing.png");
-        let e = load_texture(&missing).unwrap_err();
+        let e = load_texture(&missing, u64::MAX).unwrap_err();
         assert!(
             e.starts_with("cannot read texture '") && e.contains("missing.png"),
             "{e}"
         );
         let junk = dir.join("junk.png");
         std::fs::write(&junk, b"not an image at all").unwrap();
-        let e = load_texture(&junk).unwrap_err();
+        let e = load_texture(&junk, u64::MAX).unwrap_err();
         assert!(e.contains("junk.png"), "{e}");
     }
 
@@ -72,7 +123,7 @@ mod tests {
         let path = dir.join("two.png");
         let img = image::RgbImage::from_raw(1, 2, vec![10, 20, 30, 200, 100, 0]).unwrap();
         img.save(&path).unwrap();
-        let t = load_texture(&path).unwrap();
+        let t = load_texture(&path, u64::MAX).unwrap();
         assert_eq!((t.width, t.height), (1, 2));
         assert_eq!(t.rgba, vec![[10, 20, 30, 255], [200, 100, 0, 255]]);
     }

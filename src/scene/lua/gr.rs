@@ -5,8 +5,9 @@
 
 use super::args::{int_value, location, Args};
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
-use super::{options, with_state, OnRender};
+use super::{charge, memory_left, options, with_state, OnRender};
 use crate::constants::{DEFAULT_SHADOW_SAMPLES, MAX_SHADOW_SAMPLES};
+use crate::scene::flatten::{parallel_or_zero, CAMERA_PARALLEL_SIN2, MAX_PIXELS};
 use crate::scene::{
     AreaLight, Camera, CsgOp, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest,
     TransformOrder,
@@ -16,7 +17,7 @@ use mlua::{Lua, MultiValue, Value};
 use std::path::PathBuf;
 
 /// Largest image side accepted (a typo guard, not a hardware limit).
-const MAX_IMAGE_SIDE: u32 = 1 << 16;
+pub const MAX_IMAGE_SIDE: u32 = 1 << 16;
 
 /// Defines the global `gr` table (all calls but `render`, which `run_scene_source` adds as
 /// a scoped function borrowing the caller's callback).
@@ -51,8 +52,13 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     lua.globals().set("gr", gr)
 }
 
-fn new_node(lua: &Lua, name: String, kind: NodeKind) -> NodeHandle {
-    with_state(lua, |s| {
+/// Bytes a node holds in Rust besides its name (its slot, a child link, a parent flag).
+const NODE_BYTES: u64 = std::mem::size_of::<Node>() as u64 + 16;
+
+/// Adds a node, its name counted against the memory budget.
+fn new_node(a: &Args, name: String, kind: NodeKind) -> mlua::Result<NodeHandle> {
+    charge(a, NODE_BYTES + name.len() as u64, "the node's name")?;
+    Ok(with_state(a.lua, |s| {
         s.graph.nodes.push(Node {
             name,
             kind,
@@ -61,7 +67,7 @@ fn new_node(lua: &Lua, name: String, kind: NodeKind) -> NodeHandle {
             material: None,
         });
         NodeHandle(s.graph.nodes.len() - 1)
-    })
+    }))
 }
 
 fn geometry(primitive: Primitive, placement: DMat4) -> NodeKind {
@@ -73,12 +79,12 @@ fn geometry(primitive: Primitive, placement: DMat4) -> NodeKind {
 
 fn transform_node(a: &Args) -> mlua::Result<NodeHandle> {
     let name = a.string(1, "name")?;
-    Ok(new_node(a.lua, name, NodeKind::Transform))
+    new_node(a, name, NodeKind::Transform)
 }
 
 fn primitive(a: &Args, p: Primitive) -> mlua::Result<NodeHandle> {
     let name = a.string(1, "name")?;
-    Ok(new_node(a.lua, name, geometry(p, DMat4::IDENTITY)))
+    new_node(a, name, geometry(p, DMat4::IDENTITY))
 }
 
 /// `gr.cone(name, zmin, zmax)`: the solid cone x² + y² ≤ z² between z = zmin and z = zmax.
@@ -96,11 +102,11 @@ fn cone(a: &Args) -> mlua::Result<NodeHandle> {
     if (zmin as f32) >= (zmax as f32) {
         return Err(a.bad(3, "zmax", &format!("a number greater than zmin ({zmin})")));
     }
-    Ok(new_node(
-        a.lua,
+    new_node(
+        a,
         name,
         geometry(Primitive::Cone { zmin, zmax }, DMat4::IDENTITY),
-    ))
+    )
 }
 
 fn nh_sphere(a: &Args) -> mlua::Result<NodeHandle> {
@@ -108,11 +114,7 @@ fn nh_sphere(a: &Args) -> mlua::Result<NodeHandle> {
     let centre = a.vec3(2, "centre")?;
     let radius = a.positive(3, "radius")?;
     let placement = DMat4::from_translation(centre) * DMat4::from_scale(DVec3::splat(radius));
-    Ok(new_node(
-        a.lua,
-        name,
-        geometry(Primitive::Sphere, placement),
-    ))
+    new_node(a, name, geometry(Primitive::Sphere, placement))
 }
 
 fn nh_box(a: &Args) -> mlua::Result<NodeHandle> {
@@ -120,7 +122,7 @@ fn nh_box(a: &Args) -> mlua::Result<NodeHandle> {
     let corner = a.vec3(2, "corner")?;
     let size = a.positive(3, "size")?;
     let placement = DMat4::from_translation(corner) * DMat4::from_scale(DVec3::splat(size));
-    Ok(new_node(a.lua, name, geometry(Primitive::Cube, placement)))
+    new_node(a, name, geometry(Primitive::Cube, placement))
 }
 
 /// `gr.torus(name, rin, rout)`: both radii finite and positive. `rout > rin` is allowed
@@ -130,11 +132,11 @@ fn torus(a: &Args) -> mlua::Result<NodeHandle> {
     let name = a.string(1, "name")?;
     let rin = a.positive(2, "rin")?;
     let rout = a.positive(3, "rout")?;
-    Ok(new_node(
-        a.lua,
+    new_node(
+        a,
         name,
         geometry(Primitive::Torus { rin, rout }, DMat4::IDENTITY),
-    ))
+    )
 }
 
 /// `gr.csg(name, op, a, b)`: `op` is `'u'` (union), `'i'` (intersection) or `'d'`
@@ -186,7 +188,12 @@ fn csg(a: &Args) -> mlua::Result<NodeHandle> {
         *slot = id;
     }
     let [na, nb] = operands;
-    Ok(new_node(a.lua, name, NodeKind::Csg { op, a: na, b: nb }))
+    let handle = new_node(a, name, NodeKind::Csg { op, a: na, b: nb })?;
+    with_state(a.lua, |s| {
+        s.add_parent(na, handle.0);
+        s.add_parent(nb, handle.0);
+    });
+    Ok(handle)
 }
 
 /// `gr.mesh(name, 'file.obj')` or `gr.mesh(name, verts, faces[, uvs])`.
@@ -195,19 +202,21 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
     let id = match a.get(2) {
         Value::String(s) => {
             let file = s.to_string_lossy();
-            let (path, cached) = with_state(a.lua, |s| {
+            let (path, checked) = with_state(a.lua, |s| {
                 let path = s.base_dir.join(&file);
-                let cached = s.mesh_cache.get(&path).copied();
-                (path, cached)
+                let checked = s.read_policy.check(&path, "mesh file");
+                (path, checked)
             });
-            match cached {
+            let canonical = checked.map_err(|e| a.error(e))?;
+            match with_state(a.lua, |s| s.mesh_cache.get(&canonical).copied()) {
                 Some(id) => id,
                 None => {
                     let mesh = crate::scene::obj::load_obj(&path, &name).map_err(|e| a.error(e))?;
+                    charge(a, mesh_bytes(&mesh), &format!("mesh file '{file}'"))?;
                     with_state(a.lua, |s| {
                         s.graph.meshes.push(mesh);
                         let id = s.graph.meshes.len() - 1;
-                        s.mesh_cache.insert(path, id);
+                        s.mesh_cache.insert(canonical, id);
                         id
                     })
                 }
@@ -215,6 +224,7 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
         }
         Value::Table(_) => {
             let mesh = inline_mesh(a, &name)?;
+            charge(a, mesh_bytes(&mesh), "the inline mesh")?;
             with_state(a.lua, |s| {
                 s.report.looks_pre2015 = true;
                 s.graph.meshes.push(mesh);
@@ -229,11 +239,13 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
             ))
         }
     };
-    Ok(new_node(
-        a.lua,
-        name,
-        geometry(Primitive::Mesh(id), DMat4::IDENTITY),
-    ))
+    new_node(a, name, geometry(Primitive::Mesh(id), DMat4::IDENTITY))
+}
+
+/// Bytes a mesh holds in the scene graph.
+fn mesh_bytes(mesh: &Mesh) -> u64 {
+    let vertex = std::mem::size_of::<DVec3>() + if mesh.uvs.is_some() { 8 } else { 0 };
+    (mesh.positions.len() * vertex + mesh.triangles.len() * 12 + mesh.name.len()) as u64
 }
 
 /// The inline form: 0-based indices, polygons of 3+ corners fan-triangulated.
@@ -422,9 +434,9 @@ fn area_light(a: &Args) -> mlua::Result<LightHandle> {
     let centre = a.vec3(1, "centre")?;
     let u = a.vec3(2, "u")?;
     let v = a.vec3(3, "v")?;
-    // Parallel (or zero) edges span no area.
-    let area = u.cross(v).length();
-    if area.is_nan() || area <= 1e-12 * u.length() * v.length() || area == 0.0 {
+    // Parallel (or zero) edges span no area (compared scale-free, so huge or tiny
+    // edges neither overflow nor underflow the test).
+    if parallel_or_zero(u, v, 1e-24) {
         return Err(a.bad_in(
             3,
             "v",
@@ -479,13 +491,20 @@ pub(super) fn render(
     let output = PathBuf::from(a.string(2, "file")?);
     let width = a.positive_int(3, "width", MAX_IMAGE_SIDE)?;
     let height = a.positive_int(4, "height", MAX_IMAGE_SIDE)?;
+    if u64::from(width) * u64::from(height) > MAX_PIXELS {
+        return Err(a.bad_in(
+            4,
+            "height",
+            format!("a {width}×{height} image has more than glint's limit of {MAX_PIXELS} pixels"),
+        ));
+    }
     let eye = a.vec3(5, "eye")?;
     let view = a.vec3(6, "view")?;
     if view == DVec3::ZERO {
         return Err(a.bad(6, "view", "a non-zero direction"));
     }
     let up = a.vec3(7, "up")?;
-    if up.cross(view).length_squared() <= 1e-24 * up.length_squared() * view.length_squared() {
+    if parallel_or_zero(view, up, CAMERA_PARALLEL_SIN2) {
         return Err(a.bad(7, "up", "a non-zero direction not parallel to view"));
     }
     let fov_deg = match super::args::finite(a.get(8)) {
@@ -529,11 +548,15 @@ pub(super) fn render(
         lights,
         options,
         location: location(lua),
+        memory_left: memory_left(lua),
     };
     let state = lua
         .app_data_ref::<super::State>()
         .expect("script state is installed");
+    // Renders do not count against the script's time limit.
+    state.clock.pause();
     let result = on_render(&state.graph, &request);
+    state.clock.resume();
     drop(state);
     match result {
         Ok(()) => {

@@ -9,7 +9,7 @@
 
 use super::args::Args;
 use super::with_state;
-use crate::scene::{Light, Material, Node, NodeId, NodeKind};
+use crate::scene::{Light, Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
 use mlua::{MetaMethod, MultiValue, UserData, UserDataMethods};
 
@@ -90,44 +90,152 @@ fn compose(a: &Args, op: DMat4) -> mlua::Result<()> {
     Ok(())
 }
 
+/// Most nodes the cycle checks of one script may visit in all (about a second): each
+/// check costs about the smaller of the child's subtree and the parent's ancestors, so
+/// only graphs that add large subtrees under nodes with many ancestors, over and over,
+/// reach it.
+pub const MAX_CYCLE_CHECK_VISITS: u64 = 1 << 26;
+
 fn add_child(a: &Args) -> mlua::Result<()> {
     let parent = a.receiver::<NodeHandle>("node")?.0;
     let child = a.node(1, "child")?;
-    let cycle = with_state(a.lua, |s| {
-        reaches(&s.graph.nodes, child, parent).then(|| {
+    let check = with_state(a.lua, |s| {
+        let budget = MAX_CYCLE_CHECK_VISITS.saturating_sub(s.cycle_check_visits);
+        let (cycle, visits) = makes_cycle(s, parent, child, budget);
+        s.cycle_check_visits += visits;
+        let names = || {
             (
                 s.graph.nodes[child].name.clone(),
                 s.graph.nodes[parent].name.clone(),
             )
-        })
+        };
+        match cycle {
+            Some(true) => Err(Some(names())),
+            Some(false) => Ok(()),
+            None => Err(None),
+        }
     });
-    if let Some((c, p)) = cycle {
-        return Err(a.bad_in(
-            1,
-            "child",
-            format!("adding node '{c}' under node '{p}' would make a cycle"),
-        ));
+    match check {
+        Ok(()) => {}
+        Err(Some((c, p))) => {
+            return Err(a.bad_in(
+                1,
+                "child",
+                format!("adding node '{c}' under node '{p}' would make a cycle"),
+            ))
+        }
+        Err(None) => {
+            return Err(a.error(format!(
+                "the cycle checks of this script's add_child calls have visited more than {MAX_CYCLE_CHECK_VISITS} nodes; build the graph bottom-up (add children to nodes that have no parent yet)"
+            )))
+        }
     }
-    with_state(a.lua, |s| s.graph.nodes[parent].children.push(child));
+    with_state(a.lua, |s| {
+        s.graph.nodes[parent].children.push(child);
+        s.add_parent(child, parent);
+    });
     Ok(())
 }
 
-/// Whether `to` is `from` or one of its descendants (children, or a CSG node's operands).
-fn reaches(nodes: &[Node], from: NodeId, to: NodeId) -> bool {
-    let mut stack = vec![from];
-    let mut seen = vec![false; nodes.len()];
-    while let Some(n) = stack.pop() {
-        if n == to {
-            return true;
+/// Whether adding `child` under `parent` would make a cycle (None: the search passed
+/// `budget` visits), and the visits it took. A cycle needs a path from `child` down to
+/// `parent`: searched downwards from `child` and upwards from `parent` in turns, so the
+/// answer costs about twice the smaller of the two (a parent nobody holds yet, or a
+/// child that holds nothing, answers at once).
+fn makes_cycle(
+    s: &mut super::State,
+    parent: NodeId,
+    child: NodeId,
+    budget: u64,
+) -> (Option<bool>, u64) {
+    if child == parent {
+        return (Some(true), 0);
+    }
+    let n = s.graph.nodes.len();
+    s.parents.resize(n, Vec::new());
+    let search = &mut s.cycle_search;
+    search.start(n);
+    let nodes = &s.graph.nodes;
+    let parents = &s.parents;
+    // The i-th node below / above `node` (children, then a CSG node's operands).
+    let below = |node: NodeId, i: usize| {
+        let children = &nodes[node].children;
+        match (children.get(i), &nodes[node].kind) {
+            (Some(&c), _) => Some(c),
+            (None, NodeKind::Csg { a, b, .. }) => [*a, *b].get(i - children.len()).copied(),
+            (None, _) => None,
         }
-        if !std::mem::replace(&mut seen[n], true) {
-            stack.extend(&nodes[n].children);
-            if let NodeKind::Csg { a, b, .. } = nodes[n].kind {
-                stack.extend([a, b]);
+    };
+    let above = |node: NodeId, i: usize| parents[node].get(i).copied();
+    // Depth-first, one edge per step (a node with 10⁵ children costs one step, not 10⁵).
+    let mut down: Vec<(NodeId, usize)> = vec![(child, 0)];
+    let mut up: Vec<(NodeId, usize)> = vec![(parent, 0)];
+    search.visit(child, 0);
+    search.visit(parent, 1);
+    let mut visits = 0;
+    loop {
+        for (which, stack, target) in [(0, &mut down, parent), (1, &mut up, child)] {
+            let Some(top) = stack.last_mut() else {
+                // One search is exhausted without meeting its target: no cycle.
+                return (Some(false), visits);
+            };
+            let (node, i) = *top;
+            top.1 += 1;
+            let next = if which == 0 {
+                below(node, i)
+            } else {
+                above(node, i)
+            };
+            match next {
+                None => {
+                    stack.pop();
+                }
+                Some(m) if m == target => return (Some(true), visits),
+                Some(m) => {
+                    if search.visit(m, which) {
+                        stack.push((m, 0));
+                    }
+                }
             }
+            visits += 1;
+        }
+        if visits > budget {
+            return (None, visits);
         }
     }
-    false
+}
+
+/// Visited marks for the two searches of [`makes_cycle`], reset in O(1) per check by
+/// a new epoch instead of clearing.
+#[derive(Default)]
+pub(crate) struct CycleSearch {
+    epoch: u32,
+    marks: [Vec<u32>; 2],
+}
+
+impl CycleSearch {
+    fn start(&mut self, nodes: usize) {
+        for m in &mut self.marks {
+            m.resize(nodes, 0);
+        }
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            for m in &mut self.marks {
+                m.fill(0);
+            }
+            self.epoch = 1;
+        }
+    }
+
+    /// Marks `node` in search `which`; false when it was already marked.
+    fn visit(&mut self, node: NodeId, which: usize) -> bool {
+        let mark = &mut self.marks[which][node];
+        if *mark == self.epoch {
+            return false;
+        }
+        *mark = self.epoch;
+        true
+    }
 }
 
 fn set_material(a: &Args) -> mlua::Result<()> {

@@ -4,8 +4,8 @@
 //! per script.
 
 use super::args::Args;
-use super::with_state;
-use crate::scene::texture::load_texture;
+use super::{charge, memory_left, with_state};
+use crate::scene::texture::{load_texture, texture_bytes};
 use crate::scene::{Material, TextureId};
 use mlua::Value;
 use std::sync::Arc;
@@ -61,22 +61,32 @@ pub(super) fn set_bump(a: &Args) -> mlua::Result<Edit> {
     }))
 }
 
-/// Argument `n`, a file name, as a texture of the scene graph (loaded on first use).
+/// Argument `n`, a file name, as a texture of the scene graph (loaded on first use; a
+/// file is one texture under any spelling of its path). Its texels are counted against
+/// the memory budget from the image's header, before it is decoded.
 fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
     let file = a.string(n, name)?;
-    let (path, cached) = with_state(a.lua, |s| {
+    let (path, checked) = with_state(a.lua, |s| {
         let path = s.base_dir.join(&file);
-        let cached = s.texture_cache.get(&path).copied();
-        (path, cached)
+        let checked = s.read_policy.check(&path, "texture");
+        (path, checked)
     });
-    if let Some(id) = cached {
+    let canonical = checked.map_err(|e| a.bad_in(n, name, e))?;
+    if let Some(id) = with_state(a.lua, |s| s.texture_cache.get(&canonical).copied()) {
         return Ok(id);
     }
-    let texture = load_texture(&path).map_err(|e| a.bad_in(n, name, e))?;
+    // Room for the texels and the decoder's transient copy of them.
+    let left = memory_left(a.lua) / 3;
+    let texture = load_texture(&path, left).map_err(|e| a.bad_in(n, name, e))?;
+    charge(
+        a,
+        texture_bytes(texture.width, texture.height),
+        &format!("texture '{file}'"),
+    )?;
     Ok(with_state(a.lua, |s| {
         s.graph.textures.push(Arc::new(texture));
         let id = s.graph.textures.len() - 1;
-        s.texture_cache.insert(path, id);
+        s.texture_cache.insert(canonical, id);
         id
     }))
 }

@@ -3,14 +3,19 @@
 //! A scene is a program downloaded from a course page or a classmate: it gets base,
 //! table, string, math, utf8, coroutine and `os.clock/time/date`, nothing that touches
 //! files or processes, text chunks only, and instruction and memory limits so that a
-//! runaway loop ends with a message instead of a hung terminal. Removed functions are
-//! replaced by stubs that say so, which reads better than "attempt to call a nil value".
+//! runaway loop ends with a message instead of a hung terminal (and a wall-clock limit,
+//! `watchdog`, for time the hook cannot see). Finalizers (`__gc`) are refused: Lua runs
+//! them with hooks off, and at the very end, after the script's state is gone. Removed
+//! functions are replaced by stubs that say so, which reads better than "attempt to
+//! call a nil value".
 //!
 //! Compatibility with the pre-2015 scenes: bare `unpack`, `require` of modules beside
 //! the scene, and `readobj` as a built-in (their `readobj.lua` helper needed `io`).
 
 use super::args::{location, Args};
-use super::{with_state, ScriptConfig};
+use super::watchdog::ScriptClock;
+use super::{charge, with_state, ScriptConfig};
+use crate::scene::files::{read_regular, MAX_FILE_BYTES};
 use mlua::chunk::ChunkMode;
 use mlua::{HookTriggers, Lua, LuaOptions, MultiValue, StdLib, Table, Value, VmState};
 use std::cell::Cell;
@@ -23,12 +28,19 @@ const LOADED_KEY: &str = "glint.loaded";
 /// be hidden by a `pcall` in the script).
 #[derive(Default)]
 pub(super) struct Limits {
-    /// The instruction-limit message, once the limit is passed.
-    pub instructions_exceeded: Rc<Cell<Option<String>>>,
+    /// The instruction- or time-limit message, once a limit is passed.
+    pub exceeded: Rc<Cell<Option<String>>>,
+    /// `file:line` where the hook last ran (memory errors carry no position).
+    pub last_location: Rc<Cell<Option<String>>>,
 }
 
-/// Creates the Lua state with the safe libraries and the limits of `config`.
-pub(super) fn new_lua(config: &ScriptConfig, limits: &Limits) -> mlua::Result<Lua> {
+/// Creates the Lua state with the safe libraries and the limits of `config`; `clock`
+/// says when the wall-clock limit has passed.
+pub(super) fn new_lua(
+    config: &ScriptConfig,
+    limits: &Limits,
+    clock: ScriptClock,
+) -> mlua::Result<Lua> {
     let libs = StdLib::TABLE
         | StdLib::STRING
         | StdLib::MATH
@@ -43,16 +55,14 @@ pub(super) fn new_lua(config: &ScriptConfig, limits: &Limits) -> mlua::Result<Lu
     let limit = config.instruction_limit;
     let step = (limit / 1000).clamp(1, 100_000);
     let count = Cell::new(0u64);
-    let exceeded = limits.instructions_exceeded.clone();
+    let exceeded = limits.exceeded.clone();
+    let last_location = limits.last_location.clone();
+    let seconds = config.time_limit.as_secs_f64();
     // A global hook covers coroutines too.
     lua.set_global_hook(
         HookTriggers::new().every_nth_instruction(step as u32),
         move |_lua, debug| {
             count.set(count.get() + step);
-            if count.get() <= limit {
-                return Ok(VmState::Continue);
-            }
-
             let src = debug.source();
             let name = match src.source.as_deref() {
                 Some(s) if s.starts_with('@') => s[1..].to_string(),
@@ -61,8 +71,16 @@ pub(super) fn new_lua(config: &ScriptConfig, limits: &Limits) -> mlua::Result<Lu
             let line = debug
                 .current_line()
                 .map_or(String::new(), |l| format!(":{l}"));
-            let message =
-                format!("{name}{line}: instruction limit of {limit} exceeded — runaway loop?");
+            let timed_out = clock.expired();
+            if count.get() <= limit && !timed_out {
+                last_location.set(Some(format!("{name}{line}")));
+                return Ok(VmState::Continue);
+            }
+            let message = if timed_out {
+                format!("{name}{line}: script time limit of {seconds} s exceeded (renders not counted); --script-timeout SECONDS raises it")
+            } else {
+                format!("{name}{line}: instruction limit of {limit} exceeded — runaway loop?")
+            };
             // Keep the first place it was noticed; later hook calls only re-raise.
             let first = exceeded.take().unwrap_or(message);
             exceeded.set(Some(first.clone()));
@@ -109,6 +127,30 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     )
     .set_name("=glint")
     .call::<()>(g.get::<Value>("load")?)?;
+
+    // No finalizers: Lua runs `__gc` with hooks off (no limit can stop it) and at the
+    // end, when the Lua state closes after the script's state was taken; an error in one
+    // is swallowed. Lua marks an object for finalization only when `setmetatable` gives
+    // it a metatable that already has a `__gc` field, so checking there is enough
+    // (`debug.setmetatable` is not available; userdata metatables are protected).
+    lua.load(
+        r#"
+        local raw_setmetatable, rawget, type, error = ...
+        setmetatable = function(t, mt)
+            if type(mt) == 'table' and rawget(mt, '__gc') ~= nil then
+                error("setmetatable: finalizers (__gc) are not available in glint scenes", 2)
+            end
+            return raw_setmetatable(t, mt)
+        end
+        "#,
+    )
+    .set_name("=glint")
+    .call::<()>((
+        g.get::<Value>("setmetatable")?,
+        g.get::<Value>("rawget")?,
+        g.get::<Value>("type")?,
+        g.get::<Value>("error")?,
+    ))?;
 
     let loaded = lua.create_table()?;
     lua.set_named_registry_value(LOADED_KEY, &loaded)?;
@@ -180,15 +222,15 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     if !cached.is_nil() {
         return Ok(cached);
     }
-    let path = with_state(lua, |s| {
-        s.base_dir.join(format!("{}.lua", name.replace('.', "/")))
+    let (path, checked) = with_state(lua, |s| {
+        let path = s.base_dir.join(format!("{}.lua", name.replace('.', "/")));
+        let checked = s.read_policy.check(&path, "module");
+        (path, checked)
     });
-    let source = std::fs::read(&path).map_err(|e| {
-        a.error(format!(
-            "module '{name}' not found: cannot read '{}': {e}",
-            path.display()
-        ))
-    })?;
+    let source = checked
+        .and_then(|_| read_regular(&path, "module", MAX_FILE_BYTES))
+        .map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
+    charge(&a, source.len() as u64, &format!("module '{name}'"))?;
     let value: Value = lua
         .load(&source[..])
         .set_name(format!("@{}", path.display()))
@@ -208,10 +250,13 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
 fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     let a = Args::new(lua, "readobj", args);
     let file = a.string(1, "path")?;
-    let path = with_state(lua, |s| {
+    let (path, checked) = with_state(lua, |s| {
         s.report.looks_pre2015 = true;
-        s.base_dir.join(&file)
+        let path = s.base_dir.join(&file);
+        let checked = s.read_policy.check(&path, "mesh file");
+        (path, checked)
     });
+    checked.map_err(|e| a.error(e))?;
     let (verts, faces) = crate::scene::obj::read_obj_raw(&path).map_err(|e| a.error(e))?;
     let vt = lua.create_table_with_capacity(verts.len(), 0)?;
     for v in verts {

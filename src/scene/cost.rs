@@ -1,0 +1,221 @@
+//! What a render will cost, counted from the scene graph before anything is built.
+//!
+//! Instancing makes a DAG: a node under two parents is flattened twice, so a graph of 40
+//! nodes whose instances double at each level flattens into 2⁴⁰ objects. The counts here
+//! come from the DAG's path counts (one memoised pass over the nodes reachable from the
+//! root), so a render is refused before flattening starts when it would not fit the
+//! memory budget. The byte figures are upper estimates of what flattening, packing, the
+//! grid and the film hold per item (with the slack of growing vectors).
+
+use super::flatten::{FlattenError, MAX_NODE_DEPTH};
+use super::{NodeId, NodeKind, Primitive, SceneGraph};
+use crate::constants::CSG_MAX_DEPTH;
+
+/// Bytes per flattened analytic object: `Object` (with its transform), its packed
+/// instance, its grid bounds and cell references, doubled for vector growth.
+pub const OBJECT_BYTES: u64 = 768;
+/// Bytes per flattened triangle: world positions, UVs, packed triangle and UVs, grid
+/// bounds and references, doubled for vector growth.
+pub const TRIANGLE_BYTES: u64 = 512;
+/// Bytes per image pixel: the f32 film, the 8-bit copy written out, and adaptive
+/// anti-aliasing's per-pixel bookkeeping.
+pub const PIXEL_BYTES: u64 = 32;
+/// Bytes per texel of the packed texture copy the tracers read.
+pub const TEXEL_BYTES: u64 = 4;
+/// Most node visits one flattening may make (paths from the root through the DAG,
+/// including transform nodes that hold no geometry): a bound on its time.
+pub const MAX_PATHS: u64 = 1 << 26;
+
+/// The counts of one render's scene, from [`scene_cost`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneCost {
+    /// Node visits flattening makes (root-to-node paths).
+    pub paths: u64,
+    /// Analytic objects, CSG leaves included.
+    pub objects: u64,
+    pub triangles: u64,
+    /// Bytes of the objects' path names (`root/arm/hand`).
+    pub name_bytes: u64,
+}
+
+impl SceneCost {
+    /// Estimated bytes to flatten, pack and grid the scene (not the film).
+    pub fn bytes(&self) -> u64 {
+        self.objects
+            .saturating_mul(OBJECT_BYTES)
+            .saturating_add(self.triangles.saturating_mul(TRIANGLE_BYTES))
+            .saturating_add(self.name_bytes)
+    }
+}
+
+/// Per node: its counts and the height of the DAG below it (for the depth limit).
+#[derive(Clone, Copy)]
+struct Memo {
+    cost: SceneCost,
+    height: usize,
+}
+
+/// Counts what flattening the graph below `root` would make. Errors when a path is
+/// deeper than [`MAX_NODE_DEPTH`] (as flattening would).
+pub fn scene_cost(graph: &SceneGraph, root: NodeId) -> Result<SceneCost, FlattenError> {
+    let mut memo: Vec<Option<Memo>> = vec![None; graph.nodes.len()];
+    let mut path = Vec::new();
+    count(graph, root, &mut memo, &mut path).map(|m| m.cost)
+}
+
+fn count(
+    graph: &SceneGraph,
+    id: NodeId,
+    memo: &mut [Option<Memo>],
+    path: &mut Vec<NodeId>,
+) -> Result<Memo, FlattenError> {
+    path.push(id);
+    let too_deep = || FlattenError::TooDeep {
+        path: path
+            .iter()
+            .map(|&n| graph.nodes[n].name.as_str())
+            .collect::<Vec<_>>()
+            .join("/"),
+    };
+    if let Some(m) = memo[id] {
+        if path.len() + m.height > MAX_NODE_DEPTH + 1 {
+            return Err(too_deep());
+        }
+        path.pop();
+        return Ok(m);
+    }
+    if path.len() > MAX_NODE_DEPTH {
+        return Err(too_deep());
+    }
+    let node = &graph.nodes[id];
+    let name_len = node.name.len() as u64;
+    let mut cost = SceneCost {
+        paths: 1,
+        ..SceneCost::default()
+    };
+    match node.kind {
+        NodeKind::Geometry {
+            primitive: Primitive::Mesh(mesh),
+            ..
+        } => {
+            cost.triangles = graph
+                .meshes
+                .get(mesh)
+                .map_or(0, |m| m.triangles.len() as u64);
+        }
+        NodeKind::Geometry { .. } => {
+            cost.objects = 1;
+            cost.name_bytes = name_len;
+        }
+        NodeKind::Csg { .. } => {
+            let leaves = csg_leaves(graph, id, 1);
+            cost.objects = leaves;
+            // Each leaf is named by the CSG node's path and its own below it.
+            cost.name_bytes = leaves.saturating_mul(name_len.saturating_add(64));
+        }
+        NodeKind::Transform => {}
+    }
+    let mut height = 1;
+    for &child in &node.children {
+        let c = count(graph, child, memo, path)?;
+        height = height.max(c.height + 1);
+        cost.paths = cost.paths.saturating_add(c.cost.paths);
+        cost.objects = cost.objects.saturating_add(c.cost.objects);
+        cost.triangles = cost.triangles.saturating_add(c.cost.triangles);
+        // Every object below gets this node's name and a separator in its path.
+        cost.name_bytes = cost
+            .name_bytes
+            .saturating_add(c.cost.name_bytes)
+            .saturating_add(c.cost.objects.saturating_mul(name_len + 1));
+    }
+    let m = Memo { cost, height };
+    memo[id] = Some(m);
+    path.pop();
+    Ok(m)
+}
+
+/// Leaves of the CSG tree at `id` (operands deeper than the CSG depth limit are not
+/// counted: flattening refuses them).
+fn csg_leaves(graph: &SceneGraph, id: NodeId, depth: u32) -> u64 {
+    match graph.nodes[id].kind {
+        NodeKind::Csg { a, b, .. } if depth <= CSG_MAX_DEPTH => {
+            csg_leaves(graph, a, depth + 1).saturating_add(csg_leaves(graph, b, depth + 1))
+        }
+        NodeKind::Csg { .. } => 0,
+        _ => 1,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Node;
+    use glam::DMat4;
+
+    fn node(name: &str, kind: NodeKind, children: Vec<NodeId>) -> Node {
+        Node {
+            name: name.into(),
+            kind,
+            matrix: DMat4::IDENTITY,
+            children,
+            material: None,
+        }
+    }
+
+    fn sphere() -> NodeKind {
+        NodeKind::Geometry {
+            primitive: Primitive::Sphere,
+            placement: DMat4::IDENTITY,
+        }
+    }
+
+    #[test]
+    fn doubling_dag_is_counted_without_walking_it() {
+        // n0 = sphere; n(k) has n(k-1) twice: 2^k spheres below n(k).
+        let mut graph = SceneGraph::default();
+        graph.nodes.push(node("s", sphere(), vec![]));
+        for k in 1..=60 {
+            graph.nodes.push(node(
+                &format!("n{k}"),
+                NodeKind::Transform,
+                vec![k - 1, k - 1],
+            ));
+        }
+        let c = scene_cost(&graph, 40).unwrap();
+        assert_eq!(c.objects, 1 << 40);
+        assert_eq!(c.paths, (1 << 41) - 1);
+        let c = scene_cost(&graph, 60).unwrap();
+        assert_eq!(c.objects, 1 << 60);
+        assert!(c.bytes() == u64::MAX || c.bytes() > 1 << 60);
+    }
+
+    #[test]
+    fn counts_match_a_small_tree() {
+        let mut graph = SceneGraph::default();
+        graph.nodes.push(node("ab", sphere(), vec![]));
+        graph
+            .nodes
+            .push(node("root", NodeKind::Transform, vec![0, 0]));
+        let c = scene_cost(&graph, 1).unwrap();
+        assert_eq!(c.objects, 2);
+        // Two objects named "root/ab".
+        assert_eq!(c.name_bytes, 2 * 7);
+        assert_eq!(c.paths, 3);
+    }
+
+    #[test]
+    fn deep_chains_are_refused_even_when_shared() {
+        let mut graph = SceneGraph::default();
+        graph.nodes.push(node("leaf", sphere(), vec![]));
+        for k in 1..=300 {
+            graph
+                .nodes
+                .push(node("t", NodeKind::Transform, vec![k - 1]));
+        }
+        assert!(matches!(
+            scene_cost(&graph, 300),
+            Err(FlattenError::TooDeep { .. })
+        ));
+        assert!(scene_cost(&graph, 200).is_ok());
+    }
+}

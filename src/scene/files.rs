@@ -1,0 +1,178 @@
+//! Reading the files a scene names (its script, modules, meshes, textures) as a hostile
+//! scene cannot abuse them: regular files only (a FIFO would block, `/dev/zero` would
+//! never end), at most a size cap, and only under the folders the scene may read — its
+//! own folder and those given by `--allow-read` — after resolving `..` and symbolic
+//! links, in the spirit of POV-Ray's I/O restrictions. A refusal names the path and the
+//! flag that widens the rule.
+
+use std::fs::{File, OpenOptions};
+use std::io::Read;
+use std::os::unix::fs::OpenOptionsExt;
+use std::path::{Path, PathBuf};
+
+/// Largest file a scene may read (a mesh, texture or module), in bytes.
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
+
+/// How many characters of a file that is not the scene's own an error may quote.
+pub const MAX_EXCERPT_CHARS: usize = 24;
+
+/// The folders a scene may read from, as canonical paths.
+#[derive(Clone, Debug, Default)]
+pub struct ReadPolicy {
+    roots: Vec<PathBuf>,
+    /// The flag's wording for messages (`--allow-read DIR`).
+    flag: &'static str,
+}
+
+impl ReadPolicy {
+    /// The scene's own folder plus `extra` folders. Folders that do not exist are left
+    /// out (nothing under them can be read anyway).
+    pub fn new(scene_dir: &Path, extra: &[PathBuf]) -> ReadPolicy {
+        let scene_dir = if scene_dir.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            scene_dir
+        };
+        let roots = std::iter::once(scene_dir)
+            .chain(extra.iter().map(PathBuf::as_path))
+            .filter_map(|d| d.canonicalize().ok())
+            .collect();
+        ReadPolicy {
+            roots,
+            flag: "--allow-read DIR",
+        }
+    }
+
+    /// The canonical form of `path` if the scene may read it, else why not.
+    pub fn check(&self, path: &Path, what: &str) -> Result<PathBuf, String> {
+        let canonical = path
+            .canonicalize()
+            .map_err(|e| format!("cannot read {what} '{}': {e}", path.display()))?;
+        if self.roots.iter().any(|root| canonical.starts_with(root)) {
+            return Ok(canonical);
+        }
+        let roots: Vec<String> = self.roots.iter().map(|r| r.display().to_string()).collect();
+        Err(format!(
+            "cannot read {what} '{}': it is outside the folders this scene may read ({}); {} allows another folder",
+            path.display(),
+            roots.join(", "),
+            self.flag
+        ))
+    }
+}
+
+/// Opens `path` for reading without blocking on a FIFO, and checks that it is a regular
+/// file of at most `cap` bytes. Returns the file and its size.
+pub fn open_regular(path: &Path, what: &str, cap: u64) -> Result<(File, u64), String> {
+    let cannot = |e: std::io::Error| format!("cannot read {what} '{}': {e}", path.display());
+    // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer forever.
+    let file = OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)
+        .map_err(cannot)?;
+    let meta = file.metadata().map_err(cannot)?;
+    if !meta.is_file() {
+        return Err(format!(
+            "cannot read {what} '{}': not a regular file",
+            path.display()
+        ));
+    }
+    if meta.len() > cap {
+        return Err(format!(
+            "cannot read {what} '{}': it is {} bytes, over the limit of {cap} bytes",
+            path.display(),
+            meta.len()
+        ));
+    }
+    Ok((file, meta.len()))
+}
+
+/// Reads a whole regular file of at most `cap` bytes (see [`open_regular`]). A file that
+/// grows while being read is cut at `cap + 1` bytes and refused.
+pub fn read_regular(path: &Path, what: &str, cap: u64) -> Result<Vec<u8>, String> {
+    let (file, len) = open_regular(path, what, cap)?;
+    let mut bytes = Vec::new();
+    bytes
+        .try_reserve_exact(len as usize)
+        .map_err(|e| format!("cannot read {what} '{}': {e}", path.display()))?;
+    file.take(cap + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("cannot read {what} '{}': {e}", path.display()))?;
+    if bytes.len() as u64 > cap {
+        return Err(format!(
+            "cannot read {what} '{}': it grew past the limit of {cap} bytes while being read",
+            path.display()
+        ));
+    }
+    Ok(bytes)
+}
+
+/// At most [`MAX_EXCERPT_CHARS`] characters of `text`, for quoting a file's content.
+pub fn excerpt(text: &str) -> String {
+    if text.chars().count() <= MAX_EXCERPT_CHARS {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(MAX_EXCERPT_CHARS).collect();
+    format!("{head}…")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("glint-files-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn paths_outside_the_roots_are_refused_after_resolving_dots() {
+        let dir = scratch("policy");
+        std::fs::create_dir_all(dir.join("scene/tex")).unwrap();
+        std::fs::write(dir.join("scene/tex/a.png"), b"x").unwrap();
+        std::fs::write(dir.join("secret.txt"), b"x").unwrap();
+        let policy = ReadPolicy::new(&dir.join("scene"), &[]);
+        assert!(policy
+            .check(&dir.join("scene/tex/../tex/a.png"), "texture")
+            .is_ok());
+        let e = policy
+            .check(&dir.join("scene/../secret.txt"), "mesh")
+            .unwrap_err();
+        assert!(
+            e.contains("outside the folders") && e.contains("--allow-read"),
+            "{e}"
+        );
+        let wide = ReadPolicy::new(&dir.join("scene"), std::slice::from_ref(&dir));
+        assert!(wide.check(&dir.join("secret.txt"), "mesh").is_ok());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn special_and_oversized_files_are_refused() {
+        let e = read_regular(Path::new("/dev/zero"), "mesh", 100).unwrap_err();
+        assert!(e.contains("not a regular file"), "{e}");
+        let dir = scratch("size");
+        let p = dir.join("big.obj");
+        std::fs::write(&p, vec![b'#'; 101]).unwrap();
+        let e = read_regular(&p, "mesh", 100).unwrap_err();
+        assert!(e.contains("over the limit of 100 bytes"), "{e}");
+        assert_eq!(read_regular(&p, "mesh", 101).unwrap().len(), 101);
+        let fifo = dir.join("fifo");
+        let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+        // SAFETY: a valid NUL-terminated path.
+        assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+        let e = read_regular(&fifo, "texture", 100).unwrap_err();
+        assert!(e.contains("not a regular file"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn excerpts_are_short() {
+        assert_eq!(excerpt("short"), "short");
+        let long = "x".repeat(100);
+        assert_eq!(excerpt(&long).chars().count(), MAX_EXCERPT_CHARS + 1);
+    }
+}
