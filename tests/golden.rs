@@ -31,7 +31,12 @@ fn every_scene_matches_its_golden_image() {
     let bless = bless_requested();
     let golden_dir = root().join("tests/golden");
     let mut differing = Vec::new();
-    let scenes: Vec<_> = corpus_scenes().into_iter().chain(own_scenes()).collect();
+    // scenes/scrabble.lua renders at 1280×720; its golden is a small one, in tests/scrabble.rs.
+    let scenes: Vec<_> = corpus_scenes()
+        .into_iter()
+        .chain(own_scenes())
+        .filter(|p| !p.ends_with("scrabble.lua"))
+        .collect();
     for path in &scenes {
         let name = scene_name(path);
         let film = render_cpu(&load_packed(path, &OptionOverrides::default()));

@@ -1,14 +1,14 @@
-//! Textures, UVs and bump maps on the CPU reference tracer: the committed assets against
-//! their generator, texel layout and bilinear filtering, a texture on a fully lit matte
-//! quad reproducing itself (PNG and JPEG), each primitive's UV convention and tangent
-//! frame, the bump direction (a height ramp rising along u tilts the normal towards −u),
-//! the UV debug view, and the scene errors for bad texture arguments.
+//! Textures, UVs and bump maps on the CPU reference tracer: texel layout and bilinear
+//! filtering, a texture on a fully lit matte quad reproducing itself (PNG and JPEG), each
+//! primitive's UV convention and tangent frame, the bump direction (a height ramp rising
+//! along u tilts the normal towards −u), the UV debug view, and the scene errors for bad
+//! texture arguments. (The committed assets are checked by tests/texture_assets.rs.)
 
 mod common;
 #[path = "texture_support/mod.rs"]
 mod texture_support;
 
-use common::{bless_requested, packed_from_source, render_cpu, root, temp_dir};
+use common::{packed_from_source, render_cpu, temp_dir};
 use glam::{Vec2, Vec3};
 use glint::cpu::ray::Ray;
 use glint::cpu::surface::{surface_at, Surface};
@@ -19,37 +19,6 @@ use glint::pack::{GpuMaterial, PackedScene, SceneFeatures};
 use glint::scene::texture::Texture;
 use glint::scene::OptionOverrides;
 use std::path::{Path, PathBuf};
-
-/// `scenes/textures/`'s assets are what the generators make. `GLINT_BLESS=1` rewrites an
-/// asset that differs, and the run then fails naming it (a blessing is not a pass).
-#[test]
-fn committed_assets_match_their_generators() {
-    let dir = root().join("scenes/textures");
-    let bless = bless_requested();
-    let grid = texture_support::uv_grid();
-    let bumps = texture_support::bumps();
-    let mut differing = Vec::new();
-    let committed_grid = image::open(dir.join("uv-grid.png")).map(|i| i.to_rgb8());
-    if committed_grid.as_ref().ok() != Some(&grid) {
-        differing.push("uv-grid.png differs from texture_support::uv_grid");
-        if bless {
-            texture_support::save(&grid, &dir.join("uv-grid.png"));
-        }
-    }
-    let committed_bumps = image::open(dir.join("bumps.png")).map(|i| i.to_luma8());
-    if committed_bumps.as_ref().ok() != Some(&bumps) {
-        differing.push("bumps.png differs from texture_support::bumps");
-        if bless {
-            texture_support::save(&bumps, &dir.join("bumps.png"));
-        }
-    }
-    let action = if bless {
-        "GLINT_BLESS=1 rewrote it; review and commit"
-    } else {
-        "GLINT_BLESS=1 rewrites it"
-    };
-    assert!(differing.is_empty(), "{} ({action})", differing.join("; "));
-}
 
 /// A texture packed from raw texels (for filtering tests).
 fn texture(width: u32, height: u32, rgba: Vec<[u8; 4]>) -> Texture {
