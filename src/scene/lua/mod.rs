@@ -279,7 +279,7 @@ pub(crate) fn charge(a: &args::Args, bytes: u64, what: &str) -> mlua::Result<()>
             Ok(())
         }
         Err((charged, limit)) => Err(a.error(format!(
-            "{what} ({} MiB) would go over the memory budget of {} MiB (the scene holds {} MiB, Lua {} MiB); --memory-limit MIB raises it",
+            "{what} ({} MiB) would go over the memory limit of {} MiB (the scene holds {} MiB, Lua {} MiB); --memory-limit MIB raises it",
             bytes.div_ceil(1 << 20),
             limit >> 20,
             charged >> 20,
@@ -333,7 +333,7 @@ fn convert_error(
                 .unwrap_or_else(|| chunk_name.to_string());
             SceneError::Limit {
                 message: format!(
-                    "{at}: the script went over the memory budget of {} MiB; --memory-limit MIB raises it",
+                    "{at}: the script went over the memory limit of {} MiB; --memory-limit MIB raises it",
                     config.memory_limit >> 20
                 ),
             }

@@ -77,7 +77,9 @@ pub(super) fn new_lua(
                 return Ok(VmState::Continue);
             }
             let message = if timed_out {
-                format!("{name}{line}: script time limit of {seconds} s exceeded (renders not counted); --script-timeout SECONDS raises it")
+                let m = format!("{name}{line}: script time limit of {seconds} s exceeded (renders not counted); --script-timeout SECONDS raises it");
+                clock.note(&m);
+                m
             } else {
                 format!("{name}{line}: instruction limit of {limit} exceeded — runaway loop?")
             };
