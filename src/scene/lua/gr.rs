@@ -333,8 +333,19 @@ fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
             triangles.push([ids[0], ids[k], ids[k + 1]]);
         }
     }
-    let uvs = if a.is_nil(4) {
-        None
+    let uvs = inline_uvs(a, n)?;
+    Ok(Mesh {
+        name: name.to_string(),
+        positions,
+        triangles,
+        uvs,
+    })
+}
+
+/// Argument 4 of the inline form: one `{u, v}` per vertex (`n` of them), if given.
+fn inline_uvs(a: &Args, n: usize) -> mlua::Result<Option<Vec<[f32; 2]>>> {
+    if a.is_nil(4) {
+        Ok(None)
     } else {
         let t = a.table(4, "uvs", "a table of {u, v} pairs, one per vertex")?;
         let mut uvs = Vec::with_capacity(n);
@@ -368,14 +379,8 @@ fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
                 format!("has {} pairs but there are {n} vertices", uvs.len()),
             ));
         }
-        Some(uvs)
-    };
-    Ok(Mesh {
-        name: name.to_string(),
-        positions,
-        triangles,
-        uvs,
-    })
+        Ok(Some(uvs))
+    }
 }
 
 /// `gr.material(kd, ks, shininess)` or `gr.material(name)`.
