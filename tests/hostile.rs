@@ -325,6 +325,22 @@ fn memory_spent_for_the_script_is_counted_before_it_is_spent() {
         3,
         &["scene.lua:", "memory limit"],
     ));
+    // A big OBJ file: refused before parsing when parsing it could not fit.
+    let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    obj.push_str(&"f 1 2 3\n".repeat(600_000));
+    for scene in ["gr.mesh('m', 'big.obj')\n", "readobj('big.obj')\n"] {
+        check(
+            Case::new(
+                "big-obj",
+                scene,
+                3,
+                &["scene.lua:1:", "big.obj", "memory limit"],
+            )
+            .file("big.obj", obj.clone())
+            .args(&["--memory-limit", "32"])
+            .within(20, 32 + OVERHEAD_MIB),
+        );
+    }
     // A plain Lua table: the message has the line.
     let table = "local t = {}\nfor i = 1, 1e9 do t[i] = i end\n";
     check(Case::new(

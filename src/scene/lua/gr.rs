@@ -5,9 +5,10 @@
 
 use super::args::{int_value, location, Args};
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
-use super::{charge, memory_left, options, with_state, OnRender};
+use super::{charge, check_file_cost, memory_left, options, with_state, OnRender};
 use crate::constants::{DEFAULT_SHADOW_SAMPLES, MAX_SHADOW_SAMPLES};
 use crate::scene::flatten::{parallel_or_zero, CAMERA_PARALLEL_SIN2, MAX_PIXELS};
+use crate::scene::obj::PARSE_BYTES_PER_BYTE;
 use crate::scene::{
     AreaLight, Camera, CsgOp, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest,
     TransformOrder,
@@ -211,6 +212,7 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
             match with_state(a.lua, |s| s.mesh_cache.get(&canonical).copied()) {
                 Some(id) => id,
                 None => {
+                    check_file_cost(a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
                     let mesh = crate::scene::obj::load_obj(&path, &name).map_err(|e| a.error(e))?;
                     charge(a, mesh_bytes(&mesh), &format!("mesh file '{file}'"))?;
                     with_state(a.lua, |s| {

@@ -16,6 +16,7 @@ use super::args::{location, Args};
 use super::watchdog::ScriptClock;
 use super::{charge, with_state, ScriptConfig};
 use crate::scene::files::{read_regular, MAX_FILE_BYTES};
+use crate::scene::obj::PARSE_BYTES_PER_BYTE;
 use mlua::chunk::ChunkMode;
 use mlua::{HookTriggers, Lua, LuaOptions, MultiValue, StdLib, Table, Value, VmState};
 use std::cell::Cell;
@@ -259,6 +260,7 @@ fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
         (path, checked)
     });
     checked.map_err(|e| a.error(e))?;
+    super::check_file_cost(&a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
     let (verts, faces) = crate::scene::obj::read_obj_raw(&path).map_err(|e| a.error(e))?;
     let vt = lua.create_table_with_capacity(verts.len(), 0)?;
     for v in verts {
