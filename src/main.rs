@@ -191,6 +191,7 @@ fn main() -> ExitCode {
 }
 
 fn render(args: RenderArgs) -> Result<(), (String, u8)> {
+    check_render_args(&args)?;
     let settings = glint::pipeline::RenderSettings {
         transform_order: args.transform_order.map(|o| match o {
             OrderArg::Pre => TransformOrder::Pre,
@@ -231,22 +232,6 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         debug: (args.debug == Some(DebugArg::AaSamples))
             .then_some(glint::pipeline::DebugImage::AaSamples),
     };
-    if let (Some(w), Some(h)) = (args.width, args.height) {
-        if u64::from(w) * u64::from(h) > MAX_PIXELS {
-            return Err((
-                format!(
-                    "--width {w} --height {h} is {} pixels, over glint's limit of {MAX_PIXELS}",
-                    u64::from(w) * u64::from(h)
-                ),
-                2,
-            ));
-        }
-    }
-    for dir in &args.allow_read {
-        if !dir.is_dir() {
-            return Err((format!("--allow-read {}: not a folder", dir.display()), 2));
-        }
-    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0) as usize)
         .build()
@@ -297,6 +282,27 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         }
         Err(e) => Err((e.to_string(), e.exit_code() as u8)),
     }
+}
+
+/// Checks of `render`'s flags that clap's value parsers cannot make alone (exit code 2).
+fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
+    if let (Some(w), Some(h)) = (args.width, args.height) {
+        if u64::from(w) * u64::from(h) > MAX_PIXELS {
+            return Err((
+                format!(
+                    "--width {w} --height {h} is {} pixels, over glint's limit of {MAX_PIXELS}",
+                    u64::from(w) * u64::from(h)
+                ),
+                2,
+            ));
+        }
+    }
+    for dir in &args.allow_read {
+        if !dir.is_dir() {
+            return Err((format!("--allow-read {}: not a folder", dir.display()), 2));
+        }
+    }
+    Ok(())
 }
 
 /// `glint info`: every adapter with its backend, type and key limits.

@@ -45,11 +45,12 @@ impl ReadPolicy {
 
     /// The canonical form of `path` if the scene may read it, else why not.
     pub fn check(&self, path: &Path, what: &str) -> Result<PathBuf, String> {
-        let canonical = path
-            .canonicalize()
-            .map_err(|e| format!("cannot read {what} '{}': {e}", path.display()))?;
-        if self.roots.iter().any(|root| canonical.starts_with(root)) {
-            return Ok(canonical);
+        let resolved = resolve(path);
+        if self.roots.iter().any(|root| resolved.starts_with(root)) {
+            // Inside: now a missing file may be reported as such.
+            return path
+                .canonicalize()
+                .map_err(|e| format!("cannot read {what} '{}': {e}", path.display()));
         }
         let roots: Vec<String> = self.roots.iter().map(|r| r.display().to_string()).collect();
         Err(format!(
@@ -59,6 +60,31 @@ impl ReadPolicy {
             self.flag
         ))
     }
+}
+
+/// `path` made absolute with `..` and symbolic links resolved as far as it exists, and
+/// taken as written beyond that, so that a path outside the allowed folders is refused
+/// the same way whether or not its file exists (no probing for files by the error).
+fn resolve(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut out = std::env::current_dir().unwrap_or_default();
+    for component in path.components() {
+        match component {
+            Component::Prefix(p) => out = PathBuf::from(p.as_os_str()),
+            Component::RootDir => out = PathBuf::from("/"),
+            Component::CurDir => {}
+            Component::ParentDir => {
+                out.pop();
+            }
+            Component::Normal(name) => {
+                out.push(name);
+                if let Ok(real) = out.canonicalize() {
+                    out = real;
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Opens `path` for reading without blocking on a FIFO, and checks that it is a regular

@@ -172,7 +172,7 @@ pub enum FlattenError {
         pixels: u64,
         limit: u64,
     },
-    #[error("the scene would take about {needed_mib} MiB to build and render ({objects} objects, {triangles} triangles, {pixels} pixels), over the {left_mib} MiB left of the memory budget (--memory-limit MIB)")]
+    #[error("the scene would take about {needed_mib} MiB to build and render ({objects} objects, {triangles} triangles, {pixels} pixels), over the {left_mib} MiB left of the memory limit (--memory-limit MIB)")]
     OverBudget {
         needed_mib: u64,
         left_mib: u64,

@@ -50,17 +50,17 @@ pub fn load_texture(path: &Path, max_bytes: u64) -> Result<Texture, String> {
             path.display()
         ));
     }
+    if format == Some(image::ImageFormat::Jpeg) {
+        check_jpeg_length(path, bytes.len() as u64, width, height)?;
+    }
     let needed = texture_bytes(width, height);
     if needed > max_bytes {
         return Err(format!(
-            "texture '{}' is {width}×{height} ({} MiB decoded), over the {} MiB left of the memory budget (--memory-limit MIB)",
+            "texture '{}' is {width}×{height} ({} MiB decoded), over the {} MiB left of the memory limit (--memory-limit MIB)",
             path.display(),
             needed.div_ceil(1 << 20),
             max_bytes >> 20
         ));
-    }
-    if format == Some(image::ImageFormat::Jpeg) {
-        check_jpeg_length(path, bytes.len() as u64, width, height)?;
     }
     let mut reader = reader()?;
     let mut limits = image::Limits::default();

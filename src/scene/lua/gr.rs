@@ -5,9 +5,10 @@
 
 use super::args::{int_value, location, Args};
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
-use super::{charge, memory_left, options, with_state, OnRender};
+use super::{charge, check_file_cost, memory_left, options, with_state, OnRender};
 use crate::constants::{DEFAULT_SHADOW_SAMPLES, MAX_SHADOW_SAMPLES};
 use crate::scene::flatten::{parallel_or_zero, CAMERA_PARALLEL_SIN2, MAX_PIXELS};
+use crate::scene::obj::PARSE_BYTES_PER_BYTE;
 use crate::scene::{
     AreaLight, Camera, CsgOp, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest,
     TransformOrder,
@@ -211,6 +212,7 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
             match with_state(a.lua, |s| s.mesh_cache.get(&canonical).copied()) {
                 Some(id) => id,
                 None => {
+                    check_file_cost(a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
                     let mesh = crate::scene::obj::load_obj(&path, &name).map_err(|e| a.error(e))?;
                     charge(a, mesh_bytes(&mesh), &format!("mesh file '{file}'"))?;
                     with_state(a.lua, |s| {
@@ -333,8 +335,19 @@ fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
             triangles.push([ids[0], ids[k], ids[k + 1]]);
         }
     }
-    let uvs = if a.is_nil(4) {
-        None
+    let uvs = inline_uvs(a, n)?;
+    Ok(Mesh {
+        name: name.to_string(),
+        positions,
+        triangles,
+        uvs,
+    })
+}
+
+/// Argument 4 of the inline form: one `{u, v}` per vertex (`n` of them), if given.
+fn inline_uvs(a: &Args, n: usize) -> mlua::Result<Option<Vec<[f32; 2]>>> {
+    if a.is_nil(4) {
+        Ok(None)
     } else {
         let t = a.table(4, "uvs", "a table of {u, v} pairs, one per vertex")?;
         let mut uvs = Vec::with_capacity(n);
@@ -368,14 +381,8 @@ fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
                 format!("has {} pairs but there are {n} vertices", uvs.len()),
             ));
         }
-        Some(uvs)
-    };
-    Ok(Mesh {
-        name: name.to_string(),
-        positions,
-        triangles,
-        uvs,
-    })
+        Ok(Some(uvs))
+    }
 }
 
 /// `gr.material(kd, ks, shininess)` or `gr.material(name)`.

@@ -75,6 +75,8 @@ fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
     if let Some(id) = with_state(a.lua, |s| s.texture_cache.get(&canonical).copied()) {
         return Ok(id);
     }
+    // The file is held while it is decoded.
+    super::check_file_cost(a, &path, 1, "texture")?;
     // Room for the texels and the decoder's transient copy of them.
     let left = memory_left(a.lua) / 3;
     let texture = load_texture(&path, left).map_err(|e| a.bad_in(n, name, e))?;

@@ -258,6 +258,30 @@ pub(crate) fn memory_left(lua: &Lua) -> u64 {
     })
 }
 
+/// Refuses to read the file at `path` when holding it while it is parsed or decoded
+/// (`factor` bytes per byte of file) would not fit the memory budget left. A file that
+/// cannot be examined passes here: reading it then reports why.
+pub(crate) fn check_file_cost(
+    a: &args::Args,
+    path: &Path,
+    factor: u64,
+    what: &str,
+) -> mlua::Result<()> {
+    let Ok(meta) = std::fs::metadata(path) else {
+        return Ok(());
+    };
+    let left = memory_left(a.lua);
+    if meta.is_file() && meta.len().saturating_mul(factor) > left {
+        return Err(a.error(format!(
+            "{what} '{}' is {} MiB; reading it may take up to {factor}× that, over the {} MiB left of the memory limit; --memory-limit MIB raises it",
+            path.display(),
+            meta.len().div_ceil(1 << 20),
+            left >> 20
+        )));
+    }
+    Ok(())
+}
+
 /// Counts `bytes` the scene is about to hold in Rust against the memory budget (with
 /// what the Lua heap holds now), or fails with a message naming the call's line. The Lua
 /// heap's own limit shrinks by the same amount, so both draw on one budget.
@@ -279,7 +303,7 @@ pub(crate) fn charge(a: &args::Args, bytes: u64, what: &str) -> mlua::Result<()>
             Ok(())
         }
         Err((charged, limit)) => Err(a.error(format!(
-            "{what} ({} MiB) would go over the memory budget of {} MiB (the scene holds {} MiB, Lua {} MiB); --memory-limit MIB raises it",
+            "{what} ({} MiB) would go over the memory limit of {} MiB (the scene holds {} MiB, Lua {} MiB); --memory-limit MIB raises it",
             bytes.div_ceil(1 << 20),
             limit >> 20,
             charged >> 20,
@@ -333,7 +357,7 @@ fn convert_error(
                 .unwrap_or_else(|| chunk_name.to_string());
             SceneError::Limit {
                 message: format!(
-                    "{at}: the script went over the memory budget of {} MiB; --memory-limit MIB raises it",
+                    "{at}: the script went over the memory limit of {} MiB; --memory-limit MIB raises it",
                     config.memory_limit >> 20
                 ),
             }

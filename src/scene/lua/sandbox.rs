@@ -16,6 +16,7 @@ use super::args::{location, Args};
 use super::watchdog::ScriptClock;
 use super::{charge, with_state, ScriptConfig};
 use crate::scene::files::{read_regular, MAX_FILE_BYTES};
+use crate::scene::obj::PARSE_BYTES_PER_BYTE;
 use mlua::chunk::ChunkMode;
 use mlua::{HookTriggers, Lua, LuaOptions, MultiValue, StdLib, Table, Value, VmState};
 use std::cell::Cell;
@@ -77,7 +78,9 @@ pub(super) fn new_lua(
                 return Ok(VmState::Continue);
             }
             let message = if timed_out {
-                format!("{name}{line}: script time limit of {seconds} s exceeded (renders not counted); --script-timeout SECONDS raises it")
+                let m = format!("{name}{line}: script time limit of {seconds} s exceeded (renders not counted); --script-timeout SECONDS raises it");
+                clock.note(&m);
+                m
             } else {
                 format!("{name}{line}: instruction limit of {limit} exceeded — runaway loop?")
             };
@@ -257,6 +260,7 @@ fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
         (path, checked)
     });
     checked.map_err(|e| a.error(e))?;
+    super::check_file_cost(&a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
     let (verts, faces) = crate::scene::obj::read_obj_raw(&path).map_err(|e| a.error(e))?;
     let vt = lua.create_table_with_capacity(verts.len(), 0)?;
     for v in verts {

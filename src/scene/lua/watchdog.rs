@@ -32,6 +32,9 @@ struct Shared {
     clock: Mutex<Clock>,
     wake: Condvar,
     expired: AtomicBool,
+    /// The hook's message (with the script's file and line) once it has raised the
+    /// limit, for the hard stop to repeat when a `pcall` keeps catching it.
+    message: Mutex<Option<String>>,
 }
 
 /// The shared clock; cheap to clone into the script state.
@@ -42,6 +45,12 @@ impl ScriptClock {
     /// Whether the script has used up its time.
     pub fn expired(&self) -> bool {
         self.0.expired.load(Ordering::Relaxed)
+    }
+
+    /// Records the hook's time-limit message (the first one is kept).
+    pub fn note(&self, message: &str) {
+        let mut m = self.0.message.lock().unwrap_or_else(|p| p.into_inner());
+        m.get_or_insert_with(|| message.to_string());
     }
 
     /// Stops counting (a render starts).
@@ -84,6 +93,7 @@ impl Watchdog {
             }),
             wake: Condvar::new(),
             expired: AtomicBool::new(false),
+            message: Mutex::new(None),
         });
         let clock = ScriptClock(shared.clone());
         let name = chunk_name.to_string();
@@ -136,10 +146,19 @@ fn watch(shared: &Shared, limit: Duration, hard_exit: bool, name: &str) {
         shared.expired.store(true, Ordering::Relaxed);
         let first = *expired_at.get_or_insert_with(Instant::now);
         if hard_exit && first.elapsed() >= GRACE {
-            eprintln!(
-                "glint: error: {name}: script time limit of {} s exceeded (the script is stuck where it cannot be interrupted, e.g. in a string pattern or a load reader); --script-timeout SECONDS raises the limit",
-                limit.as_secs_f64()
-            );
+            let noted = shared
+                .message
+                .lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .clone();
+            match noted {
+                // The hook raised it, but the script keeps catching it.
+                Some(message) => eprintln!("glint: error: {message}"),
+                None => eprintln!(
+                    "glint: error: {name}: script time limit of {} s exceeded (the script is stuck where it cannot be interrupted, e.g. in a string pattern or a load reader); --script-timeout SECONDS raises the limit",
+                    limit.as_secs_f64()
+                ),
+            }
             std::process::exit(EXIT_BAD_SCENE);
         }
         let wait = GRACE
