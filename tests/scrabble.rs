@@ -210,6 +210,11 @@ fn scaled_scene_renders_like_scale_one() {
             &failure_dir(),
         )
         .unwrap_or_else(|e| panic!("{e}"));
-        println!("{name}: {report}");
+        println!(
+            "{name}: FLIP mean {:.5}, {:.3}% within 2/255, RMSE {:.5}",
+            report.flip_mean,
+            100.0 * report.share_within(2.0 / 255.0),
+            report.rmse
+        );
     }
 }

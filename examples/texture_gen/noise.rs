@@ -1,6 +1,7 @@
 //! Periodic value noise from an integer hash: smooth, seeded, and tileable (the lattice
 //! wraps at the period), so a texture made from it repeats without a seam. Only integer
-//! arithmetic and + − × on floats: the same bytes on every platform.
+//! arithmetic and correctly rounded float operations (+ − × ÷, floor), no transcendental
+//! functions: the same bytes on every platform.
 
 /// A hash of a lattice point and a seed to [0, 1).
 fn hash(x: u32, y: u32, seed: u32) -> f32 {

@@ -1,7 +1,8 @@
 //! Reading the files a scene names (its script, modules, meshes, textures) as a hostile
 //! scene cannot abuse them: regular files only (a FIFO would block, `/dev/zero` would
 //! never end), at most a size cap, and only under the folders the scene may read — its
-//! own folder and those given by `--allow-read` — after resolving `..` and symbolic
+//! own folder, glint's own assets ([`GLINT_ASSETS`]) and those given by `--allow-read` —
+//! after resolving `..` and symbolic
 //! links, in the spirit of POV-Ray's I/O restrictions. A refusal names the path and the
 //! flag that widens the rule.
 
@@ -16,6 +17,11 @@ pub const MAX_FILE_BYTES: u64 = 1 << 30;
 /// How many characters of a file that is not the scene's own an error may quote.
 pub const MAX_EXCERPT_CHARS: usize = 24;
 
+/// glint's own assets: the `textures/` folder of the source tree the binary was built
+/// from (the generated textures and fonts that `scenes/` use), readable by every scene
+/// as POV-Ray's library path is.
+pub const GLINT_ASSETS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/textures");
+
 /// The folders a scene may read from, as canonical paths.
 #[derive(Clone, Debug, Default)]
 pub struct ReadPolicy {
@@ -25,15 +31,16 @@ pub struct ReadPolicy {
 }
 
 impl ReadPolicy {
-    /// The scene's own folder plus `extra` folders. Folders that do not exist are left
-    /// out (nothing under them can be read anyway).
+    /// The scene's own folder, [`GLINT_ASSETS`] and `extra` folders. Folders that do not
+    /// exist are left out (nothing under them can be read anyway).
     pub fn new(scene_dir: &Path, extra: &[PathBuf]) -> ReadPolicy {
         let scene_dir = if scene_dir.as_os_str().is_empty() {
             Path::new(".")
         } else {
             scene_dir
         };
-        let roots = std::iter::once(scene_dir)
+        let roots = [scene_dir, Path::new(GLINT_ASSETS)]
+            .into_iter()
             .chain(extra.iter().map(PathBuf::as_path))
             .filter_map(|d| d.canonicalize().ok())
             .collect();
