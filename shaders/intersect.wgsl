@@ -189,7 +189,7 @@ fn intersect_triangle(r: TriangleRay, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32
 }
 // #endif
 
-// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS|MESH
 // Object-space ray of an instance: origin and (unnormalised) direction through the
 // world→object rows.
 // Mirror of src/cpu/intersect.rs::to_object_space — change both.

@@ -6,7 +6,8 @@ use glint::gpu::buffers::GpuTile;
 use glint::gpu::probe::{ProbeRay, ProbeResult};
 use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
 use glint::pack::{
-    GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuTriangle, GpuTriangleUv, SceneFeatures,
+    GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuMesh, GpuTriangle, GpuTriangleUv,
+    SceneFeatures,
 };
 use std::mem::{offset_of, size_of};
 
@@ -62,7 +63,7 @@ fn wgsl_structs_match_rust_layout() {
         &render,
         rust_fields!(GpuTriangle {
             p0,
-            material,
+            _pad0,
             p1,
             _pad1,
             p2,
@@ -70,6 +71,19 @@ fn wgsl_structs_match_rust_layout() {
         }),
     );
     check_struct(&render, rust_fields!(GpuTriangleUv { uv0, uv1, uv2 }));
+    check_struct(
+        &render,
+        rust_fields!(GpuMesh {
+            grid_min,
+            first_cell,
+            grid_max,
+            first_triangle,
+            grid_cell_size,
+            num_triangles,
+            grid_dims,
+            _pad0
+        }),
+    );
     check_struct(
         &render,
         rust_fields!(GpuMaterial {

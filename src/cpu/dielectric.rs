@@ -19,7 +19,7 @@ use super::ray::{offset_ray, Ray};
 use super::shade::surface_at;
 use super::traverse::{closest_hit, NoCounters, TraversalCounters};
 use crate::constants::{
-    AIR_IOR, MATERIAL_REFRACTIVE, MAX_SHADOW_CROSSINGS, MEDIUM_STACK_SIZE, T_MISS,
+    AIR_IOR, KIND_MESH, MATERIAL_REFRACTIVE, MAX_SHADOW_CROSSINGS, MEDIUM_STACK_SIZE, T_MISS,
 };
 use crate::pack::PackedScene;
 use glam::Vec3;
@@ -254,10 +254,10 @@ pub fn camera_media(scene: &PackedScene) -> MediumStack {
         let left = s.normal.dot(ray.dir) > 0.0;
         if m.flags & MATERIAL_REFRACTIVE != 0 {
             // Triangles of one material form one solid; keys above the instances.
-            let key = if hit.item < g.num_instances {
-                hit.item
-            } else {
+            let key = if scene.instances[hit.item as usize].kind == KIND_MESH {
                 g.num_instances + s.material
+            } else {
+                hit.item
             };
             if !firsts.iter().any(|f| f.0 == key) {
                 firsts.push((key, (s.p - eye).length(), left, m.ior));

@@ -5,7 +5,9 @@
 pub mod adaptive;
 pub mod csg;
 pub mod cylinder_cone;
+pub mod dda;
 pub mod dielectric;
+pub mod hit;
 pub mod intersect;
 pub mod ray;
 pub mod render;
@@ -15,6 +17,7 @@ pub mod texture;
 pub mod torus;
 pub mod trace;
 pub mod traverse;
+pub mod traverse_mesh;
 pub mod uv;
 
 pub use render::{render, RenderProgress};

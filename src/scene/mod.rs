@@ -3,6 +3,7 @@
 //! never see these types, only the packed arrays made from them.
 
 pub mod flatten;
+pub mod instancing;
 pub mod lua;
 pub mod obj;
 pub mod options;
