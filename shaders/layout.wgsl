@@ -16,13 +16,11 @@ struct GpuInstance {
 }
 
 // Mirror of src/pack/layout.rs::GpuTriangle — change both.
+// (Corners as array<f32, 3>: 36 bytes a triangle, no vec3 padding.)
 struct GpuTriangle {
-    p0: vec3<f32>,
-    _pad0: u32,
-    p1: vec3<f32>,
-    _pad1: u32,
-    p2: vec3<f32>,
-    _pad2: u32,
+    p0: array<f32, 3>,
+    p1: array<f32, 3>,
+    p2: array<f32, 3>,
 }
 
 // A mesh: its triangles and its own uniform grid over them, in the mesh's space (cells

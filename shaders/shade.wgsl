@@ -128,10 +128,10 @@ fn mapped_magnitude(rows: array<vec4<f32>, 3>, magnitude: f32) -> f32 {
 // Mirror of src/cpu/shade.rs::mesh_surface — change both.
 fn mesh_surface(inst: GpuInstance, hit: Hit) -> Surface {
     let index = hit.part;
-    let tri = triangles[index];
-    let p0 = tri.p0;
-    let p1 = tri.p1;
-    let p2 = tri.p2;
+    let corners = triangle_vertices(triangles[index]);
+    let p0 = corners[0];
+    let p1 = corners[1];
+    let p2 = corners[2];
     // The barycentric point is exact to a few ulps of the vertices (unlike o + t·d).
     let b0 = 1.0 - hit.b1 - hit.b2;
     let p_obj = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;

@@ -31,8 +31,8 @@ fn intersect_mesh(inst: GpuInstance, item: u32, ray: Ray, t_max: f32) -> Hit {
         let cell = cell_index(grid, dda.cell);
         for (var i = cell_start[cell]; i < cell_start[cell + 1u]; i++) {
             let triangle = mesh.first_triangle + cell_items[i];
-            let tri = triangles[triangle];
-            let h = intersect_triangle(tri_ray, tri.p0, tri.p1, tri.p2, best.t);
+            let p = triangle_vertices(triangles[triangle]);
+            let h = intersect_triangle(tri_ray, p[0], p[1], p[2], best.t);
             if h.x < best.t {
                 best = Hit(h.x, item, h.y, h.z, triangle);
             }
@@ -69,8 +69,8 @@ fn mesh_occludes(inst: GpuInstance, ray: Ray, t_max: f32) -> bool {
     loop {
         let cell = cell_index(grid, dda.cell);
         for (var i = cell_start[cell]; i < cell_start[cell + 1u]; i++) {
-            let tri = triangles[mesh.first_triangle + cell_items[i]];
-            if intersect_triangle(tri_ray, tri.p0, tri.p1, tri.p2, entered.t_max).x < entered.t_max {
+            let p = triangle_vertices(triangles[mesh.first_triangle + cell_items[i]]);
+            if intersect_triangle(tri_ray, p[0], p[1], p[2], entered.t_max).x < entered.t_max {
                 return true;
             }
         }

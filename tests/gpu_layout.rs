@@ -59,17 +59,7 @@ fn wgsl_structs_match_rust_layout() {
             params
         }),
     );
-    check_struct(
-        &render,
-        rust_fields!(GpuTriangle {
-            p0,
-            _pad0,
-            p1,
-            _pad1,
-            p2,
-            _pad2
-        }),
-    );
+    check_struct(&render, rust_fields!(GpuTriangle { p0, p1, p2 }));
     check_struct(&render, rust_fields!(GpuTriangleUv { uv0, uv1, uv2 }));
     check_struct(
         &render,

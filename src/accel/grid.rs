@@ -13,6 +13,9 @@ use std::time::{Duration, Instant};
 /// λ, the cells-per-item density of `grid = 'auto'`, chosen by `glint bench grid`
 /// (see the README's performance section).
 pub const DEFAULT_DENSITY: f32 = 8.0;
+/// λ of each mesh's own grid under `grid = 'auto'`: 2 keeps the structure within 64
+/// bytes per stored triangle (see docs/acceleration.md for the measurements).
+pub const MESH_DEFAULT_DENSITY: f32 = 2.0;
 /// Most cells along one axis.
 pub const MAX_AXIS_CELLS: u32 = 1024;
 /// Most cells in all (bounds memory: 4 bytes per cell).

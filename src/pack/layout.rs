@@ -23,16 +23,14 @@ pub struct GpuInstance {
 }
 
 /// A triangle of a mesh, in the mesh's space (flat shaded: the normal is the cross
-/// product of its edges); the material is its instance's.
+/// product of its edges); the material is its instance's. Nine packed floats (36
+/// bytes): the WGSL twin holds `array<f32, 3>` corners, which have no vec3 padding.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuTriangle {
     pub p0: [f32; 3],
-    pub _pad0: u32,
     pub p1: [f32; 3],
-    pub _pad1: u32,
     pub p2: [f32; 3],
-    pub _pad2: u32,
 }
 
 /// A mesh: its triangles `first_triangle..first_triangle + num_triangles` and its own
@@ -169,7 +167,7 @@ pub struct GpuGlobals {
 }
 
 const _: () = assert!(std::mem::size_of::<GpuInstance>() == 112);
-const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 36);
 const _: () = assert!(std::mem::size_of::<GpuTriangleUv>() == 24);
 const _: () = assert!(std::mem::size_of::<GpuMesh>() == 64);
 const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);

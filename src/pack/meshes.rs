@@ -132,11 +132,8 @@ impl PackedMeshes {
         self.triangles
             .extend(corners.iter().map(|&[p0, p1, p2]| GpuTriangle {
                 p0: p0.to_array(),
-                _pad0: 0,
                 p1: p1.to_array(),
-                _pad1: 0,
                 p2: p2.to_array(),
-                _pad2: 0,
             }));
         self.triangle_uvs
             .extend(order.iter().map(|t| GpuTriangleUv {

@@ -176,12 +176,16 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
             instance
         })
         .collect();
-    let density = match scene.options.grid {
-        GridMode::Off => None,
-        GridMode::Auto => Some(crate::accel::grid::DEFAULT_DENSITY),
-        GridMode::Density(d) => Some(d),
+    // (scene grid λ, mesh grids' λ); an explicit density sets both.
+    let (density, mesh_density) = match scene.options.grid {
+        GridMode::Off => (None, None),
+        GridMode::Auto => (
+            Some(crate::accel::grid::DEFAULT_DENSITY),
+            Some(crate::accel::grid::MESH_DEFAULT_DENSITY),
+        ),
+        GridMode::Density(d) => (Some(d), Some(d)),
     };
-    let mut meshes = meshes::pack_meshes(scene, density)?;
+    let mut meshes = meshes::pack_meshes(scene, mesh_density)?;
     // CSG objects and mesh instances are items after the analytic objects; the CSG
     // leaves follow all items.
     let num_items = instances.len() + scene.csg.len() + meshes.instances.len();
