@@ -110,6 +110,16 @@ struct TriangleRay {
 }
 
 // #if MESH
+// The triangle's vertices as vectors.
+// Mirror of src/cpu/intersect.rs::triangle_vertices — change both.
+fn triangle_vertices(tri: GpuTriangle) -> array<vec3<f32>, 3> {
+    return array<vec3<f32>, 3>(
+        vec3<f32>(tri.p0[0], tri.p0[1], tri.p0[2]),
+        vec3<f32>(tri.p1[0], tri.p1[1], tri.p1[2]),
+        vec3<f32>(tri.p2[0], tri.p2[1], tri.p2[2]),
+    );
+}
+
 // Mirror of src/cpu/intersect.rs::triangle_ray_setup — change both.
 fn triangle_ray_setup(origin: vec3<f32>, d: vec3<f32>) -> TriangleRay {
     // Calculate the dimension where the ray direction is maximal.
@@ -189,7 +199,7 @@ fn intersect_triangle(r: TriangleRay, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32
 }
 // #endif
 
-// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS|MESH
 // Object-space ray of an instance: origin and (unnormalised) direction through the
 // world→object rows.
 // Mirror of src/cpu/intersect.rs::to_object_space — change both.

@@ -16,13 +16,25 @@ struct GpuInstance {
 }
 
 // Mirror of src/pack/layout.rs::GpuTriangle — change both.
+// (Corners as array<f32, 3>: 36 bytes a triangle, no vec3 padding.)
 struct GpuTriangle {
-    p0: vec3<f32>,
-    material: u32,
-    p1: vec3<f32>,
-    _pad1: u32,
-    p2: vec3<f32>,
-    _pad2: u32,
+    p0: array<f32, 3>,
+    p1: array<f32, 3>,
+    p2: array<f32, 3>,
+}
+
+// A mesh: its triangles and its own uniform grid over them, in the mesh's space (cells
+// from first_cell in cell_start; cell items are triangle numbers from first_triangle).
+// Mirror of src/pack/layout.rs::GpuMesh — change both.
+struct GpuMesh {
+    grid_min: vec3<f32>,
+    first_cell: u32,
+    grid_max: vec3<f32>,
+    first_triangle: u32,
+    grid_cell_size: vec3<f32>,
+    num_triangles: u32,
+    grid_dims: vec3<u32>,
+    _pad0: u32,
 }
 
 // Mirror of src/pack/layout.rs::GpuTriangleUv — change both.
@@ -153,3 +165,5 @@ struct GpuTile {
 @group(0) @binding(15) var<storage, read> texels: array<u32>;
 // Corner UVs of each triangle (same order as `triangles`; only with TEXTURE or BUMP).
 @group(0) @binding(16) var<storage, read> triangle_uvs: array<GpuTriangleUv>;
+// Each mesh's triangle range and grid (KIND_MESH instances index it).
+@group(0) @binding(17) var<storage, read> meshes: array<GpuMesh>;

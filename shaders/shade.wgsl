@@ -108,32 +108,35 @@ fn csg_surface(ray: Ray, hit: Hit) -> Surface {
 // #endif
 // #endif
 
-// The surface at a hit (instances first, then triangles, as in the grid's items).
-// Mirror of src/cpu/surface.rs::surface_at — change both.
-fn surface_at(ray: Ray, hit: Hit) -> Surface {
-    let num_instances = globals.num_instances;
-// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
-    if hit.item < num_instances {
-        let inst = instances[hit.item];
-// #if CSG
-        if inst.kind == KIND_CSG {
-            return csg_surface(ray, hit);
-        }
-// #endif
-        return instance_surface(inst, ray, hit.t);
-    }
-// #endif
 // #if MESH
-    let index = hit.item - num_instances;
-    let tri = triangles[index];
-    let p0 = tri.p0;
-    let p1 = tri.p1;
-    let p2 = tri.p2;
+// Largest world coordinate magnitude an affine map (rows) gives a point whose coordinates
+// are at most `magnitude`: max over rows of Σ|linear|·magnitude + |w| (exactly
+// `magnitude` under the identity).
+// Mirror of src/cpu/surface.rs::mapped_magnitude — change both.
+fn mapped_magnitude(rows: array<vec4<f32>, 3>, magnitude: f32) -> f32 {
+    var m = 0.0;
+    for (var i = 0u; i < 3u; i++) {
+        let r = abs(rows[i]);
+        m = max(m, (r.x + r.y + r.z) * magnitude + r.w);
+    }
+    return m;
+}
+
+// The surface of a mesh hit: triangle hit.part of the instance's mesh at the hit's
+// barycentrics, computed in the mesh's space and mapped to world space (point and
+// tangents through object→world, the normal through the transpose of world→object).
+// Mirror of src/cpu/surface.rs::mesh_surface — change both.
+fn mesh_surface(inst: GpuInstance, hit: Hit) -> Surface {
+    let index = hit.part;
+    let corners = triangle_vertices(triangles[index]);
+    let p0 = corners[0];
+    let p1 = corners[1];
+    let p2 = corners[2];
     // The barycentric point is exact to a few ulps of the vertices (unlike o + t·d).
     let b0 = 1.0 - hit.b1 - hit.b2;
-    let p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
-    let magnitude = max_element(max(max(abs(p0), abs(p1)), abs(p2)));
-    let normal = normalize(cross(p1 - p0, p2 - p0));
+    let p_obj = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
+    let magnitude_obj = max_element(max(max(abs(p0), abs(p1)), abs(p2)));
+    let n_obj = cross(p1 - p0, p2 - p0);
     var uv = vec2<f32>(0.0);
     var dpdu = vec3<f32>(0.0);
     var dpdv = vec3<f32>(0.0);
@@ -141,11 +144,37 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
     // Triangle UVs are packed only for scenes that use them.
     let t = triangle_uvs[index];
     uv = t.uv0 * b0 + t.uv1 * hit.b1 + t.uv2 * hit.b2;
-    let frame = triangle_frame(p0, p1, p2, t.uv0, t.uv1, t.uv2, normal);
+    let frame = triangle_frame(p0, p1, p2, t.uv0, t.uv1, t.uv2, normalize(n_obj));
     dpdu = frame[0];
     dpdv = frame[1];
 // #endif
-    return Surface(p, normal, magnitude, tri.material, uv, dpdu, dpdv);
+    let o2w = inst.object_to_world;
+    let w2o = inst.world_to_object;
+    let normal = normalize(w2o[0].xyz * n_obj.x + w2o[1].xyz * n_obj.y + w2o[2].xyz * n_obj.z);
+    let p = vec3<f32>(dot(o2w[0].xyz, p_obj), dot(o2w[1].xyz, p_obj), dot(o2w[2].xyz, p_obj))
+        + vec3<f32>(o2w[0].w, o2w[1].w, o2w[2].w);
+    let world_dpdu = vec3<f32>(dot(o2w[0].xyz, dpdu), dot(o2w[1].xyz, dpdu), dot(o2w[2].xyz, dpdu));
+    let world_dpdv = vec3<f32>(dot(o2w[0].xyz, dpdv), dot(o2w[1].xyz, dpdv), dot(o2w[2].xyz, dpdv));
+    return Surface(p, normal, mapped_magnitude(o2w, magnitude_obj), inst.material, uv, world_dpdu, world_dpdv);
+}
+// #endif
+
+// The surface at a hit: an analytic instance's, a CSG object's or a mesh triangle's.
+// Mirror of src/cpu/surface.rs::surface_at — change both.
+fn surface_at(ray: Ray, hit: Hit) -> Surface {
+    let inst = instances[hit.item];
+// #if MESH
+    if inst.kind == KIND_MESH {
+        return mesh_surface(inst, hit);
+    }
+// #endif
+// #if SPHERE|CUBE|CYLINDER|CONE|TORUS
+// #if CSG
+    if inst.kind == KIND_CSG {
+        return csg_surface(ray, hit);
+    }
+// #endif
+    return instance_surface(inst, ray, hit.t);
 // #else
     return Surface();
 // #endif

@@ -11,6 +11,17 @@ pub const KIND_TORUS: u32 = 4;
 /// program in `csg_program`, as exact small f32 integers; its leaves are instances after
 /// the grid items (see `cpu::csg`).
 pub const KIND_CSG: u32 = 5;
+/// A mesh instance (a grid item): `params[0]` is the index of its mesh in
+/// `PackedScene::meshes` as an exact small f32 integer; the mesh's triangles, stored once
+/// in the mesh's own space, are traversed through the mesh's own grid (see
+/// `cpu::traverse_mesh`).
+pub const KIND_MESH: u32 = 6;
+/// Most mesh instances a ray remembers having traversed (a per-ray mailbox): an instance
+/// listed in several top-level cells is traversed once, since its nearest hit does not
+/// depend on the cell.
+pub const MESH_MAILBOX_SIZE: u32 = 8;
+/// The smallest normal f32 (a floor for divisors that must not be zero).
+pub const F32_MIN_POSITIVE: f32 = f32::MIN_POSITIVE;
 
 /// CSG program entries (`PackedScene::csg_program`, post-order): the opcode in the bits
 /// from [`CSG_OP_SHIFT`] up, a leaf's instance index in the bits below.
@@ -170,6 +181,8 @@ pub fn wgsl_prelude() -> String {
         ("KIND_CONE", KIND_CONE),
         ("KIND_TORUS", KIND_TORUS),
         ("KIND_CSG", KIND_CSG),
+        ("KIND_MESH", KIND_MESH),
+        ("MESH_MAILBOX_SIZE", MESH_MAILBOX_SIZE),
         ("CSG_OP_SHIFT", CSG_OP_SHIFT),
         ("CSG_INDEX_MASK", CSG_INDEX_MASK),
         ("CSG_LEAF", CSG_LEAF),
@@ -218,6 +231,7 @@ pub fn wgsl_prelude() -> String {
         ("T_MISS", T_MISS),
         ("OFFSET_RELATIVE", OFFSET_RELATIVE),
         ("ENTER_MARGIN_RELATIVE", ENTER_MARGIN_RELATIVE),
+        ("F32_MIN_POSITIVE", F32_MIN_POSITIVE),
         ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),
         ("TWO_PI", TWO_PI),
         ("AIR_IOR", AIR_IOR),

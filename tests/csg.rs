@@ -39,6 +39,8 @@ fn csg_scene(programs: Vec<Vec<CsgStep>>) -> Scene {
             })
             .collect(),
         triangles: Vec::new(),
+        meshes: Vec::new(),
+        mesh_instances: Vec::new(),
         materials: vec![Material::default(); 4],
         textures: Vec::new(),
         lights: Vec::new(),
@@ -769,7 +771,8 @@ fn normals_point_out_of_the_result() {
 
 #[test]
 fn grid_bounds_follow_the_tree() {
-    use glint::accel::grid::{csg_bounds, Aabb};
+    use glint::accel::aabb::Aabb;
+    use glint::pack::bounds::csg_bounds;
     let sphere_at = |x: f64| {
         Tree::Leaf(
             ObjectKind::Sphere,

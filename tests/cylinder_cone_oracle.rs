@@ -38,6 +38,8 @@ fn pack_one(kind: ObjectKind, m: DMat4) -> PackedScene {
             material: 0,
         }],
         triangles: Vec::new(),
+        meshes: Vec::new(),
+        mesh_instances: Vec::new(),
         csg: Vec::new(),
         materials: vec![Material::default()],
         textures: Vec::new(),

@@ -5,7 +5,8 @@
 use glint::gpu::buffers::GpuTile;
 use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
 use glint::pack::{
-    GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuTriangle, GpuTriangleUv, SceneFeatures,
+    GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuMesh, GpuTriangle, GpuTriangleUv,
+    SceneFeatures,
 };
 use glint::testing::probe::{ProbeRay, ProbeResult};
 use std::mem::{offset_of, size_of};
@@ -58,18 +59,21 @@ fn wgsl_structs_match_rust_layout() {
             params
         }),
     );
+    check_struct(&render, rust_fields!(GpuTriangle { p0, p1, p2 }));
+    check_struct(&render, rust_fields!(GpuTriangleUv { uv0, uv1, uv2 }));
     check_struct(
         &render,
-        rust_fields!(GpuTriangle {
-            p0,
-            material,
-            p1,
-            _pad1,
-            p2,
-            _pad2
+        rust_fields!(GpuMesh {
+            grid_min,
+            first_cell,
+            grid_max,
+            first_triangle,
+            grid_cell_size,
+            num_triangles,
+            grid_dims,
+            _pad0
         }),
     );
-    check_struct(&render, rust_fields!(GpuTriangleUv { uv0, uv1, uv2 }));
     check_struct(
         &render,
         rust_fields!(GpuMaterial {

@@ -130,3 +130,81 @@ fn probes_mixed_grid_and_brute_force() {
     assert!(!brute.features.contains(SceneFeatures::GRID));
     check(&ctx, "mixed, brute force", &brute, 104);
 }
+
+/// Lua for one random triangle soup of `triangles` triangles (around the origin, ±2)
+/// placed `instances` times by random scale, rotation and translation, with a sphere
+/// among them: the soup is stored once, in its own space, with its own grid.
+fn instanced_scene(seed: u64, triangles: usize, instances: usize) -> String {
+    let mut rng = Rng(seed);
+    let mut lua = String::from(
+        "m = gr.material({0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, 25)\nroot = gr.node('root')\n",
+    );
+    let (mut vertices, mut faces) = (Vec::new(), Vec::new());
+    for i in 0..triangles {
+        let centre = [0; 3].map(|_| rng.range(-2.0, 2.0));
+        for _ in 0..3 {
+            let v = [0, 1, 2].map(|k| centre[k] + rng.range(-0.4, 0.4));
+            vertices.push(format!("{{{}, {}, {}}}", v[0], v[1], v[2]));
+        }
+        faces.push(format!("{{{}, {}, {}}}", 3 * i, 3 * i + 1, 3 * i + 2));
+    }
+    let _ = writeln!(
+        lua,
+        "soup = gr.mesh('soup', {{{}}}, {{{}}}) soup:set_material(m)",
+        vertices.join(", "),
+        faces.join(", ")
+    );
+    for i in 0..instances {
+        let s = [0; 3].map(|_| rng.range(0.5, 2.0));
+        let axis = ["x", "y", "z"][(rng.next_u64() % 3) as usize];
+        let angle = rng.range(0.0, 360.0);
+        let t = [0; 3].map(|_| rng.range(-7.0, 7.0));
+        let _ = writeln!(
+            lua,
+            "n = gr.node('place{i}') n:scale({}, {}, {}) n:rotate('{axis}', {angle}) n:translate({}, {}, {}) n:add_child(soup) root:add_child(n)",
+            s[0], s[1], s[2], t[0], t[1], t[2]
+        );
+    }
+    lua += "b = gr.sphere('ball') b:scale(2, 2, 2) b:set_material(m) root:add_child(b)\n";
+    lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
+}
+
+/// Instanced meshes through both levels of grid (and by brute force): every ray agrees
+/// on hit or miss, instance and triangle; closest-hit and any-hit rays alike.
+#[test]
+fn probes_instanced_meshes() {
+    use common::probes::{agree, random_rays};
+    use glint::constants::PROBE_ANY_HIT;
+    use glint::testing::probe::{cpu_probe, gpu_probe};
+    let Some(ctx) = gpu_context() else { return };
+    for (mode, name) in [(GridMode::Auto, "grid"), (GridMode::Off, "brute force")] {
+        let s = packed_from_source(&instanced_scene(11, 400, 8), &grid(mode)).remove(0);
+        assert_eq!(s.meshes.len(), 1, "the soup is stored once");
+        assert_eq!(s.triangles.len(), 400);
+        let mut rays = random_rays(111);
+        for (i, r) in rays.iter_mut().enumerate() {
+            r.mode = if i % 4 == 3 { PROBE_ANY_HIT } else { 0 };
+        }
+        let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let (mut hits, mut worst_dt) = (0, 0.0f32);
+        for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
+            let c = cpu_probe(&s, ray);
+            hits += c.hit;
+            if ray.mode == PROBE_ANY_HIT {
+                assert_eq!(g.hit, c.hit, "{name}: any-hit ray {i} {ray:?}");
+                continue;
+            }
+            let (ok, dt, _) = agree(g, &c);
+            assert!(
+                ok && g.part == c.part,
+                "{name}: ray {i} {ray:?}: gpu {g:?} cpu {c:?}"
+            );
+            worst_dt = worst_dt.max(dt);
+        }
+        eprintln!(
+            "instanced meshes, {name}: {hits}/{} CPU hits, 100% agreement (hit, instance, triangle), worst |Δt|/t {worst_dt:.2e}",
+            rays.len()
+        );
+        assert!(hits as usize > rays.len() / 8, "{name}: too few hits");
+    }
+}

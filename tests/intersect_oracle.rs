@@ -31,6 +31,8 @@ fn scene(objects: Vec<Object>, triangles: Vec<Triangle>, grid: GridMode) -> Scen
     Scene {
         objects,
         triangles,
+        meshes: Vec::new(),
+        mesh_instances: Vec::new(),
         csg: Vec::new(),
         materials: vec![Material::default()],
         textures: Vec::new(),

@@ -58,6 +58,8 @@ fn scene(objects: Vec<Object>, materials: Vec<Material>, eye: DVec3, size: u32) 
     Scene {
         objects,
         triangles: vec![],
+        meshes: Vec::new(),
+        mesh_instances: Vec::new(),
         materials,
         textures: Vec::new(),
         csg: Vec::new(),

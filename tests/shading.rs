@@ -30,6 +30,8 @@ fn sphere_scene(
             material: 0,
         }],
         triangles: vec![],
+        meshes: Vec::new(),
+        mesh_instances: Vec::new(),
         csg: Vec::new(),
         materials: vec![material],
         textures: Vec::new(),

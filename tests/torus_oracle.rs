@@ -150,6 +150,8 @@ fn pack_torus(rin: f64, rout: f64, m: DMat4) -> PackedScene {
             material: 0,
         }],
         triangles: Vec::new(),
+        meshes: Vec::new(),
+        mesh_instances: Vec::new(),
         csg: Vec::new(),
         materials: vec![Material::default()],
         textures: Vec::new(),

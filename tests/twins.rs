@@ -200,11 +200,13 @@ fn rust_argument_count(rust: &Item, wgsl: &Item) -> usize {
         .map(|p| {
             // `self`, `&self`, `&mut self` stand for a parameter of the impl's type.
             let ty = p.split_once(':').map_or(receiver, |(_, t)| t);
-            let ty = ty
-                .trim()
-                .trim_start_matches('&')
-                .trim_start_matches("mut ")
-                .trim();
+            let ty = ty.trim().trim_start_matches('&');
+            // A reference's lifetime (`&'a T`) is no part of the type's name.
+            let ty = match ty.strip_prefix('\'') {
+                Some(rest) => rest.split_once(' ').map_or(rest, |(_, t)| t),
+                None => ty,
+            };
+            let ty = ty.trim_start_matches("mut ").trim();
             let base = ty.rsplit("::").next().unwrap_or(ty);
             let module_scope = MODULE_SCOPE.iter().any(|(t, _)| *t == base || *t == ty);
             if module_scope && !wgsl_types.iter().any(|w| w.contains(base)) {

@@ -1,15 +1,11 @@
 //! Uniform grid build: resolution after Cleary & Wyvill (cells ≈ λ·N, cubical cells over
-//! the scene bounds), each item listed in every cell its (padded) bounds overlap; mesh
-//! triangles are individual items and skip cells their plane misses. Cells are stored
-//! CSR-style (`cell_start`, `cell_items`), items in ascending order inside each cell so
-//! the build is deterministic. A CSG object is one item whose bounds follow its tree
-//! ([`csg_bounds`]).
+//! the items' bounds), each item listed in every cell its (padded) bounds overlap; a
+//! triangle item also skips the cells its plane misses. Cells are stored CSR-style
+//! (`cell_start`, `cell_items`), items in ascending order inside each cell so the build
+//! is deterministic. Items are plain bounds (and, for triangles, corners) with ids
+//! 0..n: what an item is, is the caller's business.
 
-use crate::constants::{
-    CSG_DIFFERENCE, CSG_INDEX_MASK, CSG_INTERSECTION, CSG_LEAF, CSG_OP_SHIFT, KIND_CONE, KIND_CUBE,
-    KIND_CYLINDER, KIND_SPHERE, KIND_TORUS,
-};
-use crate::pack::{GpuInstance, GpuTriangle};
+use super::aabb::{Aabb, BOUNDS_PAD};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -17,13 +13,13 @@ use std::time::{Duration, Instant};
 /// λ, the cells-per-item density of `grid = 'auto'`, chosen by `glint bench grid`
 /// (see the README's performance section).
 pub const DEFAULT_DENSITY: f32 = 8.0;
+/// λ of each mesh's own grid under `grid = 'auto'`: 2 keeps the structure within 64
+/// bytes per stored triangle (see docs/acceleration.md for the measurements).
+pub const MESH_DEFAULT_DENSITY: f32 = 2.0;
 /// Most cells along one axis.
 pub const MAX_AXIS_CELLS: u32 = 1024;
 /// Most cells in all (bounds memory: 4 bytes per cell).
 pub const MAX_CELLS: u64 = 1 << 24;
-/// Item bounds grow by this fraction of their magnitude, so that a hit point computed
-/// with rounding error still falls in a cell that lists the item.
-const BOUNDS_PAD: f32 = 1.0e-5;
 
 /// Counters of a grid build, for `--stats` and the benchmark.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -63,165 +59,6 @@ pub struct Grid {
     pub stats: GridBuildStats,
 }
 
-/// An axis-aligned box.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Aabb {
-    pub min: Vec3,
-    pub max: Vec3,
-}
-
-impl Aabb {
-    pub const EMPTY: Aabb = Aabb {
-        min: Vec3::splat(f32::MAX),
-        max: Vec3::splat(f32::MIN),
-    };
-
-    pub fn union(self, other: Aabb) -> Aabb {
-        Aabb {
-            min: self.min.min(other.min),
-            max: self.max.max(other.max),
-        }
-    }
-
-    /// The common part (empty when they do not overlap).
-    pub fn intersection(self, other: Aabb) -> Aabb {
-        Aabb {
-            min: self.min.max(other.min),
-            max: self.max.min(other.max),
-        }
-    }
-
-    /// Whether the box holds no point (min > max on some axis).
-    pub fn is_empty(self) -> bool {
-        self.min.cmpgt(self.max).any()
-    }
-
-    /// Grown by `BOUNDS_PAD` of its largest coordinate magnitude and extent (an empty box
-    /// stays empty).
-    fn padded(self) -> Aabb {
-        if self.is_empty() {
-            return Aabb::EMPTY;
-        }
-        let magnitude = self.min.abs().max(self.max.abs()).max_element();
-        let pad = BOUNDS_PAD * (magnitude + (self.max - self.min).max_element());
-        Aabb {
-            min: self.min - Vec3::splat(pad),
-            max: self.max + Vec3::splat(pad),
-        }
-    }
-}
-
-/// World bounds of an instance: the unit sphere, unit cube, cylinder, cone or torus under
-/// its transform.
-pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
-    let rows = inst.object_to_world.map(|r| Vec3::new(r[0], r[1], r[2]));
-    let translation = Vec3::new(
-        inst.object_to_world[0][3],
-        inst.object_to_world[1][3],
-        inst.object_to_world[2][3],
-    );
-    let (centre, half) = match inst.kind {
-        // Ellipsoid: the extent along world axis i is the length of row i.
-        KIND_SPHERE => (
-            translation,
-            Vec3::new(rows[0].length(), rows[1].length(), rows[2].length()),
-        ),
-        // Unit cube around (½,½,½): half-extent ½·Σ|row i|.
-        KIND_CUBE => (
-            translation
-                + Vec3::new(
-                    rows[0].dot(Vec3::splat(0.5)),
-                    rows[1].dot(Vec3::splat(0.5)),
-                    rows[2].dot(Vec3::splat(0.5)),
-                ),
-            0.5 * Vec3::new(
-                rows[0].abs().element_sum(),
-                rows[1].abs().element_sum(),
-                rows[2].abs().element_sum(),
-            ),
-        ),
-        // Cylinder and cone: their object-space box (centre c, half-extent h) under the
-        // transform, half-extent Σ_j |row i|_j · h_j (conservative).
-        KIND_CYLINDER | KIND_CONE => {
-            let (c, h) = if inst.kind == KIND_CYLINDER {
-                (Vec3::new(0.0, 0.0, 0.5), Vec3::new(1.0, 1.0, 0.5))
-            } else {
-                let [zmin, zmax] = inst.params;
-                let r = zmin.abs().max(zmax.abs());
-                (
-                    Vec3::new(0.0, 0.0, 0.5 * (zmin + zmax)),
-                    Vec3::new(r, r, 0.5 * (zmax - zmin)),
-                )
-            };
-            (
-                translation + Vec3::new(rows[0].dot(c), rows[1].dot(c), rows[2].dot(c)),
-                Vec3::new(
-                    rows[0].abs().dot(h),
-                    rows[1].abs().dot(h),
-                    rows[2].abs().dot(h),
-                ),
-            )
-        }
-        // Box [−R, R]² × [−rout, rout] (R = rin + rout) around the origin: half-extent
-        // Σ|row i|·(R, R, rout).
-        KIND_TORUS => {
-            let [rin, rout] = inst.params;
-            let extent = Vec3::new(rin + rout, rin + rout, rout);
-            (
-                translation,
-                Vec3::new(
-                    rows[0].abs().dot(extent),
-                    rows[1].abs().dot(extent),
-                    rows[2].abs().dot(extent),
-                ),
-            )
-        }
-        other => unreachable!("instance kind {other} has no bounds"),
-    };
-    Aabb {
-        min: centre - half,
-        max: centre + half,
-    }
-}
-
-/// World bounds of a CSG object from its post-order `program` (entries as in
-/// `PackedScene::csg_program`; leaves index `instances`): a union is bounded by the union
-/// of its operands' bounds, an intersection by their intersection, a difference by a's.
-/// Empty when an intersection's operands cannot overlap (the object is then in no cell).
-pub fn csg_bounds(program: &[u32], instances: &[GpuInstance]) -> Aabb {
-    let mut stack: Vec<Aabb> = Vec::new();
-    for &entry in program {
-        let op = entry >> CSG_OP_SHIFT;
-        if op == CSG_LEAF {
-            stack.push(instance_bounds(
-                &instances[(entry & CSG_INDEX_MASK) as usize],
-            ));
-            continue;
-        }
-        let b = stack.pop().expect("CSG program: operand b");
-        let a = stack.pop().expect("CSG program: operand a");
-        stack.push(match op {
-            CSG_INTERSECTION => a.intersection(b),
-            CSG_DIFFERENCE => a,
-            _ => a.union(b),
-        });
-    }
-    let bounds = stack.pop().expect("CSG program: result");
-    if bounds.is_empty() {
-        Aabb::EMPTY
-    } else {
-        bounds
-    }
-}
-
-pub fn triangle_bounds(tri: &GpuTriangle) -> Aabb {
-    let [a, b, c] = [tri.p0, tri.p1, tri.p2].map(Vec3::from);
-    Aabb {
-        min: a.min(b).min(c),
-        max: a.max(b).max(c),
-    }
-}
-
 /// Cells per axis for `items` items over `extent` with density λ (Cleary–Wyvill: cubical
 /// cells, λ·N of them), clamped to the grid limits.
 pub fn grid_resolution(extent: Vec3, items: usize, density: f32) -> [u32; 3] {
@@ -238,36 +75,18 @@ pub fn grid_resolution(extent: Vec3, items: usize, density: f32) -> [u32; 3] {
 }
 
 impl Grid {
-    /// Builds the grid over every instance and triangle (no CSG objects: see
-    /// [`Grid::build_items`]); `density` None means brute force.
-    pub fn build(
-        instances: &[GpuInstance],
-        triangles: &[GpuTriangle],
-        density: Option<f32>,
-    ) -> Grid {
-        let bounds = instances.par_iter().map(instance_bounds).collect();
-        Grid::build_items(bounds, triangles, density)
-    }
-
-    /// Builds the grid over items with the given instance bounds (one per instance item,
-    /// CSG objects included), then the triangles. An item with empty bounds is in no cell.
-    pub fn build_items(
-        instance_bounds: Vec<Aabb>,
-        triangles: &[GpuTriangle],
-        density: Option<f32>,
-    ) -> Grid {
+    /// Builds the grid over items with the given bounds; with `triangles` (parallel to
+    /// `bounds`), each item is that triangle and skips the cells its plane misses. An item
+    /// with empty bounds is in no cell. `density` None means brute force: one cell that
+    /// lists every item.
+    pub fn build(bounds: &[Aabb], triangles: Option<&[[Vec3; 3]]>, density: Option<f32>) -> Grid {
         let start = Instant::now();
-        let num_instances = instance_bounds.len();
-        let bounds: Vec<Aabb> = instance_bounds
-            .into_par_iter()
-            .chain(triangles.par_iter().map(triangle_bounds))
-            .map(Aabb::padded)
-            .collect();
+        let bounds: Vec<Aabb> = bounds.par_iter().map(|b| b.padded()).collect();
         let scene_bounds = bounds.iter().fold(Aabb::EMPTY, |a, &b| a.union(b));
         let item_count = bounds.len();
         // (Items with empty bounds alone: nothing to grid, and nothing to hit.)
         let Some(density) = density.filter(|_| item_count > 0 && !scene_bounds.is_empty()) else {
-            return Grid::brute_force(scene_bounds, item_count);
+            return Grid::brute_force(scene_bounds, item_count, start);
         };
         // A flat scene (all items in a plane) still needs a non-zero extent on every axis.
         let raw_extent = scene_bounds.max - scene_bounds.min;
@@ -292,7 +111,7 @@ impl Grid {
                     if b.is_empty() {
                         continue;
                     }
-                    let triangle = item.checked_sub(num_instances).map(|t| &triangles[t]);
+                    let triangle = triangles.map(|t| &t[item]);
                     geometry.for_each_cell(b, triangle, |cell| out.push((cell, item as u32)));
                 }
                 out.into_iter()
@@ -343,8 +162,8 @@ impl Grid {
         }
     }
 
-    /// No grid: one conceptual cell holding every item, traversed by brute force.
-    fn brute_force(bounds: Aabb, items: usize) -> Grid {
+    /// No grid: one cell listing every item, traversed by brute force.
+    fn brute_force(bounds: Aabb, items: usize, start: Instant) -> Grid {
         let (min, max) = if items == 0 || bounds.is_empty() {
             (Vec3::ZERO, Vec3::ZERO)
         } else {
@@ -356,13 +175,16 @@ impl Grid {
             max: max.to_array(),
             cell_size: (max - min).to_array(),
             dims: [1, 1, 1],
-            // Storage buffers may not be empty: one cell with no items.
-            cell_start: vec![0, 0],
-            cell_items: vec![0],
+            cell_start: vec![0, items as u32],
+            cell_items: (0..items as u32).collect(),
             stats: GridBuildStats {
                 items,
                 cells: 1,
-                ..Default::default()
+                empty_cells: (items == 0) as usize,
+                references: items,
+                max_items_in_cell: items,
+                build_time: start.elapsed(),
+                memory_bytes: 4 * (2 + items),
             },
         }
     }
@@ -425,13 +247,12 @@ impl CellGeometry {
 
     /// Calls `f` with the index of every cell that `bounds` overlaps (and, for a triangle,
     /// that its plane passes through).
-    fn for_each_cell(&self, bounds: &Aabb, triangle: Option<&GpuTriangle>, mut f: impl FnMut(u32)) {
+    fn for_each_cell(&self, bounds: &Aabb, triangle: Option<&[Vec3; 3]>, mut f: impl FnMut(u32)) {
         let lo = [0, 1, 2].map(|a| self.cell_coord(bounds.min, a));
         let hi = [0, 1, 2].map(|a| self.cell_coord(bounds.max, a));
         let single = lo == hi;
-        let plane = triangle.filter(|_| !single).map(|t| {
-            let p0 = Vec3::from(t.p0);
-            let normal = (Vec3::from(t.p1) - p0).cross(Vec3::from(t.p2) - p0);
+        let plane = triangle.filter(|_| !single).map(|&[p0, p1, p2]| {
+            let normal = (p1 - p0).cross(p2 - p0);
             (p0, normal)
         });
         // Cells grow by the same relative pad as the item bounds for the plane test.

@@ -9,16 +9,18 @@
 //! error-against-time sweep of the sampling settings (`bench_sweep`).
 
 use super::splitmix::SplitMix;
-use crate::accel::grid::{Grid, DEFAULT_DENSITY};
+use crate::accel::aabb::Aabb;
+use crate::accel::grid::{Grid, DEFAULT_DENSITY, MESH_DEFAULT_DENSITY};
+use crate::cpu::intersect::triangle_vertices;
 use crate::cpu::ray::camera_ray;
 use crate::cpu::ray::Ray;
 use crate::cpu::traverse::{closest_hit, NoCounters};
-use crate::pack::{GpuTriangle, PackedScene};
+use crate::pack::PackedScene;
 use crate::pipeline::pack_scene;
 use crate::scene::flatten::{flatten, Scene, Triangle};
 use crate::scene::lua::{run_scene_file, ScriptConfig};
 use crate::scene::{Camera, GridMode, RenderOptions};
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -101,11 +103,21 @@ pub(super) fn fastest<T>(repeat: usize, mut f: impl FnMut() -> T) -> (Duration, 
     (best, result.expect("at least one run"))
 }
 
-/// Nearest item along each ray (in parallel).
-fn trace_all(scene: &PackedScene, rays: &[Ray]) -> Vec<u32> {
+/// Nearest item and part (for a mesh instance, the triangle) along each ray (in parallel).
+fn trace_all(scene: &PackedScene, rays: &[Ray]) -> Vec<(u32, u32)> {
     rays.par_iter()
-        .map(|r| closest_hit(scene, r, f32::MAX, &mut NoCounters).item)
+        .map(|r| {
+            let hit = closest_hit(scene, r, f32::MAX, &mut NoCounters);
+            (hit.item, hit.part)
+        })
         .collect()
+}
+
+/// Builds a grid over the stored triangles of `packed` (what packing builds per mesh).
+fn build_triangle_grid(packed: &PackedScene) -> Grid {
+    let corners: Vec<[Vec3; 3]> = packed.triangles.iter().map(triangle_vertices).collect();
+    let bounds: Vec<Aabb> = corners.iter().map(Aabb::of_triangle).collect();
+    Grid::build(&bounds, Some(&corners), Some(MESH_DEFAULT_DENSITY))
 }
 
 pub(super) fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<Scene> {
@@ -151,13 +163,13 @@ fn bench_macho_cows(args: &BenchArgs) -> anyhow::Result<()> {
         .count();
     let mrays = |t: Duration, n: usize| n as f64 / t.as_secs_f64() / 1e6;
     println!(
-        "\n## Primary rays, macho-cows.lua at 512×512 ({} items)",
-        grid.grid_stats.items
+        "\n## Primary rays, macho-cows.lua at 512×512 ({} items, {} stored triangles)",
+        grid.grid_stats.items, grid.mesh_grid_stats.items
     );
     println!("| tracer | rays | time | Mrays/s |");
     println!("| --- | ---: | ---: | ---: |");
     println!(
-        "| grid (λ = {DEFAULT_DENSITY}) | {} | {:.1} ms | {:.3} |",
+        "| grids (λ = {DEFAULT_DENSITY} over items, {MESH_DEFAULT_DENSITY} per mesh) | {} | {:.1} ms | {:.3} |",
         rays.len(),
         t_grid.as_secs_f64() * 1e3,
         mrays(t_grid, rays.len())
@@ -194,6 +206,8 @@ pub fn random_triangle_scene(n: usize, seed: u64) -> Scene {
     Scene {
         objects: Vec::new(),
         triangles,
+        meshes: Vec::new(),
+        mesh_instances: Vec::new(),
         csg: Vec::new(),
         materials: vec![crate::scene::Material::default()],
         textures: Vec::new(),
@@ -262,9 +276,7 @@ fn bench_random_triangles(args: &BenchArgs) {
     while n <= args.max_triangles {
         let scene = random_triangle_scene(n, n as u64);
         let packed = with_grid(&scene, GridMode::Auto).expect("random scene packs");
-        let (build, grid) = fastest(args.repeat, || {
-            Grid::build(&packed.instances, &packed.triangles, Some(DEFAULT_DENSITY))
-        });
+        let (build, grid) = fastest(args.repeat, || build_triangle_grid(&packed));
         let (time, hits) = fastest(args.repeat, || trace_all(&packed, &rays));
         let per_ray = time.as_secs_f64() * 1e9 / rays.len() as f64;
         let base_cost = *base.get_or_insert(per_ray);
@@ -282,7 +294,7 @@ fn bench_random_triangles(args: &BenchArgs) {
             .zip(&brute_hits)
             .filter(|(a, b)| a != b)
             .count();
-        let bytes = std::mem::size_of::<GpuTriangle>() * n + grid.stats.memory_bytes;
+        let (bytes, _) = packed.accel_memory();
         println!(
             "| {n} | {} | {:.1} ms | {per_ray:.0} | {:.2}× | {per_ray_incoherent:.0} | {:.2}× | {:.1} | {differing} of {} |",
             grid.stats.cells,
@@ -315,8 +327,10 @@ fn bench_densities(args: &BenchArgs) -> anyhow::Result<()> {
         let (t_cows, _) = fastest(args.repeat, || trace_all(&packed, &primary));
         let packed_tris = with_grid(&tris, GridMode::Density(density))?;
         let (t_tris, _) = fastest(args.repeat, || trace_all(&packed_tris, &rays));
-        let bytes_per_item =
-            |p: &PackedScene| p.grid_stats.memory_bytes as f64 / p.grid_stats.items as f64;
+        let bytes_per_item = |p: &PackedScene| {
+            let items = p.grid_stats.items + p.mesh_grid_stats.items;
+            (p.grid_stats.memory_bytes + p.mesh_grid_stats.memory_bytes) as f64 / items as f64
+        };
         println!(
             "| {density} | {:.0} | {:.1} | {:.0} | {:.1} |",
             t_cows.as_secs_f64() * 1e9 / primary.len() as f64,

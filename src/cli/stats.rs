@@ -40,10 +40,18 @@ pub fn format_stats(image: &RenderedImage) -> String {
     } else {
         String::new()
     };
+    let mesh_instances = packed.instances[..g.num_instances as usize]
+        .iter()
+        .filter(|i| i.kind == crate::constants::KIND_MESH)
+        .count();
     let _ = writeln!(
         out,
-        "  items: {} analytic{csg}, {} triangles, {} lights",
-        g.num_instances, g.num_triangles, g.num_lights
+        "  items: {} ({} analytic{csg}, {mesh_instances} mesh instances of {} meshes), {} stored triangles, {} lights",
+        g.num_instances,
+        g.num_instances as usize - mesh_instances,
+        packed.meshes.len(),
+        g.num_triangles,
+        g.num_lights
     );
     if g.grid_enabled != 0 {
         let [nx, ny, nz] = g.grid_dims;
@@ -60,6 +68,21 @@ pub fn format_stats(image: &RenderedImage) -> String {
         );
     } else {
         let _ = writeln!(out, "  grid: off (brute force over {} items)", grid.items);
+    }
+    let meshes = &packed.mesh_grid_stats;
+    if !packed.meshes.is_empty() {
+        let (bytes, stored) = packed.accel_memory();
+        let _ = writeln!(
+            out,
+            "  mesh grids: {} cells, {:.2} triangles per non-empty cell (max {}), {:.1}% empty, {} references, built in {:.2} ms; structure {:.1} bytes per stored triangle",
+            meshes.cells,
+            meshes.mean_items_per_full_cell(),
+            meshes.max_items_in_cell,
+            100.0 * meshes.empty_share(),
+            meshes.references,
+            meshes.build_time.as_secs_f64() * 1e3,
+            bytes as f64 / stored.max(1) as f64
+        );
     }
     if let Some(c) = image.counters {
         let rays = c.rays.max(1) as f64;

@@ -5,7 +5,7 @@ use super::dielectric::{medium_push, MediumStack};
 use super::ray::{offset_ray, Ray};
 use super::surface::surface_at;
 use super::traverse::{closest_hit, NoCounters};
-use crate::constants::{MATERIAL_REFRACTIVE, T_MISS};
+use crate::constants::{KIND_MESH, MATERIAL_REFRACTIVE, T_MISS};
 use crate::pack::PackedScene;
 use glam::Vec3;
 
@@ -41,10 +41,10 @@ pub fn camera_media(scene: &PackedScene) -> MediumStack {
         let left = s.normal.dot(ray.dir) > 0.0;
         if m.flags & MATERIAL_REFRACTIVE != 0 {
             // Triangles of one material form one solid; keys above the instances.
-            let key = if hit.item < g.num_instances {
-                hit.item
-            } else {
+            let key = if scene.instances[hit.item as usize].kind == KIND_MESH {
                 g.num_instances + s.material
+            } else {
+                hit.item
             };
             if !firsts.iter().any(|f| f.0 == key) {
                 firsts.push((key, (s.p - eye).length(), left, m.ior));

@@ -210,6 +210,7 @@ pub fn intersect_instance(inst: &GpuInstance, o: Vec3, d: Vec3, t_max: f32) -> f
 }
 
 /// The triangle's vertices as vectors.
+// Mirror of shaders/intersect.wgsl::triangle_vertices — change both.
 pub fn triangle_vertices(tri: &GpuTriangle) -> [Vec3; 3] {
-    [tri.p0, tri.p1, tri.p2].map(Vec3::from)
+    [Vec3::from(tri.p0), Vec3::from(tri.p1), Vec3::from(tri.p2)]
 }

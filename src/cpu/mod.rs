@@ -6,7 +6,9 @@ pub mod adaptive;
 pub mod camera_media;
 pub mod csg;
 pub mod cylinder_cone;
+pub mod dda;
 pub mod dielectric;
+pub mod hit;
 pub mod intersect;
 pub mod math;
 pub mod ray;
@@ -18,6 +20,7 @@ pub mod texture;
 pub mod torus;
 pub mod trace;
 pub mod traverse;
+pub mod traverse_mesh;
 pub mod uv;
 
 pub use render::{render, RenderProgress};

@@ -9,7 +9,8 @@ use super::torus::torus_surface;
 use super::traverse::Hit;
 use super::uv::{cube_surface, sphere_surface, triangle_frame};
 use crate::constants::{
-    CSG_FLIP, CSG_INDEX_MASK, KIND_CONE, KIND_CSG, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS,
+    CSG_FLIP, CSG_INDEX_MASK, KIND_CONE, KIND_CSG, KIND_CYLINDER, KIND_MESH, KIND_SPHERE,
+    KIND_TORUS,
 };
 use crate::pack::{GpuInstance, PackedScene, SceneFeatures};
 use glam::{Vec2, Vec3};
@@ -102,25 +103,41 @@ fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
     }
 }
 
-/// The surface at a hit (instances first, then triangles, as in the grid's items).
+/// The surface at a hit: an analytic instance's, a CSG object's or a mesh triangle's.
 // Mirror of shaders/shade.wgsl::surface_at — change both.
 pub fn surface_at(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
-    let num_instances = scene.globals.num_instances;
-    if hit.item < num_instances {
-        let inst = &scene.instances[hit.item as usize];
-        if inst.kind == KIND_CSG {
-            return csg_surface(scene, ray, hit);
-        }
-        return instance_surface(inst, ray, hit.t);
+    let inst = &scene.instances[hit.item as usize];
+    if inst.kind == KIND_CSG {
+        return csg_surface(scene, ray, hit);
     }
-    let index = (hit.item - num_instances) as usize;
-    let tri = &scene.triangles[index];
-    let [p0, p1, p2] = triangle_vertices(tri);
+    if inst.kind == KIND_MESH {
+        return mesh_surface(scene, inst, hit);
+    }
+    instance_surface(inst, ray, hit.t)
+}
+
+/// Largest world coordinate magnitude an affine map (rows) gives a point whose
+/// coordinates are at most `magnitude`: max over rows of Σ|linear|·magnitude + |w|
+/// (exactly `magnitude` under the identity).
+// Mirror of shaders/shade.wgsl::mapped_magnitude — change both.
+fn mapped_magnitude(rows: &[[f32; 4]; 3], magnitude: f32) -> f32 {
+    rows.iter()
+        .map(|r| (r[0].abs() + r[1].abs() + r[2].abs()) * magnitude + r[3].abs())
+        .fold(0.0, f32::max)
+}
+
+/// The surface of a mesh hit: triangle `hit.part` of the instance's mesh at the hit's
+/// barycentrics, computed in the mesh's space and mapped to world space (point and
+/// tangents through object→world, the normal through the transpose of world→object).
+// Mirror of shaders/shade.wgsl::mesh_surface — change both.
+fn mesh_surface(scene: &PackedScene, inst: &GpuInstance, hit: &Hit) -> Surface {
+    let index = hit.part as usize;
+    let [p0, p1, p2] = triangle_vertices(&scene.triangles[index]);
     // The barycentric point is exact to a few ulps of the vertices (unlike o + t·d).
     let b0 = 1.0 - hit.b1 - hit.b2;
-    let p = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
-    let magnitude = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
-    let normal = (p1 - p0).cross(p2 - p0).normalize();
+    let p_obj = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
+    let magnitude_obj = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
+    let n_obj = (p1 - p0).cross(p2 - p0);
     let (mut uv, mut dpdu, mut dpdv) = (Vec2::ZERO, Vec3::ZERO, Vec3::ZERO);
     // Triangle UVs are packed only for scenes that use them.
     if scene.features.contains(SceneFeatures::TEXTURE)
@@ -129,16 +146,28 @@ pub fn surface_at(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
         let t = &scene.triangle_uvs[index];
         let (uv0, uv1, uv2) = (Vec2::from(t.uv0), Vec2::from(t.uv1), Vec2::from(t.uv2));
         uv = uv0 * b0 + uv1 * hit.b1 + uv2 * hit.b2;
-        (dpdu, dpdv) = triangle_frame([p0, p1, p2], [uv0, uv1, uv2], normal);
+        (dpdu, dpdv) = triangle_frame([p0, p1, p2], [uv0, uv1, uv2], n_obj.normalize());
     }
+    let o2w = &inst.object_to_world;
+    let row = |r: &[f32; 4]| Vec3::new(r[0], r[1], r[2]);
+    let to_world = |d: Vec3| {
+        Vec3::new(
+            row(&o2w[0]).dot(d),
+            row(&o2w[1]).dot(d),
+            row(&o2w[2]).dot(d),
+        )
+    };
+    let w2o = &inst.world_to_object;
+    let normal =
+        (row(&w2o[0]) * n_obj.x + row(&w2o[1]) * n_obj.y + row(&w2o[2]) * n_obj.z).normalize();
     Surface {
-        p,
+        p: to_world(p_obj) + Vec3::new(o2w[0][3], o2w[1][3], o2w[2][3]),
         normal,
-        magnitude,
-        material: tri.material,
+        magnitude: mapped_magnitude(o2w, magnitude_obj),
+        material: inst.material,
         uv,
-        dpdu,
-        dpdv,
+        dpdu: to_world(dpdu),
+        dpdv: to_world(dpdv),
     }
 }
 

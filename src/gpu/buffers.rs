@@ -34,14 +34,14 @@ pub const LIMITER_SENTINEL: u32 = 2;
 
 /// The bindings of the scene's arrays, in `SceneBuffers::arrays` order (the two added
 /// last sit after the render entry's own bindings, so those kept their numbers).
-pub const SCENE_ARRAY_BINDINGS: [u32; 9] = [1, 2, 3, 4, 5, 6, 14, 15, 16];
+pub const SCENE_ARRAY_BINDINGS: [u32; 10] = [1, 2, 3, 4, 5, 6, 14, 15, 16, 17];
 
 /// The scene's buffers: the globals uniform (binding 0) and the arrays.
 pub struct SceneBuffers {
     pub globals: wgpu::Buffer,
     /// instances, triangles, materials, lights, cell_start, cell_items, csg_program,
-    /// texels, triangle_uvs, bound at [`SCENE_ARRAY_BINDINGS`].
-    pub arrays: [wgpu::Buffer; 9],
+    /// texels, triangle_uvs, meshes, bound at [`SCENE_ARRAY_BINDINGS`].
+    pub arrays: [wgpu::Buffer; 10],
 }
 
 /// The bytes of `data`, or one zeroed element when it is empty.
@@ -72,7 +72,7 @@ pub fn check_size(ctx: &GpuContext, array: &'static str, bytes: u64) -> Result<(
 
 /// Uploads `scene` to `ctx`'s device.
 pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffers, GpuError> {
-    let arrays: [(&'static str, Vec<u8>); 9] = [
+    let arrays: [(&'static str, Vec<u8>); 10] = [
         ("instances", padded(&scene.instances)),
         ("triangles", padded(&scene.triangles)),
         ("materials", padded(&scene.materials)),
@@ -82,6 +82,7 @@ pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffer
         ("csg_program", padded(&scene.csg_program)),
         ("texels", padded(&scene.texels)),
         ("triangle_uvs", padded(&scene.triangle_uvs)),
+        ("meshes", padded(&scene.meshes)),
     ];
     for (name, bytes) in &arrays {
         check_size(ctx, name, bytes.len() as u64)?;

@@ -78,6 +78,12 @@ const COMMON: &[(&str, &str)] = &[
     ("torus.wgsl", include_str!("../../shaders/torus.wgsl")),
     ("uv.wgsl", include_str!("../../shaders/uv.wgsl")),
     ("csg.wgsl", include_str!("../../shaders/csg.wgsl")),
+    ("hit.wgsl", include_str!("../../shaders/hit.wgsl")),
+    ("dda.wgsl", include_str!("../../shaders/dda.wgsl")),
+    (
+        "traverse_mesh.wgsl",
+        include_str!("../../shaders/traverse_mesh.wgsl"),
+    ),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
     (

@@ -23,17 +23,40 @@ pub struct GpuInstance {
     pub params: [f32; 2],
 }
 
-/// A world-space triangle (flat shaded: the normal is the cross product of its edges).
+/// A triangle of a mesh, in the mesh's space (flat shaded: the normal is the cross
+/// product of its edges); the material is its instance's. Nine packed floats (36
+/// bytes): the WGSL twin holds `array<f32, 3>` corners, which have no vec3 padding.
 // Mirror of shaders/layout.wgsl::GpuTriangle — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuTriangle {
     pub p0: [f32; 3],
-    pub material: u32,
     pub p1: [f32; 3],
-    pub _pad1: u32,
     pub p2: [f32; 3],
-    pub _pad2: u32,
+}
+
+/// A mesh: its triangles `first_triangle..first_triangle + num_triangles` and its own
+/// uniform grid over them, in the mesh's space. The grid's cells are
+/// `first_cell..first_cell + dims product` of `cell_start` (whose entries index
+/// `cell_items` directly); its cell items are triangle numbers relative to
+/// `first_triangle`.
+// Mirror of shaders/layout.wgsl::GpuMesh — change both.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuMesh {
+    /// Lower corner of the grid bounds.
+    pub grid_min: [f32; 3],
+    pub first_cell: u32,
+    /// Upper corner of the grid bounds.
+    pub grid_max: [f32; 3],
+    pub first_triangle: u32,
+    /// Size of one cell.
+    pub grid_cell_size: [f32; 3],
+    /// Stored mesh triangles (each stored once however many instances share it).
+    pub num_triangles: u32,
+    /// Cells along each axis.
+    pub grid_dims: [u32; 3],
+    pub _pad0: u32,
 }
 
 /// The UVs of a triangle's corners (p0, p1, p2), in a separate array parallel to the
@@ -118,9 +141,11 @@ pub struct GpuGlobals {
     pub min_weight: f32,
     /// Lower corner of the grid bounds.
     pub grid_min: [f32; 3],
+    /// Scene grid items: every instance below this (analytic, CSG, mesh instances).
     pub num_instances: u32,
     /// Size of one grid cell.
     pub grid_cell_size: [f32; 3],
+    /// Stored mesh triangles (each stored once however many instances share it).
     pub num_triangles: u32,
     /// Cells along each axis.
     pub grid_dims: [u32; 3],
@@ -149,8 +174,9 @@ pub struct GpuGlobals {
 }
 
 const _: () = assert!(std::mem::size_of::<GpuInstance>() == 112);
-const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 36);
 const _: () = assert!(std::mem::size_of::<GpuTriangleUv>() == 24);
+const _: () = assert!(std::mem::size_of::<GpuMesh>() == 64);
 const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 80);
 const _: () = assert!(std::mem::size_of::<GpuGlobals>() == 224);

@@ -1,31 +1,40 @@
 //! `pack`: the flattened [`Scene`] laid out as the Pod arrays both tracers read, plus the
-//! uniform grid over them. Below this point there are no enums, only tags and indices.
+//! grids over them: one over the scene's items, one per mesh over its triangles (see
+//! `crate::accel`). Below this point there are no enums, only tags and indices.
 
+pub mod bounds;
 pub mod features;
 pub mod layout;
+pub mod meshes;
 pub mod texture;
 
-use crate::accel::grid::{csg_bounds, instance_bounds, Grid, GridBuildStats};
+use crate::accel::aabb::Aabb;
+use crate::accel::grid::{Grid, GridBuildStats};
 use crate::constants::*;
-use crate::scene::flatten::{CsgStep, Object, ObjectKind, Scene, Triangle};
+use crate::scene::flatten::{CsgStep, Object, ObjectKind, Scene};
 use crate::scene::{AaMode, Background, CsgOp, DebugView, GridMode};
+use bounds::{csg_bounds, instance_bounds};
 pub use features::SceneFeatures;
 use glam::{DMat4, DVec3};
 pub use layout::*;
 use rayon::prelude::*;
 
-/// Everything a tracer needs, as flat arrays. Grid items index instances first, then
-/// triangles: item `i < num_instances` is `instances[i]`, else `triangles[i - num_instances]`.
-/// The instances of the analytic objects come first, then one `KIND_CSG` instance per CSG
-/// object; the leaves of the CSG programs follow at `num_instances..` (not grid items).
+/// Everything a tracer needs, as flat arrays. The scene grid's items are the instances
+/// `0..num_instances`: the analytic objects first, then one `KIND_CSG` instance per CSG
+/// object, then one `KIND_MESH` instance per mesh placement; the leaves of the CSG
+/// programs follow at `num_instances..` (not grid items). Triangles belong to meshes
+/// (`meshes`), each traversed through its own grid.
 #[derive(Clone, Debug)]
 pub struct PackedScene {
     pub globals: GpuGlobals,
     pub instances: Vec<GpuInstance>,
     pub triangles: Vec<GpuTriangle>,
+    /// Each mesh's triangle range and grid (`KIND_MESH` instances index it).
+    pub meshes: Vec<GpuMesh>,
     pub materials: Vec<GpuMaterial>,
     pub lights: Vec<GpuLight>,
-    /// `cell_start[c]..cell_start[c + 1]` indexes `cell_items` for cell c (x fastest).
+    /// `cell_start[c]..cell_start[c + 1]` indexes `cell_items` for cell c (x fastest):
+    /// the scene grid's cells first, then each mesh's (from `GpuMesh::first_cell`).
     pub cell_start: Vec<u32>,
     pub cell_items: Vec<u32>,
     /// CSG programs, post-order (see `cpu::csg`); empty without CSG.
@@ -36,7 +45,28 @@ pub struct PackedScene {
     /// the TEXTURE or BUMP feature.
     pub triangle_uvs: Vec<GpuTriangleUv>,
     pub features: SceneFeatures,
+    /// The scene grid's build counters.
     pub grid_stats: GridBuildStats,
+    /// The mesh grids' counters, summed over the meshes.
+    pub mesh_grid_stats: GridBuildStats,
+}
+
+impl PackedScene {
+    /// The acceleration structure's memory and the triangles it stores: bytes of the
+    /// stored triangles, both levels of grid cells and references, the mesh headers and
+    /// the mesh instances (each triangle counted once however many instances share it).
+    pub fn accel_memory(&self) -> (usize, usize) {
+        use std::mem::size_of;
+        let mesh_instances = self.instances[..self.globals.num_instances as usize]
+            .iter()
+            .filter(|i| i.kind == KIND_MESH)
+            .count();
+        let bytes = self.triangles.len() * size_of::<GpuTriangle>()
+            + (self.cell_start.len() + self.cell_items.len()) * size_of::<u32>()
+            + self.meshes.len() * size_of::<GpuMesh>()
+            + mesh_instances * size_of::<GpuInstance>();
+        (bytes, self.triangles.len())
+    }
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -51,6 +81,8 @@ pub enum PackError {
     TooManyItems(usize),
     #[error("the CSG objects have {0} primitives and program entries in all; glint supports at most 2^24")]
     CsgTooLarge(usize),
+    #[error("the scene has {0} meshes; glint supports at most 2^24")]
+    TooManyMeshes(usize),
 }
 
 /// The instance of an analytic object, and the feature its kind needs.
@@ -144,29 +176,26 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
             instance
         })
         .collect();
-    // CSG objects are items after the analytic objects; their leaves follow all items.
-    let num_items = instances.len() + scene.csg.len();
+    // (scene grid λ, mesh grids' λ); an explicit density sets both.
+    let (density, mesh_density) = match scene.options.grid {
+        GridMode::Off => (None, None),
+        GridMode::Auto => (
+            Some(crate::accel::grid::DEFAULT_DENSITY),
+            Some(crate::accel::grid::MESH_DEFAULT_DENSITY),
+        ),
+        GridMode::Density(d) => (Some(d), Some(d)),
+    };
+    let mut meshes = meshes::pack_meshes(scene, mesh_density)?;
+    // CSG objects and mesh instances are items after the analytic objects; the CSG
+    // leaves follow all items.
+    let num_items = instances.len() + scene.csg.len() + meshes.instances.len();
     let csg = pack_csg(scene, num_items)?;
     features.insert(csg.features);
     instances.extend(csg.items);
+    instances.extend(std::mem::take(&mut meshes.instances));
     instances.extend(csg.leaves);
     let csg_program = csg.program;
-    let triangle_order: Vec<usize> = spatial_order(&scene.triangles)
-        .into_iter()
-        .filter(|&i| !is_degenerate(&scene.triangles[i].positions))
-        .collect();
-    let triangles: Vec<GpuTriangle> = triangle_order
-        .iter()
-        .map(|&i| &scene.triangles[i])
-        .map(|t| GpuTriangle {
-            p0: t.positions[0].as_vec3().to_array(),
-            material: t.material as u32,
-            p1: t.positions[1].as_vec3().to_array(),
-            _pad1: 0,
-            p2: t.positions[2].as_vec3().to_array(),
-            _pad2: 0,
-        })
-        .collect();
+    let triangles = std::mem::take(&mut meshes.triangles);
     if !triangles.is_empty() {
         features.insert(SceneFeatures::MESH);
     }
@@ -211,6 +240,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         .iter()
         .map(|o| o.material)
         .chain(scene.triangles.iter().map(|t| t.material))
+        .chain(scene.mesh_instances.iter().map(|m| m.material))
         .chain(leaves)
     {
         if let Some(slot) = in_use.get_mut(m) {
@@ -238,14 +268,10 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     let needs_uv =
         features.contains(SceneFeatures::TEXTURE) || features.contains(SceneFeatures::BUMP);
     let (texels, triangle_uvs) = if needs_uv {
-        let uvs = triangle_order
-            .iter()
-            .map(|&i| {
-                let [uv0, uv1, uv2] = scene.triangles[i].uvs;
-                GpuTriangleUv { uv0, uv1, uv2 }
-            })
-            .collect();
-        (texture::pack_texels(&scene.textures), uvs)
+        (
+            texture::pack_texels(&scene.textures),
+            std::mem::take(&mut meshes.triangle_uvs),
+        )
     } else {
         (Vec::new(), Vec::new())
     };
@@ -294,16 +320,11 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     if options.max_depth > MAX_TRACE_DEPTH {
         return Err(PackError::DepthTooLarge(options.max_depth));
     }
-    let item_count = num_items + triangles.len();
-    if item_count >= (1 << 31) {
-        return Err(PackError::TooManyItems(item_count));
+    if num_items >= (1 << 31) {
+        return Err(PackError::TooManyItems(num_items));
     }
-    let density = match options.grid {
-        GridMode::Off => None,
-        GridMode::Auto => Some(crate::accel::grid::DEFAULT_DENSITY),
-        GridMode::Density(d) => Some(d),
-    };
-    let item_bounds = instances[..num_items]
+    let num_scene_objects = num_items - meshes.instance_bounds.len();
+    let item_bounds: Vec<Aabb> = instances[..num_scene_objects]
         .iter()
         .map(|inst| {
             if inst.kind == KIND_CSG {
@@ -314,25 +335,33 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
                 instance_bounds(inst)
             }
         })
+        .chain(meshes.instance_bounds.iter().copied())
         .collect();
-    let grid = Grid::build_items(item_bounds, &triangles, density);
+    let grid = Grid::build(&item_bounds, None, density);
     if grid.enabled {
         features.insert(SceneFeatures::GRID);
     }
+    meshes.append_cells(grid.cell_start.len(), grid.cell_items.len());
+    let mut cell_start = grid.cell_start.clone();
+    cell_start.extend_from_slice(&meshes.cell_start);
+    let mut cell_items = grid.cell_items.clone();
+    cell_items.extend_from_slice(&meshes.cell_items);
     let globals = make_globals(scene, num_items, &triangles, &lights, &grid);
     let packed = PackedScene {
         globals,
         instances,
         triangles,
+        meshes: meshes.meshes,
         materials,
         lights,
-        cell_start: grid.cell_start,
-        cell_items: grid.cell_items,
+        cell_start,
+        cell_items,
         csg_program,
         texels,
         triangle_uvs,
         features,
         grid_stats: grid.stats,
+        mesh_grid_stats: meshes.stats,
     };
     Ok(packed)
 }
@@ -396,7 +425,7 @@ fn make_globals(
 }
 
 /// Rows of the 3×4 affine part of `m` (xyz linear, w translation), in f32.
-fn affine_rows(m: &DMat4) -> [[f32; 4]; 3] {
+pub(crate) fn affine_rows(m: &DMat4) -> [[f32; 4]; 3] {
     let r = m.transpose();
     [
         r.x_axis.as_vec4().to_array(),
@@ -409,18 +438,17 @@ fn affine_rows(m: &DMat4) -> [[f32; 4]; 3] {
 /// other in space then sit near each other in memory, so a ray walking the grid touches
 /// few cache lines; with 10⁶ random triangles this keeps the per-ray cost close to that
 /// of 10³. Ties keep input order, so the order is deterministic.
-fn spatial_order(triangles: &[Triangle]) -> Vec<usize> {
-    let centroid = |t: &Triangle| (t.positions[0] + t.positions[1] + t.positions[2]) / 3.0;
-    let (lo, hi) = triangles.iter().map(centroid).fold(
+fn spatial_order(centroids: &[DVec3]) -> Vec<usize> {
+    let (lo, hi) = centroids.iter().fold(
         (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
-        |(lo, hi), c| (lo.min(c), hi.max(c)),
+        |(lo, hi), &c| (lo.min(c), hi.max(c)),
     );
     let scale = (hi - lo).max(DVec3::splat(f64::MIN_POSITIVE)).recip() * 1023.0;
-    let mut keyed: Vec<(u32, usize)> = triangles
+    let mut keyed: Vec<(u32, usize)> = centroids
         .par_iter()
         .enumerate()
-        .map(|(i, t)| {
-            let q = ((centroid(t) - lo) * scale).clamp(DVec3::ZERO, DVec3::splat(1023.0));
+        .map(|(i, &c)| {
+            let q = ((c - lo) * scale).clamp(DVec3::ZERO, DVec3::splat(1023.0));
             (morton3(q.x as u32, q.y as u32, q.z as u32), i)
         })
         .collect();

@@ -1,7 +1,8 @@
 //! SceneGraph → world-space [`Scene`]: walks the DAG from the render root, composing
 //! f64 matrices, so instancing (a node under several parents) yields one object per path.
-//! Analytic primitives keep their object-to-world transform; mesh triangles are baked to
-//! world space (shared edges stay bit-identical, which keeps the triangle test watertight).
+//! Analytic primitives keep their object-to-world transform; each path to a mesh node
+//! becomes a [`MeshInstance`], and [`super::instancing`] stores each mesh once (in its
+//! own space when several instances share it, baked into world space when one uses it).
 //! A CSG node becomes one [`CsgObject`]: its tree as a post-order program whose leaves are
 //! primitive objects with their own object-to-world transforms and materials.
 
@@ -111,7 +112,9 @@ pub fn csg_worst_case(program: &[CsgStep]) -> (u32, u32) {
     (peak_events, peak_lists)
 }
 
-/// One world-space triangle.
+/// One world-space triangle with its own material: loose triangles that tests and
+/// benchmarks build directly (packing gathers them into one world-space mesh per
+/// material); scripts' meshes arrive as [`SceneMesh`]es instead.
 #[derive(Clone, Debug)]
 pub struct Triangle {
     pub positions: [DVec3; 3],
@@ -120,13 +123,42 @@ pub struct Triangle {
     pub uvs: [[f32; 2]; 3],
 }
 
+/// A triangle of a [`SceneMesh`], in the mesh's space (its instances give the material).
+#[derive(Clone, Debug)]
+pub struct MeshTriangle {
+    pub positions: [DVec3; 3],
+    /// The corners' UVs: the mesh's own, else the planar projection of `scene::uv`.
+    pub uvs: [[f32; 2]; 3],
+}
+
+/// A mesh as the tracers store it: once, however many instances use it.
+#[derive(Clone, Debug)]
+pub struct SceneMesh {
+    pub name: String,
+    pub triangles: Vec<MeshTriangle>,
+}
+
+/// One placement of a [`SceneMesh`] (index `mesh` in `Scene::meshes`).
+#[derive(Clone, Debug)]
+pub struct MeshInstance {
+    pub name: String,
+    pub mesh: usize,
+    pub object_to_world: DMat4,
+    pub material: MaterialId,
+}
+
 /// The flattened scene of one `gr.render` call.
 #[derive(Clone, Debug)]
 pub struct Scene {
     pub objects: Vec<Object>,
     /// CSG objects (grid items after `objects`).
     pub csg: Vec<CsgObject>,
+    /// Loose world-space triangles (see [`Triangle`]); empty for scripts.
     pub triangles: Vec<Triangle>,
+    /// Meshes, each stored once (see [`super::instancing`]).
+    pub meshes: Vec<SceneMesh>,
+    /// Mesh instances (grid items after the CSG objects).
+    pub mesh_instances: Vec<MeshInstance>,
     /// All materials of the graph, plus the default one at index `default_material`.
     pub materials: Vec<Material>,
     /// The graph's textures (materials index them).
@@ -195,6 +227,8 @@ pub fn flatten(graph: &SceneGraph, request: &RenderRequest) -> Result<Scene, Fla
         objects: Vec::new(),
         csg: Vec::new(),
         triangles: Vec::new(),
+        meshes: Vec::new(),
+        mesh_instances: Vec::new(),
         materials,
         textures: graph.textures.clone(),
         lights: request.lights.clone(),
@@ -219,6 +253,7 @@ pub fn flatten(graph: &SceneGraph, request: &RenderRequest) -> Result<Scene, Fla
         &mut path,
         &mut scene,
     )?;
+    super::instancing::store_meshes(graph, &mut scene);
     Ok(scene)
 }
 
@@ -251,26 +286,13 @@ fn visit(
             check_transform(&object_to_world, &path_name)?;
             let material = node.material.unwrap_or(default_material);
             match primitive {
-                Primitive::Mesh(mesh_id) => {
-                    let mesh = &graph.meshes[*mesh_id];
-                    let world: Vec<DVec3> = mesh
-                        .positions
-                        .iter()
-                        .map(|&p| object_to_world.transform_point3(p))
-                        .collect();
-                    scene
-                        .triangles
-                        .extend(mesh.triangles.iter().map(|t| Triangle {
-                            positions: t.map(|i| world[i as usize]),
-                            material,
-                            uvs: match &mesh.uvs {
-                                Some(uvs) => t.map(|i| uvs[i as usize]),
-                                None => {
-                                    super::uv::planar_uvs(t.map(|i| mesh.positions[i as usize]))
-                                }
-                            },
-                        }));
-                }
+                // The graph's mesh id for now; `store_meshes` renumbers.
+                Primitive::Mesh(mesh_id) => scene.mesh_instances.push(MeshInstance {
+                    name: path_name(),
+                    mesh: *mesh_id,
+                    object_to_world,
+                    material,
+                }),
                 analytic => scene.objects.push(Object {
                     name: path_name(),
                     kind: object_kind(analytic).expect("analytic primitive"),

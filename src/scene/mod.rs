@@ -5,6 +5,7 @@
 pub mod cost;
 pub mod files;
 pub mod flatten;
+pub mod instancing;
 pub mod lua;
 pub mod obj;
 pub mod options;

@@ -227,6 +227,9 @@ pub fn scaled_scene(scene: &Scene, s: f64) -> Scene {
     for t in &mut out.triangles {
         t.positions = t.positions.map(|p| p * s);
     }
+    for instance in &mut out.mesh_instances {
+        instance.object_to_world = m * instance.object_to_world;
+    }
     for l in &mut out.lights {
         l.position *= s;
         if let Some(area) = &mut l.area {

@@ -1,0 +1,225 @@
+//! One uniform grid walked by 3D-DDA (Amanatides & Woo 1987), for either level: the scene
+//! grid (placement in `GpuGlobals`) or a mesh's own grid (in its `GpuMesh`, mesh space).
+//! Also the move of a ray's origin to where it enters a box, which both levels use.
+
+use super::math::safe_rcp3;
+use super::ray::Ray;
+use crate::constants::{ENTER_MARGIN_RELATIVE, F32_MIN_POSITIVE, T_MISS};
+use crate::pack::{GpuGlobals, GpuMesh};
+use glam::{IVec3, Vec3};
+
+/// A grid's placement: bounds, cell size, cells per axis and its first cell in
+/// `PackedScene::cell_start`.
+// Mirror of shaders/dda.wgsl::GridView — change both.
+#[derive(Clone, Copy, Debug)]
+pub struct GridView {
+    pub min: Vec3,
+    pub max: Vec3,
+    pub cell_size: Vec3,
+    pub dims: IVec3,
+    pub first_cell: u32,
+}
+
+/// The scene grid (its cells come first in `cell_start`).
+// Mirror of shaders/dda.wgsl::scene_grid — change both.
+pub fn scene_grid(g: &GpuGlobals) -> GridView {
+    GridView {
+        min: Vec3::from(g.grid_min),
+        max: Vec3::from(g.grid_max),
+        cell_size: Vec3::from(g.grid_cell_size),
+        dims: IVec3::new(
+            g.grid_dims[0] as i32,
+            g.grid_dims[1] as i32,
+            g.grid_dims[2] as i32,
+        ),
+        first_cell: 0,
+    }
+}
+
+/// A mesh's own grid, in the mesh's space.
+// Mirror of shaders/dda.wgsl::mesh_grid — change both.
+pub fn mesh_grid(mesh: &GpuMesh) -> GridView {
+    GridView {
+        min: Vec3::from(mesh.grid_min),
+        max: Vec3::from(mesh.grid_max),
+        cell_size: Vec3::from(mesh.grid_cell_size),
+        dims: IVec3::new(
+            mesh.grid_dims[0] as i32,
+            mesh.grid_dims[1] as i32,
+            mesh.grid_dims[2] as i32,
+        ),
+        first_cell: mesh.first_cell,
+    }
+}
+
+/// A grid's state for one ray: current cell, per-axis step, next boundary t and t per cell.
+// Mirror of shaders/dda.wgsl::Dda — change both.
+#[derive(Clone, Copy, Debug)]
+pub struct Dda {
+    pub cell: IVec3,
+    pub step: IVec3,
+    pub t_next: Vec3,
+    pub t_delta: Vec3,
+    pub t_exit: f32,
+}
+
+/// Clips the ray to the grid bounds and finds its first cell, or None if it misses them.
+// Mirror of shaders/dda.wgsl::dda_setup — change both.
+pub fn dda_setup(grid: &GridView, ray: &Ray, t_max: f32) -> Option<Dda> {
+    let inv = safe_rcp3(ray.dir);
+    let t0 = (grid.min - ray.origin) * inv;
+    let t1 = (grid.max - ray.origin) * inv;
+    let t_enter = t0.min(t1).max_element().max(0.0);
+    let t_exit = t0.max(t1).min_element().min(t_max);
+    if t_enter > t_exit {
+        return None;
+    }
+    let p = ray.origin + ray.dir * t_enter;
+    let cell = ((p - grid.min) / grid.cell_size)
+        .floor()
+        .as_ivec3()
+        .clamp(IVec3::ZERO, grid.dims - 1);
+    let mut step = IVec3::ZERO;
+    let mut t_next = Vec3::ZERO;
+    let mut t_delta = Vec3::ZERO;
+    for axis in 0..3 {
+        if ray.dir[axis] == 0.0 {
+            // Parallel to this axis's planes: never step along it.
+            step[axis] = 0;
+            t_next[axis] = T_MISS;
+            t_delta[axis] = T_MISS;
+        } else {
+            step[axis] = if ray.dir[axis] > 0.0 { 1 } else { -1 };
+            let boundary_cell = cell[axis] + if ray.dir[axis] > 0.0 { 1 } else { 0 };
+            let boundary = grid.min[axis] + boundary_cell as f32 * grid.cell_size[axis];
+            t_next[axis] = (boundary - ray.origin[axis]) * inv[axis];
+            t_delta[axis] = grid.cell_size[axis] * inv[axis].abs();
+        }
+    }
+    Some(Dda {
+        cell,
+        step,
+        t_next,
+        t_delta,
+        t_exit,
+    })
+}
+
+/// Index of the DDA's current cell in `cell_start` (x fastest).
+// Mirror of shaders/dda.wgsl::cell_index — change both.
+pub fn cell_index(grid: &GridView, cell: IVec3) -> usize {
+    let dims = grid.dims;
+    grid.first_cell as usize + (cell.x + dims.x * (cell.y + dims.y * cell.z)) as usize
+}
+
+/// Index of the smallest component.
+// Mirror of shaders/dda.wgsl::min_axis — change both.
+pub fn min_axis(v: Vec3) -> usize {
+    if v.x <= v.y && v.x <= v.z {
+        0
+    } else if v.y <= v.z {
+        1
+    } else {
+        2
+    }
+}
+
+/// Steps the DDA to the next cell; the t where the current cell is left, or None when
+/// the ray leaves the grid or passes t_exit there.
+// Mirror of shaders/dda.wgsl::dda_step — change both.
+pub fn dda_step(grid: &GridView, dda: &mut Dda) -> Option<f32> {
+    let axis = min_axis(dda.t_next);
+    let t_cell_exit = dda.t_next[axis];
+    if t_cell_exit >= dda.t_exit {
+        return None;
+    }
+    dda.cell[axis] += dda.step[axis];
+    if dda.cell[axis] < 0 || dda.cell[axis] >= grid.dims[axis] {
+        return None;
+    }
+    dda.t_next[axis] += dda.t_delta[axis];
+    Some(t_cell_exit)
+}
+
+/// A ray moved to where it enters a box.
+// Mirror of shaders/dda.wgsl::EnteredRay — change both.
+#[derive(Clone, Copy, Debug)]
+pub struct EnteredRay {
+    pub ray: Ray,
+    /// How far the origin moved along the ray (0 when it started inside the bounds).
+    pub t_moved: f32,
+    /// The caller's t_max, measured from the moved origin.
+    pub t_max: f32,
+}
+
+/// A ray that starts outside the box [min, max], moved to `margin` (in t) before where
+/// it enters it; None when it misses the box before t_max. Every later step (grid walk
+/// and item tests alike) then works from an origin near the geometry: a far origin's
+/// rounding (an ulp of 10⁷ is a whole unit) is taken once, here, instead of differently
+/// by the cell walk and by each item test, which could otherwise disagree on which cell
+/// a hit lies in and lose it.
+// Mirror of shaders/dda.wgsl::enter_bounds — change both.
+pub fn enter_bounds(
+    min: Vec3,
+    max: Vec3,
+    ray: &Ray,
+    t_max: f32,
+    margin: f32,
+) -> Option<EnteredRay> {
+    let inv = safe_rcp3(ray.dir);
+    let t0 = (min - ray.origin) * inv;
+    let t1 = (max - ray.origin) * inv;
+    let t_enter = t0.min(t1).max_element().max(0.0);
+    let t_exit = t0.max(t1).min_element().min(t_max);
+    if t_enter > t_exit {
+        return None;
+    }
+    let t_move = t_enter - margin;
+    if t_move <= 0.0 {
+        return Some(EnteredRay {
+            ray: *ray,
+            t_moved: 0.0,
+            t_max,
+        });
+    }
+    Some(EnteredRay {
+        ray: Ray {
+            origin: ray.origin + ray.dir * t_move,
+            dir: ray.dir,
+        },
+        t_moved: t_move,
+        t_max: t_max - t_move,
+    })
+}
+
+/// The ray moved to where it enters the scene bounds (see [`enter_bounds`]; world rays
+/// have unit directions, so the margin is a distance: more than the rounding of the
+/// moved origin). Brute force does the same, so both give the same hits.
+// Mirror of shaders/dda.wgsl::enter_scene — change both.
+pub fn enter_scene(g: &GpuGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
+    let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE;
+    enter_bounds(
+        Vec3::from(g.grid_min),
+        Vec3::from(g.grid_max),
+        ray,
+        t_max,
+        margin,
+    )
+}
+
+/// The mesh-space ray moved to where it enters the mesh's grid bounds. Its direction is
+/// not a unit vector (the instance's transform scales it), so the margin is the scene's
+/// relative margin of the origin divided by the direction's largest component: at least
+/// the distance margin, in t.
+// Mirror of shaders/dda.wgsl::enter_mesh — change both.
+pub fn enter_mesh(mesh: &GpuMesh, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
+    let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE
+        / ray.dir.abs().max_element().max(F32_MIN_POSITIVE);
+    enter_bounds(
+        Vec3::from(mesh.grid_min),
+        Vec3::from(mesh.grid_max),
+        ray,
+        t_max,
+        margin,
+    )
+}

@@ -1,0 +1,61 @@
+//! Meshes stored once: after flattening, each graph mesh that some path reaches becomes
+//! one [`SceneMesh`]. A mesh with several instances keeps its object-space vertices and
+//! its instances their transforms (a two-level structure, as a TLAS over BLASes); a mesh
+//! with one instance is baked into world space under an identity transform, so the
+//! common single-use mesh is traced in world coordinates exactly as before instancing
+//! (no ray transform, no extra rounding).
+
+use super::flatten::{MeshTriangle, Scene, SceneMesh};
+use super::SceneGraph;
+use glam::DMat4;
+
+/// Replaces the graph mesh ids of `scene.mesh_instances` by indices into the meshes it
+/// stores in `scene.meshes` (in order of first use).
+pub fn store_meshes(graph: &SceneGraph, scene: &mut Scene) {
+    let mut uses = vec![0usize; graph.meshes.len()];
+    for instance in &scene.mesh_instances {
+        uses[instance.mesh] += 1;
+    }
+    let mut stored: Vec<Option<usize>> = vec![None; graph.meshes.len()];
+    for instance in &mut scene.mesh_instances {
+        let mesh = &graph.meshes[instance.mesh];
+        let single = uses[instance.mesh] == 1;
+        let to_stored = if single {
+            instance.object_to_world
+        } else {
+            DMat4::IDENTITY
+        };
+        let index = match stored[instance.mesh] {
+            Some(index) => index,
+            None => {
+                let positions: Vec<_> = mesh
+                    .positions
+                    .iter()
+                    .map(|&p| to_stored.transform_point3(p))
+                    .collect();
+                let triangles = mesh
+                    .triangles
+                    .iter()
+                    .map(|t| MeshTriangle {
+                        positions: t.map(|i| positions[i as usize]),
+                        uvs: match &mesh.uvs {
+                            Some(uvs) => t.map(|i| uvs[i as usize]),
+                            None => super::uv::planar_uvs(t.map(|i| mesh.positions[i as usize])),
+                        },
+                    })
+                    .collect();
+                scene.meshes.push(SceneMesh {
+                    name: mesh.name.clone(),
+                    triangles,
+                });
+                let index = scene.meshes.len() - 1;
+                stored[instance.mesh] = Some(index);
+                index
+            }
+        };
+        instance.mesh = index;
+        if single {
+            instance.object_to_world = DMat4::IDENTITY;
+        }
+    }
+}
