@@ -186,6 +186,14 @@ double fastest_seconds(int repeat, F run) {
     return best;
 }
 
+// glint's `rate`: three decimals, or three significant digits below 1.
+std::string rate(double x) {
+    int decimals = x > 0.0 && x < 1.0 ? std::max(3, 2 - int(std::floor(std::log10(x)))) : 3;
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", decimals, x);
+    return text;
+}
+
 void fill_ray(RTCRay& r, const DumpRay& d) {
     r.org_x = d.org[0];
     r.org_y = d.org[1];
@@ -266,8 +274,8 @@ int main(int argc, char** argv) {
         shadow_differ += occluded[i] != d.shadow[i].glint_answer;
     }
     size_t triangles = d.triangles.size() / 9;
-    std::printf("primary: %.3f Mrays/s\n", d.primary.size() / t_primary / 1e6);
-    std::printf("shadow: %.3f Mrays/s\n", d.shadow.size() / t_shadow / 1e6);
+    std::printf("primary: %s Mrays/s\n", rate(d.primary.size() / t_primary / 1e6).c_str());
+    std::printf("shadow: %s Mrays/s\n", rate(d.shadow.size() / t_shadow / 1e6).c_str());
     std::printf("memory: %.1f bytes per triangle\n", double(embree_bytes.load()) / double(std::max<size_t>(triangles, 1)));
     std::printf("of which geometry buffers (a vertex per corner, as glint stores them, and indices): %.1f bytes per triangle\n", double(buffer_bytes) / double(std::max<size_t>(triangles, 1)));
     std::printf("embree %s, %zu triangles, %u other items, %u threads\n", RTC_VERSION_STRING, triangles, num_instances, threads);
