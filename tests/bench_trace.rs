@@ -7,7 +7,7 @@
 mod common;
 
 use common::temp_dir;
-use glint::cli::bench_trace::{
+use glint::cli::trace_rays::{
     camera_rays, load_first_render, shadow_rays, summarise, trace_primary, trace_shadow,
 };
 use glint::pack::pack;

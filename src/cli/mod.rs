@@ -14,3 +14,4 @@ pub mod stats;
 pub mod sweep_analysis;
 pub mod timing;
 pub mod trace_dump;
+pub mod trace_rays;

@@ -17,7 +17,7 @@
 //!
 //! Only spheres, boxes and triangles are written: the harness implements no other kind.
 
-use super::bench_trace::ShadowRay;
+use super::trace_rays::ShadowRay;
 use crate::constants::{KIND_CUBE, KIND_SPHERE, T_MISS};
 use crate::cpu::ray::Ray;
 use crate::cpu::traverse::Hit;
