@@ -39,7 +39,8 @@ enum Command {
         #[arg(long)]
         heatmap: Option<PathBuf>,
     },
-    /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles.
+    /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles;
+    /// --trace SCENE: traversal alone in rays/s (beside Embree: benches/).
     Bench(glint::cli::bench_cmd::BenchArgs),
     /// List the GPU adapters (Vulkan, or the backends WGPU_BACKEND names) and their limits.
     Info,

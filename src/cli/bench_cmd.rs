@@ -6,7 +6,8 @@
 //! 3. Optionally (`--densities`), time per ray against the grid density λ.
 //!
 //! `--torus` runs only the ray–torus solver comparison (`bench_torus`); `--sweep` only the
-//! error-against-time sweep of the sampling settings (`bench_sweep`).
+//! error-against-time sweep of the sampling settings (`bench_sweep`); `--trace SCENE` only
+//! the traversal benchmark of one scene, beside Embree (`bench_trace`).
 
 use super::splitmix::SplitMix;
 use crate::accel::aabb::Aabb;
@@ -23,7 +24,7 @@ use crate::scene::{Camera, GridMode, RenderOptions};
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 #[derive(clap::Args, Clone, Debug)]
 pub struct BenchArgs {
@@ -69,9 +70,43 @@ pub struct BenchArgs {
     /// --sweep: where the error-against-time plot (SVG) goes.
     #[arg(long, default_value = "docs/error-vs-time.svg")]
     pub plot: PathBuf,
+    /// Only the trace benchmark of this scene: camera rays (one per pixel) and one shadow
+    /// ray per hit and light through the CPU tracer's traversal, no shading (`bench_trace`).
+    #[arg(long, value_name = "SCENE.lua")]
+    pub trace: Option<PathBuf>,
+    /// --trace: image width (default: the scene's).
+    #[arg(long, requires = "trace", value_parser = clap::value_parser!(u32).range(1..))]
+    pub width: Option<u32>,
+    /// --trace: image height (default: the scene's).
+    #[arg(long, requires = "trace", value_parser = clap::value_parser!(u32).range(1..))]
+    pub height: Option<u32>,
+    /// --trace: also write the geometry and the exact rays, with glint's answers, for the
+    /// Embree harness (`benches/embree/`; format in `cli::trace_dump`).
+    #[arg(long, requires = "trace", value_name = "FILE")]
+    pub dump_rays: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    pub threads: Option<u32>,
 }
 
 pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0) as usize)
+        .build()?;
+    pool.install(|| run_bench_on_pool(args))
+}
+
+fn run_bench_on_pool(args: &BenchArgs) -> anyhow::Result<()> {
+    // --trace prints its three result lines first (its thread count follows them).
+    if let Some(scene) = &args.trace {
+        return super::bench_trace::bench_trace(&super::bench_trace::TraceBenchArgs {
+            scene: scene.clone(),
+            width: args.width,
+            height: args.height,
+            repeat: args.repeat,
+            dump_rays: args.dump_rays.clone(),
+        });
+    }
     println!("glint bench on {} threads", rayon::current_num_threads());
     if args.gpu {
         return super::bench_gpu::bench_gpu(args);
@@ -90,18 +125,7 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Fastest of `repeat` runs of `f`, with its last result.
-pub(super) fn fastest<T>(repeat: usize, mut f: impl FnMut() -> T) -> (Duration, T) {
-    let mut best = Duration::MAX;
-    let mut result = None;
-    for _ in 0..repeat.max(1) {
-        let start = Instant::now();
-        let r = f();
-        best = best.min(start.elapsed());
-        result = Some(r);
-    }
-    (best, result.expect("at least one run"))
-}
+pub(super) use super::timing::fastest;
 
 /// Nearest item and part (for a mesh instance, the triangle) along each ray (in parallel).
 fn trace_all(scene: &PackedScene, rays: &[Ray]) -> Vec<(u32, u32)> {

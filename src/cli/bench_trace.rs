@@ -1,0 +1,120 @@
+//! `glint bench --trace SCENE.lua`: the CPU tracer's traversal alone, in rays per second,
+//! for comparison with Embree on the same rays (`benches/embree/`).
+//!
+//! One camera ray per pixel through the pixel centre (no anti-aliasing), traced with
+//! `closest_hit`; then, for every hit and every light in front of the hit surface, one
+//! shadow ray (`any_hit`) from the offset hit point to the light (an area light's
+//! centre), as shading would trace it. Nothing is shaded. Ray generation and the shadow
+//! rays' set-up are not timed; each phase is timed over all rays, fastest of `--repeat`.
+//! The hits are summarised by counts and a checksum of the hit items, so that another
+//! tracer given the same rays (`--dump-rays`) can be checked to find the same hits.
+
+use super::timing::fastest;
+use super::trace_dump::{check_dumpable, write_trace_dump};
+use super::trace_rays::{
+    camera_rays, load_first_render, shadow_rays, summarise, trace_primary_into, trace_shadow_into,
+    TraceSummary,
+};
+use crate::cpu::traverse::Hit;
+use crate::pack::{pack, GpuTriangle, PackedScene};
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// What `--trace` needs from the command line.
+#[derive(Clone, Debug)]
+pub struct TraceBenchArgs {
+    pub scene: PathBuf,
+    pub width: Option<u32>,
+    pub height: Option<u32>,
+    pub repeat: usize,
+    pub dump_rays: Option<PathBuf>,
+}
+
+pub fn bench_trace(args: &TraceBenchArgs) -> anyhow::Result<()> {
+    let scene = load_first_render(&args.scene, args.width, args.height)?;
+    let build_start = Instant::now();
+    let packed = pack(&scene)?;
+    let build = build_start.elapsed();
+    if args.dump_rays.is_some() {
+        check_dumpable(&packed)?;
+    }
+    let primary = camera_rays(&packed);
+    // The answers go to buffers written once before timing (as the Embree harness does),
+    // so the timings hold no first-touch page faults.
+    let mut hits = vec![Hit::MISS; primary.len()];
+    let (t_primary, ()) = fastest(args.repeat, || {
+        trace_primary_into(&packed, &primary, &mut hits)
+    });
+    let shadow = shadow_rays(&packed, &primary, &hits);
+    let mut occluded = vec![false; shadow.len()];
+    let (t_shadow, ()) = fastest(args.repeat, || {
+        trace_shadow_into(&packed, &shadow, &mut occluded)
+    });
+    let summary = summarise(&hits, &occluded);
+    let (accel_bytes, stored_triangles) = packed.accel_memory();
+    println!("primary: {} Mrays/s", rate(mrays(primary.len(), t_primary)));
+    println!("shadow: {} Mrays/s", rate(mrays(shadow.len(), t_shadow)));
+    println!(
+        "memory: {:.1} bytes per triangle",
+        accel_bytes as f64 / stored_triangles.max(1) as f64
+    );
+    print_details(&packed, &summary, build, t_primary, t_shadow, args.repeat);
+    if let Some(path) = &args.dump_rays {
+        write_trace_dump(path, &packed, &primary, &hits, &shadow, &occluded)?;
+        println!("rays and geometry written to {}", path.display());
+    }
+    Ok(())
+}
+
+fn print_details(
+    packed: &PackedScene,
+    s: &TraceSummary,
+    build: Duration,
+    t_primary: Duration,
+    t_shadow: Duration,
+    repeat: usize,
+) {
+    let g = &packed.globals;
+    println!(
+        "image: {}×{}, {} triangles, {} other items, {} lights, {} threads",
+        g.width,
+        g.height,
+        packed.triangles.len(),
+        g.num_instances,
+        g.num_lights,
+        rayon::current_num_threads()
+    );
+    println!(
+        "primary rays: {} ({} hit) in {:.1} ms",
+        s.primary_rays,
+        s.primary_hits,
+        t_primary.as_secs_f64() * 1e3
+    );
+    println!(
+        "shadow rays: {} ({} occluded) in {:.1} ms",
+        s.shadow_rays,
+        s.shadow_occluded,
+        t_shadow.as_secs_f64() * 1e3
+    );
+    println!("hit checksum: {}", s.hit_checksum);
+    println!(
+        "build (pack + grid): {:.1} ms; times: fastest of {}",
+        build.as_secs_f64() * 1e3,
+        repeat.max(1)
+    );
+}
+
+/// A rate with three decimals, or three significant digits below 1 (the slow scenes run
+/// at thousandths of a Mray/s). Plain decimal, never exponent notation.
+pub fn rate(x: f64) -> String {
+    let decimals = if x > 0.0 && x < 1.0 {
+        (2 - x.log10().floor() as i32).max(3) as usize
+    } else {
+        3
+    };
+    format!("{x:.decimals$}")
+}
+
+fn mrays(rays: usize, time: Duration) -> f64 {
+    rays as f64 / time.as_secs_f64().max(1e-9) / 1e6
+}
