@@ -13,7 +13,7 @@ fn adaptive_scale() -> u32 {
 }
 
 // First split flag of level `level`: side²·(4^level − 1)/3 (level k has (side·2^k)²).
-// Mirror of src/cpu/adaptive.rs::split_offset — change both.
+// Mirror of src/tiling.rs::split_offset — change both.
 fn split_offset(side: u32, level: u32) -> u32 {
     return side * side * (((1u << (2u * level)) - 1u) / 3u);
 }

@@ -17,3 +17,4 @@ pub mod image_io;
 pub mod pack;
 pub mod pipeline;
 pub mod scene;
+pub mod tiling;

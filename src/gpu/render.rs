@@ -28,12 +28,11 @@ use crate::constants::{
     adaptive_tile_side, AA_ADAPTIVE, AA_UNIFORM, GPU_ADAPTIVE_LATTICE_SIDE, GPU_TILE_SIZE,
     GPU_UNIFORM_SAMPLES_SIDE, LINEAR_WORKGROUP_SIZE, WORKGROUP_SIZE,
 };
-use crate::cpu::adaptive::{split_offset, AdaptiveTile};
 use crate::cpu::render::render_pixel;
 use crate::cpu::traverse::NoCounters;
-use crate::cpu::RenderProgress;
 use crate::film::Film;
 use crate::pack::{PackedScene, SceneFeatures};
+use crate::tiling::{split_offset, AdaptiveTile, RenderProgress};
 use std::sync::Arc;
 use std::time::Duration;
 
