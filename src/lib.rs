@@ -15,6 +15,7 @@ pub mod film;
 pub mod gpu;
 pub mod image_io;
 pub mod pack;
+pub mod parity;
 pub mod pipeline;
 pub mod scene;
 pub mod tiling;
