@@ -99,6 +99,9 @@ pub const NO_ITEM: u32 = u32::MAX;
 
 /// Capacity of the explicit secondary-ray stack (no recursion in either tracer).
 pub const RAY_STACK_SIZE: u32 = 16;
+/// Capacity of the GPU's ray stack when the scene has no mirrors or dielectrics (only the
+/// primary ray is ever on it; see shaders/trace.wgsl::trace_ray).
+pub const PRIMARY_RAY_STACK_SIZE: u32 = 1;
 /// Largest `max_depth` a scene may ask for.
 pub const MAX_TRACE_DEPTH: u32 = 64;
 
@@ -183,6 +186,7 @@ pub fn wgsl_prelude() -> String {
         ("AA_ADAPTIVE", AA_ADAPTIVE),
         ("NO_ITEM", NO_ITEM),
         ("RAY_STACK_SIZE", RAY_STACK_SIZE),
+        ("PRIMARY_RAY_STACK_SIZE", PRIMARY_RAY_STACK_SIZE),
         ("MAX_TRACE_DEPTH", MAX_TRACE_DEPTH),
         ("MEDIUM_STACK_SIZE", MEDIUM_STACK_SIZE),
         ("MAX_SHADOW_CROSSINGS", MAX_SHADOW_CROSSINGS),
