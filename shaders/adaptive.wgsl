@@ -2,10 +2,22 @@
 // lattice of (tile.side·2^d + 1)² points in `samples` (d = aa_depth; lattice point (i, j)
 // is film position (x0 + i/2^d, y0 + j/2^d)), one sample per invocation:
 // adaptive_corners traces the pixel corners; for each level k < d, adaptive_decide flags
-// the level-k squares to split and adaptive_midpoints traces their midpoints; then
-// adaptive_integrate averages each pixel over its quadtree. The decisions, samples and
+// the level-k squares to split and appends them to level k's list, adaptive_work_args
+// turns the list's length into the indirect dispatches of the passes over it, and
+// adaptive_midpoints traces the listed squares' midpoints; then adaptive_integrate
+// averages each pixel over its quadtree. Below level 0 the passes run over the compacted
+// lists only (indirect dispatches), so idle invocations do not grow with depth. The decisions, samples and
 // summation order are those of the per-pixel walk, src/cpu/render.rs::adaptive_pixel.
 // Mirror of src/cpu/adaptive.rs — change both.
+
+// Per level, the number of split squares on its list.
+@group(0) @binding(17) var<storage, read_write> work_counts: array<atomic<u32>>;
+// Per level, from split_offset(tile.side, level), the split squares (pack_square).
+@group(0) @binding(18) var<storage, read_write> work_list: array<u32>;
+// Indirect dispatch arguments, per level: the midpoint pass over its list, then the
+// decide pass over its children (bound only to adaptive_work_args: a dispatch may not
+// read its own arguments as storage).
+@group(0) @binding(19) var<storage, read_write> work_args: array<u32>;
 
 // Lattice steps per pixel: 2^d.
 // Mirror of src/cpu/adaptive.rs::AdaptiveTile::scale — change both.
@@ -14,7 +26,7 @@ fn adaptive_scale() -> u32 {
 }
 
 // First split flag of level `level`: side²·(4^level − 1)/3 (level k has (side·2^k)²).
-// Mirror of src/cpu/adaptive.rs::split_offset — change both.
+// Mirror of src/tiling.rs::split_offset — change both.
 fn split_offset(side: u32, level: u32) -> u32 {
     return side * side * (((1u << (2u * level)) - 1u) / 3u);
 }
@@ -28,6 +40,23 @@ fn split_index(level: u32, a: u32, b: u32) -> u32 {
 // Mirror of src/cpu/adaptive.rs::Lattice::is_split — change both.
 fn is_split(level: u32, a: u32, b: u32) -> bool {
     return split[split_index(level, a, b)] != 0u;
+}
+
+// One list entry for level square (a, b) (a, b < 2^16: the lattice side is at most 2^15).
+// Mirror of src/cpu/adaptive.rs::pack_square — change both.
+fn pack_square(a: u32, b: u32) -> u32 {
+    return a | (b << 16u);
+}
+
+// Mirror of src/cpu/adaptive.rs::unpack_square — change both.
+fn unpack_square(entry: u32) -> vec2<u32> {
+    return vec2<u32>(entry & 0xffffu, entry >> 16u);
+}
+
+// Entry k of level `level`'s list of split squares.
+// Mirror of src/cpu/adaptive.rs::Lattice::split_square — change both.
+fn split_square(level: u32, k: u32) -> vec2<u32> {
+    return unpack_square(work_list[split_offset(tile.side, level) + k]);
 }
 
 // Index of lattice point (i, j).
@@ -93,8 +122,8 @@ fn trace_lattice_point(i: u32, j: u32) {
 // Corner pass: invocation idx traces pixel corner (idx mod (w+1), idx div (w+1)).
 // Mirror of src/cpu/adaptive.rs::adaptive_corners — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
-fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>) {
-    let idx = id.x;
+fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let idx = linear_index(id, groups);
     if idx >= tile.items {
         return;
     }
@@ -102,49 +131,80 @@ fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>) {
     trace_lattice_point((idx % (tile.size.x + 1u)) * s, (idx / (tile.size.x + 1u)) * s);
 }
 
-// Decide pass of tile.level: flags square (idx mod n, idx div n) (n = w·2^level) for
-// splitting when it exists, is above the deepest level and its corners differ by more
-// than aa_threshold (the per-pixel walk's test, NaN included).
+// Decide pass of tile.level: square (idx mod w, idx div w) at level 0, else child idx mod 4
+// (top-left, top-right, bottom-left, bottom-right) of entry idx div 4 of level − 1's
+// list. Flags it for splitting when its corners differ by more than aa_threshold (the
+// per-pixel walk's test, NaN included) and then appends it to the level's list.
 // Mirror of src/cpu/adaptive.rs::adaptive_decide — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
-fn adaptive_decide(@builtin(global_invocation_id) id: vec3<u32>) {
-    let idx = id.x;
-    if idx >= tile.items {
-        return;
-    }
+fn adaptive_decide(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let idx = linear_index(id, groups);
     let level = tile.level;
-    let n = tile.size.x << level;
-    let a = idx % n;
-    let b = idx / n;
-    let exists = level == 0u || is_split(level - 1u, a / 2u, b / 2u);
-    var flag = 0u;
-    if exists && level < globals.aa_depth {
-        if !(contrast(square_corners(level, a, b)) <= globals.aa_threshold) {
-            flag = 1u;
+    var square: vec2<u32>;
+    if level == 0u {
+        if idx >= tile.items {
+            return;
         }
+        square = vec2<u32>(idx % tile.size.x, idx / tile.size.x);
+    } else {
+        if idx >= 4u * atomicLoad(&work_counts[level - 1u]) {
+            return;
+        }
+        let parent = split_square(level - 1u, idx / 4u);
+        square = 2u * parent + vec2<u32>((idx % 4u) % 2u, (idx % 4u) / 2u);
+    }
+    let a = square.x;
+    let b = square.y;
+    var flag = 0u;
+    if !(contrast(square_corners(level, a, b)) <= globals.aa_threshold) {
+        flag = 1u;
     }
     split[split_index(level, a, b)] = flag;
+    if flag != 0u {
+        let slot = atomicAdd(&work_counts[level], 1u);
+        work_list[split_offset(tile.side, level) + slot] = pack_square(a, b);
+    }
+}
+
+// Workgroups (x, y, 1) of an indirect one-dimensional pass over `items` invocations.
+fn indirect_workgroups(items: u32) -> vec3<u32> {
+    let groups = (items + LINEAR_WORKGROUP_SIZE - 1u) / LINEAR_WORKGROUP_SIZE;
+    let x = min(groups, GPU_INDIRECT_MAX_WORKGROUPS);
+    return vec3<u32>(x, (groups + GPU_INDIRECT_MAX_WORKGROUPS - 1u) / GPU_INDIRECT_MAX_WORKGROUPS, 1u);
+}
+
+// After the decide pass of tile.level (one invocation): the indirect arguments of the
+// midpoint pass over the level's list (5 per square) and of the next level's decide pass
+// (4 children per square), at work_args[6·level ..].
+@compute @workgroup_size(1)
+fn adaptive_work_args() {
+    let n = atomicLoad(&work_counts[tile.level]);
+    let midpoints = indirect_workgroups(5u * n);
+    let children = indirect_workgroups(4u * n);
+    let at = 6u * tile.level;
+    work_args[at] = midpoints.x;
+    work_args[at + 1u] = midpoints.y;
+    work_args[at + 2u] = midpoints.z;
+    work_args[at + 3u] = children.x;
+    work_args[at + 4u] = children.y;
+    work_args[at + 5u] = children.z;
 }
 
 // Midpoint pass of tile.level: midpoint idx mod 5 (top, left, centre, right, bottom) of
-// square idx div 5, when that square is split. A top (left) midpoint is the bottom
-// (right) one of the square above (to the left); when that one is split, it traces it.
+// entry idx div 5 of the level's list. A top (left) midpoint is the bottom (right) one of
+// the square above (to the left); when that one is split, it traces it.
 // Mirror of src/cpu/adaptive.rs::adaptive_midpoints — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
-fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>) {
-    let idx = id.x;
-    if idx >= tile.items {
-        return;
-    }
+fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let idx = linear_index(id, groups);
     let level = tile.level;
-    let n = tile.size.x << level;
-    let square = idx / 5u;
-    let m = idx % 5u;
-    let a = square % n;
-    let b = square / n;
-    if !is_split(level, a, b) {
+    if idx >= 5u * atomicLoad(&work_counts[level]) {
         return;
     }
+    let m = idx % 5u;
+    let square = split_square(level, idx / 5u);
+    let a = square.x;
+    let b = square.y;
     if (m == 0u && b > 0u && is_split(level, a, b - 1u)) || (m == 1u && a > 0u && is_split(level, a - 1u, b)) {
         return;
     }

@@ -1,4 +1,4 @@
-// render.wgsl — pixels and tiles: the render kernels for AA none (`main`) and uniform AA,
+// render.wgsl — pixels and chunks: the render kernels for AA none (`main`) and uniform AA,
 // each invocation tracing one sample (Mesa's lavapipe caps the loop iterations of one
 // invocation, see loop_limiter_tripped), and what shaders/adaptive.wgsl shares. Every
 // sample depends only on (pixel, sample) hashes or its film position, as on the CPU.
@@ -46,6 +46,12 @@ fn uniform_sample(x: u32, y: u32, s: u32, n: u32, uniform: bool) -> vec3<f32> {
     return sample(fx, fy, SampleSeed(pixel, s, 0u));
 }
 
+// Index of a one-dimensional kernel's invocation: a dispatch wider than the adapter's
+// workgroups per dimension continues in y (src/gpu/plan.rs::linear_workgroups).
+fn linear_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
+    return id.y * groups.x * LINEAR_WORKGROUP_SIZE + id.x;
+}
+
 // #if ITERATION_GUARD
 // Whether Mesa's loop limiter has tripped in this invocation (software adapters only).
 // gallivm counts loop iterations per invocation, summed over every loop of the inlined
@@ -65,8 +71,8 @@ fn loop_limiter_tripped() -> bool {
 }
 // #endif
 
-// AA none: pixel (x, y) of the tile at tile.origin, its centre; invocations outside the
-// tile (edge tiles) do nothing. (Both AA modes take one sample per invocation too, in
+// AA none: pixel (x, y) of the chunk at tile.origin, its centre; invocations outside the
+// chunk (its ragged edge) do nothing. (Both AA modes take one sample per invocation too, in
 // passes: uniform_samples and uniform_resolve below, and shaders/adaptive.wgsl.)
 // Mirror of the AA-none case of src/cpu/render.rs::render_pixel — change both.
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
@@ -88,8 +94,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 // + s].
 // Mirror of the sample loop of src/cpu/render.rs::render_pixel — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
-fn uniform_samples(@builtin(global_invocation_id) id: vec3<u32>) {
-    let idx = id.x;
+fn uniform_samples(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let idx = linear_index(id, groups);
     if idx >= tile.items {
         return;
     }

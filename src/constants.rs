@@ -119,6 +119,9 @@ pub const NO_ITEM: u32 = u32::MAX;
 
 /// Capacity of the explicit secondary-ray stack (no recursion in either tracer).
 pub const RAY_STACK_SIZE: u32 = 16;
+/// Capacity of the GPU's ray stack when the scene has no mirrors or dielectrics (only the
+/// primary ray is ever on it; see shaders/trace.wgsl::trace_ray).
+pub const PRIMARY_RAY_STACK_SIZE: u32 = 1;
 /// Largest `max_depth` a scene may ask for.
 pub const MAX_TRACE_DEPTH: u32 = 64;
 
@@ -208,6 +211,7 @@ pub fn wgsl_prelude() -> String {
         ("AA_ADAPTIVE", AA_ADAPTIVE),
         ("NO_ITEM", NO_ITEM),
         ("RAY_STACK_SIZE", RAY_STACK_SIZE),
+        ("PRIMARY_RAY_STACK_SIZE", PRIMARY_RAY_STACK_SIZE),
         ("MAX_TRACE_DEPTH", MAX_TRACE_DEPTH),
         ("MEDIUM_STACK_SIZE", MEDIUM_STACK_SIZE),
         ("MAX_SHADOW_CROSSINGS", MAX_SHADOW_CROSSINGS),
@@ -215,9 +219,9 @@ pub fn wgsl_prelude() -> String {
         ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
         ("TILE_SIZE", TILE_SIZE),
         ("AA_STACK_SIZE", AA_STACK_SIZE),
-        ("GPU_TILE_SIZE", GPU_TILE_SIZE),
         ("WORKGROUP_SIZE", WORKGROUP_SIZE),
         ("LINEAR_WORKGROUP_SIZE", LINEAR_WORKGROUP_SIZE),
+        ("GPU_INDIRECT_MAX_WORKGROUPS", GPU_INDIRECT_MAX_WORKGROUPS),
         ("PCG_MULTIPLIER", PCG_MULTIPLIER),
         ("PROBE_CLOSEST_HIT", PROBE_CLOSEST_HIT),
         ("PROBE_ANY_HIT", PROBE_ANY_HIT),
@@ -268,27 +272,24 @@ pub const TILE_SIZE: u32 = 16;
 /// and pushes four, so depth d needs at most 3·d + 1 entries.
 pub const AA_STACK_SIZE: u32 = 3 * MAX_AA_DEPTH + 1;
 
-/// Square tile side, in pixels, of one GPU dispatch (small enough that a tile never trips
-/// a driver watchdog, large enough that the ~1.5 ms per-dispatch cost stays small).
-pub const GPU_TILE_SIZE: u32 = 64;
-/// Side of the square GPU workgroup (`@workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)`);
-/// divides [`GPU_TILE_SIZE`].
+/// Side of the square GPU workgroup (`@workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)`).
 pub const WORKGROUP_SIZE: u32 = 8;
-const _: () = assert!(GPU_TILE_SIZE.is_multiple_of(WORKGROUP_SIZE));
 /// Invocations per workgroup of the one-dimensional GPU kernels (one sample each).
 pub const LINEAR_WORKGROUP_SIZE: u32 = 64;
+/// Workgroups per dimension an indirect dispatch asks for at most (WebGPU's guaranteed
+/// minimum of `max_compute_workgroups_per_dimension`; more go in y).
+pub const GPU_INDIRECT_MAX_WORKGROUPS: u32 = 65_535;
+/// Submits of one GPU frame (fewer only when the frame has fewer chunks or rows): each
+/// is a contiguous group of chunks, queued back to back; the host waits on each in turn
+/// only to advance the progress bar, so the count does not grow with the image
+/// (see `gpu::plan`).
+pub const GPU_FRAME_PARTS: u32 = 4;
 
 /// Adaptive anti-aliasing keeps a tile's samples on a lattice of (side·2^d + 1)² points
-/// (d = aa_depth), so a tile's side shrinks as d grows: side·2^d ≤ this. GPU: 1024, so
-/// the lattice buffer stays under 1025² × 16 B ≈ 16.8 MB (at d = 6 and 64-pixel tiles it
-/// would be 4097² × 16 B = 268 MB); tiles are GPU_TILE_SIZE wide up to d = 4, then 32 and
-/// 16 pixels at d = 5 and 6.
-pub const GPU_ADAPTIVE_LATTICE_SIDE: u32 = 1024;
-/// The CPU's lattice bound (per rayon task; 257² × 12 B ≈ 0.8 MB).
+/// (d = aa_depth), so a tile's side shrinks as d grows: side·2^d ≤ this. The CPU's bound
+/// (per rayon task; 257² × 12 B ≈ 0.8 MB); the GPU's comes from the adapter's binding
+/// limit (`gpu::plan::lattice_side`).
 pub const CPU_ADAPTIVE_LATTICE_SIDE: u32 = 256;
-/// Uniform n×n anti-aliasing on the GPU keeps one colour per sample of a tile, so a
-/// tile's side shrinks as n grows: (side·n)² ≤ this² (16.8 MB of samples at most).
-pub const GPU_UNIFORM_SAMPLES_SIDE: u32 = 1024;
 
 /// Side of an adaptive tile (in pixels) for depth `depth` when its lattice may be at most
 /// `lattice_side` + 1 points wide and the tile at most `max_side` pixels.

@@ -15,7 +15,9 @@ pub mod film;
 pub mod gpu;
 pub mod image_io;
 pub mod pack;
+pub mod parity;
 pub mod pipeline;
 pub mod scene;
 #[doc(hidden)]
 pub mod testing;
+pub mod tiling;

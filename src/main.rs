@@ -42,7 +42,8 @@ enum Command {
     /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles;
     /// --trace SCENE: traversal alone in rays/s (beside Embree: benches/).
     Bench(glint::cli::bench_cmd::BenchArgs),
-    /// List the GPU adapters (Vulkan, or the backends WGPU_BACKEND names) and their limits.
+    /// List the GPU adapters (Vulkan, Metal, DX12, or the backends WGPU_BACKEND names)
+    /// and their limits.
     Info,
 }
 
@@ -57,6 +58,7 @@ enum BackendArg {
     Cpu,
     Gpu,
     Auto,
+    Both,
 }
 
 #[derive(Args)]
@@ -97,10 +99,22 @@ struct RenderArgs {
     /// (repeatable).
     #[arg(long, value_name = "DIR")]
     allow_read: Vec<PathBuf>,
-    /// Tracer: cpu (the reference), gpu (wgpu compute, Vulkan), or auto (a hardware GPU
-    /// when one exists, else the CPU, with a one-line notice).
+    /// Tracer: cpu (the reference), gpu (wgpu compute: Vulkan, Metal or DX12), auto (a
+    /// hardware GPU when one exists, else the CPU, with a one-line notice), or both
+    /// (render on each, write NAME-cpu and NAME-gpu, print the difference and both times;
+    /// exit code 6 when they differ beyond --min-within).
     #[arg(long, value_enum, default_value = "auto")]
     backend: BackendArg,
+    /// --backend both: write FLIP's heat map of the difference here.
+    #[arg(long)]
+    heatmap: Option<PathBuf>,
+    /// --backend both: smallest share of pixels (0–1) within --tolerance for the images
+    /// to agree.
+    #[arg(long, default_value_t = 0.999, value_parser = parse_share)]
+    min_within: f64,
+    /// --backend both: largest per-channel difference of an agreeing pixel, in 1/255.
+    #[arg(long, default_value_t = 2.0, value_parser = parse_non_negative)]
+    tolerance: f32,
     /// GPU adapter to use: a substring of its name (see `glint info`).
     #[arg(long)]
     adapter: Option<String>,
@@ -155,6 +169,13 @@ fn parse_non_negative(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
         Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
         _ => Err(format!("expected a non-negative number, got '{s}'")),
+    }
+}
+
+fn parse_share(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("expected a share between 0 and 1, got '{s}'")),
     }
 }
 
@@ -227,40 +248,30 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         backend: match args.backend {
             BackendArg::Cpu => glint::pipeline::Backend::Cpu,
             BackendArg::Gpu => glint::pipeline::Backend::Gpu,
-            BackendArg::Auto => glint::pipeline::Backend::Auto,
+            BackendArg::Auto | BackendArg::Both => glint::pipeline::Backend::Auto,
         },
         adapter: args.adapter,
         debug: (args.debug == Some(DebugArg::AaSamples))
             .then_some(glint::pipeline::DebugImage::AaSamples),
     };
+    if args.heatmap.is_some() && args.backend != BackendArg::Both {
+        return Err(("--heatmap needs --backend both".into(), 2));
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0) as usize)
         .build()
         .map_err(|e| (format!("cannot start {:?} threads: {e}", args.threads), 1))?;
+    if args.backend == BackendArg::Both {
+        let parity = glint::parity::ParitySettings {
+            tolerance: args.tolerance / 255.0,
+            min_share: args.min_within,
+            heatmap: args.heatmap,
+        };
+        return pool.install(|| render_both(&args.scene, &settings, &parity));
+    }
     let report = pool.install(|| {
         glint::pipeline::run_scene(&args.scene, &settings, &mut |image| {
-            if settings.debug.is_some() {
-                eprintln!(
-                    "glint: wrote {} (adaptive AA leaf squares per pixel, {}×{}, decided on the {} in {:.2} s)",
-                    image.output.display(),
-                    image.film.width,
-                    image.film.height,
-                    if image.adapter.is_some() { "GPU" } else { "CPU" },
-                    image.render_time.as_secs_f64()
-                );
-                return;
-            }
-            eprintln!(
-                "glint: wrote {} ({}×{}, {:.2} s on the {})",
-                image.output.display(),
-                image.film.width,
-                image.film.height,
-                image.render_time.as_secs_f64(),
-                if image.gpu.is_some() { "GPU" } else { "CPU" }
-            );
-            if settings.stats {
-                eprint!("{}", glint::cli::stats::format_stats(image));
-            }
+            report_image(image, &settings)
         })
     });
     match report {
@@ -306,12 +317,79 @@ fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
     Ok(())
 }
 
+/// The line `glint render` prints for each image written (and `--stats`).
+fn report_image(
+    image: &glint::pipeline::RenderedImage,
+    settings: &glint::pipeline::RenderSettings,
+) {
+    if settings.debug.is_some() {
+        eprintln!(
+            "glint: wrote {} (adaptive AA leaf squares per pixel, {}×{}, decided on the {} in {:.2} s)",
+            image.output.display(),
+            image.film.width,
+            image.film.height,
+            if image.adapter.is_some() { "GPU" } else { "CPU" },
+            image.render_time.as_secs_f64()
+        );
+        return;
+    }
+    eprintln!(
+        "glint: wrote {} ({}×{}, {:.2} s on the {})",
+        image.output.display(),
+        image.film.width,
+        image.film.height,
+        image.render_time.as_secs_f64(),
+        if image.gpu.is_some() { "GPU" } else { "CPU" }
+    );
+    if settings.stats {
+        eprint!("{}", glint::cli::stats::format_stats(image));
+    }
+}
+
+/// `--backend both`: each render on both tracers, the figures on stdout; exit code 6 when
+/// any pair differs beyond the tolerance.
+fn render_both(
+    scene: &std::path::Path,
+    settings: &glint::pipeline::RenderSettings,
+    parity: &glint::parity::ParitySettings,
+) -> Result<(), (String, u8)> {
+    let result = glint::parity::run_scene_both(scene, settings, parity, &mut |r| {
+        println!(
+            "{} vs {}: CPU {:.3} s, GPU {:.3} s (GPU/CPU {:.2})",
+            r.cpu_output.display(),
+            r.gpu_output.display(),
+            r.cpu_time.as_secs_f64(),
+            r.gpu_time.as_secs_f64(),
+            r.gpu_time.as_secs_f64() / r.cpu_time.as_secs_f64()
+        );
+        println!("{}", r.report);
+        if let Some(h) = &r.heatmap {
+            println!("heat map: {}", h.display());
+        }
+        println!(
+            "{}: {:.3}% of pixels within {:.1}/255 (needed: {:.3}%)",
+            if r.agrees { "agree" } else { "DIFFER" },
+            100.0 * r.share_within,
+            parity.tolerance * 255.0,
+            100.0 * parity.min_share
+        );
+    });
+    match result {
+        Ok((_, true)) => Ok(()),
+        Ok((_, false)) => Err((
+            "the CPU and GPU images differ beyond the tolerance".into(),
+            6,
+        )),
+        Err(e) => Err((e.to_string(), e.exit_code() as u8)),
+    }
+}
+
 /// `glint info`: every adapter with its backend, type and key limits.
 fn info() {
     let adapters = glint::gpu::list_adapters();
     if adapters.is_empty() {
         println!(
-            "no GPU adapters (backends: WGPU_BACKEND or Vulkan); glint renders with --backend cpu"
+            "no GPU adapters (backends: WGPU_BACKEND, or Vulkan, Metal and DX12); glint renders with --backend cpu"
         );
         return;
     }

@@ -360,29 +360,33 @@ pub fn run_scene(
         on_image(&rendered);
         Ok(())
     };
-    let error = match run_scene_file(path, &config, &mut on_render) {
-        Ok(report) => return Ok(report),
-        Err(e) => e,
-    };
-    if let Some(io) = output_error.into_inner() {
-        // The script named the output: say where.
-        return Err(match &error {
+    match run_scene_file(path, &config, &mut on_render) {
+        Ok(report) => Ok(report),
+        Err(e) => Err(scene_error(e, output_error.into_inner())),
+    }
+}
+
+/// What a failed script run was: an output error recorded while writing an image (at the
+/// `gr.render` that named the output, when the script named it), a GPU failure during a
+/// render (the GPU's, not the scene's: exit code 5), a usage error, or the scene's own.
+pub fn scene_error(error: SceneError, output_error: Option<ImageIoError>) -> RunError {
+    if let Some(io) = output_error {
+        return match &error {
             SceneError::Render { location, .. } => RunError::OutputAt {
                 location: location.clone(),
                 error: io,
             },
             _ => RunError::Output(io),
-        });
+        };
     }
-    // A GPU failure during a render is the GPU's, not the scene's (exit code 5).
     match error {
         SceneError::Render { location, error } => match error.downcast::<crate::gpu::GpuError>() {
-            Ok(gpu) => Err(RunError::Gpu(gpu)),
+            Ok(gpu) => RunError::Gpu(gpu),
             Err(error) => match error.downcast::<AaMapError>() {
-                Ok(usage) => Err(RunError::Usage(usage)),
-                Err(error) => Err(RunError::Scene(SceneError::Render { location, error })),
+                Ok(usage) => RunError::Usage(usage),
+                Err(error) => RunError::Scene(SceneError::Render { location, error }),
             },
         },
-        other => Err(RunError::Scene(other)),
+        other => RunError::Scene(other),
     }
 }

@@ -490,3 +490,85 @@ fn bad_csg_operand_and_too_deep_csg() {
         ],
     );
 }
+
+/// `--backend both`: both images and the heat map written, the figures and both times
+/// printed, exit 0 when the tracers agree; a share outside 0–1, or `--heatmap` without
+/// `--backend both`, is a command-line error.
+#[test]
+fn backend_both_renders_on_both_tracers_and_judges_them() {
+    if common::gpu_context().is_none() {
+        return;
+    }
+    let scene = corpus().join("a4-2021plus/nonhier.lua");
+    let dir = temp_dir("both");
+    let args = [
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        "n.png",
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--aa",
+        "none",
+        "--backend",
+        "both",
+        "--heatmap",
+        "heat.png",
+    ];
+    let out = glint(&args, &dir);
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{}{stdout}", stderr(&out));
+    assert_eq!(
+        outputs(&dir, &[]),
+        vec!["heat.png", "n-cpu.png", "n-gpu.png"]
+    );
+    for needle in ["CPU ", "GPU ", "FLIP mean", "agree:", "within 2.0/255"] {
+        assert!(stdout.contains(needle), "{needle}: {stdout}");
+    }
+    // A share outside 0–1 is a command-line error.
+    let mut bad = args.to_vec();
+    bad.extend(["--min-within", "1.5"]);
+    assert_eq!(glint(&bad, &dir).status.code(), Some(2));
+    // --heatmap alone is refused before anything renders.
+    let lone = ["render", scene.to_str().unwrap(), "--heatmap", "h.png"];
+    let out = glint(&lone, &dir);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("--backend both"), "{}", stderr(&out));
+}
+
+/// `--backend both` fails with exit code 6 when the images differ beyond the tolerance:
+/// with a tolerance of 0 and every pixel required, the f32 rounding differences of the
+/// GPU's sqrt, division and normalize (a few ulps in some pixels of the unquantised
+/// films) are enough.
+#[test]
+fn backend_both_exits_6_when_the_images_differ() {
+    if common::gpu_context().is_none() {
+        return;
+    }
+    let dir = temp_dir("both-differ");
+    let scene = corpus().join("a4-2021plus/macho-cows.lua");
+    let args = [
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        "c.exr",
+        "--width",
+        "64",
+        "--height",
+        "64",
+        "--aa",
+        "none",
+        "--backend",
+        "both",
+        "--tolerance",
+        "0",
+        "--min-within",
+        "1",
+    ];
+    let out = glint(&args, &dir);
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert_eq!(out.status.code(), Some(6), "{}{stdout}", stderr(&out));
+    assert!(stdout.contains("DIFFER"), "{stdout}");
+}

@@ -50,7 +50,7 @@ fn compare(ctx: &GpuContext, name: &str, scene: &PackedScene) -> SceneFeatures {
     )
     .unwrap_or_else(|message| panic!("{message}"));
     eprintln!(
-        "{name}: features [{}], FLIP mean {:.5}, {:.3}% within 2/255; GPU {:.1} ms (pipelines {:.1} ms, {} tiles of {}², {} CPU-fallback pixels), CPU {:.1} ms",
+        "{name}: features [{}], FLIP mean {:.5}, {:.3}% within 2/255; GPU {:.1} ms (pipelines {:.1} ms, {} chunks of row stride {}, {} CPU-fallback pixels), CPU {:.1} ms",
         info.features,
         report.flip_mean,
         report.share_within(2.0 / 255.0) * 100.0,

@@ -1,10 +1,16 @@
 //! `glint bench --gpu`: the GPU tracer against the CPU reference on the same scenes, in
-//! one run. Pipeline creation and the driver's first-dispatch compile are reported apart
-//! from the steady render time; every timing comes with the GPU image's error against the
-//! CPU image (FLIP mean and share of pixels within 2/255). Then a spheres-only scene with
-//! its specialised shader against the generic one (every feature compiled in).
+//! one run, at 512×512 with AA none and with the scene's default AA. Per scene: the rays
+//! traced (counted by the CPU reference, which traces the same samples), the GPU's own
+//! time from timestamp queries where the adapter has them (else wall time, said so),
+//! Mrays/s, the frame's dispatches, submits and host waits, and the shader's specialised
+//! feature set; every timing comes with the GPU image's error against the CPU image
+//! (FLIP mean and share of pixels within 2/255). Pipeline creation and the driver's
+//! first-dispatch compile are kept out of the steady times. Then a spheres-only scene
+//! with its specialised shader against the generic one (every feature compiled in).
 
 use super::bench_cmd::{fastest, load_scene, BenchArgs};
+use crate::constants::{LINEAR_WORKGROUP_SIZE, WORKGROUP_SIZE};
+use crate::cpu::render::render_with_counters;
 use crate::diff::diff_films;
 use crate::gpu::{render_gpu_with_info, GpuContext};
 use crate::pack::{PackedScene, SceneFeatures};
@@ -20,47 +26,83 @@ const SCENES: &[&str] = &[
     "a4-2021plus/macho-cows.lua",
 ];
 
+/// Side of the benchmark's images.
+const SIDE: u32 = 512;
+
 pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
     let ctx = GpuContext::new(args.adapter.as_deref())?;
+    let timed = ctx
+        .device
+        .features()
+        .contains(wgpu::Features::TIMESTAMP_QUERY);
     println!(
-        "GPU adapter: {} ({:?})",
-        ctx.info.name, ctx.info.device_type
+        "GPU adapter: {} ({:?}, {:?}); workgroups {WORKGROUP_SIZE}×{WORKGROUP_SIZE} (2-D kernels) and {LINEAR_WORKGROUP_SIZE} (1-D), within the adapter's {} invocations; GPU time from {}",
+        ctx.info.name,
+        ctx.info.device_type,
+        ctx.info.backend,
+        ctx.limits.max_compute_invocations_per_workgroup,
+        if timed { "timestamp queries" } else { "wall time (the adapter has no timestamp queries)" }
     );
     println!(
-        "\n## GPU vs CPU, 256×256, no anti-aliasing (fastest of {})",
+        "\n## GPU vs CPU, {SIDE}×{SIDE} (fastest of {})",
         args.repeat
     );
-    println!("| scene | features | pipeline | first dispatch extra | GPU | CPU | GPU/CPU time | FLIP mean | within 2/255 |");
-    println!("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    println!("| scene | AA | features | rays | GPU wall | GPU time | Mrays/s (GPU time) | CPU wall | GPU/CPU wall | dispatches / submits / host waits | pipeline | first dispatch extra | FLIP mean | within 2/255 |");
+    println!("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
     let mut paths: Vec<_> = SCENES.iter().map(|s| args.cs488.join(s)).collect();
     paths.push(std::path::PathBuf::from("scenes/demo.lua"));
     for path in &paths {
-        let mut scene = load_scene(path, 256, 256)?;
-        scene.options.aa = AaMode::None;
-        let packed = pack_scene(&scene)?;
-        let name = path.file_stem().unwrap_or_default().to_string_lossy();
-        let start = Instant::now();
-        let (_, info) = render_gpu_with_info(&ctx, &packed, &|_, _| {})?;
-        let first = start.elapsed();
-        let (t_gpu, gpu) = fastest(args.repeat, || {
-            render_gpu_with_info(&ctx, &packed, &|_, _| {})
-        });
-        let (gpu_film, _) = gpu?;
-        let (t_cpu, cpu_film) = fastest(args.repeat, || crate::cpu::render(&packed, &|_, _| {}));
-        let (report, _) = diff_films(&cpu_film, &gpu_film)?;
-        println!(
-            "| {name} | {} | {:.0} ms | {:.0} ms | {:.1} ms | {:.1} ms | {:.2} | {:.5} | {:.2}% |",
-            packed.features,
-            info.compile_time.as_secs_f64() * 1e3,
-            (first.saturating_sub(t_gpu + info.compile_time)).as_secs_f64() * 1e3,
-            t_gpu.as_secs_f64() * 1e3,
-            t_cpu.as_secs_f64() * 1e3,
-            t_gpu.as_secs_f64() / t_cpu.as_secs_f64(),
-            report.flip_mean,
-            100.0 * report.share_within(2.0 / 255.0),
-        );
+        for aa in [Some(AaMode::None), None] {
+            bench_scene(&ctx, args, path, aa)?;
+        }
     }
     bench_specialisation(&ctx, args)
+}
+
+/// One row: `path` at SIDE² under `aa` (None: the scene's own AA).
+fn bench_scene(
+    ctx: &GpuContext,
+    args: &BenchArgs,
+    path: &std::path::Path,
+    aa: Option<AaMode>,
+) -> anyhow::Result<()> {
+    let mut scene = load_scene(path, SIDE, SIDE)?;
+    if let Some(aa) = aa {
+        scene.options.aa = aa;
+    }
+    let packed = pack_scene(&scene)?;
+    let name = path.file_stem().unwrap_or_default().to_string_lossy();
+    let start = Instant::now();
+    let (_, info) = render_gpu_with_info(ctx, &packed, &|_, _| {})?;
+    let first = start.elapsed();
+    let (t_gpu, gpu) = fastest(args.repeat, || {
+        render_gpu_with_info(ctx, &packed, &|_, _| {})
+    });
+    let (gpu_film, info_steady) = gpu?;
+    let (t_cpu, cpu_film) = fastest(args.repeat, || crate::cpu::render(&packed, &|_, _| {}));
+    let (_, counters) = render_with_counters(&packed, &|_, _| {});
+    let (report, _) = diff_films(&cpu_film, &gpu_film)?;
+    let gpu_time = info_steady.gpu_time.unwrap_or(t_gpu);
+    println!(
+        "| {name} | {} | {} | {} | {:.1} ms | {:.1} ms{} | {:.2} | {:.1} ms | {:.2} | {} / {} / {} | {:.0} ms | {:.0} ms | {:.5} | {:.2}% |",
+        format!("{:?}", scene.options.aa).to_lowercase(),
+        packed.features,
+        counters.rays,
+        t_gpu.as_secs_f64() * 1e3,
+        gpu_time.as_secs_f64() * 1e3,
+        if info_steady.gpu_time.is_some() { "" } else { " (wall)" },
+        counters.rays as f64 / gpu_time.as_secs_f64() * 1e-6,
+        t_cpu.as_secs_f64() * 1e3,
+        t_gpu.as_secs_f64() / t_cpu.as_secs_f64(),
+        info_steady.dispatches,
+        info_steady.submits,
+        info_steady.host_waits,
+        info.compile_time.as_secs_f64() * 1e3,
+        (first.saturating_sub(t_gpu + info.compile_time)).as_secs_f64() * 1e3,
+        report.flip_mean,
+        100.0 * report.share_within(2.0 / 255.0),
+    );
+    Ok(())
 }
 
 /// simple.lua (spheres only) with its own shader and with every feature compiled in.

@@ -16,7 +16,8 @@ use super::trace_rays::{
     TraceSummary,
 };
 use crate::cpu::traverse::Hit;
-use crate::pack::{pack, GpuTriangle, PackedScene};
+use crate::pack::PackedScene;
+use crate::pipeline::pack_scene;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -33,7 +34,7 @@ pub struct TraceBenchArgs {
 pub fn bench_trace(args: &TraceBenchArgs) -> anyhow::Result<()> {
     let scene = load_first_render(&args.scene, args.width, args.height)?;
     let build_start = Instant::now();
-    let packed = pack(&scene)?;
+    let packed = pack_scene(&scene)?;
     let build = build_start.elapsed();
     if args.dump_rays.is_some() {
         check_dumpable(&packed)?;

@@ -13,12 +13,18 @@ pub fn format_stats(image: &RenderedImage) -> String {
     if let Some(gpu) = &image.gpu {
         let _ = writeln!(
             out,
-            "  gpu: {} — compiled in: {}; pipelines compiled in {:.1} ms (lavapipe compiles again on the first dispatch; Mesa caches it); {} tiles of {}²",
+            "  gpu: {} — compiled in: {}; pipelines compiled in {:.1} ms (lavapipe compiles again on the first dispatch; Mesa caches it); {} chunks (widest row stride {} pixels), {} dispatches in {} submits, {} host waits; GPU time {}",
             image.adapter.as_deref().unwrap_or("?"),
             gpu.features,
             gpu.compile_time.as_secs_f64() * 1e3,
             gpu.tiles,
-            gpu.tile_side
+            gpu.tile_side,
+            gpu.dispatches,
+            gpu.submits,
+            gpu.host_waits,
+            gpu.gpu_time.map_or("not measured (no timestamp queries)".to_string(), |t| {
+                format!("{:.1} ms (timestamp queries)", t.as_secs_f64() * 1e3)
+            })
         );
         if gpu.iteration_guard {
             let _ = writeln!(

@@ -5,7 +5,7 @@
 
 use crate::constants::{NO_ITEM, T_MISS};
 use crate::cpu::ray::{camera_ray, offset_ray, Ray};
-use crate::cpu::shade::surface_at;
+use crate::cpu::surface::surface_at;
 use crate::cpu::traverse::{any_hit, closest_hit, Hit, NoCounters};
 use crate::pack::PackedScene;
 use crate::scene::flatten::{flatten, Scene};

@@ -7,10 +7,14 @@
 //! (x0 + i/2^d, y0 + j/2^d). Squares of level k have a side of 2^(d−k) lattice steps; the
 //! level-0 squares are the pixels. The passes:
 //! 1. [`adaptive_corners`]: trace every pixel corner;
-//! 2. for k in 0..d: [`adaptive_decide`] flags each level-k square that exists (k = 0 or
-//!    its parent is split) and whose corners differ by more than the threshold, then
-//!    [`adaptive_midpoints`] traces the five midpoints of each flagged square (a midpoint
-//!    shared with a flagged neighbour is traced by one of the two only);
+//! 2. for k in 0..d: [`adaptive_decide`] flags each level-k square that exists (every
+//!    pixel at k = 0, else the four children of each square split at k − 1, taken from
+//!    the compacted list of those) and whose corners differ by more than the threshold,
+//!    appending it to level k's list of split squares; then [`adaptive_midpoints`] traces
+//!    the five midpoints of each square on that list (a midpoint shared with a split
+//!    neighbour is traced by one of the two only). Work is over the lists, so idle
+//!    invocations do not grow with depth; the lists' order (on the GPU, that of atomic
+//!    appends) changes nothing: every sample and flag has its own slot;
 //! 3. [`adaptive_integrate`]: each pixel walks its quadtree with the per-pixel stack.
 //!
 //! Every function here has a WGSL twin of the same name in `shaders/adaptive.wgsl`, where
@@ -21,47 +25,8 @@ use super::rng::adaptive_seed;
 use super::traverse::TraversalCounters;
 use crate::constants::AA_STACK_SIZE;
 use crate::pack::PackedScene;
+pub use crate::tiling::{split_offset, AdaptiveTile};
 use glam::Vec3;
-
-/// One tile of the adaptive passes.
-// Mirror of the adaptive fields of shaders/layout.wgsl::GpuTile — change both.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct AdaptiveTile {
-    /// Top-left pixel.
-    pub origin: [u32; 2],
-    /// Pixels across and down (at most `side`).
-    pub size: [u32; 2],
-    /// The tile side the arrays are laid out for (row stride, in pixels).
-    pub side: u32,
-    /// aa_depth.
-    pub depth: u32,
-}
-
-impl AdaptiveTile {
-    /// Lattice steps per pixel: 2^d.
-    // Mirror of shaders/adaptive.wgsl::adaptive_scale — change both.
-    pub fn scale(&self) -> u32 {
-        1 << self.depth
-    }
-    /// Points per lattice row: side·2^d + 1.
-    pub fn lattice_width(&self) -> u32 {
-        self.side * self.scale() + 1
-    }
-    /// Lattice points of the arrays.
-    pub fn lattice_len(&self) -> usize {
-        (self.lattice_width() as usize).pow(2)
-    }
-    /// Split flags of the arrays: levels 0..d.
-    pub fn split_len(&self) -> usize {
-        split_offset(self.side, self.depth) as usize
-    }
-}
-
-/// First split flag of level `level`: side²·(4^level − 1)/3 (level k has (side·2^k)²).
-// Mirror of shaders/adaptive.wgsl::split_offset — change both.
-pub fn split_offset(side: u32, level: u32) -> u32 {
-    side * side * (((1u32 << (2 * level)) - 1) / 3)
-}
 
 /// Index of level-`level` square (a, b)'s split flag.
 // Mirror of shaders/adaptive.wgsl::split_index — change both.
@@ -87,11 +52,26 @@ fn lattice_position(tile: &AdaptiveTile, i: u32, j: u32) -> (f32, f32) {
     )
 }
 
-/// A tile's lattice colours and split flags.
+/// Packs level-`level`-square (a, b) into one list entry (a, b < 2^16: the lattice side
+/// is at most 2^15).
+// Mirror of shaders/adaptive.wgsl::pack_square — change both.
+fn pack_square(a: u32, b: u32) -> u32 {
+    a | (b << 16)
+}
+
+// Mirror of shaders/adaptive.wgsl::unpack_square — change both.
+fn unpack_square(entry: u32) -> (u32, u32) {
+    (entry & 0xffff, entry >> 16)
+}
+
+/// A tile's lattice colours, split flags and, per level, the list of split squares (at
+/// the level's split-flag offset, [`split_offset`]) and its length.
 pub struct Lattice {
     pub tile: AdaptiveTile,
     pub points: Vec<Vec3>,
     pub split: Vec<u32>,
+    pub work_list: Vec<u32>,
+    pub work_counts: Vec<u32>,
 }
 
 impl Lattice {
@@ -100,6 +80,8 @@ impl Lattice {
             tile,
             points: vec![Vec3::ZERO; tile.lattice_len()],
             split: vec![0; tile.split_len()],
+            work_list: vec![0; tile.split_len()],
+            work_counts: vec![0; tile.depth as usize],
         }
     }
     // Mirror of shaders/adaptive.wgsl::lattice_point — change both.
@@ -109,6 +91,11 @@ impl Lattice {
     // Mirror of shaders/adaptive.wgsl::is_split — change both.
     fn is_split(&self, level: u32, a: u32, b: u32) -> bool {
         self.split[split_index(&self.tile, level, a, b)] != 0
+    }
+    /// Entry `k` of level `level`'s list of split squares.
+    // Mirror of shaders/adaptive.wgsl::split_square — change both.
+    fn split_square(&self, level: u32, k: u32) -> (u32, u32) {
+        unpack_square(self.work_list[(split_offset(self.tile.side, level) + k) as usize])
     }
 }
 
@@ -141,27 +128,32 @@ fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
     ]
 }
 
-/// Invocation `idx` of the decide pass of `level`: flags square (idx mod n, idx div n)
-/// (n = w·2^level) for splitting when it exists, is above the deepest level and its
-/// corners differ by more than `threshold` (the per-pixel walk's test, NaN included).
+/// Invocation `idx` of the decide pass of `level`: square (idx mod w, idx div w) at
+/// level 0, else child idx mod 4 (top-left, top-right, bottom-left, bottom-right) of
+/// entry idx div 4 of level − 1's split list. Flags it for splitting when its corners
+/// differ by more than `threshold` (the per-pixel walk's test, NaN included) and then
+/// appends it to level's split list.
 // Mirror of shaders/adaptive.wgsl::adaptive_decide — change both.
 fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
     let t = lat.tile;
-    let n = t.size[0] << level;
-    let (a, b) = (idx % n, idx / n);
-    let exists = level == 0 || lat.is_split(level - 1, a / 2, b / 2);
-    let mut split = false;
-    if exists && level < t.depth {
-        #[allow(clippy::neg_cmp_op_on_partial_ord)]
-        {
-            split = !(contrast(&square_corners(lat, level, a, b)) <= threshold);
-        }
-    }
+    let (a, b) = if level == 0 {
+        (idx % t.size[0], idx / t.size[0])
+    } else {
+        let (pa, pb) = lat.split_square(level - 1, idx / 4);
+        (2 * pa + (idx % 4) % 2, 2 * pb + (idx % 4) / 2)
+    };
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    let split = !(contrast(&square_corners(lat, level, a, b)) <= threshold);
     lat.split[split_index(&t, level, a, b)] = split as u32;
+    if split {
+        let slot = lat.work_counts[level as usize];
+        lat.work_counts[level as usize] += 1;
+        lat.work_list[(split_offset(t.side, level) + slot) as usize] = pack_square(a, b);
+    }
 }
 
 /// Invocation `idx` of the midpoint pass of `level`: midpoint idx mod 5 (top, left,
-/// centre, right, bottom) of square idx div 5, when that square is split. A top (left)
+/// centre, right, bottom) of entry idx div 5 of level's split list. A top (left)
 /// midpoint is the bottom (right) one of the square above (to the left); when that one
 /// is split too, it traces the point.
 // Mirror of shaders/adaptive.wgsl::adaptive_midpoints — change both.
@@ -173,12 +165,8 @@ fn adaptive_midpoints(
     counters: &mut impl TraversalCounters,
 ) {
     let t = lat.tile;
-    let n = t.size[0] << level;
-    let (square, m) = (idx / 5, idx % 5);
-    let (a, b) = (square % n, square / n);
-    if !lat.is_split(level, a, b) {
-        return;
-    }
+    let m = idx % 5;
+    let (a, b) = lat.split_square(level, idx / 5);
     if (m == 0 && b > 0 && lat.is_split(level, a, b - 1))
         || (m == 1 && a > 0 && lat.is_split(level, a - 1, b))
     {
@@ -236,11 +224,15 @@ pub fn adaptive_tile(
         adaptive_corners(scene, lat, idx, counters);
     }
     for level in 0..t.depth {
-        let squares = (w << level) * (h << level);
+        let squares = if level == 0 {
+            w * h
+        } else {
+            4 * lat.work_counts[level as usize - 1]
+        };
         for idx in 0..squares {
             adaptive_decide(lat, level, idx, threshold);
         }
-        for idx in 0..squares * 5 {
+        for idx in 0..5 * lat.work_counts[level as usize] {
             adaptive_midpoints(scene, lat, level, idx, counters);
         }
     }

@@ -3,7 +3,7 @@
 //! thread count. Adaptive anti-aliasing renders a tile at a time in passes
 //! ([`super::adaptive`]); [`render_pixel`] is the per-pixel reference of every mode.
 
-use super::adaptive::{adaptive_tile, AdaptiveTile, Lattice};
+use super::adaptive::{adaptive_tile, Lattice};
 use super::ray::camera_ray;
 use super::rng::{adaptive_seed, random_unit, SampleSeed};
 use super::trace::trace_ray;
@@ -14,6 +14,8 @@ use crate::constants::{
 };
 use crate::film::Film;
 use crate::pack::PackedScene;
+use crate::tiling::AdaptiveTile;
+pub use crate::tiling::RenderProgress;
 use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -173,9 +175,6 @@ fn uniform_sample(
     };
     sample(scene, fx, fy, seed, counters)
 }
-
-/// Progress of a render: called with (tiles done, tiles in all) after each tile.
-pub type RenderProgress<'a> = &'a (dyn Fn(u64, u64) + Sync);
 
 /// Per-render counters (only gathered when asked, see [`render_with_counters`]).
 #[derive(Clone, Copy, Debug, Default)]

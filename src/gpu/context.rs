@@ -1,7 +1,8 @@
 //! Device acquisition, kept apart from the work so tests (and the CLI) can make one
 //! [`GpuContext`] and pass it to every render (wgpu's `execute_gpu_inner` pattern).
-//! Backends: Vulkan only, unless `WGPU_BACKEND` names others — with default backends and
-//! no Vulkan driver, wgpu would silently pick GL llvmpipe, whose output differs.
+//! Backends: wgpu's primary ones — Vulkan, Metal, DX12 (each compiled in where its
+//! platform has it) — unless `WGPU_BACKEND` names others; never GL by default: with no
+//! Vulkan driver wgpu would silently pick GL llvmpipe, whose output differs.
 
 use super::pipeline::PipelineCache;
 use super::GpuError;
@@ -33,18 +34,23 @@ pub struct AdapterSummary {
     pub max_buffer_size: u64,
 }
 
-/// The instance: Vulkan, or the backends `WGPU_BACKEND` names.
+/// Vulkan, Metal and DX12, or the backends `WGPU_BACKEND` names.
+pub fn backends() -> wgpu::Backends {
+    wgpu::Backends::from_env()
+        .unwrap_or(wgpu::Backends::VULKAN | wgpu::Backends::METAL | wgpu::Backends::DX12)
+}
+
+/// The instance on [`backends`].
 fn instance() -> wgpu::Instance {
     let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-    desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+    desc.backends = backends();
     wgpu::Instance::new(desc)
 }
 
 /// Every adapter on the enabled backends.
 pub fn list_adapters() -> Vec<AdapterSummary> {
     let instance = instance();
-    let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
-    pollster::block_on(instance.enumerate_adapters(backends))
+    pollster::block_on(instance.enumerate_adapters(backends()))
         .iter()
         .map(|a| {
             let info = a.get_info();
@@ -72,8 +78,7 @@ impl GpuContext {
     /// lower than what lavapipe and real GPUs offer).
     pub fn new(adapter_name: Option<&str>) -> Result<GpuContext, GpuError> {
         let instance = instance();
-        let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
-        let adapters = pollster::block_on(instance.enumerate_adapters(backends));
+        let adapters = pollster::block_on(instance.enumerate_adapters(backends()));
         let names: Vec<String> = adapters.iter().map(|a| a.get_info().name).collect();
         let adapter = match adapter_name {
             Some(wanted) => {
@@ -94,13 +99,15 @@ impl GpuContext {
         Self::from_adapter(adapter)
     }
 
-    /// A device on `adapter`.
+    /// A device on `adapter`, with timestamp queries where the adapter has them (for the
+    /// frame's GPU time).
     pub fn from_adapter(adapter: wgpu::Adapter) -> Result<GpuContext, GpuError> {
         let info = adapter.get_info();
         let limits = adapter.limits();
+        let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("glint"),
-            required_features: wgpu::Features::empty(),
+            required_features: features,
             required_limits: limits.clone(),
             experimental_features: wgpu::ExperimentalFeatures::disabled(),
             memory_hints: wgpu::MemoryHints::Performance,
@@ -131,6 +138,22 @@ impl GpuContext {
     /// Waits for all submitted work; a device loss or poll failure becomes an error.
     pub(crate) fn wait(&self) -> Result<(), GpuError> {
         let polled = self.device.poll(wgpu::PollType::wait_indefinitely());
+        if let Some(reason) = self.lost.lock().ok().and_then(|l| l.clone()) {
+            return Err(GpuError::DeviceLost(reason));
+        }
+        polled.map(|_| ()).map_err(|e| GpuError::Wgpu {
+            what: "wait",
+            message: e.to_string(),
+        })
+    }
+
+    /// Waits for submission `index` (and earlier ones); a device loss or poll failure
+    /// becomes an error.
+    pub(crate) fn wait_for(&self, index: wgpu::SubmissionIndex) -> Result<(), GpuError> {
+        let polled = self.device.poll(wgpu::PollType::Wait {
+            submission_index: Some(index),
+            timeout: None,
+        });
         if let Some(reason) = self.lost.lock().ok().and_then(|l| l.clone()) {
             return Err(GpuError::DeviceLost(reason));
         }

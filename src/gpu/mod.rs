@@ -1,11 +1,13 @@
 //! The GPU tracer: a WGSL mirror of [`crate::cpu`] (`shaders/*.wgsl`), specialised per
-//! scene feature set and run on wgpu (Vulkan) in tiles. Device acquisition
+//! scene feature set and run on wgpu (Vulkan, Metal or DX12) in whole-frame passes. Device acquisition
 //! ([`GpuContext`]) is separate from the work ([`render_gpu`]) so tests pass their own.
 
 pub mod buffers;
 pub mod context;
 pub mod error;
+pub mod frame;
 pub mod pipeline;
+pub mod plan;
 // Crate-visible so `testing` can re-export its test hook `render_gpu_detailed`.
 pub(crate) mod render;
 pub mod shader;

@@ -21,6 +21,11 @@ pub const PROBE_RESULTS_BINDING: u32 = 10;
 pub const SAMPLES_BINDING: u32 = 11;
 pub const SPLIT_BINDING: u32 = 12;
 pub const GUARD_BINDING: u32 = 13;
+/// Adaptive AA's compacted work: per-level counts and lists of split squares, and the
+/// indirect arguments of the passes over them.
+pub const WORK_COUNTS_BINDING: u32 = 17;
+pub const WORK_LIST_BINDING: u32 = 18;
+pub const WORK_ARGS_BINDING: u32 = 19;
 
 /// A compiled pipeline and what it cost.
 pub struct CompiledPipeline {
@@ -83,6 +88,9 @@ fn bind_group_layout(device: &wgpu::Device, entry: Entry) -> wgpu::BindGroupLayo
             SAMPLES_BINDING,
             SPLIT_BINDING,
             GUARD_BINDING,
+            WORK_COUNTS_BINDING,
+            WORK_LIST_BINDING,
+            WORK_ARGS_BINDING,
         ] {
             entries.push(storage(b, false));
         }

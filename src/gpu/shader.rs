@@ -19,19 +19,20 @@ pub enum Entry {
     /// `uniform_samples`, `uniform_resolve`: uniform AA's two passes.
     UniformSamples,
     UniformResolve,
-    /// `adaptive_corners`, `adaptive_decide`, `adaptive_midpoints`, `adaptive_integrate`:
-    /// adaptive AA's passes (`shaders/adaptive.wgsl`).
+    /// `adaptive_corners`, `adaptive_decide`, `adaptive_midpoints`, `adaptive_integrate`,
+    /// `adaptive_work_args`: adaptive AA's passes (`shaders/adaptive.wgsl`).
     AdaptiveCorners,
     AdaptiveDecide,
     AdaptiveMidpoints,
     AdaptiveIntegrate,
+    AdaptiveWorkArgs,
     /// `probe`: test-only, traces rays from a buffer and reports hits.
     Probe,
 }
 
 impl Entry {
     /// Every entry point.
-    pub const ALL: [Entry; 8] = [
+    pub const ALL: [Entry; 9] = [
         Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
@@ -39,6 +40,7 @@ impl Entry {
         Entry::AdaptiveDecide,
         Entry::AdaptiveMidpoints,
         Entry::AdaptiveIntegrate,
+        Entry::AdaptiveWorkArgs,
         Entry::Probe,
     ];
 
@@ -52,6 +54,7 @@ impl Entry {
             Entry::AdaptiveDecide => "adaptive_decide",
             Entry::AdaptiveMidpoints => "adaptive_midpoints",
             Entry::AdaptiveIntegrate => "adaptive_integrate",
+            Entry::AdaptiveWorkArgs => "adaptive_work_args",
             Entry::Probe => "probe",
         }
     }

@@ -1,0 +1,285 @@
+//! The device side of one GPU frame: the frame-sized output and guard buffers (one block
+//! per chunk, bound at the block's offset), the chunk-sized scratch arrays, every
+//! dispatch's uniform record in one buffer, and the encoding of a part of the frame into
+//! one command buffer (one compute pass per adaptive tile, else one in all; wgpu orders
+//! the dispatches' storage accesses).
+//! The read-back staging buffer receives the output, the guard flags and, where the
+//! adapter has timestamp queries, the frame's GPU time — all copied once, at the end.
+
+use super::buffers::{scene_entries, GpuTile, SceneBuffers};
+use super::context::GpuContext;
+use super::pipeline::{
+    CompiledPipeline, GUARD_BINDING, OUTPUT_BINDING, SAMPLES_BINDING, SPLIT_BINDING, TILE_BINDING,
+    WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
+};
+use super::plan::{Dispatch, FramePlan, Workgroups};
+use std::num::NonZeroU64;
+use std::sync::Arc;
+
+/// Where chunk k's output and guard flags lie in the frame buffers (bytes).
+#[derive(Clone, Copy, Debug)]
+pub struct Block {
+    pub output_offset: u64,
+    pub output_size: u64,
+    pub guard_offset: u64,
+    pub guard_size: u64,
+}
+
+/// Timestamp queries at the start of the frame's first pass and the end of its last.
+struct Timestamps {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+}
+
+/// The frame's buffers and bind groups.
+pub struct Frame<'a> {
+    ctx: &'a GpuContext,
+    output: wgpu::Buffer,
+    guard: wgpu::Buffer,
+    split: wgpu::Buffer,
+    work_counts: wgpu::Buffer,
+    work_args: wgpu::Buffer,
+    pub blocks: Vec<Block>,
+    /// Bytes of output, then of guard flags, then 16 of timestamps in `staging`.
+    pub output_bytes: u64,
+    pub guard_bytes: u64,
+    pub staging: wgpu::Buffer,
+    timestamps: Option<Timestamps>,
+    /// One per dispatch, in the order of `dispatches`.
+    bind_groups: Vec<wgpu::BindGroup>,
+}
+
+fn align(n: u64, to: u64) -> u64 {
+    n.div_ceil(to) * to
+}
+
+fn buffer(ctx: &GpuContext, label: &str, size: u64, usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(4),
+        usage,
+        mapped_at_creation: false,
+    })
+}
+
+/// Each chunk's output (16 B a pixel) and guard (4 B) blocks at offsets the adapter
+/// accepts for a storage binding.
+fn blocks(ctx: &GpuContext, plan: &FramePlan) -> (Vec<Block>, u64, u64) {
+    let a = (ctx.limits.min_storage_buffer_offset_alignment as u64).max(4);
+    let (mut output, mut guard) = (0, 0);
+    let blocks = plan
+        .chunks
+        .iter()
+        .map(|c| {
+            let b = Block {
+                output_offset: output,
+                output_size: c.block_pixels() * 16,
+                guard_offset: guard,
+                guard_size: c.block_pixels() * 4,
+            };
+            output += align(b.output_size, a);
+            guard += align(b.guard_size, a);
+            b
+        })
+        .collect();
+    (blocks, output, guard)
+}
+
+fn binding(buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindingResource<'_> {
+    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+        buffer,
+        offset,
+        size: NonZeroU64::new(size),
+    })
+}
+
+/// Every dispatch's uniform record, one per `min_uniform_buffer_offset_alignment`
+/// bytes (the stride returned), written once before the frame's first submit.
+fn records(ctx: &GpuContext, dispatches: &[Dispatch]) -> (wgpu::Buffer, u64) {
+    let stride = align(
+        std::mem::size_of::<GpuTile>() as u64,
+        ctx.limits.min_uniform_buffer_offset_alignment as u64,
+    );
+    let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+    let records = buffer(
+        ctx,
+        "dispatch records",
+        stride * dispatches.len() as u64,
+        usage,
+    );
+    let mut bytes = vec![0u8; (stride * dispatches.len() as u64) as usize];
+    for (k, d) in dispatches.iter().enumerate() {
+        let at = k * stride as usize;
+        bytes[at..at + std::mem::size_of::<GpuTile>()]
+            .copy_from_slice(bytemuck::bytes_of(&d.params));
+    }
+    ctx.queue.write_buffer(&records, 0, &bytes);
+    (records, stride)
+}
+
+/// The frame's timestamp queries, where the device has them.
+fn timestamps(ctx: &GpuContext) -> Option<Timestamps> {
+    use wgpu::BufferUsages as U;
+    ctx.device
+        .features()
+        .contains(wgpu::Features::TIMESTAMP_QUERY)
+        .then(|| Timestamps {
+            queries: ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("frame time"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            }),
+            resolve: buffer(ctx, "frame time", 16, U::QUERY_RESOLVE | U::COPY_SRC),
+        })
+}
+
+impl<'a> Frame<'a> {
+    /// Creates the frame's buffers and one bind group per dispatch (call inside the
+    /// frame's error scope).
+    pub fn new(
+        ctx: &'a GpuContext,
+        plan: &FramePlan,
+        scene: &SceneBuffers,
+        layout: &wgpu::BindGroupLayout,
+        dispatches: &[Dispatch],
+    ) -> Frame<'a> {
+        use wgpu::BufferUsages as U;
+        let storage = U::STORAGE | U::COPY_SRC | U::COPY_DST;
+        let (blocks, output_bytes, guard_bytes) = blocks(ctx, plan);
+        let output = buffer(ctx, "frame output", output_bytes, storage);
+        let guard = buffer(ctx, "frame guard flags", guard_bytes, storage);
+        let samples = buffer(ctx, "chunk samples", plan.samples_len * 16, storage);
+        let split = buffer(ctx, "chunk split flags", plan.split_len * 4, storage);
+        let work_counts = buffer(ctx, "work counts", plan.work_levels * 4, storage);
+        let work_list = buffer(ctx, "work lists", plan.split_len * 4, storage);
+        let work_args = buffer(
+            ctx,
+            "work args",
+            plan.work_levels * 24,
+            storage | U::INDIRECT,
+        );
+        // Bound in place of work_args where a dispatch may read its arguments from it.
+        let no_args = buffer(ctx, "no work args", plan.work_levels * 24, storage);
+        let (records, stride) = records(ctx, dispatches);
+        let bind_groups = dispatches
+            .iter()
+            .enumerate()
+            .map(|(k, d)| {
+                let b = blocks[d.chunk];
+                let mut entries = scene_entries(scene);
+                let own = [
+                    (TILE_BINDING, binding(&records, k as u64 * stride, stride)),
+                    (
+                        OUTPUT_BINDING,
+                        binding(&output, b.output_offset, b.output_size),
+                    ),
+                    (SAMPLES_BINDING, samples.as_entire_binding()),
+                    (SPLIT_BINDING, split.as_entire_binding()),
+                    (GUARD_BINDING, binding(&guard, b.guard_offset, b.guard_size)),
+                    (WORK_COUNTS_BINDING, work_counts.as_entire_binding()),
+                    (WORK_LIST_BINDING, work_list.as_entire_binding()),
+                    (
+                        WORK_ARGS_BINDING,
+                        if d.writes_args { &work_args } else { &no_args }.as_entire_binding(),
+                    ),
+                ];
+                entries.extend(
+                    own.map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
+                );
+                ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("glint dispatch"),
+                    layout,
+                    entries: &entries,
+                })
+            })
+            .collect();
+        let timestamps = timestamps(ctx);
+        let staging = buffer(
+            ctx,
+            "frame staging",
+            output_bytes + guard_bytes + 16,
+            U::MAP_READ | U::COPY_DST,
+        );
+        Frame {
+            ctx,
+            output,
+            guard,
+            split,
+            work_counts,
+            work_args,
+            blocks,
+            output_bytes,
+            guard_bytes,
+            staging,
+            timestamps,
+            bind_groups,
+        }
+    }
+
+    /// Whether the frame measures its GPU time with timestamp queries.
+    pub fn timed(&self) -> bool {
+        self.timestamps.is_some()
+    }
+
+    /// Encodes dispatches `range` (of the frame's `dispatches`) as one command buffer:
+    /// the first part also clears the guard flags, the last copies the results out. A
+    /// dispatch that starts an adaptive tile starts a new compute pass, after clearing
+    /// the tile's split flags and work counts.
+    pub fn encode_part(
+        &self,
+        pipelines: &[Arc<CompiledPipeline>],
+        dispatches: &[Dispatch],
+        range: std::ops::Range<usize>,
+        first: bool,
+        last: bool,
+    ) -> wgpu::CommandBuffer {
+        let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+        if first {
+            encoder.clear_buffer(&self.guard, 0, None);
+        }
+        let mut starts: Vec<usize> = range
+            .clone()
+            .filter(|&k| k == range.start || dispatches[k].clears_work)
+            .collect();
+        starts.push(range.end);
+        for (s, pair) in starts.windows(2).enumerate() {
+            if dispatches[pair[0]].clears_work {
+                encoder.clear_buffer(&self.split, 0, None);
+                encoder.clear_buffer(&self.work_counts, 0, None);
+            }
+            let (begin, end) = (first && s == 0, last && s + 2 == starts.len());
+            let timestamp_writes = self.timestamps.as_ref().filter(|_| begin || end).map(|t| {
+                wgpu::ComputePassTimestampWrites {
+                    query_set: &t.queries,
+                    beginning_of_pass_write_index: begin.then_some(0),
+                    end_of_pass_write_index: end.then_some(1),
+                }
+            });
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("glint frame part"),
+                timestamp_writes,
+            });
+            let run = dispatches.iter().zip(&self.bind_groups);
+            for (d, bind_group) in run.take(pair[1]).skip(pair[0]) {
+                pass.set_pipeline(&pipelines[d.entry].pipeline);
+                pass.set_bind_group(0, bind_group, &[]);
+                match d.workgroups {
+                    Workgroups::Direct(x, y) => pass.dispatch_workgroups(x, y, 1),
+                    Workgroups::Indirect(at) => {
+                        pass.dispatch_workgroups_indirect(&self.work_args, at)
+                    }
+                }
+            }
+        }
+        if last {
+            let (o, g) = (self.output_bytes, self.guard_bytes);
+            encoder.copy_buffer_to_buffer(&self.output, 0, &self.staging, 0, o);
+            encoder.copy_buffer_to_buffer(&self.guard, 0, &self.staging, o, g);
+            if let Some(t) = &self.timestamps {
+                encoder.resolve_query_set(&t.queries, 0..2, &t.resolve, 0);
+                encoder.copy_buffer_to_buffer(&t.resolve, 0, &self.staging, o + g, 16);
+            }
+        }
+        encoder.finish()
+    }
+}

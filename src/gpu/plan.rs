@@ -1,0 +1,365 @@
+//! The dispatch plan of one GPU frame, as plain arithmetic (no device needed, so it is
+//! unit-tested): which chunks of the image each pass covers, how the chunks group into the
+//! frame's submits, and the scratch arrays' sizes.
+//!
+//! A chunk is as large as the adapter's storage-binding limit allows: AA none and uniform
+//! AA cover full-width bands of rows (their scratch is per pixel or per sample), adaptive
+//! AA square tiles whose lattice of (side·2^d + 1)² points fits one binding. The chunks
+//! are grouped into at most [`GPU_FRAME_PARTS`] submits, queued back to back: the host
+//! waits only to report progress and to read the image back once, so the number of
+//! submits and host waits per frame does not grow with the image.
+
+use super::buffers::GpuTile;
+use super::shader::Entry;
+use crate::constants::{
+    AA_ADAPTIVE, AA_UNIFORM, GPU_FRAME_PARTS, LINEAR_WORKGROUP_SIZE, WORKGROUP_SIZE,
+};
+use crate::pack::GpuGlobals;
+use crate::tiling::split_offset;
+
+/// The AA mode's passes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    None,
+    Uniform { n: u32 },
+    Adaptive { depth: u32 },
+}
+
+impl Mode {
+    pub fn of(g: &GpuGlobals) -> Mode {
+        match g.aa_mode {
+            AA_ADAPTIVE => Mode::Adaptive { depth: g.aa_depth },
+            AA_UNIFORM => Mode::Uniform { n: g.aa_samples },
+            _ => Mode::None,
+        }
+    }
+}
+
+impl Mode {
+    /// The entry points of the mode's passes, in [`Dispatch::entry`] order.
+    pub fn entries(self) -> &'static [Entry] {
+        match self {
+            Mode::None => &[Entry::Render],
+            Mode::Uniform { .. } => &[Entry::UniformSamples, Entry::UniformResolve],
+            Mode::Adaptive { .. } => &[
+                Entry::AdaptiveCorners,
+                Entry::AdaptiveDecide,
+                Entry::AdaptiveMidpoints,
+                Entry::AdaptiveIntegrate,
+                Entry::AdaptiveWorkArgs,
+            ],
+        }
+    }
+}
+
+/// One compute dispatch of the frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dispatch {
+    /// Index into [`Mode::entries`].
+    pub entry: usize,
+    /// Index into [`FramePlan::chunks`].
+    pub chunk: usize,
+    pub params: GpuTile,
+    /// Workgroups, or where in the work-args buffer (bytes) the GPU wrote them.
+    pub workgroups: Workgroups,
+    /// Clear the split flags and work counts first (a new adaptive tile).
+    pub clears_work: bool,
+    /// Binds the work-args buffer as storage (`adaptive_work_args`).
+    pub writes_args: bool,
+}
+
+/// How many workgroups a dispatch runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Workgroups {
+    Direct(u32, u32),
+    Indirect(u64),
+}
+
+/// Byte offset of level `level`'s midpoint-pass arguments in the work-args buffer; the
+/// next level's decide-pass arguments follow (see shaders/adaptive.wgsl::adaptive_work_args).
+fn midpoint_args(level: u32) -> u64 {
+    24 * level as u64
+}
+
+/// One chunk: `size` pixels at `origin`; its output, scratch and guard arrays are laid
+/// out `side` pixels per row (adaptive tiles are `side` × `side` squares).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Chunk {
+    pub origin: [u32; 2],
+    pub size: [u32; 2],
+    pub side: u32,
+}
+
+impl Chunk {
+    /// Pixels of the chunk's output block (its rows at stride `side`).
+    pub fn block_pixels(&self) -> u64 {
+        self.side as u64 * self.size[1] as u64
+    }
+}
+
+/// What the adapter allows.
+#[derive(Clone, Copy, Debug)]
+pub struct AdapterBounds {
+    /// Bytes of one storage binding (and buffer).
+    pub max_binding: u64,
+    /// Workgroups per dispatch dimension.
+    pub max_workgroups: u32,
+}
+
+/// The frame's chunks, their grouping into submits and the scratch arrays' lengths.
+#[derive(Clone, Debug)]
+pub struct FramePlan {
+    pub mode: Mode,
+    pub chunks: Vec<Chunk>,
+    /// Chunk index ranges, one per submit, in order.
+    pub parts: Vec<std::ops::Range<usize>>,
+    /// vec4 entries of the samples array (uniform AA's samples, adaptive AA's lattice).
+    pub samples_len: u64,
+    /// u32 entries of the split-flag array (adaptive AA), and of the lists of split
+    /// squares (the same layout).
+    pub split_len: u64,
+    /// Levels of adaptive AA's work counts (6 u32 of indirect arguments each).
+    pub work_levels: u64,
+}
+
+/// Largest power of two L with (L + 1)² vec4 lattice points in `max_binding` bytes.
+pub fn lattice_side(max_binding: u64) -> u32 {
+    let mut side = 1u32;
+    while ((2 * side as u64 + 1).pow(2) * 16) <= max_binding && side < (1 << 15) {
+        side *= 2;
+    }
+    side
+}
+
+/// Full-width bands of at most `rows` rows, at least `min_bands` of them.
+fn bands(w: u32, h: u32, rows: u32, min_bands: u32) -> Vec<Chunk> {
+    let rows = rows.min(h.div_ceil(min_bands.max(1))).max(1);
+    (0..h.div_ceil(rows))
+        .map(|k| Chunk {
+            origin: [0, k * rows],
+            size: [w, rows.min(h - k * rows)],
+            side: w,
+        })
+        .collect()
+}
+
+/// Square tiles of side `side`, row-major.
+fn squares(w: u32, h: u32, side: u32) -> Vec<Chunk> {
+    let (nx, ny) = (w.div_ceil(side), h.div_ceil(side));
+    (0..nx * ny)
+        .map(|t| {
+            let (x0, y0) = ((t % nx) * side, (t / nx) * side);
+            Chunk {
+                origin: [x0, y0],
+                size: [side.min(w - x0), side.min(h - y0)],
+                side,
+            }
+        })
+        .collect()
+}
+
+/// `n` contiguous ranges covering 0..len as evenly as possible (n ≤ len).
+fn split_even(len: usize, n: usize) -> Vec<std::ops::Range<usize>> {
+    (0..n).map(|k| k * len / n..(k + 1) * len / n).collect()
+}
+
+impl FramePlan {
+    /// The plan for a `g.width` × `g.height` frame under `g`'s AA mode.
+    pub fn new(g: &GpuGlobals, bounds: AdapterBounds) -> FramePlan {
+        let (w, h) = (g.width, g.height);
+        let mode = Mode::of(g);
+        // Rows a band may have: its pixels must fit a 2-D dispatch and its output block
+        // (16 B a pixel) one binding.
+        let dispatch_rows = bounds.max_workgroups.saturating_mul(WORKGROUP_SIZE);
+        let block_rows = (bounds.max_binding / (16 * w as u64)).min(u32::MAX as u64) as u32;
+        let parts = GPU_FRAME_PARTS.min(h) as usize;
+        let (chunks, samples_len, split_len) = match mode {
+            Mode::None => (
+                bands(w, h, dispatch_rows.min(block_rows), parts as u32),
+                1,
+                1,
+            ),
+            Mode::Uniform { n } => {
+                let per_row = w as u64 * (n * n) as u64;
+                let sample_rows = bounds.max_binding / (16 * per_row);
+                let rows = (sample_rows.min(u32::MAX as u64) as u32).min(block_rows);
+                let chunks = bands(w, h, rows.min(dispatch_rows), parts as u32);
+                let rows = chunks.iter().map(|c| c.size[1]).max().unwrap_or(1);
+                (chunks, per_row * rows as u64, 1)
+            }
+            Mode::Adaptive { depth } => {
+                let side = (lattice_side(bounds.max_binding) >> depth).max(1);
+                // At most half the image's longer side, so a frame has a few chunks to
+                // spread over its parts (and a small frame gets a small lattice).
+                let side = side.min(w.max(h).div_ceil(2).next_power_of_two());
+                let lattice = (side as u64 * (1 << depth) as u64 + 1).pow(2);
+                let chunks = squares(w, h, side);
+                (chunks, lattice, split_offset(side, depth).max(1) as u64)
+            }
+        };
+        let parts = split_even(chunks.len(), parts.min(chunks.len()));
+        let work_levels = match mode {
+            Mode::Adaptive { depth } => depth.max(1) as u64,
+            _ => 1,
+        };
+        FramePlan {
+            mode,
+            chunks,
+            parts,
+            samples_len,
+            split_len,
+            work_levels,
+        }
+    }
+}
+
+impl FramePlan {
+    /// The dispatches of chunk `index`, in order (`sentinel`: [`GpuTile::sentinel`]).
+    pub fn dispatches(&self, index: usize, sentinel: u32, max_workgroups: u32) -> Vec<Dispatch> {
+        let c = self.chunks[index];
+        let [w, h] = c.size;
+        let params = |level: u32, items: u32| GpuTile {
+            origin: c.origin,
+            size: c.size,
+            side: c.side,
+            level,
+            items,
+            sentinel,
+        };
+        let linear = |items: u32| {
+            let (x, y) = linear_workgroups(items, max_workgroups);
+            Workgroups::Direct(x, y)
+        };
+        let square = Workgroups::Direct(w.div_ceil(WORKGROUP_SIZE), h.div_ceil(WORKGROUP_SIZE));
+        let run = |entry: usize, params: GpuTile, workgroups: Workgroups| Dispatch {
+            entry,
+            chunk: index,
+            params,
+            workgroups,
+            clears_work: false,
+            writes_args: false,
+        };
+        match self.mode {
+            Mode::None => vec![run(0, params(0, 0), square)],
+            Mode::Uniform { n } => {
+                let items = w * h * n * n;
+                vec![
+                    run(0, params(0, items), linear(items)),
+                    run(1, params(0, 0), square),
+                ]
+            }
+            Mode::Adaptive { depth } => {
+                let corners = (w + 1) * (h + 1);
+                let mut out = vec![Dispatch {
+                    clears_work: true,
+                    ..run(0, params(0, corners), linear(corners))
+                }];
+                for level in 0..depth {
+                    out.push(if level == 0 {
+                        run(1, params(0, w * h), linear(w * h))
+                    } else {
+                        let args = Workgroups::Indirect(midpoint_args(level - 1) + 12);
+                        run(1, params(level, 0), args)
+                    });
+                    out.push(Dispatch {
+                        writes_args: true,
+                        ..run(4, params(level, 0), Workgroups::Direct(1, 1))
+                    });
+                    let args = Workgroups::Indirect(midpoint_args(level));
+                    out.push(run(2, params(level, 0), args));
+                }
+                out.push(run(3, params(0, 0), square));
+                out
+            }
+        }
+    }
+}
+
+/// Workgroups of a one-dimensional kernel over `items` invocations: x at most
+/// `max_workgroups`, the rest in y (the kernels rebuild the index with `linear_index`).
+pub fn linear_workgroups(items: u32, max_workgroups: u32) -> (u32, u32) {
+    let groups = items.div_ceil(LINEAR_WORKGROUP_SIZE);
+    if groups <= max_workgroups {
+        (groups, 1)
+    } else {
+        (max_workgroups, groups.div_ceil(max_workgroups))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn globals(w: u32, h: u32, aa_mode: u32) -> GpuGlobals {
+        GpuGlobals {
+            width: w,
+            height: h,
+            aa_mode,
+            aa_samples: 4,
+            aa_depth: 3,
+            ..bytemuck::Zeroable::zeroed()
+        }
+    }
+
+    const LAVAPIPE: AdapterBounds = AdapterBounds {
+        max_binding: 128 << 20,
+        max_workgroups: 65_535,
+    };
+
+    /// Every pixel in exactly one chunk, every chunk in exactly one part.
+    fn assert_covers(plan: &FramePlan, w: u32, h: u32) {
+        let mut seen = vec![0u8; (w * h) as usize];
+        for c in &plan.chunks {
+            assert!(c.size[0] <= c.side, "{c:?}");
+            for y in c.origin[1]..c.origin[1] + c.size[1] {
+                for x in c.origin[0]..c.origin[0] + c.size[0] {
+                    seen[(y * w + x) as usize] += 1;
+                }
+            }
+        }
+        assert!(seen.iter().all(|&s| s == 1), "{w}×{h} {:?}", plan.mode);
+        let covered: Vec<usize> = plan.parts.iter().flat_map(|r| r.clone()).collect();
+        assert_eq!(covered, (0..plan.chunks.len()).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn chunks_cover_the_frame_once_in_a_fixed_number_of_parts() {
+        for mode in [0, AA_UNIFORM, AA_ADAPTIVE] {
+            let mut part_counts = Vec::new();
+            for (w, h) in [(256, 256), (2048, 2048), (1920, 1080), (37, 5), (3000, 7)] {
+                let plan = FramePlan::new(&globals(w, h, mode), LAVAPIPE);
+                assert_covers(&plan, w, h);
+                if w >= 256 && h >= 256 {
+                    part_counts.push(plan.parts.len());
+                }
+            }
+            assert!(
+                part_counts.iter().all(|&p| p == GPU_FRAME_PARTS as usize),
+                "{part_counts:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn scratch_fits_one_binding() {
+        for mode in [AA_UNIFORM, AA_ADAPTIVE] {
+            let plan = FramePlan::new(&globals(2048, 2048, mode), LAVAPIPE);
+            assert!(
+                plan.samples_len * 16 <= LAVAPIPE.max_binding,
+                "{:?}",
+                plan.mode
+            );
+            for c in &plan.chunks {
+                assert!(c.block_pixels() * 16 <= LAVAPIPE.max_binding);
+            }
+        }
+        assert_eq!(lattice_side(128 << 20), 2048);
+    }
+
+    #[test]
+    fn linear_dispatches_stay_within_the_dimension_limit() {
+        assert_eq!(linear_workgroups(64 * 10, 65_535), (10, 1));
+        let (x, y) = linear_workgroups(5 * 1024 * 1024, 65_535);
+        assert!(x <= 65_535 && x as u64 * y as u64 * 64 >= 5 * 1024 * 1024);
+    }
+}
