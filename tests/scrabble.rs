@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{failure_dir, load_scenes, render_cpu, root, scaled_scene};
+use common::{bless_requested, failure_dir, load_scenes, render_cpu, root, scaled_scene};
 use glint::film::Film;
 use glint::image_io::{read_image, write_image};
 use glint::pack::{pack, SceneFeatures};
@@ -160,24 +160,41 @@ fn small(width: u32, height: u32) -> OptionOverrides {
 }
 
 /// 160×90 with the scene's own options, against `tests/golden/scenes-scrabble-160x90.png`
-/// pixel for pixel (the CPU tracer is deterministic). `GLINT_BLESS=1` rewrites it.
+/// pixel for pixel (the CPU tracer is deterministic). `GLINT_BLESS=1` rewrites it when it
+/// differs, and the run then fails saying so (a blessing is not a pass).
 #[test]
 fn small_render_matches_its_golden_exactly() {
     let golden = root().join("tests/golden/scenes-scrabble-160x90.png");
     let scene = &load_scenes(&scene_path(), &small(160, 90))[0];
     let film = render_cpu(&pack(scene).unwrap());
-    if std::env::var_os("GLINT_BLESS").is_some() {
-        write_image(&film, &golden).unwrap();
-    }
-    let expected =
-        read_image(&golden).unwrap_or_else(|e| panic!("{e} (run with GLINT_BLESS=1 to create it)"));
+    let bless = bless_requested();
+    let expected = match read_image(&golden) {
+        Ok(expected) => expected,
+        Err(e) if bless => {
+            write_image(&film, &golden).unwrap();
+            panic!(
+                "GLINT_BLESS=1 wrote the missing golden {} ({e}): review it",
+                golden.display()
+            );
+        }
+        Err(e) => panic!("{e} (run with GLINT_BLESS=1 to create it)"),
+    };
     let (actual_bytes, expected_bytes) = (film.to_rgb8(), expected.to_rgb8());
     let differing = actual_bytes
         .chunks(3)
         .zip(expected_bytes.chunks(3))
         .filter(|(a, b)| a != b)
         .count();
-    if differing > 0 || (film.width, film.height) != (expected.width, expected.height) {
+    let resized = (film.width, film.height) != (expected.width, expected.height);
+    if bless && (differing > 0 || resized) {
+        write_image(&film, &golden).unwrap();
+        panic!(
+            "GLINT_BLESS=1 rewrote {}: {differing} pixels changed (review it, commit, and run \
+             again without GLINT_BLESS)",
+            golden.display()
+        );
+    }
+    if differing > 0 || resized {
         let actual_path = failure_dir().join("scenes-scrabble-160x90-actual.png");
         write_image(&film, &actual_path).unwrap();
         panic!(

@@ -1,19 +1,21 @@
 //! The committed textures are what `examples/make_textures.rs` makes: every PNG in
 //! `textures/` is regenerated in memory and compared byte for byte (the encoder and its
-//! settings are pinned by Cargo.lock and the generator). `GLINT_BLESS=1` rewrites them.
+//! settings are pinned by Cargo.lock and the generator). `GLINT_BLESS=1` (only `1`) rewrites
+//! the ones that differ, and the run then fails naming them: a blessing is not a pass.
 //! Also: the board's premium squares against the standard board, square by square.
 
+mod common;
 #[path = "../examples/texture_gen/mod.rs"]
 mod texture_gen;
+
+use common::bless_requested;
 
 use texture_gen::board::{premium, Premium};
 
 #[test]
 fn committed_textures_are_reproduced_byte_for_byte() {
     let dir = texture_gen::textures_dir();
-    if std::env::var_os("GLINT_BLESS").is_some() {
-        texture_gen::write_all(&dir).unwrap();
-    }
+    let bless = bless_requested();
     let mut differing = Vec::new();
     let assets = texture_gen::all_assets();
     for asset in &assets {
@@ -27,6 +29,14 @@ fn committed_textures_are_reproduced_byte_for_byte() {
                 asset.png.len()
             ));
         }
+    }
+    if bless && !differing.is_empty() {
+        texture_gen::write_all(&dir).unwrap();
+        panic!(
+            "GLINT_BLESS=1 rewrote textures/ (review the images, commit, and run again without \
+             GLINT_BLESS):\n{}",
+            differing.join("\n")
+        );
     }
     assert!(
         differing.is_empty(),
