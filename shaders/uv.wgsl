@@ -1,6 +1,6 @@
 // uv.wgsl — UVs and tangent frames of the sphere, the box and mesh triangles (the
 // cylinder, cone and torus have theirs in cylinder_cone.wgsl and torus.wgsl). The
-// conventions are documented in src/cpu/uv.rs and the README ("UV conventions").
+// conventions are documented in src/cpu/uv.rs and docs/scene-language.md ("UV conventions").
 
 // #if SPHERE|CUBE|CYLINDER|CONE|TORUS
 // An analytic surface at a point, in object space: the point snapped onto it, its unit

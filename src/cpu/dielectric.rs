@@ -2,7 +2,7 @@
 //! indices on both sides, total internal reflection, the per-ray medium stack, shadow
 //! rays that pass through glass, and the media that contain the camera.
 //!
-//! Rules (README "Glass and water"):
+//! Rules (docs/scene-language.md, "Glass and water"):
 //! - A surface is *entered* when the ray runs against its geometric (outward) normal and
 //!   *left* otherwise. Entering pushes the material's index on the ray's medium stack;
 //!   leaving pops it. The index beyond an entered surface is the material's; beyond a

@@ -1,6 +1,6 @@
 //! UVs and tangent frames of the sphere, the box and mesh triangles (the cylinder, cone
-//! and torus have theirs in `cylinder_cone` and `torus`). Conventions (README, "UV
-//! conventions"; all in object space, pole and axis along z as for the other primitives):
+//! and torus have theirs in `cylinder_cone` and `torus`). Conventions (docs/scene-language.md,
+//! "UV conventions"; all in object space, pole and axis along z as for the other primitives):
 //! - sphere: u = longitude/2π in [0, 1) (atan2(y, x), 0 on +x, increasing towards +y),
 //!   v = latitude/π + 1/2 in [0, 1] (0 at the south pole z = −1, 1 at the north pole);
 //! - box: each face maps to [0, 1]², seen from outside unmirrored: ∂p/∂u is the face's

@@ -1,5 +1,6 @@
-//! The `gr` Lua module: runs a CS488 A4 scene script (the language is described in the
-//! README) into a [`SceneGraph`], handing each `gr.render` call to the caller as it happens.
+//! The `gr` Lua module: runs a CS488 A4 scene script (the language is described in
+//! docs/scene-language.md) into a [`SceneGraph`], handing each `gr.render` call to the
+//! caller as it happens.
 //!
 //! Layout: `sandbox` builds the restricted Lua state (limits, `require`, `unpack`,
 //! `readobj`), `gr` defines the scene calls, `handles` the node/material/light userdata
