@@ -166,4 +166,4 @@ struct GpuTile {
 // Corner UVs of each triangle (same order as `triangles`; only with TEXTURE or BUMP).
 @group(0) @binding(16) var<storage, read> triangle_uvs: array<GpuTriangleUv>;
 // Each mesh's triangle range and grid (KIND_MESH instances index it).
-@group(0) @binding(17) var<storage, read> meshes: array<GpuMesh>;
+@group(0) @binding(23) var<storage, read> meshes: array<GpuMesh>;

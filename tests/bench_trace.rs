@@ -144,15 +144,17 @@ fn hits_equal_brute_force_over_the_same_rays() {
     let hits = trace_primary(&brute, &rays);
     let shadow = shadow_rays(&brute, &rays, &hits);
     let occluded = trace_shadow(&brute, &shadow);
-    let expected = summarise(&hits, &occluded);
+    let expected = summarise(&brute, &hits, &occluded);
 
     // The scene has hits and misses, lit and shadowed points, triangles and spheres hit.
     assert_eq!(expected.primary_rays, 48 * 40);
     assert!(expected.primary_hits > 0 && expected.primary_hits < expected.primary_rays);
     assert!(expected.shadow_occluded > 0 && expected.shadow_occluded < expected.shadow_rays);
-    let num_instances = brute.globals.num_instances;
-    assert!(hits.iter().any(|h| h.is_hit() && h.item < num_instances));
-    assert!(hits.iter().any(|h| h.is_hit() && h.item >= num_instances));
+    let is_mesh = |h: &&glint::cpu::traverse::Hit| {
+        brute.instances[h.item as usize].kind == glint::constants::KIND_MESH
+    };
+    assert!(hits.iter().filter(|h| h.is_hit()).any(|h| !is_mesh(&h)));
+    assert!(hits.iter().filter(|h| h.is_hit()).any(|h| is_mesh(&h)));
 
     assert_eq!(
         counts(&text, "primary rays: "),

@@ -51,7 +51,7 @@ pub fn bench_trace(args: &TraceBenchArgs) -> anyhow::Result<()> {
     let (t_shadow, ()) = fastest(args.repeat, || {
         trace_shadow_into(&packed, &shadow, &mut occluded)
     });
-    let summary = summarise(&hits, &occluded);
+    let summary = summarise(&packed, &hits, &occluded);
     let (accel_bytes, stored_triangles) = packed.accel_memory();
     println!("primary: {} Mrays/s", rate(mrays(primary.len(), t_primary)));
     println!("shadow: {} Mrays/s", rate(mrays(shadow.len(), t_shadow)));

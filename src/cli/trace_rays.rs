@@ -3,10 +3,11 @@
 //! surface; both traced by the CPU tracer's `closest_hit` / `any_hit`, and summarised by
 //! counts and a checksum of the hit items.
 
-use crate::constants::{NO_ITEM, T_MISS};
+use crate::constants::{KIND_MESH, NO_ITEM, T_MISS};
 use crate::cpu::ray::{camera_ray, offset_ray, Ray};
 use crate::cpu::surface::surface_at;
 use crate::cpu::traverse::{any_hit, closest_hit, Hit, NoCounters};
+use crate::cpu::traverse_mesh::instance_mesh;
 use crate::pack::PackedScene;
 use crate::scene::flatten::{flatten, Scene};
 use crate::scene::lua::{run_scene_file, ScriptConfig};
@@ -28,9 +29,54 @@ pub struct TraceSummary {
     pub primary_hits: usize,
     pub shadow_rays: usize,
     pub shadow_occluded: usize,
-    /// Σ (item + 1) over the primary rays that hit, wrapping (items: instances first,
-    /// then triangles, as in the packed scene).
+    /// Σ (item + 1) over the primary rays that hit, wrapping, items numbered as in
+    /// [`ItemNumbering`].
     pub hit_checksum: u64,
+}
+
+/// The flat item numbers that `--dump-rays` and the checksum use, the same for any
+/// tracer given the same geometry: the instances that are not meshes first, in packed
+/// order, then every mesh instance's triangles (world space, one copy per instance), in
+/// instance order and then the mesh's triangle order.
+pub struct ItemNumbering {
+    /// Per packed instance: its number (not a mesh), or its first triangle's (a mesh).
+    first_number: Vec<u32>,
+}
+
+impl ItemNumbering {
+    pub fn new(scene: &PackedScene) -> ItemNumbering {
+        let instances = &scene.instances[..scene.globals.num_instances as usize];
+        let not_meshes = instances.iter().filter(|i| i.kind != KIND_MESH).count() as u32;
+        let (mut next_instance, mut next_triangle) = (0u32, not_meshes);
+        let first_number = instances
+            .iter()
+            .map(|inst| {
+                let number = if inst.kind == KIND_MESH {
+                    next_triangle += instance_mesh(scene, inst).num_triangles;
+                    next_triangle - instance_mesh(scene, inst).num_triangles
+                } else {
+                    next_instance += 1;
+                    next_instance - 1
+                };
+                number
+            })
+            .collect();
+        ItemNumbering { first_number }
+    }
+
+    /// The number of what `hit` hit, or `NO_ITEM` on a miss.
+    pub fn of(&self, scene: &PackedScene, hit: &Hit) -> u32 {
+        if !hit.is_hit() {
+            return NO_ITEM;
+        }
+        let inst = &scene.instances[hit.item as usize];
+        let first = self.first_number[hit.item as usize];
+        if inst.kind == KIND_MESH {
+            first + hit.part - instance_mesh(scene, inst).first_triangle
+        } else {
+            first
+        }
+    }
 }
 
 /// Runs the script and flattens its first `gr.render` call, at `width`×`height` when
@@ -131,13 +177,17 @@ pub fn shadow_rays(scene: &PackedScene, primary: &[Ray], hits: &[Hit]) -> Vec<Sh
         .collect()
 }
 
-pub fn summarise(hits: &[Hit], occluded: &[bool]) -> TraceSummary {
-    let hit_items = hits.iter().filter(|h| h.item != NO_ITEM);
+/// Counts of rays, hits and occluded shadow rays, and the checksum of the hit items.
+pub fn summarise(scene: &PackedScene, hits: &[Hit], occluded: &[bool]) -> TraceSummary {
+    let numbering = ItemNumbering::new(scene);
+    let hit_items = hits.iter().filter(|h| h.is_hit());
     TraceSummary {
         primary_rays: hits.len(),
         primary_hits: hit_items.clone().count(),
         shadow_rays: occluded.len(),
         shadow_occluded: occluded.iter().filter(|&&o| o).count(),
-        hit_checksum: hit_items.fold(0u64, |sum, h| sum.wrapping_add(h.item as u64 + 1)),
+        hit_checksum: hit_items.fold(0u64, |sum, h| {
+            sum.wrapping_add(numbering.of(scene, h) as u64 + 1)
+        }),
     }
 }

@@ -32,9 +32,9 @@ pub struct GpuTile {
 /// stops after one when Mesa's limiter has tripped (see `shaders/render.wgsl`).
 pub const LIMITER_SENTINEL: u32 = 2;
 
-/// The bindings of the scene's arrays, in `SceneBuffers::arrays` order (the two added
-/// last sit after the render entry's own bindings, so those kept their numbers).
-pub const SCENE_ARRAY_BINDINGS: [u32; 10] = [1, 2, 3, 4, 5, 6, 14, 15, 16, 17];
+/// The bindings of the scene's arrays, in `SceneBuffers::arrays` order (arrays added
+/// later take numbers after every other entry's bindings, so those keep theirs).
+pub const SCENE_ARRAY_BINDINGS: [u32; 10] = [1, 2, 3, 4, 5, 6, 14, 15, 16, 23];
 
 /// The scene's buffers: the globals uniform (binding 0) and the arrays.
 pub struct SceneBuffers {
