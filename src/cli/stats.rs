@@ -5,11 +5,17 @@ use std::fmt::Write;
 
 /// Multi-line statistics of one render.
 pub fn format_stats(image: &RenderedImage) -> String {
-    let packed = &image.packed;
-    let g = &packed.globals;
-    let grid = &packed.grid_stats;
     let mut out = String::new();
-    let _ = writeln!(out, "  features: {}", packed.features);
+    let _ = writeln!(out, "  features: {}", image.packed.features);
+    write_gpu(&mut out, image);
+    write_items(&mut out, image);
+    write_grids(&mut out, image);
+    write_rays(&mut out, image);
+    out
+}
+
+/// The GPU line (and the loop-limit guard's), when the GPU rendered.
+fn write_gpu(out: &mut String, image: &RenderedImage) {
     if let Some(gpu) = &image.gpu {
         let _ = writeln!(
             out,
@@ -34,6 +40,12 @@ pub fn format_stats(image: &RenderedImage) -> String {
             );
         }
     }
+}
+
+/// What the scene grid holds: analytic objects, CSG objects, mesh instances and lights.
+fn write_items(out: &mut String, image: &RenderedImage) {
+    let packed = &image.packed;
+    let g = &packed.globals;
     let csg_items = packed.instances[..g.num_instances as usize]
         .iter()
         .filter(|i| i.kind == crate::constants::KIND_CSG)
@@ -59,6 +71,13 @@ pub fn format_stats(image: &RenderedImage) -> String {
         g.num_triangles,
         g.num_lights
     );
+}
+
+/// How the scene grid and the mesh grids came out.
+fn write_grids(out: &mut String, image: &RenderedImage) {
+    let packed = &image.packed;
+    let g = &packed.globals;
+    let grid = &packed.grid_stats;
     if g.grid_enabled != 0 {
         let [nx, ny, nz] = g.grid_dims;
         let _ = writeln!(
@@ -90,6 +109,10 @@ pub fn format_stats(image: &RenderedImage) -> String {
             bytes as f64 / stored.max(1) as f64
         );
     }
+}
+
+/// What the rays cost, when the render counted them.
+fn write_rays(out: &mut String, image: &RenderedImage) {
     if let Some(c) = image.counters {
         let rays = c.rays.max(1) as f64;
         let _ = writeln!(
@@ -106,5 +129,4 @@ pub fn format_stats(image: &RenderedImage) -> String {
             rays / image.render_time.as_secs_f64() / 1e6
         );
     }
-    out
 }

@@ -5,6 +5,8 @@
 pub mod bounds;
 pub mod features;
 pub mod layout;
+mod lights;
+mod materials;
 pub mod meshes;
 pub mod texture;
 
@@ -167,24 +169,8 @@ fn pack_csg(scene: &Scene, first_leaf: usize) -> Result<PackedCsg, PackError> {
 /// Packs a flattened scene and builds its grid.
 pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     let mut features = SceneFeatures::empty();
-    let mut instances: Vec<GpuInstance> = scene
-        .objects
-        .iter()
-        .map(|o| {
-            let (instance, feature) = instance_of(o);
-            features.insert(feature);
-            instance
-        })
-        .collect();
-    // (scene grid λ, mesh grids' λ); an explicit density sets both.
-    let (density, mesh_density) = match scene.options.grid {
-        GridMode::Off => (None, None),
-        GridMode::Auto => (
-            Some(crate::accel::grid::DEFAULT_DENSITY),
-            Some(crate::accel::grid::MESH_DEFAULT_DENSITY),
-        ),
-        GridMode::Density(d) => (Some(d), Some(d)),
-    };
+    let mut instances = analytic_instances(scene, &mut features);
+    let (density, mesh_density) = grid_densities(scene.options.grid);
     let mut meshes = meshes::pack_meshes(scene, mesh_density)?;
     // CSG objects and mesh instances are items after the analytic objects; the CSG
     // leaves follow all items.
@@ -200,71 +186,8 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         features.insert(SceneFeatures::MESH);
     }
     check_finite(&instances, &triangles)?;
-    let materials: Vec<GpuMaterial> = scene
-        .materials
-        .iter()
-        .map(|m| {
-            let reflective = m.reflection.iter().any(|&c| c > 0.0);
-            let refractive = if m.ior.is_some() {
-                MATERIAL_REFRACTIVE
-            } else {
-                0
-            };
-            GpuMaterial {
-                kd: m.kd,
-                shininess: m.shininess,
-                ks: m.ks,
-                flags: if reflective { MATERIAL_REFLECTIVE } else { 0 } | refractive,
-                reflection: m.reflection,
-                ior: m.ior.unwrap_or(AIR_IOR),
-                diffuse_texture: m.diffuse_map.map_or(NO_TEXTURE, |t| t as u32),
-                specular_texture: m.specular_map.map_or(NO_TEXTURE, |t| t as u32),
-                bump_texture: m.bump_map.map_or(NO_TEXTURE, |t| t as u32),
-                bump_strength: m.bump_strength,
-            }
-        })
-        .collect();
-    // Only materials some geometry uses decide the feature set (marked in one pass: a
-    // scan per material would cost materials × triangles).
-    let mut in_use = vec![false; materials.len()];
-    let leaves = scene
-        .csg
-        .iter()
-        .flat_map(|c| &c.program)
-        .filter_map(|step| match step {
-            CsgStep::Leaf(o) => Some(o.material),
-            CsgStep::Op(_) => None,
-        });
-    for m in scene
-        .objects
-        .iter()
-        .map(|o| o.material)
-        .chain(scene.triangles.iter().map(|t| t.material))
-        .chain(scene.mesh_instances.iter().map(|m| m.material))
-        .chain(leaves)
-    {
-        if let Some(slot) = in_use.get_mut(m) {
-            *slot = true;
-        }
-    }
-    let used = |m: usize| in_use[m];
-    if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFLECTIVE != 0 && used(m)) {
-        features.insert(SceneFeatures::REFLECTION);
-    }
-    if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFRACTIVE != 0 && used(m)) {
-        features.insert(SceneFeatures::REFRACTION);
-    }
-    let textured =
-        |m: &GpuMaterial| m.diffuse_texture != NO_TEXTURE || m.specular_texture != NO_TEXTURE;
-    // The UV debug view needs the UV code that textures bring.
-    if scene.options.debug == DebugView::Uv
-        || (0..materials.len()).any(|m| textured(&materials[m]) && used(m))
-    {
-        features.insert(SceneFeatures::TEXTURE);
-    }
-    if (0..materials.len()).any(|m| materials[m].bump_texture != NO_TEXTURE && used(m)) {
-        features.insert(SceneFeatures::BUMP);
-    }
+    let materials = materials::pack_materials(scene);
+    features.insert(materials::material_features(scene, &materials));
     let needs_uv =
         features.contains(SceneFeatures::TEXTURE) || features.contains(SceneFeatures::BUMP);
     let (texels, triangle_uvs) = if needs_uv {
@@ -275,77 +198,17 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     } else {
         (Vec::new(), Vec::new())
     };
-    let shadow_samples = scene.options.shadow_samples;
     if scene.lights.iter().any(|l| l.area.is_some()) {
         features.insert(SceneFeatures::AREA_LIGHT);
     }
-    let lights = scene
-        .lights
-        .iter()
-        .enumerate()
-        .map(|(index, l)| {
-            let [c0, c1, c2] = l.falloff;
-            if c0 < 0.0 || c1 < 0.0 || c2 < 0.0 || c0 + c1 + c2 <= 0.0 {
-                return Err(PackError::BadFalloff {
-                    index,
-                    falloff: l.falloff,
-                });
-            }
-            let (kind, samples, edge_u, edge_v) = match &l.area {
-                None => (LIGHT_POINT, 1, [0.0; 3], [0.0; 3]),
-                Some(a) => (
-                    LIGHT_AREA,
-                    shadow_samples
-                        .unwrap_or(a.samples)
-                        .clamp(1, MAX_SHADOW_SAMPLES),
-                    a.u.as_vec3().to_array(),
-                    a.v.as_vec3().to_array(),
-                ),
-            };
-            Ok(GpuLight {
-                position: l.position.as_vec3().to_array(),
-                kind,
-                colour: l.colour,
-                samples,
-                falloff: l.falloff,
-                _pad0: 0,
-                edge_u,
-                _pad1: 0,
-                edge_v,
-                _pad2: 0,
-            })
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let options = &scene.options;
-    if options.max_depth > MAX_TRACE_DEPTH {
-        return Err(PackError::DepthTooLarge(options.max_depth));
-    }
-    if num_items >= (1 << 31) {
-        return Err(PackError::TooManyItems(num_items));
-    }
-    let num_scene_objects = num_items - meshes.instance_bounds.len();
-    let item_bounds: Vec<Aabb> = instances[..num_scene_objects]
-        .iter()
-        .map(|inst| {
-            if inst.kind == KIND_CSG {
-                let start = inst.params[0] as usize;
-                let end = start + inst.params[1] as usize;
-                csg_bounds(&csg_program[start..end], &instances)
-            } else {
-                instance_bounds(inst)
-            }
-        })
-        .chain(meshes.instance_bounds.iter().copied())
-        .collect();
-    let grid = Grid::build(&item_bounds, None, density);
+    let lights = lights::pack_lights(scene)?;
+    check_limits(scene, num_items)?;
+    let bounds = item_bounds(&instances, &csg_program, num_items, &meshes.instance_bounds);
+    let grid = Grid::build(&bounds, None, density);
     if grid.enabled {
         features.insert(SceneFeatures::GRID);
     }
-    meshes.append_cells(grid.cell_start.len(), grid.cell_items.len());
-    let mut cell_start = grid.cell_start.clone();
-    cell_start.extend_from_slice(&meshes.cell_start);
-    let mut cell_items = grid.cell_items.clone();
-    cell_items.extend_from_slice(&meshes.cell_items);
+    let (cell_start, cell_items) = all_cells(&grid, &mut meshes);
     let globals = make_globals(scene, num_items, &triangles, &lights, &grid);
     let packed = PackedScene {
         globals,
@@ -366,6 +229,80 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
     Ok(packed)
 }
 
+/// The instances of the analytic objects, adding the features their kinds need.
+fn analytic_instances(scene: &Scene, features: &mut SceneFeatures) -> Vec<GpuInstance> {
+    scene
+        .objects
+        .iter()
+        .map(|o| {
+            let (instance, feature) = instance_of(o);
+            features.insert(feature);
+            instance
+        })
+        .collect()
+}
+
+/// The densities λ of the scene grid and of the mesh grids (`None`: no grid); an
+/// explicit density sets both.
+fn grid_densities(mode: GridMode) -> (Option<f32>, Option<f32>) {
+    match mode {
+        GridMode::Off => (None, None),
+        GridMode::Auto => (
+            Some(crate::accel::grid::DEFAULT_DENSITY),
+            Some(crate::accel::grid::MESH_DEFAULT_DENSITY),
+        ),
+        GridMode::Density(d) => (Some(d), Some(d)),
+    }
+}
+
+/// Rejects a trace depth above the tracers' limit and more items than they can index.
+fn check_limits(scene: &Scene, num_items: usize) -> Result<(), PackError> {
+    let options = &scene.options;
+    if options.max_depth > MAX_TRACE_DEPTH {
+        return Err(PackError::DepthTooLarge(options.max_depth));
+    }
+    if num_items >= (1 << 31) {
+        return Err(PackError::TooManyItems(num_items));
+    }
+    Ok(())
+}
+
+/// World bounds of the scene grid's items: the analytic and CSG objects, then the mesh
+/// instances (whose bounds `mesh_bounds` holds).
+fn item_bounds(
+    instances: &[GpuInstance],
+    csg_program: &[u32],
+    num_items: usize,
+    mesh_bounds: &[Aabb],
+) -> Vec<Aabb> {
+    let num_scene_objects = num_items - mesh_bounds.len();
+    instances[..num_scene_objects]
+        .iter()
+        .map(|inst| {
+            if inst.kind == KIND_CSG {
+                let start = inst.params[0] as usize;
+                let end = start + inst.params[1] as usize;
+                csg_bounds(&csg_program[start..end], instances)
+            } else {
+                instance_bounds(inst)
+            }
+        })
+        .chain(mesh_bounds.iter().copied())
+        .collect()
+}
+
+/// The cells of the scene grid followed by the mesh grids' (moved behind it):
+/// `(cell_start, cell_items)`.
+fn all_cells(grid: &Grid, meshes: &mut meshes::PackedMeshes) -> (Vec<u32>, Vec<u32>) {
+    meshes.append_cells(grid.cell_start.len(), grid.cell_items.len());
+    let mut cell_start = grid.cell_start.clone();
+    cell_start.extend_from_slice(&meshes.cell_start);
+    let mut cell_items = grid.cell_items.clone();
+    cell_items.extend_from_slice(&meshes.cell_items);
+    (cell_start, cell_items)
+}
+
+/// The globals uniform: camera frame, image size, background, counts, grid and options.
 fn make_globals(
     scene: &Scene,
     num_items: usize,

@@ -19,7 +19,15 @@ pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
         Value::Table(t) => t.clone(),
         _ => return Err(a.bad(n, "options", "a table of render options")),
     };
-    // Sorted so that a table with several mistakes always reports the same one first.
+    for (key, v) in sorted_entries(a, n, &t)? {
+        set_option(a, n, &mut o, &key, &v)?;
+    }
+    Ok(o)
+}
+
+/// The table's entries sorted by key, so that a table with several mistakes always
+/// reports the same one first; a key that is not a string is an error.
+fn sorted_entries(a: &Args, n: usize, t: &Table) -> mlua::Result<Vec<(String, Value)>> {
     let mut entries: Vec<(String, Value)> = Vec::new();
     for pair in t.pairs::<Value, Value>() {
         let (k, v) = pair?;
@@ -36,84 +44,92 @@ pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
         entries.push((k.to_string_lossy(), v));
     }
     entries.sort_by(|x, y| x.0.cmp(&y.0));
+    Ok(entries)
+}
 
-    for (key, v) in entries {
-        let bad = |what: &str| {
-            a.bad_in(
-                n,
-                "options",
-                format!("{key} must be {what}, got {}", describe(a.lua, &v)),
-            )
-        };
-        let int_in = |lo: i64, hi: i64| match int_value(&v) {
-            Some(i) if (lo..=hi).contains(&i) => Ok(i as u32),
-            _ => Err(bad(&format!("an integer from {lo} to {hi}"))),
-        };
-        match key.as_str() {
-            "aa" => {
-                o.aa = match &v {
-                    Value::String(s) => AaMode::parse(&s.to_string_lossy()),
-                    _ => None,
-                }
-                .ok_or_else(|| bad(AaMode::CHOICES))?;
+/// Sets the option `key` of `o` to `v`, or says why `v` (or `key`) is not valid.
+fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -> mlua::Result<()> {
+    let bad = |what: &str| {
+        a.bad_in(
+            n,
+            "options",
+            format!("{key} must be {what}, got {}", describe(a.lua, v)),
+        )
+    };
+    let int_in = |lo: i64, hi: i64| match int_value(v) {
+        Some(i) if (lo..=hi).contains(&i) => Ok(i as u32),
+        _ => Err(bad(&format!("an integer from {lo} to {hi}"))),
+    };
+    match key {
+        "aa" => {
+            o.aa = match v {
+                Value::String(s) => AaMode::parse(&s.to_string_lossy()),
+                _ => None,
             }
-            "samples" => o.samples = int_in(1, MAX_AA_SAMPLES as i64)?,
-            "aa_threshold" => {
-                o.aa_threshold = match finite(&v) {
-                    Some(x) if x >= 0.0 => x as f32,
-                    _ => return Err(bad("a non-negative number")),
-                }
-            }
-            "aa_depth" => o.aa_depth = int_in(0, MAX_AA_DEPTH as i64)?,
-            "shadow_samples" => o.shadow_samples = Some(int_in(1, 64)?),
-            "max_depth" => o.max_depth = int_in(0, MAX_TRACE_DEPTH as i64)?,
-            "min_weight" => {
-                o.min_weight = match finite(&v) {
-                    Some(x) if (0.0..=1.0).contains(&x) => x as f32,
-                    _ => return Err(bad("a number from 0 to 1")),
-                }
-            }
-            "background" => o.background = background(a, n, &v)?,
-            "debug" => {
-                o.debug = match &v {
-                    Value::String(s) => DebugView::parse(&s.to_string_lossy()),
-                    _ => None,
-                }
-                .ok_or_else(|| bad(DebugView::CHOICES))?;
-            }
-            "grid" => {
-                o.grid = match &v {
-                    Value::String(s) if &*s.to_string_lossy() == "auto" => GridMode::Auto,
-                    Value::String(s) if &*s.to_string_lossy() == "off" => GridMode::Off,
-                    Value::Table(t) => {
-                        let d: Value = t.raw_get("density")?;
-                        match finite(&d) {
-                            Some(x) if x > 0.0 => GridMode::Density(x as f32),
-                            _ => {
-                                return Err(a.bad_in(
-                                    n,
-                                    "options",
-                                    format!(
-                                        "grid.density must be a positive number, got {}",
-                                        describe(a.lua, &d)
-                                    ),
-                                ))
-                            }
-                        }
-                    }
-                    _ => return Err(bad(GridMode::CHOICES)),
-                }
-            }
-            _ => {
-                return Err(a.bad_in(
-                    n,
-                    "options",
-                    format!("unknown key '{key}'; valid keys are {KEYS}"),
-                ))
+            .ok_or_else(|| bad(AaMode::CHOICES))?;
+        }
+        "samples" => o.samples = int_in(1, MAX_AA_SAMPLES as i64)?,
+        "aa_threshold" => {
+            o.aa_threshold = match finite(v) {
+                Some(x) if x >= 0.0 => x as f32,
+                _ => return Err(bad("a non-negative number")),
             }
         }
+        "aa_depth" => o.aa_depth = int_in(0, MAX_AA_DEPTH as i64)?,
+        "shadow_samples" => o.shadow_samples = Some(int_in(1, 64)?),
+        "max_depth" => o.max_depth = int_in(0, MAX_TRACE_DEPTH as i64)?,
+        "min_weight" => {
+            o.min_weight = match finite(v) {
+                Some(x) if (0.0..=1.0).contains(&x) => x as f32,
+                _ => return Err(bad("a number from 0 to 1")),
+            }
+        }
+        "background" => o.background = background(a, n, v)?,
+        "debug" => {
+            o.debug = match v {
+                Value::String(s) => DebugView::parse(&s.to_string_lossy()),
+                _ => None,
+            }
+            .ok_or_else(|| bad(DebugView::CHOICES))?;
+        }
+        "grid" => o.grid = grid(a, n, v, &bad)?,
+        _ => {
+            return Err(a.bad_in(
+                n,
+                "options",
+                format!("unknown key '{key}'; valid keys are {KEYS}"),
+            ))
+        }
     }
-    Ok(o)
+    Ok(())
+}
+
+/// `'auto'`, `'off'` or `{density = λ}`; any other value is `bad`.
+fn grid(
+    a: &Args,
+    n: usize,
+    v: &Value,
+    bad: &dyn Fn(&str) -> mlua::Error,
+) -> mlua::Result<GridMode> {
+    match v {
+        Value::String(s) if &*s.to_string_lossy() == "auto" => Ok(GridMode::Auto),
+        Value::String(s) if &*s.to_string_lossy() == "off" => Ok(GridMode::Off),
+        Value::Table(t) => {
+            let d: Value = t.raw_get("density")?;
+            match finite(&d) {
+                Some(x) if x > 0.0 => Ok(GridMode::Density(x as f32)),
+                _ => Err(a.bad_in(
+                    n,
+                    "options",
+                    format!(
+                        "grid.density must be a positive number, got {}",
+                        describe(a.lua, &d)
+                    ),
+                )),
+            }
+        }
+        _ => Err(bad(GridMode::CHOICES)),
+    }
 }
 
 /// `{r,g,b}` or `{top={r,g,b}, bottom={r,g,b}}`.

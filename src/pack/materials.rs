@@ -1,0 +1,88 @@
+//! Materials packed, and the features the materials in use need (reflection,
+//! refraction, textures, bump maps).
+
+use super::features::SceneFeatures;
+use super::layout::GpuMaterial;
+use crate::constants::{AIR_IOR, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, NO_TEXTURE};
+use crate::scene::flatten::{CsgStep, Scene};
+use crate::scene::DebugView;
+
+/// The scene's materials as the tracers read them.
+pub(super) fn pack_materials(scene: &Scene) -> Vec<GpuMaterial> {
+    scene
+        .materials
+        .iter()
+        .map(|m| {
+            let reflective = m.reflection.iter().any(|&c| c > 0.0);
+            let refractive = if m.ior.is_some() {
+                MATERIAL_REFRACTIVE
+            } else {
+                0
+            };
+            GpuMaterial {
+                kd: m.kd,
+                shininess: m.shininess,
+                ks: m.ks,
+                flags: if reflective { MATERIAL_REFLECTIVE } else { 0 } | refractive,
+                reflection: m.reflection,
+                ior: m.ior.unwrap_or(AIR_IOR),
+                diffuse_texture: m.diffuse_map.map_or(NO_TEXTURE, |t| t as u32),
+                specular_texture: m.specular_map.map_or(NO_TEXTURE, |t| t as u32),
+                bump_texture: m.bump_map.map_or(NO_TEXTURE, |t| t as u32),
+                bump_strength: m.bump_strength,
+            }
+        })
+        .collect()
+}
+
+/// Which materials some geometry uses (marked in one pass: a scan per material would
+/// cost materials × triangles).
+fn materials_in_use(scene: &Scene, count: usize) -> Vec<bool> {
+    let mut in_use = vec![false; count];
+    let leaves = scene
+        .csg
+        .iter()
+        .flat_map(|c| &c.program)
+        .filter_map(|step| match step {
+            CsgStep::Leaf(o) => Some(o.material),
+            CsgStep::Op(_) => None,
+        });
+    for m in scene
+        .objects
+        .iter()
+        .map(|o| o.material)
+        .chain(scene.triangles.iter().map(|t| t.material))
+        .chain(scene.mesh_instances.iter().map(|m| m.material))
+        .chain(leaves)
+    {
+        if let Some(slot) = in_use.get_mut(m) {
+            *slot = true;
+        }
+    }
+    in_use
+}
+
+/// The features the materials need; only materials some geometry uses count.
+pub(super) fn material_features(scene: &Scene, materials: &[GpuMaterial]) -> SceneFeatures {
+    let mut features = SceneFeatures::empty();
+    let in_use = materials_in_use(scene, materials.len());
+    let used = |m: usize| in_use[m];
+    if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFLECTIVE != 0 && used(m)) {
+        features.insert(SceneFeatures::REFLECTION);
+    }
+    if (0..materials.len()).any(|m| materials[m].flags & MATERIAL_REFRACTIVE != 0 && used(m)) {
+        features.insert(SceneFeatures::REFRACTION);
+    }
+    let textured =
+        |m: &GpuMaterial| m.diffuse_texture != NO_TEXTURE || m.specular_texture != NO_TEXTURE;
+    // The UV debug view needs the UV code that textures bring.
+    if scene.options.debug == DebugView::Uv
+        || (0..materials.len()).any(|m| textured(&materials[m]) && used(m))
+    {
+        features.insert(SceneFeatures::TEXTURE);
+    }
+    if (0..materials.len()).any(|m| materials[m].bump_texture != NO_TEXTURE && used(m)) {
+        features.insert(SceneFeatures::BUMP);
+    }
+    features
+}
