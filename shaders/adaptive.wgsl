@@ -20,7 +20,7 @@
 @group(0) @binding(19) var<storage, read_write> work_args: array<u32>;
 
 // Lattice steps per pixel: 2^d.
-// Mirror of src/cpu/adaptive.rs::AdaptiveTile::scale — change both.
+// Mirror of src/tiling.rs::AdaptiveTile::scale — change both.
 fn adaptive_scale() -> u32 {
     return 1u << globals.aa_depth;
 }

@@ -15,13 +15,13 @@
 @group(0) @binding(13) var<storage, read_write> guard: array<u32>;
 
 // Colour at film position (fx, fy) in pixels; seed names the camera sample.
-// Mirror of src/cpu/render.rs::sample — change both.
+// Mirror of src/cpu/pixel_sample.rs::sample — change both.
 fn sample(fx: f32, fy: f32, seed: SampleSeed) -> vec3<f32> {
     return trace_ray(camera_ray(fx, fy), seed);
 }
 
 // Largest per-channel spread of four colours.
-// Mirror of src/cpu/render.rs::contrast — change both.
+// Mirror of src/cpu/pixel_sample.rs::contrast — change both.
 fn contrast(c: array<vec3<f32>, 4>) -> f32 {
     let lo = min(min(min(c[0], c[1]), c[2]), c[3]);
     let hi = max(max(max(c[0], c[1]), c[2]), c[3]);

@@ -41,7 +41,7 @@ enum Command {
     },
     /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles;
     /// --trace SCENE: traversal alone in rays/s (beside Embree: benches/).
-    Bench(glint::cli::bench_cmd::BenchArgs),
+    Bench(glint::cli::bench_common::BenchArgs),
     /// List the GPU adapters (Vulkan, Metal, DX12, or the backends WGPU_BACKEND names)
     /// and their limits.
     Info,

@@ -47,6 +47,24 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          factors out the write with the limiter's bookkeeping",
     ),
     (
+        "shaders/adaptive.wgsl",
+        "adaptive_work_args",
+        "turns the GPU's per-level list lengths into indirect dispatch arguments; the CPU \
+         walks the same lists directly, with no dispatch",
+    ),
+    (
+        "shaders/adaptive.wgsl",
+        "indirect_workgroups",
+        "workgroup counts of an indirect pass (adaptive_work_args' helper); the CPU has no \
+         dispatches",
+    ),
+    (
+        "shaders/render.wgsl",
+        "linear_index",
+        "an invocation's index in a dispatch continued in y past the adapter's per-dimension \
+         limit (src/gpu/plan.rs plans it on the host); the CPU has no dispatches",
+    ),
+    (
         "shaders/bench_torus.wgsl",
         "bench_torus",
         "the torus benchmark's kernel; on the CPU, src/cli/bench_torus.rs loops over the \

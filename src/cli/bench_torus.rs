@@ -6,41 +6,15 @@
 //! included, so a few are expected for both) and the worst and 99th-percentile |Δt|/t.
 //! With a GPU adapter, both solvers also run on the GPU (`bench_torus_gpu`).
 
-use super::bench_cmd::{fastest, BenchArgs};
+use super::bench_common::BenchArgs;
 use super::bench_torus_gpu::{GpuTorusBench, GpuTorusSolver};
+pub use super::bench_torus_rays::{rays, TorusRay};
 use super::ferrari::intersect_torus_ferrari;
-use super::splitmix::SplitMix;
+use super::timing::fastest;
 use crate::cpu::torus::intersect_torus;
 use crate::gpu::GpuContext;
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use rayon::prelude::*;
-
-/// One benchmark ray in object space: origin, unit direction.
-#[derive(Clone, Copy, Debug)]
-pub struct TorusRay {
-    pub o: Vec3,
-    pub d: Vec3,
-}
-
-/// Rays from `near`..`far` bounding radii away (log-uniform) towards random points in
-/// the torus's bounding box.
-pub fn rays(count: usize, rin: f64, rout: f64, near: f64, far: f64, seed: u64) -> Vec<TorusRay> {
-    let mut rng = SplitMix(seed);
-    let size = rin + rout;
-    (0..count)
-        .map(|_| {
-            let target = DVec3::new(
-                rng.range(-size, size),
-                rng.range(-size, size),
-                rng.range(-rout, rout),
-            );
-            let dist = size * (near.ln() + (far.ln() - near.ln()) * rng.unit_f64()).exp();
-            let o = (target + rng.unit() * dist).as_vec3();
-            let d = (target - o.as_dvec3()).normalize().as_vec3().normalize();
-            TorusRay { o, d }
-        })
-        .collect()
-}
 
 /// f64 oracle: first sign change of the factored torus function along the bounding
 /// sphere's chord (1024 samples from the closest approach), bisected to the last bit.

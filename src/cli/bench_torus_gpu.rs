@@ -4,7 +4,7 @@
 //! Timed from submit to completion (the rays are uploaded once, the results read back
 //! once, outside the timing), so the rate is the kernel's.
 
-use super::bench_torus::TorusRay;
+use super::bench_torus_rays::TorusRay;
 use crate::constants::{BENCH_SOLVER_FERRARI, BENCH_SOLVER_GLINT, LINEAR_WORKGROUP_SIZE};
 use crate::gpu::buffers::read_back;
 use crate::gpu::shader::{assemble_common_with, validate};

@@ -1,10 +1,12 @@
 //! Subcommand bodies for the `glint` binary; argument parsing lives in `main.rs`.
 
 pub mod bench_cmd;
+pub mod bench_common;
 pub mod bench_gpu;
 pub mod bench_sweep;
 pub mod bench_torus;
 pub mod bench_torus_gpu;
+pub mod bench_torus_rays;
 pub mod bench_trace;
 pub mod diff_cmd;
 pub mod ferrari;

@@ -1,5 +1,5 @@
 //! Adaptive anti-aliasing per tile, in passes over a dyadic lattice (Whitted 1980). The
-//! decisions, samples and summation order are those of [`super::render::adaptive_pixel`]
+//! decisions, samples and summation order are those of `adaptive_pixel` (in `render.rs`)
 //! (which stays as the per-pixel reference); here each sample is traced once, where the
 //! per-pixel walk traces a shared corner up to four times.
 //!
@@ -20,7 +20,7 @@
 //! Every function here has a WGSL twin of the same name in `shaders/adaptive.wgsl`, where
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
 
-use super::render::{contrast, sample};
+use super::pixel_sample::{contrast, sample};
 use super::rng::adaptive_seed;
 use super::traverse::TraversalCounters;
 use crate::constants::AA_STACK_SIZE;

@@ -11,6 +11,7 @@ pub mod dielectric;
 pub mod hit;
 pub mod intersect;
 pub mod math;
+pub mod pixel_sample;
 pub mod ray;
 pub mod render;
 pub mod rng;

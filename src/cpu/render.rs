@@ -4,9 +4,8 @@
 //! ([`super::adaptive`]); [`render_pixel`] is the per-pixel reference of every mode.
 
 use super::adaptive::{adaptive_tile, Lattice};
-use super::ray::camera_ray;
+use super::pixel_sample::{contrast, sample};
 use super::rng::{adaptive_seed, random_unit, SampleSeed};
-use super::trace::trace_ray;
 use super::traverse::{Counters, NoCounters, TraversalCounters};
 use crate::constants::{
     adaptive_tile_side, AA_ADAPTIVE, AA_STACK_SIZE, AA_UNIFORM, CPU_ADAPTIVE_LATTICE_SIDE,
@@ -20,18 +19,6 @@ use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Colour at film position (fx, fy) in pixels; `seed` names the camera sample.
-// Mirror of shaders/render.wgsl::sample — change both.
-pub(crate) fn sample(
-    scene: &PackedScene,
-    fx: f32,
-    fy: f32,
-    seed: SampleSeed,
-    counters: &mut impl TraversalCounters,
-) -> Vec3 {
-    trace_ray(scene, camera_ray(&scene.globals, fx, fy), seed, counters)
-}
-
 /// A square of the adaptive subdivision: top-left corner, side, depth, and the colours
 /// at its four corners (top-left, top-right, bottom-left, bottom-right).
 #[derive(Clone, Copy)]
@@ -41,14 +28,6 @@ struct AdaptiveSquare {
     size: f32,
     depth: u32,
     corners: [Vec3; 4],
-}
-
-/// Largest per-channel spread of four colours.
-// Mirror of shaders/render.wgsl::contrast — change both.
-pub(crate) fn contrast(c: &[Vec3; 4]) -> f32 {
-    let lo = c[0].min(c[1]).min(c[2]).min(c[3]);
-    let hi = c[0].max(c[1]).max(c[2]).max(c[3]);
-    (hi - lo).max_element()
 }
 
 /// Adaptive anti-aliasing of pixel (x, y) (Whitted 1980): sample the corners; where they

@@ -3,6 +3,7 @@
 //! a uniform for [`GpuGlobals`](crate::pack::GpuGlobals). Sizes are checked against the
 //! adapter's limits first, so an oversized scene is an error that names the array.
 
+pub use super::bindings::SCENE_ARRAY_BINDINGS;
 use super::context::GpuContext;
 use super::GpuError;
 use crate::pack::PackedScene;
@@ -31,10 +32,6 @@ pub struct GpuTile {
 /// `GpuTile::sentinel`: the loop-limiter check runs a loop of this many iterations; it
 /// stops after one when Mesa's limiter has tripped (see `shaders/render.wgsl`).
 pub const LIMITER_SENTINEL: u32 = 2;
-
-/// The bindings of the scene's arrays, in `SceneBuffers::arrays` order (arrays added
-/// later take numbers after every other entry's bindings, so those keep theirs).
-pub const SCENE_ARRAY_BINDINGS: [u32; 10] = [1, 2, 3, 4, 5, 6, 14, 15, 16, 23];
 
 /// The scene's buffers: the globals uniform (binding 0) and the arrays.
 pub struct SceneBuffers {

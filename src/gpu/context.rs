@@ -4,7 +4,7 @@
 //! platform has it) — unless `WGPU_BACKEND` names others; never GL by default: with no
 //! Vulkan driver wgpu would silently pick GL llvmpipe, whose output differs.
 
-use super::pipeline::PipelineCache;
+use super::pipeline_cache::PipelineCache;
 use super::GpuError;
 use std::sync::{Arc, Mutex};
 

@@ -6,11 +6,11 @@ use super::context::GpuContext;
 use super::shader::{assemble_with, validate, Entry};
 use super::GpuError;
 use crate::pack::SceneFeatures;
-use std::collections::HashMap;
-use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::sync::Arc;
+use std::time::Instant;
 
-pub use super::buffers::SCENE_ARRAY_BINDINGS;
+pub use super::bindings::SCENE_ARRAY_BINDINGS;
+pub use super::pipeline_cache::{CompiledPipeline, PipelineCache};
 /// Render entry: tile uniform and output buffer.
 pub const TILE_BINDING: u32 = 7;
 pub const OUTPUT_BINDING: u32 = 8;
@@ -26,24 +26,6 @@ pub const GUARD_BINDING: u32 = 13;
 pub const WORK_COUNTS_BINDING: u32 = 17;
 pub const WORK_LIST_BINDING: u32 = 18;
 pub const WORK_ARGS_BINDING: u32 = 19;
-
-/// A compiled pipeline and what it cost.
-pub struct CompiledPipeline {
-    pub pipeline: wgpu::ComputePipeline,
-    pub layout: wgpu::BindGroupLayout,
-    /// WGSL assembly, naga validation, shader module and pipeline creation.
-    pub compile_time: Duration,
-    pub features: SceneFeatures,
-    /// Whether the render kernels check Mesa's loop limiter (software adapters).
-    pub iteration_guard: bool,
-}
-
-/// Pipelines compiled on one device, by (features, entry); whether the iteration guard
-/// is in is a property of the device.
-#[derive(Default)]
-pub struct PipelineCache {
-    map: Mutex<HashMap<(SceneFeatures, Entry), Arc<CompiledPipeline>>>,
-}
 
 /// Whether pipelines on `ctx` check Mesa's loop limiter: on software adapters (lavapipe,
 /// device type Cpu), whose gallivm caps the loop iterations of one invocation.

@@ -1,0 +1,92 @@
+//! What the `glint bench` subcommands share: the arguments (`BenchArgs`) and loading a
+//! scene script into a flat scene, and packing it with a chosen grid mode.
+
+use crate::pack::PackedScene;
+use crate::pipeline::pack_scene;
+use crate::scene::flatten::{flatten, Scene};
+use crate::scene::lua::{run_scene_file, ScriptConfig};
+use crate::scene::GridMode;
+use std::path::PathBuf;
+
+#[derive(clap::Args, Clone, Debug)]
+pub struct BenchArgs {
+    /// The CS488 corpus (macho-cows.lua is taken from its a4-2021plus folder).
+    #[arg(long, default_value = "scenes/cs488")]
+    pub cs488: PathBuf,
+    /// Largest N of the random-triangle sweep (powers of ten from 10³).
+    #[arg(long, default_value_t = 1_000_000)]
+    pub max_triangles: usize,
+    /// Rays per random-triangle measurement.
+    #[arg(long, default_value_t = 200_000)]
+    pub rays: usize,
+    /// Timed repetitions of each measurement (the fastest is reported).
+    #[arg(long, default_value_t = 3)]
+    pub repeat: usize,
+    /// Also sweep the grid density λ.
+    #[arg(long)]
+    pub densities: bool,
+    /// Only the GPU-vs-CPU comparison (needs a GPU adapter; lavapipe counts).
+    #[arg(long)]
+    pub gpu: bool,
+    /// Only the ray–torus solver comparison (glint's against Ferrari's closed form).
+    #[arg(long)]
+    pub torus: bool,
+    /// GPU adapter to use: a substring of its name.
+    #[arg(long)]
+    pub adapter: Option<String>,
+    /// Only the error-against-time sweep of the AA and shadow settings (`bench_sweep`).
+    #[arg(long)]
+    pub sweep: bool,
+    /// --sweep: a tiny run (24×24, a few settings) that checks the machinery.
+    #[arg(long, requires = "sweep")]
+    pub quick: bool,
+    /// --sweep: image side in pixels.
+    #[arg(long, default_value_t = 96, value_parser = clap::value_parser!(u32).range(8..=2048))]
+    pub size: u32,
+    /// --sweep: no GPU column.
+    #[arg(long)]
+    pub cpu_only: bool,
+    /// --sweep: seconds the GPU column may take in all (compile runs included).
+    #[arg(long, default_value_t = 120.0)]
+    pub gpu_budget: f64,
+    /// --sweep: where the error-against-time plot (SVG) goes.
+    #[arg(long, default_value = "docs/error-vs-time.svg")]
+    pub plot: PathBuf,
+    /// Only the trace benchmark of this scene: camera rays (one per pixel) and one shadow
+    /// ray per hit and light through the CPU tracer's traversal, no shading (`bench_trace`).
+    #[arg(long, value_name = "SCENE.lua")]
+    pub trace: Option<PathBuf>,
+    /// --trace: image width (default: the scene's).
+    #[arg(long, requires = "trace", value_parser = clap::value_parser!(u32).range(1..))]
+    pub width: Option<u32>,
+    /// --trace: image height (default: the scene's).
+    #[arg(long, requires = "trace", value_parser = clap::value_parser!(u32).range(1..))]
+    pub height: Option<u32>,
+    /// --trace: also write the geometry and the exact rays, with glint's answers, for the
+    /// Embree harness (`benches/embree/`; format in `cli::trace_dump`).
+    #[arg(long, requires = "trace", value_name = "FILE")]
+    pub dump_rays: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    pub threads: Option<u32>,
+}
+
+pub fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<Scene> {
+    let mut scene = None;
+    run_scene_file(path, &ScriptConfig::default(), &mut |graph, request| {
+        if scene.is_none() {
+            let mut request = request.clone();
+            request.width = width;
+            request.height = height;
+            scene = Some(flatten(graph, &request)?);
+        }
+        Ok(())
+    })?;
+    scene.ok_or_else(|| anyhow::anyhow!("{} never calls gr.render", path.display()))
+}
+
+pub fn with_grid(scene: &Scene, grid: GridMode) -> anyhow::Result<PackedScene> {
+    let mut scene = scene.clone();
+    scene.options.grid = grid;
+    Ok(pack_scene(&scene)?)
+}

@@ -1,0 +1,29 @@
+//! What the per-pixel reference (`render`) and the tiled adaptive passes (`adaptive`)
+//! both build on: one camera sample's colour, and the contrast test of four colours.
+
+use super::ray::camera_ray;
+use super::rng::SampleSeed;
+use super::trace::trace_ray;
+use super::traverse::TraversalCounters;
+use crate::pack::PackedScene;
+use glam::Vec3;
+
+/// Colour at film position (fx, fy) in pixels; `seed` names the camera sample.
+// Mirror of shaders/render.wgsl::sample — change both.
+pub(crate) fn sample(
+    scene: &PackedScene,
+    fx: f32,
+    fy: f32,
+    seed: SampleSeed,
+    counters: &mut impl TraversalCounters,
+) -> Vec3 {
+    trace_ray(scene, camera_ray(&scene.globals, fx, fy), seed, counters)
+}
+
+/// Largest per-channel spread of four colours.
+// Mirror of shaders/render.wgsl::contrast — change both.
+pub(crate) fn contrast(c: &[Vec3; 4]) -> f32 {
+    let lo = c[0].min(c[1]).min(c[2]).min(c[3]);
+    let hi = c[0].max(c[1]).max(c[2]).max(c[3]);
+    (hi - lo).max_element()
+}
