@@ -7,7 +7,7 @@
 //! memory budget. The byte figures are upper estimates of what flattening, packing, the
 //! grid and the film hold per item (with the slack of growing vectors).
 
-use super::flatten::{FlattenError, MAX_NODE_DEPTH};
+use super::flat::{FlattenError, MAX_NODE_DEPTH};
 use super::{NodeId, NodeKind, Primitive, SceneGraph};
 use crate::constants::CSG_MAX_DEPTH;
 

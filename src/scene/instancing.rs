@@ -5,7 +5,7 @@
 //! common single-use mesh is traced in world coordinates exactly as before instancing
 //! (no ray transform, no extra rounding).
 
-use super::flatten::{MeshTriangle, Scene, SceneMesh};
+use super::flat::{MeshTriangle, Scene, SceneMesh};
 use super::SceneGraph;
 use glam::DMat4;
 

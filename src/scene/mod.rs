@@ -4,6 +4,7 @@
 
 pub mod cost;
 pub mod files;
+pub mod flat;
 pub mod flatten;
 pub mod instancing;
 pub mod lua;
