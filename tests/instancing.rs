@@ -201,9 +201,8 @@ fn a_dense_mesh_in_a_large_scene_is_traversed_by_its_own_grid() {
     let dir = temp_dir("stadium");
     // A scene reads only under its own folder: the cow goes beside it.
     std::fs::copy(corpus().join("a4-2021plus/cow.obj"), dir.join("cow.obj")).unwrap();
-    let script = format!(
-        r#"
-hide = gr.material({{0.84, 0.6, 0.53}}, {{0.3, 0.3, 0.3}}, 20)
+    let script = r#"
+hide = gr.material({0.84, 0.6, 0.53}, {0.3, 0.3, 0.3}, 20)
 scene = gr.node('scene')
 floor = gr.cube('floor')
 floor:scale(4000, 1, 4000)
@@ -215,13 +214,12 @@ cow:scale(0.3, 0.3, 0.3)
 scene:add_child(cow)
 for i = 0, 21 do
   for j = 0, 19 do
-    scene:add_child(gr.nh_sphere('s', {{-1900 + i * 180, 10, -1900 + j * 190}}, 10))
+    scene:add_child(gr.nh_sphere('s', {-1900 + i * 180, 10, -1900 + j * 190}, 10))
   end
 end
-gr.render(scene, 'stadium.png', 64, 48, {{0, 1.2, 4}}, {{0, -0.25, -1}}, {{0, 1, 0}}, 50,
-  {{0.3, 0.3, 0.3}}, {{gr.light({{400, 800, 600}}, {{0.9, 0.9, 0.9}}, {{1, 0, 0}})}})
-"#
-    );
+gr.render(scene, 'stadium.png', 64, 48, {0, 1.2, 4}, {0, -0.25, -1}, {0, 1, 0}, 50,
+  {0.3, 0.3, 0.3}, {gr.light({400, 800, 600}, {0.9, 0.9, 0.9}, {1, 0, 0})})
+"#;
     let path = dir.join("stadium.lua");
     std::fs::write(&path, script).unwrap();
     let scene = load_scenes(&path, &OptionOverrides::default()).remove(0);
