@@ -1,11 +1,14 @@
 //! The `glint` command line: `render`, `diff` and `bench`.
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use glint::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES, MAX_TRACE_DEPTH};
+use glint::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES};
 use glint::scene::flatten::MAX_PIXELS;
 use glint::scene::lua::{DEFAULT_MEMORY_LIMIT, DEFAULT_TIME_LIMIT, MAX_IMAGE_SIDE};
 use glint::scene::options::{parse_background, parse_grid_mode};
-use glint::scene::{AaMode, Background, DebugView, GridMode, OptionOverrides, TransformOrder};
+use glint::scene::{
+    AaMode, Background, DebugView, GridMode, OptionOverrides, ShadowSamples, TraceDepth,
+    TransformOrder,
+};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
@@ -131,11 +134,11 @@ struct RenderArgs {
     #[arg(long, value_parser = clap::value_parser!(u32).range(0..=MAX_AA_DEPTH as i64))]
     aa_depth: Option<u32>,
     /// Overrides every area light's n (n×n shadow samples).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_AA_SAMPLES as i64))]
-    shadow_samples: Option<u32>,
+    #[arg(long, value_parser = ShadowSamples::parse)]
+    shadow_samples: Option<ShadowSamples>,
     /// Deepest reflection/refraction chain.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=MAX_TRACE_DEPTH as i64))]
-    max_depth: Option<u32>,
+    #[arg(long, value_parser = TraceDepth::parse)]
+    max_depth: Option<TraceDepth>,
     /// Drop secondary rays contributing less than this.
     #[arg(long, value_parser = parse_non_negative)]
     min_weight: Option<f32>,

@@ -7,7 +7,7 @@ mod common;
 use common::{packed_from_source, render_cpu};
 use glint::constants::{LIGHT_AREA, LIGHT_POINT};
 use glint::pack::{PackedScene, SceneFeatures};
-use glint::scene::{AaMode, OptionOverrides};
+use glint::scene::{AaMode, OptionOverrides, ShadowSamples};
 
 /// A sphere over a floor, lit by `light` (a Lua expression).
 fn scene(light: &str, overrides: &OptionOverrides) -> PackedScene {
@@ -51,7 +51,7 @@ fn area_lights_pack_with_their_samples_and_feature() {
     let overridden = scene(
         AREA,
         &OptionOverrides {
-            shadow_samples: Some(2),
+            shadow_samples: Some(ShadowSamples::constant(2)),
             ..OptionOverrides::default()
         },
     );
@@ -118,7 +118,7 @@ fn soft_shadow_error_falls_with_more_samples() {
         render_cpu(&scene(
             AREA,
             &OptionOverrides {
-                shadow_samples: Some(n),
+                shadow_samples: Some(ShadowSamples::constant(n)),
                 ..no_aa()
             },
         ))

@@ -302,6 +302,19 @@ fn bad_flag_value_is_a_usage_error() {
         2,
         &["grid must be"],
     );
+    for (flag, value, range) in [
+        ("--max-depth", "65", "from 0 to 64"),
+        ("--shadow-samples", "0", "from 1 to 64"),
+    ] {
+        assert_fails(
+            flag,
+            &scene,
+            &[],
+            &[flag, value],
+            2,
+            &[flag, range, &format!("'{value}'")],
+        );
+    }
 }
 
 #[test]

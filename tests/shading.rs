@@ -14,7 +14,9 @@ use glint::cpu::traverse::NoCounters;
 use glint::diff::assert_images_match;
 use glint::pack::pack;
 use glint::scene::flatten::{Object, ObjectKind, Scene};
-use glint::scene::{Background, Camera, Light, Material, OptionOverrides, RenderOptions};
+use glint::scene::{
+    Background, Camera, Light, Material, OptionOverrides, RenderOptions, TraceDepth,
+};
 
 fn sphere_scene(
     material: Material,
@@ -143,7 +145,7 @@ fn mirror_depth_and_weight_limits() {
     let background = [0.2, 0.4, 0.8];
     let colour_with = |max_depth: u32, min_weight: f32| {
         let options = RenderOptions {
-            max_depth,
+            max_depth: TraceDepth::constant(max_depth),
             min_weight,
             background: Background::Solid(background),
             ..RenderOptions::default()

@@ -21,7 +21,7 @@ use crate::gpu::{render_gpu, GpuContext};
 use crate::pack::SceneFeatures;
 use crate::pipeline::pack_scene;
 use crate::scene::flatten::Scene;
-use crate::scene::{AaMode, RenderOptions};
+use crate::scene::{AaMode, RenderOptions, ShadowSamples};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -82,7 +82,7 @@ impl Setting {
             }
             Setting::Shadows(n) => {
                 o.aa = AaMode::None;
-                o.shadow_samples = Some(n);
+                o.shadow_samples = Some(ShadowSamples::constant(n));
             }
         }
         scene

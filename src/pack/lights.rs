@@ -3,7 +3,7 @@
 
 use super::layout::GpuLight;
 use super::PackError;
-use crate::constants::{LIGHT_AREA, LIGHT_POINT, MAX_SHADOW_SAMPLES};
+use crate::constants::{LIGHT_AREA, LIGHT_POINT};
 use crate::scene::flatten::Scene;
 
 /// The scene's lights as the tracers read them; an attenuation that is zero or
@@ -26,9 +26,7 @@ pub(super) fn pack_lights(scene: &Scene) -> Result<Vec<GpuLight>, PackError> {
                 None => (LIGHT_POINT, 1, [0.0; 3], [0.0; 3]),
                 Some(a) => (
                     LIGHT_AREA,
-                    shadow_samples
-                        .unwrap_or(a.samples)
-                        .clamp(1, MAX_SHADOW_SAMPLES),
+                    shadow_samples.unwrap_or(a.samples).get(),
                     a.u.as_vec3().to_array(),
                     a.v.as_vec3().to_array(),
                 ),

@@ -75,8 +75,6 @@ impl PackedScene {
 pub enum PackError {
     #[error("light {index}: attenuation {falloff:?} is zero or negative at some distance (need c0, c1, c2 ≥ 0, not all 0)")]
     BadFalloff { index: usize, falloff: [f32; 3] },
-    #[error("max_depth {0} is above the limit of {MAX_TRACE_DEPTH}")]
-    DepthTooLarge(u32),
     #[error("{what} {value} does not fit in f32 (scene coordinates must stay below ~1e38)")]
     OutOfRange { what: String, value: f64 },
     #[error("the scene has {0} items; glint supports at most 2^31")]
@@ -202,7 +200,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
         features.insert(SceneFeatures::AREA_LIGHT);
     }
     let lights = lights::pack_lights(scene)?;
-    check_limits(scene, num_items)?;
+    check_limits(num_items)?;
     let bounds = item_bounds(&instances, &csg_program, num_items, &meshes.instance_bounds);
     let grid = Grid::build(&bounds, None, density);
     if grid.enabled {
@@ -255,12 +253,8 @@ fn grid_densities(mode: GridMode) -> (Option<f32>, Option<f32>) {
     }
 }
 
-/// Rejects a trace depth above the tracers' limit and more items than they can index.
-fn check_limits(scene: &Scene, num_items: usize) -> Result<(), PackError> {
-    let options = &scene.options;
-    if options.max_depth > MAX_TRACE_DEPTH {
-        return Err(PackError::DepthTooLarge(options.max_depth));
-    }
+/// Rejects more items than the tracers can index.
+fn check_limits(num_items: usize) -> Result<(), PackError> {
     if num_items >= (1 << 31) {
         return Err(PackError::TooManyItems(num_items));
     }
@@ -331,7 +325,7 @@ fn make_globals(
         ambient: scene.ambient,
         num_lights: lights.len() as u32,
         background_top: top,
-        max_depth: options.max_depth,
+        max_depth: options.max_depth.get(),
         background_bottom: bottom,
         min_weight: options.min_weight,
         grid_min: grid.min,

@@ -2,6 +2,7 @@
 //! requests that `gr.render` issues. Everything here lives above `pack`: the tracers
 //! never see these types, only the packed arrays made from them.
 
+pub mod bounded;
 pub mod cost;
 pub mod files;
 pub mod flat;
@@ -17,6 +18,7 @@ use glam::{DMat4, DVec3};
 use std::path::PathBuf;
 use std::sync::Arc;
 
+pub use bounded::{AaDepth, AaSamples, Bounded, ShadowSamples, TraceDepth};
 pub use options::{AaMode, Background, DebugView, GridMode, OptionOverrides, RenderOptions};
 pub use texture::{Texture, TextureId};
 
@@ -155,7 +157,7 @@ pub struct Light {
 pub struct AreaLight {
     pub u: DVec3,
     pub v: DVec3,
-    pub samples: u32,
+    pub samples: ShadowSamples,
 }
 
 /// Pinhole camera as `gr.render` gives it: `view` is a direction (not normalised), `up`

@@ -1,6 +1,8 @@
 //! Render options: the optional 11th argument of `gr.render`, overridable by CLI flags of
 //! the same name. One struct with the documented defaults (yocto-gl style).
 
+use super::bounded::{ShadowSamples, TraceDepth};
+
 /// Anti-aliasing mode (`aa`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AaMode {
@@ -88,8 +90,8 @@ pub struct RenderOptions {
     pub samples: u32,
     pub aa_threshold: f32,
     pub aa_depth: u32,
-    pub shadow_samples: Option<u32>,
-    pub max_depth: u32,
+    pub shadow_samples: Option<ShadowSamples>,
+    pub max_depth: TraceDepth,
     pub min_weight: f32,
     pub background: Background,
     pub grid: GridMode,
@@ -104,7 +106,7 @@ impl Default for RenderOptions {
             aa_threshold: 0.1,
             aa_depth: 3,
             shadow_samples: None,
-            max_depth: 8,
+            max_depth: TraceDepth::constant(8),
             min_weight: 1.0 / 512.0,
             background: Background::DEFAULT,
             grid: GridMode::Auto,
@@ -120,8 +122,8 @@ pub struct OptionOverrides {
     pub samples: Option<u32>,
     pub aa_threshold: Option<f32>,
     pub aa_depth: Option<u32>,
-    pub shadow_samples: Option<u32>,
-    pub max_depth: Option<u32>,
+    pub shadow_samples: Option<ShadowSamples>,
+    pub max_depth: Option<TraceDepth>,
     pub min_weight: Option<f32>,
     pub background: Option<Background>,
     pub grid: Option<GridMode>,

@@ -7,7 +7,7 @@
 
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
 use super::with_state;
-use crate::scene::{MaterialId, NodeId};
+use crate::scene::{Bounded, MaterialId, NodeId};
 use glam::DVec3;
 use mlua::{Lua, MultiValue, Table, Value};
 
@@ -176,6 +176,19 @@ impl<'a> Args<'a> {
             Some(i) if i >= 1 && i <= max as i64 => Ok(i as u32),
             _ => Err(self.bad(n, name, &format!("a positive integer (at most {max})"))),
         }
+    }
+
+    /// An integer in the range of the typed option `B` (e.g. [`ShadowSamples`]).
+    ///
+    /// [`ShadowSamples`]: crate::scene::ShadowSamples
+    pub fn bounded<const MIN: u32, const MAX: u32>(
+        &self,
+        n: usize,
+        name: &str,
+    ) -> mlua::Result<Bounded<MIN, MAX>> {
+        int_value(self.get(n))
+            .and_then(Bounded::new)
+            .ok_or_else(|| self.bad(n, name, &Bounded::<MIN, MAX>::expected()))
     }
 
     pub fn table(&self, n: usize, name: &str, what: &str) -> mlua::Result<Table> {

@@ -6,9 +6,10 @@
 use super::args::{int_value, location, Args};
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
 use super::{charge, check_file_cost, memory_left, options, with_state, OnRender};
-use crate::constants::{DEFAULT_SHADOW_SAMPLES, MAX_SHADOW_SAMPLES};
+use crate::constants::DEFAULT_SHADOW_SAMPLES;
 use crate::scene::flatten::{parallel_or_zero, CAMERA_PARALLEL_SIN2, MAX_PIXELS};
 use crate::scene::obj::PARSE_BYTES_PER_BYTE;
+use crate::scene::ShadowSamples;
 use crate::scene::{
     AreaLight, Camera, CsgOp, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest,
     TransformOrder,
@@ -456,9 +457,9 @@ fn area_light(a: &Args) -> mlua::Result<LightHandle> {
     let colour = a.colour(4, "colour")?;
     let falloff = falloff(a, 5)?;
     let samples = if a.is_nil(6) {
-        DEFAULT_SHADOW_SAMPLES
+        ShadowSamples::constant(DEFAULT_SHADOW_SAMPLES)
     } else {
-        a.positive_int(6, "n", MAX_SHADOW_SAMPLES)?
+        a.bounded(6, "n")?
     };
     Ok(LightHandle(Light {
         position: centre,

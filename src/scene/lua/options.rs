@@ -4,8 +4,8 @@
 //! that lists what is valid, rather than an option silently left at its default.
 
 use super::args::{describe, finite, int_value, Args};
-use crate::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES, MAX_TRACE_DEPTH};
-use crate::scene::{AaMode, Background, DebugView, GridMode, RenderOptions};
+use crate::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES};
+use crate::scene::{AaMode, Background, Bounded, DebugView, GridMode, RenderOptions};
 use mlua::{Table, Value};
 
 const KEYS: &str = "aa, samples, aa_threshold, aa_depth, shadow_samples, max_depth, \
@@ -60,6 +60,14 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
         Some(i) if (lo..=hi).contains(&i) => Ok(i as u32),
         _ => Err(bad(&format!("an integer from {lo} to {hi}"))),
     };
+    fn bounded<const MIN: u32, const MAX: u32>(
+        v: &Value,
+        bad: impl Fn(&str) -> mlua::Error,
+    ) -> mlua::Result<Bounded<MIN, MAX>> {
+        int_value(v)
+            .and_then(Bounded::new)
+            .ok_or_else(|| bad(&Bounded::<MIN, MAX>::expected()))
+    }
     match key {
         "aa" => {
             o.aa = match v {
@@ -76,8 +84,8 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
             }
         }
         "aa_depth" => o.aa_depth = int_in(0, MAX_AA_DEPTH as i64)?,
-        "shadow_samples" => o.shadow_samples = Some(int_in(1, 64)?),
-        "max_depth" => o.max_depth = int_in(0, MAX_TRACE_DEPTH as i64)?,
+        "shadow_samples" => o.shadow_samples = Some(bounded(v, bad)?),
+        "max_depth" => o.max_depth = bounded(v, bad)?,
         "min_weight" => {
             o.min_weight = match finite(v) {
                 Some(x) if (0.0..=1.0).contains(&x) => x as f32,
@@ -217,9 +225,9 @@ mod tests {
         )
         .unwrap();
         assert_eq!(o.aa, AaMode::None);
-        assert_eq!((o.samples, o.aa_depth, o.max_depth), (2, 1, 3));
+        assert_eq!((o.samples, o.aa_depth, o.max_depth.get()), (2, 1, 3));
         assert_eq!(o.aa_threshold, 0.25);
-        assert_eq!(o.shadow_samples, Some(9));
+        assert_eq!(o.shadow_samples.map(|s| s.get()), Some(9));
         assert_eq!(o.min_weight, 0.01);
         assert_eq!(o.background, Background::Solid([0.1, 0.2, 0.3]));
         assert_eq!(o.grid, GridMode::Off);
