@@ -1,9 +1,11 @@
 //! glint: a Whitted-style ray tracer for CS488 Lua scenes.
 //!
 //! Data flow (see `docs/architecture.md`): `scene::lua` runs a script into a
-//! [`scene::SceneGraph`]; `scene::flatten` bakes it to world space; `pack` lays it out as
-//! Pod arrays with a uniform grid from `accel`; `cpu` (the reference) renders those arrays
-//! into a [`film::Film`]; `image_io` writes it.
+//! [`scene::SceneGraph`]; `scene::flatten` bakes it to world space, with each mesh kept
+//! once in its own space (`scene::instancing`); `pack` lays it out as Pod arrays with the
+//! two-level grids from `accel`; `pipeline` hands those arrays to `cpu` (the reference
+//! tracer) or `gpu` (its WGSL mirror on wgpu), each rendering into a [`film::Film`];
+//! `image_io` writes it, and `parity` compares the two tracers' films.
 
 pub mod aa_map;
 pub mod accel;

@@ -91,10 +91,10 @@ fn corpus_scenes_match() {
     compare(&ctx, "macho-cows-no-aa", &cows);
 }
 
-/// The default adaptive AA over 1 000+ triangles per grid cell. (This used to come out
-/// dark in whole workgroups on lavapipe, whose loop limiter — 65 535 loop iterations per
-/// invocation, summed over all loops — silently ended the loops of an invocation that
-/// traced a pixel's every AA sample; now each invocation traces one sample.)
+/// The default adaptive AA over 1 000+ triangles per grid cell: with lavapipe's loop
+/// limiter (65 535 loop iterations per invocation, summed over all loops, after which the
+/// loops end silently), an invocation that traced a pixel's every AA sample would come out
+/// dark in whole workgroups; each invocation traces one sample, and this image shows it.
 #[test]
 fn macho_cows_adaptive_matches() {
     let Some(ctx) = gpu_context() else { return };

@@ -1,7 +1,7 @@
 //! Instanced meshes stored once, in their own space with their own grids, and the
 //! two-level traversal through them: the same hits as the same triangles baked into world
 //! space, the same hits through the grids as by brute force, and a dense mesh in a large
-//! scene no longer tested triangle by triangle.
+//! scene not tested triangle by triangle.
 
 mod common;
 

@@ -1,4 +1,6 @@
-//! Subcommand bodies for the `glint` binary; argument parsing lives in `main.rs`.
+//! Subcommand bodies for the `glint` binary: `diff` and the `bench` modes (with the
+//! benchmark's own arguments, `bench_common::BenchArgs`); `render`'s arguments and the
+//! top-level parsing live in `main.rs`.
 
 pub mod bench_cmd;
 pub mod bench_common;

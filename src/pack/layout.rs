@@ -19,7 +19,9 @@ pub struct GpuInstance {
     /// `KIND_*` from `constants`.
     pub kind: u32,
     pub material: u32,
-    /// Kind-specific parameters: cone (zmin, zmax), torus (rin, rout); 0 otherwise.
+    /// Kind-specific parameters: cone (zmin, zmax); torus (rin, rout); CSG (first step,
+    /// number of steps) of its program in `csg_program`; mesh (index into `meshes`, 0);
+    /// (0, 0) for the other kinds. Indices are exact as f32 below 2^24 (`pack` checks).
     pub params: [f32; 2],
 }
 
