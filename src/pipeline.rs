@@ -5,7 +5,7 @@ use crate::aa_map::{aa_samples_film, AaMapError};
 use crate::cpu::camera_media::fill_camera_media;
 use crate::cpu::render::{adaptive_leaf_counts, render, render_with_counters, RenderCounters};
 use crate::film::Film;
-use crate::gpu::{adaptive_leaf_counts_gpu, render_gpu_with_info, GpuContext, GpuRenderInfo};
+use crate::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderInfo, GpuRenderOptions};
 use crate::image_io::{check_output_path, write_image, ImageIoError};
 use crate::pack::{pack, PackError, PackedScene, SceneFeatures};
 use crate::scene::flatten::flatten;
@@ -198,7 +198,7 @@ pub fn render_aa_samples_map(
     }
     let start = Instant::now();
     let leaves = match tracer {
-        Tracer::Gpu(ctx) => adaptive_leaf_counts_gpu(ctx, &packed)?,
+        Tracer::Gpu(ctx) => render_gpu(ctx, &packed, &GpuRenderOptions::default())?.leaf_counts,
         Tracer::Cpu => adaptive_leaf_counts(&packed),
     };
     let g = &packed.globals;
@@ -235,7 +235,11 @@ pub fn render_request(
     };
     let start = Instant::now();
     if let Tracer::Gpu(ctx) = tracer {
-        let (film, info) = render_gpu_with_info(ctx, &packed, &tick)?;
+        let options = GpuRenderOptions {
+            progress: &tick,
+            ..GpuRenderOptions::default()
+        };
+        let GpuRender { film, info, .. } = render_gpu(ctx, &packed, &options)?;
         bar.finish_and_clear();
         if info.cpu_fallback_pixels > 0 {
             eprintln!(

@@ -24,8 +24,9 @@ fn every_scene_matches_on_both_tracers() {
     for path in corpus_scenes().into_iter().chain(own_scenes()) {
         let name = format!("gpu-{}", scene_name(&path));
         let packed = load_packed(&path, &overrides);
-        let gpu = glint::gpu::render_gpu(&ctx, &packed, &|_, _| {})
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let gpu = glint::gpu::render_gpu(&ctx, &packed, &Default::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"))
+            .film;
         let cpu = common::render_cpu(&packed);
         match assert_images_match(&name, &gpu, &cpu, 0.01, 0.999, &failure_dir()) {
             Ok(report) => {

@@ -12,7 +12,7 @@ mod common;
 use common::probes::{agree, random_rays, RAYS};
 use common::{gpu_context, packed_from_file, packed_from_source, root, Rng};
 use glint::diff::assert_images_match;
-use glint::gpu::{render_gpu_with_info, GpuContext};
+use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions};
 use glint::pack::{pack, PackedScene, SceneFeatures};
 use glint::scene::{GridMode, OptionOverrides};
 use glint::testing::probe::{cpu_probe, gpu_probe};
@@ -252,7 +252,9 @@ fn csg_scene_matches_and_is_scale_invariant() {
     compare(&ctx, "csg-scene", &packed, 0.01);
     // Scale invariance on the GPU: against its own image at scale 1.
     let scene = &common::load_scenes(&path, &overrides)[0];
-    let (reference, _) = render_gpu_with_info(&ctx, &pack(scene).unwrap(), &|_, _| {}).unwrap();
+    let reference = render_gpu(&ctx, &pack(scene).unwrap(), &GpuRenderOptions::default())
+        .unwrap()
+        .film;
     for s in [1.0, 1e-3, 1e3] {
         let scaled = common::scaled_scene(scene, s);
         let packed = pack(&scaled).unwrap();
@@ -270,7 +272,9 @@ fn csg_scene_matches_and_is_scale_invariant() {
         if s == 1.0 {
             continue;
         }
-        let (film, _) = render_gpu_with_info(&ctx, &packed, &|_, _| {}).unwrap();
+        let film = render_gpu(&ctx, &packed, &GpuRenderOptions::default())
+            .unwrap()
+            .film;
         assert!(
             film.pixels.iter().flatten().all(|v| v.is_finite()),
             "NaN at scale {s}"

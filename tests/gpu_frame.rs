@@ -7,7 +7,7 @@ mod common;
 
 use common::{gpu_context, packed_from_source};
 use glint::constants::GPU_FRAME_PARTS;
-use glint::gpu::{render_gpu_with_info, GpuRenderInfo};
+use glint::gpu::{render_gpu, GpuRenderInfo, GpuRenderOptions};
 use glint::scene::{AaMode, OptionOverrides};
 
 const SCENE: &str = "
@@ -29,7 +29,9 @@ fn render_info(ctx: &glint::gpu::GpuContext, size: u32, aa: AaMode) -> GpuRender
         ..OptionOverrides::default()
     };
     let scene = packed_from_source(SCENE, &overrides).remove(0);
-    let (_, info) = render_gpu_with_info(ctx, &scene, &|_, _| {}).unwrap();
+    let info = render_gpu(ctx, &scene, &GpuRenderOptions::default())
+        .unwrap()
+        .info;
     eprintln!(
         "{size}² {aa:?}: {} chunks, {} dispatches, {} submits, {} host waits",
         info.tiles, info.dispatches, info.submits, info.host_waits

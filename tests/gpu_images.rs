@@ -9,10 +9,9 @@ mod common;
 use common::{corpus, gpu_context, packed_from_file, packed_from_source};
 use glint::cpu::render::adaptive_leaf_counts;
 use glint::diff::assert_images_match;
-use glint::gpu::{adaptive_leaf_counts_gpu, render_gpu_with_info, GpuContext};
+use glint::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderOptions};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaMode, OptionOverrides};
-use glint::testing::render_gpu_detailed;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -34,8 +33,10 @@ fn small(aa: Option<AaMode>) -> OptionOverrides {
 
 fn compare(ctx: &GpuContext, name: &str, scene: &PackedScene) -> SceneFeatures {
     let start = Instant::now();
-    let (gpu, info) =
-        render_gpu_with_info(ctx, scene, &|_, _| {}).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let GpuRender {
+        film: gpu, info, ..
+    } = render_gpu(ctx, scene, &GpuRenderOptions::default())
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
     let gpu_time = start.elapsed();
     let start = Instant::now();
     let cpu = glint::cpu::render(scene, &|_, _| {});
@@ -140,7 +141,9 @@ fn macho_cows_adaptive_depths_match() {
             },
         );
         compare(&ctx, &format!("macho-cows-adaptive-d{depth}"), &scene);
-        let gpu = adaptive_leaf_counts_gpu(&ctx, &scene).unwrap();
+        let gpu = render_gpu(&ctx, &scene, &GpuRenderOptions::default())
+            .unwrap()
+            .leaf_counts;
         let cpu = adaptive_leaf_counts(&scene);
         let differ = gpu.iter().zip(&cpu).filter(|(a, b)| a != b).count();
         let split = cpu.iter().filter(|&&l| l > 1).count();
@@ -215,7 +218,13 @@ fn loop_limit_guard_falls_back_to_the_cpu() {
             &overrides,
         )
         .remove(0);
-        let (gpu, info, _) = render_gpu_detailed(&ctx, &scene, &|_, _| {}, 70_000).unwrap();
+        let tripping = GpuRenderOptions {
+            limiter_sentinel: 70_000,
+            ..GpuRenderOptions::default()
+        };
+        let GpuRender {
+            film: gpu, info, ..
+        } = render_gpu(&ctx, &scene, &tripping).unwrap();
         let expected = if info.iteration_guard { 24 * 20 } else { 0 };
         eprintln!(
             "{aa:?}: guard {}, {} pixels re-rendered",

@@ -13,7 +13,7 @@ use super::timing::fastest;
 use crate::constants::{LINEAR_WORKGROUP_SIZE, WORKGROUP_SIZE};
 use crate::cpu::render::render_with_counters;
 use crate::diff::diff_films;
-use crate::gpu::{render_gpu_with_info, GpuContext};
+use crate::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderOptions};
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::pipeline::pack_scene;
 use crate::scene::AaMode;
@@ -74,12 +74,15 @@ fn bench_scene(
     let packed = pack_scene(&scene)?;
     let name = path.file_stem().unwrap_or_default().to_string_lossy();
     let start = Instant::now();
-    let (_, info) = render_gpu_with_info(ctx, &packed, &|_, _| {})?;
+    let plain = GpuRenderOptions::default();
+    let info = render_gpu(ctx, &packed, &plain)?.info;
     let first = start.elapsed();
-    let (t_gpu, gpu) = fastest(args.repeat, || {
-        render_gpu_with_info(ctx, &packed, &|_, _| {})
-    });
-    let (gpu_film, info_steady) = gpu?;
+    let (t_gpu, gpu) = fastest(args.repeat, || render_gpu(ctx, &packed, &plain));
+    let GpuRender {
+        film: gpu_film,
+        info: info_steady,
+        ..
+    } = gpu?;
     let (t_cpu, cpu_film) = fastest(args.repeat, || crate::cpu::render(&packed, &|_, _| {}));
     let (_, counters) = render_with_counters(&packed, &|_, _| {});
     let (report, _) = diff_films(&cpu_film, &gpu_film)?;
@@ -123,11 +126,10 @@ fn bench_specialisation(ctx: &GpuContext, args: &BenchArgs) -> anyhow::Result<()
     println!("| --- | --- | ---: | ---: | ---: |");
     let mut reference = None;
     for (label, packed) in [("specialised", &specialised), ("generic", &generic)] {
-        let (_, info) = render_gpu_with_info(ctx, packed, &|_, _| {})?;
-        let (t, result) = fastest(args.repeat, || {
-            render_gpu_with_info(ctx, packed, &|_, _| {})
-        });
-        let (film, _) = result?;
+        let plain = GpuRenderOptions::default();
+        let info = render_gpu(ctx, packed, &plain)?.info;
+        let (t, result) = fastest(args.repeat, || render_gpu(ctx, packed, &plain));
+        let film = result?.film;
         let flip = match &reference {
             None => 0.0,
             Some(r) => diff_films(r, &film)?.0.flip_mean,

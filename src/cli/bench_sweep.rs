@@ -17,7 +17,7 @@ use super::plot_svg::{loglog_svg, write_atomically, Panel, Series};
 use super::sweep_analysis::{cheapest_within, loglog_slope, Measured, Metric};
 use crate::diff::diff_films;
 use crate::film::Film;
-use crate::gpu::{render_gpu, GpuContext};
+use crate::gpu::{render_gpu, GpuContext, GpuRenderOptions};
 use crate::pack::SceneFeatures;
 use crate::pipeline::pack_scene;
 use crate::scene::flatten::Scene;
@@ -296,10 +296,10 @@ impl GpuSide {
         let result = (|| -> anyhow::Result<Measured> {
             let mut tiny = scene.clone();
             (tiny.width, tiny.height) = (8, 8);
-            render_gpu(ctx, &pack_scene(&tiny)?, &|_, _| {})?;
+            render_gpu(ctx, &pack_scene(&tiny)?, &GpuRenderOptions::default())?;
             let packed = pack_scene(scene)?;
             let t = Instant::now();
-            let film = render_gpu(ctx, &packed, &|_, _| {})?;
+            let film = render_gpu(ctx, &packed, &GpuRenderOptions::default())?.film;
             let time = t.elapsed();
             Ok(measured(
                 setting,

@@ -10,10 +10,9 @@ pub mod frame;
 pub mod pipeline;
 pub mod pipeline_cache;
 pub mod plan;
-// Crate-visible so `testing` can re-export its test hook `render_gpu_detailed`.
-pub(crate) mod render;
+pub mod render;
 pub mod shader;
 
 pub use context::{list_adapters, AdapterSummary, GpuContext};
 pub use error::GpuError;
-pub use render::{adaptive_leaf_counts_gpu, render_gpu, render_gpu_with_info, GpuRenderInfo};
+pub use render::{render_gpu, GpuRender, GpuRenderInfo, GpuRenderOptions};

@@ -56,31 +56,34 @@ pub struct GpuRenderInfo {
     pub cpu_fallback_pixels: u64,
 }
 
-/// Renders `scene` on `ctx`'s device.
-pub fn render_gpu(
-    ctx: &GpuContext,
-    scene: &PackedScene,
-    progress: RenderProgress,
-) -> Result<Film, GpuError> {
-    render_gpu_with_info(ctx, scene, progress).map(|(film, _)| film)
+/// How a GPU render runs: `GpuRenderOptions::default()` is a plain render.
+#[derive(Clone, Copy)]
+pub struct GpuRenderOptions<'a> {
+    /// Called with (parts done, parts) as the frame's submits complete.
+    pub progress: RenderProgress<'a>,
+    /// The loop limiter's sentinel ([`super::buffers::GpuTile::sentinel`]): a test hook;
+    /// tests pass more than the limit to trip the limiter on purpose and exercise the CPU
+    /// fallback.
+    #[doc(hidden)]
+    pub limiter_sentinel: u32,
 }
 
-/// Renders `scene` on `ctx`'s device, reporting the pipeline's features and compile time.
-pub fn render_gpu_with_info(
-    ctx: &GpuContext,
-    scene: &PackedScene,
-    progress: RenderProgress,
-) -> Result<(Film, GpuRenderInfo), GpuError> {
-    render_gpu_detailed(ctx, scene, progress, LIMITER_SENTINEL).map(|(f, i, _)| (f, i))
+impl Default for GpuRenderOptions<'_> {
+    fn default() -> Self {
+        GpuRenderOptions {
+            progress: &|_, _| {},
+            limiter_sentinel: LIMITER_SENTINEL,
+        }
+    }
 }
 
-/// Leaf squares per pixel of adaptive AA on the GPU (see
-/// [`crate::cpu::render::adaptive_leaf_counts`]), row-major.
-pub fn adaptive_leaf_counts_gpu(
-    ctx: &GpuContext,
-    scene: &PackedScene,
-) -> Result<Vec<u32>, GpuError> {
-    render_gpu_detailed(ctx, scene, &|_, _| {}, LIMITER_SENTINEL).map(|(_, _, l)| l)
+/// What a GPU render returns besides errors.
+pub struct GpuRender {
+    pub film: Film,
+    pub info: GpuRenderInfo,
+    /// Adaptive AA's leaf squares per pixel, row-major (see
+    /// [`crate::cpu::render::adaptive_leaf_counts`]); meaningful with adaptive AA only.
+    pub leaf_counts: Vec<u32>,
 }
 
 /// The frame's results as read back: colours (alpha: adaptive AA's leaf count), guard
@@ -92,16 +95,13 @@ struct ReadBack {
     host_waits: u32,
 }
 
-/// Renders `scene`; also returns the output's alpha per pixel (adaptive AA's leaf counts).
-/// `sentinel` is [`super::buffers::GpuTile::sentinel`] ([`LIMITER_SENTINEL`]; tests pass
-/// more than the limit to trip the limiter on purpose and exercise the CPU fallback).
-#[doc(hidden)]
-pub fn render_gpu_detailed(
+/// Renders `scene` on `ctx`'s device: the one entry point of the GPU tracer.
+pub fn render_gpu(
     ctx: &GpuContext,
     scene: &PackedScene,
-    progress: RenderProgress,
-    sentinel: u32,
-) -> Result<(Film, GpuRenderInfo, Vec<u32>), GpuError> {
+    options: &GpuRenderOptions,
+) -> Result<GpuRender, GpuError> {
+    let (progress, sentinel) = (options.progress, options.limiter_sentinel);
     let bounds = AdapterBounds {
         max_binding: ctx
             .limits
@@ -154,7 +154,11 @@ pub fn render_gpu_detailed(
         iteration_guard: pipelines[0].iteration_guard,
         cpu_fallback_pixels: fallback,
     };
-    Ok((film, info, alpha))
+    Ok(GpuRender {
+        film,
+        info,
+        leaf_counts: alpha,
+    })
 }
 
 /// Waits for each submitted part in turn (one host wait each, reporting progress) and

@@ -5,12 +5,11 @@
 //! - [`probe`]: tier-3 kernel probes, the same rays traced by the GPU's and the CPU's
 //!   `closest_hit` + `surface_at`, compared ray by ray.
 //! - [`csg_interval_ends`]: one CSG object's inside intervals along a line.
-//! - [`render_gpu_detailed`]: a GPU render with the iteration limiter's sentinel chosen by
-//!   the caller (tests trip it on purpose to exercise the CPU fallback).
+//!
+//! (The GPU's test hook, the loop limiter's sentinel, is a hidden field of
+//! [`crate::gpu::GpuRenderOptions`].)
 
 pub mod probe;
-
-pub use crate::gpu::render::render_gpu_detailed;
 
 use crate::cpu::csg::{csg_evaluate, CsgStack};
 use crate::pack::PackedScene;

@@ -326,7 +326,9 @@ pub fn assert_gpu_matches_cpu(
     scene: &PackedScene,
     max_flip: f64,
 ) -> glint::gpu::GpuRenderInfo {
-    let (gpu, info) = glint::gpu::render_gpu_with_info(ctx, scene, &|_, _| {})
+    let glint::gpu::GpuRender {
+        film: gpu, info, ..
+    } = glint::gpu::render_gpu(ctx, scene, &Default::default())
         .unwrap_or_else(|e| panic!("{name}: {e}"));
     let cpu = glint::cpu::render(scene, &|_, _| {});
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(dir);
