@@ -4,7 +4,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES};
 use glint::scene::flatten::MAX_PIXELS;
 use glint::scene::lua::{DEFAULT_MEMORY_LIMIT, DEFAULT_TIME_LIMIT, MAX_IMAGE_SIDE};
-use glint::scene::options::{parse_background, parse_grid_mode};
+use glint::scene::options::{parse_background, parse_debug_view, parse_grid_mode};
 use glint::scene::{
     AaMode, Background, DebugView, GridMode, OptionOverrides, ShadowSamples, TraceDepth,
     TransformOrder,
@@ -148,20 +148,13 @@ struct RenderArgs {
     /// Acceleration: auto, off (brute force) or a density λ (cells ≈ λ × items).
     #[arg(long, value_parser = parse_grid_mode)]
     grid: Option<GridMode>,
-    /// Debug output. uv: render colour = (u mod 1, v mod 1, 0) of the first surface hit
-    /// (the scene option `debug = 'uv'`; none turns a scene's debug view off).
+    /// Debug view (overrides the scene option `debug`; none turns a scene's debug view
+    /// off). uv: render colour = (u mod 1, v mod 1, 0) of the first surface hit.
     /// aa-samples: write adaptive AA's leaf squares per pixel instead of the render, on
     /// the magma ramp, log scale (black: 1, not split; pale yellow: 4^aa-depth); needs
     /// adaptive AA.
-    #[arg(long, value_enum)]
-    debug: Option<DebugArg>,
-}
-
-#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum DebugArg {
-    None,
-    Uv,
-    AaSamples,
+    #[arg(long, value_parser = parse_debug_view)]
+    debug: Option<DebugView>,
 }
 
 fn parse_aa(s: &str) -> Result<AaMode, String> {
@@ -232,11 +225,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             min_weight: args.min_weight,
             background: args.background,
             grid: args.grid,
-            debug: match args.debug {
-                Some(DebugArg::None) => Some(DebugView::None),
-                Some(DebugArg::Uv) => Some(DebugView::Uv),
-                Some(DebugArg::AaSamples) | None => None,
-            },
+            debug: args.debug,
             width: args.width.filter(|&w| w > 0),
             height: args.height.filter(|&h| h > 0),
         },
@@ -254,8 +243,6 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             BackendArg::Auto | BackendArg::Both => glint::pipeline::Backend::Auto,
         },
         adapter: args.adapter,
-        debug: (args.debug == Some(DebugArg::AaSamples))
-            .then_some(glint::pipeline::DebugImage::AaSamples),
     };
     if args.heatmap.is_some() && args.backend != BackendArg::Both {
         return Err(("--heatmap needs --backend both".into(), 2));
@@ -325,7 +312,7 @@ fn report_image(
     image: &glint::pipeline::RenderedImage,
     settings: &glint::pipeline::RenderSettings,
 ) {
-    if settings.debug.is_some() {
+    if image.view == DebugView::AaSamples {
         eprintln!(
             "glint: wrote {} (adaptive AA leaf squares per pixel, {}×{}, decided on the {} in {:.2} s)",
             image.output.display(),

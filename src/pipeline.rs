@@ -11,7 +11,7 @@ use crate::pack::{pack, PackError, PackedScene, SceneFeatures};
 use crate::scene::flatten::flatten;
 use crate::scene::flatten::Scene;
 use crate::scene::lua::{run_scene_file, SceneError, ScriptConfig, ScriptReport};
-use crate::scene::{AaMode, OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
+use crate::scene::{AaMode, DebugView, OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -44,15 +44,6 @@ pub struct RenderSettings {
     pub backend: Backend,
     /// `--adapter`: a substring of the GPU adapter's name.
     pub adapter: Option<String>,
-    /// `--debug`: write a diagnostic image instead of the render.
-    pub debug: Option<DebugImage>,
-}
-
-/// `--debug`: a diagnostic image written in place of the render.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum DebugImage {
-    /// Adaptive anti-aliasing's leaf squares per pixel ([`crate::aa_map`]).
-    AaSamples,
 }
 
 /// `--backend`: which tracer renders.
@@ -115,6 +106,8 @@ pub struct RenderedImage {
     pub gpu: Option<GpuRenderInfo>,
     /// The GPU adapter's name, when the GPU rendered it.
     pub adapter: Option<String>,
+    /// What the film shows: the render, or a debug view of it.
+    pub view: DebugView,
 }
 
 /// Why running a scene failed; each kind has its own exit code.
@@ -214,6 +207,7 @@ pub fn render_aa_samples_map(
             Tracer::Cpu => None,
         },
         packed,
+        view: DebugView::AaSamples,
     })
 }
 
@@ -256,6 +250,7 @@ pub fn render_request(
             counters: None,
             gpu: Some(info),
             adapter: Some(ctx.info.name.clone()),
+            view: request.options.debug,
         });
     }
     let (film, counters) = if stats {
@@ -273,6 +268,7 @@ pub fn render_request(
         counters,
         gpu: None,
         adapter: None,
+        view: request.options.debug,
     })
 }
 
@@ -346,11 +342,13 @@ pub fn run_scene(
         };
         // Refuse an unwritable path before spending time on the render.
         check_output_path(&output).map_err(fail)?;
-        let mut rendered = match settings.debug {
-            Some(DebugImage::AaSamples) => {
+        let mut options = request.options.clone();
+        settings.overrides.apply(&mut options);
+        let mut rendered = match options.debug {
+            DebugView::AaSamples => {
                 render_aa_samples_map(graph, request, &settings.overrides, tracer)?
             }
-            None => render_request(
+            DebugView::None | DebugView::Uv => render_request(
                 graph,
                 request,
                 &settings.overrides,

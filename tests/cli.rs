@@ -413,6 +413,38 @@ fn debug_aa_samples_maps_adaptive_leaf_counts() {
     }
 }
 
+/// The scene option `debug = 'aa-samples'` and the flag `--debug aa-samples` are one
+/// setting: the same map, byte for byte; `--debug none` turns the scene's off.
+#[test]
+fn debug_aa_samples_is_one_option_for_script_and_flag() {
+    let dir = temp_dir("aa-map-option");
+    let body = "root = gr.node('root')\ns = gr.sphere('s')\nroot:add_child(s)\n";
+    let with_option = GOOD_RENDER.replace("{1,0,0})})", "{1,0,0})}, {debug='aa-samples'})");
+    assert_ne!(with_option, GOOD_RENDER);
+    std::fs::write(dir.join("flag.lua"), format!("{body}{GOOD_RENDER}")).unwrap();
+    std::fs::write(dir.join("option.lua"), format!("{body}{with_option}")).unwrap();
+    let run = |script: &str, out: &str, extra: &[&str]| {
+        let mut args = vec!["render", script, "-o", out, "--backend", "cpu"];
+        args.extend_from_slice(extra);
+        let o = glint(&args, &dir);
+        assert!(o.status.success(), "{script}: {}", stderr(&o));
+        std::fs::read(dir.join(out)).unwrap()
+    };
+    let by_flag = run("flag.lua", "flag.png", &["--debug", "aa-samples"]);
+    let by_option = run("option.lua", "option.png", &[]);
+    assert_eq!(
+        by_flag, by_option,
+        "the scene option and the flag give different maps"
+    );
+    let render = run("flag.lua", "render.png", &[]);
+    let turned_off = run("option.lua", "off.png", &["--debug", "none"]);
+    assert_eq!(
+        render, turned_off,
+        "--debug none leaves the scene's debug view on"
+    );
+    assert_ne!(render, by_flag, "the map is the render");
+}
+
 #[test]
 fn debug_aa_samples_without_adaptive_aa_is_a_usage_error() {
     let scene = format!("root = gr.node('root')\n{GOOD_RENDER}");

@@ -346,7 +346,8 @@ fn make_globals(
         camera_media_count: 0,
         camera_media: [AIR_IOR; MEDIUM_STACK_SIZE as usize],
         debug_view: match options.debug {
-            DebugView::None => DEBUG_VIEW_NONE,
+            // The AA map is made from the render's own decisions.
+            DebugView::None | DebugView::AaSamples => DEBUG_VIEW_NONE,
             DebugView::Uv => DEBUG_VIEW_UV,
         },
         _pad0: 0,

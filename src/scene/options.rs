@@ -62,7 +62,8 @@ impl GridMode {
     pub const CHOICES: &'static str = "'auto', 'off' or {density=λ}";
 }
 
-/// Debug view (`debug`): what a pixel shows instead of the shaded image.
+/// Debug view (`debug`, the scene option and `--debug`): what the image shows instead
+/// of the shaded render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum DebugView {
     /// The normal image.
@@ -70,18 +71,26 @@ pub enum DebugView {
     None,
     /// Colour = (u mod 1, v mod 1, 0) of the surface a primary ray hits first.
     Uv,
+    /// Adaptive anti-aliasing's work per pixel ([`crate::aa_map`]); needs adaptive AA.
+    AaSamples,
 }
 
 impl DebugView {
-    pub const CHOICES: &'static str = "'none' or 'uv'";
+    pub const CHOICES: &'static str = "'none', 'uv' or 'aa-samples'";
 
     pub fn parse(s: &str) -> Option<DebugView> {
         match s {
             "none" => Some(DebugView::None),
             "uv" => Some(DebugView::Uv),
+            "aa-samples" => Some(DebugView::AaSamples),
             _ => None,
         }
     }
+}
+
+/// Parses `--debug`'s value.
+pub fn parse_debug_view(s: &str) -> Result<DebugView, String> {
+    DebugView::parse(s).ok_or_else(|| format!("debug must be {}, got '{s}'", DebugView::CHOICES))
 }
 
 #[derive(Clone, Debug, PartialEq)]
