@@ -241,9 +241,13 @@ mod tests {
         );
         assert_eq!(o.grid, GridMode::Density(3.0));
         assert_eq!(options("{debug='uv'}").unwrap().debug, DebugView::Uv);
+        assert_eq!(
+            options("{debug='aa-samples'}").unwrap().debug,
+            DebugView::AaSamples
+        );
         let e = options("{debug='normals'}").unwrap_err();
         assert!(
-            e.ends_with("debug must be 'none' or 'uv', got 'normals'"),
+            e.ends_with("debug must be 'none', 'uv' or 'aa-samples', got 'normals'"),
             "{e}"
         );
     }
