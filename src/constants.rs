@@ -159,13 +159,6 @@ pub const SAFE_RCP_LIMIT: f32 = 1.0e30;
 /// invocation against 65 535 (a torus test costs at most 4 roots × this).
 pub const TORUS_NEWTON_ITERATIONS: u32 = 24;
 
-/// `glint bench --torus` on the GPU (shaders/bench_torus.wgsl): which solver a dispatch
-/// runs.
-pub const BENCH_SOLVER_GLINT: u32 = 0;
-pub const BENCH_SOLVER_FERRARI: u32 = 1;
-/// Ferrari's quartic solver (`cli::ferrari`, the benchmark's textbook baseline): |u| or
-/// |v| of the resolvent's factorisation below this counts as zero (a double root).
-pub const FERRARI_ZERO: f32 = 1.0e-12;
 /// Newton stops when a step is at most this fraction of the root (2⁻²², ≈ 2 ulps).
 pub const TORUS_ROOT_TOLERANCE: f32 = 1.0 / 4194304.0;
 /// The torus's bounding sphere and slab are grown by this, in units of rin + rout, so
@@ -228,8 +221,6 @@ pub fn wgsl_prelude() -> String {
         ("PCG_INCREMENT", PCG_INCREMENT),
         ("PCG_WORD_MULTIPLIER", PCG_WORD_MULTIPLIER),
         ("TORUS_NEWTON_ITERATIONS", TORUS_NEWTON_ITERATIONS),
-        ("BENCH_SOLVER_GLINT", BENCH_SOLVER_GLINT),
-        ("BENCH_SOLVER_FERRARI", BENCH_SOLVER_FERRARI),
     ];
     let f32s: &[(&str, f32)] = &[
         ("T_MISS", T_MISS),
@@ -250,7 +241,6 @@ pub fn wgsl_prelude() -> String {
         ("CSG_T_LIMIT", CSG_T_LIMIT),
         ("TRIANGLE_FRAME_MIN_UV_SINE", TRIANGLE_FRAME_MIN_UV_SINE),
         ("TRIANGLE_FRAME_AXIS_SWITCH", TRIANGLE_FRAME_AXIS_SWITCH),
-        ("FERRARI_ZERO", FERRARI_ZERO),
     ];
     let mut out = String::from("// Generated from src/constants.rs — do not edit.\n");
     for (name, value) in u32s {

@@ -9,6 +9,7 @@
 
 pub mod aa_map;
 pub mod accel;
+pub mod bench;
 pub mod cli;
 pub mod constants;
 pub mod cpu;

@@ -44,7 +44,7 @@ enum Command {
     },
     /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles;
     /// --trace SCENE: traversal alone in rays/s (beside Embree: benches/).
-    Bench(glint::cli::bench_common::BenchArgs),
+    Bench(glint::bench::common::BenchArgs),
     /// List the GPU adapters (Vulkan, Metal, DX12, or the backends WGPU_BACKEND names)
     /// and their limits.
     Info,
@@ -192,7 +192,7 @@ fn main() -> ExitCode {
                 .map_err(|e| (e.to_string(), e.exit_code()))
         }
         Command::Bench(args) => {
-            glint::cli::bench_cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1))
+            glint::bench::cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1))
         }
         Command::Info => {
             info();

@@ -7,7 +7,7 @@
 mod common;
 
 use common::temp_dir;
-use glint::cli::trace_rays::{
+use glint::bench::trace_rays::{
     camera_rays, load_first_render, shadow_rays, summarise, trace_primary, trace_shadow,
 };
 use glint::pack::pack;
@@ -247,7 +247,7 @@ fn dump_rays_refuses_kinds_the_harness_cannot_trace() {
 
 #[test]
 fn rates_keep_three_significant_digits_below_one() {
-    use glint::cli::bench_trace::rate;
+    use glint::bench::trace::rate;
     assert_eq!(rate(31.25), "31.250");
     assert_eq!(rate(1.0), "1.000");
     assert_eq!(rate(0.5), "0.500");

@@ -1,14 +1,14 @@
-//! Parity of the torus benchmark's GPU kernel (shaders/bench_torus.wgsl) with its CPU
-//! twins: glint's `intersect_torus` and the textbook Ferrari solver (`cli::ferrari`), on
+//! Parity of the torus benchmark's GPU kernel (shaders/bench/torus.wgsl) with its CPU
+//! twins: glint's `intersect_torus` and the textbook Ferrari solver (`bench::ferrari`), on
 //! the same seeded rays. The benchmark's GPU rows are only meaningful if the kernels
 //! compute what the CPU rows compute.
 
 mod common;
 
 use common::gpu_context;
-use glint::cli::bench_torus;
-use glint::cli::bench_torus_gpu::{GpuTorusBench, GpuTorusSolver};
-use glint::cli::ferrari::intersect_torus_ferrari;
+use glint::bench::ferrari::intersect_torus_ferrari;
+use glint::bench::torus;
+use glint::bench::torus_gpu::{GpuTorusBench, GpuTorusSolver};
 use glint::constants::T_MISS;
 use glint::cpu::torus::intersect_torus;
 
@@ -32,7 +32,7 @@ fn gpu_torus_kernels_match_their_cpu_twins() {
     for (rin, rout) in [(1.0f32, 0.4f32), (1.0, 1.5)] {
         // The benchmark's own rays, 1.5–4 bounding radii away (where Ferrari in f32 is
         // still mostly right, so its twins can be compared).
-        let rays = bench_torus::rays(4096, rin as f64, rout as f64, 1.5, 4.0, 0x7025_B3AC);
+        let rays = torus::rays(4096, rin as f64, rout as f64, 1.5, 4.0, 0x7025_B3AC);
         let hits = rays
             .iter()
             .filter(|r| intersect_torus(r.o, r.d, rin, rout, T_MISS) != T_MISS)

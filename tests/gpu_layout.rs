@@ -337,17 +337,33 @@ fn preprocessor_directives() {
     assert!(preprocess("t", "// #endif\n", SceneFeatures::CUBE).is_err());
 }
 
-/// The prelude is the only source of constants: no WGSL file defines its own.
+/// The preludes are the only source of constants: no WGSL file defines its own (the
+/// tracer's from src/constants.rs; the benchmark kernel's, in shaders/bench/, from
+/// src/bench/).
 #[test]
 fn shaders_define_no_constants() {
-    for file in std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders")).unwrap() {
-        let path = file.unwrap().path();
+    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders"));
+    let mut files: Vec<_> = std::fs::read_dir(root)
+        .unwrap()
+        .map(|f| f.unwrap().path())
+        .collect();
+    files.extend(
+        std::fs::read_dir(root.join("bench"))
+            .unwrap()
+            .map(|f| f.unwrap().path()),
+    );
+    files.retain(|p| p.is_file());
+    assert!(
+        files.iter().any(|p| p.ends_with("bench/torus.wgsl")),
+        "{files:?}"
+    );
+    for path in files {
         let text = std::fs::read_to_string(&path).unwrap();
         for (i, line) in text.lines().enumerate() {
             let code = line.split("//").next().unwrap().trim_start();
             assert!(
                 !code.starts_with("const ") && !code.starts_with("override "),
-                "{}:{}: constants belong in src/constants.rs",
+                "{}:{}: constants belong in a prelude (src/constants.rs, src/bench/)",
                 path.display(),
                 i + 1
             );

@@ -65,9 +65,9 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          limit (src/gpu/plan.rs plans it on the host); the CPU has no dispatches",
     ),
     (
-        "shaders/bench_torus.wgsl",
+        "shaders/bench/torus.wgsl",
         "bench_torus",
-        "the torus benchmark's kernel; on the CPU, src/cli/bench_torus.rs loops over the \
+        "the torus benchmark's kernel; on the CPU, src/bench/torus.rs loops over the \
          rays calling the same solvers",
     ),
 ];

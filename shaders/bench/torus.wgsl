@@ -1,9 +1,9 @@
-// bench_torus.wgsl — the GPU half of `glint bench --torus` (src/cli/bench_torus_gpu.rs):
+// bench_torus.wgsl — the GPU half of `glint bench --torus` (src/bench/torus_gpu.rs):
 // one ray per invocation through glint's torus test (shaders/torus.wgsl) or the textbook
-// Ferrari closed form below, twin of src/cli/ferrari.rs. Not part of the tracer; it is
+// Ferrari closed form below, twin of src/bench/ferrari.rs. Not part of the tracer; it is
 // appended to the common modules only by the benchmark.
 
-// Mirror of src/cli/bench_torus_gpu.rs::BenchTorusParams — change both.
+// Mirror of src/bench/torus_gpu.rs::BenchTorusParams — change both.
 struct BenchTorusParams {
     rin: f32,
     rout: f32,
@@ -12,7 +12,7 @@ struct BenchTorusParams {
     count: u32,
 }
 
-// Mirror of src/cli/bench_torus_gpu.rs::BenchRay — change both.
+// Mirror of src/bench/torus_gpu.rs::BenchRay — change both.
 struct BenchRay {
     o: vec3<f32>,
     _pad0: f32,
@@ -25,13 +25,13 @@ struct BenchRay {
 @group(0) @binding(22) var<storage, read_write> bench_t: array<f32>;
 
 // Up to four real roots: the first `count` entries of `roots` are valid.
-// Mirror of src/cli/ferrari.rs::Roots — change both.
+// Mirror of src/bench/ferrari.rs::Roots — change both.
 struct Roots {
     roots: vec4<f32>,
     count: u32,
 }
 
-// Mirror of src/cli/ferrari.rs::ferrari_cbrt — change both.
+// Mirror of src/bench/ferrari.rs::ferrari_cbrt — change both.
 fn ferrari_cbrt(x: f32) -> f32 {
     if x == 0.0 {
         return 0.0;
@@ -39,7 +39,7 @@ fn ferrari_cbrt(x: f32) -> f32 {
     return sign(x) * pow(abs(x), 1.0 / 3.0);
 }
 
-// Mirror of src/cli/ferrari.rs::solve_cubic — change both.
+// Mirror of src/bench/ferrari.rs::solve_cubic — change both.
 fn solve_cubic(a: f32, b: f32, c: f32) -> Roots {
     let sq_a = a * a;
     let p = (1.0 / 3.0) * (-(1.0 / 3.0) * sq_a + b);
@@ -72,7 +72,7 @@ fn solve_cubic(a: f32, b: f32, c: f32) -> Roots {
     return Roots(r - vec4<f32>(a / 3.0), count);
 }
 
-// Mirror of src/cli/ferrari.rs::push_quadratic_roots — change both.
+// Mirror of src/bench/ferrari.rs::push_quadratic_roots — change both.
 fn push_quadratic_roots(out_in: Roots, p: f32, q: f32, shift: f32) -> Roots {
     var out = out_in;
     let disc = 0.25 * p * p - q;
@@ -85,7 +85,7 @@ fn push_quadratic_roots(out_in: Roots, p: f32, q: f32, shift: f32) -> Roots {
     return out;
 }
 
-// Mirror of src/cli/ferrari.rs::solve_quartic — change both.
+// Mirror of src/bench/ferrari.rs::solve_quartic — change both.
 fn solve_quartic(a: f32, b: f32, c: f32, d: f32) -> Roots {
     let sq_a = a * a;
     // Substitute x = y − a/4: y⁴ + p·y² + q·y + r.
@@ -130,7 +130,7 @@ fn solve_quartic(a: f32, b: f32, c: f32, d: f32) -> Roots {
     return push_quadratic_roots(out, -sv, z + u, shift);
 }
 
-// Mirror of src/cli/ferrari.rs::intersect_torus_ferrari — change both.
+// Mirror of src/bench/ferrari.rs::intersect_torus_ferrari — change both.
 fn intersect_torus_ferrari(o: vec3<f32>, d: vec3<f32>, rin: f32, rout: f32) -> f32 {
     let four_r2 = 4.0 * rin * rin;
     let e = dot(o, o) - rin * rin - rout * rout;

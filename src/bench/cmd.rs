@@ -9,7 +9,7 @@
 //! error-against-time sweep of the sampling settings (`bench_sweep`); `--trace SCENE` only
 //! the traversal benchmark of one scene, beside Embree (`bench_trace`).
 
-use super::bench_common::{load_scene, with_grid, BenchArgs};
+use super::common::{load_scene, with_grid, BenchArgs};
 use super::splitmix::SplitMix;
 use super::timing::fastest;
 use crate::accel::aabb::Aabb;
@@ -36,7 +36,7 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
 fn run_bench_on_pool(args: &BenchArgs) -> anyhow::Result<()> {
     // --trace prints its three result lines first (its thread count follows them).
     if let Some(scene) = &args.trace {
-        return super::bench_trace::bench_trace(&super::bench_trace::TraceBenchArgs {
+        return super::trace::bench_trace(&super::trace::TraceBenchArgs {
             scene: scene.clone(),
             width: args.width,
             height: args.height,
@@ -46,13 +46,13 @@ fn run_bench_on_pool(args: &BenchArgs) -> anyhow::Result<()> {
     }
     println!("glint bench on {} threads", rayon::current_num_threads());
     if args.gpu {
-        return super::bench_gpu::bench_gpu(args);
+        return super::gpu::bench_gpu(args);
     }
     if args.torus {
-        return super::bench_torus::bench_torus(args);
+        return super::torus::bench_torus(args);
     }
     if args.sweep {
-        return super::bench_sweep::bench_sweep(args);
+        return super::sweep::bench_sweep(args);
     }
     bench_macho_cows(args)?;
     bench_random_triangles(args);

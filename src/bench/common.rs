@@ -63,7 +63,7 @@ pub struct BenchArgs {
     #[arg(long, requires = "trace", value_parser = clap::value_parser!(u32).range(1..))]
     pub height: Option<u32>,
     /// --trace: also write the geometry and the exact rays, with glint's answers, for the
-    /// Embree harness (`benches/embree/`; format in `cli::trace_dump`).
+    /// Embree harness (`benches/embree/`; format in `bench::trace_dump`).
     #[arg(long, requires = "trace", value_name = "FILE")]
     pub dump_rays: Option<PathBuf>,
     /// Worker threads (default: all cores).

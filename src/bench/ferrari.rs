@@ -3,14 +3,18 @@
 //! solved in closed form by Ferrari's method through a resolvent cubic (Schwarze's
 //! solver, Graphics Gems I), in f32. The tracer never uses it: it is the accuracy and
 //! speed baseline glint's solver (`cpu::torus`) is measured against. Written without
-//! closures or out-parameters so that its WGSL twin (shaders/bench_torus.wgsl) can
+//! closures or out-parameters so that its WGSL twin (shaders/bench/torus.wgsl) can
 //! follow it step for step.
 
-use crate::constants::{FERRARI_ZERO, TWO_PI, T_MISS};
+use crate::constants::{TWO_PI, T_MISS};
 use glam::{Vec3, Vec4};
 
+/// |u| or |v| of the resolvent's factorisation below this counts as zero (a double
+/// root). Emitted into the benchmark kernel's own prelude (`torus_gpu::bench_prelude`).
+pub const FERRARI_ZERO: f32 = 1.0e-12;
+
 /// Up to four real roots: the first `count` entries of `roots` are valid.
-// Mirror of shaders/bench_torus.wgsl::Roots — change both.
+// Mirror of shaders/bench/torus.wgsl::Roots — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Roots {
     pub roots: Vec4,
@@ -18,7 +22,7 @@ pub struct Roots {
 }
 
 /// Real cube root (sign-preserving; WGSL has no `cbrt`, so both twins use `pow`).
-// Mirror of shaders/bench_torus.wgsl::ferrari_cbrt — change both.
+// Mirror of shaders/bench/torus.wgsl::ferrari_cbrt — change both.
 pub fn ferrari_cbrt(x: f32) -> f32 {
     if x == 0.0 {
         0.0
@@ -28,7 +32,7 @@ pub fn ferrari_cbrt(x: f32) -> f32 {
 }
 
 /// Real roots of x³ + a·x² + b·x + c (Cardano, or the trigonometric form for three).
-// Mirror of shaders/bench_torus.wgsl::solve_cubic — change both.
+// Mirror of shaders/bench/torus.wgsl::solve_cubic — change both.
 pub fn solve_cubic(a: f32, b: f32, c: f32) -> Roots {
     let sq_a = a * a;
     let p = (1.0 / 3.0) * (-(1.0 / 3.0) * sq_a + b);
@@ -65,7 +69,7 @@ pub fn solve_cubic(a: f32, b: f32, c: f32) -> Roots {
 }
 
 /// Appends the real roots of x² + p·x + q (shifted by `shift`) to `out`.
-// Mirror of shaders/bench_torus.wgsl::push_quadratic_roots — change both.
+// Mirror of shaders/bench/torus.wgsl::push_quadratic_roots — change both.
 fn push_quadratic_roots(out: Roots, p: f32, q: f32, shift: f32) -> Roots {
     let mut out = out;
     let disc = 0.25 * p * p - q;
@@ -79,7 +83,7 @@ fn push_quadratic_roots(out: Roots, p: f32, q: f32, shift: f32) -> Roots {
 }
 
 /// Real roots of x⁴ + a·x³ + b·x² + c·x + d by Ferrari's method.
-// Mirror of shaders/bench_torus.wgsl::solve_quartic — change both.
+// Mirror of shaders/bench/torus.wgsl::solve_quartic — change both.
 pub fn solve_quartic(a: f32, b: f32, c: f32, d: f32) -> Roots {
     let sq_a = a * a;
     // Substitute x = y − a/4: y⁴ + p·y² + q·y + r.
@@ -128,7 +132,7 @@ pub fn solve_quartic(a: f32, b: f32, c: f32, d: f32) -> Roots {
 
 /// The smallest t > 0 where `o + t·d` meets the torus (`rin`, `rout`) in the XY plane,
 /// else [`T_MISS`].
-// Mirror of shaders/bench_torus.wgsl::intersect_torus_ferrari — change both.
+// Mirror of shaders/bench/torus.wgsl::intersect_torus_ferrari — change both.
 pub fn intersect_torus_ferrari(o: Vec3, d: Vec3, rin: f32, rout: f32) -> f32 {
     let four_r2 = 4.0 * rin * rin;
     let e = o.dot(o) - rin * rin - rout * rout;

@@ -8,7 +8,7 @@
 //! first-dispatch compile are kept out of the steady times. Then a spheres-only scene
 //! with its specialised shader against the generic one (every feature compiled in).
 
-use super::bench_common::{load_scene, BenchArgs};
+use super::common::{load_scene, BenchArgs};
 use super::timing::fastest;
 use crate::constants::{LINEAR_WORKGROUP_SIZE, WORKGROUP_SIZE};
 use crate::cpu::render::render_with_counters;

@@ -12,7 +12,7 @@
 //! the shadows' alone. The GPU tracer renders a subset where an adapter exists, within a
 //! time budget. Then the figures of [`super::sweep_analysis`] and the plot.
 
-use super::bench_common::{load_scene, BenchArgs};
+use super::common::{load_scene, BenchArgs};
 use super::plot_svg::{loglog_svg, write_atomically, Panel, Series};
 use super::sweep_analysis::{cheapest_within, loglog_slope, Measured, Metric};
 use crate::diff::diff_films;

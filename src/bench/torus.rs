@@ -6,11 +6,11 @@
 //! included, so a few are expected for both) and the worst and 99th-percentile |Δt|/t.
 //! With a GPU adapter, both solvers also run on the GPU (`bench_torus_gpu`).
 
-use super::bench_common::BenchArgs;
-use super::bench_torus_gpu::{GpuTorusBench, GpuTorusSolver};
-pub use super::bench_torus_rays::{rays, TorusRay};
+use super::common::BenchArgs;
 use super::ferrari::intersect_torus_ferrari;
 use super::timing::fastest;
+use super::torus_gpu::{GpuTorusBench, GpuTorusSolver};
+pub use super::torus_rays::{rays, TorusRay};
 use crate::cpu::torus::intersect_torus;
 use crate::gpu::GpuContext;
 use glam::DVec3;

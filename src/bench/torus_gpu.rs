@@ -1,11 +1,12 @@
 //! The GPU rows of `glint bench --torus`: the same rays through glint's torus test
 //! (shaders/torus.wgsl, the tracer's own function) and through the textbook Ferrari
-//! solver (shaders/bench_torus.wgsl, twin of `cli::ferrari`), one ray per invocation.
+//! solver (shaders/bench/torus.wgsl, twin of `bench::ferrari`), one ray per invocation.
 //! Timed from submit to completion (the rays are uploaded once, the results read back
 //! once, outside the timing), so the rate is the kernel's.
 
-use super::bench_torus_rays::TorusRay;
-use crate::constants::{BENCH_SOLVER_FERRARI, BENCH_SOLVER_GLINT, LINEAR_WORKGROUP_SIZE};
+use super::ferrari::FERRARI_ZERO;
+use super::torus_rays::TorusRay;
+use crate::constants::LINEAR_WORKGROUP_SIZE;
 use crate::gpu::buffers::read_back;
 use crate::gpu::shader::{assemble_common_with, validate};
 use crate::gpu::{GpuContext, GpuError};
@@ -21,7 +22,7 @@ pub enum GpuTorusSolver {
     Ferrari,
 }
 
-// Mirror of shaders/bench_torus.wgsl::BenchTorusParams — change both.
+// Mirror of shaders/bench/torus.wgsl::BenchTorusParams — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct BenchTorusParams {
@@ -31,7 +32,7 @@ struct BenchTorusParams {
     count: u32,
 }
 
-// Mirror of shaders/bench_torus.wgsl::BenchRay — change both.
+// Mirror of shaders/bench/torus.wgsl::BenchRay — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct BenchRay {
@@ -39,6 +40,21 @@ struct BenchRay {
     _pad0: f32,
     d: [f32; 3],
     _pad1: f32,
+}
+
+/// Which solver a dispatch runs (`BenchTorusParams::solver`).
+pub const BENCH_SOLVER_GLINT: u32 = 0;
+pub const BENCH_SOLVER_FERRARI: u32 = 1;
+
+/// WGSL `const` declarations of the benchmark's own constants, in the form of the
+/// tracer's prelude (`constants::wgsl_prelude`), which does not carry them.
+fn bench_prelude() -> String {
+    format!(
+        "// Generated from src/bench/ — do not edit.\n\
+         const BENCH_SOLVER_GLINT: u32 = {BENCH_SOLVER_GLINT}u;\n\
+         const BENCH_SOLVER_FERRARI: u32 = {BENCH_SOLVER_FERRARI}u;\n\
+         const FERRARI_ZERO: f32 = {FERRARI_ZERO:e};\n"
+    )
 }
 
 /// The compiled benchmark kernel on one device.
@@ -50,13 +66,8 @@ pub struct GpuTorusBench {
 impl GpuTorusBench {
     pub fn new(ctx: GpuContext) -> Result<GpuTorusBench, GpuError> {
         let features = SceneFeatures::TORUS;
-        let source = assemble_common_with(
-            features,
-            (
-                "bench_torus.wgsl",
-                include_str!("../../shaders/bench_torus.wgsl"),
-            ),
-        );
+        let kernel = bench_prelude() + include_str!("../../shaders/bench/torus.wgsl");
+        let source = assemble_common_with(features, ("bench/torus.wgsl", &kernel));
         validate(&source, features)?;
         let device = &ctx.device;
         let pipeline = ctx.scoped("torus benchmark shader", || {
