@@ -42,6 +42,7 @@ fn run_bench_on_pool(args: &BenchArgs) -> anyhow::Result<()> {
             height: args.height,
             repeat: args.repeat,
             dump_rays: args.dump_rays.clone(),
+            allow_read: args.allow_read.clone(),
         });
     }
     println!("glint bench on {} threads", rayon::current_num_threads());

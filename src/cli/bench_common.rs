@@ -66,6 +66,10 @@ pub struct BenchArgs {
     /// Embree harness (`benches/embree/`; format in `cli::trace_dump`).
     #[arg(long, requires = "trace", value_name = "FILE")]
     pub dump_rays: Option<PathBuf>,
+    /// --trace: a folder the scene may read besides its own (repeatable), as `glint
+    /// render --allow-read` (benches/scenes/ read the CS488 corpus's meshes).
+    #[arg(long, requires = "trace", value_name = "DIR")]
+    pub allow_read: Vec<PathBuf>,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub threads: Option<u32>,
