@@ -95,7 +95,7 @@ fn closest_hit(ray: Ray, t_max: f32) -> Hit {
     if !entered.valid {
         return hit_miss();
     }
-    var hit = closest_hit_inside(entered.ray, entered.t_max);
+    var hit = closest_hit_inside(entered);
     if is_hit(hit) {
         hit.t += entered.t_moved;
     }
@@ -104,13 +104,15 @@ fn closest_hit(ray: Ray, t_max: f32) -> Hit {
 
 // Nearest hit along a ray that starts inside the scene bounds (see enter_scene).
 // Mirror of src/cpu/traverse.rs::closest_hit_inside — change both.
-fn closest_hit_inside(ray: Ray, t_max: f32) -> Hit {
+fn closest_hit_inside(entered: EnteredRay) -> Hit {
+    let ray = entered.ray;
+    let t_max = entered.t_max;
     var best = hit_miss();
     best.t = t_max;
     var mailbox = mailbox_new();
 // #if GRID
     let grid = scene_grid();
-    var dda = dda_setup(grid, ray, t_max);
+    var dda = dda_setup(grid, ray, entered.inv_dir, t_max);
     if !dda.valid {
         return hit_miss();
     }
@@ -163,16 +165,18 @@ fn any_hit(ray: Ray, t_max: f32) -> bool {
     if !entered.valid {
         return false;
     }
-    return any_hit_inside(entered.ray, entered.t_max);
+    return any_hit_inside(entered);
 }
 
 // Whether anything blocks a ray that starts inside the scene bounds.
 // Mirror of src/cpu/traverse.rs::any_hit_inside — change both.
-fn any_hit_inside(ray: Ray, t_max: f32) -> bool {
+fn any_hit_inside(entered: EnteredRay) -> bool {
+    let ray = entered.ray;
+    let t_max = entered.t_max;
     var mailbox = mailbox_new();
 // #if GRID
     let grid = scene_grid();
-    var dda = dda_setup(grid, ray, t_max);
+    var dda = dda_setup(grid, ray, entered.inv_dir, t_max);
     if !dda.valid {
         return false;
     }

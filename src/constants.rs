@@ -20,6 +20,10 @@ pub const KIND_MESH: u32 = 6;
 /// listed in several top-level cells is traversed once, since its nearest hit does not
 /// depend on the cell.
 pub const MESH_MAILBOX_SIZE: u32 = 8;
+/// Most triangles a ray remembers having tested in one mesh (a per-ray mailbox ring): a
+/// triangle listed in several cells of its mesh's grid (3.7 on average in cow.obj's) is
+/// tested once along a ray. A power of two, so the ring wraps with a mask.
+pub const TRIANGLE_MAILBOX_SIZE: u32 = 16;
 /// The smallest normal f32 (a floor for divisors that must not be zero).
 pub const F32_MIN_POSITIVE: f32 = f32::MIN_POSITIVE;
 
@@ -186,6 +190,7 @@ pub fn wgsl_prelude() -> String {
         ("KIND_CSG", KIND_CSG),
         ("KIND_MESH", KIND_MESH),
         ("MESH_MAILBOX_SIZE", MESH_MAILBOX_SIZE),
+        ("TRIANGLE_MAILBOX_SIZE", TRIANGLE_MAILBOX_SIZE),
         ("CSG_OP_SHIFT", CSG_OP_SHIFT),
         ("CSG_INDEX_MASK", CSG_INDEX_MASK),
         ("CSG_LEAF", CSG_LEAF),

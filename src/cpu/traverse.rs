@@ -15,6 +15,7 @@ use super::ray::Ray;
 use super::traverse_mesh::{intersect_mesh, mesh_occludes};
 use crate::constants::{KIND_CSG, KIND_MESH, MESH_MAILBOX_SIZE, NO_ITEM};
 use crate::pack::PackedScene;
+use glam::IVec3;
 
 /// The mesh instances a ray has traversed lately (a ring of `MESH_MAILBOX_SIZE`).
 // Mirror of shaders/traverse.wgsl::Mailbox — change both.
@@ -116,7 +117,7 @@ pub fn closest_hit(
     let Some(entered) = enter_scene(&scene.globals, ray, t_max) else {
         return Hit::MISS;
     };
-    let mut hit = closest_hit_inside(scene, &entered.ray, entered.t_max, counters);
+    let mut hit = closest_hit_inside(scene, &entered, counters);
     if hit.is_hit() {
         hit.t += entered.t_moved;
     }
@@ -127,10 +128,10 @@ pub fn closest_hit(
 // Mirror of shaders/traverse.wgsl::closest_hit_inside — change both.
 fn closest_hit_inside(
     scene: &PackedScene,
-    ray: &Ray,
-    t_max: f32,
+    entered: &EnteredRay,
     counters: &mut impl TraversalCounters,
 ) -> Hit {
+    let (ray, t_max) = (&entered.ray, entered.t_max);
     let mut best = Hit {
         t: t_max,
         ..Hit::MISS
@@ -150,12 +151,12 @@ fn closest_hit_inside(
         return if best.is_hit() { best } else { Hit::MISS };
     }
     let grid = scene_grid(g);
-    let Some(mut dda) = dda_setup(&grid, ray, t_max) else {
+    let Some(mut dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return Hit::MISS;
     };
     loop {
         counters.cell_visited();
-        let cell = cell_index(&grid, dda.cell);
+        let cell = cell_index(&grid, IVec3::from(dda.cell));
         let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
         test_items(
             scene,
@@ -224,7 +225,7 @@ pub fn any_hit(
 ) -> bool {
     counters.traversal_started();
     match enter_scene(&scene.globals, ray, t_max) {
-        Some(entered) => any_hit_inside(scene, &entered.ray, entered.t_max, counters),
+        Some(entered) => any_hit_inside(scene, &entered, counters),
         None => false,
     }
 }
@@ -233,10 +234,10 @@ pub fn any_hit(
 // Mirror of shaders/traverse.wgsl::any_hit_inside — change both.
 fn any_hit_inside(
     scene: &PackedScene,
-    ray: &Ray,
-    t_max: f32,
+    entered: &EnteredRay,
     counters: &mut impl TraversalCounters,
 ) -> bool {
+    let (ray, t_max) = (&entered.ray, entered.t_max);
     let mut mailbox = Mailbox::new();
     let g = &scene.globals;
     if g.grid_enabled == 0 {
@@ -245,12 +246,12 @@ fn any_hit_inside(
         return any_item_hit(scene, items, ray, t_max, &mut mailbox, counters);
     }
     let grid = scene_grid(g);
-    let Some(mut dda) = dda_setup(&grid, ray, t_max) else {
+    let Some(mut dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return false;
     };
     loop {
         counters.cell_visited();
-        let cell = cell_index(&grid, dda.cell);
+        let cell = cell_index(&grid, IVec3::from(dda.cell));
         let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
         let items = range.map(|i| scene.cell_items[i as usize]);
         if any_item_hit(scene, items, ray, t_max, &mut mailbox, counters) {
