@@ -4,13 +4,13 @@
 // its cells, testing the triangles listed there with the watertight test.
 
 // #if MESH
-// The triangles a ray has tested lately in one mesh (a ring of TRIANGLE_MAILBOX_SIZE):
-// testing one again would give the same answer, so a triangle listed in several cells is
-// tested once.
+// The triangles a ray has tested in one mesh, as a direct-mapped cache of
+// TRIANGLE_MAILBOX_SIZE slots (triangle number modulo the size): testing one again would
+// give the same answer, so a triangle listed in several cells is tested once unless
+// another took its slot in between.
 // Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox — change both.
 struct TriangleMailbox {
     triangles: array<u32, TRIANGLE_MAILBOX_SIZE>,
-    next: u32,
 }
 
 // Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox::new — change both.
@@ -19,22 +19,18 @@ fn triangle_mailbox_new() -> TriangleMailbox {
     for (var i = 0u; i < TRIANGLE_MAILBOX_SIZE; i++) {
         mailbox.triangles[i] = NO_ITEM;
     }
-    mailbox.next = 0u;
     return mailbox;
 }
 
-// Whether triangle was tested already; if not, it is now remembered.
+// Whether triangle was tested already (as far as its slot remembers); if not, it is now
+// remembered in its slot.
 // Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox::seen — change both.
 fn triangle_mailbox_seen(mailbox: ptr<function, TriangleMailbox>, triangle: u32) -> bool {
-    var seen = false;
-    for (var i = 0u; i < TRIANGLE_MAILBOX_SIZE; i++) {
-        seen = seen || (*mailbox).triangles[i] == triangle;
-    }
-    if seen {
+    let slot = triangle & (TRIANGLE_MAILBOX_SIZE - 1u);
+    if (*mailbox).triangles[slot] == triangle {
         return true;
     }
-    (*mailbox).triangles[(*mailbox).next] = triangle;
-    (*mailbox).next = ((*mailbox).next + 1u) & (TRIANGLE_MAILBOX_SIZE - 1u);
+    (*mailbox).triangles[slot] = triangle;
     return false;
 }
 

@@ -20,10 +20,11 @@ pub const KIND_MESH: u32 = 6;
 /// listed in several top-level cells is traversed once, since its nearest hit does not
 /// depend on the cell.
 pub const MESH_MAILBOX_SIZE: u32 = 8;
-/// Most triangles a ray remembers having tested in one mesh (a per-ray mailbox ring): a
-/// triangle listed in several cells of its mesh's grid (3.7 on average in cow.obj's) is
-/// tested once along a ray. A power of two, so the ring wraps with a mask.
-pub const TRIANGLE_MAILBOX_SIZE: u32 = 16;
+/// Slots of the per-ray triangle mailbox (a direct-mapped cache of the triangles tested in
+/// one mesh): a triangle listed in several cells of its mesh's grid (3.7 on average in
+/// cow.obj's) is tested once along a ray, unless another took its slot in between. A
+/// power of two, so the slot is a mask of the triangle number.
+pub const TRIANGLE_MAILBOX_SIZE: u32 = 32;
 /// The smallest normal f32 (a floor for divisors that must not be zero).
 pub const F32_MIN_POSITIVE: f32 = f32::MIN_POSITIVE;
 

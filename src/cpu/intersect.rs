@@ -167,6 +167,7 @@ fn shear_vertex(r: &TriangleRay, p: Vec3) -> (f32, f32, f32) {
 /// by two triangles are never missed by both: the edge functions are computed
 /// identically from the shared vertices, and a zero counts as inside.
 // Mirror of shaders/intersect.wgsl::intersect_triangle — change both.
+#[inline]
 pub fn intersect_triangle(r: &TriangleRay, p0: Vec3, p1: Vec3, p2: Vec3, t_max: f32) -> Vec3 {
     let miss = Vec3::new(T_MISS, 0.0, 0.0);
     // Calculate the vertices relative to the ray origin, and perform the shear and scale
@@ -178,8 +179,11 @@ pub fn intersect_triangle(r: &TriangleRay, p0: Vec3, p1: Vec3, p2: Vec3, t_max: 
     let u = edge_function(cx, cy, bx, by);
     let v = edge_function(ax, ay, cx, cy);
     let w = edge_function(bx, by, ax, ay);
-    // Perform the edge tests (non-short-circuit: the signs are unpredictable).
-    if (u < 0.0 || v < 0.0 || w < 0.0) & (u > 0.0 || v > 0.0 || w > 0.0) {
+    // Perform the edge tests (bitwise | and &: six compares and no branch, where the
+    // short-circuit form branches on signs a predictor cannot learn).
+    let negative = (u < 0.0) | (v < 0.0) | (w < 0.0);
+    let positive = (u > 0.0) | (v > 0.0) | (w > 0.0);
+    if negative & positive {
         return miss;
     }
     // Calculate the determinant.

@@ -19,15 +19,16 @@ pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &GpuInstance) -> &'a GpuM
     &scene.meshes[inst.params[0] as usize]
 }
 
-/// The triangles a ray has tested lately in one mesh (a ring of `TRIANGLE_MAILBOX_SIZE`).
-/// A triangle spans 3–4 cells of its mesh's grid on average, so a ray often meets it again
-/// in the next cell; testing it again would give the same answer (a miss stays a miss
-/// under the same or a smaller t_max, and a hit is not nearer than itself), so skipping
-/// it changes no result.
+/// The triangles a ray has tested in one mesh, as a direct-mapped cache of
+/// `TRIANGLE_MAILBOX_SIZE` slots (triangle number modulo the size: one compare, where a
+/// ring of the last n tested needs n). A triangle spans 3–4 cells of its mesh's grid on
+/// average, so a ray often meets it again in the next cell; testing it again would give
+/// the same answer (a miss stays a miss under the same or a smaller t_max, and a hit is
+/// not nearer than itself), so skipping it changes no result. Triangles are stored in
+/// Morton order, so the triangles near a ray have nearby numbers and seldom share a slot.
 // Mirror of shaders/traverse_mesh.wgsl::TriangleMailbox — change both.
 pub struct TriangleMailbox {
     triangles: [u32; TRIANGLE_MAILBOX_SIZE as usize],
-    next: usize,
 }
 
 impl TriangleMailbox {
@@ -35,24 +36,18 @@ impl TriangleMailbox {
     pub fn new() -> TriangleMailbox {
         TriangleMailbox {
             triangles: [NO_ITEM; TRIANGLE_MAILBOX_SIZE as usize],
-            next: 0,
         }
     }
 
-    /// Whether `triangle` was tested already; if not, it is now remembered.
+    /// Whether `triangle` was tested already (as far as its slot remembers); if not, it
+    /// is now remembered in its slot.
     // Mirror of shaders/traverse_mesh.wgsl::triangle_mailbox_seen — change both.
     pub fn seen(&mut self, triangle: u32) -> bool {
-        // One pass over the whole ring without early exit: the compiler turns it into a
-        // few vector compares.
-        let seen = self
-            .triangles
-            .iter()
-            .fold(false, |s, &t| s | (t == triangle));
-        if seen {
+        let slot = &mut self.triangles[(triangle & (TRIANGLE_MAILBOX_SIZE - 1)) as usize];
+        if *slot == triangle {
             return true;
         }
-        self.triangles[self.next] = triangle;
-        self.next = (self.next + 1) & (TRIANGLE_MAILBOX_SIZE as usize - 1);
+        *slot = triangle;
         false
     }
 }
