@@ -70,6 +70,10 @@ pub struct BenchArgs {
     /// render --allow-read` (benches/scenes/ read the CS488 corpus's meshes).
     #[arg(long, requires = "trace", value_name = "DIR")]
     pub allow_read: Vec<PathBuf>,
+    /// --trace: the scene's memory budget in MiB, as `glint render --memory-limit`
+    /// (default 2048; a 10⁶-triangle OBJ needs more).
+    #[arg(long, requires = "trace", value_name = "MIB")]
+    pub memory_limit: Option<u64>,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub threads: Option<u32>,

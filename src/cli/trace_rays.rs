@@ -80,17 +80,21 @@ impl ItemNumbering {
 }
 
 /// Runs the script and flattens its first `gr.render` call, at `width`×`height` when
-/// given; the script may read its own folder and `allow_read`.
+/// given; the script may read its own folder and `allow_read`, within `memory_limit`
+/// bytes (None: the default budget).
 pub fn load_first_render(
     path: &Path,
     width: Option<u32>,
     height: Option<u32>,
     allow_read: &[PathBuf],
+    memory_limit: Option<usize>,
 ) -> anyhow::Result<Scene> {
     let mut scene = None;
+    let defaults = ScriptConfig::default();
     let config = ScriptConfig {
         allow_read: allow_read.to_vec(),
-        ..ScriptConfig::default()
+        memory_limit: memory_limit.unwrap_or(defaults.memory_limit),
+        ..defaults
     };
     run_scene_file(path, &config, &mut |graph, request| {
         if scene.is_none() {
