@@ -47,10 +47,10 @@ struct Dda {
 }
 
 // Clips the ray to the grid bounds and finds its first cell, or valid = false if it
-// misses them.
+// misses them. inv is safe_rcp3(ray.dir), already computed by enter_bounds for the same
+// direction.
 // Mirror of src/cpu/dda.rs::dda_setup — change both.
-fn dda_setup(grid: GridView, ray: Ray, t_max: f32) -> Dda {
-    let inv = safe_rcp3(ray.dir);
+fn dda_setup(grid: GridView, ray: Ray, inv: vec3<f32>, t_max: f32) -> Dda {
     let t0 = (grid.min - ray.origin) * inv;
     let t1 = (grid.max - ray.origin) * inv;
     let t_enter = max(max_element(min(t0, t1)), 0.0);
@@ -61,7 +61,9 @@ fn dda_setup(grid: GridView, ray: Ray, t_max: f32) -> Dda {
         return dda;
     }
     let p = ray.origin + ray.dir * t_enter;
-    let cell = clamp(vec3<i32>(floor((p - grid.min) / grid.cell_size)), vec3<i32>(0), grid.dims - 1);
+    // Truncation, not floor: the two differ only below 0, which the clamp takes to cell 0
+    // either way (as on the CPU, where floor is a library call).
+    let cell = clamp(vec3<i32>((p - grid.min) / grid.cell_size), vec3<i32>(0), grid.dims - 1);
     var step = vec3<i32>(0);
     var t_next = vec3<f32>(0.0);
     var t_delta = vec3<f32>(0.0);
@@ -132,6 +134,8 @@ struct EnteredRay {
     ray: Ray,
     t_moved: f32,
     t_max: f32,
+    // safe_rcp3(ray.dir), for dda_setup (the direction does not move).
+    inv_dir: vec3<f32>,
     valid: bool,
 }
 
@@ -146,13 +150,13 @@ fn enter_bounds(lo: vec3<f32>, hi: vec3<f32>, ray: Ray, t_max: f32, margin: f32)
     let t_enter = max(max_element(min(t0, t1)), 0.0);
     let t_exit = min(min_element(max(t0, t1)), t_max);
     if t_enter > t_exit {
-        return EnteredRay(ray, 0.0, t_max, false);
+        return EnteredRay(ray, 0.0, t_max, inv, false);
     }
     let t_move = t_enter - margin;
     if t_move <= 0.0 {
-        return EnteredRay(ray, 0.0, t_max, true);
+        return EnteredRay(ray, 0.0, t_max, inv, true);
     }
-    return EnteredRay(Ray(ray.origin + ray.dir * t_move, ray.dir), t_move, t_max - t_move, true);
+    return EnteredRay(Ray(ray.origin + ray.dir * t_move, ray.dir), t_move, t_max - t_move, inv, true);
 }
 
 // The ray moved to where it enters the scene bounds (world rays have unit directions, so

@@ -146,13 +146,25 @@ fn triangle_ray_setup(origin: vec3<f32>, d: vec3<f32>) -> TriangleRay {
 // p.x·q.y − p.y·q.x for the directed edge (p, q) in the sheared plane, always evaluated
 // with the endpoints in one canonical order and negated when they come swapped, so the two
 // triangles sharing an edge compute exactly opposite values (watertightness) even where
-// the shader compiler fuses one of the products into an FMA (llvmpipe does).
+// the shader compiler fuses one of the products into an FMA (llvmpipe does). Selects, as
+// on the CPU (where they spare an unpredictable branch): one expression, so any fusion is
+// the same for both triangles.
 // Mirror of src/cpu/intersect.rs::edge_function — change both.
 fn edge_function(px: f32, py: f32, qx: f32, qy: f32) -> f32 {
-    if px < qx || (px == qx && py < qy) {
-        return px * qy - py * qx;
-    }
-    return -(qx * py - qy * px);
+    let canonical = px < qx || (px == qx && py < qy);
+    let s = select(vec2<f32>(qx, qy), vec2<f32>(px, py), canonical);
+    let e = select(vec2<f32>(px, py), vec2<f32>(qx, qy), canonical);
+    let r = s.x * e.y - s.y * e.x;
+    return select(-r, r, canonical);
+}
+
+// The triangle vertex p relative to the ray origin, sheared: (x, y) in the plane where
+// the ray is the +z axis, and the unscaled z (a[kz]).
+// Mirror of src/cpu/intersect.rs::shear_vertex — change both.
+fn shear_vertex(r: TriangleRay, p: vec3<f32>) -> vec3<f32> {
+    let a = p - r.origin;
+    let az = a[r.kz];
+    return vec3<f32>(a[r.kx] - r.shear.x * az, a[r.ky] - r.shear.y * az, az);
 }
 
 // (t, b1, b2) of the hit with the triangle (p0, p1, p2) in (0, t_max), b1 and b2 the
@@ -162,21 +174,15 @@ fn edge_function(px: f32, py: f32, qx: f32, qy: f32) -> f32 {
 // Mirror of src/cpu/intersect.rs::intersect_triangle — change both.
 fn intersect_triangle(r: TriangleRay, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32>, t_max: f32) -> vec3<f32> {
     let miss = vec3<f32>(T_MISS, 0.0, 0.0);
-    // Calculate the vertices relative to the ray origin.
-    let a = p0 - r.origin;
-    let b = p1 - r.origin;
-    let c = p2 - r.origin;
-    // Perform the shear and scale of the vertices.
-    let ax = a[r.kx] - r.shear.x * a[r.kz];
-    let ay = a[r.ky] - r.shear.y * a[r.kz];
-    let bx = b[r.kx] - r.shear.x * b[r.kz];
-    let by = b[r.ky] - r.shear.y * b[r.kz];
-    let cx = c[r.kx] - r.shear.x * c[r.kz];
-    let cy = c[r.ky] - r.shear.y * c[r.kz];
+    // Calculate the vertices relative to the ray origin, and perform the shear and scale
+    // of the vertices.
+    let a = shear_vertex(r, p0);
+    let b = shear_vertex(r, p1);
+    let c = shear_vertex(r, p2);
     // Calculate the scaled barycentric coordinates.
-    let u = edge_function(cx, cy, bx, by);
-    let v = edge_function(ax, ay, cx, cy);
-    let w = edge_function(bx, by, ax, ay);
+    let u = edge_function(c.x, c.y, b.x, b.y);
+    let v = edge_function(a.x, a.y, c.x, c.y);
+    let w = edge_function(b.x, b.y, a.x, a.y);
     // Perform the edge tests.
     if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
         return miss;
@@ -187,9 +193,9 @@ fn intersect_triangle(r: TriangleRay, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32
         return miss;
     }
     // Calculate the scaled z-coordinates of the vertices and the scaled hit distance.
-    let az = r.shear.z * a[r.kz];
-    let bz = r.shear.z * b[r.kz];
-    let cz = r.shear.z * c[r.kz];
+    let az = r.shear.z * a.z;
+    let bz = r.shear.z * b.z;
+    let cz = r.shear.z * c.z;
     let t_scaled = u * az + v * bz + w * cz;
     let t = t_scaled / det;
     if !(t > 0.0 && t < t_max) {

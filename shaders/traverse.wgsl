@@ -2,51 +2,58 @@
 // 3D-DDA (Amanatides & Woo 1987) when the scene has one (GRID), else by brute force. The
 // scene grid's items are instances: analytic primitives, CSG objects and mesh instances,
 // the last traversed through their mesh's own grid (traverse_mesh.wgsl). A closest hit
-// found in a cell is accepted only if it lies inside that cell; a mesh instance met again
-// in a later cell is not traversed again (Mailbox). Unlike the CPU tracer, the choice
-// between grid and brute force is made when the shader is specialised: the GRID feature
-// is set exactly when `grid_enabled` is 1.
+// found in a cell is accepted only if it lies inside that cell; an item met again in a
+// later cell (a mesh instance, a large sphere) is not tested again (Mailbox). Unlike the
+// CPU tracer, the choice between grid and brute force is made when the shader is
+// specialised: the GRID feature is set exactly when `grid_enabled` is 1.
 
-// The mesh instances a ray has traversed lately (a ring of MESH_MAILBOX_SIZE).
+// The items a ray has tested, as a direct-mapped cache of ITEM_MAILBOX_SIZE slots (item
+// number modulo the size). Only kinds for which a second test is sure to change nothing
+// go in (mailboxed).
 // Mirror of src/cpu/traverse.rs::Mailbox — change both.
 struct Mailbox {
-    items: array<u32, MESH_MAILBOX_SIZE>,
-    next: u32,
+    items: array<u32, ITEM_MAILBOX_SIZE>,
 }
 
 // Mirror of src/cpu/traverse.rs::Mailbox::new — change both.
 fn mailbox_new() -> Mailbox {
     var mailbox: Mailbox;
-    for (var i = 0u; i < MESH_MAILBOX_SIZE; i++) {
+    for (var i = 0u; i < ITEM_MAILBOX_SIZE; i++) {
         mailbox.items[i] = NO_ITEM;
     }
-    mailbox.next = 0u;
     return mailbox;
 }
 
-// Whether item was traversed already; if not, it is now remembered.
+// Whether item was tested already (as far as its slot remembers); if not, it is now
+// remembered in its slot.
 // Mirror of src/cpu/traverse.rs::Mailbox::seen — change both.
 fn mailbox_seen(mailbox: ptr<function, Mailbox>, item: u32) -> bool {
-    for (var i = 0u; i < MESH_MAILBOX_SIZE; i++) {
-        if (*mailbox).items[i] == item {
-            return true;
-        }
+    let slot = item & (ITEM_MAILBOX_SIZE - 1u);
+    if (*mailbox).items[slot] == item {
+        return true;
     }
-    (*mailbox).items[(*mailbox).next] = item;
-    (*mailbox).next = ((*mailbox).next + 1u) % MESH_MAILBOX_SIZE;
+    (*mailbox).items[slot] = item;
     return false;
 }
 
-// Tests one item: its hit (t = T_MISS on a miss). A mesh instance in the mailbox is a
-// miss (its hit, if any, is already the best).
+// Whether items of kind go through the mailbox: those whose answer is the nearest end of
+// intervals found without t_max (sphere, box, cylinder, cone; a mesh's nearest triangle).
+// A torus and a CSG object use t_max inside their search: they are tested in every cell.
+// Mirror of src/cpu/traverse.rs::mailboxed — change both.
+fn mailboxed(kind: u32) -> bool {
+    return kind != KIND_TORUS && kind != KIND_CSG;
+}
+
+// Tests one item: its hit (t = T_MISS on a miss). An item in the mailbox is a miss (its
+// hit, if any, is already the best).
 // Mirror of src/cpu/traverse.rs::intersect_item — change both.
 fn intersect_item(item: u32, ray: Ray, t_max: f32, mailbox: ptr<function, Mailbox>) -> Hit {
     let inst = instances[item];
+    if mailboxed(inst.kind) && mailbox_seen(mailbox, item) {
+        return hit_miss();
+    }
 // #if MESH
     if inst.kind == KIND_MESH {
-        if mailbox_seen(mailbox, item) {
-            return hit_miss();
-        }
         return intersect_mesh(inst, item, ray, t_max);
     }
 // #endif
@@ -95,7 +102,7 @@ fn closest_hit(ray: Ray, t_max: f32) -> Hit {
     if !entered.valid {
         return hit_miss();
     }
-    var hit = closest_hit_inside(entered.ray, entered.t_max);
+    var hit = closest_hit_inside(entered);
     if is_hit(hit) {
         hit.t += entered.t_moved;
     }
@@ -104,13 +111,15 @@ fn closest_hit(ray: Ray, t_max: f32) -> Hit {
 
 // Nearest hit along a ray that starts inside the scene bounds (see enter_scene).
 // Mirror of src/cpu/traverse.rs::closest_hit_inside — change both.
-fn closest_hit_inside(ray: Ray, t_max: f32) -> Hit {
+fn closest_hit_inside(entered: EnteredRay) -> Hit {
+    let ray = entered.ray;
+    let t_max = entered.t_max;
     var best = hit_miss();
     best.t = t_max;
     var mailbox = mailbox_new();
 // #if GRID
     let grid = scene_grid();
-    var dda = dda_setup(grid, ray, t_max);
+    var dda = dda_setup(grid, ray, entered.inv_dir, t_max);
     if !dda.valid {
         return hit_miss();
     }
@@ -132,8 +141,8 @@ fn closest_hit_inside(ray: Ray, t_max: f32) -> Hit {
     return hit_miss();
 }
 
-// Whether item `item` is hit in (0, t_max); a mesh instance in the mailbox is not tested
-// again (it was not hit, or the search would have stopped).
+// Whether item `item` is hit in (0, t_max); an item in the mailbox is not tested again
+// (it was not hit, or the search would have stopped).
 // Mirror of src/cpu/traverse.rs::item_occludes — change both.
 fn item_occludes(item: u32, ray: Ray, t_max: f32, mailbox: ptr<function, Mailbox>) -> bool {
 // #if MESH
@@ -163,16 +172,18 @@ fn any_hit(ray: Ray, t_max: f32) -> bool {
     if !entered.valid {
         return false;
     }
-    return any_hit_inside(entered.ray, entered.t_max);
+    return any_hit_inside(entered);
 }
 
 // Whether anything blocks a ray that starts inside the scene bounds.
 // Mirror of src/cpu/traverse.rs::any_hit_inside — change both.
-fn any_hit_inside(ray: Ray, t_max: f32) -> bool {
+fn any_hit_inside(entered: EnteredRay) -> bool {
+    let ray = entered.ray;
+    let t_max = entered.t_max;
     var mailbox = mailbox_new();
 // #if GRID
     let grid = scene_grid();
-    var dda = dda_setup(grid, ray, t_max);
+    var dda = dda_setup(grid, ray, entered.inv_dir, t_max);
     if !dda.valid {
         return false;
     }

@@ -4,6 +4,36 @@
 // its cells, testing the triangles listed there with the watertight test.
 
 // #if MESH
+// The triangles a ray has tested in one mesh, as a direct-mapped cache of
+// TRIANGLE_MAILBOX_SIZE slots (triangle number modulo the size): testing one again would
+// give the same answer, so a triangle listed in several cells is tested once unless
+// another took its slot in between.
+// Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox — change both.
+struct TriangleMailbox {
+    triangles: array<u32, TRIANGLE_MAILBOX_SIZE>,
+}
+
+// Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox::new — change both.
+fn triangle_mailbox_new() -> TriangleMailbox {
+    var mailbox: TriangleMailbox;
+    for (var i = 0u; i < TRIANGLE_MAILBOX_SIZE; i++) {
+        mailbox.triangles[i] = NO_ITEM;
+    }
+    return mailbox;
+}
+
+// Whether triangle was tested already (as far as its slot remembers); if not, it is now
+// remembered in its slot.
+// Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox::seen — change both.
+fn triangle_mailbox_seen(mailbox: ptr<function, TriangleMailbox>, triangle: u32) -> bool {
+    let slot = triangle & (TRIANGLE_MAILBOX_SIZE - 1u);
+    if (*mailbox).triangles[slot] == triangle {
+        return true;
+    }
+    (*mailbox).triangles[slot] = triangle;
+    return false;
+}
+
 // The mesh of a KIND_MESH instance.
 // Mirror of src/cpu/traverse_mesh.rs::instance_mesh — change both.
 fn instance_mesh(inst: GpuInstance) -> GpuMesh {
@@ -20,17 +50,22 @@ fn intersect_mesh(inst: GpuInstance, item: u32, ray: Ray, t_max: f32) -> Hit {
         return hit_miss();
     }
     let grid = mesh_grid(mesh);
-    var dda = dda_setup(grid, entered.ray, entered.t_max);
+    var dda = dda_setup(grid, entered.ray, entered.inv_dir, entered.t_max);
     if !dda.valid {
         return hit_miss();
     }
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
+    var mailbox = triangle_mailbox_new();
     var best = hit_miss();
     best.t = entered.t_max;
     loop {
         let cell = cell_index(grid, dda.cell);
         for (var i = cell_start[cell]; i < cell_start[cell + 1u]; i++) {
-            let triangle = mesh.first_triangle + cell_items[i];
+            let local = cell_items[i];
+            if triangle_mailbox_seen(&mailbox, local) {
+                continue;
+            }
+            let triangle = mesh.first_triangle + local;
             let p = triangle_vertices(triangles[triangle]);
             let h = intersect_triangle(tri_ray, p[0], p[1], p[2], best.t);
             if h.x < best.t {
@@ -60,16 +95,21 @@ fn mesh_occludes(inst: GpuInstance, ray: Ray, t_max: f32) -> bool {
         return false;
     }
     let grid = mesh_grid(mesh);
-    var dda = dda_setup(grid, entered.ray, entered.t_max);
+    var dda = dda_setup(grid, entered.ray, entered.inv_dir, entered.t_max);
     if !dda.valid {
         return false;
     }
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
+    var mailbox = triangle_mailbox_new();
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
     loop {
         let cell = cell_index(grid, dda.cell);
         for (var i = cell_start[cell]; i < cell_start[cell + 1u]; i++) {
-            let p = triangle_vertices(triangles[mesh.first_triangle + cell_items[i]]);
+            let local = cell_items[i];
+            if triangle_mailbox_seen(&mailbox, local) {
+                continue;
+            }
+            let p = triangle_vertices(triangles[mesh.first_triangle + local]);
             if intersect_triangle(tri_ray, p[0], p[1], p[2], entered.t_max).x < entered.t_max {
                 return true;
             }

@@ -16,10 +16,16 @@ pub const KIND_CSG: u32 = 5;
 /// in the mesh's own space, are traversed through the mesh's own grid (see
 /// `cpu::traverse_mesh`).
 pub const KIND_MESH: u32 = 6;
-/// Most mesh instances a ray remembers having traversed (a per-ray mailbox): an instance
-/// listed in several top-level cells is traversed once, since its nearest hit does not
-/// depend on the cell.
-pub const MESH_MAILBOX_SIZE: u32 = 8;
+/// Slots of the per-ray item mailbox (a direct-mapped cache of the scene-grid items a ray
+/// has tested): an item listed in several scene cells (a mesh instance, a large sphere) is
+/// tested once per ray, since its nearest hit does not depend on the cell. A power of two,
+/// so the slot is a mask of the item number.
+pub const ITEM_MAILBOX_SIZE: u32 = 8;
+/// Slots of the per-ray triangle mailbox (a direct-mapped cache of the triangles tested in
+/// one mesh): a triangle listed in several cells of its mesh's grid (3.7 on average in
+/// cow.obj's) is tested once along a ray, unless another took its slot in between. A
+/// power of two, so the slot is a mask of the triangle number.
+pub const TRIANGLE_MAILBOX_SIZE: u32 = 32;
 /// The smallest normal f32 (a floor for divisors that must not be zero).
 pub const F32_MIN_POSITIVE: f32 = f32::MIN_POSITIVE;
 
@@ -178,7 +184,8 @@ pub fn wgsl_prelude() -> String {
         ("KIND_TORUS", KIND_TORUS),
         ("KIND_CSG", KIND_CSG),
         ("KIND_MESH", KIND_MESH),
-        ("MESH_MAILBOX_SIZE", MESH_MAILBOX_SIZE),
+        ("ITEM_MAILBOX_SIZE", ITEM_MAILBOX_SIZE),
+        ("TRIANGLE_MAILBOX_SIZE", TRIANGLE_MAILBOX_SIZE),
         ("CSG_OP_SHIFT", CSG_OP_SHIFT),
         ("CSG_INDEX_MASK", CSG_INDEX_MASK),
         ("CSG_LEAF", CSG_LEAF),

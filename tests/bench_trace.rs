@@ -136,7 +136,7 @@ fn hits_equal_brute_force_over_the_same_rays() {
     let text = stdout_of(&out);
 
     // Brute force: the same scene with the grid off, every item against every ray.
-    let mut scene = load_first_render(&dir.join("scene.lua"), None, None).unwrap();
+    let mut scene = load_first_render(&dir.join("scene.lua"), None, None, &[], None).unwrap();
     scene.options.grid = GridMode::Off;
     let brute = pack(&scene).unwrap();
     assert_eq!(brute.globals.grid_enabled, 0);

@@ -66,6 +66,14 @@ pub struct BenchArgs {
     /// Embree harness (`benches/embree/`; format in `bench::trace_dump`).
     #[arg(long, requires = "trace", value_name = "FILE")]
     pub dump_rays: Option<PathBuf>,
+    /// --trace: a folder the scene may read besides its own (repeatable), as `glint
+    /// render --allow-read` (benches/scenes/ read the CS488 corpus's meshes).
+    #[arg(long, requires = "trace", value_name = "DIR")]
+    pub allow_read: Vec<PathBuf>,
+    /// --trace: the scene's memory budget in MiB, as `glint render --memory-limit`
+    /// (default 2048; a 10⁶-triangle OBJ needs more).
+    #[arg(long, requires = "trace", value_name = "MIB")]
+    pub memory_limit: Option<u64>,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub threads: Option<u32>,

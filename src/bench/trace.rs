@@ -29,10 +29,20 @@ pub struct TraceBenchArgs {
     pub height: Option<u32>,
     pub repeat: usize,
     pub dump_rays: Option<PathBuf>,
+    /// Folders the scene may read besides its own.
+    pub allow_read: Vec<PathBuf>,
+    /// The scene's memory budget in bytes (None: the default).
+    pub memory_limit: Option<usize>,
 }
 
 pub fn bench_trace(args: &TraceBenchArgs) -> anyhow::Result<()> {
-    let scene = load_first_render(&args.scene, args.width, args.height)?;
+    let scene = load_first_render(
+        &args.scene,
+        args.width,
+        args.height,
+        &args.allow_read,
+        args.memory_limit,
+    )?;
     let build_start = Instant::now();
     let packed = pack_scene(&scene)?;
     let build = build_start.elapsed();

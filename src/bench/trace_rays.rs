@@ -13,7 +13,7 @@ use crate::scene::flatten::{flatten, Scene};
 use crate::scene::lua::{run_scene_file, ScriptConfig};
 use glam::Vec3;
 use rayon::prelude::*;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// A shadow ray: towards a light, blocked if anything lies in (0, t_max).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -80,14 +80,23 @@ impl ItemNumbering {
 }
 
 /// Runs the script and flattens its first `gr.render` call, at `width`×`height` when
-/// given.
+/// given; the script may read its own folder and `allow_read`, within `memory_limit`
+/// bytes (None: the default budget).
 pub fn load_first_render(
     path: &Path,
     width: Option<u32>,
     height: Option<u32>,
+    allow_read: &[PathBuf],
+    memory_limit: Option<usize>,
 ) -> anyhow::Result<Scene> {
     let mut scene = None;
-    run_scene_file(path, &ScriptConfig::default(), &mut |graph, request| {
+    let defaults = ScriptConfig::default();
+    let config = ScriptConfig {
+        allow_read: allow_read.to_vec(),
+        memory_limit: memory_limit.unwrap_or(defaults.memory_limit),
+        ..defaults
+    };
+    run_scene_file(path, &config, &mut |graph, request| {
         if scene.is_none() {
             let mut request = request.clone();
             request.width = width.unwrap_or(request.width);

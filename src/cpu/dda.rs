@@ -2,7 +2,7 @@
 //! grid (placement in `GpuGlobals`) or a mesh's own grid (in its `GpuMesh`, mesh space).
 //! Also the move of a ray's origin to where it enters a box, which both levels use.
 
-use super::math::safe_rcp3;
+use super::math::{safe_rcp3, Axis};
 use super::ray::Ray;
 use crate::constants::{ENTER_MARGIN_RELATIVE, F32_MIN_POSITIVE, T_MISS};
 use crate::pack::{GpuGlobals, GpuMesh};
@@ -53,20 +53,22 @@ pub fn mesh_grid(mesh: &GpuMesh) -> GridView {
 }
 
 /// A grid's state for one ray: current cell, per-axis step, next boundary t and t per cell.
+/// (Arrays rather than glam vectors: `dda_step` indexes them by a runtime [`Axis`].)
 // Mirror of shaders/dda.wgsl::Dda — change both.
 #[derive(Clone, Copy, Debug)]
 pub struct Dda {
-    pub cell: IVec3,
-    pub step: IVec3,
-    pub t_next: Vec3,
-    pub t_delta: Vec3,
+    pub cell: [i32; 3],
+    pub step: [i32; 3],
+    pub t_next: [f32; 3],
+    pub t_delta: [f32; 3],
     pub t_exit: f32,
 }
 
 /// Clips the ray to the grid bounds and finds its first cell, or None if it misses them.
+/// `inv` is `safe_rcp3(ray.dir)`, already computed by `enter_bounds` for the same
+/// direction (the divisions are a good part of a set-up).
 // Mirror of shaders/dda.wgsl::dda_setup — change both.
-pub fn dda_setup(grid: &GridView, ray: &Ray, t_max: f32) -> Option<Dda> {
-    let inv = safe_rcp3(ray.dir);
+pub fn dda_setup(grid: &GridView, ray: &Ray, inv: Vec3, t_max: f32) -> Option<Dda> {
     let t0 = (grid.min - ray.origin) * inv;
     let t1 = (grid.max - ray.origin) * inv;
     let t_enter = t0.min(t1).max_element().max(0.0);
@@ -75,34 +77,36 @@ pub fn dda_setup(grid: &GridView, ray: &Ray, t_max: f32) -> Option<Dda> {
         return None;
     }
     let p = ray.origin + ray.dir * t_enter;
+    // Truncation, not floor: the two differ only below 0, which the clamp takes to cell 0
+    // either way (and floor is a library call on x86-64 without SSE4.1).
     let cell = ((p - grid.min) / grid.cell_size)
-        .floor()
         .as_ivec3()
-        .clamp(IVec3::ZERO, grid.dims - 1);
-    let mut step = IVec3::ZERO;
-    let mut t_next = Vec3::ZERO;
-    let mut t_delta = Vec3::ZERO;
+        .clamp(IVec3::ZERO, grid.dims - 1)
+        .to_array();
+    let (dir, origin, inv) = (ray.dir.to_array(), ray.origin.to_array(), inv.to_array());
+    let (min, cell_size) = (grid.min.to_array(), grid.cell_size.to_array());
+    let mut dda = Dda {
+        cell,
+        step: [0; 3],
+        t_next: [0.0; 3],
+        t_delta: [0.0; 3],
+        t_exit,
+    };
     for axis in 0..3 {
-        if ray.dir[axis] == 0.0 {
+        if dir[axis] == 0.0 {
             // Parallel to this axis's planes: never step along it.
-            step[axis] = 0;
-            t_next[axis] = T_MISS;
-            t_delta[axis] = T_MISS;
+            dda.step[axis] = 0;
+            dda.t_next[axis] = T_MISS;
+            dda.t_delta[axis] = T_MISS;
         } else {
-            step[axis] = if ray.dir[axis] > 0.0 { 1 } else { -1 };
-            let boundary_cell = cell[axis] + if ray.dir[axis] > 0.0 { 1 } else { 0 };
-            let boundary = grid.min[axis] + boundary_cell as f32 * grid.cell_size[axis];
-            t_next[axis] = (boundary - ray.origin[axis]) * inv[axis];
-            t_delta[axis] = grid.cell_size[axis] * inv[axis].abs();
+            dda.step[axis] = if dir[axis] > 0.0 { 1 } else { -1 };
+            let boundary_cell = cell[axis] + if dir[axis] > 0.0 { 1 } else { 0 };
+            let boundary = min[axis] + boundary_cell as f32 * cell_size[axis];
+            dda.t_next[axis] = (boundary - origin[axis]) * inv[axis];
+            dda.t_delta[axis] = cell_size[axis] * inv[axis].abs();
         }
     }
-    Some(Dda {
-        cell,
-        step,
-        t_next,
-        t_delta,
-        t_exit,
-    })
+    Some(dda)
 }
 
 /// Index of the DDA's current cell in `cell_start` (x fastest).
@@ -114,13 +118,13 @@ pub fn cell_index(grid: &GridView, cell: IVec3) -> usize {
 
 /// Index of the smallest component.
 // Mirror of shaders/dda.wgsl::min_axis — change both.
-pub fn min_axis(v: Vec3) -> usize {
+pub fn min_axis(v: Vec3) -> Axis {
     if v.x <= v.y && v.x <= v.z {
-        0
+        Axis::X
     } else if v.y <= v.z {
-        1
+        Axis::Y
     } else {
-        2
+        Axis::Z
     }
 }
 
@@ -128,13 +132,13 @@ pub fn min_axis(v: Vec3) -> usize {
 /// the ray leaves the grid or passes t_exit there.
 // Mirror of shaders/dda.wgsl::dda_step — change both.
 pub fn dda_step(grid: &GridView, dda: &mut Dda) -> Option<f32> {
-    let axis = min_axis(dda.t_next);
+    let axis = min_axis(Vec3::from(dda.t_next)) as usize;
     let t_cell_exit = dda.t_next[axis];
     if t_cell_exit >= dda.t_exit {
         return None;
     }
     dda.cell[axis] += dda.step[axis];
-    if dda.cell[axis] < 0 || dda.cell[axis] >= grid.dims[axis] {
+    if dda.cell[axis] < 0 || dda.cell[axis] >= grid.dims.to_array()[axis] {
         return None;
     }
     dda.t_next[axis] += dda.t_delta[axis];
@@ -150,6 +154,8 @@ pub struct EnteredRay {
     pub t_moved: f32,
     /// The caller's t_max, measured from the moved origin.
     pub t_max: f32,
+    /// `safe_rcp3(ray.dir)`, for `dda_setup` (the direction does not move).
+    pub inv_dir: Vec3,
 }
 
 /// A ray that starts outside the box [min, max], moved to `margin` (in t) before where
@@ -180,6 +186,7 @@ pub fn enter_bounds(
             ray: *ray,
             t_moved: 0.0,
             t_max,
+            inv_dir: inv,
         });
     }
     Some(EnteredRay {
@@ -189,6 +196,7 @@ pub fn enter_bounds(
         },
         t_moved: t_move,
         t_max: t_max - t_move,
+        inv_dir: inv,
     })
 }
 

@@ -3,7 +3,7 @@
 //! unnormalised direction, so t is the world-space t.
 
 use super::cylinder_cone::{intersect_cone, intersect_cylinder};
-use super::math::safe_rcp3;
+use super::math::{safe_rcp3, Axis};
 use super::torus::intersect_torus;
 use crate::constants::{KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, T_MISS};
 use crate::pack::{GpuInstance, GpuTriangle};
@@ -83,13 +83,15 @@ pub fn intersect_box(o: Vec3, d: Vec3, t_max: f32) -> f32 {
 
 /// Per-ray set-up of the watertight triangle test (Woop, Benthin & Wald, JCGT 2013):
 /// the dominant axis of the direction becomes z, and a shear maps the direction to +z.
+/// Computed once per ray (per mesh, in its space), so the per-triangle test only reads
+/// the permutation (`kx`, `ky`, `kz`) and the shear (Sx, Sy, Sz).
 // Mirror of shaders/intersect.wgsl::TriangleRay — change both.
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleRay {
     pub origin: Vec3,
-    pub kx: usize,
-    pub ky: usize,
-    pub kz: usize,
+    pub kx: Axis,
+    pub ky: Axis,
+    pub kz: Axis,
     pub shear: Vec3,
 }
 
@@ -98,20 +100,22 @@ pub fn triangle_ray_setup(origin: Vec3, d: Vec3) -> TriangleRay {
     // Calculate the dimension where the ray direction is maximal.
     let ad = d.abs();
     let kz = if ad.x >= ad.y && ad.x >= ad.z {
-        0
+        Axis::X
     } else if ad.y >= ad.z {
-        1
+        Axis::Y
     } else {
-        2
+        Axis::Z
     };
-    let mut kx = (kz + 1) % 3;
-    let mut ky = (kx + 1) % 3;
+    let mut kx = kz.next();
+    let mut ky = kx.next();
+    let d = d.to_array();
     // Swap kx and ky to preserve the winding direction of triangles.
-    if d[kz] < 0.0 {
+    if d[kz as usize] < 0.0 {
         std::mem::swap(&mut kx, &mut ky);
     }
     // Calculate the shear constants.
-    let shear = Vec3::new(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+    let (dx, dy, dz) = (d[kx as usize], d[ky as usize], d[kz as usize]);
+    let shear = Vec3::new(dx / dz, dy / dz, 1.0 / dz);
     TriangleRay {
         origin,
         kx,
@@ -126,14 +130,36 @@ pub fn triangle_ray_setup(origin: Vec3, d: Vec3) -> TriangleRay {
 /// two triangles sharing an edge compute exactly opposite values (watertightness). In
 /// IEEE arithmetic a·d − b·c = −(c·b − d·a) anyway, so this changes no CPU result; but a
 /// GPU compiler may fuse one of the products into an FMA, and without the fixed order the
-/// two sides of an edge would round differently and let rays slip between them.
+/// two sides of an edge would round differently and let rays slip between them. Written
+/// as selects rather than two branches (the same products, so the same values): which
+/// endpoint comes first is a coin toss per edge, which a branch predictor cannot learn.
 // Mirror of shaders/intersect.wgsl::edge_function — change both.
 pub fn edge_function(px: f32, py: f32, qx: f32, qy: f32) -> f32 {
-    if px < qx || (px == qx && py < qy) {
-        px * qy - py * qx
+    let canonical = px < qx || (px == qx && py < qy);
+    let (sx, sy, ex, ey) = if canonical {
+        (px, py, qx, qy)
     } else {
-        -(qx * py - qy * px)
+        (qx, qy, px, py)
+    };
+    let e = sx * ey - sy * ex;
+    if canonical {
+        e
+    } else {
+        -e
     }
+}
+
+/// The triangle vertex `p` relative to the ray origin, sheared: (x, y) in the plane
+/// where the ray is the +z axis, and the unscaled z (`a[kz]`).
+// Mirror of shaders/intersect.wgsl::shear_vertex — change both.
+fn shear_vertex(r: &TriangleRay, p: Vec3) -> (f32, f32, f32) {
+    let a = (p - r.origin).to_array();
+    let az = a[r.kz as usize];
+    (
+        a[r.kx as usize] - r.shear.x * az,
+        a[r.ky as usize] - r.shear.y * az,
+        az,
+    )
 }
 
 /// (t, b1, b2) of the hit with the triangle (p0, p1, p2) in (0, t_max), b1 and b2 the
@@ -141,25 +167,23 @@ pub fn edge_function(px: f32, py: f32, qx: f32, qy: f32) -> f32 {
 /// by two triangles are never missed by both: the edge functions are computed
 /// identically from the shared vertices, and a zero counts as inside.
 // Mirror of shaders/intersect.wgsl::intersect_triangle — change both.
+#[inline]
 pub fn intersect_triangle(r: &TriangleRay, p0: Vec3, p1: Vec3, p2: Vec3, t_max: f32) -> Vec3 {
     let miss = Vec3::new(T_MISS, 0.0, 0.0);
-    // Calculate the vertices relative to the ray origin.
-    let a = p0 - r.origin;
-    let b = p1 - r.origin;
-    let c = p2 - r.origin;
-    // Perform the shear and scale of the vertices.
-    let ax = a[r.kx] - r.shear.x * a[r.kz];
-    let ay = a[r.ky] - r.shear.y * a[r.kz];
-    let bx = b[r.kx] - r.shear.x * b[r.kz];
-    let by = b[r.ky] - r.shear.y * b[r.kz];
-    let cx = c[r.kx] - r.shear.x * c[r.kz];
-    let cy = c[r.ky] - r.shear.y * c[r.kz];
+    // Calculate the vertices relative to the ray origin, and perform the shear and scale
+    // of the vertices.
+    let (ax, ay, a_kz) = shear_vertex(r, p0);
+    let (bx, by, b_kz) = shear_vertex(r, p1);
+    let (cx, cy, c_kz) = shear_vertex(r, p2);
     // Calculate the scaled barycentric coordinates.
     let u = edge_function(cx, cy, bx, by);
     let v = edge_function(ax, ay, cx, cy);
     let w = edge_function(bx, by, ax, ay);
-    // Perform the edge tests.
-    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+    // Perform the edge tests (bitwise | and &: six compares and no branch, where the
+    // short-circuit form branches on signs a predictor cannot learn).
+    let negative = (u < 0.0) | (v < 0.0) | (w < 0.0);
+    let positive = (u > 0.0) | (v > 0.0) | (w > 0.0);
+    if negative & positive {
         return miss;
     }
     // Calculate the determinant.
@@ -168,9 +192,9 @@ pub fn intersect_triangle(r: &TriangleRay, p0: Vec3, p1: Vec3, p2: Vec3, t_max: 
         return miss;
     }
     // Calculate the scaled z-coordinates of the vertices and the scaled hit distance.
-    let az = r.shear.z * a[r.kz];
-    let bz = r.shear.z * b[r.kz];
-    let cz = r.shear.z * c[r.kz];
+    let az = r.shear.z * a_kz;
+    let bz = r.shear.z * b_kz;
+    let cz = r.shear.z * c_kz;
     let t_scaled = u * az + v * bz + w * cz;
     let t = t_scaled / det;
     if !(t > 0.0 && t < t_max) {

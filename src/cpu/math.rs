@@ -19,3 +19,25 @@ pub fn safe_rcp(x: f32) -> f32 {
 pub fn safe_rcp3(v: Vec3) -> Vec3 {
     Vec3::new(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z))
 }
+
+/// A coordinate axis. As an enum it indexes a `[f32; 3]` with no bounds check (its values
+/// are known to be 0..=2), where glam's `Vec3[usize]` is a match with a panic arm: the
+/// hot loops (the DDA step, the watertight triangle test) index by a runtime axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(usize)]
+pub enum Axis {
+    X = 0,
+    Y = 1,
+    Z = 2,
+}
+
+impl Axis {
+    /// The next axis, cyclically (x → y → z → x).
+    pub fn next(self) -> Axis {
+        match self {
+            Axis::X => Axis::Y,
+            Axis::Y => Axis::Z,
+            Axis::Z => Axis::X,
+        }
+    }
+}

@@ -3,8 +3,9 @@
 //! instances: analytic primitives, CSG objects and mesh instances, the last traversed
 //! through their mesh's own grid (`traverse_mesh`). A closest hit found in a cell is
 //! accepted only if it lies inside that cell (an item may span several cells, and a
-//! nearer item may wait in the next one); a mesh instance met again in a later cell is
-//! not traversed again (its nearest hit does not depend on the cell: [`Mailbox`]).
+//! nearer item may wait in the next one); an item met again in a later cell (a mesh
+//! instance, a large sphere) is not tested again (its nearest hit does not depend on the
+//! cell: [`Mailbox`]).
 
 use super::csg::intersect_csg;
 use super::dda::{cell_index, dda_setup, dda_step, scene_grid};
@@ -13,35 +14,48 @@ pub use super::hit::{Counters, Hit, NoCounters, TraversalCounters};
 use super::intersect::intersect_instance;
 use super::ray::Ray;
 use super::traverse_mesh::{intersect_mesh, mesh_occludes};
-use crate::constants::{KIND_CSG, KIND_MESH, MESH_MAILBOX_SIZE, NO_ITEM};
+use crate::constants::{ITEM_MAILBOX_SIZE, KIND_CSG, KIND_MESH, KIND_TORUS, NO_ITEM};
 use crate::pack::PackedScene;
+use glam::IVec3;
 
-/// The mesh instances a ray has traversed lately (a ring of `MESH_MAILBOX_SIZE`).
+/// The items a ray has tested, as a direct-mapped cache of `ITEM_MAILBOX_SIZE` slots
+/// (item number modulo the size: one compare). Only kinds for which a second test is
+/// sure to change nothing go in ([`mailboxed`]).
 // Mirror of shaders/traverse.wgsl::Mailbox — change both.
 pub struct Mailbox {
-    items: [u32; MESH_MAILBOX_SIZE as usize],
-    next: usize,
+    items: [u32; ITEM_MAILBOX_SIZE as usize],
 }
 
 impl Mailbox {
     // Mirror of shaders/traverse.wgsl::mailbox_new — change both.
     pub fn new() -> Mailbox {
         Mailbox {
-            items: [NO_ITEM; MESH_MAILBOX_SIZE as usize],
-            next: 0,
+            items: [NO_ITEM; ITEM_MAILBOX_SIZE as usize],
         }
     }
 
-    /// Whether `item` was traversed already; if not, it is now remembered.
+    /// Whether `item` was tested already (as far as its slot remembers); if not, it is
+    /// now remembered in its slot.
     // Mirror of shaders/traverse.wgsl::mailbox_seen — change both.
     pub fn seen(&mut self, item: u32) -> bool {
-        if self.items.contains(&item) {
+        let slot = &mut self.items[(item & (ITEM_MAILBOX_SIZE - 1)) as usize];
+        if *slot == item {
             return true;
         }
-        self.items[self.next] = item;
-        self.next = (self.next + 1) % MESH_MAILBOX_SIZE as usize;
+        *slot = item;
         false
     }
+}
+
+/// Whether items of `kind` go through the mailbox: those whose answer is the nearest end
+/// of intervals found without t_max (sphere, box, cylinder, cone; a mesh's nearest
+/// triangle), so that a second test under the same or a smaller t_max gives a miss or
+/// the same hit, which the caller already holds. A torus clips its root search to t_max
+/// and a CSG object its interval lists, so their t may move in the last bits with it:
+/// they are tested in every cell.
+// Mirror of shaders/traverse.wgsl::mailboxed — change both.
+pub fn mailboxed(kind: u32) -> bool {
+    kind != KIND_TORUS && kind != KIND_CSG
 }
 
 impl Default for Mailbox {
@@ -50,8 +64,8 @@ impl Default for Mailbox {
     }
 }
 
-/// Tests one item: its hit (t = T_MISS on a miss). A mesh instance in `mailbox` is a
-/// miss (its hit, if any, is already the best).
+/// Tests one item: its hit (t = T_MISS on a miss). An item in `mailbox` is a miss (its
+/// hit, if any, is already the best).
 // Mirror of shaders/traverse.wgsl::intersect_item — change both.
 fn intersect_item(
     scene: &PackedScene,
@@ -62,10 +76,10 @@ fn intersect_item(
     counters: &mut impl TraversalCounters,
 ) -> Hit {
     let inst = &scene.instances[item as usize];
+    if mailboxed(inst.kind) && mailbox.seen(item) {
+        return Hit::MISS;
+    }
     if inst.kind == KIND_MESH {
-        if mailbox.seen(item) {
-            return Hit::MISS;
-        }
         return intersect_mesh(scene, inst, item, ray, t_max, counters);
     }
     counters.item_tested();
@@ -116,7 +130,7 @@ pub fn closest_hit(
     let Some(entered) = enter_scene(&scene.globals, ray, t_max) else {
         return Hit::MISS;
     };
-    let mut hit = closest_hit_inside(scene, &entered.ray, entered.t_max, counters);
+    let mut hit = closest_hit_inside(scene, &entered, counters);
     if hit.is_hit() {
         hit.t += entered.t_moved;
     }
@@ -127,10 +141,10 @@ pub fn closest_hit(
 // Mirror of shaders/traverse.wgsl::closest_hit_inside — change both.
 fn closest_hit_inside(
     scene: &PackedScene,
-    ray: &Ray,
-    t_max: f32,
+    entered: &EnteredRay,
     counters: &mut impl TraversalCounters,
 ) -> Hit {
+    let (ray, t_max) = (&entered.ray, entered.t_max);
     let mut best = Hit {
         t: t_max,
         ..Hit::MISS
@@ -150,12 +164,12 @@ fn closest_hit_inside(
         return if best.is_hit() { best } else { Hit::MISS };
     }
     let grid = scene_grid(g);
-    let Some(mut dda) = dda_setup(&grid, ray, t_max) else {
+    let Some(mut dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return Hit::MISS;
     };
     loop {
         counters.cell_visited();
-        let cell = cell_index(&grid, dda.cell);
+        let cell = cell_index(&grid, IVec3::from(dda.cell));
         let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
         test_items(
             scene,
@@ -178,8 +192,8 @@ fn closest_hit_inside(
     }
 }
 
-/// Whether item `item` is hit in (0, t_max); a mesh instance in `mailbox` is not tested
-/// again (it was not hit, or the search would have stopped).
+/// Whether item `item` is hit in (0, t_max); an item in `mailbox` is not tested again (it
+/// was not hit, or the search would have stopped).
 // Mirror of shaders/traverse.wgsl::item_occludes — change both.
 fn item_occludes(
     scene: &PackedScene,
@@ -224,7 +238,7 @@ pub fn any_hit(
 ) -> bool {
     counters.traversal_started();
     match enter_scene(&scene.globals, ray, t_max) {
-        Some(entered) => any_hit_inside(scene, &entered.ray, entered.t_max, counters),
+        Some(entered) => any_hit_inside(scene, &entered, counters),
         None => false,
     }
 }
@@ -233,10 +247,10 @@ pub fn any_hit(
 // Mirror of shaders/traverse.wgsl::any_hit_inside — change both.
 fn any_hit_inside(
     scene: &PackedScene,
-    ray: &Ray,
-    t_max: f32,
+    entered: &EnteredRay,
     counters: &mut impl TraversalCounters,
 ) -> bool {
+    let (ray, t_max) = (&entered.ray, entered.t_max);
     let mut mailbox = Mailbox::new();
     let g = &scene.globals;
     if g.grid_enabled == 0 {
@@ -245,12 +259,12 @@ fn any_hit_inside(
         return any_item_hit(scene, items, ray, t_max, &mut mailbox, counters);
     }
     let grid = scene_grid(g);
-    let Some(mut dda) = dda_setup(&grid, ray, t_max) else {
+    let Some(mut dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return false;
     };
     loop {
         counters.cell_visited();
-        let cell = cell_index(&grid, dda.cell);
+        let cell = cell_index(&grid, IVec3::from(dda.cell));
         let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
         let items = range.map(|i| scene.cell_items[i as usize]);
         if any_item_hit(scene, items, ray, t_max, &mut mailbox, counters) {

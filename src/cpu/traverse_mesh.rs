@@ -9,12 +9,60 @@ use super::intersect::{
     intersect_triangle, to_object_space, triangle_ray_setup, triangle_vertices,
 };
 use super::ray::Ray;
-use crate::pack::{GpuInstance, GpuMesh, PackedScene};
+use crate::constants::{NO_ITEM, TRIANGLE_MAILBOX_SIZE};
+use crate::pack::{GpuInstance, GpuMesh, GpuTriangle, PackedScene};
+use glam::IVec3;
 
 /// The mesh of a `KIND_MESH` instance.
 // Mirror of shaders/traverse_mesh.wgsl::instance_mesh — change both.
 pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &GpuInstance) -> &'a GpuMesh {
     &scene.meshes[inst.params[0] as usize]
+}
+
+/// The triangles a ray has tested in one mesh, as a direct-mapped cache of
+/// `TRIANGLE_MAILBOX_SIZE` slots (triangle number modulo the size: one compare, where a
+/// ring of the last n tested needs n). A triangle spans 3–4 cells of its mesh's grid on
+/// average, so a ray often meets it again in the next cell; testing it again would give
+/// the same answer (a miss stays a miss under the same or a smaller t_max, and a hit is
+/// not nearer than itself), so skipping it changes no result. Triangles are stored in
+/// Morton order, so the triangles near a ray have nearby numbers and seldom share a slot.
+// Mirror of shaders/traverse_mesh.wgsl::TriangleMailbox — change both.
+pub struct TriangleMailbox {
+    triangles: [u32; TRIANGLE_MAILBOX_SIZE as usize],
+}
+
+impl TriangleMailbox {
+    // Mirror of shaders/traverse_mesh.wgsl::triangle_mailbox_new — change both.
+    pub fn new() -> TriangleMailbox {
+        TriangleMailbox {
+            triangles: [NO_ITEM; TRIANGLE_MAILBOX_SIZE as usize],
+        }
+    }
+
+    /// Whether `triangle` was tested already (as far as its slot remembers); if not, it
+    /// is now remembered in its slot.
+    // Mirror of shaders/traverse_mesh.wgsl::triangle_mailbox_seen — change both.
+    pub fn seen(&mut self, triangle: u32) -> bool {
+        let slot = &mut self.triangles[(triangle & (TRIANGLE_MAILBOX_SIZE - 1)) as usize];
+        if *slot == triangle {
+            return true;
+        }
+        *slot = triangle;
+        false
+    }
+}
+
+impl Default for TriangleMailbox {
+    fn default() -> TriangleMailbox {
+        TriangleMailbox::new()
+    }
+}
+
+/// The items of cell `cell` of `cell_start`/`cell_items` as a slice (one bounds check per
+/// cell, none per item).
+fn cell_items(scene: &PackedScene, cell: usize) -> &[u32] {
+    let range = &scene.cell_start[cell..cell + 2];
+    &scene.cell_items[range[0] as usize..range[1] as usize]
 }
 
 /// Nearest hit in (0, t_max) with mesh instance `item` (`inst`): t, the barycentrics and
@@ -34,21 +82,24 @@ pub fn intersect_mesh(
         return Hit::MISS;
     };
     let grid = mesh_grid(mesh);
-    let Some(mut dda) = dda_setup(&grid, &entered.ray, entered.t_max) else {
+    let Some(mut dda) = dda_setup(&grid, &entered.ray, entered.inv_dir, entered.t_max) else {
         return Hit::MISS;
     };
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
+    let triangles = mesh_triangles(scene, mesh);
+    let mut mailbox = TriangleMailbox::new();
     let mut best = Hit {
         t: entered.t_max,
         ..Hit::MISS
     };
     loop {
         counters.cell_visited();
-        let cell = cell_index(&grid, dda.cell);
-        for i in scene.cell_start[cell]..scene.cell_start[cell + 1] {
+        for &local in cell_items(scene, cell_index(&grid, IVec3::from(dda.cell))) {
+            if mailbox.seen(local) {
+                continue;
+            }
             counters.item_tested();
-            let triangle = mesh.first_triangle + scene.cell_items[i as usize];
-            let [p0, p1, p2] = triangle_vertices(&scene.triangles[triangle as usize]);
+            let [p0, p1, p2] = triangle_vertices(&triangles[local as usize]);
             let h = intersect_triangle(&tri_ray, p0, p1, p2, best.t);
             if h.x < best.t {
                 best = Hit {
@@ -56,7 +107,7 @@ pub fn intersect_mesh(
                     item,
                     b1: h.y,
                     b2: h.z,
-                    part: triangle,
+                    part: mesh.first_triangle + local,
                 };
             }
         }
@@ -72,6 +123,12 @@ pub fn intersect_mesh(
     } else {
         Hit::MISS
     }
+}
+
+/// The mesh's triangles, indexed by the mesh-local numbers its cells list.
+fn mesh_triangles<'a>(scene: &'a PackedScene, mesh: &GpuMesh) -> &'a [GpuTriangle] {
+    let first = mesh.first_triangle as usize;
+    &scene.triangles[first..first + mesh.num_triangles as usize]
 }
 
 /// Whether any triangle of mesh instance `inst` is hit in (0, t_max) (shadow rays: stops
@@ -90,17 +147,20 @@ pub fn mesh_occludes(
         return false;
     };
     let grid = mesh_grid(mesh);
-    let Some(mut dda) = dda_setup(&grid, &entered.ray, entered.t_max) else {
+    let Some(mut dda) = dda_setup(&grid, &entered.ray, entered.inv_dir, entered.t_max) else {
         return false;
     };
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
+    let triangles = mesh_triangles(scene, mesh);
+    let mut mailbox = TriangleMailbox::new();
     loop {
         counters.cell_visited();
-        let cell = cell_index(&grid, dda.cell);
-        for i in scene.cell_start[cell]..scene.cell_start[cell + 1] {
+        for &local in cell_items(scene, cell_index(&grid, IVec3::from(dda.cell))) {
+            if mailbox.seen(local) {
+                continue;
+            }
             counters.item_tested();
-            let triangle = mesh.first_triangle + scene.cell_items[i as usize];
-            let [p0, p1, p2] = triangle_vertices(&scene.triangles[triangle as usize]);
+            let [p0, p1, p2] = triangle_vertices(&triangles[local as usize]);
             if intersect_triangle(&tri_ray, p0, p1, p2, entered.t_max).x < entered.t_max {
                 return true;
             }
