@@ -1,13 +1,12 @@
 //! The `glint` command line: `render`, `diff` and `bench`.
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use glint::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES};
 use glint::scene::flatten::MAX_PIXELS;
 use glint::scene::lua::{DEFAULT_MEMORY_LIMIT, DEFAULT_TIME_LIMIT, MAX_IMAGE_SIDE};
 use glint::scene::options::{parse_background, parse_debug_view, parse_grid_mode};
 use glint::scene::{
-    AaMode, Background, DebugView, GridMode, OptionOverrides, ShadowSamples, TraceDepth,
-    TransformOrder,
+    AaDepth, AaMode, AaSamples, Background, DebugView, GridMode, OptionOverrides, ShadowSamples,
+    TraceDepth, TransformOrder,
 };
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -125,14 +124,14 @@ struct RenderArgs {
     #[arg(long, value_parser = parse_aa)]
     aa: Option<AaMode>,
     /// n of uniform n×n anti-aliasing.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_AA_SAMPLES as i64))]
-    samples: Option<u32>,
+    #[arg(long, value_parser = AaSamples::parse)]
+    samples: Option<AaSamples>,
     /// Adaptive AA: corner contrast that splits a square.
     #[arg(long, value_parser = parse_non_negative)]
     aa_threshold: Option<f32>,
     /// Adaptive AA: deepest split.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=MAX_AA_DEPTH as i64))]
-    aa_depth: Option<u32>,
+    #[arg(long, value_parser = AaDepth::parse)]
+    aa_depth: Option<AaDepth>,
     /// Overrides every area light's n (n×n shadow samples).
     #[arg(long, value_parser = ShadowSamples::parse)]
     shadow_samples: Option<ShadowSamples>,

@@ -14,7 +14,7 @@ fn check(file: &str, size: u32, depth: u32) {
         width: Some(size),
         height: Some(size),
         aa: Some(AaMode::Adaptive),
-        aa_depth: Some(depth),
+        aa_depth: Some(glint::scene::AaDepth::constant(depth)),
         ..OptionOverrides::default()
     };
     let scene = packed_from_file(&corpus().join("a4-2021plus").join(file), &overrides).remove(0);

@@ -71,7 +71,7 @@ fn zero_size_area_light_equals_point_light() {
     for aa in [AaMode::None, AaMode::Uniform, AaMode::Adaptive] {
         let overrides = OptionOverrides {
             aa: Some(aa),
-            samples: Some(2),
+            samples: Some(glint::scene::AaSamples::constant(2)),
             ..OptionOverrides::default()
         };
         let point = scene(

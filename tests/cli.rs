@@ -305,6 +305,8 @@ fn bad_flag_value_is_a_usage_error() {
     for (flag, value, range) in [
         ("--max-depth", "65", "from 0 to 64"),
         ("--shadow-samples", "0", "from 1 to 64"),
+        ("--samples", "65", "from 1 to 64"),
+        ("--aa-depth", "7", "from 0 to 6"),
     ] {
         assert_fails(
             flag,
@@ -391,7 +393,7 @@ fn debug_aa_samples_maps_adaptive_leaf_counts() {
         width: Some(w),
         height: Some(h),
         aa: Some(glint::scene::AaMode::Adaptive),
-        aa_depth: Some(depth),
+        aa_depth: Some(glint::scene::AaDepth::constant(depth)),
         ..Default::default()
     };
     let packed = common::load_packed(&scene, &overrides);

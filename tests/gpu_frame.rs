@@ -24,8 +24,8 @@ fn render_info(ctx: &glint::gpu::GpuContext, size: u32, aa: AaMode) -> GpuRender
         width: Some(size),
         height: Some(size),
         aa: Some(aa),
-        samples: Some(2),
-        aa_depth: Some(2),
+        samples: Some(glint::scene::AaSamples::constant(2)),
+        aa_depth: Some(glint::scene::AaDepth::constant(2)),
         ..OptionOverrides::default()
     };
     let scene = packed_from_source(SCENE, &overrides).remove(0);

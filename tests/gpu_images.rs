@@ -118,7 +118,7 @@ fn macho_cows_uniform_4x4_matches() {
         64,
         OptionOverrides {
             aa: Some(AaMode::Uniform),
-            samples: Some(4),
+            samples: Some(glint::scene::AaSamples::constant(4)),
             ..OptionOverrides::default()
         },
     );
@@ -136,7 +136,7 @@ fn macho_cows_adaptive_depths_match() {
             64,
             OptionOverrides {
                 aa: Some(AaMode::Adaptive),
-                aa_depth: Some(depth),
+                aa_depth: Some(glint::scene::AaDepth::constant(depth)),
                 ..OptionOverrides::default()
             },
         );
@@ -209,8 +209,8 @@ fn loop_limit_guard_falls_back_to_the_cpu() {
             width: Some(24),
             height: Some(20),
             aa: Some(aa),
-            samples: Some(2),
-            aa_depth: Some(2),
+            samples: Some(glint::scene::AaSamples::constant(2)),
+            aa_depth: Some(glint::scene::AaDepth::constant(2)),
             ..OptionOverrides::default()
         };
         let scene = packed_from_file(
@@ -273,7 +273,7 @@ fn area_light_matches() {
             width: Some(96),
             height: Some(96),
             aa,
-            samples: Some(2),
+            samples: Some(glint::scene::AaSamples::constant(2)),
             ..OptionOverrides::default()
         };
         let scene = packed_from_source(source, &overrides).remove(0);

@@ -119,7 +119,7 @@ fn material_features_match() {
     let scene = packed_from_source(
         &material_scene("glass:set_refraction(1.5)", "{0, 2, 4}", POINT_LIGHT),
         &OptionOverrides {
-            samples: Some(2),
+            samples: Some(glint::scene::AaSamples::constant(2)),
             ..small(48, AaMode::Uniform)
         },
     )

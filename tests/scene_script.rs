@@ -236,7 +236,7 @@ fn render_request_fields_and_options() {
     assert_eq!((req.width, req.height), (64, 48));
     assert_eq!(req.location, "t.lua:7");
     assert_eq!(req.options.aa, glint::scene::AaMode::Uniform);
-    assert_eq!(req.options.samples, 3);
+    assert_eq!(req.options.samples.get(), 3);
     assert_eq!(req.options.max_depth.get(), 2);
     assert_eq!(req.options.grid, glint::scene::GridMode::Density(2.0));
     let m = &g.materials[g.nodes[1].material.unwrap()];

@@ -21,7 +21,7 @@ use crate::gpu::{render_gpu, GpuContext, GpuRenderOptions};
 use crate::pack::SceneFeatures;
 use crate::pipeline::pack_scene;
 use crate::scene::flatten::Scene;
-use crate::scene::{AaMode, RenderOptions, ShadowSamples};
+use crate::scene::{AaDepth, AaMode, AaSamples, RenderOptions, ShadowSamples};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -73,12 +73,12 @@ impl Setting {
             Setting::NoAa => o.aa = AaMode::None,
             Setting::Uniform(n) => {
                 o.aa = AaMode::Uniform;
-                o.samples = n;
+                o.samples = AaSamples::constant(n);
             }
             Setting::Adaptive(t, d) => {
                 o.aa = AaMode::Adaptive;
                 o.aa_threshold = t;
-                o.aa_depth = d;
+                o.aa_depth = AaDepth::constant(d);
             }
             Setting::Shadows(n) => {
                 o.aa = AaMode::None;

@@ -340,9 +340,9 @@ fn make_globals(
             AaMode::Uniform => AA_UNIFORM,
             AaMode::Adaptive => AA_ADAPTIVE,
         },
-        aa_samples: options.samples.clamp(1, MAX_AA_SAMPLES),
+        aa_samples: options.samples.get(),
         aa_threshold: options.aa_threshold,
-        aa_depth: options.aa_depth.min(MAX_AA_DEPTH),
+        aa_depth: options.aa_depth.get(),
         camera_media_count: 0,
         camera_media: [AIR_IOR; MEDIUM_STACK_SIZE as usize],
         debug_view: match options.debug {

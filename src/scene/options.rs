@@ -1,7 +1,7 @@
 //! Render options: the optional 11th argument of `gr.render`, overridable by CLI flags of
 //! the same name. One struct with the documented defaults (yocto-gl style).
 
-use super::bounded::{ShadowSamples, TraceDepth};
+use super::bounded::{AaDepth, AaSamples, ShadowSamples, TraceDepth};
 
 /// Anti-aliasing mode (`aa`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -96,9 +96,9 @@ pub fn parse_debug_view(s: &str) -> Result<DebugView, String> {
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderOptions {
     pub aa: AaMode,
-    pub samples: u32,
+    pub samples: AaSamples,
     pub aa_threshold: f32,
-    pub aa_depth: u32,
+    pub aa_depth: AaDepth,
     pub shadow_samples: Option<ShadowSamples>,
     pub max_depth: TraceDepth,
     pub min_weight: f32,
@@ -111,9 +111,9 @@ impl Default for RenderOptions {
     fn default() -> Self {
         RenderOptions {
             aa: AaMode::Adaptive,
-            samples: 4,
+            samples: AaSamples::constant(4),
             aa_threshold: 0.1,
-            aa_depth: 3,
+            aa_depth: AaDepth::constant(3),
             shadow_samples: None,
             max_depth: TraceDepth::constant(8),
             min_weight: 1.0 / 512.0,
@@ -128,9 +128,9 @@ impl Default for RenderOptions {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct OptionOverrides {
     pub aa: Option<AaMode>,
-    pub samples: Option<u32>,
+    pub samples: Option<AaSamples>,
     pub aa_threshold: Option<f32>,
-    pub aa_depth: Option<u32>,
+    pub aa_depth: Option<AaDepth>,
     pub shadow_samples: Option<ShadowSamples>,
     pub max_depth: Option<TraceDepth>,
     pub min_weight: Option<f32>,

@@ -170,7 +170,7 @@ impl<'a> Args<'a> {
         }
     }
 
-    /// A positive integer that fits `max` (image sizes, sample counts).
+    /// A positive integer that fits `max` (image sizes).
     pub fn positive_int(&self, n: usize, name: &str, max: u32) -> mlua::Result<u32> {
         match int_value(self.get(n)) {
             Some(i) if i >= 1 && i <= max as i64 => Ok(i as u32),

@@ -4,7 +4,6 @@
 //! that lists what is valid, rather than an option silently left at its default.
 
 use super::args::{describe, finite, int_value, Args};
-use crate::constants::{MAX_AA_DEPTH, MAX_AA_SAMPLES};
 use crate::scene::{AaMode, Background, Bounded, DebugView, GridMode, RenderOptions};
 use mlua::{Table, Value};
 
@@ -56,10 +55,6 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
             format!("{key} must be {what}, got {}", describe(a.lua, v)),
         )
     };
-    let int_in = |lo: i64, hi: i64| match int_value(v) {
-        Some(i) if (lo..=hi).contains(&i) => Ok(i as u32),
-        _ => Err(bad(&format!("an integer from {lo} to {hi}"))),
-    };
     fn bounded<const MIN: u32, const MAX: u32>(
         v: &Value,
         bad: impl Fn(&str) -> mlua::Error,
@@ -76,14 +71,14 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
             }
             .ok_or_else(|| bad(AaMode::CHOICES))?;
         }
-        "samples" => o.samples = int_in(1, MAX_AA_SAMPLES as i64)?,
+        "samples" => o.samples = bounded(v, bad)?,
         "aa_threshold" => {
             o.aa_threshold = match finite(v) {
                 Some(x) if x >= 0.0 => x as f32,
                 _ => return Err(bad("a non-negative number")),
             }
         }
-        "aa_depth" => o.aa_depth = int_in(0, MAX_AA_DEPTH as i64)?,
+        "aa_depth" => o.aa_depth = bounded(v, bad)?,
         "shadow_samples" => o.shadow_samples = Some(bounded(v, bad)?),
         "max_depth" => o.max_depth = bounded(v, bad)?,
         "min_weight" => {
@@ -225,7 +220,10 @@ mod tests {
         )
         .unwrap();
         assert_eq!(o.aa, AaMode::None);
-        assert_eq!((o.samples, o.aa_depth, o.max_depth.get()), (2, 1, 3));
+        assert_eq!(
+            (o.samples.get(), o.aa_depth.get(), o.max_depth.get()),
+            (2, 1, 3)
+        );
         assert_eq!(o.aa_threshold, 0.25);
         assert_eq!(o.shadow_samples.map(|s| s.get()), Some(9));
         assert_eq!(o.min_weight, 0.01);
