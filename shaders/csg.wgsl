@@ -28,7 +28,7 @@ var<private> csg_lists: u32;
 // The inside intervals of o + t·d (world space) through a leaf instance, in world t:
 // [x, y] and [z, w], each empty when its lo > hi, the second after the first.
 // Mirror of src/cpu/csg.rs::leaf_intervals — change both.
-fn leaf_intervals(leaf: GpuInstance, o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+fn leaf_intervals(leaf: PackedInstance, o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     let local = to_object_space(leaf, o, d);
     let oo = local.origin;
     let od = local.dir;
@@ -191,7 +191,7 @@ fn csg_combine(op: u32, magnitude: f32) {
 // Runs the program of CSG instance inst for the ray o + t·d (world space): afterwards one
 // list remains, the object's inside intervals along the whole line.
 // Mirror of src/cpu/csg.rs::csg_evaluate — change both.
-fn csg_evaluate(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>) {
+fn csg_evaluate(inst: PackedInstance, o: vec3<f32>, d: vec3<f32>) {
     let start = u32(inst.params.x);
     let len = u32(inst.params.y);
     let magnitude = max_element(abs(o));
@@ -210,7 +210,7 @@ fn csg_evaluate(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>) {
 // Nearest hit in (0, t_max) of o + t·d with CSG instance inst: the first end of its inside
 // intervals past the origin (from inside, where the ray leaves).
 // Mirror of src/cpu/csg.rs::intersect_csg — change both.
-fn intersect_csg(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> CsgHit {
+fn intersect_csg(inst: PackedInstance, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> CsgHit {
     csg_evaluate(inst, o, d);
     let count = csg_list_count[0];
     for (var k = 0u; k < count; k++) {

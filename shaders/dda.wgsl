@@ -1,5 +1,5 @@
 // dda.wgsl — one uniform grid walked by 3D-DDA (Amanatides & Woo 1987), for either level:
-// the scene grid (placement in globals) or a mesh's own grid (in its GpuMesh, mesh space).
+// the scene grid (placement in globals) or a mesh's own grid (in its PackedMesh, mesh space).
 // Also the move of a ray's origin to where it enters a box, which both levels use.
 
 // #if GRID|MESH
@@ -23,7 +23,7 @@ fn scene_grid() -> GridView {
 // #if MESH
 // A mesh's own grid, in the mesh's space.
 // Mirror of src/cpu/dda.rs::mesh_grid — change both.
-fn mesh_grid(mesh: GpuMesh) -> GridView {
+fn mesh_grid(mesh: PackedMesh) -> GridView {
     return GridView(
         mesh.grid_min,
         mesh.grid_max,
@@ -171,7 +171,7 @@ fn enter_scene(ray: Ray, t_max: f32) -> EnteredRay {
 // The mesh-space ray moved to where it enters the mesh's grid bounds (its direction is
 // not a unit vector: the margin is divided by its largest component).
 // Mirror of src/cpu/dda.rs::enter_mesh — change both.
-fn enter_mesh(mesh: GpuMesh, ray: Ray, t_max: f32) -> EnteredRay {
+fn enter_mesh(mesh: PackedMesh, ray: Ray, t_max: f32) -> EnteredRay {
     let margin = max_element(abs(ray.origin)) * ENTER_MARGIN_RELATIVE
         / max(max_element(abs(ray.dir)), F32_MIN_POSITIVE);
     return enter_bounds(mesh.grid_min, mesh.grid_max, ray, t_max, margin);

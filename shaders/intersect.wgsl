@@ -112,7 +112,7 @@ struct TriangleRay {
 // #if MESH
 // The triangle's vertices as vectors.
 // Mirror of src/cpu/intersect.rs::triangle_vertices — change both.
-fn triangle_vertices(tri: GpuTriangle) -> array<vec3<f32>, 3> {
+fn triangle_vertices(tri: PackedTriangle) -> array<vec3<f32>, 3> {
     return array<vec3<f32>, 3>(
         vec3<f32>(tri.p0[0], tri.p0[1], tri.p0[2]),
         vec3<f32>(tri.p1[0], tri.p1[1], tri.p1[2]),
@@ -209,7 +209,7 @@ fn intersect_triangle(r: TriangleRay, p0: vec3<f32>, p1: vec3<f32>, p2: vec3<f32
 // Object-space ray of an instance: origin and (unnormalised) direction through the
 // world→object rows.
 // Mirror of src/cpu/intersect.rs::to_object_space — change both.
-fn to_object_space(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>) -> Ray {
+fn to_object_space(inst: PackedInstance, o: vec3<f32>, d: vec3<f32>) -> Ray {
     let rows = inst.world_to_object;
     let oo = vec3<f32>(
         dot(rows[0].xyz, o) + rows[0].w,
@@ -223,7 +223,7 @@ fn to_object_space(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>) -> Ray {
 // t of the nearest hit in (0, t_max) with an analytic instance, else T_MISS (KIND_CSG
 // instances: see intersect_item).
 // Mirror of src/cpu/intersect.rs::intersect_instance — change both.
-fn intersect_instance(inst: GpuInstance, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+fn intersect_instance(inst: PackedInstance, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
     let local = to_object_space(inst, o, d);
 // #if SPHERE
     if inst.kind == KIND_SPHERE {

@@ -2,8 +2,8 @@
 // order; tests/gpu_layout.rs checks every offset and size against Rust) and the bindings
 // both entry points share. Change both.
 
-// Mirror of src/pack/layout.rs::GpuInstance — change both.
-struct GpuInstance {
+// Mirror of src/pack/layout.rs::PackedInstance — change both.
+struct PackedInstance {
     // Rows of world→object (xyz: linear part, w: translation).
     world_to_object: array<vec4<f32>, 3>,
     // Rows of object→world.
@@ -15,9 +15,9 @@ struct GpuInstance {
     params: vec2<f32>,
 }
 
-// Mirror of src/pack/layout.rs::GpuTriangle — change both.
+// Mirror of src/pack/layout.rs::PackedTriangle — change both.
 // (Corners as array<f32, 3>: 36 bytes a triangle, no vec3 padding.)
-struct GpuTriangle {
+struct PackedTriangle {
     p0: array<f32, 3>,
     p1: array<f32, 3>,
     p2: array<f32, 3>,
@@ -25,8 +25,8 @@ struct GpuTriangle {
 
 // A mesh: its triangles and its own uniform grid over them, in the mesh's space (cells
 // from first_cell in cell_start; cell items are triangle numbers from first_triangle).
-// Mirror of src/pack/layout.rs::GpuMesh — change both.
-struct GpuMesh {
+// Mirror of src/pack/layout.rs::PackedMesh — change both.
+struct PackedMesh {
     grid_min: vec3<f32>,
     first_cell: u32,
     grid_max: vec3<f32>,
@@ -37,15 +37,15 @@ struct GpuMesh {
     _pad0: u32,
 }
 
-// Mirror of src/pack/layout.rs::GpuTriangleUv — change both.
-struct GpuTriangleUv {
+// Mirror of src/pack/layout.rs::PackedTriangleUv — change both.
+struct PackedTriangleUv {
     uv0: vec2<f32>,
     uv1: vec2<f32>,
     uv2: vec2<f32>,
 }
 
-// Mirror of src/pack/layout.rs::GpuMaterial — change both.
-struct GpuMaterial {
+// Mirror of src/pack/layout.rs::PackedMaterial — change both.
+struct PackedMaterial {
     kd: vec3<f32>,
     shininess: f32,
     ks: vec3<f32>,
@@ -64,8 +64,8 @@ struct GpuMaterial {
     bump_strength: f32,
 }
 
-// Mirror of src/pack/layout.rs::GpuLight — change both.
-struct GpuLight {
+// Mirror of src/pack/layout.rs::PackedLight — change both.
+struct PackedLight {
     position: vec3<f32>,
     // LIGHT_* tag.
     kind: u32,
@@ -81,8 +81,8 @@ struct GpuLight {
     _pad2: u32,
 }
 
-// Mirror of src/pack/layout.rs::GpuGlobals — change both.
-struct GpuGlobals {
+// Mirror of src/pack/layout.rs::PackedGlobals — change both.
+struct PackedGlobals {
     eye: vec3<f32>,
     // tan(fov/2).
     tan_half_fov: f32,
@@ -153,17 +153,17 @@ struct GpuTile {
 
 // The packed scene (src/gpu/buffers.rs binds every array; an empty one holds one unused
 // element, since a binding may not be empty).
-@group(0) @binding(0) var<uniform> globals: GpuGlobals;
-@group(0) @binding(1) var<storage, read> instances: array<GpuInstance>;
-@group(0) @binding(2) var<storage, read> triangles: array<GpuTriangle>;
-@group(0) @binding(3) var<storage, read> materials: array<GpuMaterial>;
-@group(0) @binding(4) var<storage, read> lights: array<GpuLight>;
+@group(0) @binding(0) var<uniform> globals: PackedGlobals;
+@group(0) @binding(1) var<storage, read> instances: array<PackedInstance>;
+@group(0) @binding(2) var<storage, read> triangles: array<PackedTriangle>;
+@group(0) @binding(3) var<storage, read> materials: array<PackedMaterial>;
+@group(0) @binding(4) var<storage, read> lights: array<PackedLight>;
 @group(0) @binding(5) var<storage, read> cell_start: array<u32>;
 @group(0) @binding(6) var<storage, read> cell_items: array<u32>;
 // CSG programs (post-order, see intersect_csg) and the texture table + texels.
 @group(0) @binding(14) var<storage, read> csg_program: array<u32>;
 @group(0) @binding(15) var<storage, read> texels: array<u32>;
 // Corner UVs of each triangle (same order as `triangles`; only with TEXTURE or BUMP).
-@group(0) @binding(16) var<storage, read> triangle_uvs: array<GpuTriangleUv>;
+@group(0) @binding(16) var<storage, read> triangle_uvs: array<PackedTriangleUv>;
 // Each mesh's triangle range and grid (KIND_MESH instances index it).
-@group(0) @binding(23) var<storage, read> meshes: array<GpuMesh>;
+@group(0) @binding(23) var<storage, read> meshes: array<PackedMesh>;

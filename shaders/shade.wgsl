@@ -43,7 +43,7 @@ fn affine_magnitude(rows: array<vec4<f32>, 3>) -> f32 {
 // Point, normal and magnitude of an instance hit, computed in object space (where the
 // point is snapped onto the exact surface) and mapped to world space.
 // Mirror of src/cpu/surface.rs::instance_surface — change both.
-fn instance_surface(inst: GpuInstance, ray: Ray, t: f32) -> Surface {
+fn instance_surface(inst: PackedInstance, ray: Ray, t: f32) -> Surface {
     let local = to_object_space(inst, ray.origin, ray.dir);
     let p_hit = local.origin + local.dir * t;
     // Every kind snaps the point onto its surface; an unknown kind (none) leaves it.
@@ -126,7 +126,7 @@ fn mapped_magnitude(rows: array<vec4<f32>, 3>, magnitude: f32) -> f32 {
 // barycentrics, computed in the mesh's space and mapped to world space (point and
 // tangents through object→world, the normal through the transpose of world→object).
 // Mirror of src/cpu/surface.rs::mesh_surface — change both.
-fn mesh_surface(inst: GpuInstance, hit: Hit) -> Surface {
+fn mesh_surface(inst: PackedInstance, hit: Hit) -> Surface {
     let index = hit.part;
     let corners = triangle_vertices(triangles[index]);
     let p0 = corners[0];
@@ -220,7 +220,7 @@ fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3
 // when the point is behind the surface or a shadow ray from origin is blocked (dimmed
 // instead by the glass it crosses, in scenes with refraction).
 // Mirror of src/cpu/shade.rs::point_light — change both.
-fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: GpuLight) -> vec3<f32> {
+fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec3<f32> {
     let m = materials[s.material];
     let to_light = position - s.p;
     let distance = length(to_light);
@@ -259,7 +259,7 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
 // Light from area light number `index`: the mean of point_light over one jittered point
 // in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n).
 // Mirror of src/cpu/shade.rs::area_light — change both.
-fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: GpuLight, index: u32, seed: SampleSeed) -> vec3<f32> {
+fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: PackedLight, index: u32, seed: SampleSeed) -> vec3<f32> {
     let k = light.samples;
     let scale = 1.0 / f32(k);
     var sum = vec3<f32>(0.0);

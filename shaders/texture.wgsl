@@ -77,7 +77,7 @@ fn height_gradient(texture: u32, uv: vec2<f32>) -> vec2<f32> {
 // s.normal itself where the tangent frame is degenerate (a pole, a cone tip, zero-area
 // UVs).
 // Mirror of src/cpu/texture.rs::bump_normal — change both.
-fn bump_normal(m: GpuMaterial, s: Surface) -> vec3<f32> {
+fn bump_normal(m: PackedMaterial, s: Surface) -> vec3<f32> {
     let n = s.normal;
     let len_u = length(s.dpdu);
     let len_v = length(s.dpdv);
@@ -120,7 +120,7 @@ fn shading_normal(s: Surface, n: vec3<f32>) -> vec3<f32> {
 // #if TEXTURE
 // (kd, ks) at s: the material's colours, or its textures' texels at the hit's UV.
 // Mirror of src/cpu/texture.rs::surface_colours — change both.
-fn surface_colours(m: GpuMaterial, s: Surface) -> Phong {
+fn surface_colours(m: PackedMaterial, s: Surface) -> Phong {
     var kd = m.kd;
     var ks = m.ks;
     if m.diffuse_texture != NO_TEXTURE {

@@ -36,14 +36,14 @@ fn triangle_mailbox_seen(mailbox: ptr<function, TriangleMailbox>, triangle: u32)
 
 // The mesh of a KIND_MESH instance.
 // Mirror of src/cpu/traverse_mesh.rs::instance_mesh — change both.
-fn instance_mesh(inst: GpuInstance) -> GpuMesh {
+fn instance_mesh(inst: PackedInstance) -> PackedMesh {
     return meshes[u32(inst.params.x)];
 }
 
 // Nearest hit in (0, t_max) with mesh instance `item` (inst): t, the barycentrics and the
 // triangle as part; hit_miss() (t = T_MISS) when nothing is hit.
 // Mirror of src/cpu/traverse_mesh.rs::intersect_mesh — change both.
-fn intersect_mesh(inst: GpuInstance, item: u32, ray: Ray, t_max: f32) -> Hit {
+fn intersect_mesh(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit {
     let mesh = instance_mesh(inst);
     let entered = enter_mesh(mesh, to_object_space(inst, ray.origin, ray.dir), t_max);
     if !entered.valid {
@@ -88,7 +88,7 @@ fn intersect_mesh(inst: GpuInstance, item: u32, ray: Ray, t_max: f32) -> Hit {
 // Whether any triangle of mesh instance inst is hit in (0, t_max) (shadow rays: stops at
 // the first one found).
 // Mirror of src/cpu/traverse_mesh.rs::mesh_occludes — change both.
-fn mesh_occludes(inst: GpuInstance, ray: Ray, t_max: f32) -> bool {
+fn mesh_occludes(inst: PackedInstance, ray: Ray, t_max: f32) -> bool {
     let mesh = instance_mesh(inst);
     let entered = enter_mesh(mesh, to_object_space(inst, ray.origin, ray.dir), t_max);
     if !entered.valid {

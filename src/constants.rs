@@ -1,7 +1,7 @@
 //! Tags and constants shared by both tracers. Defined once here; the GPU tracer gets them
 //! as a generated WGSL prelude ([`wgsl_prelude`]), so no magic number is repeated in WGSL.
 
-/// Instance kinds (`GpuInstance::kind`).
+/// Instance kinds (`PackedInstance::kind`).
 pub const KIND_SPHERE: u32 = 0;
 pub const KIND_CUBE: u32 = 1;
 pub const KIND_CYLINDER: u32 = 2;
@@ -67,7 +67,7 @@ pub const CSG_COINCIDENT_RELATIVE: f32 = 1.0 / 65536.0;
 /// stay finite (no IEEE infinity, which WGSL does not guarantee).
 pub const CSG_T_LIMIT: f32 = 1.0e30;
 
-/// Light kinds (`GpuLight::kind`).
+/// Light kinds (`PackedLight::kind`).
 pub const LIGHT_POINT: u32 = 0;
 pub const LIGHT_AREA: u32 = 1;
 
@@ -78,11 +78,11 @@ pub const DEFAULT_SHADOW_SAMPLES: u32 = 4;
 /// First random dimension of the shadow samples (0 and 1 jitter the camera sample).
 pub const SHADOW_DIMENSION_BASE: u32 = 2;
 
-/// Material flags (`GpuMaterial::flags`).
+/// Material flags (`PackedMaterial::flags`).
 pub const MATERIAL_REFLECTIVE: u32 = 1;
 pub const MATERIAL_REFRACTIVE: u32 = 2;
 
-/// `GpuMaterial::*_texture` meaning "no texture".
+/// `PackedMaterial::*_texture` meaning "no texture".
 pub const NO_TEXTURE: u32 = u32::MAX;
 
 /// The texture table at the start of `PackedScene::texels`: texture i's header is the
@@ -108,12 +108,12 @@ pub const TRIANGLE_FRAME_MIN_UV_SINE: f32 = 1.0e-6;
 /// well-conditioned cross product).
 pub const TRIANGLE_FRAME_AXIS_SWITCH: f32 = 0.9;
 
-/// Debug views (`GpuGlobals::debug_view`): the normal image, or colour = (u mod 1,
+/// Debug views (`PackedGlobals::debug_view`): the normal image, or colour = (u mod 1,
 /// v mod 1, 0) of the first surface each primary ray hits.
 pub const DEBUG_VIEW_NONE: u32 = 0;
 pub const DEBUG_VIEW_UV: u32 = 1;
 
-/// Anti-aliasing modes (`GpuGlobals::aa_mode`).
+/// Anti-aliasing modes (`PackedGlobals::aa_mode`).
 pub const AA_NONE: u32 = 0;
 pub const AA_UNIFORM: u32 = 1;
 pub const AA_ADAPTIVE: u32 = 2;
@@ -136,7 +136,7 @@ pub const AIR_IOR: f32 = 1.0;
 /// Dielectrics nested deeper than this per ray (glass in water in …) are counted but not
 /// recorded: a ray inside them sees the index of the deepest recorded level (see
 /// `cpu::dielectric::medium_push`). 4 covers a bubble in glass in water with one to spare.
-/// `GpuGlobals::camera_media` holds exactly this many indices.
+/// `PackedGlobals::camera_media` holds exactly this many indices.
 pub const MEDIUM_STACK_SIZE: u32 = 4;
 /// A shadow ray passes through at most this many dielectric surfaces; one more counts as
 /// blocked. Bounded because lavapipe counts every loop iteration of an invocation against

@@ -9,7 +9,7 @@ use crate::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderInfo, GpuRenderOpti
 use crate::image_io::{check_output_path, write_image, ImageIoError};
 use crate::pack::{pack, PackError, PackedScene, SceneFeatures};
 use crate::scene::flatten::flatten;
-use crate::scene::flatten::Scene;
+use crate::scene::flatten::FlatScene;
 use crate::scene::lua::{run_scene_file, SceneError, ScriptConfig, ScriptReport};
 use crate::scene::{AaMode, DebugView, OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
 use std::cell::RefCell;
@@ -147,7 +147,7 @@ impl RunError {
 /// `scene` packed for rendering: [`pack`], then, in scenes with refraction, the media
 /// around the eye that primary rays start in (found by tracing the packed scene, so it
 /// comes after packing).
-pub fn pack_scene(scene: &Scene) -> Result<PackedScene, PackError> {
+pub fn pack_scene(scene: &FlatScene) -> Result<PackedScene, PackError> {
     let mut packed = pack(scene)?;
     if packed.features.contains(SceneFeatures::REFRACTION) {
         fill_camera_media(&mut packed);

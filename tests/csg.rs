@@ -13,7 +13,7 @@ use glint::constants::{CSG_FLIP, CSG_INDEX_MASK, T_MISS};
 use glint::cpu::ray::Ray;
 use glint::cpu::traverse::{closest_hit, NoCounters};
 use glint::pack::{pack, PackedScene};
-use glint::scene::flatten::{CsgObject, CsgStep, Object, ObjectKind, Scene};
+use glint::scene::flatten::{CsgObject, CsgStep, FlatScene, Object, ObjectKind};
 use glint::scene::{Camera, CsgOp, Material, RenderOptions};
 use oracle_support::Rng;
 
@@ -27,8 +27,8 @@ fn leaf(kind: ObjectKind, object_to_world: DMat4, material: usize) -> CsgStep {
 }
 
 /// A scene of CSG objects (and nothing else), one material per index used.
-fn csg_scene(programs: Vec<Vec<CsgStep>>) -> Scene {
-    Scene {
+fn csg_scene(programs: Vec<Vec<CsgStep>>) -> FlatScene {
+    FlatScene {
         objects: Vec::new(),
         csg: programs
             .into_iter()
@@ -824,7 +824,7 @@ const RENDER: &str = "gr.render(root, 'out.png', 8, 8, {0,0,5}, {0,0,-1}, {0,1,0
 
 /// Runs `source` (plus a render of `root`), flattening each render; the scenes or the
 /// error message.
-fn run(source: &str) -> Result<Vec<Scene>, String> {
+fn run(source: &str) -> Result<Vec<FlatScene>, String> {
     let mut scenes = Vec::new();
     glint::scene::lua::run_scene_source(
         "scene.lua",

@@ -20,7 +20,7 @@ use glint::cpu::ray::{offset_ray, Ray};
 use glint::cpu::surface::surface_at;
 use glint::cpu::traverse::Hit;
 use glint::pack::{pack, PackedScene};
-use glint::scene::flatten::{Object, ObjectKind, Scene};
+use glint::scene::flatten::{FlatScene, Object, ObjectKind};
 use glint::scene::{Camera, GridMode, Material, RenderOptions};
 
 // ---------------------------------------------------------------------------------------
@@ -30,7 +30,7 @@ use glint::scene::{Camera, GridMode, Material, RenderOptions};
 // Scenes and rays.
 
 fn pack_one(kind: ObjectKind, m: DMat4) -> PackedScene {
-    let scene = Scene {
+    let scene = FlatScene {
         objects: vec![Object {
             name: String::from("shape"),
             kind,

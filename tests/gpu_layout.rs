@@ -5,8 +5,8 @@
 use glint::gpu::buffers::GpuTile;
 use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
 use glint::pack::{
-    GpuGlobals, GpuInstance, GpuLight, GpuMaterial, GpuMesh, GpuTriangle, GpuTriangleUv,
-    SceneFeatures,
+    PackedGlobals, PackedInstance, PackedLight, PackedMaterial, PackedMesh, PackedTriangle,
+    PackedTriangleUv, SceneFeatures,
 };
 use glint::testing::probe::{ProbeRay, ProbeResult};
 use std::mem::{offset_of, size_of};
@@ -51,7 +51,7 @@ fn wgsl_structs_match_rust_layout() {
     let render = module(Entry::Render);
     check_struct(
         &render,
-        rust_fields!(GpuInstance {
+        rust_fields!(PackedInstance {
             world_to_object,
             object_to_world,
             kind,
@@ -59,11 +59,11 @@ fn wgsl_structs_match_rust_layout() {
             params
         }),
     );
-    check_struct(&render, rust_fields!(GpuTriangle { p0, p1, p2 }));
-    check_struct(&render, rust_fields!(GpuTriangleUv { uv0, uv1, uv2 }));
+    check_struct(&render, rust_fields!(PackedTriangle { p0, p1, p2 }));
+    check_struct(&render, rust_fields!(PackedTriangleUv { uv0, uv1, uv2 }));
     check_struct(
         &render,
-        rust_fields!(GpuMesh {
+        rust_fields!(PackedMesh {
             grid_min,
             first_cell,
             grid_max,
@@ -76,7 +76,7 @@ fn wgsl_structs_match_rust_layout() {
     );
     check_struct(
         &render,
-        rust_fields!(GpuMaterial {
+        rust_fields!(PackedMaterial {
             kd,
             shininess,
             ks,
@@ -91,7 +91,7 @@ fn wgsl_structs_match_rust_layout() {
     );
     check_struct(
         &render,
-        rust_fields!(GpuLight {
+        rust_fields!(PackedLight {
             position,
             kind,
             colour,
@@ -106,7 +106,7 @@ fn wgsl_structs_match_rust_layout() {
     );
     check_struct(
         &render,
-        rust_fields!(GpuGlobals {
+        rust_fields!(PackedGlobals {
             eye,
             tan_half_fov,
             forward,

@@ -12,10 +12,10 @@ use glint::cpu::ray::{camera_ray, Ray};
 use glint::cpu::surface::surface_at;
 use glint::cpu::traverse::{any_hit, closest_hit, Counters, NoCounters};
 use glint::pack::{pack, PackedScene};
-use glint::scene::flatten::{Scene, Triangle};
+use glint::scene::flatten::{FlatScene, Triangle};
 use glint::scene::{GridMode, OptionOverrides};
 
-fn macho_cows(grid: GridMode) -> Scene {
+fn macho_cows(grid: GridMode) -> FlatScene {
     let overrides = OptionOverrides {
         grid: Some(grid),
         width: Some(64),
@@ -27,7 +27,7 @@ fn macho_cows(grid: GridMode) -> Scene {
 
 /// The scene with every mesh instance baked into loose world-space triangles (in f64,
 /// as flattening did before meshes were stored once).
-fn baked(scene: &Scene) -> Scene {
+fn baked(scene: &FlatScene) -> FlatScene {
     let mut out = scene.clone();
     for instance in &scene.mesh_instances {
         for t in &scene.meshes[instance.mesh].triangles {
@@ -64,7 +64,7 @@ fn unit_vector(rng: &mut Rng) -> DVec3 {
 
 /// Rays from random points around the scene at interior points (barycentrics in
 /// [0.2, 0.6]) of random triangles of random instances, and the scene's camera rays.
-fn rays(scene: &Scene, packed: &PackedScene, rng: &mut Rng, count: usize) -> Vec<Ray> {
+fn rays(scene: &FlatScene, packed: &PackedScene, rng: &mut Rng, count: usize) -> Vec<Ray> {
     let g = &packed.globals;
     let mut rays: Vec<Ray> = (0..g.width * g.height)
         .map(|i| camera_ray(g, (i % g.width) as f32 + 0.5, (i / g.width) as f32 + 0.5))

@@ -18,17 +18,17 @@ use glint::cpu::ray::{offset_ray, Ray};
 use glint::cpu::surface::surface_at;
 use glint::cpu::traverse::{closest_hit, Hit, NoCounters};
 use glint::pack::{pack, PackedScene};
-use glint::scene::flatten::{Object, ObjectKind, Scene, Triangle};
+use glint::scene::flatten::{FlatScene, Object, ObjectKind, Triangle};
 use glint::scene::{Camera, GridMode, Material, RenderOptions};
 
 // ---------------------------------------------------------------------------------------
 // Seeded randomness (splitmix64).
 
 // ---------------------------------------------------------------------------------------
-// Scenes, built the way the tracer gets them: `flatten::Scene` → `pack`.
+// Scenes, built the way the tracer gets them: `flatten::FlatScene` → `pack`.
 
-fn scene(objects: Vec<Object>, triangles: Vec<Triangle>, grid: GridMode) -> Scene {
-    Scene {
+fn scene(objects: Vec<Object>, triangles: Vec<Triangle>, grid: GridMode) -> FlatScene {
+    FlatScene {
         objects,
         triangles,
         meshes: Vec::new(),

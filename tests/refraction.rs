@@ -24,7 +24,7 @@ use glint::diff::assert_images_match;
 use glint::film::Film;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::pipeline::pack_scene;
-use glint::scene::flatten::{Object, ObjectKind, Scene};
+use glint::scene::flatten::{FlatScene, Object, ObjectKind};
 use glint::scene::{AaMode, Background, Camera, Light, Material, OptionOverrides, RenderOptions};
 
 fn glass(ior: f32) -> Material {
@@ -54,8 +54,8 @@ fn ball(centre: DVec3, radius: f64, material: usize) -> Object {
 }
 
 /// A scene of `objects` seen from `eye` towards -z, no lights unless given.
-fn scene(objects: Vec<Object>, materials: Vec<Material>, eye: DVec3, size: u32) -> Scene {
-    Scene {
+fn scene(objects: Vec<Object>, materials: Vec<Material>, eye: DVec3, size: u32) -> FlatScene {
+    FlatScene {
         objects,
         triangles: vec![],
         meshes: Vec::new(),
@@ -364,7 +364,7 @@ fn camera_media_are_the_solids_around_the_eye() {
 }
 
 /// A floor of coloured boxes under a light, to see through dielectrics.
-fn floor_scene(extra: Vec<Object>, eye: DVec3) -> Scene {
+fn floor_scene(extra: Vec<Object>, eye: DVec3) -> FlatScene {
     let mut materials = vec![
         Material {
             kd: [0.8, 0.3, 0.2],
@@ -425,7 +425,7 @@ fn equal_indices_are_no_interface() {
     same_image("index-1-ball", &with_air, &alone);
 }
 
-/// The camera inside glass: rays start in glass (GpuGlobals::camera_media), so a glass
+/// The camera inside glass: rays start in glass (PackedGlobals::camera_media), so a glass
 /// ball around the eye inside a bigger glass ball is invisible.
 #[test]
 fn camera_inside_glass_starts_in_glass() {
@@ -601,7 +601,7 @@ gr.render(root, 'smooth.png', 192, 64, {0, 2, 7}, {0, -0.25, -1}, {0, 1, 0}, 40,
 "#;
 
 /// Renders `scene` at scales 1, 1e-3 and 1e3: the same image, and no NaN.
-fn scale_invariant(name: &str, scene: &Scene) -> Vec<Film> {
+fn scale_invariant(name: &str, scene: &FlatScene) -> Vec<Film> {
     let reference = render_cpu(&pack_scene(scene).unwrap());
     let mut films = vec![reference.clone()];
     for s in [1e-3, 1e3] {

@@ -13,7 +13,7 @@ use glint::cpu::trace::trace_ray;
 use glint::cpu::traverse::NoCounters;
 use glint::diff::assert_images_match;
 use glint::pack::pack;
-use glint::scene::flatten::{Object, ObjectKind, Scene};
+use glint::scene::flatten::{FlatScene, Object, ObjectKind};
 use glint::scene::{
     Background, Camera, Light, Material, OptionOverrides, RenderOptions, TraceDepth,
 };
@@ -23,8 +23,8 @@ fn sphere_scene(
     light: Light,
     ambient: [f32; 3],
     options: RenderOptions,
-) -> Scene {
-    Scene {
+) -> FlatScene {
+    FlatScene {
         objects: vec![Object {
             name: "s".into(),
             kind: ObjectKind::Sphere,

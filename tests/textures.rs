@@ -15,7 +15,7 @@ use glint::cpu::surface::{surface_at, Surface};
 use glint::cpu::texture::{bump_normal, sample_texture};
 use glint::cpu::traverse::{closest_hit, NoCounters};
 use glint::pack::texture::pack_texels;
-use glint::pack::{GpuMaterial, PackedScene, SceneFeatures};
+use glint::pack::{PackedMaterial, PackedScene, SceneFeatures};
 use glint::scene::texture::Texture;
 use glint::scene::OptionOverrides;
 use std::path::{Path, PathBuf};
@@ -317,18 +317,18 @@ fn flat(dpdu: Vec3, dpdv: Vec3) -> Surface {
     }
 }
 
-fn bump_material(strength: f32) -> GpuMaterial {
-    GpuMaterial {
+fn bump_material(strength: f32) -> PackedMaterial {
+    PackedMaterial {
         bump_texture: 0,
         bump_strength: strength,
-        ..GpuMaterial::zeroed()
+        ..PackedMaterial::zeroed()
     }
 }
 
 trait Zeroed {
     fn zeroed() -> Self;
 }
-impl Zeroed for GpuMaterial {
+impl Zeroed for PackedMaterial {
     fn zeroed() -> Self {
         bytemuck::Zeroable::zeroed()
     }

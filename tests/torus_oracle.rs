@@ -27,8 +27,8 @@ use glint::cpu::intersect::intersect_instance;
 use glint::cpu::ray::offset_ray;
 use glint::cpu::surface::surface_at;
 use glint::cpu::traverse::Hit;
-use glint::pack::{pack, GpuInstance, PackedScene};
-use glint::scene::flatten::{Object, ObjectKind, Scene};
+use glint::pack::{pack, PackedInstance, PackedScene};
+use glint::scene::flatten::{FlatScene, Object, ObjectKind};
 use glint::scene::{Camera, GridMode, Material, RenderOptions};
 
 // ---------------------------------------------------------------------------------------
@@ -139,7 +139,7 @@ fn oracle(
 // Scenes and rays.
 
 fn pack_torus(rin: f64, rout: f64, m: DMat4) -> PackedScene {
-    pack(&Scene {
+    pack(&FlatScene {
         objects: vec![Object {
             name: String::from("torus"),
             kind: ObjectKind::Torus {
@@ -321,7 +321,7 @@ fn run_family(family: Family, salt: u64) -> Agreement {
         let mut rng = Rng(seed);
         let (rin, rout, m, size) = random_torus(&mut rng);
         let packed = pack_torus(rin, rout, m);
-        let inst: &GpuInstance = &packed.instances[0];
+        let inst: &PackedInstance = &packed.instances[0];
         // The tracer sees the f32 radii: so does the oracle.
         let (rin, rout) = (inst.params[0] as f64, inst.params[1] as f64);
         let shrink = min_scale(&m);

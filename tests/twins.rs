@@ -76,7 +76,7 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
 /// twin takes a parameter of that type too), and where.
 const MODULE_SCOPE: &[(&str, &str)] = &[
     ("PackedScene", "the scene's storage bindings"),
-    ("GpuGlobals", "the `globals` uniform"),
+    ("PackedGlobals", "the `globals` uniform"),
     ("AdaptiveTile", "the `tile` uniform"),
     ("Lattice", "the `samples` and `split` storage buffers"),
     ("CsgStack", "the csg_* private variables"),

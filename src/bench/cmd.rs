@@ -20,7 +20,7 @@ use crate::cpu::ray::Ray;
 use crate::cpu::traverse::{closest_hit, NoCounters};
 use crate::pack::PackedScene;
 use crate::pipeline::pack_scene;
-use crate::scene::flatten::{Scene, Triangle};
+use crate::scene::flatten::{FlatScene, Triangle};
 use crate::scene::{Camera, GridMode, RenderOptions};
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
@@ -131,7 +131,7 @@ fn bench_macho_cows(args: &BenchArgs) -> anyhow::Result<()> {
 
 /// `n` random triangles in the unit cube, each about as large as the mean spacing
 /// (so every N has the same depth complexity), and a scene around them.
-pub fn random_triangle_scene(n: usize, seed: u64) -> Scene {
+pub fn random_triangle_scene(n: usize, seed: u64) -> FlatScene {
     let mut rng = SplitMix(seed);
     let size = (n as f64).cbrt().recip();
     let triangles = (0..n)
@@ -144,7 +144,7 @@ pub fn random_triangle_scene(n: usize, seed: u64) -> Scene {
             }
         })
         .collect();
-    Scene {
+    FlatScene {
         objects: Vec::new(),
         triangles,
         meshes: Vec::new(),

@@ -3,7 +3,7 @@
 
 use crate::pack::PackedScene;
 use crate::pipeline::pack_scene;
-use crate::scene::flatten::{flatten, Scene};
+use crate::scene::flatten::{flatten, FlatScene};
 use crate::scene::lua::{run_scene_file, ScriptConfig};
 use crate::scene::GridMode;
 use std::path::PathBuf;
@@ -79,7 +79,7 @@ pub struct BenchArgs {
     pub threads: Option<u32>,
 }
 
-pub fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<Scene> {
+pub fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<FlatScene> {
     let mut scene = None;
     run_scene_file(path, &ScriptConfig::default(), &mut |graph, request| {
         if scene.is_none() {
@@ -93,7 +93,7 @@ pub fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Re
     scene.ok_or_else(|| anyhow::anyhow!("{} never calls gr.render", path.display()))
 }
 
-pub fn with_grid(scene: &Scene, grid: GridMode) -> anyhow::Result<PackedScene> {
+pub fn with_grid(scene: &FlatScene, grid: GridMode) -> anyhow::Result<PackedScene> {
     let mut scene = scene.clone();
     scene.options.grid = grid;
     Ok(pack_scene(&scene)?)

@@ -20,7 +20,7 @@ use crate::film::Film;
 use crate::gpu::{render_gpu, GpuContext, GpuRenderOptions};
 use crate::pack::SceneFeatures;
 use crate::pipeline::pack_scene;
-use crate::scene::flatten::Scene;
+use crate::scene::flatten::FlatScene;
 use crate::scene::{AaDepth, AaMode, AaSamples, RenderOptions, ShadowSamples};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -66,7 +66,7 @@ impl Setting {
     }
 
     /// `scene` with this setting's options.
-    fn apply(self, scene: &Scene) -> Scene {
+    fn apply(self, scene: &FlatScene) -> FlatScene {
         let mut scene = scene.clone();
         let o: &mut RenderOptions = &mut scene.options;
         match self {
@@ -202,7 +202,7 @@ impl Timing {
 }
 
 /// Renders `scene` on the CPU: (best timing, film).
-fn time_cpu(scene: &Scene, repeat: usize) -> anyhow::Result<(Timing, Film)> {
+fn time_cpu(scene: &FlatScene, repeat: usize) -> anyhow::Result<(Timing, Film)> {
     let packed = pack_scene(scene)?;
     let mut best = Timing {
         wall: Duration::MAX,
@@ -282,7 +282,7 @@ impl GpuSide {
     /// every second counts against the budget.
     fn render(
         &mut self,
-        scene: &Scene,
+        scene: &FlatScene,
         reference: &Film,
         setting: Setting,
     ) -> Result<Measured, String> {

@@ -9,7 +9,7 @@ use crate::cpu::surface::surface_at;
 use crate::cpu::traverse::{any_hit, closest_hit, Hit, NoCounters};
 use crate::cpu::traverse_mesh::instance_mesh;
 use crate::pack::PackedScene;
-use crate::scene::flatten::{flatten, Scene};
+use crate::scene::flatten::{flatten, FlatScene};
 use crate::scene::lua::{run_scene_file, ScriptConfig};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -88,7 +88,7 @@ pub fn load_first_render(
     height: Option<u32>,
     allow_read: &[PathBuf],
     memory_limit: Option<usize>,
-) -> anyhow::Result<Scene> {
+) -> anyhow::Result<FlatScene> {
     let mut scene = None;
     let defaults = ScriptConfig::default();
     let config = ScriptConfig {

@@ -16,7 +16,7 @@ const PARITY_RAY_DIR: Vec3 = Vec3::new(0.267_261_24, 0.534_522_5, 0.801_783_7);
 const PARITY_RAY_STEPS: usize = 1024;
 
 /// The medium stack primary rays start with: the dielectric solids that contain the eye,
-/// outermost first (after `gr.render`, packing puts it in `GpuGlobals::camera_media`).
+/// outermost first (after `gr.render`, packing puts it in `PackedGlobals::camera_media`).
 /// A ray from the eye walks through every surface; a solid contains the eye when the
 /// first of its surfaces the ray meets is left rather than entered — the tracer's own
 /// entering rule. A solid is an instance, or for triangles the set of triangles of one

@@ -33,7 +33,7 @@ use crate::constants::{
     CSG_INTERSECTION, CSG_LEAF, CSG_LIST_CAPACITY, CSG_OP_SHIFT, CSG_T_LIMIT, KIND_CONE, KIND_CUBE,
     KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, NO_ITEM, T_MISS,
 };
-use crate::pack::{GpuInstance, PackedScene};
+use crate::pack::{PackedInstance, PackedScene};
 use glam::{Vec3, Vec4};
 
 /// The nearest CSG hit: t (T_MISS on a miss) and the tag of the surface: leaf instance
@@ -72,7 +72,7 @@ impl Default for CsgStack {
 /// The inside intervals of `o + t·d` (world space) through a leaf instance, in world t:
 /// [x, y] and [z, w], each empty when its lo > hi, the second after the first.
 // Mirror of shaders/csg.wgsl::leaf_intervals — change both.
-pub fn leaf_intervals(leaf: &GpuInstance, o: Vec3, d: Vec3) -> Vec4 {
+pub fn leaf_intervals(leaf: &PackedInstance, o: Vec3, d: Vec3) -> Vec4 {
     let (oo, od) = to_object_space(leaf, o, d);
     let empty = Vec4::new(T_MISS, -T_MISS, T_MISS, -T_MISS);
     match leaf.kind {
@@ -219,7 +219,7 @@ pub fn csg_combine(stack: &mut CsgStack, op: u32, magnitude: f32) {
 pub fn csg_evaluate(
     stack: &mut CsgStack,
     scene: &PackedScene,
-    inst: &GpuInstance,
+    inst: &PackedInstance,
     o: Vec3,
     d: Vec3,
 ) {
@@ -243,7 +243,7 @@ pub fn csg_evaluate(
 // Mirror of shaders/csg.wgsl::intersect_csg — change both.
 pub fn intersect_csg(
     scene: &PackedScene,
-    inst: &GpuInstance,
+    inst: &PackedInstance,
     o: Vec3,
     d: Vec3,
     t_max: f32,

@@ -1,11 +1,11 @@
 //! One uniform grid walked by 3D-DDA (Amanatides & Woo 1987), for either level: the scene
-//! grid (placement in `GpuGlobals`) or a mesh's own grid (in its `GpuMesh`, mesh space).
+//! grid (placement in `PackedGlobals`) or a mesh's own grid (in its `PackedMesh`, mesh space).
 //! Also the move of a ray's origin to where it enters a box, which both levels use.
 
 use super::math::{safe_rcp3, Axis};
 use super::ray::Ray;
 use crate::constants::{ENTER_MARGIN_RELATIVE, F32_MIN_POSITIVE, T_MISS};
-use crate::pack::{GpuGlobals, GpuMesh};
+use crate::pack::{PackedGlobals, PackedMesh};
 use glam::{IVec3, Vec3};
 
 /// A grid's placement: bounds, cell size, cells per axis and its first cell in
@@ -22,7 +22,7 @@ pub struct GridView {
 
 /// The scene grid (its cells come first in `cell_start`).
 // Mirror of shaders/dda.wgsl::scene_grid — change both.
-pub fn scene_grid(g: &GpuGlobals) -> GridView {
+pub fn scene_grid(g: &PackedGlobals) -> GridView {
     GridView {
         min: Vec3::from(g.grid_min),
         max: Vec3::from(g.grid_max),
@@ -38,7 +38,7 @@ pub fn scene_grid(g: &GpuGlobals) -> GridView {
 
 /// A mesh's own grid, in the mesh's space.
 // Mirror of shaders/dda.wgsl::mesh_grid — change both.
-pub fn mesh_grid(mesh: &GpuMesh) -> GridView {
+pub fn mesh_grid(mesh: &PackedMesh) -> GridView {
     GridView {
         min: Vec3::from(mesh.grid_min),
         max: Vec3::from(mesh.grid_max),
@@ -204,7 +204,7 @@ pub fn enter_bounds(
 /// have unit directions, so the margin is a distance: more than the rounding of the
 /// moved origin). Brute force does the same, so both give the same hits.
 // Mirror of shaders/dda.wgsl::enter_scene — change both.
-pub fn enter_scene(g: &GpuGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
+pub fn enter_scene(g: &PackedGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
     let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE;
     enter_bounds(
         Vec3::from(g.grid_min),
@@ -220,7 +220,7 @@ pub fn enter_scene(g: &GpuGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRay> 
 /// relative margin of the origin divided by the direction's largest component: at least
 /// the distance margin, in t.
 // Mirror of shaders/dda.wgsl::enter_mesh — change both.
-pub fn enter_mesh(mesh: &GpuMesh, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
+pub fn enter_mesh(mesh: &PackedMesh, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
     let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE
         / ray.dir.abs().max_element().max(F32_MIN_POSITIVE);
     enter_bounds(

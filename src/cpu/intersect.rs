@@ -6,7 +6,7 @@ use super::cylinder_cone::{intersect_cone, intersect_cylinder};
 use super::math::{safe_rcp3, Axis};
 use super::torus::intersect_torus;
 use crate::constants::{KIND_CONE, KIND_CUBE, KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, T_MISS};
-use crate::pack::{GpuInstance, GpuTriangle};
+use crate::pack::{PackedInstance, PackedTriangle};
 use glam::{Vec2, Vec3};
 
 /// The t-interval [t0, t1] where `o + t·d` is inside the unit sphere at the origin, as
@@ -206,7 +206,7 @@ pub fn intersect_triangle(r: &TriangleRay, p0: Vec3, p1: Vec3, p2: Vec3, t_max: 
 /// Object-space ray of an instance: origin and (unnormalised) direction through the
 /// world→object rows.
 // Mirror of shaders/intersect.wgsl::to_object_space — change both.
-pub fn to_object_space(inst: &GpuInstance, o: Vec3, d: Vec3) -> (Vec3, Vec3) {
+pub fn to_object_space(inst: &PackedInstance, o: Vec3, d: Vec3) -> (Vec3, Vec3) {
     let rows = &inst.world_to_object;
     let row = |i: usize| Vec3::new(rows[i][0], rows[i][1], rows[i][2]);
     let oo = Vec3::new(
@@ -221,7 +221,7 @@ pub fn to_object_space(inst: &GpuInstance, o: Vec3, d: Vec3) -> (Vec3, Vec3) {
 /// t of the nearest hit in (0, t_max) with an analytic instance, else [`T_MISS`]
 /// (`KIND_CSG` instances need the scene: see `traverse::intersect_item`).
 // Mirror of shaders/intersect.wgsl::intersect_instance — change both.
-pub fn intersect_instance(inst: &GpuInstance, o: Vec3, d: Vec3, t_max: f32) -> f32 {
+pub fn intersect_instance(inst: &PackedInstance, o: Vec3, d: Vec3, t_max: f32) -> f32 {
     let (oo, od) = to_object_space(inst, o, d);
     match inst.kind {
         KIND_SPHERE => intersect_sphere(oo, od, t_max),
@@ -235,6 +235,6 @@ pub fn intersect_instance(inst: &GpuInstance, o: Vec3, d: Vec3, t_max: f32) -> f
 
 /// The triangle's vertices as vectors.
 // Mirror of shaders/intersect.wgsl::triangle_vertices — change both.
-pub fn triangle_vertices(tri: &GpuTriangle) -> [Vec3; 3] {
+pub fn triangle_vertices(tri: &PackedTriangle) -> [Vec3; 3] {
     [Vec3::from(tri.p0), Vec3::from(tri.p1), Vec3::from(tri.p2)]
 }

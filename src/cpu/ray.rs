@@ -1,7 +1,7 @@
 //! Rays, camera rays and the self-intersection offset.
 
 use crate::constants::OFFSET_RELATIVE;
-use crate::pack::GpuGlobals;
+use crate::pack::PackedGlobals;
 use glam::Vec3;
 
 // Mirror of shaders/ray.wgsl::Ray — change both.
@@ -15,7 +15,7 @@ pub struct Ray {
 /// Primary ray through film position (`fx`, `fy`) in pixels (0,0 = top-left corner of
 /// the image, pixel centres at +0.5).
 // Mirror of shaders/ray.wgsl::camera_ray — change both.
-pub fn camera_ray(g: &GpuGlobals, fx: f32, fy: f32) -> Ray {
+pub fn camera_ray(g: &PackedGlobals, fx: f32, fy: f32) -> Ray {
     let ndc_x = 2.0 * fx / g.width as f32 - 1.0;
     let ndc_y = 1.0 - 2.0 * fy / g.height as f32;
     let dir = Vec3::from(g.forward)

@@ -7,7 +7,7 @@ use super::surface::{Phong, Surface};
 use super::texture::surface_colours;
 use super::traverse::{any_hit, TraversalCounters};
 use crate::constants::LIGHT_AREA;
-use crate::pack::{GpuGlobals, GpuLight, PackedScene, SceneFeatures};
+use crate::pack::{PackedGlobals, PackedLight, PackedScene, SceneFeatures};
 use glam::Vec3;
 
 /// `base^exponent` for base in [0, 1] without NaN or overflow for any exponent ≥ 0
@@ -98,7 +98,7 @@ fn point_light(
     origin: Vec3,
     media: &MediumStack,
     position: Vec3,
-    light: &GpuLight,
+    light: &PackedLight,
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let m = &scene.materials[s.material as usize];
@@ -151,7 +151,7 @@ fn area_light(
     v: Vec3,
     origin: Vec3,
     media: &MediumStack,
-    light: &GpuLight,
+    light: &PackedLight,
     index: u32,
     seed: SampleSeed,
     counters: &mut impl TraversalCounters,
@@ -178,7 +178,7 @@ fn area_light(
 /// Colour of a ray that hits nothing: the vertical gradient by direction (solid when
 /// top = bottom), "up" being the camera's up.
 // Mirror of shaders/shade.wgsl::background — change both.
-pub fn background(g: &GpuGlobals, dir: Vec3) -> Vec3 {
+pub fn background(g: &PackedGlobals, dir: Vec3) -> Vec3 {
     let t = 0.5 * (dir.dot(Vec3::from(g.up)) + 1.0);
     Vec3::from(g.background_bottom) * (1.0 - t) + Vec3::from(g.background_top) * t
 }

@@ -12,7 +12,7 @@ use crate::constants::{
     CSG_FLIP, CSG_INDEX_MASK, KIND_CONE, KIND_CSG, KIND_CYLINDER, KIND_MESH, KIND_SPHERE,
     KIND_TORUS,
 };
-use crate::pack::{GpuInstance, PackedScene, SceneFeatures};
+use crate::pack::{PackedInstance, PackedScene, SceneFeatures};
 use glam::{Vec2, Vec3};
 
 /// What shading needs to know about a hit point.
@@ -55,7 +55,7 @@ fn affine_magnitude(rows: &[[f32; 4]; 3]) -> f32 {
 /// Point, normal and magnitude of an instance hit, computed in object space (where the
 /// point is snapped onto the exact surface) and mapped to world space.
 // Mirror of shaders/shade.wgsl::instance_surface — change both.
-fn instance_surface(inst: &GpuInstance, ray: &Ray, t: f32) -> Surface {
+fn instance_surface(inst: &PackedInstance, ray: &Ray, t: f32) -> Surface {
     let (oo, od) = to_object_space(inst, ray.origin, ray.dir);
     let p_hit = oo + od * t;
     // Every kind snaps the point onto its surface.
@@ -130,7 +130,7 @@ fn mapped_magnitude(rows: &[[f32; 4]; 3], magnitude: f32) -> f32 {
 /// barycentrics, computed in the mesh's space and mapped to world space (point and
 /// tangents through object→world, the normal through the transpose of world→object).
 // Mirror of shaders/shade.wgsl::mesh_surface — change both.
-fn mesh_surface(scene: &PackedScene, inst: &GpuInstance, hit: &Hit) -> Surface {
+fn mesh_surface(scene: &PackedScene, inst: &PackedInstance, hit: &Hit) -> Surface {
     let index = hit.part as usize;
     let [p0, p1, p2] = triangle_vertices(&scene.triangles[index]);
     // The barycentric point is exact to a few ulps of the vertices (unlike o + t·d).

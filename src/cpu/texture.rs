@@ -24,7 +24,7 @@ use super::surface::{Phong, Surface};
 use crate::constants::{
     BUMP_MIN_FRAME_SINE, LUMINANCE_B, LUMINANCE_G, LUMINANCE_R, NO_TEXTURE, TEXTURE_HEADER_WORDS,
 };
-use crate::pack::{GpuMaterial, PackedScene};
+use crate::pack::{PackedMaterial, PackedScene};
 use glam::{Vec2, Vec3};
 
 /// Texel (x, y) of texture `texture` (x < width, y < height, y from the top row) as RGB
@@ -107,7 +107,7 @@ pub fn height_gradient(texels: &[u32], texture: u32, uv: Vec2) -> Vec2 {
 /// see the module header); `s.normal` itself where the tangent frame is degenerate
 /// (a pole, a cone tip, zero-area UVs).
 // Mirror of shaders/texture.wgsl::bump_normal — change both.
-pub fn bump_normal(texels: &[u32], m: &GpuMaterial, s: &Surface) -> Vec3 {
+pub fn bump_normal(texels: &[u32], m: &PackedMaterial, s: &Surface) -> Vec3 {
     let n = s.normal;
     let len_u = s.dpdu.length();
     let len_v = s.dpdv.length();
@@ -148,7 +148,7 @@ pub fn shading_normal(scene: &PackedScene, s: &Surface, n: Vec3) -> Vec3 {
 
 /// (kd, ks) at `s`: the material's colours, or its textures' texels at the hit's UV.
 // Mirror of shaders/texture.wgsl::surface_colours — change both.
-pub fn surface_colours(scene: &PackedScene, m: &GpuMaterial, s: &Surface) -> Phong {
+pub fn surface_colours(scene: &PackedScene, m: &PackedMaterial, s: &Surface) -> Phong {
     let mut kd = Vec3::from(m.kd);
     let mut ks = Vec3::from(m.ks);
     if m.diffuse_texture != NO_TEXTURE {

@@ -131,7 +131,7 @@ pub fn trace_ray(
 
 /// The media primary rays start in, as packing found them (`dielectric::camera_media`).
 // Mirror of shaders/dielectric.wgsl::camera_medium_stack — change both.
-fn camera_media_of(g: &crate::pack::GpuGlobals) -> MediumStack {
+fn camera_media_of(g: &crate::pack::PackedGlobals) -> MediumStack {
     MediumStack {
         iors: g.camera_media,
         count: g.camera_media_count,

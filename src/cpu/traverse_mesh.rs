@@ -10,12 +10,12 @@ use super::intersect::{
 };
 use super::ray::Ray;
 use crate::constants::{NO_ITEM, TRIANGLE_MAILBOX_SIZE};
-use crate::pack::{GpuInstance, GpuMesh, GpuTriangle, PackedScene};
+use crate::pack::{PackedInstance, PackedMesh, PackedScene, PackedTriangle};
 use glam::IVec3;
 
 /// The mesh of a `KIND_MESH` instance.
 // Mirror of shaders/traverse_mesh.wgsl::instance_mesh — change both.
-pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &GpuInstance) -> &'a GpuMesh {
+pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &PackedInstance) -> &'a PackedMesh {
     &scene.meshes[inst.params[0] as usize]
 }
 
@@ -70,7 +70,7 @@ fn cell_items(scene: &PackedScene, cell: usize) -> &[u32] {
 // Mirror of shaders/traverse_mesh.wgsl::intersect_mesh — change both.
 pub fn intersect_mesh(
     scene: &PackedScene,
-    inst: &GpuInstance,
+    inst: &PackedInstance,
     item: u32,
     ray: &Ray,
     t_max: f32,
@@ -126,7 +126,7 @@ pub fn intersect_mesh(
 }
 
 /// The mesh's triangles, indexed by the mesh-local numbers its cells list.
-fn mesh_triangles<'a>(scene: &'a PackedScene, mesh: &GpuMesh) -> &'a [GpuTriangle] {
+fn mesh_triangles<'a>(scene: &'a PackedScene, mesh: &PackedMesh) -> &'a [PackedTriangle] {
     let first = mesh.first_triangle as usize;
     &scene.triangles[first..first + mesh.num_triangles as usize]
 }
@@ -136,7 +136,7 @@ fn mesh_triangles<'a>(scene: &'a PackedScene, mesh: &GpuMesh) -> &'a [GpuTriangl
 // Mirror of shaders/traverse_mesh.wgsl::mesh_occludes — change both.
 pub fn mesh_occludes(
     scene: &PackedScene,
-    inst: &GpuInstance,
+    inst: &PackedInstance,
     ray: &Ray,
     t_max: f32,
     counters: &mut impl TraversalCounters,

@@ -1,6 +1,6 @@
 //! GPU buffers for a packed scene: a storage buffer for every packed array (never empty:
 //! an empty array is padded to one zeroed element, since a binding may not be empty) and
-//! a uniform for [`GpuGlobals`](crate::pack::GpuGlobals). Sizes are checked against the
+//! a uniform for [`PackedGlobals`](crate::pack::PackedGlobals). Sizes are checked against the
 //! adapter's limits first, so an oversized scene is an error that names the array.
 
 pub use super::bindings::SCENE_ARRAY_BINDINGS;

@@ -14,7 +14,7 @@ use super::shader::Entry;
 use crate::constants::{
     AA_ADAPTIVE, AA_UNIFORM, GPU_FRAME_PARTS, LINEAR_WORKGROUP_SIZE, WORKGROUP_SIZE,
 };
-use crate::pack::GpuGlobals;
+use crate::pack::PackedGlobals;
 use crate::tiling::split_offset;
 
 /// The AA mode's passes.
@@ -26,7 +26,7 @@ pub enum Mode {
 }
 
 impl Mode {
-    pub fn of(g: &GpuGlobals) -> Mode {
+    pub fn of(g: &PackedGlobals) -> Mode {
         match g.aa_mode {
             AA_ADAPTIVE => Mode::Adaptive { depth: g.aa_depth },
             AA_UNIFORM => Mode::Uniform { n: g.aa_samples },
@@ -165,7 +165,7 @@ fn split_even(len: usize, n: usize) -> Vec<std::ops::Range<usize>> {
 
 impl FramePlan {
     /// The plan for a `g.width` × `g.height` frame under `g`'s AA mode.
-    pub fn new(g: &GpuGlobals, bounds: AdapterBounds) -> FramePlan {
+    pub fn new(g: &PackedGlobals, bounds: AdapterBounds) -> FramePlan {
         let (w, h) = (g.width, g.height);
         let mode = Mode::of(g);
         // Rows a band may have: its pixels must fit a 2-D dispatch and its output block
@@ -290,8 +290,8 @@ pub fn linear_workgroups(items: u32, max_workgroups: u32) -> (u32, u32) {
 mod tests {
     use super::*;
 
-    fn globals(w: u32, h: u32, aa_mode: u32) -> GpuGlobals {
-        GpuGlobals {
+    fn globals(w: u32, h: u32, aa_mode: u32) -> PackedGlobals {
+        PackedGlobals {
             width: w,
             height: h,
             aa_mode,

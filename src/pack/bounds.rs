@@ -2,7 +2,7 @@
 //! sees boxes): analytic instances under their transforms, CSG objects from their
 //! programs, and mesh instances from their meshes' boxes.
 
-use super::layout::GpuInstance;
+use super::layout::PackedInstance;
 use crate::accel::aabb::Aabb;
 use crate::constants::{
     CSG_DIFFERENCE, CSG_INDEX_MASK, CSG_INTERSECTION, CSG_LEAF, CSG_OP_SHIFT, KIND_CONE, KIND_CUBE,
@@ -12,7 +12,7 @@ use glam::Vec3;
 
 /// World bounds of an instance: the unit sphere, unit cube, cylinder, cone or torus under
 /// its transform.
-pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
+pub fn instance_bounds(inst: &PackedInstance) -> Aabb {
     let rows = inst.object_to_world.map(|r| Vec3::new(r[0], r[1], r[2]));
     let translation = Vec3::new(
         inst.object_to_world[0][3],
@@ -87,7 +87,7 @@ pub fn instance_bounds(inst: &GpuInstance) -> Aabb {
 /// `PackedScene::csg_program`; leaves index `instances`): a union is bounded by the union
 /// of its operands' bounds, an intersection by their intersection, a difference by a's.
 /// Empty when an intersection's operands cannot overlap (the object is then in no cell).
-pub fn csg_bounds(program: &[u32], instances: &[GpuInstance]) -> Aabb {
+pub fn csg_bounds(program: &[u32], instances: &[PackedInstance]) -> Aabb {
     let mut stack: Vec<Aabb> = Vec::new();
     for &entry in program {
         let op = entry >> CSG_OP_SHIFT;
@@ -115,7 +115,7 @@ pub fn csg_bounds(program: &[u32], instances: &[GpuInstance]) -> Aabb {
 
 /// World bounds of a mesh instance whose mesh has the box `mesh_bounds` in its own space:
 /// the box's centre and half-extent under the instance's transform (conservative).
-pub fn mesh_instance_bounds(inst: &GpuInstance, mesh_bounds: Aabb) -> Aabb {
+pub fn mesh_instance_bounds(inst: &PackedInstance, mesh_bounds: Aabb) -> Aabb {
     if mesh_bounds.is_empty() {
         return Aabb::EMPTY;
     }

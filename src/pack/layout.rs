@@ -8,10 +8,10 @@ use bytemuck::{Pod, Zeroable};
 
 /// An analytic primitive instance: affine transforms as three rows of a 3×4 matrix.
 /// Normals go to world space through the transpose of `world_to_object`'s linear part.
-// Mirror of shaders/layout.wgsl::GpuInstance — change both.
+// Mirror of shaders/layout.wgsl::PackedInstance — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
-pub struct GpuInstance {
+pub struct PackedInstance {
     /// Rows of world→object (xyz: linear part, w: translation).
     pub world_to_object: [[f32; 4]; 3],
     /// Rows of object→world.
@@ -28,10 +28,10 @@ pub struct GpuInstance {
 /// A triangle of a mesh, in the mesh's space (flat shaded: the normal is the cross
 /// product of its edges); the material is its instance's. Nine packed floats (36
 /// bytes): the WGSL twin holds `array<f32, 3>` corners, which have no vec3 padding.
-// Mirror of shaders/layout.wgsl::GpuTriangle — change both.
+// Mirror of shaders/layout.wgsl::PackedTriangle — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
-pub struct GpuTriangle {
+pub struct PackedTriangle {
     pub p0: [f32; 3],
     pub p1: [f32; 3],
     pub p2: [f32; 3],
@@ -42,10 +42,10 @@ pub struct GpuTriangle {
 /// `first_cell..first_cell + dims product` of `cell_start` (whose entries index
 /// `cell_items` directly); its cell items are triangle numbers relative to
 /// `first_triangle`.
-// Mirror of shaders/layout.wgsl::GpuMesh — change both.
+// Mirror of shaders/layout.wgsl::PackedMesh — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
-pub struct GpuMesh {
+pub struct PackedMesh {
     /// Lower corner of the grid bounds.
     pub grid_min: [f32; 3],
     pub first_cell: u32,
@@ -64,20 +64,20 @@ pub struct GpuMesh {
 /// The UVs of a triangle's corners (p0, p1, p2), in a separate array parallel to the
 /// triangles (filled only when the scene has textures or bump maps, so untextured scenes
 /// keep the 48-byte triangles that traversal reads alone).
-// Mirror of shaders/layout.wgsl::GpuTriangleUv — change both.
+// Mirror of shaders/layout.wgsl::PackedTriangleUv — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
-pub struct GpuTriangleUv {
+pub struct PackedTriangleUv {
     pub uv0: [f32; 2],
     pub uv1: [f32; 2],
     pub uv2: [f32; 2],
 }
 
 /// A4 Phong material plus the mirror colour, the dielectric's index and texture maps.
-// Mirror of shaders/layout.wgsl::GpuMaterial — change both.
+// Mirror of shaders/layout.wgsl::PackedMaterial — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
-pub struct GpuMaterial {
+pub struct PackedMaterial {
     pub kd: [f32; 3],
     pub shininess: f32,
     pub ks: [f32; 3],
@@ -98,10 +98,10 @@ pub struct GpuMaterial {
 
 /// A light. Point lights use `position`; area lights (`LIGHT_AREA`) are the parallelogram
 /// centred at `position` with edges `edge_u`, `edge_v`, sampled n×n (`samples`).
-// Mirror of shaders/layout.wgsl::GpuLight — change both.
+// Mirror of shaders/layout.wgsl::PackedLight — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
-pub struct GpuLight {
+pub struct PackedLight {
     pub position: [f32; 3],
     /// `LIGHT_*` tag.
     pub kind: u32,
@@ -118,10 +118,10 @@ pub struct GpuLight {
 }
 
 /// Per-render uniform: camera, image, options and grid header.
-// Mirror of shaders/layout.wgsl::GpuGlobals — change both.
+// Mirror of shaders/layout.wgsl::PackedGlobals — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
-pub struct GpuGlobals {
+pub struct PackedGlobals {
     pub eye: [f32; 3],
     /// tan(fov/2).
     pub tan_half_fov: f32,
@@ -175,12 +175,12 @@ pub struct GpuGlobals {
     pub _pad2: u32,
 }
 
-const _: () = assert!(std::mem::size_of::<GpuInstance>() == 112);
-const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 36);
-const _: () = assert!(std::mem::size_of::<GpuTriangleUv>() == 24);
-const _: () = assert!(std::mem::size_of::<GpuMesh>() == 64);
-const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
-const _: () = assert!(std::mem::size_of::<GpuLight>() == 80);
-const _: () = assert!(std::mem::size_of::<GpuGlobals>() == 224);
+const _: () = assert!(std::mem::size_of::<PackedInstance>() == 112);
+const _: () = assert!(std::mem::size_of::<PackedTriangle>() == 36);
+const _: () = assert!(std::mem::size_of::<PackedTriangleUv>() == 24);
+const _: () = assert!(std::mem::size_of::<PackedMesh>() == 64);
+const _: () = assert!(std::mem::size_of::<PackedMaterial>() == 64);
+const _: () = assert!(std::mem::size_of::<PackedLight>() == 80);
+const _: () = assert!(std::mem::size_of::<PackedGlobals>() == 224);
 // The WGSL twin holds camera_media as one vec4 (a uniform array would need a 16-byte stride).
 const _: () = assert!(MEDIUM_STACK_SIZE == 4);

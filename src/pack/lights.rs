@@ -1,14 +1,14 @@
 //! Lights packed: point and area lights, their attenuation checked and their shadow
 //! sample counts settled.
 
-use super::layout::GpuLight;
+use super::layout::PackedLight;
 use super::PackError;
 use crate::constants::{LIGHT_AREA, LIGHT_POINT};
-use crate::scene::flatten::Scene;
+use crate::scene::flatten::FlatScene;
 
 /// The scene's lights as the tracers read them; an attenuation that is zero or
 /// negative at some distance is an error.
-pub(super) fn pack_lights(scene: &Scene) -> Result<Vec<GpuLight>, PackError> {
+pub(super) fn pack_lights(scene: &FlatScene) -> Result<Vec<PackedLight>, PackError> {
     let shadow_samples = scene.options.shadow_samples;
     scene
         .lights
@@ -31,7 +31,7 @@ pub(super) fn pack_lights(scene: &Scene) -> Result<Vec<GpuLight>, PackError> {
                     a.v.as_vec3().to_array(),
                 ),
             };
-            Ok(GpuLight {
+            Ok(PackedLight {
                 position: l.position.as_vec3().to_array(),
                 kind,
                 colour: l.colour,

@@ -2,13 +2,13 @@
 //! refraction, textures, bump maps).
 
 use super::features::SceneFeatures;
-use super::layout::GpuMaterial;
+use super::layout::PackedMaterial;
 use crate::constants::{AIR_IOR, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, NO_TEXTURE};
-use crate::scene::flatten::{CsgStep, Scene};
+use crate::scene::flatten::{CsgStep, FlatScene};
 use crate::scene::DebugView;
 
 /// The scene's materials as the tracers read them.
-pub(super) fn pack_materials(scene: &Scene) -> Vec<GpuMaterial> {
+pub(super) fn pack_materials(scene: &FlatScene) -> Vec<PackedMaterial> {
     scene
         .materials
         .iter()
@@ -19,7 +19,7 @@ pub(super) fn pack_materials(scene: &Scene) -> Vec<GpuMaterial> {
             } else {
                 0
             };
-            GpuMaterial {
+            PackedMaterial {
                 kd: m.kd,
                 shininess: m.shininess,
                 ks: m.ks,
@@ -37,7 +37,7 @@ pub(super) fn pack_materials(scene: &Scene) -> Vec<GpuMaterial> {
 
 /// Which materials some geometry uses (marked in one pass: a scan per material would
 /// cost materials × triangles).
-fn materials_in_use(scene: &Scene, count: usize) -> Vec<bool> {
+fn materials_in_use(scene: &FlatScene, count: usize) -> Vec<bool> {
     let mut in_use = vec![false; count];
     let leaves = scene
         .csg
@@ -63,7 +63,7 @@ fn materials_in_use(scene: &Scene, count: usize) -> Vec<bool> {
 }
 
 /// The features the materials need; only materials some geometry uses count.
-pub(super) fn material_features(scene: &Scene, materials: &[GpuMaterial]) -> SceneFeatures {
+pub(super) fn material_features(scene: &FlatScene, materials: &[PackedMaterial]) -> SceneFeatures {
     let mut features = SceneFeatures::empty();
     let in_use = materials_in_use(scene, materials.len());
     let used = |m: usize| in_use[m];
@@ -74,7 +74,7 @@ pub(super) fn material_features(scene: &Scene, materials: &[GpuMaterial]) -> Sce
         features.insert(SceneFeatures::REFRACTION);
     }
     let textured =
-        |m: &GpuMaterial| m.diffuse_texture != NO_TEXTURE || m.specular_texture != NO_TEXTURE;
+        |m: &PackedMaterial| m.diffuse_texture != NO_TEXTURE || m.specular_texture != NO_TEXTURE;
     // The UV debug view needs the UV code that textures bring.
     if scene.options.debug == DebugView::Uv
         || (0..materials.len()).any(|m| textured(&materials[m]) && used(m))

@@ -4,12 +4,12 @@
 //! become one world-space mesh per material.
 
 use super::bounds::mesh_instance_bounds;
-use super::layout::{GpuInstance, GpuMesh, GpuTriangle, GpuTriangleUv};
+use super::layout::{PackedInstance, PackedMesh, PackedTriangle, PackedTriangleUv};
 use super::{affine_rows, PackError};
 use crate::accel::aabb::Aabb;
 use crate::accel::grid::{Grid, GridBuildStats};
 use crate::constants::KIND_MESH;
-use crate::scene::flatten::{MeshTriangle, Scene};
+use crate::scene::flatten::{FlatScene, MeshTriangle};
 use glam::{DMat4, DVec3, Vec3};
 use rayon::prelude::*;
 
@@ -17,11 +17,11 @@ use rayon::prelude::*;
 /// other, with entries as if they started at offset 0 of both arrays: [`PackedMeshes::
 /// append_cells`] moves them behind the scene grid's.
 pub struct PackedMeshes {
-    pub triangles: Vec<GpuTriangle>,
+    pub triangles: Vec<PackedTriangle>,
     /// Parallel to `triangles`.
-    pub triangle_uvs: Vec<GpuTriangleUv>,
-    pub meshes: Vec<GpuMesh>,
-    pub instances: Vec<GpuInstance>,
+    pub triangle_uvs: Vec<PackedTriangleUv>,
+    pub meshes: Vec<PackedMesh>,
+    pub instances: Vec<PackedInstance>,
     /// World bounds of each instance (for the scene grid).
     pub instance_bounds: Vec<Aabb>,
     pub cell_start: Vec<u32>,
@@ -37,7 +37,7 @@ struct MeshSource<'a> {
 
 /// Packs the meshes and mesh instances of `scene` (and its loose triangles) with grids of
 /// density `density` (None: brute force, one cell per mesh).
-pub fn pack_meshes(scene: &Scene, density: Option<f32>) -> Result<PackedMeshes, PackError> {
+pub fn pack_meshes(scene: &FlatScene, density: Option<f32>) -> Result<PackedMeshes, PackError> {
     let mut sources: Vec<MeshSource> = scene
         .meshes
         .iter()
@@ -76,7 +76,7 @@ pub fn pack_meshes(scene: &Scene, density: Option<f32>) -> Result<PackedMeshes, 
         mesh_bounds.push(out.push_mesh(source, density));
     }
     for (mesh, object_to_world, material) in placements {
-        let instance = GpuInstance {
+        let instance = PackedInstance {
             world_to_object: affine_rows(&object_to_world.inverse()),
             object_to_world: affine_rows(&object_to_world),
             kind: KIND_MESH,
@@ -93,7 +93,7 @@ pub fn pack_meshes(scene: &Scene, density: Option<f32>) -> Result<PackedMeshes, 
 
 /// The loose triangles grouped by material (in order of first appearance), as mesh
 /// triangles.
-fn loose_meshes(scene: &Scene) -> Vec<(u32, Vec<MeshTriangle>)> {
+fn loose_meshes(scene: &FlatScene) -> Vec<(u32, Vec<MeshTriangle>)> {
     let mut groups: Vec<(u32, Vec<MeshTriangle>)> = Vec::new();
     for t in &scene.triangles {
         let material = t.material as u32;
@@ -130,13 +130,13 @@ impl PackedMeshes {
         let grid = Grid::build(&bounds, Some(&corners), density);
         let first_triangle = self.triangles.len() as u32;
         self.triangles
-            .extend(corners.iter().map(|&[p0, p1, p2]| GpuTriangle {
+            .extend(corners.iter().map(|&[p0, p1, p2]| PackedTriangle {
                 p0: p0.to_array(),
                 p1: p1.to_array(),
                 p2: p2.to_array(),
             }));
         self.triangle_uvs
-            .extend(order.iter().map(|t| GpuTriangleUv {
+            .extend(order.iter().map(|t| PackedTriangleUv {
                 uv0: t.uvs[0],
                 uv1: t.uvs[1],
                 uv2: t.uvs[2],
@@ -148,7 +148,7 @@ impl PackedMeshes {
         self.cell_start
             .extend(grid.cell_start.iter().map(|&s| s + item_offset));
         self.cell_items.extend_from_slice(&grid.cell_items);
-        self.meshes.push(GpuMesh {
+        self.meshes.push(PackedMesh {
             grid_min: grid.min,
             first_cell,
             grid_max: grid.max,

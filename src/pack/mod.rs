@@ -1,4 +1,4 @@
-//! `pack`: the flattened [`Scene`] laid out as the Pod arrays both tracers read, plus the
+//! `pack`: the flattened [`FlatScene`] laid out as the Pod arrays both tracers read, plus the
 //! grids over them: one over the scene's items, one per mesh over its triangles (see
 //! `crate::accel`). Below this point there are no enums, only tags and indices.
 
@@ -13,7 +13,7 @@ pub mod texture;
 use crate::accel::aabb::Aabb;
 use crate::accel::grid::{Grid, GridBuildStats};
 use crate::constants::*;
-use crate::scene::flatten::{CsgStep, Object, ObjectKind, Scene};
+use crate::scene::flatten::{CsgStep, FlatScene, Object, ObjectKind};
 use crate::scene::{AaMode, Background, CsgOp, DebugView, GridMode};
 use bounds::{csg_bounds, instance_bounds};
 pub use features::SceneFeatures;
@@ -28,15 +28,15 @@ use rayon::prelude::*;
 /// (`meshes`), each traversed through its own grid.
 #[derive(Clone, Debug)]
 pub struct PackedScene {
-    pub globals: GpuGlobals,
-    pub instances: Vec<GpuInstance>,
-    pub triangles: Vec<GpuTriangle>,
+    pub globals: PackedGlobals,
+    pub instances: Vec<PackedInstance>,
+    pub triangles: Vec<PackedTriangle>,
     /// Each mesh's triangle range and grid (`KIND_MESH` instances index it).
-    pub meshes: Vec<GpuMesh>,
-    pub materials: Vec<GpuMaterial>,
-    pub lights: Vec<GpuLight>,
+    pub meshes: Vec<PackedMesh>,
+    pub materials: Vec<PackedMaterial>,
+    pub lights: Vec<PackedLight>,
     /// `cell_start[c]..cell_start[c + 1]` indexes `cell_items` for cell c (x fastest):
-    /// the scene grid's cells first, then each mesh's (from `GpuMesh::first_cell`).
+    /// the scene grid's cells first, then each mesh's (from `PackedMesh::first_cell`).
     pub cell_start: Vec<u32>,
     pub cell_items: Vec<u32>,
     /// CSG programs, post-order (see `cpu::csg`); empty without CSG.
@@ -45,7 +45,7 @@ pub struct PackedScene {
     pub texels: Vec<u32>,
     /// Corner UVs of each triangle, parallel to `triangles`; empty unless the scene has
     /// the TEXTURE or BUMP feature.
-    pub triangle_uvs: Vec<GpuTriangleUv>,
+    pub triangle_uvs: Vec<PackedTriangleUv>,
     pub features: SceneFeatures,
     /// The scene grid's build counters.
     pub grid_stats: GridBuildStats,
@@ -63,10 +63,10 @@ impl PackedScene {
             .iter()
             .filter(|i| i.kind == KIND_MESH)
             .count();
-        let bytes = self.triangles.len() * size_of::<GpuTriangle>()
+        let bytes = self.triangles.len() * size_of::<PackedTriangle>()
             + (self.cell_start.len() + self.cell_items.len()) * size_of::<u32>()
-            + self.meshes.len() * size_of::<GpuMesh>()
-            + mesh_instances * size_of::<GpuInstance>();
+            + self.meshes.len() * size_of::<PackedMesh>()
+            + mesh_instances * size_of::<PackedInstance>();
         (bytes, self.triangles.len())
     }
 }
@@ -86,7 +86,7 @@ pub enum PackError {
 }
 
 /// The instance of an analytic object, and the feature its kind needs.
-fn instance_of(o: &Object) -> (GpuInstance, SceneFeatures) {
+fn instance_of(o: &Object) -> (PackedInstance, SceneFeatures) {
     let (feature, kind, params) = match o.kind {
         ObjectKind::Sphere => (SceneFeatures::SPHERE, KIND_SPHERE, [0.0; 2]),
         ObjectKind::Cube => (SceneFeatures::CUBE, KIND_CUBE, [0.0; 2]),
@@ -94,7 +94,7 @@ fn instance_of(o: &Object) -> (GpuInstance, SceneFeatures) {
         ObjectKind::Cone { zmin, zmax } => (SceneFeatures::CONE, KIND_CONE, [zmin, zmax]),
         ObjectKind::Torus { rin, rout } => (SceneFeatures::TORUS, KIND_TORUS, [rin, rout]),
     };
-    let instance = GpuInstance {
+    let instance = PackedInstance {
         world_to_object: affine_rows(&o.object_to_world.inverse()),
         object_to_world: affine_rows(&o.object_to_world),
         kind,
@@ -107,14 +107,14 @@ fn instance_of(o: &Object) -> (GpuInstance, SceneFeatures) {
 /// The CSG objects packed: one `KIND_CSG` instance each, their leaf instances and the
 /// programs of all of them, with the features the leaves need.
 struct PackedCsg {
-    items: Vec<GpuInstance>,
-    leaves: Vec<GpuInstance>,
+    items: Vec<PackedInstance>,
+    leaves: Vec<PackedInstance>,
     program: Vec<u32>,
     features: SceneFeatures,
 }
 
 /// Packs the CSG objects, their leaves numbered from `first_leaf`.
-fn pack_csg(scene: &Scene, first_leaf: usize) -> Result<PackedCsg, PackError> {
+fn pack_csg(scene: &FlatScene, first_leaf: usize) -> Result<PackedCsg, PackError> {
     let mut features = SceneFeatures::empty();
     let (mut items, mut leaves, mut program) = (Vec::new(), Vec::new(), Vec::new());
     for c in &scene.csg {
@@ -148,7 +148,7 @@ fn pack_csg(scene: &Scene, first_leaf: usize) -> Result<PackedCsg, PackError> {
         }
         features.insert(SceneFeatures::CSG);
         let identity = affine_rows(&DMat4::IDENTITY);
-        items.push(GpuInstance {
+        items.push(PackedInstance {
             world_to_object: identity,
             object_to_world: identity,
             kind: KIND_CSG,
@@ -165,7 +165,7 @@ fn pack_csg(scene: &Scene, first_leaf: usize) -> Result<PackedCsg, PackError> {
 }
 
 /// Packs a flattened scene and builds its grid.
-pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
+pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     let mut features = SceneFeatures::empty();
     let mut instances = analytic_instances(scene, &mut features);
     let (density, mesh_density) = grid_densities(scene.options.grid);
@@ -228,7 +228,7 @@ pub fn pack(scene: &Scene) -> Result<PackedScene, PackError> {
 }
 
 /// The instances of the analytic objects, adding the features their kinds need.
-fn analytic_instances(scene: &Scene, features: &mut SceneFeatures) -> Vec<GpuInstance> {
+fn analytic_instances(scene: &FlatScene, features: &mut SceneFeatures) -> Vec<PackedInstance> {
     scene
         .objects
         .iter()
@@ -264,7 +264,7 @@ fn check_limits(num_items: usize) -> Result<(), PackError> {
 /// World bounds of the scene grid's items: the analytic and CSG objects, then the mesh
 /// instances (whose bounds `mesh_bounds` holds).
 fn item_bounds(
-    instances: &[GpuInstance],
+    instances: &[PackedInstance],
     csg_program: &[u32],
     num_items: usize,
     mesh_bounds: &[Aabb],
@@ -298,12 +298,12 @@ fn all_cells(grid: &Grid, meshes: &mut meshes::PackedMeshes) -> (Vec<u32>, Vec<u
 
 /// The globals uniform: camera frame, image size, background, counts, grid and options.
 fn make_globals(
-    scene: &Scene,
+    scene: &FlatScene,
     num_items: usize,
-    triangles: &[GpuTriangle],
-    lights: &[GpuLight],
+    triangles: &[PackedTriangle],
+    lights: &[PackedLight],
     grid: &Grid,
-) -> GpuGlobals {
+) -> PackedGlobals {
     let camera = &scene.camera;
     let forward = camera.view.normalize();
     let right = forward.cross(camera.up).normalize();
@@ -313,7 +313,7 @@ fn make_globals(
         Background::Gradient { top, bottom } => (top, bottom),
     };
     let options = &scene.options;
-    GpuGlobals {
+    PackedGlobals {
         eye: camera.eye.as_vec3().to_array(),
         tan_half_fov: (camera.fov_deg.to_radians() * 0.5).tan() as f32,
         forward: forward.as_vec3().to_array(),
@@ -406,7 +406,10 @@ fn is_degenerate(p: &[DVec3; 3]) -> bool {
     (p[1] - p[0]).cross(p[2] - p[0]).length_squared() == 0.0
 }
 
-fn check_finite(instances: &[GpuInstance], triangles: &[GpuTriangle]) -> Result<(), PackError> {
+fn check_finite(
+    instances: &[PackedInstance],
+    triangles: &[PackedTriangle],
+) -> Result<(), PackError> {
     for (i, inst) in instances.iter().enumerate() {
         let values = inst.world_to_object.iter().chain(&inst.object_to_world);
         if let Some(v) = values.flatten().find(|v| !v.is_finite()) {

@@ -1,4 +1,4 @@
-//! The flattened, world-space scene ([`Scene`]) that `flatten` produces and packing
+//! The flattened, world-space scene ([`FlatScene`]) that `flatten` produces and packing
 //! reads: objects, CSG programs, meshes and their instances, the limits that bound them,
 //! and the errors flattening reports. Plain data, so `flatten`, `cost` and `instancing`
 //! all depend on it and it on none of them.
@@ -131,7 +131,7 @@ pub struct SceneMesh {
     pub triangles: Vec<MeshTriangle>,
 }
 
-/// One placement of a [`SceneMesh`] (index `mesh` in `Scene::meshes`).
+/// One placement of a [`SceneMesh`] (index `mesh` in `FlatScene::meshes`).
 #[derive(Clone, Debug)]
 pub struct MeshInstance {
     pub name: String,
@@ -142,7 +142,7 @@ pub struct MeshInstance {
 
 /// The flattened scene of one `gr.render` call.
 #[derive(Clone, Debug)]
-pub struct Scene {
+pub struct FlatScene {
     pub objects: Vec<Object>,
     /// CSG objects (grid items after `objects`).
     pub csg: Vec<CsgObject>,

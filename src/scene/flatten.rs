@@ -1,4 +1,4 @@
-//! SceneGraph → world-space [`Scene`]: walks the DAG from the render root, composing
+//! SceneGraph → world-space [`FlatScene`]: walks the DAG from the render root, composing
 //! f64 matrices, so instancing (a node under several parents) yields one object per path.
 //! Analytic primitives keep their object-to-world transform; each path to a mesh node
 //! becomes a [`MeshInstance`], and [`super::instancing`] stores each mesh once (in its
@@ -8,21 +8,21 @@
 
 use super::cost::{scene_cost, MAX_PATHS, PIXEL_BYTES, TEXEL_BYTES};
 pub use super::flat::{
-    csg_worst_case, CsgObject, CsgStep, FlattenError, MeshInstance, MeshTriangle, Object,
-    ObjectKind, Scene, SceneMesh, Triangle, MAX_NODE_DEPTH, MAX_PIXELS,
+    csg_worst_case, CsgObject, CsgStep, FlatScene, FlattenError, MeshInstance, MeshTriangle,
+    Object, ObjectKind, SceneMesh, Triangle, MAX_NODE_DEPTH, MAX_PIXELS,
 };
 use super::{Camera, Material, MaterialId, NodeId, NodeKind, Primitive, RenderRequest, SceneGraph};
 use crate::constants::{CSG_EVENT_CAPACITY, CSG_LIST_CAPACITY, CSG_MAX_DEPTH};
 use glam::{DMat3, DMat4, DVec3};
 
 /// Flattens the graph below `request.root` into world space.
-pub fn flatten(graph: &SceneGraph, request: &RenderRequest) -> Result<Scene, FlattenError> {
+pub fn flatten(graph: &SceneGraph, request: &RenderRequest) -> Result<FlatScene, FlattenError> {
     check_camera(&request.camera)?;
     check_cost(graph, request)?;
     let mut materials = graph.materials.clone();
     let default_material = materials.len();
     materials.push(Material::default());
-    let mut scene = Scene {
+    let mut scene = FlatScene {
         objects: Vec::new(),
         csg: Vec::new(),
         triangles: Vec::new(),
@@ -62,7 +62,7 @@ fn visit(
     parent_to_world: DMat4,
     default_material: MaterialId,
     path: &mut Vec<NodeId>,
-    scene: &mut Scene,
+    scene: &mut FlatScene,
 ) -> Result<(), FlattenError> {
     let node = &graph.nodes[id];
     path.push(id);

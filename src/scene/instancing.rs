@@ -5,13 +5,13 @@
 //! common single-use mesh is traced in world coordinates exactly as before instancing
 //! (no ray transform, no extra rounding).
 
-use super::flat::{MeshTriangle, Scene, SceneMesh};
+use super::flat::{FlatScene, MeshTriangle, SceneMesh};
 use super::SceneGraph;
 use glam::DMat4;
 
 /// Replaces the graph mesh ids of `scene.mesh_instances` by indices into the meshes it
 /// stores in `scene.meshes` (in order of first use).
-pub fn store_meshes(graph: &SceneGraph, scene: &mut Scene) {
+pub fn store_meshes(graph: &SceneGraph, scene: &mut FlatScene) {
     let mut uses = vec![0usize; graph.meshes.len()];
     for instance in &scene.mesh_instances {
         uses[instance.mesh] += 1;

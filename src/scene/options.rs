@@ -71,7 +71,8 @@ pub enum DebugView {
     None,
     /// Colour = (u mod 1, v mod 1, 0) of the surface a primary ray hits first.
     Uv,
-    /// Adaptive anti-aliasing's work per pixel ([`crate::aa_map`]); needs adaptive AA.
+    /// Adaptive anti-aliasing's work per pixel (drawn by the `aa_map` module); needs
+    /// adaptive AA.
     AaSamples,
 }
 

@@ -6,7 +6,7 @@ pub mod probes;
 use glint::film::Film;
 use glint::pack::PackedScene;
 use glint::pipeline::pack_scene;
-use glint::scene::flatten::{flatten, Scene};
+use glint::scene::flatten::{flatten, FlatScene};
 use glint::scene::lua::{run_scene_file, ScriptConfig};
 use glint::scene::{OptionOverrides, TransformOrder};
 use std::path::{Path, PathBuf};
@@ -87,7 +87,7 @@ pub fn scene_name(path: &Path) -> String {
 }
 
 /// The flattened scene of each gr.render call of a script, with `overrides` applied.
-pub fn load_scenes(path: &Path, overrides: &OptionOverrides) -> Vec<Scene> {
+pub fn load_scenes(path: &Path, overrides: &OptionOverrides) -> Vec<FlatScene> {
     let config = ScriptConfig {
         transform_order: family_order(path),
         ..ScriptConfig::default()
@@ -210,7 +210,7 @@ impl Rng {
 /// A flattened scene scaled by `s` about the origin, camera, lights and CSG leaves
 /// included; the falloff is rescaled so lighting is the same function of the scaled
 /// distances.
-pub fn scaled_scene(scene: &Scene, s: f64) -> Scene {
+pub fn scaled_scene(scene: &FlatScene, s: f64) -> FlatScene {
     use glint::scene::flatten::CsgStep;
     let mut out = scene.clone();
     let m = glam::DMat4::from_scale(glam::DVec3::splat(s));
@@ -257,7 +257,7 @@ pub struct GlassProbe {
 }
 
 impl GlassProbe {
-    pub fn new(scene: &Scene, n: usize) -> GlassProbe {
+    pub fn new(scene: &FlatScene, n: usize) -> GlassProbe {
         use glint::scene::flatten::CsgStep;
         let mut index = scene.objects.len() + scene.csg.len();
         let mut bowl = None;
