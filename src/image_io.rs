@@ -102,6 +102,33 @@ fn output_target(path: &Path) -> Result<(Format, PathBuf, OsString), ImageIoErro
 /// Distinguishes temp files of concurrent writers in one process (pid alone would not).
 static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
+/// Writes `path` atomically with `write`, which creates and fills the file it is given:
+/// a hidden temp file beside `path` (same filesystem), renamed over `path` once `write`
+/// succeeds and removed when anything fails. For the files other than images (plots, ray
+/// dumps); images go through [`write_image`], which also arms the signal cleanup.
+pub fn write_via_temp<E: From<std::io::Error>>(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), E>,
+) -> Result<(), E> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut temp_name = OsString::from(".");
+    temp_name.push(path.file_name().unwrap_or_default());
+    temp_name.push(format!(
+        ".tmp-{}-{}",
+        std::process::id(),
+        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    let temp = dir.join(temp_name);
+    let result = write(&temp).and_then(|()| Ok(fs::rename(&temp, path)?));
+    if result.is_err() {
+        let _ = fs::remove_file(&temp);
+    }
+    result
+}
+
 /// Writes `film` to `path`, format chosen by extension (`.png` 8-bit RGB, `.exr` f32 RGB).
 ///
 /// Atomic: the image goes to a hidden temp file in the target's directory (same
@@ -401,6 +428,21 @@ mod tests {
         // A zero-sized PNG is rejected by the encoder after the temp file exists.
         assert!(write_image(&Film::new(0, 0), &dir.join("y.png")).is_err());
         assert!(dir_entries(&dir).is_empty());
+    }
+
+    /// Files other than images: the whole new file or the old one, never a partial one.
+    #[test]
+    fn write_via_temp_renames_on_success_and_cleans_up_on_failure() {
+        let dir = scratch("via-temp");
+        let target = dir.join("dump.bin");
+        write_via_temp(&target, |temp| fs::write(temp, b"old")).unwrap();
+        let failed: std::io::Result<()> = write_via_temp(&target, |temp| {
+            fs::write(temp, b"half")?;
+            Err(std::io::Error::other("disk full"))
+        });
+        assert!(failed.is_err());
+        assert_eq!(fs::read(&target).unwrap(), b"old");
+        assert_eq!(dir_entries(&dir), vec!["dump.bin".to_string()]);
     }
 
     #[test]

@@ -287,20 +287,9 @@ fn draw_legend(svg: &mut String, panel_count: usize, families: &[String], scenes
     }
 }
 
-/// Writes `text` to `path` atomically: a temp file beside it, then a rename (as
-/// [`crate::image_io::write_image`] does for images).
+/// Writes `text` to `path` atomically (a temp file beside it, then a rename).
 pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let temp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-    let result = std::fs::write(&temp, text).and_then(|()| std::fs::rename(&temp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    result
+    crate::image_io::write_via_temp(path, |temp| std::fs::write(temp, text))
 }
 
 #[cfg(test)]

@@ -57,18 +57,10 @@ pub fn write_trace_dump(
     occluded: &[bool],
 ) -> anyhow::Result<()> {
     check_dumpable(scene)?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let temp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-    let result = write_to(&temp, scene, primary, hits, shadow, occluded)
-        .and_then(|()| Ok(std::fs::rename(&temp, path)?));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    result.map_err(|e| e.context(format!("cannot write {}", path.display())))
+    crate::image_io::write_via_temp(path, |temp| {
+        write_to(temp, scene, primary, hits, shadow, occluded)
+    })
+    .map_err(|e| e.context(format!("cannot write {}", path.display())))
 }
 
 fn write_to(
