@@ -250,7 +250,7 @@ pub fn render_request(
             counters: None,
             gpu: Some(info),
             adapter: Some(ctx.info.name.clone()),
-            view: request.options.debug,
+            view: shown_view(request.options.debug),
         });
     }
     let (film, counters) = if stats {
@@ -268,8 +268,17 @@ pub fn render_request(
         counters,
         gpu: None,
         adapter: None,
-        view: request.options.debug,
+        view: shown_view(request.options.debug),
     })
+}
+
+/// What a rendered film shows for the scene's debug option: the AA map is made by
+/// [`render_aa_samples_map`], never by a render, whose film is then the shaded image.
+fn shown_view(debug: DebugView) -> DebugView {
+    match debug {
+        DebugView::AaSamples => DebugView::None,
+        view => view,
+    }
 }
 
 fn progress_bar(enabled: bool, output: &Path) -> indicatif::ProgressBar {
