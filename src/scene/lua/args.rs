@@ -178,9 +178,8 @@ impl<'a> Args<'a> {
         }
     }
 
-    /// An integer in the range of the typed option `B` (e.g. [`ShadowSamples`]).
-    ///
-    /// [`ShadowSamples`]: crate::scene::ShadowSamples
+    /// An integer in the range of a typed option (`Bounded<MIN, MAX>`, e.g.
+    /// `ShadowSamples`), or an error naming that range.
     pub fn bounded<const MIN: u32, const MAX: u32>(
         &self,
         n: usize,
