@@ -124,25 +124,29 @@ pub fn read_back(ctx: &GpuContext, staging: &wgpu::Buffer, size: u64) -> Result<
         let _ = tx.send(r);
     });
     ctx.wait()?;
-    match rx.recv() {
-        Ok(Ok(())) => {}
-        Ok(Err(e)) => {
-            return Err(GpuError::Wgpu {
-                what: "read-back",
-                message: e.to_string(),
-            })
-        }
-        Err(_) => return Err(GpuError::DeviceLost("the read-back never completed".into())),
-    }
-    let bytes = {
-        let view = staging
-            .get_mapped_range(0..size)
-            .map_err(|e| GpuError::Wgpu {
-                what: "read-back",
-                message: e.to_string(),
-            })?;
-        view.to_vec()
+    take_mapped(staging, size, rx.recv().ok())
+}
+
+/// The first `size` bytes of `staging` once its `map_async` has reported `mapped` (None:
+/// the callback never ran), copied out; the buffer is unmapped again.
+pub fn take_mapped(
+    staging: &wgpu::Buffer,
+    size: u64,
+    mapped: Option<Result<(), wgpu::BufferAsyncError>>,
+) -> Result<Vec<u8>, GpuError> {
+    let failed = |e: &dyn std::fmt::Display| GpuError::Wgpu {
+        what: "read-back",
+        message: e.to_string(),
     };
+    match mapped {
+        Some(Ok(())) => {}
+        Some(Err(e)) => return Err(failed(&e)),
+        None => return Err(GpuError::DeviceLost("the read-back never completed".into())),
+    }
+    let bytes = staging
+        .get_mapped_range(0..size)
+        .map_err(|e| failed(&e))?
+        .to_vec();
     staging.unmap();
     Ok(bytes)
 }

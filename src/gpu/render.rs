@@ -18,7 +18,7 @@
 //! the pixels a tripped invocation touched (a single very heavy ray can still trip it);
 //! those are re-rendered with the CPU tracer and counted in [`GpuRenderInfo`].
 
-use super::buffers::{upload_scene, LIMITER_SENTINEL};
+use super::buffers::{take_mapped, upload_scene, LIMITER_SENTINEL};
 use super::context::GpuContext;
 use super::frame::Frame;
 use super::pipeline::{get_pipeline, CompiledPipeline};
@@ -186,25 +186,7 @@ fn wait_and_read(
         host_waits += 1;
         progress(k as u64 + 1, total);
     }
-    match rx.try_recv() {
-        Ok(Ok(())) => {}
-        Ok(Err(e)) => {
-            return Err(GpuError::Wgpu {
-                what: "read-back",
-                message: e.to_string(),
-            })
-        }
-        Err(_) => return Err(GpuError::DeviceLost("the read-back never completed".into())),
-    }
-    let bytes = frame
-        .staging
-        .get_mapped_range(0..size)
-        .map_err(|e| GpuError::Wgpu {
-            what: "read-back",
-            message: e.to_string(),
-        })?
-        .to_vec();
-    frame.staging.unmap();
+    let bytes = take_mapped(&frame.staging, size, rx.try_recv().ok())?;
     let at = (frame.output_bytes + frame.guard_bytes) as usize;
     let gpu_time = frame.timed().then(|| {
         let ticks: [u64; 2] = bytemuck::pod_read_unaligned(&bytes[at..at + 16]);
