@@ -351,9 +351,8 @@ pub fn run_scene(
         };
         // Refuse an unwritable path before spending time on the render.
         check_output_path(&output).map_err(fail)?;
-        let mut options = request.options.clone();
-        settings.overrides.apply(&mut options);
-        let mut rendered = match options.debug {
+        let view = settings.overrides.debug.unwrap_or(request.options.debug);
+        let mut rendered = match view {
             DebugView::AaSamples => {
                 render_aa_samples_map(graph, request, &settings.overrides, tracer)?
             }
