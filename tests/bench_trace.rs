@@ -8,7 +8,7 @@ mod common;
 
 use common::temp_dir;
 use glint::bench::trace_rays::{
-    camera_rays, load_first_render, shadow_rays, summarise, trace_primary, trace_shadow,
+    camera_rays, count_work, load_first_render, shadow_rays, summarise, trace_primary, trace_shadow,
 };
 use glint::pack::pack;
 use glint::scene::GridMode;
@@ -171,6 +171,31 @@ fn hits_equal_brute_force_over_the_same_rays() {
         expected.hit_checksum.to_string(),
         "{text}"
     );
+
+    // The work lines are the counts of the same traversal; brute force (the scene grid
+    // off) tests more primitives than the grids do.
+    let grid =
+        pack(&load_first_render(&dir.join("scene.lua"), None, None, &[], None).unwrap()).unwrap();
+    let grid_shadow = shadow_rays(&grid, &rays, &trace_primary(&grid, &rays));
+    let [grid_primary_work, grid_shadow_work] = count_work(&grid, &rays, &grid_shadow);
+    let [brute_primary_work, brute_shadow_work] = count_work(&brute, &rays, &shadow);
+    assert!(brute_primary_work.items_tested > grid_primary_work.items_tested);
+    assert!(brute_shadow_work.items_tested > grid_shadow_work.items_tested);
+    let per_ray = |n: u64, rays: usize| n as f64 / rays as f64;
+    for (name, work, rays) in [
+        ("primary", grid_primary_work, rays.len()),
+        ("shadow", grid_shadow_work, grid_shadow.len()),
+    ] {
+        assert_eq!(
+            line_after(&text, &format!("{name} work: ")),
+            format!(
+                "{:.2} cells visited, {:.2} primitives tested per ray (untimed count)",
+                per_ray(work.cells_visited, rays),
+                per_ray(work.items_tested, rays)
+            ),
+            "{text}"
+        );
+    }
 }
 
 #[test]

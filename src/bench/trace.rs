@@ -7,13 +7,14 @@
 //! centre), as shading would trace it. Nothing is shaded. Ray generation and the shadow
 //! rays' set-up are not timed; each phase is timed over all rays, fastest of `--repeat`.
 //! The hits are summarised by counts and a checksum of the hit items, so that another
-//! tracer given the same rays (`--dump-rays`) can be checked to find the same hits.
+//! tracer given the same rays (`--dump-rays`) can be checked to find the same hits; an
+//! untimed pass over the same rays counts the cells visited and primitives tested.
 
 use super::timing::fastest;
 use super::trace_dump::{check_dumpable, write_trace_dump};
 use super::trace_rays::{
-    camera_rays, load_first_render, shadow_rays, summarise, trace_primary_into, trace_shadow_into,
-    TraceSummary,
+    camera_rays, count_work, load_first_render, shadow_rays, summarise, trace_primary_into,
+    trace_shadow_into, TraceSummary,
 };
 use crate::cpu::traverse::Hit;
 use crate::pack::PackedScene;
@@ -62,6 +63,7 @@ pub fn bench_trace(args: &TraceBenchArgs) -> anyhow::Result<()> {
         trace_shadow_into(&packed, &shadow, &mut occluded)
     });
     let summary = summarise(&packed, &hits, &occluded);
+    let work = count_work(&packed, &primary, &shadow);
     let (accel_bytes, stored_triangles) = packed.accel_memory();
     println!("primary: {} Mrays/s", rate(mrays(primary.len(), t_primary)));
     println!("shadow: {} Mrays/s", rate(mrays(shadow.len(), t_shadow)));
@@ -70,6 +72,17 @@ pub fn bench_trace(args: &TraceBenchArgs) -> anyhow::Result<()> {
         accel_bytes as f64 / stored_triangles.max(1) as f64
     );
     print_details(&packed, &summary, build, t_primary, t_shadow, args.repeat);
+    for (name, counters, rays) in [
+        ("primary", &work[0], primary.len()),
+        ("shadow", &work[1], shadow.len()),
+    ] {
+        let per_ray = |n: u64| n as f64 / rays.max(1) as f64;
+        println!(
+            "{name} work: {:.2} cells visited, {:.2} primitives tested per ray (untimed count)",
+            per_ray(counters.cells_visited),
+            per_ray(counters.items_tested)
+        );
+    }
     if let Some(path) = &args.dump_rays {
         write_trace_dump(path, &packed, &primary, &hits, &shadow, &occluded)?;
         println!("rays and geometry written to {}", path.display());

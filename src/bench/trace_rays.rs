@@ -6,7 +6,7 @@
 use crate::constants::{KIND_MESH, NO_ITEM, T_MISS};
 use crate::cpu::ray::{camera_ray, offset_ray, Ray};
 use crate::cpu::surface::surface_at;
-use crate::cpu::traverse::{any_hit, closest_hit, Hit, NoCounters};
+use crate::cpu::traverse::{any_hit, closest_hit, Counters, Hit, NoCounters};
 use crate::cpu::traverse_mesh::instance_mesh;
 use crate::pack::PackedScene;
 use crate::scene::flatten::{flatten, FlatScene};
@@ -144,6 +144,32 @@ pub fn trace_shadow_into(scene: &PackedScene, rays: &[ShadowRay], occluded: &mut
         .par_iter_mut()
         .zip(rays)
         .for_each(|(o, s)| *o = any_hit(scene, &s.ray, s.t_max, &mut NoCounters));
+}
+
+/// The traversal's work per ray, untimed: cells visited and primitives tested, summed
+/// over the camera rays and over the shadow rays.
+pub fn count_work(scene: &PackedScene, primary: &[Ray], shadow: &[ShadowRay]) -> [Counters; 2] {
+    let sum = |a: Counters, b: Counters| Counters {
+        cells_visited: a.cells_visited + b.cells_visited,
+        items_tested: a.items_tested + b.items_tested,
+    };
+    let primary = primary
+        .par_iter()
+        .map(|r| {
+            let mut c = Counters::default();
+            closest_hit(scene, r, T_MISS, &mut c);
+            c
+        })
+        .reduce(Counters::default, sum);
+    let shadow = shadow
+        .par_iter()
+        .map(|s| {
+            let mut c = Counters::default();
+            any_hit(scene, &s.ray, s.t_max, &mut c);
+            c
+        })
+        .reduce(Counters::default, sum);
+    [primary, shadow]
 }
 
 /// The shadow rays of every hit, in pixel order and light order: from the hit point
