@@ -4,6 +4,7 @@
 //! file (and line), no panic, no abort, and no file left behind. Each case of
 //! `docs/limits.md` has its class here, with variants of each.
 
+use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -91,14 +92,25 @@ fn run_glint(
     during: &mut dyn FnMut(i32) -> bool,
 ) -> Ended {
     let err_path = logs.join("stderr");
-    let child = Command::new(env!("CARGO_BIN_EXE_glint"))
+    let mut command = Command::new(env!("CARGO_BIN_EXE_glint"));
+    command
         .args(args)
         .current_dir(dir)
         .stdin(Stdio::null())
         .stdout(Stdio::null())
-        .stderr(std::fs::File::create(&err_path).unwrap())
-        .spawn()
-        .expect("glint starts");
+        .stderr(std::fs::File::create(&err_path).unwrap());
+    // The child gets the default SIGINT and SIGTERM whatever this process inherited: a
+    // test run started in the background by a non-interactive shell (`cmd &`) has SIGINT
+    // ignored, a child inherits that, and glint rightly keeps an ignored signal ignored.
+    // SAFETY: `signal` is async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(|| {
+            libc::signal(libc::SIGINT, libc::SIG_DFL);
+            libc::signal(libc::SIGTERM, libc::SIG_DFL);
+            Ok(())
+        });
+    }
+    let child = command.spawn().expect("glint starts");
     let pid = child.id() as i32;
     let start = Instant::now();
     let mut status = 0;
@@ -610,8 +622,8 @@ fn sizes_and_counts_are_bounded() {
 fn an_interrupted_write_leaves_nothing_behind() {
     // A big empty render: the PNG takes long enough to encode that the signal usually
     // lands while the temporary file exists. It can still land after glint has renamed
-    // the file, or after it has exited (a busy machine delays the signal past a short
-    // write): such a run proves nothing, so it is repeated, up to ATTEMPTS times.
+    // the file, or after it has exited (the poll sees the temporary file just before the
+    // rename): such a run proves nothing, so it is repeated, up to ATTEMPTS times.
     const ATTEMPTS: usize = 5;
     for sig in [libc::SIGINT, libc::SIGTERM] {
         let mut interrupted = false;
