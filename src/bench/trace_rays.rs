@@ -149,27 +149,28 @@ pub fn trace_shadow_into(scene: &PackedScene, rays: &[ShadowRay], occluded: &mut
 /// The traversal's work per ray, untimed: cells visited and primitives tested, summed
 /// over the camera rays and over the shadow rays.
 pub fn count_work(scene: &PackedScene, primary: &[Ray], shadow: &[ShadowRay]) -> [Counters; 2] {
-    let sum = |a: Counters, b: Counters| Counters {
-        cells_visited: a.cells_visited + b.cells_visited,
-        items_tested: a.items_tested + b.items_tested,
-    };
-    let primary = primary
-        .par_iter()
+    [
+        count_each(primary, |r, c| {
+            closest_hit(scene, r, T_MISS, c);
+        }),
+        count_each(shadow, |s, c| {
+            any_hit(scene, &s.ray, s.t_max, c);
+        }),
+    ]
+}
+
+/// The counters of `trace` over every ray, summed.
+fn count_each<R: Sync>(rays: &[R], trace: impl Fn(&R, &mut Counters) + Sync) -> Counters {
+    rays.par_iter()
         .map(|r| {
             let mut c = Counters::default();
-            closest_hit(scene, r, T_MISS, &mut c);
+            trace(r, &mut c);
             c
         })
-        .reduce(Counters::default, sum);
-    let shadow = shadow
-        .par_iter()
-        .map(|s| {
-            let mut c = Counters::default();
-            any_hit(scene, &s.ray, s.t_max, &mut c);
-            c
+        .reduce(Counters::default, |a, b| Counters {
+            cells_visited: a.cells_visited + b.cells_visited,
+            items_tested: a.items_tested + b.items_tested,
         })
-        .reduce(Counters::default, sum);
-    [primary, shadow]
 }
 
 /// The shadow rays of every hit, in pixel order and light order: from the hit point
