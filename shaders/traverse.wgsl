@@ -9,7 +9,8 @@
 
 // The items a ray has tested, as a direct-mapped cache of ITEM_MAILBOX_SIZE slots (item
 // number modulo the size). Only kinds for which a second test is sure to change nothing
-// go in (mailboxed).
+// go in (mailboxed). Kept only in the MAILBOXES variant (hardware adapters): without it
+// every item is tested in every cell that lists it, with the same answers.
 // Mirror of src/cpu/traverse.rs::Mailbox — change both.
 struct Mailbox {
     items: array<u32, ITEM_MAILBOX_SIZE>,
@@ -18,9 +19,11 @@ struct Mailbox {
 // Mirror of src/cpu/traverse.rs::Mailbox::new — change both.
 fn mailbox_new() -> Mailbox {
     var mailbox: Mailbox;
+// #if MAILBOXES
     for (var i = 0u; i < ITEM_MAILBOX_SIZE; i++) {
         mailbox.items[i] = NO_ITEM;
     }
+// #endif
     return mailbox;
 }
 
@@ -28,11 +31,13 @@ fn mailbox_new() -> Mailbox {
 // remembered in its slot.
 // Mirror of src/cpu/traverse.rs::Mailbox::seen — change both.
 fn mailbox_seen(mailbox: ptr<function, Mailbox>, item: u32) -> bool {
+// #if MAILBOXES
     let slot = item & (ITEM_MAILBOX_SIZE - 1u);
     if (*mailbox).items[slot] == item {
         return true;
     }
     (*mailbox).items[slot] = item;
+// #endif
     return false;
 }
 

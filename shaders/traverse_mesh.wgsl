@@ -7,7 +7,9 @@
 // The triangles a ray has tested in one mesh, as a direct-mapped cache of
 // TRIANGLE_MAILBOX_SIZE slots (triangle number modulo the size): testing one again would
 // give the same answer, so a triangle listed in several cells is tested once unless
-// another took its slot in between.
+// another took its slot in between. Kept only in the MAILBOXES variant (hardware
+// adapters): without it a triangle is tested in every cell that lists it, with the same
+// answers.
 // Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox — change both.
 struct TriangleMailbox {
     triangles: array<u32, TRIANGLE_MAILBOX_SIZE>,
@@ -16,9 +18,11 @@ struct TriangleMailbox {
 // Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox::new — change both.
 fn triangle_mailbox_new() -> TriangleMailbox {
     var mailbox: TriangleMailbox;
+// #if MAILBOXES
     for (var i = 0u; i < TRIANGLE_MAILBOX_SIZE; i++) {
         mailbox.triangles[i] = NO_ITEM;
     }
+// #endif
     return mailbox;
 }
 
@@ -26,11 +30,13 @@ fn triangle_mailbox_new() -> TriangleMailbox {
 // remembered in its slot.
 // Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox::seen — change both.
 fn triangle_mailbox_seen(mailbox: ptr<function, TriangleMailbox>, triangle: u32) -> bool {
+// #if MAILBOXES
     let slot = triangle & (TRIANGLE_MAILBOX_SIZE - 1u);
     if (*mailbox).triangles[slot] == triangle {
         return true;
     }
     (*mailbox).triangles[slot] = triangle;
+// #endif
     return false;
 }
 

@@ -219,8 +219,6 @@ pub fn wgsl_prelude() -> String {
         ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
         ("TILE_SIZE", TILE_SIZE),
         ("AA_STACK_SIZE", AA_STACK_SIZE),
-        ("WORKGROUP_SIZE", WORKGROUP_SIZE),
-        ("LINEAR_WORKGROUP_SIZE", LINEAR_WORKGROUP_SIZE),
         ("GPU_INDIRECT_MAX_WORKGROUPS", GPU_INDIRECT_MAX_WORKGROUPS),
         ("PCG_MULTIPLIER", PCG_MULTIPLIER),
         ("PROBE_CLOSEST_HIT", PROBE_CLOSEST_HIT),
@@ -269,10 +267,13 @@ pub const TILE_SIZE: u32 = 16;
 /// and pushes four, so depth d needs at most 3·d + 1 entries.
 pub const AA_STACK_SIZE: u32 = 3 * MAX_AA_DEPTH + 1;
 
-/// Side of the square GPU workgroup (`@workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)`).
+/// Largest side of the square GPU workgroup (`@workgroup_size(WORKGROUP_SIZE,
+/// WORKGROUP_SIZE)`): the GPU context chooses the largest power of two up to it that its
+/// adapter allows (`gpu::kernel::KernelConfig`) and emits it after the prelude.
 pub const WORKGROUP_SIZE: u32 = 8;
-/// Invocations per workgroup of the one-dimensional GPU kernels (one sample each).
-pub const LINEAR_WORKGROUP_SIZE: u32 = 64;
+/// Invocations per workgroup of the one-dimensional GPU kernels (one sample each) at the
+/// default side: WORKGROUP_SIZE².
+pub const LINEAR_WORKGROUP_SIZE: u32 = WORKGROUP_SIZE * WORKGROUP_SIZE;
 /// Workgroups per dimension an indirect dispatch asks for at most (WebGPU's guaranteed
 /// minimum of `max_compute_workgroups_per_dimension`; more go in y).
 pub const GPU_INDIRECT_MAX_WORKGROUPS: u32 = 65_535;

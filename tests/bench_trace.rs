@@ -198,6 +198,42 @@ fn hits_equal_brute_force_over_the_same_rays() {
     }
 }
 
+/// The CPU's switch for the traversal's mailboxes (the twin of the GPU kernel's
+/// `MAILBOXES` variant): off, every answer is the same and more primitives are tested
+/// (each mesh triangle and scene item in every cell that lists it).
+#[test]
+fn mailboxes_change_the_work_not_the_answers() {
+    let dir = scene_dir("mailboxes");
+    let mut scene =
+        pack(&load_first_render(&dir.join("scene.lua"), None, None, &[], None).unwrap()).unwrap();
+    let rays = camera_rays(&scene);
+    assert!(
+        scene.mailboxes,
+        "the CPU tracer keeps its mailboxes by default"
+    );
+    let hits = trace_primary(&scene, &rays);
+    let shadow = shadow_rays(&scene, &rays, &hits);
+    let occluded = trace_shadow(&scene, &shadow);
+    let with = count_work(&scene, &rays, &shadow);
+    scene.mailboxes = false;
+    assert_eq!(
+        format!("{:?}", trace_primary(&scene, &rays)),
+        format!("{hits:?}")
+    );
+    assert_eq!(trace_shadow(&scene, &shadow), occluded);
+    let without = count_work(&scene, &rays, &shadow);
+    for (kind, (a, b)) in ["primary", "shadow"].iter().zip(with.iter().zip(&without)) {
+        // A mesh instance met again in a later scene cell is walked again, cells and all.
+        assert!(b.cells_visited >= a.cells_visited, "{kind}");
+        assert!(
+            b.items_tested > a.items_tested,
+            "{kind}: {} primitives tested without mailboxes, {} with",
+            b.items_tested,
+            a.items_tested
+        );
+    }
+}
+
 #[test]
 fn dump_rays_writes_geometry_rays_and_answers() {
     let dir = scene_dir("trace-dump");

@@ -1,7 +1,8 @@
 //! The GPU frame's dispatch plan on a device: the submits and host waits of one frame are
 //! counted by the render code itself (`GpuRenderInfo`), so the test does not depend on
 //! timing. They must not grow with the image: 256² and 2048² frames take the same
-//! number, in every AA mode, and no more than `GPU_FRAME_PARTS`.
+//! number, in every AA mode, and no more than `GPU_FRAME_PARTS`. And the kernel variants
+//! an adapter may choose (workgroup size, mailboxes) render the same image.
 
 mod common;
 
@@ -59,5 +60,56 @@ fn submits_and_host_waits_do_not_grow_with_the_image() {
         );
         // The large frame has more work per submit, not more submits.
         assert!(large.tiles >= small.tiles, "{aa:?}");
+    }
+}
+
+/// Every kernel variant (the workgroup side an adapter's limits may force, with and
+/// without the traversal's mailboxes) renders the very same image, in every AA mode (the
+/// 1-D kernels and the indirect arguments of adaptive AA depend on the workgroup size),
+/// and that image matches the CPU tracer's: a mismatch between the dispatch plan's
+/// workgroup counts and the shader's `@workgroup_size` would leave pixels unrendered.
+#[test]
+fn every_kernel_variant_renders_the_same_image() {
+    use glint::gpu::KernelConfig;
+    let Some(mut ctx) = gpu_context() else { return };
+    let chosen = ctx.kernel;
+    let path = common::corpus().join("a4-2021plus/nonhier.lua");
+    for aa in [AaMode::None, AaMode::Adaptive] {
+        let overrides = OptionOverrides {
+            width: Some(72),
+            height: Some(56),
+            aa: Some(aa),
+            aa_depth: Some(glint::scene::AaDepth::constant(2)),
+            ..OptionOverrides::default()
+        };
+        let scene = common::load_packed(&path, &overrides);
+        ctx.kernel = chosen;
+        let name = format!("nonhier {aa:?}, {chosen}");
+        let reference = common::assert_gpu_matches_cpu(&ctx, "gpu_frame", &name, &scene, 0.01);
+        assert!(reference.cpu_fallback_pixels == 0, "{name}");
+        let first = render_gpu(&ctx, &scene, &GpuRenderOptions::default())
+            .unwrap()
+            .film;
+        for (workgroup_side, mailboxes) in [(8, true), (8, false), (4, true), (2, false)] {
+            ctx.kernel = KernelConfig {
+                workgroup_side,
+                mailboxes,
+                ..chosen
+            };
+            let film = render_gpu(&ctx, &scene, &GpuRenderOptions::default())
+                .unwrap_or_else(|e| panic!("{aa:?} {}: {e}", ctx.kernel))
+                .film;
+            let differing = film
+                .pixels
+                .iter()
+                .zip(&first.pixels)
+                .filter(|(a, b)| a != b)
+                .count();
+            assert_eq!(
+                differing, 0,
+                "{aa:?}: {} renders {differing} pixels differently from {chosen}",
+                ctx.kernel
+            );
+        }
     }
 }

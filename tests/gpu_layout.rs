@@ -4,6 +4,7 @@
 
 use glint::gpu::buffers::GpuTile;
 use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
+use glint::gpu::KernelConfig;
 use glint::pack::{
     PackedGlobals, PackedInstance, PackedLight, PackedMaterial, PackedMesh, PackedTriangle,
     PackedTriangleUv, SceneFeatures,
@@ -182,19 +183,45 @@ fn every_specialisation_validates() {
     assert_eq!(sets.len(), 2 + 2 * n + n * (n - 1) / 2);
     let mut failures = Vec::new();
     for features in sets {
-        // Every render kernel is in one module, so Render covers them all.
-        for (entry, guard) in [
-            (Entry::Render, false),
-            (Entry::Render, true),
-            (Entry::Probe, false),
+        // Every render kernel is in one module, so Render covers them all; each kernel
+        // variant an adapter may choose (hardware: mailboxes, no guard; software: the
+        // reverse; a smaller workgroup where the adapter's limits ask for it). The guard
+        // is in the render module only.
+        let hardware = KernelConfig::default();
+        let software = KernelConfig {
+            mailboxes: false,
+            iteration_guard: true,
+            ..hardware
+        };
+        let small = KernelConfig {
+            workgroup_side: 4,
+            ..software
+        };
+        for (entry, kernel) in [
+            (Entry::Render, hardware),
+            (Entry::Render, software),
+            (Entry::Render, small),
+            (Entry::Probe, hardware),
+            (Entry::Probe, software),
         ] {
-            let source = assemble_with(features, entry, guard);
+            let source = assemble_with(features, entry, kernel);
+            let side = format!("const WORKGROUP_SIZE: u32 = {}u;", kernel.workgroup_side);
             if let Err(e) = validate(&source, features) {
-                failures.push(format!("[{features}] {entry:?} guard {guard}:\n{e}"));
-            } else if guard != source.contains("fn loop_limiter_tripped(") {
+                failures.push(format!("[{features}] {entry:?} {kernel}:\n{e}"));
+            } else if (entry.is_render() && kernel.iteration_guard)
+                != source.contains("fn loop_limiter_tripped(")
+            {
                 failures.push(format!(
-                    "[{features}] {entry:?}: guard {guard} not resolved"
+                    "[{features}] {entry:?}: guard {} not resolved",
+                    kernel.iteration_guard
                 ));
+            } else if kernel.mailboxes != source.contains("(*mailbox).items[slot] = item;") {
+                failures.push(format!(
+                    "[{features}] {entry:?}: mailboxes {} not resolved",
+                    kernel.mailboxes
+                ));
+            } else if !source.contains(&side) {
+                failures.push(format!("[{features}] {entry:?}: no `{side}`"));
             }
         }
     }

@@ -170,41 +170,55 @@ fn instanced_scene(seed: u64, triangles: usize, instances: usize) -> String {
 }
 
 /// Instanced meshes through both levels of grid (and by brute force): every ray agrees
-/// on hit or miss, instance and triangle; closest-hit and any-hit rays alike.
+/// on hit or miss, instance and triangle; closest-hit and any-hit rays alike; with the
+/// traversal's mailboxes (hardware kernel variant) and without (software variant), on
+/// both tracers, and the CPU's answers are the same bit for bit either way.
 #[test]
 fn probes_instanced_meshes() {
     use common::probes::{agree, random_rays};
     use glint::constants::PROBE_ANY_HIT;
     use glint::testing::probe::{cpu_probe, gpu_probe};
-    let Some(ctx) = gpu_context() else { return };
-    for (mode, name) in [(GridMode::Auto, "grid"), (GridMode::Off, "brute force")] {
-        let s = packed_from_source(&instanced_scene(11, 400, 8), &grid(mode)).remove(0);
+    let Some(mut ctx) = gpu_context() else { return };
+    for (mode, grid_name) in [(GridMode::Auto, "grid"), (GridMode::Off, "brute force")] {
+        let mut s = packed_from_source(&instanced_scene(11, 400, 8), &grid(mode)).remove(0);
         assert_eq!(s.meshes.len(), 1, "the soup is stored once");
         assert_eq!(s.triangles.len(), 400);
         let mut rays = random_rays(111);
         for (i, r) in rays.iter_mut().enumerate() {
             r.mode = if i % 4 == 3 { PROBE_ANY_HIT } else { 0 };
         }
-        let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let (mut hits, mut worst_dt) = (0, 0.0f32);
-        for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
-            let c = cpu_probe(&s, ray);
-            hits += c.hit;
-            if ray.mode == PROBE_ANY_HIT {
-                assert_eq!(g.hit, c.hit, "{name}: any-hit ray {i} {ray:?}");
-                continue;
+        s.mailboxes = true;
+        let with_mailboxes: Vec<_> = rays.iter().map(|r| cpu_probe(&s, r)).collect();
+        for mailboxes in [true, false] {
+            let name = format!("{grid_name}, mailboxes {mailboxes}");
+            ctx.kernel.mailboxes = mailboxes;
+            s.mailboxes = mailboxes;
+            let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let (mut hits, mut worst_dt) = (0, 0.0f32);
+            for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
+                let c = cpu_probe(&s, ray);
+                assert_eq!(
+                    format!("{c:?}"),
+                    format!("{:?}", with_mailboxes[i]),
+                    "{name}: the CPU's mailboxes changed ray {i}'s answer"
+                );
+                hits += c.hit;
+                if ray.mode == PROBE_ANY_HIT {
+                    assert_eq!(g.hit, c.hit, "{name}: any-hit ray {i} {ray:?}");
+                    continue;
+                }
+                let (ok, dt, _) = agree(g, &c);
+                assert!(
+                    ok && g.part == c.part,
+                    "{name}: ray {i} {ray:?}: gpu {g:?} cpu {c:?}"
+                );
+                worst_dt = worst_dt.max(dt);
             }
-            let (ok, dt, _) = agree(g, &c);
-            assert!(
-                ok && g.part == c.part,
-                "{name}: ray {i} {ray:?}: gpu {g:?} cpu {c:?}"
+            eprintln!(
+                "instanced meshes, {name}: {hits}/{} CPU hits, 100% agreement (hit, instance, triangle), worst |Δt|/t {worst_dt:.2e}",
+                rays.len()
             );
-            worst_dt = worst_dt.max(dt);
+            assert!(hits as usize > rays.len() / 8, "{name}: too few hits");
         }
-        eprintln!(
-            "instanced meshes, {name}: {hits}/{} CPU hits, 100% agreement (hit, instance, triangle), worst |Δt|/t {worst_dt:.2e}",
-            rays.len()
-        );
-        assert!(hits as usize > rays.len() / 8, "{name}: too few hits");
     }
 }

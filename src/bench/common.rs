@@ -34,6 +34,14 @@ pub struct BenchArgs {
     /// GPU adapter to use: a substring of its name.
     #[arg(long)]
     pub adapter: Option<String>,
+    /// --gpu: side of the 2-D kernels' square workgroup (1, 2, 4 or 8; the 1-D kernels run
+    /// its square), instead of the one chosen from the adapter. To measure a GPU.
+    #[arg(long, value_parser = ["1", "2", "4", "8"])]
+    pub workgroup_side: Option<String>,
+    /// --gpu: keep (on) or drop (off) the traversal's per-ray mailboxes, instead of the
+    /// adapter's choice (off on software adapters). To measure a GPU.
+    #[arg(long, value_parser = ["on", "off"])]
+    pub mailboxes: Option<String>,
     /// Only the error-against-time sweep of the AA and shadow settings (`bench_sweep`).
     #[arg(long)]
     pub sweep: bool,

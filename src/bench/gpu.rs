@@ -10,7 +10,6 @@
 
 use super::common::{load_scene, BenchArgs};
 use super::timing::fastest;
-use crate::constants::{LINEAR_WORKGROUP_SIZE, WORKGROUP_SIZE};
 use crate::cpu::render::render_with_counters;
 use crate::diff::diff_films;
 use crate::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderOptions};
@@ -31,16 +30,29 @@ const SCENES: &[&str] = &[
 const SIDE: u32 = 512;
 
 pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
-    let ctx = GpuContext::new(args.adapter.as_deref())?;
+    let mut ctx = GpuContext::new(args.adapter.as_deref())?;
+    let chosen = ctx.kernel;
+    if let Some(side) = &args.workgroup_side {
+        ctx.kernel.workgroup_side = side.parse()?;
+    }
+    if let Some(mailboxes) = &args.mailboxes {
+        ctx.kernel.mailboxes = mailboxes == "on";
+    }
     let timed = ctx
         .device
         .features()
         .contains(wgpu::Features::TIMESTAMP_QUERY);
     println!(
-        "GPU adapter: {} ({:?}, {:?}); workgroups {WORKGROUP_SIZE}×{WORKGROUP_SIZE} (2-D kernels) and {LINEAR_WORKGROUP_SIZE} (1-D), within the adapter's {} invocations; GPU time from {}",
+        "GPU adapter: {} ({:?}, {:?}); kernel: {}{} (the adapter allows {} invocations a workgroup); GPU time from {}",
         ctx.info.name,
         ctx.info.device_type,
         ctx.info.backend,
+        ctx.kernel,
+        if ctx.kernel == chosen {
+            " (chosen from the adapter)".to_string()
+        } else {
+            format!(" (set on the command line; the adapter's choice: {chosen})")
+        },
         ctx.limits.max_compute_invocations_per_workgroup,
         if timed { "timestamp queries" } else { "wall time (the adapter has no timestamp queries)" }
     );

@@ -19,9 +19,10 @@ fn write_gpu(out: &mut String, image: &RenderedImage) {
     if let Some(gpu) = &image.gpu {
         let _ = writeln!(
             out,
-            "  gpu: {} — compiled in: {}; pipelines compiled in {:.1} ms (lavapipe compiles again on the first dispatch; Mesa caches it); {} chunks (widest row stride {} pixels), {} dispatches in {} submits, {} host waits; GPU time {}",
+            "  gpu: {} — compiled in: {}; kernel: {}; pipelines compiled in {:.1} ms (lavapipe compiles again on the first dispatch; Mesa caches it); {} chunks (widest row stride {} pixels), {} dispatches in {} submits, {} host waits; GPU time {}",
             image.adapter.as_deref().unwrap_or("?"),
             gpu.features,
+            gpu.kernel,
             gpu.compile_time.as_secs_f64() * 1e3,
             gpu.tiles,
             gpu.tile_side,

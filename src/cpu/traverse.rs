@@ -20,17 +20,22 @@ use glam::IVec3;
 
 /// The items a ray has tested, as a direct-mapped cache of `ITEM_MAILBOX_SIZE` slots
 /// (item number modulo the size: one compare). Only kinds for which a second test is
-/// sure to change nothing go in ([`mailboxed`]).
+/// sure to change nothing go in ([`mailboxed`]). A disabled mailbox
+/// (`PackedScene::mailboxes` false: the twin of the GPU's variant without `MAILBOXES`)
+/// remembers nothing, so every item is tested in every cell that lists it, with the same
+/// answers.
 // Mirror of shaders/traverse.wgsl::Mailbox — change both.
 pub struct Mailbox {
     items: [u32; ITEM_MAILBOX_SIZE as usize],
+    enabled: bool,
 }
 
 impl Mailbox {
     // Mirror of shaders/traverse.wgsl::mailbox_new — change both.
-    pub fn new() -> Mailbox {
+    pub fn new(enabled: bool) -> Mailbox {
         Mailbox {
             items: [NO_ITEM; ITEM_MAILBOX_SIZE as usize],
+            enabled,
         }
     }
 
@@ -38,11 +43,13 @@ impl Mailbox {
     /// now remembered in its slot.
     // Mirror of shaders/traverse.wgsl::mailbox_seen — change both.
     pub fn seen(&mut self, item: u32) -> bool {
-        let slot = &mut self.items[(item & (ITEM_MAILBOX_SIZE - 1)) as usize];
-        if *slot == item {
-            return true;
+        if self.enabled {
+            let slot = &mut self.items[(item & (ITEM_MAILBOX_SIZE - 1)) as usize];
+            if *slot == item {
+                return true;
+            }
+            *slot = item;
         }
-        *slot = item;
         false
     }
 }
@@ -60,7 +67,7 @@ pub fn mailboxed(kind: u32) -> bool {
 
 impl Default for Mailbox {
     fn default() -> Mailbox {
-        Mailbox::new()
+        Mailbox::new(true)
     }
 }
 
@@ -149,7 +156,7 @@ fn closest_hit_inside(
         t: t_max,
         ..Hit::MISS
     };
-    let mut mailbox = Mailbox::new();
+    let mut mailbox = Mailbox::new(scene.mailboxes);
     let g = &scene.globals;
     if g.grid_enabled == 0 {
         counters.cell_visited();
@@ -251,7 +258,7 @@ fn any_hit_inside(
     counters: &mut impl TraversalCounters,
 ) -> bool {
     let (ray, t_max) = (&entered.ray, entered.t_max);
-    let mut mailbox = Mailbox::new();
+    let mut mailbox = Mailbox::new(scene.mailboxes);
     let g = &scene.globals;
     if g.grid_enabled == 0 {
         counters.cell_visited();

@@ -26,16 +26,20 @@ pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &PackedInstance) -> &'a P
 /// the same answer (a miss stays a miss under the same or a smaller t_max, and a hit is
 /// not nearer than itself), so skipping it changes no result. Triangles are stored in
 /// Morton order, so the triangles near a ray have nearby numbers and seldom share a slot.
+/// A disabled one (`PackedScene::mailboxes` false: the twin of the GPU's variant without
+/// `MAILBOXES`) remembers nothing.
 // Mirror of shaders/traverse_mesh.wgsl::TriangleMailbox — change both.
 pub struct TriangleMailbox {
     triangles: [u32; TRIANGLE_MAILBOX_SIZE as usize],
+    enabled: bool,
 }
 
 impl TriangleMailbox {
     // Mirror of shaders/traverse_mesh.wgsl::triangle_mailbox_new — change both.
-    pub fn new() -> TriangleMailbox {
+    pub fn new(enabled: bool) -> TriangleMailbox {
         TriangleMailbox {
             triangles: [NO_ITEM; TRIANGLE_MAILBOX_SIZE as usize],
+            enabled,
         }
     }
 
@@ -43,18 +47,20 @@ impl TriangleMailbox {
     /// is now remembered in its slot.
     // Mirror of shaders/traverse_mesh.wgsl::triangle_mailbox_seen — change both.
     pub fn seen(&mut self, triangle: u32) -> bool {
-        let slot = &mut self.triangles[(triangle & (TRIANGLE_MAILBOX_SIZE - 1)) as usize];
-        if *slot == triangle {
-            return true;
+        if self.enabled {
+            let slot = &mut self.triangles[(triangle & (TRIANGLE_MAILBOX_SIZE - 1)) as usize];
+            if *slot == triangle {
+                return true;
+            }
+            *slot = triangle;
         }
-        *slot = triangle;
         false
     }
 }
 
 impl Default for TriangleMailbox {
     fn default() -> TriangleMailbox {
-        TriangleMailbox::new()
+        TriangleMailbox::new(true)
     }
 }
 
@@ -87,7 +93,7 @@ pub fn intersect_mesh(
     };
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
     let triangles = mesh_triangles(scene, mesh);
-    let mut mailbox = TriangleMailbox::new();
+    let mut mailbox = TriangleMailbox::new(scene.mailboxes);
     let mut best = Hit {
         t: entered.t_max,
         ..Hit::MISS
@@ -152,7 +158,7 @@ pub fn mesh_occludes(
     };
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
     let triangles = mesh_triangles(scene, mesh);
-    let mut mailbox = TriangleMailbox::new();
+    let mut mailbox = TriangleMailbox::new(scene.mailboxes);
     loop {
         counters.cell_visited();
         for &local in cell_items(scene, cell_index(&grid, IVec3::from(dda.cell))) {

@@ -4,6 +4,7 @@
 //! platform has it) — unless `WGPU_BACKEND` names others; never GL by default: with no
 //! Vulkan driver wgpu would silently pick GL llvmpipe, whose output differs.
 
+use super::kernel::KernelConfig;
 use super::pipeline_cache::PipelineCache;
 use super::GpuError;
 use std::sync::{Arc, Mutex};
@@ -15,6 +16,10 @@ pub struct GpuContext {
     pub queue: wgpu::Queue,
     pub info: wgpu::AdapterInfo,
     pub limits: wgpu::Limits,
+    /// The shader variant compiled on this device, chosen from the adapter
+    /// ([`KernelConfig::for_adapter`]); benchmarks may change it before rendering (the
+    /// pipeline cache is keyed by it).
+    pub kernel: KernelConfig,
     /// Set by the device-lost callback; checked after every wait.
     pub(crate) lost: Arc<Mutex<Option<String>>>,
     pub(crate) pipelines: PipelineCache,
@@ -128,6 +133,7 @@ impl GpuContext {
             adapter,
             device,
             queue,
+            kernel: KernelConfig::for_adapter(info.device_type, &limits),
             info,
             limits,
             lost,

@@ -7,6 +7,7 @@ pub mod buffers;
 pub mod context;
 pub mod error;
 pub mod frame;
+pub mod kernel;
 pub mod pipeline;
 pub mod pipeline_cache;
 pub mod plan;
@@ -15,4 +16,5 @@ pub mod shader;
 
 pub use context::{list_adapters, AdapterSummary, GpuContext};
 pub use error::GpuError;
+pub use kernel::KernelConfig;
 pub use render::{render_gpu, GpuRender, GpuRenderInfo, GpuRenderOptions};

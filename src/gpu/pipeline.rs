@@ -27,12 +27,6 @@ pub const WORK_COUNTS_BINDING: u32 = 17;
 pub const WORK_LIST_BINDING: u32 = 18;
 pub const WORK_ARGS_BINDING: u32 = 19;
 
-/// Whether pipelines on `ctx` check Mesa's loop limiter: on software adapters (lavapipe,
-/// device type Cpu), whose gallivm caps the loop iterations of one invocation.
-pub fn iteration_guard(ctx: &GpuContext) -> bool {
-    ctx.info.device_type == wgpu::DeviceType::Cpu
-}
-
 fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
@@ -86,13 +80,14 @@ fn bind_group_layout(device: &wgpu::Device, entry: Entry) -> wgpu::BindGroupLayo
     })
 }
 
-/// The pipeline for (features, entry) on `ctx`, compiled on first use.
+/// The pipeline for (features, entry) in `ctx`'s kernel variant, compiled on first use.
 pub fn get_pipeline(
     ctx: &GpuContext,
     features: SceneFeatures,
     entry: Entry,
 ) -> Result<Arc<CompiledPipeline>, GpuError> {
-    let key = (features, entry);
+    let kernel = ctx.kernel;
+    let key = (features, kernel, entry);
     if let Some(p) = ctx
         .pipelines
         .map
@@ -103,8 +98,7 @@ pub fn get_pipeline(
         return Ok(p);
     }
     let start = Instant::now();
-    let guard = iteration_guard(ctx);
-    let source = assemble_with(features, entry, guard);
+    let source = assemble_with(features, entry, kernel);
     // naga first: its messages point into the assembled source.
     validate(&source, features)?;
     let device = &ctx.device;
@@ -134,7 +128,8 @@ pub fn get_pipeline(
         layout,
         compile_time: start.elapsed(),
         features,
-        iteration_guard: guard,
+        kernel,
+        iteration_guard: kernel.iteration_guard,
     });
     if let Ok(mut map) = ctx.pipelines.map.lock() {
         map.insert(key, Arc::clone(&compiled));

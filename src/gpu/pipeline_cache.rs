@@ -1,6 +1,7 @@
 //! The per-context cache of compiled pipelines (`PipelineCache`, held by `GpuContext`)
 //! and what it stores (`CompiledPipeline`); `pipeline` compiles and fills it.
 
+use super::kernel::KernelConfig;
 use super::shader::Entry;
 use crate::pack::SceneFeatures;
 use std::collections::HashMap;
@@ -14,13 +15,17 @@ pub struct CompiledPipeline {
     /// WGSL assembly, naga validation, shader module and pipeline creation.
     pub compile_time: Duration,
     pub features: SceneFeatures,
+    /// The kernel variant (workgroup size, mailboxes, loop-limiter guard).
+    pub kernel: KernelConfig,
     /// Whether the render kernels check Mesa's loop limiter (software adapters).
     pub iteration_guard: bool,
 }
 
-/// Pipelines compiled on one device, by (features, entry); whether the iteration guard
-/// is in is a property of the device.
+/// Pipelines compiled on one device, by (features, kernel variant, entry).
 #[derive(Default)]
 pub struct PipelineCache {
-    pub(super) map: Mutex<HashMap<(SceneFeatures, Entry), Arc<CompiledPipeline>>>,
+    pub(super) map: Mutex<HashMap<PipelineKey, Arc<CompiledPipeline>>>,
 }
+
+/// What a compiled pipeline is specialised for.
+pub type PipelineKey = (SceneFeatures, KernelConfig, Entry);

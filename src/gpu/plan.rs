@@ -11,9 +11,7 @@
 
 use super::buffers::GpuTile;
 use super::shader::Entry;
-use crate::constants::{
-    AA_ADAPTIVE, AA_UNIFORM, GPU_FRAME_PARTS, LINEAR_WORKGROUP_SIZE, WORKGROUP_SIZE,
-};
+use crate::constants::{AA_ADAPTIVE, AA_UNIFORM, GPU_FRAME_PARTS};
 use crate::pack::PackedGlobals;
 use crate::tiling::split_offset;
 
@@ -104,6 +102,9 @@ pub struct AdapterBounds {
     pub max_binding: u64,
     /// Workgroups per dispatch dimension.
     pub max_workgroups: u32,
+    /// Side of the 2-D kernels' square workgroup (the 1-D kernels run its square):
+    /// the context's `KernelConfig::workgroup_side`.
+    pub workgroup_side: u32,
 }
 
 /// The frame's chunks, their grouping into submits and the scratch arrays' lengths.
@@ -170,7 +171,7 @@ impl FramePlan {
         let mode = Mode::of(g);
         // Rows a band may have: its pixels must fit a 2-D dispatch and its output block
         // (16 B a pixel) one binding.
-        let dispatch_rows = bounds.max_workgroups.saturating_mul(WORKGROUP_SIZE);
+        let dispatch_rows = bounds.max_workgroups.saturating_mul(bounds.workgroup_side);
         let block_rows = (bounds.max_binding / (16 * w as u64)).min(u32::MAX as u64) as u32;
         let parts = GPU_FRAME_PARTS.min(h) as usize;
         let (chunks, samples_len, split_len) = match mode {
@@ -215,7 +216,7 @@ impl FramePlan {
 
 impl FramePlan {
     /// The dispatches of chunk `index`, in order (`sentinel`: [`GpuTile::sentinel`]).
-    pub fn dispatches(&self, index: usize, sentinel: u32, max_workgroups: u32) -> Vec<Dispatch> {
+    pub fn dispatches(&self, index: usize, sentinel: u32, bounds: AdapterBounds) -> Vec<Dispatch> {
         let c = self.chunks[index];
         let [w, h] = c.size;
         let params = |level: u32, items: u32| GpuTile {
@@ -227,10 +228,12 @@ impl FramePlan {
             sentinel,
         };
         let linear = |items: u32| {
-            let (x, y) = linear_workgroups(items, max_workgroups);
+            let lanes = bounds.workgroup_side * bounds.workgroup_side;
+            let (x, y) = linear_workgroups(items, lanes, bounds.max_workgroups);
             Workgroups::Direct(x, y)
         };
-        let square = Workgroups::Direct(w.div_ceil(WORKGROUP_SIZE), h.div_ceil(WORKGROUP_SIZE));
+        let side = bounds.workgroup_side;
+        let square = Workgroups::Direct(w.div_ceil(side), h.div_ceil(side));
         let run = |entry: usize, params: GpuTile, workgroups: Workgroups| Dispatch {
             entry,
             chunk: index,
@@ -275,10 +278,11 @@ impl FramePlan {
     }
 }
 
-/// Workgroups of a one-dimensional kernel over `items` invocations: x at most
-/// `max_workgroups`, the rest in y (the kernels rebuild the index with `linear_index`).
-pub fn linear_workgroups(items: u32, max_workgroups: u32) -> (u32, u32) {
-    let groups = items.div_ceil(LINEAR_WORKGROUP_SIZE);
+/// Workgroups of `lanes` invocations of a one-dimensional kernel over `items`
+/// invocations: x at most `max_workgroups`, the rest in y (the kernels rebuild the index
+/// with `linear_index`).
+pub fn linear_workgroups(items: u32, lanes: u32, max_workgroups: u32) -> (u32, u32) {
+    let groups = items.div_ceil(lanes);
     if groups <= max_workgroups {
         (groups, 1)
     } else {
@@ -304,6 +308,7 @@ mod tests {
     const LAVAPIPE: AdapterBounds = AdapterBounds {
         max_binding: 128 << 20,
         max_workgroups: 65_535,
+        workgroup_side: 8,
     };
 
     /// Every pixel in exactly one chunk, every chunk in exactly one part.
@@ -358,8 +363,11 @@ mod tests {
 
     #[test]
     fn linear_dispatches_stay_within_the_dimension_limit() {
-        assert_eq!(linear_workgroups(64 * 10, 65_535), (10, 1));
-        let (x, y) = linear_workgroups(5 * 1024 * 1024, 65_535);
-        assert!(x <= 65_535 && x as u64 * y as u64 * 64 >= 5 * 1024 * 1024);
+        assert_eq!(linear_workgroups(64 * 10, 64, 65_535), (10, 1));
+        assert_eq!(linear_workgroups(64 * 10, 16, 65_535), (40, 1));
+        for lanes in [1, 16, 64] {
+            let (x, y) = linear_workgroups(5 * 1024 * 1024, lanes, 65_535);
+            assert!(x <= 65_535 && x as u64 * y as u64 * lanes as u64 >= 5 * 1024 * 1024);
+        }
     }
 }

@@ -52,6 +52,8 @@ pub struct GpuRenderInfo {
     pub gpu_time: Option<Duration>,
     /// Whether the kernels checked Mesa's loop limiter (software adapters).
     pub iteration_guard: bool,
+    /// The kernel variant the frame ran (workgroup size, mailboxes, guard).
+    pub kernel: super::KernelConfig,
     /// Pixels whose GPU result the loop limiter spoiled, re-rendered on the CPU.
     pub cpu_fallback_pixels: u64,
 }
@@ -108,6 +110,7 @@ pub fn render_gpu(
             .max_storage_buffer_binding_size
             .min(ctx.limits.max_buffer_size),
         max_workgroups: ctx.limits.max_compute_workgroups_per_dimension,
+        workgroup_side: ctx.kernel.workgroup_side,
     };
     let plan = FramePlan::new(&scene.globals, bounds);
     let pipelines = plan
@@ -123,7 +126,7 @@ pub fn render_gpu(
     let mut part_ends = Vec::new();
     for part in &plan.parts {
         for chunk in part.clone() {
-            dispatches.extend(plan.dispatches(chunk, sentinel, bounds.max_workgroups));
+            dispatches.extend(plan.dispatches(chunk, sentinel, bounds));
         }
         part_ends.push(dispatches.len());
     }
@@ -152,6 +155,7 @@ pub fn render_gpu(
         host_waits: read.host_waits,
         gpu_time: read.gpu_time,
         iteration_guard: pipelines[0].iteration_guard,
+        kernel: pipelines[0].kernel,
         cpu_fallback_pixels: fallback,
     };
     Ok(GpuRender {

@@ -4,9 +4,13 @@
 //! (naga does not remove dead branches, gfx-rs/wgpu#5608). A condition is one feature name
 //! in upper case (`-` as `_`: `AREA_LIGHT`), or several joined by `|` (any of them),
 //! optionally negated by a leading `!`.
-//! Besides the scene's features, one flag of the adapter: `ITERATION_GUARD` (software
-//! adapters, whose loop limiter the render kernels check, see `shaders/render.wgsl`).
+//! Besides the scene's features, the adapter's [`KernelConfig`]: the workgroup size (the
+//! `WORKGROUP_SIZE` and `LINEAR_WORKGROUP_SIZE` constants, emitted after the prelude) and
+//! two flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
+//! check, see `shaders/render.wgsl`) and `MAILBOXES` (the traversal's per-ray mailboxes,
+//! see `shaders/traverse.wgsl`).
 
+use super::kernel::KernelConfig;
 use crate::constants::wgsl_prelude;
 use crate::pack::SceneFeatures;
 
@@ -106,56 +110,59 @@ const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/prob
 /// `features`, with `extra` (name, text) appended: for kernels outside the tracer, such
 /// as the torus benchmark's.
 pub fn assemble_common_with(features: SceneFeatures, extra: (&str, &str)) -> String {
-    let mut out = wgsl_prelude();
+    let kernel = KernelConfig::default();
+    let mut out = wgsl_prelude() + &kernel_prelude(kernel);
     for (name, text) in COMMON.iter().chain([&extra]) {
         out += &format!("\n// ---- shaders/{name} ----\n");
-        out += &preprocess_with(name, text, features, false)
+        out += &preprocess_with(name, text, features, kernel)
             .unwrap_or_else(|e| panic!("shaders/{name}: {e} (a bug in the shader source)"));
     }
     out
 }
 
-/// The full WGSL source for `entry` specialised to `features` (without the iteration
-/// guard).
+/// The full WGSL source for `entry` specialised to `features`, for the default (hardware)
+/// kernel variant.
 pub fn assemble(features: SceneFeatures, entry: Entry) -> String {
-    assemble_with(features, entry, false)
+    assemble_with(features, entry, KernelConfig::default())
 }
 
-/// The full WGSL source for `entry` specialised to `features`, with the loop-limiter
-/// check (`ITERATION_GUARD`) when `iteration_guard`.
-pub fn assemble_with(features: SceneFeatures, entry: Entry, iteration_guard: bool) -> String {
-    let mut out = wgsl_prelude();
-    out += &format!(
-        "// Specialised for features: {features}{}\n",
-        if iteration_guard {
-            "; iteration guard"
-        } else {
-            ""
-        }
-    );
+/// The WGSL constants of `kernel`'s workgroup size.
+fn kernel_prelude(kernel: KernelConfig) -> String {
+    format!(
+        "const WORKGROUP_SIZE: u32 = {}u;\nconst LINEAR_WORKGROUP_SIZE: u32 = {}u;\n",
+        kernel.workgroup_side,
+        kernel.linear_workgroup_size()
+    )
+}
+
+/// The full WGSL source for `entry` specialised to `features` and `kernel`.
+pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig) -> String {
+    let mut out = wgsl_prelude() + &kernel_prelude(kernel);
+    out += &format!("// Specialised for features: {features}; kernel: {kernel}\n");
     let files = COMMON
         .iter()
         .chain(if entry.is_render() { RENDER } else { PROBE });
     for (name, text) in files {
         out += &format!("\n// ---- shaders/{name} ----\n");
-        out += &preprocess_with(name, text, features, iteration_guard)
+        out += &preprocess_with(name, text, features, kernel)
             .unwrap_or_else(|e| panic!("shaders/{name}: {e} (a bug in the shader source)"));
     }
     out
 }
 
-/// Resolves the `// #if` blocks of one file. Errors name the line (unbalanced or
-/// unknown directives are bugs in the shader files, caught by the validation tests).
+/// Resolves the `// #if` blocks of one file (default kernel variant). Errors name the line
+/// (unbalanced or unknown directives are bugs in the shader files, caught by the
+/// validation tests).
 pub fn preprocess(name: &str, text: &str, features: SceneFeatures) -> Result<String, String> {
-    preprocess_with(name, text, features, false)
+    preprocess_with(name, text, features, KernelConfig::default())
 }
 
-/// [`preprocess`], with `ITERATION_GUARD` set to `iteration_guard`.
+/// [`preprocess`], with `ITERATION_GUARD` and `MAILBOXES` taken from `kernel`.
 pub fn preprocess_with(
     name: &str,
     text: &str,
     features: SceneFeatures,
-    iteration_guard: bool,
+    kernel: KernelConfig,
 ) -> Result<String, String> {
     // Each open block: (this branch active, parent active, seen #else).
     let mut stack: Vec<(bool, bool, bool)> = Vec::new();
@@ -166,7 +173,7 @@ pub fn preprocess_with(
         let directive = line.trim().strip_prefix("// #");
         match directive {
             Some(rest) if rest.starts_with("if ") => {
-                let on = condition(rest[3..].trim(), features, iteration_guard)
+                let on = condition(rest[3..].trim(), features, kernel)
                     .map_err(|e| format!("{}: {e}", at()))?;
                 stack.push((on, active, false));
             }
@@ -197,8 +204,8 @@ pub fn preprocess_with(
     Ok(out)
 }
 
-/// Evaluates `NAME`, `A|B` or `!A|B` against `features` and the iteration guard.
-fn condition(text: &str, features: SceneFeatures, iteration_guard: bool) -> Result<bool, String> {
+/// Evaluates `NAME`, `A|B` or `!A|B` against `features` and `kernel`'s flags.
+fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Result<bool, String> {
     let (negate, names) = match text.strip_prefix('!') {
         Some(rest) => (true, rest),
         None => (false, text),
@@ -206,7 +213,11 @@ fn condition(text: &str, features: SceneFeatures, iteration_guard: bool) -> Resu
     let mut any = false;
     for name in names.split('|').map(str::trim) {
         if name == "ITERATION_GUARD" {
-            any |= iteration_guard;
+            any |= kernel.iteration_guard;
+            continue;
+        }
+        if name == "MAILBOXES" {
+            any |= kernel.mailboxes;
             continue;
         }
         let flag = SceneFeatures::ALL
@@ -217,7 +228,7 @@ fn condition(text: &str, features: SceneFeatures, iteration_guard: bool) -> Resu
                 let valid: Vec<String> = SceneFeatures::ALL
                     .iter()
                     .map(|(_, n)| n.to_uppercase().replace('-', "_"))
-                    .chain(["ITERATION_GUARD".to_string()])
+                    .chain(["ITERATION_GUARD".to_string(), "MAILBOXES".to_string()])
                     .collect();
                 format!("unknown feature '{name}' (valid: {})", valid.join(", "))
             })?;

@@ -47,6 +47,11 @@ pub struct PackedScene {
     /// the TEXTURE or BUMP feature.
     pub triangle_uvs: Vec<PackedTriangleUv>,
     pub features: SceneFeatures,
+    /// Whether the CPU tracer's traversal keeps its per-ray item and triangle mailboxes
+    /// (true; the twin of the GPU kernel's `MAILBOXES` variant, `gpu::KernelConfig`).
+    /// They change no answer, only how often a primitive listed in several cells is
+    /// tested; tests turn them off to show both tracers agree either way.
+    pub mailboxes: bool,
     /// The scene grid's build counters.
     pub grid_stats: GridBuildStats,
     /// The mesh grids' counters, summed over the meshes.
@@ -221,6 +226,7 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
         texels,
         triangle_uvs,
         features,
+        mailboxes: true,
         grid_stats: grid.stats,
         mesh_grid_stats: meshes.stats,
     };

@@ -2,7 +2,7 @@
 //! `surface_at` through the `probe` entry point, and the same with the CPU functions, so
 //! tests compare the two ray by ray.
 
-use crate::constants::{NO_ITEM, PROBE_ANY_HIT, WORKGROUP_SIZE};
+use crate::constants::{NO_ITEM, PROBE_ANY_HIT};
 pub use crate::constants::{PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT};
 use crate::cpu::ray::Ray;
 use crate::cpu::surface::surface_at;
@@ -126,7 +126,7 @@ pub fn gpu_probe(
             let mut pass = encoder.begin_compute_pass(&Default::default());
             pass.set_pipeline(&compiled.pipeline);
             pass.set_bind_group(0, &bind_group, &[]);
-            let group = WORKGROUP_SIZE * WORKGROUP_SIZE;
+            let group = ctx.kernel.linear_workgroup_size();
             pass.dispatch_workgroups((rays.len() as u32).div_ceil(group), 1, 1);
         }
         encoder.copy_buffer_to_buffer(&results, 0, &staging, 0, result_size);

@@ -1,0 +1,134 @@
+//! The kernel variant a GPU context compiles, chosen from its adapter: the workgroup size,
+//! whether traversal keeps per-ray mailboxes, and whether loops check Mesa's limiter.
+//! None of them changes an answer (the tests render and probe every variant against the
+//! CPU tracer); they change what the kernel costs on a given kind of device.
+
+use crate::constants::WORKGROUP_SIZE;
+use std::fmt;
+
+/// How the GPU tracer's shaders are specialised for one adapter (besides the scene's
+/// features).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct KernelConfig {
+    /// Side of the square workgroup of the 2-D kernels; the 1-D kernels run side² lanes.
+    pub workgroup_side: u32,
+    /// Whether the traversal keeps the per-ray item and triangle mailboxes (the CPU
+    /// twin's switch is `PackedScene::mailboxes`). They change no hit, only how often a
+    /// primitive listed in several cells is tested.
+    pub mailboxes: bool,
+    /// Whether loops check Mesa's loop limiter (`ITERATION_GUARD`).
+    pub iteration_guard: bool,
+}
+
+impl Default for KernelConfig {
+    /// The hardware-GPU variant at the default workgroup size.
+    fn default() -> KernelConfig {
+        KernelConfig {
+            workgroup_side: WORKGROUP_SIZE,
+            mailboxes: true,
+            iteration_guard: false,
+        }
+    }
+}
+
+impl KernelConfig {
+    /// The variant for an adapter of `device_type` with `limits`:
+    /// - workgroup: the largest square of side ≤ `WORKGROUP_SIZE` (8×8 = 64 lanes, a
+    ///   multiple of every vendor's SIMD width: 32 on NVIDIA and Apple, 32/64 on AMD,
+    ///   8–32 on Intel, 8 on llvmpipe's AVX2) that the adapter's invocation and size
+    ///   limits allow. On lavapipe 8×8 measured faster than 4×4 and no slower than 16×16
+    ///   (docs/gpu.md).
+    /// - mailboxes: off on software adapters (device type Cpu: lavapipe, SwiftShader,
+    ///   WARP), where llvmpipe turns a private array indexed at run time into per-lane
+    ///   scatters and gathers that cost more than the tests they save (20–30% of GPU time
+    ///   on mesh scenes, docs/gpu.md); on elsewhere (not yet measured on hardware).
+    /// - iteration guard: on software adapters, whose gallivm caps the loop iterations of
+    ///   one invocation.
+    pub fn for_adapter(device_type: wgpu::DeviceType, limits: &wgpu::Limits) -> KernelConfig {
+        let software = device_type == wgpu::DeviceType::Cpu;
+        KernelConfig {
+            workgroup_side: workgroup_side_within(limits),
+            mailboxes: !software,
+            iteration_guard: software,
+        }
+    }
+
+    /// Lanes of a 1-D kernel's workgroup.
+    pub fn linear_workgroup_size(&self) -> u32 {
+        self.workgroup_side * self.workgroup_side
+    }
+}
+
+impl fmt::Display for KernelConfig {
+    /// As `glint bench --gpu` and the shader header print it: "8×8/64 lanes, mailboxes,
+    /// iteration guard".
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let side = self.workgroup_side;
+        write!(
+            f,
+            "workgroup {side}×{side}/{}",
+            self.linear_workgroup_size()
+        )?;
+        write!(
+            f,
+            ", {}",
+            if self.mailboxes {
+                "mailboxes"
+            } else {
+                "no mailboxes"
+            }
+        )?;
+        if self.iteration_guard {
+            write!(f, ", iteration guard")?;
+        }
+        Ok(())
+    }
+}
+
+/// The largest power-of-two side s ≤ `WORKGROUP_SIZE` with s² invocations and s × s
+/// (and s² in x, for the 1-D kernels) within `limits`.
+pub fn workgroup_side_within(limits: &wgpu::Limits) -> u32 {
+    let mut side = WORKGROUP_SIZE;
+    while side > 1 {
+        let lanes = side * side;
+        if lanes <= limits.max_compute_invocations_per_workgroup
+            && lanes <= limits.max_compute_workgroup_size_x
+            && side <= limits.max_compute_workgroup_size_y
+        {
+            break;
+        }
+        side /= 2;
+    }
+    side
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn software_adapters_drop_mailboxes_and_guard_loops() {
+        let limits = wgpu::Limits::default();
+        let soft = KernelConfig::for_adapter(wgpu::DeviceType::Cpu, &limits);
+        assert!(!soft.mailboxes && soft.iteration_guard);
+        let hard = KernelConfig::for_adapter(wgpu::DeviceType::DiscreteGpu, &limits);
+        assert!(hard.mailboxes && !hard.iteration_guard);
+        assert_eq!(hard.workgroup_side, 8);
+    }
+
+    #[test]
+    fn workgroup_side_respects_every_limit() {
+        let mut limits = wgpu::Limits::default();
+        assert_eq!(workgroup_side_within(&limits), 8);
+        limits.max_compute_invocations_per_workgroup = 32;
+        assert_eq!(workgroup_side_within(&limits), 4);
+        limits.max_compute_invocations_per_workgroup = 256;
+        limits.max_compute_workgroup_size_x = 16;
+        assert_eq!(workgroup_side_within(&limits), 4);
+        limits.max_compute_workgroup_size_x = 256;
+        limits.max_compute_workgroup_size_y = 2;
+        assert_eq!(workgroup_side_within(&limits), 2);
+        limits.max_compute_invocations_per_workgroup = 1;
+        assert_eq!(workgroup_side_within(&limits), 1);
+    }
+}
