@@ -398,5 +398,6 @@ fn info() {
             "  max invocations per workgroup: {}, max workgroups per dimension: {}",
             a.max_compute_invocations_per_workgroup, a.max_compute_workgroups_per_dimension
         );
+        println!("  glint's kernel on it: {}", a.kernel);
     }
 }

@@ -619,3 +619,32 @@ fn backend_both_exits_6_when_the_images_differ() {
     assert_eq!(out.status.code(), Some(6), "{}{stdout}", stderr(&out));
     assert!(stdout.contains("DIFFER"), "{stdout}");
 }
+
+/// `glint info` lists each adapter with the kernel variant glint would compile on it
+/// (workgroup size and mailboxes, chosen from the adapter's type and limits).
+#[test]
+fn info_names_the_kernel_variant_of_each_adapter() {
+    let Some(_) = common::gpu_context() else {
+        return;
+    };
+    let out = glint(&["info"], &temp_dir("info"));
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    let adapters = text.lines().filter(|l| l.starts_with("adapter ")).count();
+    let kernels: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("  glint's kernel on it: "))
+        .collect();
+    assert!(adapters >= 1, "{text}");
+    assert_eq!(kernels.len(), adapters, "{text}");
+    for k in kernels {
+        assert!(
+            k.starts_with("workgroup ") && k.contains("mailboxes"),
+            "{text}"
+        );
+    }
+    // A software adapter (lavapipe) drops the mailboxes and guards its loops.
+    if text.contains("device type: Cpu") {
+        assert!(text.contains("no mailboxes, iteration guard"), "{text}");
+    }
+}

@@ -37,6 +37,8 @@ pub struct AdapterSummary {
     pub max_compute_invocations_per_workgroup: u32,
     pub max_compute_workgroups_per_dimension: u32,
     pub max_buffer_size: u64,
+    /// The kernel variant glint would compile on it.
+    pub kernel: KernelConfig,
 }
 
 /// Vulkan, Metal and DX12, or the backends `WGPU_BACKEND` names.
@@ -72,6 +74,7 @@ pub fn list_adapters() -> Vec<AdapterSummary> {
                 max_compute_invocations_per_workgroup: l.max_compute_invocations_per_workgroup,
                 max_compute_workgroups_per_dimension: l.max_compute_workgroups_per_dimension,
                 max_buffer_size: l.max_buffer_size,
+                kernel: KernelConfig::for_adapter(info.device_type, &l),
             }
         })
         .collect()
