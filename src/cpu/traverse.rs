@@ -31,11 +31,13 @@ pub struct Mailbox {
 }
 
 impl Mailbox {
+    /// An empty mailbox, enabled as `scene.mailboxes` says (on the GPU the switch is the
+    /// module's `MAILBOXES` specialisation).
     // Mirror of shaders/traverse.wgsl::mailbox_new — change both.
-    pub fn new(enabled: bool) -> Mailbox {
+    pub fn new(scene: &PackedScene) -> Mailbox {
         Mailbox {
             items: [NO_ITEM; ITEM_MAILBOX_SIZE as usize],
-            enabled,
+            enabled: scene.mailboxes,
         }
     }
 
@@ -63,12 +65,6 @@ impl Mailbox {
 // Mirror of shaders/traverse.wgsl::mailboxed — change both.
 pub fn mailboxed(kind: u32) -> bool {
     kind != KIND_TORUS && kind != KIND_CSG
-}
-
-impl Default for Mailbox {
-    fn default() -> Mailbox {
-        Mailbox::new(true)
-    }
 }
 
 /// Tests one item: its hit (t = T_MISS on a miss). An item in `mailbox` is a miss (its
@@ -156,7 +152,7 @@ fn closest_hit_inside(
         t: t_max,
         ..Hit::MISS
     };
-    let mut mailbox = Mailbox::new(scene.mailboxes);
+    let mut mailbox = Mailbox::new(scene);
     let g = &scene.globals;
     if g.grid_enabled == 0 {
         counters.cell_visited();
@@ -258,7 +254,7 @@ fn any_hit_inside(
     counters: &mut impl TraversalCounters,
 ) -> bool {
     let (ray, t_max) = (&entered.ray, entered.t_max);
-    let mut mailbox = Mailbox::new(scene.mailboxes);
+    let mut mailbox = Mailbox::new(scene);
     let g = &scene.globals;
     if g.grid_enabled == 0 {
         counters.cell_visited();

@@ -35,11 +35,13 @@ pub struct TriangleMailbox {
 }
 
 impl TriangleMailbox {
+    /// An empty mailbox, enabled as `scene.mailboxes` says (on the GPU the switch is the
+    /// module's `MAILBOXES` specialisation).
     // Mirror of shaders/traverse_mesh.wgsl::triangle_mailbox_new — change both.
-    pub fn new(enabled: bool) -> TriangleMailbox {
+    pub fn new(scene: &PackedScene) -> TriangleMailbox {
         TriangleMailbox {
             triangles: [NO_ITEM; TRIANGLE_MAILBOX_SIZE as usize],
-            enabled,
+            enabled: scene.mailboxes,
         }
     }
 
@@ -55,12 +57,6 @@ impl TriangleMailbox {
             *slot = triangle;
         }
         false
-    }
-}
-
-impl Default for TriangleMailbox {
-    fn default() -> TriangleMailbox {
-        TriangleMailbox::new(true)
     }
 }
 
@@ -93,7 +89,7 @@ pub fn intersect_mesh(
     };
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
     let triangles = mesh_triangles(scene, mesh);
-    let mut mailbox = TriangleMailbox::new(scene.mailboxes);
+    let mut mailbox = TriangleMailbox::new(scene);
     let mut best = Hit {
         t: entered.t_max,
         ..Hit::MISS
@@ -158,7 +154,7 @@ pub fn mesh_occludes(
     };
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
     let triangles = mesh_triangles(scene, mesh);
-    let mut mailbox = TriangleMailbox::new(scene.mailboxes);
+    let mut mailbox = TriangleMailbox::new(scene);
     loop {
         counters.cell_visited();
         for &local in cell_items(scene, cell_index(&grid, IVec3::from(dda.cell))) {
