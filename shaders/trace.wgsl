@@ -20,13 +20,15 @@ struct StackEntry {
 // Mirror of src/cpu/trace.rs::trace_ray — change both.
 fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     let g = globals;
-// #if REFLECTION|REFRACTION
+// #if REFRACTION
     var stack: array<StackEntry, RAY_STACK_SIZE>;
 // #else
-    // Without mirrors or dielectrics nothing is ever pushed: the stack holds the primary
-    // ray only (the CPU's has RAY_STACK_SIZE entries and uses the first). A private array
-    // sized for rays the scene cannot spawn costs a software adapter memory traffic on
-    // every access (llvmpipe keeps a dynamically indexed array in memory, per lane).
+    // Without dielectrics the stack never holds more than one ray: the primary ray, then
+    // at most one reflected ray per shading point, pushed after that point's own entry
+    // was popped (the CPU's has RAY_STACK_SIZE entries and uses the first). A private
+    // array sized for rays the scene cannot spawn costs a software adapter memory
+    // traffic on every access (llvmpipe keeps a dynamically indexed array in memory, per
+    // lane); one entry is always entry 0.
     var stack: array<StackEntry, PRIMARY_RAY_STACK_SIZE>;
 // #endif
     stack[0].ray = primary;

@@ -125,8 +125,8 @@ pub const NO_ITEM: u32 = u32::MAX;
 
 /// Capacity of the explicit secondary-ray stack (no recursion in either tracer).
 pub const RAY_STACK_SIZE: u32 = 16;
-/// Capacity of the GPU's ray stack when the scene has no mirrors or dielectrics (only the
-/// primary ray is ever on it; see shaders/trace.wgsl::trace_ray).
+/// Capacity of the GPU's ray stack when the scene has no dielectrics (only the primary
+/// ray, or later one reflected ray, is ever on it; see shaders/trace.wgsl::trace_ray).
 pub const PRIMARY_RAY_STACK_SIZE: u32 = 1;
 /// Largest `max_depth` a scene may ask for.
 pub const MAX_TRACE_DEPTH: u32 = 64;

@@ -197,6 +197,48 @@ fn reflections_match() {
     assert!(features.contains(SceneFeatures::REFLECTION), "{features}");
 }
 
+/// A hall of mirrors (two parallel mirror walls, a sphere between): chains of up to
+/// `max_depth` = 24 reflections. Without dielectrics the GPU's ray stack has one entry
+/// (a shading point pushes at most its reflection, after its own entry was popped),
+/// where the CPU's has RAY_STACK_SIZE: the images must still agree.
+#[test]
+fn deep_reflection_chains_match() {
+    let Some(ctx) = gpu_context() else { return };
+    let source = "
+        mirror = gr.material({0.05, 0.05, 0.05}, {0.5, 0.5, 0.5}, 60)
+        mirror:set_reflection(0.9, 0.9, 0.85)
+        red = gr.material({0.8, 0.2, 0.2}, {0.3, 0.3, 0.3}, 20)
+        blue = gr.material({0.2, 0.3, 0.8}, {0.3, 0.3, 0.3}, 20)
+        root = gr.node('root')
+        left = gr.cube('left') left:scale(0.2, 8, 40) left:translate(-3.2, -4, -30)
+        left:set_material(mirror) root:add_child(left)
+        right = gr.cube('right') right:scale(0.2, 8, 40) right:translate(3, -4, -30)
+        right:set_material(mirror) root:add_child(right)
+        s = gr.sphere('s') s:translate(0.8, 0, -6) s:set_material(red) root:add_child(s)
+        c = gr.cube('c') c:translate(-1.5, -1.5, -9) c:set_material(blue) root:add_child(c)
+        l = gr.light({0, 3, 0}, {0.9, 0.9, 0.9}, {1, 0, 0})
+        gr.render(root, 'hall.png', 96, 64, {0, 0.5, 2}, {0.6, -0.05, -1}, {0, 1, 0}, 70,
+                  {0.2, 0.2, 0.2}, {l}, {max_depth = 24, min_weight = 0.001})
+    ";
+    let scene = packed_from_source(source, &small(None)).remove(0);
+    assert_eq!(scene.globals.max_depth, 24);
+    let features = compare(&ctx, "hall of mirrors", &scene);
+    assert!(features.contains(SceneFeatures::REFLECTION), "{features}");
+    assert!(!features.contains(SceneFeatures::REFRACTION), "{features}");
+    // The chains are long: cut at 8 reflections, the image changes.
+    let shallow = OptionOverrides {
+        max_depth: glint::scene::TraceDepth::new(8),
+        ..small(None)
+    };
+    let cut = packed_from_source(source, &shallow).remove(0);
+    assert_eq!(cut.globals.max_depth, 8);
+    assert_ne!(
+        common::render_cpu(&scene).pixels,
+        common::render_cpu(&cut).pixels,
+        "no chain is longer than 8 reflections: the test proves nothing"
+    );
+}
+
 /// The loop-limit guard end to end: asking the limiter check for more iterations than
 /// lavapipe's limit (65 535) trips the limiter in every invocation, so on a software
 /// adapter every pixel is flagged and re-rendered on the CPU — and the image is still
