@@ -263,7 +263,8 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
 // #if AREA_LIGHT
 // Light from area light number `index`: the mean of point_light over one jittered point
 // in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n); sets
-// penumbra_seen when some of those points light it and others do not.
+// penumbra_seen when some of those points light it and others do not, at the first hit of
+// a camera ray only (seed.depth 0; see the twin for why).
 // Mirror of src/cpu/shade.rs::area_light — change both.
 fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: PackedLight, index: u32, seed: SampleSeed) -> vec3<f32> {
     let k = light.samples;
@@ -278,7 +279,7 @@ fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3
         lit += select(0u, 1u, any(c != vec3<f32>(0.0)));
         sum += c;
     }
-    if lit > 0u && lit < k * k {
+    if seed.depth == 0u && lit > 0u && lit < k * k {
         penumbra_seen = true;
     }
     return sum * (scale * scale);

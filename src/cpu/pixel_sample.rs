@@ -42,7 +42,7 @@ impl<C: TraversalCounters> TraversalCounters for PenumbraWatch<'_, C> {
     }
 }
 
-/// [`sample`], and whether an area light reached some point of its ray tree through some
+/// [`sample`], and whether an area light reached the first surface it hits through some
 /// of its shadow samples but not all ([`TraversalCounters::partial_light`]): soft-shadow
 /// noise that the colours of a few samples may not show. Adaptive AA's lattice samples.
 // Mirror of shaders/render.wgsl::penumbra_sample — change both.
