@@ -1,8 +1,9 @@
 // adaptive.wgsl — adaptive anti-aliasing (Whitted 1980) per tile, in passes over a dyadic
 // lattice of (tile.side·2^d + 1)² points in `samples` (d = aa_depth; lattice point (i, j)
 // is film position (x0 + i/2^d, y0 + j/2^d)), one sample per invocation:
-// adaptive_corners traces the pixel corners; for each level k < d, adaptive_decide flags
-// the level-k squares to split and appends them to level k's list, adaptive_work_args
+// adaptive_corners traces the pixel corners (w of each sample: whether it saw a penumbra,
+// penumbra_sample); for each level k < d, adaptive_decide flags the level-k squares to
+// split (square_splits) and appends them to level k's list, adaptive_work_args
 // turns the list's length into the indirect dispatches of the passes over it, and
 // adaptive_midpoints traces the listed squares' midpoints; then adaptive_integrate
 // averages each pixel over its quadtree. Below level 0 the passes run over the compacted
@@ -86,6 +87,31 @@ fn square_corners(level: u32, a: u32, b: u32) -> array<vec3<f32>, 4> {
     );
 }
 
+// Whether the sample at lattice point (i, j) saw a penumbra.
+// Mirror of src/cpu/adaptive.rs::Lattice::point_penumbra — change both.
+fn point_penumbra(i: u32, j: u32) -> bool {
+    return samples[lattice_index(i, j)].w != 0.0;
+}
+
+// Whether a corner of square (a, b) of `level` saw a penumbra.
+// Mirror of src/cpu/adaptive.rs::square_penumbra — change both.
+fn square_penumbra(level: u32, a: u32, b: u32) -> bool {
+    let l = adaptive_scale() >> level;
+    let i = a * l;
+    let j = b * l;
+    return point_penumbra(i, j) || point_penumbra(i + l, j) || point_penumbra(i, j + l) || point_penumbra(i + l, j + l);
+}
+
+// Whether a square of `level` with these corners splits: they differ by more than
+// `threshold` (NaN included), or one of them saw a penumbra (`penumbra`) and the level is
+// above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down to the density of
+// uniform 4×4). The per-pixel walk's test too.
+// Mirror of src/cpu/adaptive.rs::square_splits — change both.
+fn square_splits(corners: array<vec3<f32>, 4>, penumbra: bool, level: u32, threshold: f32) -> bool {
+    let differ = !(contrast(corners) <= threshold);
+    return differ || (penumbra && level < AA_PENUMBRA_DEPTH);
+}
+
 // Film position of lattice point (i, j), exact (a dyadic fraction of few bits; ldexp
 // rather than a division, which WGSL lets be inexact).
 // Mirror of src/cpu/adaptive.rs::lattice_position — change both.
@@ -98,10 +124,11 @@ fn lattice_position(i: u32, j: u32) -> vec2<f32> {
     );
 }
 
-// Traces lattice point (i, j) into the lattice.
+// Traces lattice point (i, j) into the lattice: its colour and, in w, its penumbra flag.
+// Mirror of src/cpu/adaptive.rs::trace_lattice_point — change both.
 fn trace_lattice_point(i: u32, j: u32) {
     let pos = lattice_position(i, j);
-    samples[lattice_index(i, j)] = vec4<f32>(sample(pos.x, pos.y, adaptive_seed(pos.x, pos.y)), 1.0);
+    samples[lattice_index(i, j)] = penumbra_sample(pos.x, pos.y, adaptive_seed(pos.x, pos.y));
 // #if ITERATION_GUARD
     // Every pixel whose closed square holds the point (straight-line code: after the
     // limiter trips, loops run one iteration).
@@ -133,8 +160,7 @@ fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
 
 // Decide pass of tile.level: square (idx mod w, idx div w) at level 0, else child idx mod 4
 // (top-left, top-right, bottom-left, bottom-right) of entry idx div 4 of level − 1's
-// list. Flags it for splitting when its corners differ by more than aa_threshold (the
-// per-pixel walk's test, NaN included) and then appends it to the level's list.
+// list. Flags it for splitting by square_splits and then appends it to the level's list.
 // Mirror of src/cpu/adaptive.rs::adaptive_decide — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn adaptive_decide(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -156,7 +182,7 @@ fn adaptive_decide(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     let a = square.x;
     let b = square.y;
     var flag = 0u;
-    if !(contrast(square_corners(level, a, b)) <= globals.aa_threshold) {
+    if square_splits(square_corners(level, a, b), square_penumbra(level, a, b), level, globals.aa_threshold) {
         flag = 1u;
     }
     split[split_index(level, a, b)] = flag;

@@ -20,6 +20,15 @@ fn sample(fx: f32, fy: f32, seed: SampleSeed) -> vec3<f32> {
     return trace_ray(camera_ray(fx, fy), seed);
 }
 
+// sample, and in w 1 where an area light reached the first surface it hits through some
+// of its shadow samples but not all (penumbra_seen), else 0. Adaptive AA's lattice samples.
+// Mirror of src/cpu/pixel_sample.rs::penumbra_sample — change both.
+fn penumbra_sample(fx: f32, fy: f32, seed: SampleSeed) -> vec4<f32> {
+    penumbra_seen = false;
+    let colour = sample(fx, fy, seed);
+    return vec4<f32>(colour, select(0.0, 1.0, penumbra_seen));
+}
+
 // Largest per-channel spread of four colours.
 // Mirror of src/cpu/pixel_sample.rs::contrast — change both.
 fn contrast(c: array<vec3<f32>, 4>) -> f32 {

@@ -1,6 +1,11 @@
 // shade.wgsl — surface reconstruction at a hit, A4 Phong shading with shadow rays, and the
 // background.
 
+// Set when an area light reaches a shaded point through some of its shadow samples but
+// not all (a penumbra; the CPU's TraversalCounters::partial_light); render.wgsl's
+// penumbra_sample clears it before a sample and reads it after.
+var<private> penumbra_seen: bool;
+
 // What shading needs to know about a hit point.
 // Mirror of src/cpu/surface.rs::Surface — change both.
 struct Surface {
@@ -257,17 +262,25 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
 
 // #if AREA_LIGHT
 // Light from area light number `index`: the mean of point_light over one jittered point
-// in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n).
+// in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n); sets
+// penumbra_seen when some of those points light it and others do not, at the first hit of
+// a camera ray only (seed.depth 0; see the twin for why).
 // Mirror of src/cpu/shade.rs::area_light — change both.
 fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: PackedLight, index: u32, seed: SampleSeed) -> vec3<f32> {
     let k = light.samples;
     let scale = 1.0 / f32(k);
     var sum = vec3<f32>(0.0);
+    var lit = 0u;
     for (var stratum = 0u; stratum < k * k; stratum++) {
         let a = (f32(stratum % k) + shadow_random(seed, index, stratum, 0u)) * scale - 0.5;
         let b = (f32(stratum / k) + shadow_random(seed, index, stratum, 1u)) * scale - 0.5;
         let position = light.position + light.edge_u * a + light.edge_v * b;
-        sum += point_light(s, phong, n, v, origin, position, light);
+        let c = point_light(s, phong, n, v, origin, position, light);
+        lit += select(0u, 1u, any(c != vec3<f32>(0.0)));
+        sum += c;
+    }
+    if seed.depth == 0u && lit > 0u && lit < k * k {
+        penumbra_seen = true;
     }
     return sum * (scale * scale);
 }

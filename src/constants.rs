@@ -216,6 +216,7 @@ pub fn wgsl_prelude() -> String {
         ("MEDIUM_STACK_SIZE", MEDIUM_STACK_SIZE),
         ("MAX_SHADOW_CROSSINGS", MAX_SHADOW_CROSSINGS),
         ("MAX_AA_DEPTH", MAX_AA_DEPTH),
+        ("AA_PENUMBRA_DEPTH", AA_PENUMBRA_DEPTH),
         ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
         ("TILE_SIZE", TILE_SIZE),
         ("AA_STACK_SIZE", AA_STACK_SIZE),
@@ -259,6 +260,11 @@ pub fn wgsl_prelude() -> String {
 
 /// Deepest adaptive anti-aliasing split accepted (`aa_depth`).
 pub const MAX_AA_DEPTH: u32 = 6;
+/// Adaptive anti-aliasing splits a square with a corner sample that saw a penumbra (an
+/// area light partly occluded among its shadow samples) down to this level at most (and
+/// `aa_depth`): level 2 is 4×4 squares per pixel, the density of uniform 4×4, where
+/// shadow noise (n² shadow rays per sample) rather than edges sets the error.
+pub const AA_PENUMBRA_DEPTH: u32 = 2;
 /// Largest n of uniform n×n anti-aliasing.
 pub const MAX_AA_SAMPLES: u32 = 64;
 /// Square tile side, in pixels, for both tracers' work split.
@@ -285,8 +291,8 @@ pub const GPU_FRAME_PARTS: u32 = 4;
 
 /// Adaptive anti-aliasing keeps a tile's samples on a lattice of (side·2^d + 1)² points
 /// (d = aa_depth), so a tile's side shrinks as d grows: side·2^d ≤ this. The CPU's bound
-/// (per rayon task; 257² × 12 B ≈ 0.8 MB); the GPU's comes from the adapter's binding
-/// limit (`gpu::plan::lattice_side`).
+/// (per rayon task; 257² × 13 B (colour, penumbra flag) ≈ 0.9 MB); the GPU's comes from
+/// the adapter's binding limit (`gpu::plan::lattice_side`).
 pub const CPU_ADAPTIVE_LATTICE_SIDE: u32 = 256;
 
 /// Side of an adaptive tile (in pixels) for depth `depth` when its lattice may be at most

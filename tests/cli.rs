@@ -461,7 +461,8 @@ fn debug_aa_samples_without_adaptive_aa_is_a_usage_error() {
 }
 
 /// `glint bench --sweep --quick` runs the whole sweep machinery on tiny images: the table,
-/// the reference residuals, the adaptive-vs-uniform and slope figures, and the plot.
+/// the reference residuals, the default rule, the adaptive-vs-uniform and slope figures,
+/// and the plot.
 /// (No timing is asserted: performance is measured by the benchmark, not by tests.)
 #[test]
 fn bench_sweep_quick_prints_its_figures_and_writes_the_plot() {
@@ -488,6 +489,8 @@ fn bench_sweep_quick_prints_its_figures_and_writes_the_plot() {
         "aa none, shadows 4×4",
         "Reference residuals",
         "Adaptive AA against uniform 4×4",
+        "Default rule",
+        "against uniform 4×4 (target",
         "slope",
         "GPU column skipped: --cpu-only",
     ] {

@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{corpus, gpu_context, packed_from_file, packed_from_source};
+use common::{corpus, gpu_context, packed_from_file, packed_from_source, root};
 use glint::cpu::render::adaptive_leaf_counts;
 use glint::diff::assert_images_match;
 use glint::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderOptions};
@@ -286,8 +286,64 @@ fn loop_limit_guard_falls_back_to_the_cpu() {
     }
 }
 
+/// Leaf squares per pixel of adaptive AA on both tracers: identical, and some pixels split.
+fn assert_same_splits(ctx: &GpuContext, name: &str, scene: &PackedScene) {
+    let gpu = render_gpu(ctx, scene, &GpuRenderOptions::default())
+        .unwrap_or_else(|e| panic!("{name}: {e}"))
+        .leaf_counts;
+    let cpu = adaptive_leaf_counts(scene);
+    let differ: Vec<usize> = (0..cpu.len()).filter(|&k| gpu[k] != cpu[k]).collect();
+    let split = cpu.iter().filter(|&&l| l > 1).count();
+    eprintln!(
+        "{name}: {split} of {} pixels split; {} differ",
+        cpu.len(),
+        differ.len()
+    );
+    let w = scene.globals.width as usize;
+    for &k in differ.iter().take(10) {
+        eprintln!(
+            "  pixel ({}, {}): GPU {} leaves, CPU {}",
+            k % w,
+            k / w,
+            gpu[k],
+            cpu[k]
+        );
+    }
+    assert!(split > 0, "{name}: nothing split");
+    assert!(
+        differ.is_empty(),
+        "{name}: {} pixels split differently",
+        differ.len()
+    );
+}
+
+/// Penumbra splits (a lattice sample whose area light was partly occluded among its
+/// shadow samples splits its squares down to AA_PENUMBRA_DEPTH) on the soft-shadow
+/// scene: the same samples-per-pixel map on both tracers, with the scene's threshold and
+/// with one no contrast exceeds (penumbrae alone split).
+#[test]
+fn soft_shadows_split_the_same() {
+    let Some(ctx) = gpu_context() else { return };
+    for (name, threshold) in [
+        ("soft-shadows-adaptive", None),
+        ("soft-shadows-penumbrae", Some(f32::MAX)),
+    ] {
+        let overrides = OptionOverrides {
+            width: Some(64),
+            height: Some(64),
+            aa: Some(AaMode::Adaptive),
+            aa_threshold: threshold,
+            ..OptionOverrides::default()
+        };
+        let scene = packed_from_file(&root().join("scenes/soft-shadows.lua"), &overrides).remove(0);
+        compare(&ctx, name, &scene);
+        assert_same_splits(&ctx, name, &scene);
+    }
+}
+
 /// An area light's soft shadows (the AREA_LIGHT specialisation) under the default
-/// adaptive AA and under uniform AA: both tracers draw the same shadow samples.
+/// adaptive AA and under uniform AA: both tracers draw the same shadow samples, and
+/// adaptive AA splits the same squares (penumbrae included) on both.
 #[test]
 fn area_light_matches() {
     let Some(ctx) = gpu_context() else { return };
@@ -321,5 +377,8 @@ fn area_light_matches() {
         let scene = packed_from_source(source, &overrides).remove(0);
         let features = compare(&ctx, name, &scene);
         assert!(features.contains(SceneFeatures::AREA_LIGHT), "{features}");
+        if aa.is_none() {
+            assert_same_splits(&ctx, name, &scene);
+        }
     }
 }

@@ -42,12 +42,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     ),
     (
         "shaders/adaptive.wgsl",
-        "trace_lattice_point",
-        "the CPU writes the sample inline in adaptive_corners and adaptive_midpoints; the WGSL \
-         factors out the write with the limiter's bookkeeping",
-    ),
-    (
-        "shaders/adaptive.wgsl",
         "adaptive_work_args",
         "turns the GPU's per-level list lengths into indirect dispatch arguments; the CPU \
          walks the same lists directly, with no dispatch",

@@ -48,7 +48,7 @@ pub struct BenchArgs {
     /// --sweep: a tiny run (24×24, a few settings) that checks the machinery.
     #[arg(long, requires = "sweep")]
     pub quick: bool,
-    /// --sweep: image side in pixels.
+    /// --sweep: image width in pixels (square images, but scrabble's at 16:9).
     #[arg(long, default_value_t = 96, value_parser = clap::value_parser!(u32).range(8..=2048))]
     pub size: u32,
     /// --sweep: no GPU column.

@@ -1,5 +1,6 @@
 //! The figures `glint bench --sweep` derives from its measurements: the cheapest setting
-//! whose error is within a bound, and the log-log slope of error against n. Pure
+//! whose error is within a bound, the log-log slope of error against n, and the rule that
+//! picks the default setting. Pure
 //! functions of (time, error) pairs, so they are tested without rendering anything.
 
 /// One measured setting: its name, time in seconds, and errors against the reference.
@@ -60,6 +61,19 @@ pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
     (sxx > 0.0).then(|| sxy / sxx)
 }
 
+/// The default rule: of `candidates` (a setting's name and its measurement on each
+/// scene), the one with the least total seconds among those whose FLIP mean is at most
+/// `flip_bound` on every scene. Returns its index.
+pub fn choose_default(candidates: &[(String, Vec<Measured>)], flip_bound: f64) -> Option<usize> {
+    candidates
+        .iter()
+        .enumerate()
+        .filter(|(_, (_, per_scene))| per_scene.iter().all(|m| m.flip <= flip_bound))
+        .map(|(k, (_, per_scene))| (k, per_scene.iter().map(|m| m.seconds).sum::<f64>()))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(k, _)| k)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -82,6 +96,27 @@ mod tests {
         assert!((loglog_slope(&points).unwrap() + 1.5).abs() < 1e-12);
         assert_eq!(loglog_slope(&points[..1]), None);
         assert_eq!(loglog_slope(&[(2.0, 1.0), (2.0, 0.5)]), None);
+    }
+
+    #[test]
+    fn default_is_the_cheapest_within_the_bound_everywhere() {
+        let c = |name: &str, per_scene: &[(f64, f64)]| {
+            (
+                name.to_string(),
+                per_scene
+                    .iter()
+                    .map(|&(seconds, flip)| m(name, seconds, 0.0, flip))
+                    .collect::<Vec<_>>(),
+            )
+        };
+        let all = [
+            c("slow", &[(3.0, 0.01), (3.0, 0.01)]),
+            c("cheap-but-misses-one", &[(0.5, 0.01), (0.5, 0.03)]),
+            c("chosen", &[(1.0, 0.02), (1.5, 0.015)]),
+        ];
+        assert_eq!(choose_default(&all, 0.02), Some(2));
+        assert_eq!(choose_default(&all, 0.01), Some(0));
+        assert_eq!(choose_default(&all, 0.001), None);
     }
 
     #[test]

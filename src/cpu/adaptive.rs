@@ -9,8 +9,10 @@
 //! 1. [`adaptive_corners`]: trace every pixel corner;
 //! 2. for k in 0..d: [`adaptive_decide`] flags each level-k square that exists (every
 //!    pixel at k = 0, else the four children of each square split at k − 1, taken from
-//!    the compacted list of those) and whose corners differ by more than the threshold,
-//!    appending it to level k's list of split squares; then [`adaptive_midpoints`] traces
+//!    the compacted list of those) and whose corners differ by more than the threshold
+//!    or, above level AA_PENUMBRA_DEPTH, one of whose corners saw a penumbra (each
+//!    lattice sample keeps that flag with its colour), appending it to level k's list of
+//!    split squares; then [`adaptive_midpoints`] traces
 //!    the five midpoints of each square on that list (a midpoint shared with a split
 //!    neighbour is traced by one of the two only). Work is over the lists, so idle
 //!    invocations do not grow with depth; the lists' order (on the GPU, that of atomic
@@ -20,10 +22,10 @@
 //! Every function here has a WGSL twin of the same name in `shaders/adaptive.wgsl`, where
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
 
-use super::pixel_sample::{contrast, sample};
+use super::pixel_sample::{contrast, penumbra_sample};
 use super::rng::adaptive_seed;
 use super::traverse::TraversalCounters;
-use crate::constants::AA_STACK_SIZE;
+use crate::constants::{AA_PENUMBRA_DEPTH, AA_STACK_SIZE};
 use crate::pack::PackedScene;
 pub use crate::tiling::{split_offset, AdaptiveTile};
 use glam::Vec3;
@@ -64,11 +66,13 @@ fn unpack_square(entry: u32) -> (u32, u32) {
     (entry & 0xffff, entry >> 16)
 }
 
-/// A tile's lattice colours, split flags and, per level, the list of split squares (at
+/// A tile's lattice colours and penumbra flags ([`penumbra_sample`]; the GPU keeps the
+/// flag in the sample's fourth component), split flags and, per level, the list of split squares (at
 /// the level's split-flag offset, [`split_offset`]) and its length.
 pub struct Lattice {
     pub tile: AdaptiveTile,
     pub points: Vec<Vec3>,
+    pub penumbra: Vec<bool>,
     pub split: Vec<u32>,
     pub work_list: Vec<u32>,
     pub work_counts: Vec<u32>,
@@ -79,6 +83,7 @@ impl Lattice {
         Lattice {
             tile,
             points: vec![Vec3::ZERO; tile.lattice_len()],
+            penumbra: vec![false; tile.lattice_len()],
             split: vec![0; tile.split_len()],
             work_list: vec![0; tile.split_len()],
             work_counts: vec![0; tile.depth as usize],
@@ -87,6 +92,10 @@ impl Lattice {
     // Mirror of shaders/adaptive.wgsl::lattice_point — change both.
     fn point(&self, i: u32, j: u32) -> Vec3 {
         self.points[lattice_index(&self.tile, i, j)]
+    }
+    // Mirror of shaders/adaptive.wgsl::point_penumbra — change both.
+    fn point_penumbra(&self, i: u32, j: u32) -> bool {
+        self.penumbra[lattice_index(&self.tile, i, j)]
     }
     // Mirror of shaders/adaptive.wgsl::is_split — change both.
     fn is_split(&self, level: u32, a: u32, b: u32) -> bool {
@@ -97,6 +106,23 @@ impl Lattice {
     fn split_square(&self, level: u32, k: u32) -> (u32, u32) {
         unpack_square(self.work_list[(split_offset(self.tile.side, level) + k) as usize])
     }
+}
+
+/// Traces lattice point (i, j) into the lattice: its colour and penumbra flag.
+// Mirror of shaders/adaptive.wgsl::trace_lattice_point — change both.
+fn trace_lattice_point(
+    scene: &PackedScene,
+    lat: &mut Lattice,
+    i: u32,
+    j: u32,
+    counters: &mut impl TraversalCounters,
+) {
+    let t = lat.tile;
+    let (fx, fy) = lattice_position(&t, i, j);
+    let (colour, penumbra) = penumbra_sample(scene, fx, fy, adaptive_seed(fx, fy), counters);
+    let k = lattice_index(&t, i, j);
+    lat.points[k] = colour;
+    lat.penumbra[k] = penumbra;
 }
 
 /// Invocation `idx` of the corner pass: traces pixel corner (idx mod (w+1), idx div (w+1)).
@@ -110,8 +136,7 @@ fn adaptive_corners(
     let t = lat.tile;
     let s = t.scale();
     let (i, j) = ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s);
-    let (fx, fy) = lattice_position(&t, i, j);
-    lat.points[lattice_index(&t, i, j)] = sample(scene, fx, fy, adaptive_seed(fx, fy), counters);
+    trace_lattice_point(scene, lat, i, j, counters);
 }
 
 /// The samples at the corners of square (a, b) of `level`: top-left, top-right,
@@ -128,11 +153,37 @@ fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
     ]
 }
 
+/// Whether a corner of square (a, b) of `level` saw a penumbra.
+// Mirror of shaders/adaptive.wgsl::square_penumbra — change both.
+fn square_penumbra(lat: &Lattice, level: u32, a: u32, b: u32) -> bool {
+    let l = lat.tile.scale() >> level;
+    let (i, j) = (a * l, b * l);
+    lat.point_penumbra(i, j)
+        || lat.point_penumbra(i + l, j)
+        || lat.point_penumbra(i, j + l)
+        || lat.point_penumbra(i + l, j + l)
+}
+
+/// Whether a square of `level` with these corners splits: they differ by more than
+/// `threshold` (NaN included), or one of them saw a penumbra (`penumbra`) and the level
+/// is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down to the density
+/// of uniform 4×4). The per-pixel walk's test too.
+// Mirror of shaders/adaptive.wgsl::square_splits — change both.
+pub(crate) fn square_splits(
+    corners: &[Vec3; 4],
+    penumbra: bool,
+    level: u32,
+    threshold: f32,
+) -> bool {
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    let differ = !(contrast(corners) <= threshold);
+    differ || (penumbra && level < AA_PENUMBRA_DEPTH)
+}
+
 /// Invocation `idx` of the decide pass of `level`: square (idx mod w, idx div w) at
 /// level 0, else child idx mod 4 (top-left, top-right, bottom-left, bottom-right) of
-/// entry idx div 4 of level − 1's split list. Flags it for splitting when its corners
-/// differ by more than `threshold` (the per-pixel walk's test, NaN included) and then
-/// appends it to level's split list.
+/// entry idx div 4 of level − 1's split list. Flags it for splitting by [`square_splits`]
+/// and then appends it to level's split list.
 // Mirror of shaders/adaptive.wgsl::adaptive_decide — change both.
 fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
     let t = lat.tile;
@@ -142,8 +193,12 @@ fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
         let (pa, pb) = lat.split_square(level - 1, idx / 4);
         (2 * pa + (idx % 4) % 2, 2 * pb + (idx % 4) / 2)
     };
-    #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    let split = !(contrast(&square_corners(lat, level, a, b)) <= threshold);
+    let split = square_splits(
+        &square_corners(lat, level, a, b),
+        square_penumbra(lat, level, a, b),
+        level,
+        threshold,
+    );
     lat.split[split_index(&t, level, a, b)] = split as u32;
     if split {
         let slot = lat.work_counts[level as usize];
@@ -176,8 +231,7 @@ fn adaptive_midpoints(
     let h = l / 2;
     let offsets = [(h, 0), (0, h), (h, h), (l, h), (h, l)];
     let (i, j) = (a * l + offsets[m as usize].0, b * l + offsets[m as usize].1);
-    let (fx, fy) = lattice_position(&t, i, j);
-    lat.points[lattice_index(&t, i, j)] = sample(scene, fx, fy, adaptive_seed(fx, fy), counters);
+    trace_lattice_point(scene, lat, i, j, counters);
 }
 
 /// Colour of tile pixel (tx, ty) and its number of leaf squares: the area-weighted mean

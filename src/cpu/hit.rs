@@ -39,6 +39,10 @@ pub trait TraversalCounters {
     fn cell_visited(&mut self) {}
     /// A primitive (analytic, CSG or triangle) tested.
     fn item_tested(&mut self) {}
+    /// An area light reached a shaded point through some of its shadow samples but not
+    /// all (a penumbra): adaptive AA splits the squares around such a sample
+    /// (`cpu::pixel_sample::penumbra_sample`).
+    fn partial_light(&mut self) {}
 }
 
 /// Counters that count nothing.

@@ -20,6 +20,47 @@ pub(crate) fn sample(
     trace_ray(scene, camera_ray(&scene.globals, fx, fy), seed, counters)
 }
 
+/// Counters that pass everything on and note whether an area light was partly lit.
+struct PenumbraWatch<'a, C: TraversalCounters> {
+    inner: &'a mut C,
+    partial: bool,
+}
+
+impl<C: TraversalCounters> TraversalCounters for PenumbraWatch<'_, C> {
+    fn traversal_started(&mut self) {
+        self.inner.traversal_started();
+    }
+    fn cell_visited(&mut self) {
+        self.inner.cell_visited();
+    }
+    fn item_tested(&mut self) {
+        self.inner.item_tested();
+    }
+    fn partial_light(&mut self) {
+        self.partial = true;
+        self.inner.partial_light();
+    }
+}
+
+/// [`sample`], and whether an area light reached the first surface it hits through some
+/// of its shadow samples but not all ([`TraversalCounters::partial_light`]): soft-shadow
+/// noise that the colours of a few samples may not show. Adaptive AA's lattice samples.
+// Mirror of shaders/render.wgsl::penumbra_sample — change both.
+pub(crate) fn penumbra_sample(
+    scene: &PackedScene,
+    fx: f32,
+    fy: f32,
+    seed: SampleSeed,
+    counters: &mut impl TraversalCounters,
+) -> (Vec3, bool) {
+    let mut watch = PenumbraWatch {
+        inner: counters,
+        partial: false,
+    };
+    let colour = sample(scene, fx, fy, seed, &mut watch);
+    (colour, watch.partial)
+}
+
 /// Largest per-channel spread of four colours.
 // Mirror of shaders/render.wgsl::contrast — change both.
 pub(crate) fn contrast(c: &[Vec3; 4]) -> f32 {

@@ -3,8 +3,8 @@
 //! thread count. Adaptive anti-aliasing renders a tile at a time in passes
 //! ([`super::adaptive`]); [`render_pixel`] is the per-pixel reference of every mode.
 
-use super::adaptive::{adaptive_tile, Lattice};
-use super::pixel_sample::{contrast, sample};
+use super::adaptive::{adaptive_tile, square_splits, Lattice};
+use super::pixel_sample::{penumbra_sample, sample};
 use super::rng::{adaptive_seed, random_unit, SampleSeed};
 use super::traverse::{Counters, NoCounters, TraversalCounters};
 use crate::constants::{
@@ -20,7 +20,8 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// A square of the adaptive subdivision: top-left corner, side, depth, and the colours
-/// at its four corners (top-left, top-right, bottom-left, bottom-right).
+/// at its four corners (top-left, top-right, bottom-left, bottom-right) and whether each
+/// saw a penumbra.
 #[derive(Clone, Copy)]
 struct AdaptiveSquare {
     x: f32,
@@ -28,11 +29,13 @@ struct AdaptiveSquare {
     size: f32,
     depth: u32,
     corners: [Vec3; 4],
+    penumbra: [bool; 4],
 }
 
 /// Adaptive anti-aliasing of pixel (x, y) (Whitted 1980): sample the corners; where they
-/// differ by more than `aa_threshold`, split into four and recurse — here with an explicit
-/// stack — down to `aa_depth`. Sample positions lie on a dyadic lattice, so neighbouring
+/// differ by more than `aa_threshold`, or one saw a penumbra and the square is above
+/// AA_PENUMBRA_DEPTH ([`square_splits`]), split into four and recurse — here with an
+/// explicit stack — down to `aa_depth`. Sample positions lie on a dyadic lattice, so neighbouring
 /// pixels see the same colour at a shared corner. The renderers run the same walk per
 /// tile in passes ([`super::adaptive`], on both tracers); this is its per-pixel reference.
 pub fn adaptive_pixel(
@@ -47,9 +50,10 @@ pub fn adaptive_pixel(
     // Corner k is (k & 1, k >> 1). (One `sample` call site per loop: the GPU compiler
     // inlines every call, and the shader's size and compile time grow with the sites.)
     let mut corners = [Vec3::ZERO; 4];
-    for (k, corner) in corners.iter_mut().enumerate() {
+    let mut penumbra = [false; 4];
+    for (k, (corner, p)) in corners.iter_mut().zip(&mut penumbra).enumerate() {
         let (cx, cy) = (fx + (k & 1) as f32, fy + (k >> 1) as f32);
-        *corner = sample(scene, cx, cy, adaptive_seed(cx, cy), counters);
+        (*corner, *p) = penumbra_sample(scene, cx, cy, adaptive_seed(cx, cy), counters);
     }
     let mut stack = [AdaptiveSquare {
         x: fx,
@@ -57,6 +61,7 @@ pub fn adaptive_pixel(
         size: 1.0,
         depth: 0,
         corners,
+        penumbra,
     }; AA_STACK_SIZE as usize];
     let mut size = 1;
     let mut sum = Vec3::ZERO;
@@ -65,7 +70,14 @@ pub fn adaptive_pixel(
         let sq = stack[size];
         // Weight of this square in the pixel: its area.
         let area = sq.size * sq.size;
-        if sq.depth >= max_depth || contrast(&sq.corners) <= threshold {
+        if sq.depth >= max_depth
+            || !square_splits(
+                &sq.corners,
+                sq.penumbra.contains(&true),
+                sq.depth,
+                threshold,
+            )
+        {
             sum += (sq.corners[0] + sq.corners[1] + sq.corners[2] + sq.corners[3]) * (0.25 * area);
             continue;
         }
@@ -74,25 +86,50 @@ pub fn adaptive_pixel(
         // Top, left, centre, right and bottom midpoints.
         let offsets = [(h, 0.0), (0.0, h), (h, h), (sq.size, h), (h, sq.size)];
         let mut mid = [Vec3::ZERO; 5];
-        for (m, (ox, oy)) in mid.iter_mut().zip(offsets) {
+        let mut mid_penumbra = [false; 5];
+        for (m, (ox, oy)) in offsets.into_iter().enumerate() {
             let (px, py) = (sq.x + ox, sq.y + oy);
-            *m = sample(scene, px, py, adaptive_seed(px, py), counters);
+            (mid[m], mid_penumbra[m]) =
+                penumbra_sample(scene, px, py, adaptive_seed(px, py), counters);
         }
         let [top, left, centre, right, bottom] = mid;
+        let [p_top, p_left, p_centre, p_right, p_bottom] = mid_penumbra;
+        let [p_tl, p_tr, p_bl, p_br] = sq.penumbra;
         let depth = sq.depth + 1;
         let children = [
-            (sq.x, sq.y, [tl, top, left, centre]),
-            (sq.x + h, sq.y, [top, tr, centre, right]),
-            (sq.x, sq.y + h, [left, centre, bl, bottom]),
-            (sq.x + h, sq.y + h, [centre, right, bottom, br]),
+            (
+                sq.x,
+                sq.y,
+                [tl, top, left, centre],
+                [p_tl, p_top, p_left, p_centre],
+            ),
+            (
+                sq.x + h,
+                sq.y,
+                [top, tr, centre, right],
+                [p_top, p_tr, p_centre, p_right],
+            ),
+            (
+                sq.x,
+                sq.y + h,
+                [left, centre, bl, bottom],
+                [p_left, p_centre, p_bl, p_bottom],
+            ),
+            (
+                sq.x + h,
+                sq.y + h,
+                [centre, right, bottom, br],
+                [p_centre, p_right, p_bottom, p_br],
+            ),
         ];
-        for (cx, cy, corners) in children {
+        for (cx, cy, corners, penumbra) in children {
             stack[size] = AdaptiveSquare {
                 x: cx,
                 y: cy,
                 size: h,
                 depth,
                 corners,
+                penumbra,
             };
             size += 1;
         }

@@ -140,7 +140,12 @@ fn point_light(
 }
 
 /// Light from area light number `index`: the mean of [`point_light`] over one jittered
-/// point in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n).
+/// point in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n);
+/// when some of those points light it and others do not (a penumbra) at the first hit of
+/// a camera ray (`seed.depth` 0), it tells `counters`
+/// ([`TraversalCounters::partial_light`]). Deeper hits do not count: seen in a mirror or
+/// through glass, a penumbra's noise is dimmed by the reflectance, and counting them there
+/// split the whole of scrabble's tumbler (2.5× its 1280×720 render time).
 // Mirror of shaders/shade.wgsl::area_light — change both.
 #[allow(clippy::too_many_arguments)]
 fn area_light(
@@ -164,13 +169,19 @@ fn area_light(
         Vec3::from(light.edge_v),
     );
     let mut sum = Vec3::ZERO;
+    let mut lit = 0;
     for stratum in 0..k * k {
         let a = ((stratum % k) as f32 + shadow_random(seed, index, stratum, 0)) * scale - 0.5;
         let b = ((stratum / k) as f32 + shadow_random(seed, index, stratum, 1)) * scale - 0.5;
         let position = centre + u * a + w * b;
-        sum += point_light(
+        let c = point_light(
             scene, s, phong, n, v, origin, media, position, light, counters,
         );
+        lit += (c != Vec3::ZERO) as u32;
+        sum += c;
+    }
+    if seed.depth == 0 && lit > 0 && lit < k * k {
+        counters.partial_light();
     }
     sum * (scale * scale)
 }
