@@ -36,12 +36,13 @@ impl KernelConfig {
     /// - workgroup: the largest square of side ≤ `WORKGROUP_SIZE` (8×8 = 64 lanes, a
     ///   multiple of every vendor's SIMD width: 32 on NVIDIA and Apple, 32/64 on AMD,
     ///   8–32 on Intel, 8 on llvmpipe's AVX2) that the adapter's invocation and size
-    ///   limits allow. On lavapipe 8×8 measured faster than 4×4 and no slower than 16×16
-    ///   (docs/gpu.md).
+    ///   limits allow. On lavapipe 4×4 measured slower on mesh scenes and 16×16 gave no
+    ///   consistent gain (docs/gpu.md).
     /// - mailboxes: off on software adapters (device type Cpu: lavapipe, SwiftShader,
     ///   WARP), where llvmpipe turns a private array indexed at run time into per-lane
-    ///   scatters and gathers that cost more than the tests they save (20–30% of GPU time
-    ///   on mesh scenes, docs/gpu.md); on elsewhere (not yet measured on hardware).
+    ///   scatters and gathers that cost more than the tests they save (17–38% of the
+    ///   render time on mesh scenes, docs/gpu.md); on elsewhere (not yet measured on
+    ///   hardware).
     /// - iteration guard: on software adapters, whose gallivm caps the loop iterations of
     ///   one invocation.
     pub fn for_adapter(device_type: wgpu::DeviceType, limits: &wgpu::Limits) -> KernelConfig {
@@ -60,8 +61,8 @@ impl KernelConfig {
 }
 
 impl fmt::Display for KernelConfig {
-    /// As `glint bench --gpu` and the shader header print it: "8×8/64 lanes, mailboxes,
-    /// iteration guard".
+    /// As `glint bench --gpu`, `glint info` and the shader header print it: "workgroup
+    /// 8×8/64, no mailboxes, iteration guard".
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let side = self.workgroup_side;
         write!(
