@@ -267,10 +267,14 @@ fn loop_limit_guard_falls_back_to_the_cpu() {
         let GpuRender {
             film: gpu, info, ..
         } = render_gpu(&ctx, &scene, &tripping).unwrap();
-        let expected = if info.iteration_guard { 24 * 20 } else { 0 };
+        let expected = if info.kernel.iteration_guard {
+            24 * 20
+        } else {
+            0
+        };
         eprintln!(
             "{aa:?}: guard {}, {} pixels re-rendered",
-            info.iteration_guard, info.cpu_fallback_pixels
+            info.kernel.iteration_guard, info.cpu_fallback_pixels
         );
         assert_eq!(info.cpu_fallback_pixels, expected, "{aa:?}");
         let cpu = glint::cpu::render(&scene, &|_, _| {});

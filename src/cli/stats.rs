@@ -33,7 +33,7 @@ fn write_gpu(out: &mut String, image: &RenderedImage) {
                 format!("{:.1} ms (timestamp queries)", t.as_secs_f64() * 1e3)
             })
         );
-        if gpu.iteration_guard {
+        if gpu.kernel.iteration_guard {
             let _ = writeln!(
                 out,
                 "  loop-limit guard (software adapter): {} pixels re-rendered on the CPU",

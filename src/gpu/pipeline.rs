@@ -129,7 +129,6 @@ pub fn get_pipeline(
         compile_time: start.elapsed(),
         features,
         kernel,
-        iteration_guard: kernel.iteration_guard,
     });
     if let Ok(mut map) = ctx.pipelines.map.lock() {
         map.insert(key, Arc::clone(&compiled));

@@ -17,8 +17,6 @@ pub struct CompiledPipeline {
     pub features: SceneFeatures,
     /// The kernel variant (workgroup size, mailboxes, loop-limiter guard).
     pub kernel: KernelConfig,
-    /// Whether the render kernels check Mesa's loop limiter (software adapters).
-    pub iteration_guard: bool,
 }
 
 /// Pipelines compiled on one device, by (features, kernel variant, entry).

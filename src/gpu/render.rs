@@ -50,9 +50,8 @@ pub struct GpuRenderInfo {
     pub host_waits: u32,
     /// GPU time of the frame from timestamp queries (None: the adapter has none).
     pub gpu_time: Option<Duration>,
-    /// Whether the kernels checked Mesa's loop limiter (software adapters).
-    pub iteration_guard: bool,
-    /// The kernel variant the frame ran (workgroup size, mailboxes, guard).
+    /// The kernel variant the frame ran (workgroup size, mailboxes, and whether the
+    /// kernels checked Mesa's loop limiter: `kernel.iteration_guard`, software adapters).
     pub kernel: super::KernelConfig,
     /// Pixels whose GPU result the loop limiter spoiled, re-rendered on the CPU.
     pub cpu_fallback_pixels: u64,
@@ -154,7 +153,6 @@ pub fn render_gpu(
         submits,
         host_waits: read.host_waits,
         gpu_time: read.gpu_time,
-        iteration_guard: pipelines[0].iteration_guard,
         kernel: pipelines[0].kernel,
         cpu_fallback_pixels: fallback,
     };
