@@ -23,6 +23,10 @@ struct Surface {
     // World-space ∂p/∂u and ∂p/∂v (the tangent frame of bump mapping; unnormalised).
     dpdu: vec3<f32>,
     dpdv: vec3<f32>,
+    // Width, in uv, of the patch one pixel covers here (texture.wgsl::texture_footprint):
+    // the texture filter's footprint. surface_at leaves it 0; tracing sets it in scenes
+    // with textures or bump maps.
+    footprint: f32,
 }
 
 // The Phong colours at a shading point (the material's, or its textures' at the UV).
@@ -94,7 +98,7 @@ fn instance_surface(inst: PackedInstance, ray: Ray, t: f32) -> Surface {
     // Tangents transform like directions: the linear part of object→world.
     let dpdu = vec3<f32>(dot(o2w[0].xyz, s.dpdu), dot(o2w[1].xyz, s.dpdu), dot(o2w[2].xyz, s.dpdu));
     let dpdv = vec3<f32>(dot(o2w[0].xyz, s.dpdv), dot(o2w[1].xyz, s.dpdv), dot(o2w[2].xyz, s.dpdv));
-    return Surface(p, normal, magnitude, inst.material, s.uv, dpdu, dpdv);
+    return Surface(p, normal, magnitude, inst.material, s.uv, dpdu, dpdv, 0.0);
 }
 // #endif
 
@@ -160,7 +164,7 @@ fn mesh_surface(inst: PackedInstance, hit: Hit) -> Surface {
         + vec3<f32>(o2w[0].w, o2w[1].w, o2w[2].w);
     let world_dpdu = vec3<f32>(dot(o2w[0].xyz, dpdu), dot(o2w[1].xyz, dpdu), dot(o2w[2].xyz, dpdu));
     let world_dpdv = vec3<f32>(dot(o2w[0].xyz, dpdv), dot(o2w[1].xyz, dpdv), dot(o2w[2].xyz, dpdv));
-    return Surface(p, normal, mapped_magnitude(o2w, magnitude_obj), inst.material, uv, world_dpdu, world_dpdv);
+    return Surface(p, normal, mapped_magnitude(o2w, magnitude_obj), inst.material, uv, world_dpdu, world_dpdv, 0.0);
 }
 // #endif
 

@@ -1,7 +1,8 @@
 // texture.wgsl — texture lookups and bump mapping by hand (a hardware sampler would make
-// CPU and GPU differ). The texel layout is src/pack/texture.rs's; filtering (bilinear,
-// repeat, texel centres at half-integers, v = 0 at the image's bottom) and the bump
-// formula are derived in src/cpu/texture.rs.
+// CPU and GPU differ). The texel layout (mip chain included) is src/pack/texture.rs's;
+// filtering (trilinear over the mip chain, each level bilinear with repeat, texel centres
+// at half-integers, v = 0 at the image's bottom), the ray cone that picks the level and
+// the bump formula are derived in src/cpu/texture.rs.
 
 // #if TEXTURE|BUMP
 // Texel (x, y) of texture `texture` (x < width, y < height, y from the top row) as RGB in
@@ -50,6 +51,76 @@ fn sample_texture(texture: u32, uv: vec2<f32>) -> vec3<f32> {
     let bottom = texel(texture, x0, y1) * (1.0 - fx) + texel(texture, x1, y1) * fx;
     return top * (1.0 - fy) + bottom * fy;
 }
+
+// Number of levels of a width×height texture's chain: 1 + floor(log2 max(w, h)).
+// Mirror of src/pack/texture.rs::texture_levels — change both.
+fn texture_levels(width: u32, height: u32) -> u32 {
+    return 32u - countLeadingZeros(max(max(width, height), 1u));
+}
+
+// Header index of mip level `level` of `texture` (level 0 is the texture's own header).
+// Mirror of src/cpu/texture.rs::texture_level — change both.
+fn texture_level(texture: u32, level: u32) -> u32 {
+    if level == 0u {
+        return texture;
+    }
+    return texels[texture * TEXTURE_HEADER_WORDS + 3u] + level - 1u;
+}
+
+// The fractional mip level at which `footprint` (a width in uv) spans one texel of
+// `texture`: from 0 (magnified, or no footprint) to the coarsest level.
+// Mirror of src/cpu/texture.rs::texture_lod — change both.
+fn texture_lod(texture: u32, footprint: f32) -> f32 {
+    let header = texture * TEXTURE_HEADER_WORDS;
+    let width = texels[header + 1u];
+    let height = texels[header + 2u];
+    let spanned = footprint * sqrt(f32(width) * f32(height));
+    // The negated test also rejects NaN.
+    if !(spanned > 1.0) {
+        return 0.0;
+    }
+    return min(log2(spanned), f32(texture_levels(width, height) - 1u));
+}
+
+// Trilinear lookup of `texture` at uv for a footprint `footprint` wide (in uv): the
+// bilinear lookups of the two levels around texture_lod, blended.
+// Mirror of src/cpu/texture.rs::sample_texture_filtered — change both.
+fn sample_texture_filtered(texture: u32, uv: vec2<f32>, footprint: f32) -> vec3<f32> {
+    let lod = texture_lod(texture, footprint);
+    let level = floor(lod);
+    let blend = lod - level;
+    let fine = sample_texture(texture_level(texture, u32(level)), uv);
+    if blend <= 0.0 {
+        return fine;
+    }
+    let coarse = sample_texture(texture_level(texture, u32(level) + 1u), uv);
+    return fine * (1.0 - blend) + coarse * blend;
+}
+
+// The width, in uv, of the patch of surface s that one pixel covers, for a ray along the
+// unit dir whose cone (width at its origin, spread per unit length) is `cone` and which
+// hit s after t; 0 (level 0) where the tangent frame gives no finite width.
+// Mirror of src/cpu/texture.rs::texture_footprint — change both.
+fn texture_footprint(s: Surface, dir: vec3<f32>, cone: vec2<f32>, t: f32) -> f32 {
+    let width = cone.x + cone.y * t;
+    let cosine = max(abs(dot(s.normal, dir)), TEXTURE_FOOTPRINT_MIN_COSINE);
+    let uv_scale = sqrt(length(s.dpdu) * length(s.dpdv));
+    let footprint = width / (sqrt(cosine) * uv_scale);
+    // The test also rejects NaN and infinity.
+    if footprint < 3.40282347e38 {
+        return footprint;
+    }
+    return 0.0;
+}
+
+// The cone a camera ray starts with: width 0 at the eye, spread one pixel's angle
+// (2·tan(fov/2)/height) times cos^1.5 of the ray's angle to the view axis.
+// Mirror of src/cpu/texture.rs::camera_cone — change both.
+fn camera_cone(primary: Ray) -> vec2<f32> {
+    let axis = max(dot(primary.dir, globals.forward), 0.0);
+    let pixel = 2.0 * globals.tan_half_fov / f32(globals.height);
+    return vec2<f32>(0.0, pixel * axis * sqrt(axis));
+}
 // #endif
 
 // #if BUMP
@@ -73,6 +144,21 @@ fn height_gradient(texture: u32, uv: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(h_u, h_v);
 }
 
+// height_gradient blended between the two mip levels around texture_lod of `footprint`
+// (each level's differences one of its own texels apart).
+// Mirror of src/cpu/texture.rs::filtered_height_gradient — change both.
+fn filtered_height_gradient(texture: u32, uv: vec2<f32>, footprint: f32) -> vec2<f32> {
+    let lod = texture_lod(texture, footprint);
+    let level = floor(lod);
+    let blend = lod - level;
+    let fine = height_gradient(texture_level(texture, u32(level)), uv);
+    if blend <= 0.0 {
+        return fine;
+    }
+    let coarse = height_gradient(texture_level(texture, u32(level) + 1u), uv);
+    return fine * (1.0 - blend) + coarse * blend;
+}
+
 // The bumped normal of s for material m (s.normal tilted by the height gradient);
 // s.normal itself where the tangent frame is degenerate (a pole, a cone tip, zero-area
 // UVs).
@@ -94,7 +180,7 @@ fn bump_normal(m: PackedMaterial, s: Surface) -> vec3<f32> {
         return n;
     }
     let sigma = select(1.0, -1.0, dot(g, n) < 0.0);
-    let gradient = height_gradient(m.bump_texture, s.uv);
+    let gradient = filtered_height_gradient(m.bump_texture, s.uv, s.footprint);
     let k = sigma * m.bump_strength / g_len;
     let tilt = cross(t_v, n) * (k * gradient.x) + cross(n, t_u) * (k * gradient.y);
     // tilt ⟂ n, so the sum is at least as long as n: never zero.
@@ -118,16 +204,17 @@ fn shading_normal(s: Surface, n: vec3<f32>) -> vec3<f32> {
 // #endif
 
 // #if TEXTURE
-// (kd, ks) at s: the material's colours, or its textures' texels at the hit's UV.
+// (kd, ks) at s: the material's colours, or its textures' at the hit's UV, filtered over
+// the hit's footprint.
 // Mirror of src/cpu/texture.rs::surface_colours — change both.
 fn surface_colours(m: PackedMaterial, s: Surface) -> Phong {
     var kd = m.kd;
     var ks = m.ks;
     if m.diffuse_texture != NO_TEXTURE {
-        kd = sample_texture(m.diffuse_texture, s.uv);
+        kd = sample_texture_filtered(m.diffuse_texture, s.uv, s.footprint);
     }
     if m.specular_texture != NO_TEXTURE {
-        ks = sample_texture(m.specular_texture, s.uv);
+        ks = sample_texture_filtered(m.specular_texture, s.uv, s.footprint);
     }
     return Phong(kd, ks);
 }

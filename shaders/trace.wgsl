@@ -7,6 +7,10 @@ struct StackEntry {
     ray: Ray,
     weight: vec3<f32>,
     depth: u32,
+// #if TEXTURE|BUMP
+    // The ray's cone for texture filtering: width at its origin, spread per unit length.
+    cone: vec2<f32>,
+// #endif
 // #if REFRACTION
     media: MediumStack,
 // #endif
@@ -34,6 +38,9 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     stack[0].ray = primary;
     stack[0].weight = vec3<f32>(1.0);
     stack[0].depth = 0u;
+// #if TEXTURE|BUMP
+    stack[0].cone = camera_cone(primary);
+// #endif
 // #if REFRACTION
     stack[0].media = camera_medium_stack();
 // #endif
@@ -48,7 +55,12 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             colour += entry.weight * background(ray.dir);
             continue;
         }
-        let s = surface_at(ray, hit);
+        var s = surface_at(ray, hit);
+// #if TEXTURE|BUMP
+        s.footprint = texture_footprint(s, ray.dir, entry.cone, hit.t);
+        // The cone at the hit: what a secondary ray starts with.
+        let cone = vec2<f32>(entry.cone.x + entry.cone.y * hit.t, entry.cone.y);
+// #endif
 // #if TEXTURE
         // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
         if g.debug_view == DEBUG_VIEW_UV {
@@ -86,12 +98,15 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             let weight = entry.weight * (1.0 - crossing.reflectance);
             if max_element(weight) >= g.min_weight && size < RAY_STACK_SIZE {
                 // The transmitted ray starts on the far side of the surface.
-                stack[size] = StackEntry(
-                    Ray(offset_ray(s.p, -facing, s.magnitude), crossing.dir),
-                    weight,
-                    entry.depth + 1u,
-                    crossing.media,
-                );
+                var transmitted = entry;
+                transmitted.ray = Ray(offset_ray(s.p, -facing, s.magnitude), crossing.dir);
+                transmitted.weight = weight;
+                transmitted.depth = entry.depth + 1u;
+// #if TEXTURE|BUMP
+                transmitted.cone = cone;
+// #endif
+                transmitted.media = crossing.media;
+                stack[size] = transmitted;
                 size += 1u;
             }
         }
@@ -106,6 +121,9 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
                 next.ray = Ray(offset_ray(s.p, facing, s.magnitude), normalize(dir));
                 next.weight = weight;
                 next.depth = entry.depth + 1u;
+// #if TEXTURE|BUMP
+                next.cone = cone;
+// #endif
                 stack[size] = next;
                 size += 1u;
             }

@@ -85,11 +85,17 @@ pub const MATERIAL_REFRACTIVE: u32 = 2;
 /// `PackedMaterial::*_texture` meaning "no texture".
 pub const NO_TEXTURE: u32 = u32::MAX;
 
-/// The texture table at the start of `PackedScene::texels`: texture i's header is the
-/// words `TEXTURE_HEADER_WORDS·i ..` = (offset of its first texel in `texels`, width,
-/// height); texels follow, row-major from the image's top row, one RGBA8 word each
-/// (r in the low byte). See `pack::texture`.
-pub const TEXTURE_HEADER_WORDS: u32 = 3;
+/// The texture table at the start of `PackedScene::texels`: header i is the words
+/// `TEXTURE_HEADER_WORDS·i ..` = (offset of its first texel in `texels`, width, height,
+/// header index of level 1 for a texture's level 0); headers 0 … n − 1 are the scene's
+/// textures, the mip levels' headers follow; texels follow, row-major from the image's top
+/// row, one RGBA8 word each (r in the low byte). See `pack::texture`.
+pub const TEXTURE_HEADER_WORDS: u32 = 4;
+/// Texture filtering: the smallest |cos| of the angle between a ray and the surface it
+/// hits that widens the footprint (by 1/√cos, the geometric mean of the footprint
+/// ellipse's axes). Below it the widening stays at 8×, so grazing surfaces keep some
+/// detail rather than turning to the texture's mean colour.
+pub const TEXTURE_FOOTPRINT_MIN_COSINE: f32 = 1.0 / 64.0;
 /// Rec. 709 luminance weights: a bump map's height is the luminance of its texels.
 pub const LUMINANCE_R: f32 = 0.2126;
 pub const LUMINANCE_G: f32 = 0.7152;
@@ -231,6 +237,7 @@ pub fn wgsl_prelude() -> String {
     let f32s: &[(&str, f32)] = &[
         ("T_MISS", T_MISS),
         ("OFFSET_RELATIVE", OFFSET_RELATIVE),
+        ("TEXTURE_FOOTPRINT_MIN_COSINE", TEXTURE_FOOTPRINT_MIN_COSINE),
         ("ENTER_MARGIN_RELATIVE", ENTER_MARGIN_RELATIVE),
         ("F32_MIN_POSITIVE", F32_MIN_POSITIVE),
         ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),

@@ -455,8 +455,9 @@ fn refraction_code_only_with_refraction() {
 }
 
 /// Texture lookups (and the UV debug view, which pack turns TEXTURE on for) are compiled
-/// only into scenes with textures; the shared texel and UV code with textures or bump
-/// maps; bump mapping only with bump maps.
+/// only into scenes with textures; the shared texel, mip-level and UV code, and the ray
+/// cone that picks the level, with textures or bump maps; bump mapping only with bump
+/// maps.
 #[test]
 fn texture_and_bump_code_only_with_textures_and_bump_maps() {
     for features in all_feature_sets() {
@@ -473,6 +474,14 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
                 ("fn triangle_frame(", mesh && (texture || bump)),
                 ("fn bump_normal(", bump),
                 ("fn height_gradient(", bump),
+                ("fn filtered_height_gradient(", bump),
+                ("fn sample_texture_filtered(", texture || bump),
+                ("fn camera_cone(", texture || bump),
+                (
+                    "stack[0].cone = camera_cone(primary)",
+                    (texture || bump) && entry == Entry::Render,
+                ),
+                ("cone: vec2<f32>,", texture || bump),
                 ("shading_normal(s, n)", bump && entry == Entry::Render),
                 ("DEBUG_VIEW_UV {", texture && entry == Entry::Render),
             ];

@@ -81,13 +81,18 @@ fn packed_in(dir: &Path, source: &str, overrides: &OptionOverrides) -> PackedSce
     common::packed_from_file(&path, overrides).remove(0)
 }
 
-/// A quad exactly filling a square view, lit by ambient 1 alone, shows its diffuse texture
-/// texel for texel: pixel centres land on texel centres.
-fn quad_reproduces(file: &str, image: &image::RgbImage) {
-    let dir = temp_dir(&format!("textures-quad-{file}"));
+/// A quad exactly filling a square view of `w`×`h` pixels, lit by ambient 1 alone, with
+/// the texture `file` (written from `image`) as its diffuse colour: its render on the CPU,
+/// and the texture as decoded from the file.
+fn textured_quad(
+    file: &str,
+    image: &image::RgbImage,
+    w: u32,
+    h: u32,
+) -> (image::RgbImage, image::RgbImage) {
+    let dir = temp_dir(&format!("textures-quad-{w}-{file}"));
     texture_support::save(image, &dir.join(file));
-    let expected = image::open(dir.join(file)).unwrap().to_rgb8();
-    let (w, h) = expected.dimensions();
+    let decoded = image::open(dir.join(file)).unwrap().to_rgb8();
     let source = format!(
         "m = gr.material('m') m:set_diffuse('{file}') \
          q = gr.mesh('q', {{{{0,0,0}},{{1,0,0}},{{1,1,0}},{{0,1,0}}}}, {{{{0,1,2,3}}}}, \
@@ -98,8 +103,15 @@ fn quad_reproduces(file: &str, image: &image::RgbImage) {
     );
     let scene = packed_in(&dir, &source, &OptionOverrides::default());
     assert!(scene.features.contains(SceneFeatures::TEXTURE));
-    let film = render_cpu(&scene);
-    let actual = film.to_rgb8();
+    let rendered = image::RgbImage::from_raw(w, h, render_cpu(&scene).to_rgb8()).unwrap();
+    (rendered, decoded)
+}
+
+/// The quad at one texel per pixel shows its texture texel for texel: pixel centres land
+/// on texel centres, and the footprint is one texel (mip level 0).
+fn quad_reproduces(file: &str, image: &image::RgbImage) {
+    let (w, h) = image.dimensions();
+    let (actual, expected) = textured_quad(file, image, w, h);
     let worst = actual
         .iter()
         .zip(expected.as_raw())
@@ -114,6 +126,70 @@ fn a_texture_on_a_fully_lit_matte_quad_reproduces_it() {
     quad_reproduces("noise.png", &texture_support::noise(16, 16, 7));
     // JPEG is lossy: the reference is the decoded file, which is what gets used.
     quad_reproduces("noise.jpg", &texture_support::noise(16, 16, 8));
+}
+
+/// Texture filtering: a 64×64 noise texture on the quad seen at 16×16 pixels (4×4 texels
+/// per pixel) shows mip level 2, each pixel the mean of the 4×4 texels it covers (to the
+/// rounding of the two box-filter levels and of the output). Unfiltered, pixels would show
+/// single texels: noise, up to ~100/255 off.
+#[test]
+fn a_minified_texture_shows_the_mean_of_the_texels_each_pixel_covers() {
+    let noise = texture_support::noise(64, 64, 11);
+    let (actual, texture) = textured_quad("fine.png", &noise, 16, 16);
+    let mut worst = 0.0f32;
+    for (x, y, pixel) in actual.enumerate_pixels() {
+        for c in 0..3 {
+            let mut sum = 0.0;
+            for dy in 0..4 {
+                for dx in 0..4 {
+                    sum += texture.get_pixel(4 * x + dx, 4 * y + dy).0[c] as f32;
+                }
+            }
+            worst = worst.max((pixel.0[c] as f32 - sum / 16.0).abs());
+        }
+    }
+    assert!(
+        worst <= 1.5,
+        "largest difference from the 4×4 means {worst}/255"
+    );
+}
+
+/// The footprint: one pixel's width in uv, here exactly one texel of the 16-texel quad at
+/// every pixel (the image plane is parallel to the quad, so the cone's cos^1.5 off-axis
+/// shrink and the surface's 1/√cos stretch cancel), and 0 where the tangent frame is
+/// degenerate.
+#[test]
+fn the_footprint_of_a_pixel_on_a_parallel_quad_is_one_texel_everywhere() {
+    use glint::cpu::ray::camera_ray;
+    use glint::cpu::texture::{camera_cone, texture_footprint};
+    let source = "q = gr.mesh('q', {{0,0,0},{1,0,0},{1,1,0},{0,1,0}}, {{0,1,2,3}}, \
+                                   {{0,0},{1,0},{1,1},{0,1}}) \
+                  m = gr.material('m') m:set_diffuse('bumps.png') q:set_material(m) \
+                  gr.render(q, 'o.png', 16, 16, {0.5,0.5,0.5}, {0,0,-1}, {0,1,0}, 90, \
+                            {0,0,0}, {}, {aa='none'})";
+    let dir = temp_dir("textures-footprint");
+    texture_support::save(&texture_support::bumps(), &dir.join("bumps.png"));
+    let scene = packed_in(&dir, source, &OptionOverrides::default());
+    for (fx, fy) in [(8.0, 8.0), (0.5, 0.5), (15.5, 3.5), (2.0, 14.0)] {
+        let ray = camera_ray(&scene.globals, fx, fy);
+        let hit = closest_hit(&scene, &ray, f32::INFINITY, &mut NoCounters);
+        assert!(hit.is_hit());
+        let s = surface_at(&scene, &ray, &hit);
+        let footprint = texture_footprint(&s, ray.dir, camera_cone(&scene.globals, &ray), hit.t);
+        assert!(
+            (footprint * 16.0 - 1.0).abs() < 1e-4,
+            "pixel ({fx}, {fy}): {} texels",
+            footprint * 16.0
+        );
+        let flat = Surface {
+            dpdu: Vec3::ZERO,
+            ..s
+        };
+        assert_eq!(
+            texture_footprint(&flat, ray.dir, Vec2::new(0.0, 1.0), hit.t),
+            0.0
+        );
+    }
 }
 
 /// The surface a ray from `origin` towards `target` hits first.
@@ -314,6 +390,7 @@ fn flat(dpdu: Vec3, dpdv: Vec3) -> Surface {
         uv: Vec2::new(0.5, 0.5),
         dpdu,
         dpdv,
+        footprint: 0.0,
     }
 }
 
@@ -378,6 +455,34 @@ fn a_height_ramp_rising_along_u_tilts_the_normal_towards_minus_u() {
     ] {
         assert_eq!(bump_normal(&ramp_u, &m, &flat(dpdu, dpdv)), Vec3::Z);
     }
+}
+
+/// Bump maps are filtered too: stripes two texels wide (heights 0, 0, 1, 1, …) tilt the
+/// normal hard at their own scale, and not at all once the footprint spans four texels,
+/// where mip level 2 has averaged them flat.
+#[test]
+fn a_minified_bump_map_averages_its_relief_away() {
+    let stripes = image::GrayImage::from_fn(64, 64, |x, _| {
+        image::Luma([if x / 2 % 2 == 0 { 0 } else { 255 }])
+    });
+    let texels = gray_texels(&stripes);
+    let m = bump_material(0.01);
+    // u at texel 1's centre: its neighbours one texel away are 0 (texel 0) and 1 (texel 2).
+    let at = |footprint: f32| {
+        let s = Surface {
+            uv: Vec2::new(1.5 / 64.0, 0.5),
+            footprint,
+            ..flat(Vec3::X, Vec3::Y)
+        };
+        bump_normal(&texels, &m, &s)
+    };
+    let sharp = at(0.0);
+    let smooth = at(4.0 / 64.0);
+    assert!(sharp.x < -0.2, "level 0: {sharp}");
+    assert!(
+        smooth.x.abs() < 1e-3 && smooth.y.abs() < 1e-6,
+        "level 2: {smooth}"
+    );
 }
 
 /// The UV debug view shows (u mod 1, v mod 1, 0): on a quad with UVs from (0,0) to
@@ -466,9 +571,11 @@ fn untextured_scenes_pack_no_texture_data() {
     assert!(scene.features.contains(SceneFeatures::TEXTURE));
     assert!(scene.features.contains(SceneFeatures::BUMP));
     assert_eq!(scene.triangle_uvs.len(), 1);
+    // 64×64: seven mip levels, 64² down to 1², each with its header.
+    let chain: usize = (0..7).map(|k| (64usize >> k) * (64 >> k)).sum();
     assert_eq!(
         scene.texels.len(),
-        3 + 64 * 64,
-        "one table entry, the texels once"
+        7 * 4 + chain,
+        "one texture's mip chain, stored once"
     );
 }

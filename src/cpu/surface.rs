@@ -33,6 +33,10 @@ pub struct Surface {
     /// World-space ∂p/∂u and ∂p/∂v (the tangent frame of bump mapping; unnormalised).
     pub dpdu: Vec3,
     pub dpdv: Vec3,
+    /// Width, in uv, of the patch one pixel covers here (`texture::texture_footprint`):
+    /// the texture filter's footprint. `surface_at` leaves it 0 (no filtering); tracing
+    /// sets it in scenes with textures or bump maps.
+    pub footprint: f32,
 }
 
 /// The Phong colours at a shading point (the material's, or its textures' at the UV).
@@ -100,6 +104,7 @@ fn instance_surface(inst: &PackedInstance, ray: &Ray, t: f32) -> Surface {
         uv: s.uv,
         dpdu: to_world(s.dpdu),
         dpdv: to_world(s.dpdv),
+        footprint: 0.0,
     }
 }
 
@@ -168,6 +173,7 @@ fn mesh_surface(scene: &PackedScene, inst: &PackedInstance, hit: &Hit) -> Surfac
         uv,
         dpdu: to_world(dpdu),
         dpdv: to_world(dpdv),
+        footprint: 0.0,
     }
 }
 

@@ -1,10 +1,27 @@
 //! Texture lookups and bump mapping, by hand in both tracers (a hardware sampler would
 //! make CPU and GPU differ). The texel layout is `pack::texture`'s.
 //!
-//! Filtering: bilinear with repeat. Texel (i, j) (column i, row j from the image's top)
-//! has its centre at u = (i + ½)/w, v = 1 − (j + ½)/h: v = 0 is the image's bottom edge
-//! (the OBJ convention), texel centres sit at half-integers of (u·w, (1 − v)·h), and a
-//! lookup between centres blends the four nearest texels, wrapping around every edge.
+//! Filtering: trilinear over the mip chain (`pack::texture`), each level bilinear with
+//! repeat. Texel (i, j) (column i, row j from the image's top) has its centre at
+//! u = (i + ½)/w, v = 1 − (j + ½)/h: v = 0 is the image's bottom edge (the OBJ
+//! convention), texel centres sit at half-integers of (u·w, (1 − v)·h), and a lookup
+//! between centres blends the four nearest texels, wrapping around every edge.
+//!
+//! The level comes from the hit's footprint ([`texture_footprint`]): the width of the
+//! patch of surface that one pixel covers, carried as a ray cone (Amanatides 1984; Akenine-
+//! Möller et al., "Texture level of detail strategies for real-time ray tracing", Ray
+//! Tracing Gems ch. 20). A camera ray's cone opens by one pixel's angle (2·tan(fov/2)/height,
+//! times cos^1.5 of the ray's angle off the view axis: a pixel's solid angle shrinks as
+//! cos³ away from it); mirrors and dielectrics pass the cone on unchanged in angle, as flat
+//! surfaces do (curved ones would widen or focus it; that is not modelled). At a hit t
+//! along the ray the cone is w = w₀ + spread·t wide; the surface, seen at cosine c to the
+//! ray, stretches it to an ellipse with axes w and w/c, and glint filters isotropically
+//! over their geometric mean, w/√c (c clamped at `TEXTURE_FOOTPRINT_MIN_COSINE`). Divided
+//! by √(|∂p/∂u|·|∂p/∂v|) it is a width in uv; times √(texture width · height) a number of
+//! texels, whose log2 is the level (level 0 where it is below one texel: magnified
+//! textures stay bilinear). The footprint is one pixel's whatever the anti-aliasing: the
+//! image glint converges to is the one with these filtered textures, and few samples per
+//! pixel do not alias the texture's detail into moiré.
 //!
 //! Bump mapping (Blinn 1978): the height h is the luminance of the bilinear height map;
 //! its gradient comes from central differences one texel apart. With unit tangents
@@ -20,11 +37,13 @@
 //! component with the u slope; here each slope goes with its own tangent. Scale: s is the
 //! height per unit of texture space, so the look does not change when an object is scaled.
 
+use super::ray::Ray;
 use super::surface::{Phong, Surface};
 use crate::constants::{
-    BUMP_MIN_FRAME_SINE, LUMINANCE_B, LUMINANCE_G, LUMINANCE_R, NO_TEXTURE, TEXTURE_HEADER_WORDS,
+    BUMP_MIN_FRAME_SINE, LUMINANCE_B, LUMINANCE_G, LUMINANCE_R, NO_TEXTURE,
+    TEXTURE_FOOTPRINT_MIN_COSINE, TEXTURE_HEADER_WORDS,
 };
-use crate::pack::{PackedMaterial, PackedScene};
+use crate::pack::{texture_levels, PackedGlobals, PackedMaterial, PackedScene};
 use glam::{Vec2, Vec3};
 
 /// Texel (x, y) of texture `texture` (x < width, y < height, y from the top row) as RGB
@@ -80,6 +99,77 @@ pub fn sample_texture(texels: &[u32], texture: u32, uv: Vec2) -> Vec3 {
     top * (1.0 - fy) + bottom * fy
 }
 
+/// Header index of mip level `level` of `texture` (level 0 is the texture's own header).
+// Mirror of shaders/texture.wgsl::texture_level — change both.
+fn texture_level(texels: &[u32], texture: u32, level: u32) -> u32 {
+    if level == 0 {
+        texture
+    } else {
+        texels[(texture * TEXTURE_HEADER_WORDS + 3) as usize] + level - 1
+    }
+}
+
+/// The fractional mip level at which `footprint` (a width in uv) spans one texel of
+/// `texture`: log2 of the texels it spans at level 0, from 0 (magnified, or no footprint)
+/// to the coarsest level.
+// Mirror of shaders/texture.wgsl::texture_lod — change both.
+fn texture_lod(texels: &[u32], texture: u32, footprint: f32) -> f32 {
+    let header = (texture * TEXTURE_HEADER_WORDS) as usize;
+    let width = texels[header + 1];
+    let height = texels[header + 2];
+    let spanned = footprint * (width as f32 * height as f32).sqrt();
+    // The negated test also rejects NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    if !(spanned > 1.0) {
+        return 0.0;
+    }
+    spanned
+        .log2()
+        .min((texture_levels(width, height) - 1) as f32)
+}
+
+/// Trilinear lookup of `texture` at `uv` for a footprint `footprint` wide (in uv): the
+/// bilinear lookups of the two levels around [`texture_lod`], blended.
+// Mirror of shaders/texture.wgsl::sample_texture_filtered — change both.
+pub fn sample_texture_filtered(texels: &[u32], texture: u32, uv: Vec2, footprint: f32) -> Vec3 {
+    let lod = texture_lod(texels, texture, footprint);
+    let level = lod.floor();
+    let blend = lod - level;
+    let fine = sample_texture(texels, texture_level(texels, texture, level as u32), uv);
+    if blend <= 0.0 {
+        return fine;
+    }
+    let coarse = sample_texture(texels, texture_level(texels, texture, level as u32 + 1), uv);
+    fine * (1.0 - blend) + coarse * blend
+}
+
+/// The width, in uv, of the patch of surface `s` that one pixel covers, for a ray along
+/// the unit `dir` whose cone (width at its origin, spread per unit length) is `cone` and
+/// which hit `s` after `t` (see the module header); 0 (level 0) where the tangent frame
+/// gives no finite width (zero ∂p/∂u or ∂p/∂v).
+// Mirror of shaders/texture.wgsl::texture_footprint — change both.
+pub fn texture_footprint(s: &Surface, dir: Vec3, cone: Vec2, t: f32) -> f32 {
+    let width = cone.x + cone.y * t;
+    let cosine = s.normal.dot(dir).abs().max(TEXTURE_FOOTPRINT_MIN_COSINE);
+    let uv_scale = (s.dpdu.length() * s.dpdv.length()).sqrt();
+    let footprint = width / (cosine.sqrt() * uv_scale);
+    // The test also rejects NaN and ∞.
+    if footprint < f32::MAX {
+        footprint
+    } else {
+        0.0
+    }
+}
+
+/// The cone a camera ray starts with: width 0 at the eye, spread one pixel's angle
+/// (2·tan(fov/2)/height) times cos^1.5 of the ray's angle to the view axis.
+// Mirror of shaders/texture.wgsl::camera_cone — change both.
+pub fn camera_cone(g: &PackedGlobals, primary: &Ray) -> Vec2 {
+    let axis = primary.dir.dot(Vec3::from(g.forward)).max(0.0);
+    let pixel = 2.0 * g.tan_half_fov / g.height as f32;
+    Vec2::new(0.0, pixel * axis * axis.sqrt())
+}
+
 /// The bump height at `uv`: the luminance of the bilinear lookup.
 // Mirror of shaders/texture.wgsl::texture_height — change both.
 fn texture_height(texels: &[u32], texture: u32, uv: Vec2) -> f32 {
@@ -103,6 +193,21 @@ pub fn height_gradient(texels: &[u32], texture: u32, uv: Vec2) -> Vec2 {
     Vec2::new(h_u, h_v)
 }
 
+/// [`height_gradient`] blended between the two mip levels around [`texture_lod`] of
+/// `footprint` (each level's differences one of its own texels apart).
+// Mirror of shaders/texture.wgsl::filtered_height_gradient — change both.
+fn filtered_height_gradient(texels: &[u32], texture: u32, uv: Vec2, footprint: f32) -> Vec2 {
+    let lod = texture_lod(texels, texture, footprint);
+    let level = lod.floor();
+    let blend = lod - level;
+    let fine = height_gradient(texels, texture_level(texels, texture, level as u32), uv);
+    if blend <= 0.0 {
+        return fine;
+    }
+    let coarse = height_gradient(texels, texture_level(texels, texture, level as u32 + 1), uv);
+    fine * (1.0 - blend) + coarse * blend
+}
+
 /// The bumped normal of `s` for material `m` (`s.normal` tilted by the height gradient,
 /// see the module header); `s.normal` itself where the tangent frame is degenerate
 /// (a pole, a cone tip, zero-area UVs).
@@ -123,7 +228,7 @@ pub fn bump_normal(texels: &[u32], m: &PackedMaterial, s: &Surface) -> Vec3 {
         return n;
     }
     let sigma = if g.dot(n) < 0.0 { -1.0 } else { 1.0 };
-    let gradient = height_gradient(texels, m.bump_texture, s.uv);
+    let gradient = filtered_height_gradient(texels, m.bump_texture, s.uv, s.footprint);
     let k = sigma * m.bump_strength / g_len;
     let tilt = t_v.cross(n) * (k * gradient.x) + n.cross(t_u) * (k * gradient.y);
     // tilt ⟂ n, so the sum is at least as long as n: never zero.
@@ -146,16 +251,17 @@ pub fn shading_normal(scene: &PackedScene, s: &Surface, n: Vec3) -> Vec3 {
     }
 }
 
-/// (kd, ks) at `s`: the material's colours, or its textures' texels at the hit's UV.
+/// (kd, ks) at `s`: the material's colours, or its textures' at the hit's UV, filtered
+/// over the hit's footprint.
 // Mirror of shaders/texture.wgsl::surface_colours — change both.
 pub fn surface_colours(scene: &PackedScene, m: &PackedMaterial, s: &Surface) -> Phong {
     let mut kd = Vec3::from(m.kd);
     let mut ks = Vec3::from(m.ks);
     if m.diffuse_texture != NO_TEXTURE {
-        kd = sample_texture(&scene.texels, m.diffuse_texture, s.uv);
+        kd = sample_texture_filtered(&scene.texels, m.diffuse_texture, s.uv, s.footprint);
     }
     if m.specular_texture != NO_TEXTURE {
-        ks = sample_texture(&scene.texels, m.specular_texture, s.uv);
+        ks = sample_texture_filtered(&scene.texels, m.specular_texture, s.uv, s.footprint);
     }
     Phong { kd, ks }
 }

@@ -7,13 +7,13 @@ use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
 use super::shade::{background, shade_phong};
 use super::surface::surface_at;
-use super::texture::shading_normal;
+use super::texture::{camera_cone, shading_normal, texture_footprint};
 use super::traverse::{closest_hit, TraversalCounters};
 use crate::constants::{
     DEBUG_VIEW_UV, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, RAY_STACK_SIZE, T_MISS,
 };
 use crate::pack::{PackedScene, SceneFeatures};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 // Mirror of shaders/trace.wgsl::StackEntry — change both.
 #[derive(Clone, Copy, Debug)]
@@ -21,6 +21,10 @@ struct StackEntry {
     ray: Ray,
     weight: Vec3,
     depth: u32,
+    /// The ray's cone for texture filtering: width at its origin, spread per unit length
+    /// (`texture::camera_cone`; the WGSL twin has the field only with textures or bump
+    /// maps).
+    cone: Vec2,
     /// The media the ray travels in (only scenes with refraction change it; the WGSL
     /// twin has the field only then).
     media: MediumStack,
@@ -44,6 +48,7 @@ pub fn trace_ray(
         ray: primary,
         weight: Vec3::ONE,
         depth: 0,
+        cone: camera_cone(g, &primary),
         media: camera_media_of(&scene.globals),
     }; RAY_STACK_SIZE as usize];
     let mut size = 1;
@@ -57,7 +62,14 @@ pub fn trace_ray(
             colour += entry.weight * background(g, ray.dir);
             continue;
         }
-        let s = surface_at(scene, &ray, &hit);
+        let mut s = surface_at(scene, &ray, &hit);
+        let textured = scene.features.contains(SceneFeatures::TEXTURE)
+            || scene.features.contains(SceneFeatures::BUMP);
+        if textured {
+            s.footprint = texture_footprint(&s, ray.dir, entry.cone, hit.t);
+        }
+        // The cone at the hit: what a secondary ray starts with.
+        let cone = Vec2::new(entry.cone.x + entry.cone.y * hit.t, entry.cone.y);
         // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
         if g.debug_view == DEBUG_VIEW_UV {
             let uv = s.uv - s.uv.floor();
@@ -103,6 +115,7 @@ pub fn trace_ray(
                     },
                     weight,
                     depth: entry.depth + 1,
+                    cone,
                     media: crossing.media,
                 };
                 size += 1;
@@ -120,6 +133,7 @@ pub fn trace_ray(
                     },
                     weight,
                     depth: entry.depth + 1,
+                    cone,
                     ..entry
                 };
                 size += 1;

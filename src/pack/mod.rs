@@ -20,6 +20,7 @@ pub use features::SceneFeatures;
 use glam::{DMat4, DVec3};
 pub use layout::*;
 use rayon::prelude::*;
+pub use texture::texture_levels;
 
 /// Everything a tracer needs, as flat arrays. The scene grid's items are the instances
 /// `0..num_instances`: the analytic objects first, then one `KIND_CSG` instance per CSG
