@@ -21,11 +21,11 @@
 use crate::constants::TEXTURE_HEADER_WORDS;
 use crate::scene::Texture;
 
-/// One level of a mip chain: its size and texels.
-struct Level {
+/// One level of a mip chain: its size and texels (level 0 borrows the texture's own).
+struct Level<'a> {
     width: u32,
     height: u32,
-    rgba: Vec<[u8; 4]>,
+    rgba: std::borrow::Cow<'a, [[u8; 4]]>,
 }
 
 /// Number of levels of a `width`×`height` texture's chain: 1 + ⌊log2 max(w, h)⌋.
@@ -43,7 +43,7 @@ fn source_span(i: u32, size: u32, next: u32) -> std::ops::Range<u32> {
 
 /// The level below `level`: half the size (at least 1), each texel the rounded mean of
 /// the texels it covers.
-fn next_level(level: &Level) -> Level {
+fn next_level(level: &Level) -> Level<'static> {
     let width = (level.width / 2).max(1);
     let height = (level.height / 2).max(1);
     let mut rgba = Vec::with_capacity((width * height) as usize);
@@ -68,16 +68,16 @@ fn next_level(level: &Level) -> Level {
     Level {
         width,
         height,
-        rgba,
+        rgba: rgba.into(),
     }
 }
 
-/// Every level of `t`'s chain, level 0 (the texture itself) first.
-fn mip_chain(t: &Texture) -> Vec<Level> {
+/// Every level of `t`'s chain, level 0 (the texture itself, borrowed) first.
+fn mip_chain(t: &Texture) -> Vec<Level<'_>> {
     let mut levels = vec![Level {
         width: t.width,
         height: t.height,
-        rgba: t.rgba.clone(),
+        rgba: t.rgba.as_slice().into(),
     }];
     for _ in 1..texture_levels(t.width, t.height) {
         let next = next_level(levels.last().expect("level 0 is there"));
