@@ -113,6 +113,22 @@ fn texture_footprint(s: Surface, dir: vec3<f32>, cone: vec2<f32>, t: f32) -> f32
     return 0.0;
 }
 
+// s with its footprint (texture_footprint) for a hit t along the unit dir of a ray whose
+// cone is `cone` (compiled only into scenes with textures or bump maps).
+// Mirror of src/cpu/texture.rs::with_footprint — change both.
+fn with_footprint(s: Surface, dir: vec3<f32>, cone: vec2<f32>, t: f32) -> Surface {
+    var filtered = s;
+    filtered.footprint = texture_footprint(s, dir, cone, t);
+    return filtered;
+}
+
+// The cone t along a ray whose cone is `cone` (width at its origin, spread): what a
+// secondary ray leaving from there starts with.
+// Mirror of src/cpu/texture.rs::cone_at — change both.
+fn cone_at(cone: vec2<f32>, t: f32) -> vec2<f32> {
+    return vec2<f32>(cone.x + cone.y * t, cone.y);
+}
+
 // The cone a camera ray starts with: width 0 at the eye, spread one pixel's angle
 // (2·tan(fov/2)/height) times cos^1.5 of the ray's angle to the view axis.
 // Mirror of src/cpu/texture.rs::camera_cone — change both.

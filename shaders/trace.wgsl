@@ -57,9 +57,8 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
         }
         var s = surface_at(ray, hit);
 // #if TEXTURE|BUMP
-        s.footprint = texture_footprint(s, ray.dir, entry.cone, hit.t);
-        // The cone at the hit: what a secondary ray starts with.
-        let cone = vec2<f32>(entry.cone.x + entry.cone.y * hit.t, entry.cone.y);
+        s = with_footprint(s, ray.dir, entry.cone, hit.t);
+        let cone = cone_at(entry.cone, hit.t);
 // #endif
 // #if TEXTURE
         // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).

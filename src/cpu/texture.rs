@@ -43,7 +43,7 @@ use crate::constants::{
     BUMP_MIN_FRAME_SINE, LUMINANCE_B, LUMINANCE_G, LUMINANCE_R, NO_TEXTURE,
     TEXTURE_FOOTPRINT_MIN_COSINE, TEXTURE_HEADER_WORDS,
 };
-use crate::pack::{texture_levels, PackedGlobals, PackedMaterial, PackedScene};
+use crate::pack::{texture_levels, PackedGlobals, PackedMaterial, PackedScene, SceneFeatures};
 use glam::{Vec2, Vec3};
 
 /// Texel (x, y) of texture `texture` (x < width, y < height, y from the top row) as RGB
@@ -159,6 +159,28 @@ pub fn texture_footprint(s: &Surface, dir: Vec3, cone: Vec2, t: f32) -> f32 {
     } else {
         0.0
     }
+}
+
+/// `s` with its footprint ([`texture_footprint`]) for a hit `t` along the unit `dir` of a
+/// ray whose cone is `cone`, in scenes with textures or bump maps (no other reads it).
+// Mirror of shaders/texture.wgsl::with_footprint — change both.
+pub fn with_footprint(scene: &PackedScene, s: Surface, dir: Vec3, cone: Vec2, t: f32) -> Surface {
+    let textured = scene.features.contains(SceneFeatures::TEXTURE)
+        || scene.features.contains(SceneFeatures::BUMP);
+    if !textured {
+        return s;
+    }
+    Surface {
+        footprint: texture_footprint(&s, dir, cone, t),
+        ..s
+    }
+}
+
+/// The cone `t` along a ray whose cone is `cone` (width at its origin, spread): what a
+/// secondary ray leaving from there starts with.
+// Mirror of shaders/texture.wgsl::cone_at — change both.
+pub fn cone_at(cone: Vec2, t: f32) -> Vec2 {
+    Vec2::new(cone.x + cone.y * t, cone.y)
 }
 
 /// The cone a camera ray starts with: width 0 at the eye, spread one pixel's angle

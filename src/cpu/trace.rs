@@ -7,7 +7,7 @@ use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
 use super::shade::{background, shade_phong};
 use super::surface::surface_at;
-use super::texture::{camera_cone, shading_normal, texture_footprint};
+use super::texture::{camera_cone, cone_at, shading_normal, with_footprint};
 use super::traverse::{closest_hit, TraversalCounters};
 use crate::constants::{
     DEBUG_VIEW_UV, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, RAY_STACK_SIZE, T_MISS,
@@ -62,14 +62,9 @@ pub fn trace_ray(
             colour += entry.weight * background(g, ray.dir);
             continue;
         }
-        let mut s = surface_at(scene, &ray, &hit);
-        let textured = scene.features.contains(SceneFeatures::TEXTURE)
-            || scene.features.contains(SceneFeatures::BUMP);
-        if textured {
-            s.footprint = texture_footprint(&s, ray.dir, entry.cone, hit.t);
-        }
-        // The cone at the hit: what a secondary ray starts with.
-        let cone = Vec2::new(entry.cone.x + entry.cone.y * hit.t, entry.cone.y);
+        let s = surface_at(scene, &ray, &hit);
+        let s = with_footprint(scene, s, ray.dir, entry.cone, hit.t);
+        let cone = cone_at(entry.cone, hit.t);
         // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
         if g.debug_view == DEBUG_VIEW_UV {
             let uv = s.uv - s.uv.floor();
