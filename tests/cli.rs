@@ -506,6 +506,41 @@ fn bench_sweep_quick_prints_its_figures_and_writes_the_plot() {
     );
 }
 
+/// `glint bench --sweep --scene FILE` sweeps the user's scene instead of glint's own, at
+/// `--size` pixels wide and the scene's own aspect ratio, and by default writes the plot
+/// to the current folder.
+#[test]
+fn bench_sweep_on_a_scene_of_ones_own() {
+    let dir = temp_dir("sweep-own");
+    let scene = dir.join("wide.lua");
+    std::fs::write(
+        &scene,
+        "s = gr.sphere('s') s:set_material(gr.material({0.8, 0.2, 0.2}, {0.5, 0.5, 0.5}, 25))
+         gr.render(s, 'wide.png', 40, 20, {0, 0, 4}, {0, 0, -1}, {0, 1, 0}, 50,
+                   {0.3, 0.3, 0.3}, {gr.light({2, 3, 4}, {0.9, 0.9, 0.9}, {1, 0, 0})})",
+    )
+    .unwrap();
+    let out = glint(
+        &[
+            "bench",
+            "--sweep",
+            "--quick",
+            "--cpu-only",
+            "--repeat",
+            "1",
+            "--scene",
+            scene.to_str().unwrap(),
+        ],
+        &dir,
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}\n{text}", stderr(&out));
+    assert!(text.contains("| wide 24×12 | uniform 2×2 |"), "{text}");
+    assert!(!text.contains("| demo |"), "{text}");
+    let svg = std::fs::read_to_string(dir.join("error-vs-time.svg")).unwrap();
+    assert!(svg.starts_with("<svg"));
+}
+
 #[test]
 fn bad_csg_operand_and_too_deep_csg() {
     let scene = format!(

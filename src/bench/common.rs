@@ -48,7 +48,12 @@ pub struct BenchArgs {
     /// --sweep: a tiny run (24×24, a few settings) that checks the machinery.
     #[arg(long, requires = "sweep")]
     pub quick: bool,
-    /// --sweep: image width in pixels (square images, but scrabble's at 16:9).
+    /// --sweep: sweep this scene (repeatable) instead of glint's own four (demo,
+    /// soft-shadows, macho-cows, scrabble), at --size pixels wide and the scene's own
+    /// aspect ratio.
+    #[arg(long = "scene", requires = "sweep", value_name = "SCENE.lua")]
+    pub sweep_scenes: Vec<PathBuf>,
+    /// --sweep: image width in pixels (the built-in scenes square, but scrabble's at 16:9).
     #[arg(long, default_value_t = 96, value_parser = clap::value_parser!(u32).range(8..=2048))]
     pub size: u32,
     /// --sweep: no GPU column.
@@ -58,7 +63,7 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 120.0)]
     pub gpu_budget: f64,
     /// --sweep: where the error-against-time plot (SVG) goes.
-    #[arg(long, default_value = "docs/error-vs-time.svg")]
+    #[arg(long, default_value = "error-vs-time.svg")]
     pub plot: PathBuf,
     /// Only the trace benchmark of this scene: camera rays (one per pixel) and one shadow
     /// ray per hit and light through the CPU tracer's traversal, no shading (`bench_trace`).
@@ -74,9 +79,9 @@ pub struct BenchArgs {
     /// Embree harness (`benches/embree/`; format in `bench::trace_dump`).
     #[arg(long, requires = "trace", value_name = "FILE")]
     pub dump_rays: Option<PathBuf>,
-    /// --trace: a folder the scene may read besides its own (repeatable), as `glint
-    /// render --allow-read` (benches/scenes/ read the CS488 corpus's meshes).
-    #[arg(long, requires = "trace", value_name = "DIR")]
+    /// --trace, --sweep: a folder the scenes may read besides their own (repeatable), as
+    /// `glint render --allow-read` (benches/scenes/ read the CS488 corpus's meshes).
+    #[arg(long, value_name = "DIR")]
     pub allow_read: Vec<PathBuf>,
     /// --trace: the scene's memory budget in MiB, as `glint render --memory-limit`
     /// (default 2048; a 10⁶-triangle OBJ needs more).
@@ -88,8 +93,23 @@ pub struct BenchArgs {
 }
 
 pub fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<FlatScene> {
+    load_scene_reading(path, width, height, &[])
+}
+
+/// [`load_scene`], the scene also allowed to read the folders `allow_read` (as `glint
+/// render --allow-read`).
+pub fn load_scene_reading(
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+    allow_read: &[PathBuf],
+) -> anyhow::Result<FlatScene> {
+    let config = ScriptConfig {
+        allow_read: allow_read.to_vec(),
+        ..ScriptConfig::default()
+    };
     let mut scene = None;
-    run_scene_file(path, &ScriptConfig::default(), &mut |graph, request| {
+    run_scene_file(path, &config, &mut |graph, request| {
         if scene.is_none() {
             let mut request = request.clone();
             request.width = width;
@@ -99,6 +119,20 @@ pub fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Re
         Ok(())
     })?;
     scene.ok_or_else(|| anyhow::anyhow!("{} never calls gr.render", path.display()))
+}
+
+/// Height over width of the image a scene's (first) `gr.render` asks for.
+pub fn scene_aspect(path: &std::path::Path, allow_read: &[PathBuf]) -> anyhow::Result<f64> {
+    let config = ScriptConfig {
+        allow_read: allow_read.to_vec(),
+        ..ScriptConfig::default()
+    };
+    let mut aspect = None;
+    run_scene_file(path, &config, &mut |_, request| {
+        aspect.get_or_insert(f64::from(request.height) / f64::from(request.width));
+        Ok(())
+    })?;
+    aspect.ok_or_else(|| anyhow::anyhow!("{} never calls gr.render", path.display()))
 }
 
 pub fn with_grid(scene: &FlatScene, grid: GridMode) -> anyhow::Result<PackedScene> {

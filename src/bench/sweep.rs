@@ -12,7 +12,7 @@
 //! the shadows' alone. The GPU tracer renders a subset where an adapter exists, within a
 //! time budget. Then the figures of [`super::sweep_analysis`] and the plot.
 
-use super::common::{load_scene, BenchArgs};
+use super::common::{load_scene_reading, scene_aspect, BenchArgs};
 use super::plot_svg::{loglog_svg, write_atomically, Panel, Series};
 use super::sweep_analysis::{cheapest_within, choose_default, loglog_slope, Measured, Metric};
 use crate::diff::diff_films;
@@ -109,8 +109,26 @@ struct Plan {
     gpu: Vec<Setting>,
 }
 
-fn plan(args: &BenchArgs) -> Plan {
+/// The scenes of `--scene`, each with its own aspect ratio.
+fn own_scenes(args: &BenchArgs) -> anyhow::Result<Vec<(PathBuf, f64)>> {
+    args.sweep_scenes
+        .iter()
+        .map(|path| Ok((path.clone(), scene_aspect(path, &args.allow_read)?)))
+        .collect()
+}
+
+fn plan(args: &BenchArgs) -> anyhow::Result<Plan> {
     let own = |s: &str| PathBuf::from("scenes").join(s);
+    let chosen = own_scenes(args)?;
+    let mut plan = built_in_plan(args, own);
+    if !chosen.is_empty() {
+        plan.scenes = chosen;
+    }
+    Ok(plan)
+}
+
+/// The sweep of glint's own scenes (`--quick`: a tiny one).
+fn built_in_plan(args: &BenchArgs, own: impl Fn(&str) -> PathBuf) -> Plan {
     if args.quick {
         return Plan {
             scenes: vec![(own("demo.lua"), 1.0), (own("soft-shadows.lua"), 1.0)],
@@ -323,12 +341,13 @@ impl GpuSide {
 
 fn sweep_scene(
     (path, aspect): &(PathBuf, f64),
+    allow_read: &[PathBuf],
     plan: &Plan,
     repeat: usize,
     gpu: &mut GpuSide,
 ) -> anyhow::Result<SceneSweep> {
     let height = ((f64::from(plan.size) * aspect).round() as u32).max(1);
-    let scene = load_scene(path, plan.size, height)?;
+    let scene = load_scene_reading(path, plan.size, height, allow_read)?;
     let stem = path.file_stem().unwrap_or_default().to_string_lossy();
     let name = if height == plan.size {
         stem.into_owned()
@@ -392,7 +411,7 @@ fn sweep_scene(
 }
 
 pub fn bench_sweep(args: &BenchArgs) -> anyhow::Result<()> {
-    let plan = plan(args);
+    let plan = plan(args)?;
     let mut gpu = GpuSide::new(args);
     match &gpu.ctx {
         Some(ctx) => println!(
@@ -415,7 +434,13 @@ pub fn bench_sweep(args: &BenchArgs) -> anyhow::Result<()> {
     println!("AA rows: against uniform {r}×{r} with the scene's shadow samples; shadow rows: aa none, against shadows {sr}×{sr}.");
     let mut sweeps = Vec::new();
     for path in &plan.scenes {
-        sweeps.push(sweep_scene(path, &plan, args.repeat, &mut gpu)?);
+        sweeps.push(sweep_scene(
+            path,
+            &args.allow_read,
+            &plan,
+            args.repeat,
+            &mut gpu,
+        )?);
     }
     println!("\n| scene | setting | CPU core time | CPU wall time | RMSE | FLIP mean | GPU wall time | GPU FLIP mean |");
     println!("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |");
