@@ -1,6 +1,7 @@
 // trace.wgsl — Whitted tracing without recursion: an explicit, fixed-size stack of
-// secondary rays, each with the weight of its contribution to the pixel, its depth and
-// (with refraction) the media it travels in (see dielectric.wgsl).
+// secondary rays, each with the weight of its contribution to the pixel, its depth, (with
+// textures or bump maps) its cone for texture filtering (see texture.wgsl) and (with
+// refraction) the media it travels in (see dielectric.wgsl).
 
 // Mirror of src/cpu/trace.rs::StackEntry — change both.
 struct StackEntry {

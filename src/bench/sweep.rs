@@ -1,16 +1,17 @@
 //! `glint bench --sweep`: error against time for the sampling settings, so the defaults
 //! can be chosen from measurements.
 //!
-//! For each test scene: a reference far past convergence (uniform 16×16 AA, the scene's
-//! own shadow samples), with its residual stated as its difference from a second one at
-//! 12×12 (other strata, other jitter). Then every setting — no AA, uniform n×n, adaptive
-//! at several thresholds and depths — timed (best of `--repeat`; a setting whose first run
-//! takes over [`SINGLE_RUN_ABOVE`] runs once; settings are compared by core time, which
-//! other load on a shared machine stretches far less than wall time) and compared with the reference (RMSE and
-//! FLIP mean, `crate::diff`). Scenes with area lights also sweep the shadow samples n×n
-//! with AA off against a reference at n = 32 (residual: against n = 24), so that error is
-//! the shadows' alone. The GPU tracer renders a subset where an adapter exists, within a
-//! time budget. Then the figures of [`super::sweep_analysis`] and the plot.
+//! For each test scene (glint's own four, or the user's with `--scene`): a reference far
+//! past convergence (uniform 16×16 AA, the scene's own shadow samples), with its residual
+//! stated as its difference from a second one at 12×12 (other strata, other jitter).
+//! Then every setting — no AA, uniform n×n, adaptive at several thresholds and depths —
+//! timed (best of `--repeat`; a setting whose first run takes over [`SINGLE_RUN_ABOVE`]
+//! runs once; settings are compared by core time, which other load on a shared machine
+//! stretches far less than wall time) and compared with the reference (RMSE and FLIP
+//! mean, `crate::diff`). Scenes with area lights also sweep the shadow samples n×n with
+//! AA off against a reference at n = 32 (residual: against n = 24), so that error is the
+//! shadows' alone. The GPU tracer renders a subset where an adapter exists, within a time
+//! budget. Then the figures of [`super::sweep_analysis`] and the plot.
 
 use super::common::{load_scene_reading, scene_aspect, BenchArgs};
 use super::plot_svg::{loglog_svg, write_atomically, Panel, Series};

@@ -1,6 +1,7 @@
 //! Whitted tracing without recursion: an explicit, fixed-size stack of secondary rays,
-//! each with the weight of its contribution to the pixel, its depth and the media it
-//! travels in (see `dielectric`).
+//! each with the weight of its contribution to the pixel, its depth, its cone (the
+//! pixel's footprint, for texture filtering: see `texture`) and the media it travels in
+//! (see `dielectric`).
 
 use super::dielectric::{dielectric_interface, MediumStack};
 use super::ray::{offset_ray, Ray};
