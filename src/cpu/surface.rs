@@ -12,7 +12,7 @@ use crate::constants::{
     CSG_FLIP, CSG_INDEX_MASK, KIND_CONE, KIND_CSG, KIND_CYLINDER, KIND_MESH, KIND_SPHERE,
     KIND_TORUS,
 };
-use crate::pack::{PackedInstance, PackedScene, SceneFeatures};
+use crate::pack::{PackedInstance, PackedScene};
 use glam::{Vec2, Vec3};
 
 /// What shading needs to know about a hit point.
@@ -145,9 +145,7 @@ fn mesh_surface(scene: &PackedScene, inst: &PackedInstance, hit: &Hit) -> Surfac
     let n_obj = (p1 - p0).cross(p2 - p0);
     let (mut uv, mut dpdu, mut dpdv) = (Vec2::ZERO, Vec3::ZERO, Vec3::ZERO);
     // Triangle UVs are packed only for scenes that use them.
-    if scene.features.contains(SceneFeatures::TEXTURE)
-        || scene.features.contains(SceneFeatures::BUMP)
-    {
+    if scene.features.uses_textures() {
         let t = &scene.triangle_uvs[index];
         let (uv0, uv1, uv2) = (Vec2::from(t.uv0), Vec2::from(t.uv1), Vec2::from(t.uv2));
         uv = uv0 * b0 + uv1 * hit.b1 + uv2 * hit.b2;

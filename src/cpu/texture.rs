@@ -43,7 +43,7 @@ use crate::constants::{
     BUMP_MIN_FRAME_SINE, LUMINANCE_B, LUMINANCE_G, LUMINANCE_R, NO_TEXTURE,
     TEXTURE_FOOTPRINT_MIN_COSINE, TEXTURE_HEADER_WORDS,
 };
-use crate::pack::{texture_levels, PackedGlobals, PackedMaterial, PackedScene, SceneFeatures};
+use crate::pack::{texture_levels, PackedGlobals, PackedMaterial, PackedScene};
 use glam::{Vec2, Vec3};
 
 /// Texel (x, y) of texture `texture` (x < width, y < height, y from the top row) as RGB
@@ -165,9 +165,7 @@ pub fn texture_footprint(s: &Surface, dir: Vec3, cone: Vec2, t: f32) -> f32 {
 /// ray whose cone is `cone`, in scenes with textures or bump maps (no other reads it).
 // Mirror of shaders/texture.wgsl::with_footprint — change both.
 pub fn with_footprint(scene: &PackedScene, s: Surface, dir: Vec3, cone: Vec2, t: f32) -> Surface {
-    let textured = scene.features.contains(SceneFeatures::TEXTURE)
-        || scene.features.contains(SceneFeatures::BUMP);
-    if !textured {
+    if !scene.features.uses_textures() {
         return s;
     }
     Surface {

@@ -50,6 +50,12 @@ impl SceneFeatures {
     pub fn insert(&mut self, other: SceneFeatures) {
         self.0 |= other.0;
     }
+
+    /// Whether the scene reads textures (TEXTURE or BUMP): what packs triangle UVs and
+    /// texels, and gives each hit a texture footprint (the shaders' `#if TEXTURE|BUMP`).
+    pub const fn uses_textures(self) -> bool {
+        self.contains(Self::TEXTURE) || self.contains(Self::BUMP)
+    }
 }
 
 impl fmt::Display for SceneFeatures {

@@ -192,9 +192,7 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     check_finite(&instances, &triangles)?;
     let materials = materials::pack_materials(scene);
     features.insert(materials::material_features(scene, &materials));
-    let needs_uv =
-        features.contains(SceneFeatures::TEXTURE) || features.contains(SceneFeatures::BUMP);
-    let (texels, triangle_uvs) = if needs_uv {
+    let (texels, triangle_uvs) = if features.uses_textures() {
         (
             texture::pack_texels(&scene.textures),
             std::mem::take(&mut meshes.triangle_uvs),
