@@ -1,7 +1,7 @@
 //! The figures `glint bench --sweep` derives from its measurements: the cheapest setting
 //! whose error is within a bound, the log-log slope of error against n, and the rule that
-//! picks the default setting. Pure
-//! functions of (time, error) pairs, so they are tested without rendering anything.
+//! picks the default setting. Pure functions of (time, error) pairs, so they are tested
+//! without rendering anything.
 
 /// One measured setting: its name, time in seconds, and errors against the reference.
 #[derive(Clone, Debug, PartialEq)]

@@ -12,9 +12,9 @@
 //!    the compacted list of those) and whose corners differ by more than the threshold
 //!    or, above level AA_PENUMBRA_DEPTH, one of whose corners saw a penumbra (each
 //!    lattice sample keeps that flag with its colour), appending it to level k's list of
-//!    split squares; then [`adaptive_midpoints`] traces
-//!    the five midpoints of each square on that list (a midpoint shared with a split
-//!    neighbour is traced by one of the two only). Work is over the lists, so idle
+//!    split squares; then [`adaptive_midpoints`] traces the five midpoints of each
+//!    square on that list (a midpoint shared with a split neighbour is traced by one of
+//!    the two only). Work is over the lists, so idle
 //!    invocations do not grow with depth; the lists' order (on the GPU, that of atomic
 //!    appends) changes nothing: every sample and flag has its own slot;
 //! 3. [`adaptive_integrate`]: each pixel walks its quadtree with the per-pixel stack.
@@ -67,8 +67,8 @@ fn unpack_square(entry: u32) -> (u32, u32) {
 }
 
 /// A tile's lattice colours and penumbra flags ([`penumbra_sample`]; the GPU keeps the
-/// flag in the sample's fourth component), split flags and, per level, the list of split squares (at
-/// the level's split-flag offset, [`split_offset`]) and its length.
+/// flag in the sample's fourth component), split flags and, per level, the list of split
+/// squares (at the level's split-flag offset, [`split_offset`]) and its length.
 pub struct Lattice {
     pub tile: AdaptiveTile,
     pub points: Vec<Vec3>,

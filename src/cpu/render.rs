@@ -35,9 +35,10 @@ struct AdaptiveSquare {
 /// Adaptive anti-aliasing of pixel (x, y) (Whitted 1980): sample the corners; where they
 /// differ by more than `aa_threshold`, or one saw a penumbra and the square is above
 /// AA_PENUMBRA_DEPTH ([`square_splits`]), split into four and recurse — here with an
-/// explicit stack — down to `aa_depth`. Sample positions lie on a dyadic lattice, so neighbouring
-/// pixels see the same colour at a shared corner. The renderers run the same walk per
-/// tile in passes ([`super::adaptive`], on both tracers); this is its per-pixel reference.
+/// explicit stack — down to `aa_depth`. Sample positions lie on a dyadic lattice, so
+/// neighbouring pixels see the same colour at a shared corner. The renderers run the same
+/// walk per tile in passes ([`super::adaptive`], on both tracers); this is its per-pixel
+/// reference.
 pub fn adaptive_pixel(
     scene: &PackedScene,
     x: u32,
