@@ -9,11 +9,17 @@
 
 // The items a ray has tested, as a direct-mapped cache of ITEM_MAILBOX_SIZE slots (item
 // number modulo the size). Only kinds for which a second test is sure to change nothing
-// go in (mailboxed). Kept only in the MAILBOXES variant (hardware adapters): without it
-// every item is tested in every cell that lists it, with the same answers.
+// go in (mailboxed). The MAILBOXES variant (hardware adapters) keeps every slot; the
+// LAST_ITEM_MAILBOX variant (software adapters) only the last item tested, a scalar
+// where llvmpipe would scatter and gather an array indexed at run time; with neither,
+// every item is tested in every cell that lists it. The answers are the same.
 // Mirror of src/cpu/traverse.rs::Mailbox — change both.
 struct Mailbox {
+// #if MAILBOXES
     items: array<u32, ITEM_MAILBOX_SIZE>,
+// #else
+    last: u32,
+// #endif
 }
 
 // Mirror of src/cpu/traverse.rs::Mailbox::new — change both.
@@ -23,6 +29,8 @@ fn mailbox_new() -> Mailbox {
     for (var i = 0u; i < ITEM_MAILBOX_SIZE; i++) {
         mailbox.items[i] = NO_ITEM;
     }
+// #else
+    mailbox.last = NO_ITEM;
 // #endif
     return mailbox;
 }
@@ -37,6 +45,13 @@ fn mailbox_seen(mailbox: ptr<function, Mailbox>, item: u32) -> bool {
         return true;
     }
     (*mailbox).items[slot] = item;
+// #endif
+// #if LAST_ITEM_MAILBOX
+    // Slot item & 0, the only one (the CPU twin's mask).
+    if (*mailbox).last == item {
+        return true;
+    }
+    (*mailbox).last = item;
 // #endif
     return false;
 }

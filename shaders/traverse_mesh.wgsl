@@ -9,10 +9,14 @@
 // give the same answer, so a triangle listed in several cells is tested once unless
 // another took its slot in between. Kept only in the MAILBOXES variant (hardware
 // adapters): without it a triangle is tested in every cell that lists it, with the same
-// answers.
+// answers (and the struct holds no array, so there is none to zero per mesh walk).
 // Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox — change both.
 struct TriangleMailbox {
+// #if MAILBOXES
     triangles: array<u32, TRIANGLE_MAILBOX_SIZE>,
+// #else
+    unused: u32,
+// #endif
 }
 
 // Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox::new — change both.

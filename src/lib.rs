@@ -17,6 +17,7 @@ pub mod diff;
 pub mod film;
 pub mod gpu;
 pub mod image_io;
+pub mod mailboxes;
 pub mod pack;
 pub mod parity;
 pub mod pipeline;

@@ -10,6 +10,7 @@ use common::temp_dir;
 use glint::bench::trace_rays::{
     camera_rays, count_work, load_first_render, shadow_rays, summarise, trace_primary, trace_shadow,
 };
+use glint::mailboxes::Mailboxes;
 use glint::pack::pack;
 use glint::scene::GridMode;
 use std::path::Path;
@@ -199,38 +200,47 @@ fn hits_equal_brute_force_over_the_same_rays() {
 }
 
 /// The CPU's switch for the traversal's mailboxes (the twin of the GPU kernel's
-/// `MAILBOXES` variant): off, every answer is the same and more primitives are tested
-/// (each mesh triangle and scene item in every cell that lists it).
+/// variants): with one item slot and with none, every answer is the same and more
+/// primitives are tested (each mesh triangle, and with none each scene item, in every
+/// cell that lists it), the fewer slots the more.
 #[test]
 fn mailboxes_change_the_work_not_the_answers() {
     let dir = scene_dir("mailboxes");
     let mut scene =
         pack(&load_first_render(&dir.join("scene.lua"), None, None, &[], None).unwrap()).unwrap();
     let rays = camera_rays(&scene);
-    assert!(
+    assert_eq!(
         scene.mailboxes,
+        Mailboxes::Full,
         "the CPU tracer keeps its mailboxes by default"
     );
     let hits = trace_primary(&scene, &rays);
     let shadow = shadow_rays(&scene, &rays, &hits);
     let occluded = trace_shadow(&scene, &shadow);
-    let with = count_work(&scene, &rays, &shadow);
-    scene.mailboxes = false;
-    assert_eq!(
-        format!("{:?}", trace_primary(&scene, &rays)),
-        format!("{hits:?}")
-    );
-    assert_eq!(trace_shadow(&scene, &shadow), occluded);
-    let without = count_work(&scene, &rays, &shadow);
-    for (kind, (a, b)) in ["primary", "shadow"].iter().zip(with.iter().zip(&without)) {
-        // A mesh instance met again in a later scene cell is walked again, cells and all.
-        assert!(b.cells_visited >= a.cells_visited, "{kind}");
-        assert!(
-            b.items_tested > a.items_tested,
-            "{kind}: {} primitives tested without mailboxes, {} with",
-            b.items_tested,
-            a.items_tested
+    let mut work = vec![count_work(&scene, &rays, &shadow)];
+    for fewer in [Mailboxes::LastItem, Mailboxes::Off] {
+        scene.mailboxes = fewer;
+        assert_eq!(
+            format!("{:?}", trace_primary(&scene, &rays)),
+            format!("{hits:?}"),
+            "{fewer}"
         );
+        assert_eq!(trace_shadow(&scene, &shadow), occluded, "{fewer}");
+        work.push(count_work(&scene, &rays, &shadow));
+    }
+    for pair in work.windows(2) {
+        let (with, fewer) = (&pair[0], &pair[1]);
+        for (kind, (a, b)) in ["primary", "shadow"].iter().zip(with.iter().zip(fewer)) {
+            // A mesh instance met again in a later scene cell is walked again, cells and
+            // all; without the triangle slots a triangle in several cells is retested.
+            assert!(b.cells_visited >= a.cells_visited, "{kind}");
+            assert!(
+                b.items_tested > a.items_tested,
+                "{kind}: {} primitives tested with fewer mailboxes, {} with more",
+                b.items_tested,
+                a.items_tested
+            );
+        }
     }
 }
 

@@ -63,14 +63,15 @@ fn submits_and_host_waits_do_not_grow_with_the_image() {
     }
 }
 
-/// Every kernel variant (the workgroup side an adapter's limits may force, with and
-/// without the traversal's mailboxes) renders the very same image, in every AA mode (the
+/// Every kernel variant (the workgroup side an adapter's limits may force, with each of
+/// the traversal's mailbox variants) renders the very same image, in every AA mode (the
 /// 1-D kernels and the indirect arguments of adaptive AA depend on the workgroup size),
 /// and that image matches the CPU tracer's: a mismatch between the dispatch plan's
 /// workgroup counts and the shader's `@workgroup_size` would leave pixels unrendered.
 #[test]
 fn every_kernel_variant_renders_the_same_image() {
     use glint::gpu::KernelConfig;
+    use glint::mailboxes::Mailboxes;
     let Some(mut ctx) = gpu_context() else { return };
     let chosen = ctx.kernel;
     let path = common::corpus().join("a4-2021plus/nonhier.lua");
@@ -90,7 +91,13 @@ fn every_kernel_variant_renders_the_same_image() {
         let first = render_gpu(&ctx, &scene, &GpuRenderOptions::default())
             .unwrap()
             .film;
-        for (workgroup_side, mailboxes) in [(8, true), (8, false), (4, true), (2, false)] {
+        for (workgroup_side, mailboxes) in [
+            (8, Mailboxes::Full),
+            (8, Mailboxes::LastItem),
+            (8, Mailboxes::Off),
+            (4, Mailboxes::Full),
+            (2, Mailboxes::LastItem),
+        ] {
             ctx.kernel = KernelConfig {
                 workgroup_side,
                 mailboxes,

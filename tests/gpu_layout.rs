@@ -5,6 +5,7 @@
 use glint::gpu::buffers::GpuTile;
 use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
 use glint::gpu::KernelConfig;
+use glint::mailboxes::Mailboxes;
 use glint::pack::{
     PackedGlobals, PackedInstance, PackedLight, PackedMaterial, PackedMesh, PackedTriangle,
     PackedTriangleUv, SceneFeatures,
@@ -184,12 +185,13 @@ fn every_specialisation_validates() {
     let mut failures = Vec::new();
     for features in sets {
         // Every render kernel is in one module, so Render covers them all; each kernel
-        // variant an adapter may choose (hardware: mailboxes, no guard; software: the
-        // reverse; a smaller workgroup where the adapter's limits ask for it). The guard
-        // is in the render module only.
+        // variant an adapter may choose (hardware: mailboxes, no guard; software: one
+        // mailbox slot and the guard; a smaller workgroup where the adapter's limits ask
+        // for it), and the variant without mailboxes the tests compare them with. The
+        // guard is in the render module only.
         let hardware = KernelConfig::default();
         let software = KernelConfig {
-            mailboxes: false,
+            mailboxes: Mailboxes::LastItem,
             iteration_guard: true,
             ..hardware
         };
@@ -197,12 +199,18 @@ fn every_specialisation_validates() {
             workgroup_side: 4,
             ..software
         };
+        let bare = KernelConfig {
+            mailboxes: Mailboxes::Off,
+            ..software
+        };
         for (entry, kernel) in [
             (Entry::Render, hardware),
             (Entry::Render, software),
             (Entry::Render, small),
+            (Entry::Render, bare),
             (Entry::Probe, hardware),
             (Entry::Probe, software),
+            (Entry::Probe, bare),
         ] {
             let source = assemble_with(features, entry, kernel);
             let side = format!("const WORKGROUP_SIZE: u32 = {}u;", kernel.workgroup_side);
@@ -215,9 +223,13 @@ fn every_specialisation_validates() {
                     "[{features}] {entry:?}: guard {} not resolved",
                     kernel.iteration_guard
                 ));
-            } else if kernel.mailboxes != source.contains("(*mailbox).items[slot] = item;") {
+            } else if (kernel.mailboxes == Mailboxes::Full)
+                != source.contains("(*mailbox).items[slot] = item;")
+                || (kernel.mailboxes == Mailboxes::LastItem)
+                    != source.contains("(*mailbox).last = item;")
+            {
                 failures.push(format!(
-                    "[{features}] {entry:?}: mailboxes {} not resolved",
+                    "[{features}] {entry:?}: {} not resolved",
                     kernel.mailboxes
                 ));
             } else if !source.contains(&side) {

@@ -9,6 +9,7 @@ mod common;
 
 use common::probes::{check, random_placed};
 use common::{gpu_context, packed_from_source, Rng};
+use glint::mailboxes::Mailboxes;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{GridMode, OptionOverrides};
 use std::fmt::Write;
@@ -171,8 +172,8 @@ fn instanced_scene(seed: u64, triangles: usize, instances: usize) -> String {
 
 /// Instanced meshes through both levels of grid (and by brute force): every ray agrees
 /// on hit or miss, instance and triangle; closest-hit and any-hit rays alike; with the
-/// traversal's mailboxes (hardware kernel variant) and without (software variant), on
-/// both tracers, and the CPU's answers are the same bit for bit either way.
+/// traversal's mailboxes (hardware kernel variant), with one item slot (software variant)
+/// and without, on both tracers, and the CPU's answers are the same bit for bit each way.
 #[test]
 fn probes_instanced_meshes() {
     use common::probes::{agree, random_rays};
@@ -187,10 +188,10 @@ fn probes_instanced_meshes() {
         for (i, r) in rays.iter_mut().enumerate() {
             r.mode = if i % 4 == 3 { PROBE_ANY_HIT } else { 0 };
         }
-        s.mailboxes = true;
+        s.mailboxes = Mailboxes::Full;
         let with_mailboxes: Vec<_> = rays.iter().map(|r| cpu_probe(&s, r)).collect();
-        for mailboxes in [true, false] {
-            let name = format!("{grid_name}, mailboxes {mailboxes}");
+        for mailboxes in Mailboxes::ALL {
+            let name = format!("{grid_name}, {mailboxes}");
             ctx.kernel.mailboxes = mailboxes;
             s.mailboxes = mailboxes;
             let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));

@@ -38,9 +38,10 @@ pub struct BenchArgs {
     /// its square), instead of the one chosen from the adapter. To measure a GPU.
     #[arg(long, value_parser = ["1", "2", "4", "8"])]
     pub workgroup_side: Option<String>,
-    /// --gpu: keep (on) or drop (off) the traversal's per-ray mailboxes, instead of the
-    /// adapter's choice (off on software adapters). To measure a GPU.
-    #[arg(long, value_parser = ["on", "off"])]
+    /// --gpu: keep the traversal's per-ray mailboxes (on), only one item slot (last) or
+    /// none (off), instead of the adapter's choice (last on software adapters, else on).
+    /// To measure a GPU.
+    #[arg(long, value_parser = ["on", "last", "off"])]
     pub mailboxes: Option<String>,
     /// Only the error-against-time sweep of the AA and shadow settings (`bench_sweep`).
     #[arg(long)]

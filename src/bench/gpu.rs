@@ -13,6 +13,7 @@ use super::timing::fastest;
 use crate::cpu::render::render_with_counters;
 use crate::diff::diff_films;
 use crate::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderOptions};
+use crate::mailboxes::Mailboxes;
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::pipeline::pack_scene;
 use crate::scene::AaMode;
@@ -36,7 +37,8 @@ pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
         ctx.kernel.workgroup_side = side.parse()?;
     }
     if let Some(mailboxes) = &args.mailboxes {
-        ctx.kernel.mailboxes = mailboxes == "on";
+        ctx.kernel.mailboxes = Mailboxes::from_option_name(mailboxes)
+            .ok_or_else(|| anyhow::anyhow!("--mailboxes: on, last or off"))?;
     }
     let timed = ctx
         .device

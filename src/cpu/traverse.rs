@@ -20,24 +20,24 @@ use glam::IVec3;
 
 /// The items a ray has tested, as a direct-mapped cache of `ITEM_MAILBOX_SIZE` slots
 /// (item number modulo the size: one compare). Only kinds for which a second test is
-/// sure to change nothing go in ([`mailboxed`]). A disabled mailbox
-/// (`PackedScene::mailboxes` false: the twin of the GPU's variant without `MAILBOXES`)
-/// remembers nothing, so every item is tested in every cell that lists it, with the same
-/// answers.
+/// sure to change nothing go in ([`mailboxed`]). `PackedScene::mailboxes` picks the
+/// variant, the twin of the GPU kernel's: all the slots (`Mailboxes::Full`), only the
+/// first, so the last item tested (`LastItem`: the GPU's `LAST_ITEM_MAILBOX`), or none
+/// (`Off`: every item is tested in every cell that lists it). The answers are the same.
 // Mirror of shaders/traverse.wgsl::Mailbox — change both.
 pub struct Mailbox {
     items: [u32; ITEM_MAILBOX_SIZE as usize],
-    enabled: bool,
+    slot_mask: Option<u32>,
 }
 
 impl Mailbox {
-    /// An empty mailbox, enabled as `scene.mailboxes` says (on the GPU the switch is the
-    /// module's `MAILBOXES` specialisation).
+    /// An empty mailbox of the variant `scene.mailboxes` names (on the GPU the switch is
+    /// the module's `MAILBOXES` or `LAST_ITEM_MAILBOX` specialisation).
     // Mirror of shaders/traverse.wgsl::mailbox_new — change both.
     pub fn new(scene: &PackedScene) -> Mailbox {
         Mailbox {
             items: [NO_ITEM; ITEM_MAILBOX_SIZE as usize],
-            enabled: scene.mailboxes,
+            slot_mask: scene.mailboxes.item_slot_mask(),
         }
     }
 
@@ -45,8 +45,9 @@ impl Mailbox {
     /// now remembered in its slot.
     // Mirror of shaders/traverse.wgsl::mailbox_seen — change both.
     pub fn seen(&mut self, item: u32) -> bool {
-        if self.enabled {
-            let slot = &mut self.items[(item & (ITEM_MAILBOX_SIZE - 1)) as usize];
+        if let Some(mask) = self.slot_mask {
+            // (The constant mask too, so the index needs no bounds check.)
+            let slot = &mut self.items[(item & mask & (ITEM_MAILBOX_SIZE - 1)) as usize];
             if *slot == item {
                 return true;
             }

@@ -26,22 +26,22 @@ pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &PackedInstance) -> &'a P
 /// the same answer (a miss stays a miss under the same or a smaller t_max, and a hit is
 /// not nearer than itself), so skipping it changes no result. Triangles are stored in
 /// Morton order, so the triangles near a ray have nearby numbers and seldom share a slot.
-/// A disabled one (`PackedScene::mailboxes` false: the twin of the GPU's variant without
-/// `MAILBOXES`) remembers nothing.
+/// Only `Mailboxes::Full` keeps one (`PackedScene::mailboxes`; the GPU's `MAILBOXES`
+/// variant); otherwise it remembers nothing.
 // Mirror of shaders/traverse_mesh.wgsl::TriangleMailbox — change both.
 pub struct TriangleMailbox {
     triangles: [u32; TRIANGLE_MAILBOX_SIZE as usize],
-    enabled: bool,
+    slot_mask: Option<u32>,
 }
 
 impl TriangleMailbox {
-    /// An empty mailbox, enabled as `scene.mailboxes` says (on the GPU the switch is the
+    /// An empty mailbox, kept as `scene.mailboxes` says (on the GPU the switch is the
     /// module's `MAILBOXES` specialisation).
     // Mirror of shaders/traverse_mesh.wgsl::triangle_mailbox_new — change both.
     pub fn new(scene: &PackedScene) -> TriangleMailbox {
         TriangleMailbox {
             triangles: [NO_ITEM; TRIANGLE_MAILBOX_SIZE as usize],
-            enabled: scene.mailboxes,
+            slot_mask: scene.mailboxes.triangle_slot_mask(),
         }
     }
 
@@ -49,8 +49,10 @@ impl TriangleMailbox {
     /// is now remembered in its slot.
     // Mirror of shaders/traverse_mesh.wgsl::triangle_mailbox_seen — change both.
     pub fn seen(&mut self, triangle: u32) -> bool {
-        if self.enabled {
-            let slot = &mut self.triangles[(triangle & (TRIANGLE_MAILBOX_SIZE - 1)) as usize];
+        if let Some(mask) = self.slot_mask {
+            // (The constant mask too, so the index needs no bounds check.)
+            let slot =
+                &mut self.triangles[(triangle & mask & (TRIANGLE_MAILBOX_SIZE - 1)) as usize];
             if *slot == triangle {
                 return true;
             }

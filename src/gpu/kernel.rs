@@ -4,6 +4,7 @@
 //! CPU tracer); they change what the kernel costs on a given kind of device.
 
 use crate::constants::WORKGROUP_SIZE;
+use crate::mailboxes::Mailboxes;
 use std::fmt;
 
 /// How the GPU tracer's shaders are specialised for one adapter (besides the scene's
@@ -12,10 +13,10 @@ use std::fmt;
 pub struct KernelConfig {
     /// Side of the square workgroup of the 2-D kernels; the 1-D kernels run side² lanes.
     pub workgroup_side: u32,
-    /// Whether the traversal keeps the per-ray item and triangle mailboxes (the CPU
-    /// twin's switch is `PackedScene::mailboxes`). They change no hit, only how often a
-    /// primitive listed in several cells is tested.
-    pub mailboxes: bool,
+    /// Which per-ray mailboxes the traversal keeps (the CPU twin's switch is
+    /// `PackedScene::mailboxes`). They change no hit, only how often a primitive listed
+    /// in several cells is tested.
+    pub mailboxes: Mailboxes,
     /// Whether loops check Mesa's loop limiter (`ITERATION_GUARD`).
     pub iteration_guard: bool,
 }
@@ -25,7 +26,7 @@ impl Default for KernelConfig {
     fn default() -> KernelConfig {
         KernelConfig {
             workgroup_side: WORKGROUP_SIZE,
-            mailboxes: true,
+            mailboxes: Mailboxes::Full,
             iteration_guard: false,
         }
     }
@@ -38,10 +39,12 @@ impl KernelConfig {
     ///   8–32 on Intel, 8 on llvmpipe's AVX2) that the adapter's invocation and size
     ///   limits allow. On lavapipe 4×4 measured slower on mesh scenes and 16×16 gave no
     ///   consistent gain (docs/gpu.md).
-    /// - mailboxes: off on software adapters (device type Cpu: lavapipe, SwiftShader,
-    ///   WARP), where llvmpipe turns a private array indexed at run time into per-lane
-    ///   scatters and gathers that cost more than the tests they save (17–38% of the
-    ///   render time on mesh scenes, docs/gpu.md); on elsewhere (not yet measured on
+    /// - mailboxes: one slot (the last item tested) on software adapters (device type Cpu:
+    ///   lavapipe, SwiftShader, WARP), where llvmpipe turns a private array indexed at
+    ///   run time into per-lane scatters and gathers that cost more than the tests they
+    ///   save (17–38% of the render time on mesh scenes, docs/gpu.md), while one slot is
+    ///   a scalar and saves walking a mesh instance again in the next scene cell (9–19%
+    ///   of the GPU time on mesh scenes); the full caches elsewhere (not yet measured on
     ///   hardware).
     /// - iteration guard: on software adapters, whose gallivm caps the loop iterations of
     ///   one invocation.
@@ -49,7 +52,11 @@ impl KernelConfig {
         let software = device_type == wgpu::DeviceType::Cpu;
         KernelConfig {
             workgroup_side: workgroup_side_within(limits),
-            mailboxes: !software,
+            mailboxes: if software {
+                Mailboxes::LastItem
+            } else {
+                Mailboxes::Full
+            },
             iteration_guard: software,
         }
     }
@@ -62,7 +69,7 @@ impl KernelConfig {
 
 impl fmt::Display for KernelConfig {
     /// As `glint bench --gpu`, `glint info` and the shader header print it: "workgroup
-    /// 8×8/64, no mailboxes, iteration guard".
+    /// 8×8/64, last-item mailbox, iteration guard".
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let side = self.workgroup_side;
         write!(
@@ -70,15 +77,7 @@ impl fmt::Display for KernelConfig {
             "workgroup {side}×{side}/{}",
             self.linear_workgroup_size()
         )?;
-        write!(
-            f,
-            ", {}",
-            if self.mailboxes {
-                "mailboxes"
-            } else {
-                "no mailboxes"
-            }
-        )?;
+        write!(f, ", {}", self.mailboxes)?;
         if self.iteration_guard {
             write!(f, ", iteration guard")?;
         }
@@ -108,12 +107,16 @@ mod tests {
     use super::*;
 
     #[test]
-    fn software_adapters_drop_mailboxes_and_guard_loops() {
+    fn software_adapters_keep_one_mailbox_slot_and_guard_loops() {
         let limits = wgpu::Limits::default();
         let soft = KernelConfig::for_adapter(wgpu::DeviceType::Cpu, &limits);
-        assert!(!soft.mailboxes && soft.iteration_guard);
+        assert!(soft.mailboxes == Mailboxes::LastItem && soft.iteration_guard);
+        assert_eq!(
+            soft.to_string(),
+            "workgroup 8×8/64, last-item mailbox, iteration guard"
+        );
         let hard = KernelConfig::for_adapter(wgpu::DeviceType::DiscreteGpu, &limits);
-        assert!(hard.mailboxes && !hard.iteration_guard);
+        assert!(hard.mailboxes == Mailboxes::Full && !hard.iteration_guard);
         assert_eq!(hard.workgroup_side, 8);
     }
 

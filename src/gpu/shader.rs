@@ -6,12 +6,14 @@
 //! optionally negated by a leading `!`.
 //! Besides the scene's features, the adapter's [`KernelConfig`]: the workgroup size (the
 //! `WORKGROUP_SIZE` and `LINEAR_WORKGROUP_SIZE` constants, emitted after the prelude) and
-//! two flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
-//! check, see `shaders/render.wgsl`) and `MAILBOXES` (the traversal's per-ray mailboxes,
-//! see `shaders/traverse.wgsl`).
+//! three flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
+//! check, see `shaders/render.wgsl`), and `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
+//! traversal's per-ray mailboxes, all of them or one item slot: see
+//! `shaders/traverse.wgsl`).
 
 use super::kernel::KernelConfig;
 use crate::constants::wgsl_prelude;
+use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
 
 /// Which compute entry point a pipeline is for. Every entry but `Probe` is in the render
@@ -217,7 +219,11 @@ fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Resul
             continue;
         }
         if name == "MAILBOXES" {
-            any |= kernel.mailboxes;
+            any |= kernel.mailboxes == Mailboxes::Full;
+            continue;
+        }
+        if name == "LAST_ITEM_MAILBOX" {
+            any |= kernel.mailboxes == Mailboxes::LastItem;
             continue;
         }
         let flag = SceneFeatures::ALL
@@ -228,7 +234,7 @@ fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Resul
                 let valid: Vec<String> = SceneFeatures::ALL
                     .iter()
                     .map(|(_, n)| n.to_uppercase().replace('-', "_"))
-                    .chain(["ITERATION_GUARD".to_string(), "MAILBOXES".to_string()])
+                    .chain(["ITERATION_GUARD", "MAILBOXES", "LAST_ITEM_MAILBOX"].map(String::from))
                     .collect();
                 format!("unknown feature '{name}' (valid: {})", valid.join(", "))
             })?;

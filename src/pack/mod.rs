@@ -13,6 +13,7 @@ pub mod texture;
 use crate::accel::aabb::Aabb;
 use crate::accel::grid::{Grid, GridBuildStats};
 use crate::constants::*;
+pub use crate::mailboxes::Mailboxes;
 use crate::scene::flatten::{CsgStep, FlatScene, Object, ObjectKind};
 use crate::scene::{AaMode, Background, CsgOp, DebugView, GridMode};
 use bounds::{csg_bounds, instance_bounds};
@@ -48,11 +49,11 @@ pub struct PackedScene {
     /// the TEXTURE or BUMP feature.
     pub triangle_uvs: Vec<PackedTriangleUv>,
     pub features: SceneFeatures,
-    /// Whether the CPU tracer's traversal keeps its per-ray item and triangle mailboxes
-    /// (true; the twin of the GPU kernel's `MAILBOXES` variant, `gpu::KernelConfig`).
-    /// They change no answer, only how often a primitive listed in several cells is
-    /// tested; tests turn them off to show both tracers agree either way.
-    pub mailboxes: bool,
+    /// Which per-ray mailboxes the CPU tracer's traversal keeps (`Mailboxes::Full`; the
+    /// twin of the GPU kernel variant's, `gpu::KernelConfig`). They change no answer,
+    /// only how often a primitive listed in several cells is tested; tests set each
+    /// variant to show both tracers agree either way.
+    pub mailboxes: Mailboxes,
     /// The scene grid's build counters.
     pub grid_stats: GridBuildStats,
     /// The mesh grids' counters, summed over the meshes.
@@ -225,7 +226,7 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
         texels,
         triangle_uvs,
         features,
-        mailboxes: true,
+        mailboxes: Mailboxes::Full,
         grid_stats: grid.stats,
         mesh_grid_stats: meshes.stats,
     };
