@@ -181,6 +181,10 @@ fn main() -> ExitCode {
         // SAFETY: single-threaded here, before wgpu, rayon or anything else runs.
         unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
     }
+    // More llvmpipe worker threads than cores, for lavapipe's load balance (a no-op on
+    // other adapters; the user's own LP_NUM_THREADS wins).
+    // SAFETY: as above, single-threaded and before any GPU instance.
+    unsafe { glint::gpu::context::set_default_llvmpipe_threads() };
     glint::image_io::remove_temp_files_on_signals();
     let cli = Cli::parse();
     let result = match cli.command {
@@ -399,5 +403,8 @@ fn info() {
             a.max_compute_invocations_per_workgroup, a.max_compute_workgroups_per_dimension
         );
         println!("  glint's kernel on it: {}", a.kernel);
+        if a.device_type == "Cpu" {
+            println!("  {}", glint::gpu::context::llvmpipe_threads_line());
+        }
     }
 }

@@ -681,8 +681,23 @@ fn info_names_the_kernel_variant_of_each_adapter() {
             "{text}"
         );
     }
-    // A software adapter (lavapipe) keeps one mailbox slot and guards its loops.
+    // A software adapter (lavapipe) keeps one mailbox slot and guards its loops, and glint
+    // gives llvmpipe four worker threads a core unless the user set LP_NUM_THREADS.
     if text.contains("device type: Cpu") {
+        assert!(
+            text.contains("llvmpipe worker threads: ") && text.contains("(LP_NUM_THREADS)"),
+            "{text}"
+        );
+        let mine = Command::new(env!("CARGO_BIN_EXE_glint"))
+            .arg("info")
+            .env("LP_NUM_THREADS", "3")
+            .output()
+            .unwrap();
+        let mine = String::from_utf8_lossy(&mine.stdout);
+        assert!(
+            mine.contains("llvmpipe worker threads: 3 (LP_NUM_THREADS)"),
+            "{mine}"
+        );
         assert!(
             text.contains("last-item mailbox, iteration guard"),
             "{text}"

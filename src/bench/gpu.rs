@@ -58,6 +58,9 @@ pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
         ctx.limits.max_compute_invocations_per_workgroup,
         if timed { "timestamp queries" } else { "wall time (the adapter has no timestamp queries)" }
     );
+    if ctx.info.device_type == wgpu::DeviceType::Cpu {
+        println!("{}", crate::gpu::context::llvmpipe_threads_line());
+    }
     println!(
         "\n## GPU vs CPU, {SIDE}×{SIDE} (fastest of {})",
         args.repeat

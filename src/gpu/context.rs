@@ -9,6 +9,48 @@ use super::pipeline_cache::PipelineCache;
 use super::GpuError;
 use std::sync::{Arc, Mutex};
 
+/// The environment variable that sets llvmpipe's (lavapipe's) worker threads.
+pub const LLVMPIPE_THREADS_VAR: &str = "LP_NUM_THREADS";
+
+/// Worker threads glint asks llvmpipe for where the user has not set
+/// [`LLVMPIPE_THREADS_VAR`]: four per core, at most 16 (llvmpipe's own cap). Mesa's
+/// default is one per core, and a dispatch then ends when the thread with the slowest
+/// workgroups does while the other cores idle (on this project's 2 cores, 13% between
+/// the two threads' work on macho-cows); with more threads than cores the operating
+/// system balances them: 5–17% less GPU time on the mesh scenes (docs/gpu.md). Only
+/// llvmpipe reads the variable.
+pub fn default_llvmpipe_threads(cores: usize) -> usize {
+    (4 * cores).clamp(1, 16)
+}
+
+/// Sets [`LLVMPIPE_THREADS_VAR`] to [`default_llvmpipe_threads`] unless it is set.
+///
+/// # Safety
+/// Changes the process environment: call it before any other thread runs (glibc's
+/// `setenv` is not safe beside a concurrent `getenv`), and before the first GPU instance
+/// is made (Mesa reads the variable when its driver starts).
+pub unsafe fn set_default_llvmpipe_threads() {
+    if std::env::var_os(LLVMPIPE_THREADS_VAR).is_none() {
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        // SAFETY: the caller's contract above.
+        unsafe {
+            std::env::set_var(
+                LLVMPIPE_THREADS_VAR,
+                default_llvmpipe_threads(cores).to_string(),
+            )
+        };
+    }
+}
+
+/// llvmpipe's worker threads, as `glint info` and `glint bench --gpu` say it.
+pub fn llvmpipe_threads_line() -> String {
+    let var = LLVMPIPE_THREADS_VAR;
+    match std::env::var(var) {
+        Ok(n) => format!("llvmpipe worker threads: {n} ({var})"),
+        Err(_) => format!("llvmpipe worker threads: one per core ({var} unset)"),
+    }
+}
+
 /// A device and queue on one adapter, plus the pipelines compiled on it so far.
 pub struct GpuContext {
     pub adapter: wgpu::Adapter,
@@ -193,5 +235,18 @@ impl GpuContext {
             }),
             None => Ok(value),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::default_llvmpipe_threads;
+
+    #[test]
+    fn four_llvmpipe_threads_a_core_up_to_llvmpipes_cap() {
+        assert_eq!(default_llvmpipe_threads(1), 4);
+        assert_eq!(default_llvmpipe_threads(2), 8);
+        assert_eq!(default_llvmpipe_threads(64), 16);
+        assert_eq!(default_llvmpipe_threads(0), 1);
     }
 }
