@@ -37,6 +37,13 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     ),
     (
         "shaders/render.wgsl",
+        "block_pixel",
+        "chooses which invocation of a workgroup traces which pixel of its square (the \
+         order of llvmpipe's SIMD lanes); the CPU's pixels have no lanes, and the pixel's \
+         value does not depend on it",
+    ),
+    (
+        "shaders/render.wgsl",
         "loop_limiter_tripped",
         "detects lavapipe's loop limiter, which the CPU does not have",
     ),
