@@ -85,9 +85,9 @@ fn loop_limiter_tripped() -> bool {
 // takes a 4×2 block instead of 8 pixels of one row. llvmpipe runs 8 invocations in the 8
 // lanes of one AVX2 instruction stream, as long as the slowest of them, and a 4×2 block's
 // rays stay together longer than a row's (measured on lavapipe, docs/gpu.md: 5–8% less
-// GPU time on average on nonhier, macho-cows and demo, none on hier). A hardware GPU's 32-lane warp gets an 8×4 block either
-// way. Workgroup sides not a multiple of 4 keep the row order. GPU-only: which invocation
-// traces a pixel changes nothing in the pixel.
+// GPU time on average on nonhier, macho-cows and demo, none on hier). A hardware GPU's
+// 32-lane warp gets an 8×4 block either way. Workgroup sides not a multiple of 4 keep the
+// row order. GPU-only: which invocation traces a pixel changes nothing in the pixel.
 fn block_pixel(gid: vec3<u32>) -> vec2<u32> {
     let side = WORKGROUP_SIZE;
     if side % 4u != 0u {

@@ -43,9 +43,9 @@ impl KernelConfig {
     ///   lavapipe, SwiftShader, WARP), where llvmpipe turns a private array indexed at
     ///   run time into per-lane scatters and gathers that cost more than the tests they
     ///   save (17–38% of the render time on mesh scenes, docs/gpu.md), while one slot is
-    ///   a scalar and saves walking a mesh instance again in the next scene cell (9–19%
-    ///   of the GPU time on mesh scenes); the full caches elsewhere (not yet measured on
-    ///   hardware).
+    ///   a scalar and saves walking a mesh instance again in the next scene cell (3–17%
+    ///   less GPU time where meshes span several cells, 5–8% more on demo without AA:
+    ///   docs/gpu.md); the full caches elsewhere (not yet measured on hardware).
     /// - iteration guard: on software adapters, whose gallivm caps the loop iterations of
     ///   one invocation.
     pub fn for_adapter(device_type: wgpu::DeviceType, limits: &wgpu::Limits) -> KernelConfig {
