@@ -13,14 +13,14 @@ use std::sync::{Arc, Mutex};
 pub const LLVMPIPE_THREADS_VAR: &str = "LP_NUM_THREADS";
 
 /// Worker threads glint asks llvmpipe for where the user has not set
-/// [`LLVMPIPE_THREADS_VAR`]: four per core, at most 16 (llvmpipe's own cap). Mesa's
-/// default is one per core, and a dispatch then ends when the thread with the slowest
+/// [`LLVMPIPE_THREADS_VAR`]: four per core up to 16 (Mesa 22's cap), and never fewer than
+/// the cores (Mesa caps the value itself). Mesa's default is one per core, and a dispatch then ends when the thread with the slowest
 /// workgroups does while the other cores idle (on this project's 2 cores, 13% between
 /// the two threads' work on macho-cows); with more threads than cores the operating
 /// system balances them: 5–20% less GPU time on the mesh scenes (docs/gpu.md). Only
 /// llvmpipe reads the variable.
 pub fn default_llvmpipe_threads(cores: usize) -> usize {
-    (4 * cores).clamp(1, 16)
+    (4 * cores).min(16).max(cores).max(1)
 }
 
 /// Sets [`LLVMPIPE_THREADS_VAR`] to [`default_llvmpipe_threads`] unless it is set.
@@ -246,7 +246,10 @@ mod tests {
     fn four_llvmpipe_threads_a_core_up_to_llvmpipes_cap() {
         assert_eq!(default_llvmpipe_threads(1), 4);
         assert_eq!(default_llvmpipe_threads(2), 8);
-        assert_eq!(default_llvmpipe_threads(64), 16);
+        assert_eq!(default_llvmpipe_threads(4), 16);
+        assert_eq!(default_llvmpipe_threads(8), 16);
+        // Never fewer than Mesa's own default, one per core.
+        assert_eq!(default_llvmpipe_threads(64), 64);
         assert_eq!(default_llvmpipe_threads(0), 1);
     }
 }
