@@ -7,7 +7,8 @@
 //! answer (see `cpu::traverse::mailboxed`), only the work; which kind pays depends on the
 //! device. On the CPU and on hardware GPUs the full caches pay. On a software adapter
 //! (llvmpipe) a private array indexed at run time becomes per-lane scatters and gathers,
-//! which cost more than the tests they save; one slot, a plain scalar there, does not.
+//! which cost more than the tests they save; one slot is a plain scalar there, and on
+//! balance it pays (docs/gpu.md measures both, scene by scene).
 
 use crate::constants::{ITEM_MAILBOX_SIZE, TRIANGLE_MAILBOX_SIZE};
 use std::fmt;
