@@ -460,6 +460,13 @@ fn debug_aa_samples_without_adaptive_aa_is_a_usage_error() {
     );
 }
 
+/// `glint bench --sweep --quick --cpu-only --repeat 1` with `extra` arguments, in `cwd`.
+fn quick_sweep(extra: &[&str], cwd: &Path) -> Output {
+    let mut args = vec!["bench", "--sweep", "--quick", "--cpu-only", "--repeat", "1"];
+    args.extend_from_slice(extra);
+    glint(&args, cwd)
+}
+
 /// `glint bench --sweep --quick` runs the whole sweep machinery on tiny images: the table,
 /// the reference residuals, the default rule, the adaptive-vs-uniform and slope figures,
 /// and the plot.
@@ -468,19 +475,7 @@ fn debug_aa_samples_without_adaptive_aa_is_a_usage_error() {
 fn bench_sweep_quick_prints_its_figures_and_writes_the_plot() {
     let dir = temp_dir("sweep");
     let plot = dir.join("plot.svg");
-    let out = glint(
-        &[
-            "bench",
-            "--sweep",
-            "--quick",
-            "--cpu-only",
-            "--repeat",
-            "1",
-            "--plot",
-            plot.to_str().unwrap(),
-        ],
-        &common::root(),
-    );
+    let out = quick_sweep(&["--plot", plot.to_str().unwrap()], &common::root());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}\n{text}", stderr(&out));
     for needle in [
@@ -520,19 +515,7 @@ fn bench_sweep_on_a_scene_of_ones_own() {
                    {0.3, 0.3, 0.3}, {gr.light({2, 3, 4}, {0.9, 0.9, 0.9}, {1, 0, 0})})",
     )
     .unwrap();
-    let out = glint(
-        &[
-            "bench",
-            "--sweep",
-            "--quick",
-            "--cpu-only",
-            "--repeat",
-            "1",
-            "--scene",
-            scene.to_str().unwrap(),
-        ],
-        &dir,
-    );
+    let out = quick_sweep(&["--scene", scene.to_str().unwrap()], &dir);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}\n{text}", stderr(&out));
     assert!(text.contains("| wide 24×12 | uniform 2×2 |"), "{text}");
