@@ -76,7 +76,7 @@ fn leaf_intervals(leaf: PackedInstance, o: vec3<f32>, d: vec3<f32>) -> vec4<f32>
 // ±CSG_T_LIMIT (a NaN interval fails lo ≤ hi and is dropped).
 // Mirror of src/cpu/csg.rs::csg_push_leaf — change both.
 fn csg_push_leaf(index: u32, o: vec3<f32>, d: vec3<f32>) {
-    let intervals = leaf_intervals(instances[index], o, d);
+    let intervals = leaf_intervals(load_instance(index), o, d);
     var start = 0u;
     if csg_lists > 0u {
         let top = csg_lists - 1u;
@@ -197,7 +197,7 @@ fn csg_evaluate(inst: PackedInstance, o: vec3<f32>, d: vec3<f32>) {
     let magnitude = max_element(abs(o));
     csg_lists = 0u;
     for (var i = 0u; i < len; i++) {
-        let entry = csg_program[start + i];
+        let entry = csg_program_at(start + i);
         let op = entry >> CSG_OP_SHIFT;
         if op == CSG_LEAF {
             csg_push_leaf(entry & CSG_INDEX_MASK, o, d);

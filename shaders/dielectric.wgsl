@@ -178,7 +178,7 @@ fn shadow_transmittance(origin: vec3<f32>, position: vec3<f32>) -> f32 {
             return transmittance;
         }
         let s = surface_at(ray, hit);
-        let m = materials[s.material];
+        let m = load_material(s.material);
         if (m.flags & MATERIAL_REFRACTIVE) == 0u || crossing == MAX_SHADOW_CROSSINGS {
             return 0.0;
         }

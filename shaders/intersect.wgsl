@@ -112,12 +112,13 @@ struct TriangleRay {
 // #if MESH
 // The triangle's vertices as vectors.
 // Mirror of src/cpu/intersect.rs::triangle_vertices — change both.
-fn triangle_vertices(tri: PackedTriangle) -> array<vec3<f32>, 3> {
-    return array<vec3<f32>, 3>(
-        vec3<f32>(tri.p0[0], tri.p0[1], tri.p0[2]),
-        vec3<f32>(tri.p1[0], tri.p1[1], tri.p1[2]),
-        vec3<f32>(tri.p2[0], tri.p2[1], tri.p2[2]),
-    );
+fn triangle_vertices(index: u32) -> array<vec3<f32>, 3> {
+    // The triangle's three texels in the table: p0.xyz p1.x | p1.yz p2.xy | p2.z.
+    let base = index * TRIANGLE_TABLE_TEXELS;
+    let a = bitcast<vec4<f32>>(textureLoad(triangle_table, table_texel(base), 0));
+    let b = bitcast<vec4<f32>>(textureLoad(triangle_table, table_texel(base + 1u), 0));
+    let c = bitcast<f32>(textureLoad(triangle_table, table_texel(base + 2u), 0).x);
+    return array<vec3<f32>, 3>(a.xyz, vec3<f32>(a.w, b.xy), vec3<f32>(b.zw, c));
 }
 
 // Mirror of src/cpu/intersect.rs::triangle_ray_setup — change both.

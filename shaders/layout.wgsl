@@ -151,19 +151,148 @@ struct GpuTile {
     sentinel: u32,
 }
 
-// The packed scene (src/gpu/buffers.rs binds every array; an empty one holds one unused
-// element, since a binding may not be empty).
+// The packed scene: the globals, and every array as a table: a texture 2^TABLE_ROW_BITS
+// texels wide read with textureLoad, since llvmpipe loads a storage buffer lane by lane
+// and a texel for all lanes at once (src/gpu/tables.rs; src/gpu/buffers.rs binds them,
+// an empty array as one zeroed row). Elements of 16-byte-texel tables take *_TABLE_TEXELS
+// texels each; one-word tables hold a word a texel.
 @group(0) @binding(0) var<uniform> globals: PackedGlobals;
-@group(0) @binding(1) var<storage, read> instances: array<PackedInstance>;
-@group(0) @binding(2) var<storage, read> triangles: array<PackedTriangle>;
-@group(0) @binding(3) var<storage, read> materials: array<PackedMaterial>;
-@group(0) @binding(4) var<storage, read> lights: array<PackedLight>;
-@group(0) @binding(5) var<storage, read> cell_start: array<u32>;
-@group(0) @binding(6) var<storage, read> cell_items: array<u32>;
+@group(0) @binding(1) var instance_table: texture_2d<u32>;
+@group(0) @binding(2) var triangle_table: texture_2d<u32>;
+@group(0) @binding(3) var material_table: texture_2d<u32>;
+@group(0) @binding(4) var light_table: texture_2d<u32>;
+// The cells of all grids, CSR-style: the scene grid's, then each mesh's.
+@group(0) @binding(5) var cell_start_table: texture_2d<u32>;
+@group(0) @binding(6) var cell_items_table: texture_2d<u32>;
 // CSG programs (post-order, see intersect_csg) and the texture table + texels.
-@group(0) @binding(14) var<storage, read> csg_program: array<u32>;
-@group(0) @binding(15) var<storage, read> texels: array<u32>;
-// Corner UVs of each triangle (same order as `triangles`; only with TEXTURE or BUMP).
-@group(0) @binding(16) var<storage, read> triangle_uvs: array<PackedTriangleUv>;
+@group(0) @binding(14) var csg_program_table: texture_2d<u32>;
+@group(0) @binding(15) var texel_table: texture_2d<u32>;
+// Corner UVs of each triangle (same order as the triangles; used with TEXTURE or BUMP).
+@group(0) @binding(16) var triangle_uv_table: texture_2d<u32>;
 // Each mesh's triangle range and grid (KIND_MESH instances index it).
-@group(0) @binding(23) var<storage, read> meshes: array<PackedMesh>;
+@group(0) @binding(23) var mesh_table: texture_2d<u32>;
+
+// Texel i of a table (src/gpu/tables.rs lays them out row by row).
+fn table_texel(i: u32) -> vec2<u32> {
+    return vec2<u32>(i & ((1u << TABLE_ROW_BITS) - 1u), i >> TABLE_ROW_BITS);
+}
+
+// cell_start[i]: where cell i's items begin in cell_items (cell i + 1's start ends them).
+fn cell_start_at(i: u32) -> u32 {
+    return textureLoad(cell_start_table, table_texel(i), 0).x;
+}
+
+// cell_items[i].
+fn cell_item_at(i: u32) -> u32 {
+    return textureLoad(cell_items_table, table_texel(i), 0).x;
+}
+
+// #if CSG
+// csg_program[i].
+fn csg_program_at(i: u32) -> u32 {
+    return textureLoad(csg_program_table, table_texel(i), 0).x;
+}
+// #endif
+
+// #if TEXTURE|BUMP
+// texels[i]: a word of the texture table or of a texture's texels.
+fn texel_word(i: u32) -> u32 {
+    return textureLoad(texel_table, table_texel(i), 0).x;
+}
+// #endif
+
+// materials[i].
+fn load_material(i: u32) -> PackedMaterial {
+    let base = i * MATERIAL_TABLE_TEXELS;
+    let t0 = textureLoad(material_table, table_texel(base), 0);
+    let t1 = textureLoad(material_table, table_texel(base + 1u), 0);
+    let t2 = textureLoad(material_table, table_texel(base + 2u), 0);
+    let t3 = textureLoad(material_table, table_texel(base + 3u), 0);
+    return PackedMaterial(
+        bitcast<vec3<f32>>(t0.xyz),
+        bitcast<f32>(t0.w),
+        bitcast<vec3<f32>>(t1.xyz),
+        t1.w,
+        bitcast<vec3<f32>>(t2.xyz),
+        bitcast<f32>(t2.w),
+        t3.x,
+        t3.y,
+        t3.z,
+        bitcast<f32>(t3.w),
+    );
+}
+
+// lights[i].
+fn load_light(i: u32) -> PackedLight {
+    let base = i * LIGHT_TABLE_TEXELS;
+    let t0 = textureLoad(light_table, table_texel(base), 0);
+    let t1 = textureLoad(light_table, table_texel(base + 1u), 0);
+    let t2 = textureLoad(light_table, table_texel(base + 2u), 0);
+    let t3 = textureLoad(light_table, table_texel(base + 3u), 0);
+    let t4 = textureLoad(light_table, table_texel(base + 4u), 0);
+    return PackedLight(
+        bitcast<vec3<f32>>(t0.xyz),
+        t0.w,
+        bitcast<vec3<f32>>(t1.xyz),
+        t1.w,
+        bitcast<vec3<f32>>(t2.xyz),
+        0u,
+        bitcast<vec3<f32>>(t3.xyz),
+        0u,
+        bitcast<vec3<f32>>(t4.xyz),
+        0u,
+    );
+}
+
+// #if MESH
+// #if TEXTURE|BUMP
+// triangle_uvs[i].
+fn load_triangle_uv(i: u32) -> PackedTriangleUv {
+    let base = i * TRIANGLE_UV_TABLE_TEXELS;
+    let a = bitcast<vec4<f32>>(textureLoad(triangle_uv_table, table_texel(base), 0));
+    let b = bitcast<vec4<f32>>(textureLoad(triangle_uv_table, table_texel(base + 1u), 0));
+    return PackedTriangleUv(a.xy, a.zw, b.xy);
+}
+// #endif
+// #endif
+
+// instances[i].
+fn load_instance(i: u32) -> PackedInstance {
+    let base = i * INSTANCE_TABLE_TEXELS;
+    let last = textureLoad(instance_table, table_texel(base + 6u), 0);
+    return PackedInstance(
+        array<vec4<f32>, 3>(
+            instance_row(base), instance_row(base + 1u), instance_row(base + 2u),
+        ),
+        array<vec4<f32>, 3>(
+            instance_row(base + 3u), instance_row(base + 4u), instance_row(base + 5u),
+        ),
+        last.x,
+        last.y,
+        bitcast<vec2<f32>>(last.zw),
+    );
+}
+
+// Texel i of the instance table as floats (a row of an instance's affine maps).
+fn instance_row(i: u32) -> vec4<f32> {
+    return bitcast<vec4<f32>>(textureLoad(instance_table, table_texel(i), 0));
+}
+
+// meshes[i].
+fn load_mesh(i: u32) -> PackedMesh {
+    let base = i * MESH_TABLE_TEXELS;
+    let t0 = textureLoad(mesh_table, table_texel(base), 0);
+    let t1 = textureLoad(mesh_table, table_texel(base + 1u), 0);
+    let t2 = textureLoad(mesh_table, table_texel(base + 2u), 0);
+    let t3 = textureLoad(mesh_table, table_texel(base + 3u), 0);
+    return PackedMesh(
+        bitcast<vec3<f32>>(t0.xyz),
+        t0.w,
+        bitcast<vec3<f32>>(t1.xyz),
+        t1.w,
+        bitcast<vec3<f32>>(t2.xyz),
+        t2.w,
+        t3.xyz,
+        0u,
+    );
+}

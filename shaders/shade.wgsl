@@ -108,7 +108,7 @@ fn instance_surface(inst: PackedInstance, ray: Ray, t: f32) -> Surface {
 // negated on a subtracted operand's surface, which bounds the result from the other side.
 // Mirror of src/cpu/surface.rs::csg_surface — change both.
 fn csg_surface(ray: Ray, hit: Hit) -> Surface {
-    var s = instance_surface(instances[hit.part & CSG_INDEX_MASK], ray, hit.t);
+    var s = instance_surface(load_instance(hit.part & CSG_INDEX_MASK), ray, hit.t);
     if (hit.part & CSG_FLIP) != 0u {
         s.normal = -s.normal;
     }
@@ -137,7 +137,7 @@ fn mapped_magnitude(rows: array<vec4<f32>, 3>, magnitude: f32) -> f32 {
 // Mirror of src/cpu/surface.rs::mesh_surface — change both.
 fn mesh_surface(inst: PackedInstance, hit: Hit) -> Surface {
     let index = hit.part;
-    let corners = triangle_vertices(triangles[index]);
+    let corners = triangle_vertices(index);
     let p0 = corners[0];
     let p1 = corners[1];
     let p2 = corners[2];
@@ -151,7 +151,7 @@ fn mesh_surface(inst: PackedInstance, hit: Hit) -> Surface {
     var dpdv = vec3<f32>(0.0);
 // #if TEXTURE|BUMP
     // Triangle UVs are packed only for scenes that use them.
-    let t = triangle_uvs[index];
+    let t = load_triangle_uv(index);
     uv = t.uv0 * b0 + t.uv1 * hit.b1 + t.uv2 * hit.b2;
     let frame = triangle_frame(p0, p1, p2, t.uv0, t.uv1, t.uv2, normalize(n_obj));
     dpdu = frame[0];
@@ -171,7 +171,7 @@ fn mesh_surface(inst: PackedInstance, hit: Hit) -> Surface {
 // The surface at a hit: an analytic instance's, a CSG object's or a mesh triangle's.
 // Mirror of src/cpu/surface.rs::surface_at — change both.
 fn surface_at(ray: Ray, hit: Hit) -> Surface {
-    let inst = instances[hit.item];
+    let inst = load_instance(hit.item);
 // #if MESH
     if inst.kind == KIND_MESH {
         return mesh_surface(inst, hit);
@@ -205,7 +205,7 @@ fn phong_power(base: f32, exponent: f32) -> f32 {
 // stratum of its parallelogram (random numbers from seed), each with 1/n² of its colour.
 // Mirror of src/cpu/shade.rs::shade_phong — change both.
 fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3<f32> {
-    let m = materials[s.material];
+    let m = load_material(s.material);
     var phong = Phong(m.kd, m.ks);
 // #if TEXTURE
     phong = surface_colours(m, s);
@@ -213,7 +213,7 @@ fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3
     var colour = phong.kd * globals.ambient;
     let origin = offset_ray(s.p, n, s.magnitude);
     for (var i = 0u; i < globals.num_lights; i++) {
-        let light = lights[i];
+        let light = load_light(i);
 // #if AREA_LIGHT
         if light.kind == LIGHT_AREA {
             colour += area_light(s, phong, n, v, origin, light, i, seed);
@@ -230,7 +230,7 @@ fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3
 // instead by the glass it crosses, in scenes with refraction).
 // Mirror of src/cpu/shade.rs::point_light — change both.
 fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec3<f32> {
-    let m = materials[s.material];
+    let m = load_material(s.material);
     let to_light = position - s.p;
     let distance = length(to_light);
     let l = to_light / distance;

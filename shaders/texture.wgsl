@@ -10,9 +10,9 @@
 // Mirror of src/cpu/texture.rs::texel — change both.
 fn texel(texture: u32, x: u32, y: u32) -> vec3<f32> {
     let header = texture * TEXTURE_HEADER_WORDS;
-    let offset = texels[header];
-    let width = texels[header + 1u];
-    let word = texels[offset + y * width + x];
+    let offset = texel_word(header);
+    let width = texel_word(header + 1u);
+    let word = texel_word(offset + y * width + x);
     return vec3<f32>(f32(word & 0xffu), f32((word >> 8u) & 0xffu), f32((word >> 16u) & 0xffu)) / 255.0;
 }
 
@@ -31,8 +31,8 @@ fn wrap_unit(t: f32) -> f32 {
 // Mirror of src/cpu/texture.rs::sample_texture — change both.
 fn sample_texture(texture: u32, uv: vec2<f32>) -> vec3<f32> {
     let header = texture * TEXTURE_HEADER_WORDS;
-    let width = texels[header + 1u];
-    let height = texels[header + 2u];
+    let width = texel_word(header + 1u);
+    let height = texel_word(header + 2u);
     // Continuous texel coordinates: centres at half-integers, v = 0 at the bottom row.
     let x = wrap_unit(uv.x) * f32(width) - 0.5;
     let y = (1.0 - wrap_unit(uv.y)) * f32(height) - 0.5;
@@ -64,7 +64,7 @@ fn texture_level(texture: u32, level: u32) -> u32 {
     if level == 0u {
         return texture;
     }
-    return texels[texture * TEXTURE_HEADER_WORDS + 3u] + level - 1u;
+    return texel_word(texture * TEXTURE_HEADER_WORDS + 3u) + level - 1u;
 }
 
 // The fractional mip level at which `footprint` (a width in uv) spans one texel of
@@ -72,8 +72,8 @@ fn texture_level(texture: u32, level: u32) -> u32 {
 // Mirror of src/cpu/texture.rs::texture_lod — change both.
 fn texture_lod(texture: u32, footprint: f32) -> f32 {
     let header = texture * TEXTURE_HEADER_WORDS;
-    let width = texels[header + 1u];
-    let height = texels[header + 2u];
+    let width = texel_word(header + 1u);
+    let height = texel_word(header + 2u);
     let spanned = footprint * sqrt(f32(width) * f32(height));
     // The negated test also rejects NaN.
     if !(spanned > 1.0) {
@@ -151,8 +151,8 @@ fn texture_height(texture: u32, uv: vec2<f32>) -> f32 {
 // Mirror of src/cpu/texture.rs::height_gradient — change both.
 fn height_gradient(texture: u32, uv: vec2<f32>) -> vec2<f32> {
     let header = texture * TEXTURE_HEADER_WORDS;
-    let width = f32(texels[header + 1u]);
-    let height = f32(texels[header + 2u]);
+    let width = f32(texel_word(header + 1u));
+    let height = f32(texel_word(header + 2u));
     let du = vec2<f32>(1.0 / width, 0.0);
     let dv = vec2<f32>(0.0, 1.0 / height);
     let h_u = (texture_height(texture, uv + du) - texture_height(texture, uv - du)) * (0.5 * width);
@@ -207,7 +207,7 @@ fn bump_normal(m: PackedMaterial, s: Surface) -> vec3<f32> {
 // map, the bumped normal turned to the same side.
 // Mirror of src/cpu/texture.rs::shading_normal — change both.
 fn shading_normal(s: Surface, n: vec3<f32>) -> vec3<f32> {
-    let m = materials[s.material];
+    let m = load_material(s.material);
     if m.bump_texture == NO_TEXTURE {
         return n;
     }

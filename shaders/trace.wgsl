@@ -85,7 +85,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
 // #endif
         colour += entry.weight * shade_phong(s, n, v, SampleSeed(seed.pixel, seed.sample, entry.depth));
 // #if REFLECTION|REFRACTION
-        let m = materials[s.material];
+        let m = load_material(s.material);
         var reflectance = vec3<f32>(0.0);
         if (m.flags & MATERIAL_REFLECTIVE) != 0u {
             reflectance = m.reflection;

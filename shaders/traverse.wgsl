@@ -68,7 +68,7 @@ fn mailboxed(kind: u32) -> bool {
 // hit, if any, is already the best).
 // Mirror of src/cpu/traverse.rs::intersect_item — change both.
 fn intersect_item(item: u32, ray: Ray, t_max: f32, mailbox: ptr<function, Mailbox>) -> Hit {
-    let inst = instances[item];
+    let inst = load_instance(item);
     if mailboxed(inst.kind) && mailbox_seen(mailbox, item) {
         return hit_miss();
     }
@@ -96,7 +96,7 @@ fn intersect_item(item: u32, ray: Ray, t_max: f32, mailbox: ptr<function, Mailbo
 // Mirror of the `items` iterators in src/cpu/traverse.rs::closest_hit — change both.
 fn item_at(i: u32) -> u32 {
 // #if GRID
-    return cell_items[i];
+    return cell_item_at(i);
 // #else
     return i;
 // #endif
@@ -145,7 +145,7 @@ fn closest_hit_inside(entered: EnteredRay) -> Hit {
     }
     loop {
         let cell = cell_index(grid, dda.cell);
-        best = test_items(cell_start[cell], cell_start[cell + 1u], ray, best, &mailbox);
+        best = test_items(cell_start_at(cell), cell_start_at(cell + 1u), ray, best, &mailbox);
         // A hit inside this cell is final; so is leaving the grid or passing t_max.
         let step = dda_step(grid, &dda);
         if !step.valid || best.t <= step.t_cell_exit {
@@ -166,7 +166,7 @@ fn closest_hit_inside(entered: EnteredRay) -> Hit {
 // Mirror of src/cpu/traverse.rs::item_occludes — change both.
 fn item_occludes(item: u32, ray: Ray, t_max: f32, mailbox: ptr<function, Mailbox>) -> bool {
 // #if MESH
-    let inst = instances[item];
+    let inst = load_instance(item);
     if inst.kind == KIND_MESH {
         return !mailbox_seen(mailbox, item) && mesh_occludes(inst, ray, t_max);
     }
@@ -210,7 +210,7 @@ fn any_hit_inside(entered: EnteredRay) -> bool {
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
     loop {
         let cell = cell_index(grid, dda.cell);
-        if any_item_hit(cell_start[cell], cell_start[cell + 1u], ray, t_max, &mailbox) {
+        if any_item_hit(cell_start_at(cell), cell_start_at(cell + 1u), ray, t_max, &mailbox) {
             return true;
         }
         if !dda_step(grid, &dda).valid {

@@ -47,7 +47,7 @@ fn triangle_mailbox_seen(mailbox: ptr<function, TriangleMailbox>, triangle: u32)
 // The mesh of a KIND_MESH instance.
 // Mirror of src/cpu/traverse_mesh.rs::instance_mesh — change both.
 fn instance_mesh(inst: PackedInstance) -> PackedMesh {
-    return meshes[u32(inst.params.x)];
+    return load_mesh(u32(inst.params.x));
 }
 
 // Nearest hit in (0, t_max) with mesh instance `item` (inst): t, the barycentrics and the
@@ -70,13 +70,13 @@ fn intersect_mesh(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit 
     best.t = entered.t_max;
     loop {
         let cell = cell_index(grid, dda.cell);
-        for (var i = cell_start[cell]; i < cell_start[cell + 1u]; i++) {
-            let local = cell_items[i];
+        for (var i = cell_start_at(cell); i < cell_start_at(cell + 1u); i++) {
+            let local = cell_item_at(i);
             if triangle_mailbox_seen(&mailbox, local) {
                 continue;
             }
             let triangle = mesh.first_triangle + local;
-            let p = triangle_vertices(triangles[triangle]);
+            let p = triangle_vertices(triangle);
             let h = intersect_triangle(tri_ray, p[0], p[1], p[2], best.t);
             if h.x < best.t {
                 best = Hit(h.x, item, h.y, h.z, triangle);
@@ -114,12 +114,12 @@ fn mesh_occludes(inst: PackedInstance, ray: Ray, t_max: f32) -> bool {
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
     loop {
         let cell = cell_index(grid, dda.cell);
-        for (var i = cell_start[cell]; i < cell_start[cell + 1u]; i++) {
-            let local = cell_items[i];
+        for (var i = cell_start_at(cell); i < cell_start_at(cell + 1u); i++) {
+            let local = cell_item_at(i);
             if triangle_mailbox_seen(&mailbox, local) {
                 continue;
             }
-            let p = triangle_vertices(triangles[mesh.first_triangle + local]);
+            let p = triangle_vertices(mesh.first_triangle + local);
             if intersect_triangle(tri_ray, p[0], p[1], p[2], entered.t_max).x < entered.t_max {
                 return true;
             }

@@ -86,6 +86,22 @@ pub const MATERIAL_REFRACTIVE: u32 = 2;
 pub const NO_TEXTURE: u32 = u32::MAX;
 
 /// The texture table at the start of `PackedScene::texels`: header i is the words
+/// The GPU keeps the packed scene's arrays in textures of 2^`TABLE_ROW_BITS` texels a
+/// row, read with `textureLoad` (src/gpu/tables.rs says why). 4 096 texels: every Vulkan, Metal and DX12 device
+/// allows 2-D textures at least that wide.
+pub const TABLE_ROW_BITS: u32 = 12;
+/// 16-byte texels of one instance (`PackedInstance`, 112 bytes) in its table.
+pub const INSTANCE_TABLE_TEXELS: u32 = 7;
+/// 16-byte texels of one mesh header (`PackedMesh`, 64 bytes) in its table.
+pub const MESH_TABLE_TEXELS: u32 = 4;
+/// 16-byte texels of one triangle (`PackedTriangle`'s 36 bytes, padded) in its table.
+pub const TRIANGLE_TABLE_TEXELS: u32 = 3;
+/// 16-byte texels of one material (`PackedMaterial`, 64 bytes) in its table.
+pub const MATERIAL_TABLE_TEXELS: u32 = 4;
+/// 16-byte texels of one light (`PackedLight`, 80 bytes) in its table.
+pub const LIGHT_TABLE_TEXELS: u32 = 5;
+/// 16-byte texels of one triangle's corner UVs (`PackedTriangleUv`'s 24 bytes, padded).
+pub const TRIANGLE_UV_TABLE_TEXELS: u32 = 2;
 /// `TEXTURE_HEADER_WORDS·i ..` = (offset of its first texel in `texels`, width, height,
 /// header index of level 1 for a texture's level 0); headers 0 … n − 1 are the scene's
 /// textures, the mip levels' headers follow; texels follow, row-major from the image's top
@@ -210,6 +226,13 @@ pub fn wgsl_prelude() -> String {
         ("MATERIAL_REFRACTIVE", MATERIAL_REFRACTIVE),
         ("NO_TEXTURE", NO_TEXTURE),
         ("TEXTURE_HEADER_WORDS", TEXTURE_HEADER_WORDS),
+        ("TABLE_ROW_BITS", TABLE_ROW_BITS),
+        ("INSTANCE_TABLE_TEXELS", INSTANCE_TABLE_TEXELS),
+        ("MESH_TABLE_TEXELS", MESH_TABLE_TEXELS),
+        ("TRIANGLE_TABLE_TEXELS", TRIANGLE_TABLE_TEXELS),
+        ("MATERIAL_TABLE_TEXELS", MATERIAL_TABLE_TEXELS),
+        ("LIGHT_TABLE_TEXELS", LIGHT_TABLE_TEXELS),
+        ("TRIANGLE_UV_TABLE_TEXELS", TRIANGLE_UV_TABLE_TEXELS),
         ("DEBUG_VIEW_NONE", DEBUG_VIEW_NONE),
         ("DEBUG_VIEW_UV", DEBUG_VIEW_UV),
         ("AA_NONE", AA_NONE),

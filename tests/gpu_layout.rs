@@ -482,7 +482,7 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
                 ("fn surface_colours(", texture),
                 ("fn sample_texture(", texture || bump),
                 ("fn texel(", texture || bump),
-                ("triangle_uvs[", mesh && (texture || bump)),
+                ("load_triangle_uv(", mesh && (texture || bump)),
                 ("fn triangle_frame(", mesh && (texture || bump)),
                 ("fn bump_normal(", bump),
                 ("fn height_gradient(", bump),

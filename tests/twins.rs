@@ -43,6 +43,61 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          value does not depend on it",
     ),
     (
+        "shaders/layout.wgsl",
+        "table_texel",
+        "the texel of a table element (src/gpu/tables.rs): the CPU indexes its slices",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "cell_start_at",
+        "reads `cell_start[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "cell_item_at",
+        "reads `cell_items[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_instance",
+        "reads `instances[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "instance_row",
+        "one row of an instance's affine maps from the instance table (load_instance's helper)",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_mesh",
+        "reads `meshes[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "csg_program_at",
+        "reads `csg_program[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "texel_word",
+        "reads `texels[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_material",
+        "reads `materials[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_light",
+        "reads `lights[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_triangle_uv",
+        "reads `triangle_uvs[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
         "shaders/render.wgsl",
         "loop_limiter_tripped",
         "detects lavapipe's loop limiter, which the CPU does not have",
@@ -76,13 +131,16 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
 /// Types of Rust parameters that a WGSL twin reads from module scope instead (unless the
 /// twin takes a parameter of that type too), and where.
 const MODULE_SCOPE: &[(&str, &str)] = &[
-    ("PackedScene", "the scene's storage bindings"),
+    (
+        "PackedScene",
+        "the scene's tables (textures, src/gpu/tables.rs)",
+    ),
     ("PackedGlobals", "the `globals` uniform"),
     ("AdaptiveTile", "the `tile` uniform"),
     ("Lattice", "the `samples` and `split` storage buffers"),
     ("CsgStack", "the csg_* private variables"),
     ("MediumStack", "the `shading_media` private variable"),
-    ("[u32]", "the `texels` storage buffer"),
+    ("[u32]", "the `texel_table` texture"),
     (
         "impl TraversalCounters",
         "nothing: `--stats` counters are CPU-only",

@@ -1,10 +1,12 @@
-//! GPU buffers for a packed scene: a storage buffer for every packed array (never empty:
-//! an empty array is padded to one zeroed element, since a binding may not be empty) and
-//! a uniform for [`PackedGlobals`](crate::pack::PackedGlobals). Sizes are checked against the
-//! adapter's limits first, so an oversized scene is an error that names the array.
+//! GPU buffers for a packed scene: every packed array as a table (a texture, see
+//! `super::tables`; never empty, since a binding may not be) and a uniform for
+//! [`PackedGlobals`](crate::pack::PackedGlobals). Sizes are checked against the adapter's
+//! limits first, so an oversized scene is an error that names the array; [`check_size`]
+//! does the same for the frame's storage buffers.
 
-pub use super::bindings::SCENE_ARRAY_BINDINGS;
+pub use super::bindings::SCENE_TABLE_BINDINGS;
 use super::context::GpuContext;
+use super::tables::{check_table, triangle_texels, triangle_uv_texels, upload_table, TableFormat};
 use super::GpuError;
 use crate::pack::PackedScene;
 use bytemuck::{Pod, Zeroable};
@@ -33,21 +35,17 @@ pub struct GpuTile {
 /// stops after one when Mesa's limiter has tripped (see `shaders/render.wgsl`).
 pub const LIMITER_SENTINEL: u32 = 2;
 
-/// The scene's buffers: the globals uniform (binding 0) and the arrays.
+/// The scene's buffers: the globals uniform (binding 0) and the tables.
 pub struct SceneBuffers {
     pub globals: wgpu::Buffer,
     /// instances, triangles, materials, lights, cell_start, cell_items, csg_program,
-    /// texels, triangle_uvs, meshes, bound at [`SCENE_ARRAY_BINDINGS`].
-    pub arrays: [wgpu::Buffer; 10],
+    /// texels, triangle_uvs, meshes, bound at [`SCENE_TABLE_BINDINGS`].
+    pub tables: [wgpu::TextureView; 10],
 }
 
-/// The bytes of `data`, or one zeroed element when it is empty.
-fn padded<T: Pod>(data: &[T]) -> Vec<u8> {
-    if data.is_empty() {
-        vec![0; std::mem::size_of::<T>().max(4)]
-    } else {
-        bytemuck::cast_slice(data).to_vec()
-    }
+/// `data` as u32 words (every packed struct is a whole number of words).
+fn words<T: Pod>(data: &[T]) -> Vec<u32> {
+    bytemuck::cast_slice::<u8, u32>(bytemuck::cast_slice(data)).to_vec()
 }
 
 /// Fails with [`GpuError::SceneTooLarge`] when `bytes` exceeds the binding limit.
@@ -69,20 +67,25 @@ pub fn check_size(ctx: &GpuContext, array: &'static str, bytes: u64) -> Result<(
 
 /// Uploads `scene` to `ctx`'s device.
 pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffers, GpuError> {
-    let arrays: [(&'static str, Vec<u8>); 10] = [
-        ("instances", padded(&scene.instances)),
-        ("triangles", padded(&scene.triangles)),
-        ("materials", padded(&scene.materials)),
-        ("lights", padded(&scene.lights)),
-        ("cell_start", padded(&scene.cell_start)),
-        ("cell_items", padded(&scene.cell_items)),
-        ("csg_program", padded(&scene.csg_program)),
-        ("texels", padded(&scene.texels)),
-        ("triangle_uvs", padded(&scene.triangle_uvs)),
-        ("meshes", padded(&scene.meshes)),
+    use TableFormat::{Quads, Words};
+    let tables: [(&'static str, TableFormat, Vec<u32>); 10] = [
+        ("instances", Quads, words(&scene.instances)),
+        ("triangles", Quads, triangle_texels(&scene.triangles)),
+        ("materials", Quads, words(&scene.materials)),
+        ("lights", Quads, words(&scene.lights)),
+        ("cell_start", Words, scene.cell_start.clone()),
+        ("cell_items", Words, scene.cell_items.clone()),
+        ("csg_program", Words, scene.csg_program.clone()),
+        ("texels", Words, scene.texels.clone()),
+        (
+            "triangle_uvs",
+            Quads,
+            triangle_uv_texels(&scene.triangle_uvs),
+        ),
+        ("meshes", Quads, words(&scene.meshes)),
     ];
-    for (name, bytes) in &arrays {
-        check_size(ctx, name, bytes.len() as u64)?;
+    for (name, format, words) in &tables {
+        check_table(&ctx.limits, name, format.texels(words.len()))?;
     }
     let device = &ctx.device;
     ctx.scoped("scene upload", || {
@@ -91,27 +94,21 @@ pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffer
             contents: bytemuck::bytes_of(&scene.globals),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let arrays = arrays.map(|(name, bytes)| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(name),
-                contents: &bytes,
-                usage: wgpu::BufferUsages::STORAGE,
-            })
-        });
-        SceneBuffers { globals, arrays }
+        let tables = tables.map(|(name, format, words)| upload_table(ctx, name, format, &words));
+        SceneBuffers { globals, tables }
     })
 }
 
-/// Bind group entries of the scene: 0 and [`SCENE_ARRAY_BINDINGS`].
+/// Bind group entries of the scene: 0 and [`SCENE_TABLE_BINDINGS`].
 pub fn scene_entries(buffers: &SceneBuffers) -> Vec<wgpu::BindGroupEntry<'_>> {
     let mut entries = vec![wgpu::BindGroupEntry {
         binding: 0,
         resource: buffers.globals.as_entire_binding(),
     }];
-    for (binding, buffer) in SCENE_ARRAY_BINDINGS.iter().zip(&buffers.arrays) {
+    for (binding, view) in SCENE_TABLE_BINDINGS.iter().zip(&buffers.tables) {
         entries.push(wgpu::BindGroupEntry {
             binding: *binding,
-            resource: buffer.as_entire_binding(),
+            resource: wgpu::BindingResource::TextureView(view),
         });
     }
     entries

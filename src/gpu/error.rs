@@ -26,6 +26,15 @@ pub enum GpuError {
         limit: u64,
         excess: u64,
     },
+    /// A traversal table does not fit in one texture of this adapter.
+    #[error("the scene's {array} table is {texels} texels, {rows} rows of {row} where this adapter's max_texture_dimension_2d allows {limit}; render with --backend cpu")]
+    TableTooLarge {
+        array: &'static str,
+        texels: u64,
+        rows: u64,
+        row: u64,
+        limit: u64,
+    },
     /// The assembled shader failed to parse or validate (a bug in glint).
     #[error("the GPU shader for features [{features}] does not compile (a glint bug; use --backend cpu):\n{message}")]
     Shader { features: String, message: String },

@@ -13,6 +13,7 @@ pub mod pipeline_cache;
 pub mod plan;
 pub mod render;
 pub mod shader;
+pub mod tables;
 
 pub use context::{list_adapters, AdapterSummary, GpuContext};
 pub use error::GpuError;

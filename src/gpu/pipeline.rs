@@ -1,6 +1,6 @@
 //! Compute pipelines specialised per feature set, compiled once per (features, entry) on
-//! a context and cached there. The bind group layout is fixed (every packed array is
-//! always bound), so one layout serves every specialisation.
+//! a context and cached there. The bind group layout is fixed (every table of the packed
+//! scene is always bound), so one layout serves every specialisation.
 
 use super::context::GpuContext;
 use super::shader::{assemble_with, validate, Entry};
@@ -9,8 +9,9 @@ use crate::pack::SceneFeatures;
 use std::sync::Arc;
 use std::time::Instant;
 
-pub use super::bindings::SCENE_ARRAY_BINDINGS;
+pub use super::bindings::SCENE_TABLE_BINDINGS;
 pub use super::pipeline_cache::{CompiledPipeline, PipelineCache};
+use super::tables::table_layout_entry;
 /// Render entry: tile uniform and output buffer.
 pub const TILE_BINDING: u32 = 7;
 pub const OUTPUT_BINDING: u32 = 8;
@@ -53,10 +54,10 @@ fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// The bind group layout of `entry`: globals, the scene arrays, then the entry's own.
+/// The bind group layout of `entry`: globals, the scene's tables, then the entry's own.
 fn bind_group_layout(device: &wgpu::Device, entry: Entry) -> wgpu::BindGroupLayout {
     let mut entries = vec![uniform(0)];
-    entries.extend(SCENE_ARRAY_BINDINGS.iter().map(|&b| storage(b, true)));
+    entries.extend(SCENE_TABLE_BINDINGS.iter().map(|&b| table_layout_entry(b)));
     if entry.is_render() {
         entries.push(uniform(TILE_BINDING));
         for b in [
