@@ -68,8 +68,12 @@ fn intersect_mesh(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit 
     var mailbox = triangle_mailbox_new();
     var best = hit_miss();
     best.t = entered.t_max;
+    var cell = cell_index(grid, dda.cell);
     loop {
-        let cell = cell_index(grid, dda.cell);
+        // The step comes before the cell's tests, as on the CPU (which prefetches the
+        // next cell's range meanwhile).
+        let step = dda_step(grid, &dda);
+        let next_cell = cell_index(grid, dda.cell);
         for (var i = cell_start_at(cell); i < cell_start_at(cell + 1u); i++) {
             let local = cell_item_at(i);
             if triangle_mailbox_seen(&mailbox, local) {
@@ -83,10 +87,10 @@ fn intersect_mesh(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit 
             }
         }
         // A hit inside this cell is final; so is leaving the grid or passing t_max.
-        let step = dda_step(grid, &dda);
         if !step.valid || best.t <= step.t_cell_exit {
             break;
         }
+        cell = next_cell;
     }
     if is_hit(best) {
         best.t += entered.t_moved;
@@ -112,8 +116,11 @@ fn mesh_occludes(inst: PackedInstance, ray: Ray, t_max: f32) -> bool {
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
     var mailbox = triangle_mailbox_new();
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
+    var cell = cell_index(grid, dda.cell);
     loop {
-        let cell = cell_index(grid, dda.cell);
+        // The step comes before the cell's tests, as on the CPU.
+        let step = dda_step(grid, &dda);
+        let next_cell = cell_index(grid, dda.cell);
         for (var i = cell_start_at(cell); i < cell_start_at(cell + 1u); i++) {
             let local = cell_item_at(i);
             if triangle_mailbox_seen(&mailbox, local) {
@@ -124,9 +131,10 @@ fn mesh_occludes(inst: PackedInstance, ray: Ray, t_max: f32) -> bool {
                 return true;
             }
         }
-        if !dda_step(grid, &dda).valid {
+        if !step.valid {
             break;
         }
+        cell = next_cell;
     }
     return false;
 }
