@@ -74,7 +74,8 @@ fn intersect_mesh(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit 
         // next cell's range meanwhile).
         let step = dda_step(grid, &dda);
         let next_cell = cell_index(grid, dda.cell);
-        for (var i = cell_start_at(cell); i < cell_start_at(cell + 1u); i++) {
+        let end = cell_start_at(cell + 1u);
+        for (var i = cell_start_at(cell); i < end; i++) {
             let local = cell_item_at(i);
             if triangle_mailbox_seen(&mailbox, local) {
                 continue;
@@ -121,7 +122,8 @@ fn mesh_occludes(inst: PackedInstance, ray: Ray, t_max: f32) -> bool {
         // The step comes before the cell's tests, as on the CPU.
         let step = dda_step(grid, &dda);
         let next_cell = cell_index(grid, dda.cell);
-        for (var i = cell_start_at(cell); i < cell_start_at(cell + 1u); i++) {
+        let end = cell_start_at(cell + 1u);
+        for (var i = cell_start_at(cell); i < end; i++) {
             let local = cell_item_at(i);
             if triangle_mailbox_seen(&mailbox, local) {
                 continue;
