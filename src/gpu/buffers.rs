@@ -10,6 +10,7 @@ use super::tables::{check_table, triangle_texels, triangle_uv_texels, upload_tab
 use super::GpuError;
 use crate::pack::PackedScene;
 use bytemuck::{Pod, Zeroable};
+use std::borrow::Cow;
 use wgpu::util::DeviceExt;
 
 /// Per-dispatch uniform of the render entry point.
@@ -43,9 +44,10 @@ pub struct SceneBuffers {
     pub tables: [wgpu::TextureView; 10],
 }
 
-/// `data` as u32 words (every packed struct is a whole number of words).
-fn words<T: Pod>(data: &[T]) -> Vec<u32> {
-    bytemuck::cast_slice::<u8, u32>(bytemuck::cast_slice(data)).to_vec()
+/// `data` as u32 words, not copied (every packed struct is a whole number of words of
+/// f32 and u32 fields).
+fn words<T: Pod>(data: &[T]) -> Cow<'_, [u32]> {
+    Cow::Borrowed(bytemuck::cast_slice(data))
 }
 
 /// Fails with [`GpuError::SceneTooLarge`] when `bytes` exceeds the binding limit.
@@ -67,20 +69,22 @@ pub fn check_size(ctx: &GpuContext, array: &'static str, bytes: u64) -> Result<(
 
 /// Uploads `scene` to `ctx`'s device.
 pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffers, GpuError> {
+    use std::borrow::Cow::{Borrowed, Owned};
     use TableFormat::{Quads, Words};
-    let tables: [(&'static str, TableFormat, Vec<u32>); 10] = [
+    // (Only the two padded arrays are copied; the rest are uploaded from the scene.)
+    let tables: [(&'static str, TableFormat, Cow<[u32]>); 10] = [
         ("instances", Quads, words(&scene.instances)),
-        ("triangles", Quads, triangle_texels(&scene.triangles)),
+        ("triangles", Quads, Owned(triangle_texels(&scene.triangles))),
         ("materials", Quads, words(&scene.materials)),
         ("lights", Quads, words(&scene.lights)),
-        ("cell_start", Words, scene.cell_start.clone()),
-        ("cell_items", Words, scene.cell_items.clone()),
-        ("csg_program", Words, scene.csg_program.clone()),
-        ("texels", Words, scene.texels.clone()),
+        ("cell_start", Words, Borrowed(&scene.cell_start)),
+        ("cell_items", Words, Borrowed(&scene.cell_items)),
+        ("csg_program", Words, Borrowed(&scene.csg_program)),
+        ("texels", Words, Borrowed(&scene.texels)),
         (
             "triangle_uvs",
             Quads,
-            triangle_uv_texels(&scene.triangle_uvs),
+            Owned(triangle_uv_texels(&scene.triangle_uvs)),
         ),
         ("meshes", Quads, words(&scene.meshes)),
     ];

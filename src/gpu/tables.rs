@@ -1,11 +1,11 @@
 //! The packed scene's arrays as textures ("tables"): instances, triangles, materials,
-//! lights, cell ranges and items, CSG programs, image texels, triangle UVs and mesh
+//! lights, cell starts and items, CSG programs, image texels, triangle UVs and mesh
 //! headers, each a 2-D texture 2^`TABLE_ROW_BITS` texels wide that the kernel reads with
 //! `textureLoad` (`shaders/layout.wgsl`: `cell_start_at`, `load_instance`, …). Element i
 //! of a one-word table is texel i; an element of a 16-byte-texel table is
 //! `*_TABLE_TEXELS` consecutive texels.
 //!
-//! Why not storage buffers, as every other array: Mesa's llvmpipe (lavapipe, glint's CI
+//! Why not storage buffers: Mesa's llvmpipe (lavapipe, glint's CI
 //! GPU) loads a storage buffer with a per-lane scalar loop, one branch per lane and per
 //! word, while a texel fetch is one vector gather for the 8 lanes. Measured on this
 //! machine (`examples/llvmpipe_loads.rs`, 2¹⁸ invocations × 256 dependent reads): a
