@@ -399,6 +399,11 @@ fn info() {
             a.max_storage_buffers_per_shader_stage
         );
         println!(
+            "  max 2-D texture side: {} (the scene's tables: up to {} M texels each)",
+            a.max_texture_dimension_2d,
+            (glint::gpu::tables::TABLE_ROW * a.max_texture_dimension_2d as u64) >> 20
+        );
+        println!(
             "  max invocations per workgroup: {}, max workgroups per dimension: {}",
             a.max_compute_invocations_per_workgroup, a.max_compute_workgroups_per_dimension
         );

@@ -658,6 +658,12 @@ fn info_names_the_kernel_variant_of_each_adapter() {
         .collect();
     assert!(adapters >= 1, "{text}");
     assert_eq!(kernels.len(), adapters, "{text}");
+    // Each adapter's texture side, which bounds the scene's tables (src/gpu/tables.rs).
+    let sides = text
+        .lines()
+        .filter(|l| l.starts_with("  max 2-D texture side: ") && l.contains("texels each"))
+        .count();
+    assert_eq!(sides, adapters, "{text}");
     for k in kernels {
         assert!(
             k.starts_with("workgroup ") && k.contains("mailbox"),

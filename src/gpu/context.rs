@@ -79,6 +79,9 @@ pub struct AdapterSummary {
     pub max_compute_invocations_per_workgroup: u32,
     pub max_compute_workgroups_per_dimension: u32,
     pub max_buffer_size: u64,
+    /// Rows (and most columns) of a 2-D texture: the scene's tables are 4 096 texels wide
+    /// and at most this many rows (`gpu::tables`).
+    pub max_texture_dimension_2d: u32,
     /// The kernel variant glint would compile on it.
     pub kernel: KernelConfig,
 }
@@ -116,6 +119,7 @@ pub fn list_adapters() -> Vec<AdapterSummary> {
                 max_compute_invocations_per_workgroup: l.max_compute_invocations_per_workgroup,
                 max_compute_workgroups_per_dimension: l.max_compute_workgroups_per_dimension,
                 max_buffer_size: l.max_buffer_size,
+                max_texture_dimension_2d: l.max_texture_dimension_2d,
                 kernel: KernelConfig::for_adapter(info.device_type, &l),
             }
         })
