@@ -115,9 +115,9 @@ struct TriangleRay {
 fn triangle_vertices(index: u32) -> array<vec3<f32>, 3> {
     // The triangle's three texels in the table: p0.xyz p1.x | p1.yz p2.xy | p2.z.
     let base = index * TRIANGLE_TABLE_TEXELS;
-    let a = bitcast<vec4<f32>>(textureLoad(triangle_table, table_texel(base), 0));
-    let b = bitcast<vec4<f32>>(textureLoad(triangle_table, table_texel(base + 1u), 0));
-    let c = bitcast<f32>(textureLoad(triangle_table, table_texel(base + 2u), 0).x);
+    let a = bitcast<vec4<f32>>(table_at(triangle_table, base));
+    let b = bitcast<vec4<f32>>(table_at(triangle_table, base + 1u));
+    let c = bitcast<f32>(table_at(triangle_table, base + 2u).x);
     return array<vec3<f32>, 3>(a.xyz, vec3<f32>(a.w, b.xy), vec3<f32>(b.zw, c));
 }
 

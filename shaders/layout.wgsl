@@ -173,41 +173,42 @@ struct GpuTile {
 @group(0) @binding(23) var mesh_table: texture_2d<u32>;
 
 // Texel i of a table (src/gpu/tables.rs lays them out row by row).
-fn table_texel(i: u32) -> vec2<u32> {
-    return vec2<u32>(i & ((1u << TABLE_ROW_BITS) - 1u), i >> TABLE_ROW_BITS);
+fn table_at(table: texture_2d<u32>, i: u32) -> vec4<u32> {
+    let texel = vec2<u32>(i & ((1u << TABLE_ROW_BITS) - 1u), i >> TABLE_ROW_BITS);
+    return textureLoad(table, texel, 0);
 }
 
 // cell_start[i]: where cell i's items begin in cell_items (cell i + 1's start ends them).
 fn cell_start_at(i: u32) -> u32 {
-    return textureLoad(cell_start_table, table_texel(i), 0).x;
+    return table_at(cell_start_table, i).x;
 }
 
 // cell_items[i].
 fn cell_item_at(i: u32) -> u32 {
-    return textureLoad(cell_items_table, table_texel(i), 0).x;
+    return table_at(cell_items_table, i).x;
 }
 
 // #if CSG
 // csg_program[i].
 fn csg_program_at(i: u32) -> u32 {
-    return textureLoad(csg_program_table, table_texel(i), 0).x;
+    return table_at(csg_program_table, i).x;
 }
 // #endif
 
 // #if TEXTURE|BUMP
 // texels[i]: a word of the texture table or of a texture's texels.
 fn texel_word(i: u32) -> u32 {
-    return textureLoad(texel_table, table_texel(i), 0).x;
+    return table_at(texel_table, i).x;
 }
 // #endif
 
 // materials[i].
 fn load_material(i: u32) -> PackedMaterial {
     let base = i * MATERIAL_TABLE_TEXELS;
-    let t0 = textureLoad(material_table, table_texel(base), 0);
-    let t1 = textureLoad(material_table, table_texel(base + 1u), 0);
-    let t2 = textureLoad(material_table, table_texel(base + 2u), 0);
-    let t3 = textureLoad(material_table, table_texel(base + 3u), 0);
+    let t0 = table_at(material_table, base);
+    let t1 = table_at(material_table, base + 1u);
+    let t2 = table_at(material_table, base + 2u);
+    let t3 = table_at(material_table, base + 3u);
     return PackedMaterial(
         bitcast<vec3<f32>>(t0.xyz),
         bitcast<f32>(t0.w),
@@ -225,11 +226,11 @@ fn load_material(i: u32) -> PackedMaterial {
 // lights[i].
 fn load_light(i: u32) -> PackedLight {
     let base = i * LIGHT_TABLE_TEXELS;
-    let t0 = textureLoad(light_table, table_texel(base), 0);
-    let t1 = textureLoad(light_table, table_texel(base + 1u), 0);
-    let t2 = textureLoad(light_table, table_texel(base + 2u), 0);
-    let t3 = textureLoad(light_table, table_texel(base + 3u), 0);
-    let t4 = textureLoad(light_table, table_texel(base + 4u), 0);
+    let t0 = table_at(light_table, base);
+    let t1 = table_at(light_table, base + 1u);
+    let t2 = table_at(light_table, base + 2u);
+    let t3 = table_at(light_table, base + 3u);
+    let t4 = table_at(light_table, base + 4u);
     return PackedLight(
         bitcast<vec3<f32>>(t0.xyz),
         t0.w,
@@ -249,8 +250,8 @@ fn load_light(i: u32) -> PackedLight {
 // triangle_uvs[i].
 fn load_triangle_uv(i: u32) -> PackedTriangleUv {
     let base = i * TRIANGLE_UV_TABLE_TEXELS;
-    let a = bitcast<vec4<f32>>(textureLoad(triangle_uv_table, table_texel(base), 0));
-    let b = bitcast<vec4<f32>>(textureLoad(triangle_uv_table, table_texel(base + 1u), 0));
+    let a = bitcast<vec4<f32>>(table_at(triangle_uv_table, base));
+    let b = bitcast<vec4<f32>>(table_at(triangle_uv_table, base + 1u));
     return PackedTriangleUv(a.xy, a.zw, b.xy);
 }
 // #endif
@@ -259,7 +260,7 @@ fn load_triangle_uv(i: u32) -> PackedTriangleUv {
 // instances[i].
 fn load_instance(i: u32) -> PackedInstance {
     let base = i * INSTANCE_TABLE_TEXELS;
-    let last = textureLoad(instance_table, table_texel(base + 6u), 0);
+    let last = table_at(instance_table, base + 6u);
     return PackedInstance(
         array<vec4<f32>, 3>(
             instance_row(base), instance_row(base + 1u), instance_row(base + 2u),
@@ -275,16 +276,16 @@ fn load_instance(i: u32) -> PackedInstance {
 
 // Texel i of the instance table as floats (a row of an instance's affine maps).
 fn instance_row(i: u32) -> vec4<f32> {
-    return bitcast<vec4<f32>>(textureLoad(instance_table, table_texel(i), 0));
+    return bitcast<vec4<f32>>(table_at(instance_table, i));
 }
 
 // meshes[i].
 fn load_mesh(i: u32) -> PackedMesh {
     let base = i * MESH_TABLE_TEXELS;
-    let t0 = textureLoad(mesh_table, table_texel(base), 0);
-    let t1 = textureLoad(mesh_table, table_texel(base + 1u), 0);
-    let t2 = textureLoad(mesh_table, table_texel(base + 2u), 0);
-    let t3 = textureLoad(mesh_table, table_texel(base + 3u), 0);
+    let t0 = table_at(mesh_table, base);
+    let t1 = table_at(mesh_table, base + 1u);
+    let t2 = table_at(mesh_table, base + 2u);
+    let t3 = table_at(mesh_table, base + 3u);
     return PackedMesh(
         bitcast<vec3<f32>>(t0.xyz),
         t0.w,

@@ -44,8 +44,8 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     ),
     (
         "shaders/layout.wgsl",
-        "table_texel",
-        "the texel of a table element (src/gpu/tables.rs): the CPU indexes its slices",
+        "table_at",
+        "reads the texel of a table element (src/gpu/tables.rs): the CPU indexes its slices",
     ),
     (
         "shaders/layout.wgsl",

@@ -6,8 +6,9 @@
 
 pub use super::bindings::SCENE_TABLE_BINDINGS;
 use super::context::GpuContext;
-use super::tables::{check_table, triangle_texels, triangle_uv_texels, upload_table, TableFormat};
+use super::tables::{check_table, padded_texels, upload_table, TableFormat};
 use super::GpuError;
+use crate::constants::{TRIANGLE_TABLE_TEXELS, TRIANGLE_UV_TABLE_TEXELS};
 use crate::pack::PackedScene;
 use bytemuck::{Pod, Zeroable};
 use std::borrow::Cow;
@@ -74,7 +75,11 @@ pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffer
     // (Only the two padded arrays are copied; the rest are uploaded from the scene.)
     let tables: [(&'static str, TableFormat, Cow<[u32]>); 10] = [
         ("instances", Quads, words(&scene.instances)),
-        ("triangles", Quads, Owned(triangle_texels(&scene.triangles))),
+        (
+            "triangles",
+            Quads,
+            Owned(padded_texels(&scene.triangles, TRIANGLE_TABLE_TEXELS)),
+        ),
         ("materials", Quads, words(&scene.materials)),
         ("lights", Quads, words(&scene.lights)),
         ("cell_start", Words, Borrowed(&scene.cell_start)),
@@ -84,7 +89,7 @@ pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffer
         (
             "triangle_uvs",
             Quads,
-            Owned(triangle_uv_texels(&scene.triangle_uvs)),
+            Owned(padded_texels(&scene.triangle_uvs, TRIANGLE_UV_TABLE_TEXELS)),
         ),
         ("meshes", Quads, words(&scene.meshes)),
     ];

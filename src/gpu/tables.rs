@@ -15,8 +15,9 @@
 
 use super::context::GpuContext;
 use super::GpuError;
-use crate::constants::{TABLE_ROW_BITS, TRIANGLE_TABLE_TEXELS, TRIANGLE_UV_TABLE_TEXELS};
-use crate::pack::layout::{PackedTriangle, PackedTriangleUv};
+use crate::constants::TABLE_ROW_BITS;
+use bytemuck::Pod;
+use std::mem::size_of;
 
 /// Texels in a table row.
 pub const TABLE_ROW: u64 = 1 << TABLE_ROW_BITS;
@@ -75,26 +76,22 @@ pub fn check_table(
     Ok(())
 }
 
-/// `triangles` as table texels: each triangle's nine coordinates in three 16-byte texels
-/// (p0.xyz p1.x | p1.yz p2.xy | p2.z and three zero words).
-pub fn triangle_texels(triangles: &[PackedTriangle]) -> Vec<u32> {
-    let mut out = Vec::with_capacity(triangles.len() * TRIANGLE_TABLE_TEXELS as usize * 4);
-    for t in triangles {
-        let words = [t.p0, t.p1, t.p2].concat();
-        out.extend(words.iter().map(|w| w.to_bits()));
-        out.extend([0u32; 3]);
-    }
-    out
-}
-
-/// `uvs` as table texels: each triangle's three corner UVs in two 16-byte texels
-/// (uv0 uv1 | uv2 and two zero words).
-pub fn triangle_uv_texels(uvs: &[PackedTriangleUv]) -> Vec<u32> {
-    let mut out = Vec::with_capacity(uvs.len() * TRIANGLE_UV_TABLE_TEXELS as usize * 4);
-    for t in uvs {
-        let words = [t.uv0, t.uv1, t.uv2].concat();
-        out.extend(words.iter().map(|w| w.to_bits()));
-        out.extend([0u32; 2]);
+/// `elements` as table texels: each element's words followed by zero words up to
+/// `texels` 16-byte texels (triangles: p0.xyz p1.x | p1.yz p2.xy | p2.z and three zeros;
+/// triangle UVs: uv0 uv1 | uv2 and two zeros).
+pub fn padded_texels<T: Pod>(elements: &[T], texels: u32) -> Vec<u32> {
+    let words = texels as usize * 4;
+    assert!(
+        size_of::<T>() <= words * 4,
+        "an element wider than its texels"
+    );
+    let mut out = Vec::with_capacity(elements.len() * words);
+    for element in elements {
+        let start = out.len();
+        out.extend_from_slice(bytemuck::cast_slice::<T, u32>(std::slice::from_ref(
+            element,
+        )));
+        out.resize(start + words, 0);
     }
     out
 }
@@ -151,6 +148,8 @@ pub fn table_layout_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::constants::{TRIANGLE_TABLE_TEXELS, TRIANGLE_UV_TABLE_TEXELS};
+    use crate::pack::layout::{PackedTriangle, PackedTriangleUv};
 
     #[test]
     fn struct_tables_hold_each_element_in_whole_texels() {
@@ -208,12 +207,26 @@ mod tests {
             p1: [4.0, 5.0, 6.0],
             p2: [7.0, 8.0, 9.0],
         };
-        let words = triangle_texels(&[t, t]);
+        let words = padded_texels(&[t, t], TRIANGLE_TABLE_TEXELS);
         assert_eq!(words.len(), 2 * 12);
         let floats: Vec<f32> = words[..12].iter().map(|&w| f32::from_bits(w)).collect();
         assert_eq!(
             floats,
             [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 0.0, 0.0, 0.0]
         );
+        assert_eq!(words[12..], words[..12]);
+    }
+
+    #[test]
+    fn triangle_uvs_take_two_texels_with_their_corners_in_order() {
+        let t = PackedTriangleUv {
+            uv0: [1.0, 2.0],
+            uv1: [3.0, 4.0],
+            uv2: [5.0, 6.0],
+        };
+        let words = padded_texels(&[t, t], TRIANGLE_UV_TABLE_TEXELS);
+        assert_eq!(words.len(), 2 * 8);
+        let floats: Vec<f32> = words[8..].iter().map(|&w| f32::from_bits(w)).collect();
+        assert_eq!(floats, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 0.0, 0.0]);
     }
 }
