@@ -77,6 +77,16 @@ fn intersect_item(item: u32, ray: Ray, t_max: f32, mailbox: ptr<function, Mailbo
         return intersect_mesh(inst, item, ray, t_max);
     }
 // #endif
+    return intersect_primitive_item(inst, item, ray, t_max);
+}
+
+// Tests one item that is not a mesh instance (an analytic primitive or a CSG object): its
+// hit (t = T_MISS on a miss). Its own function so that a shadow ray's test of such an item
+// does not pass through the mesh walk: llvmpipe (Mesa 22.3) runs the code of every branch,
+// taken by a lane or not, under a lane mask (examples/llvmpipe_branches.rs), so a mesh walk
+// inside a shadow ray's primitive test cost a whole second walk per item.
+// Mirror of src/cpu/traverse.rs::intersect_primitive_item — change both.
+fn intersect_primitive_item(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit {
 // #if SPHERE|CUBE|CYLINDER|CONE|TORUS
 // #if CSG
     if inst.kind == KIND_CSG {
@@ -165,13 +175,16 @@ fn closest_hit_inside(entered: EnteredRay) -> Hit {
 // (it was not hit, or the search would have stopped).
 // Mirror of src/cpu/traverse.rs::item_occludes — change both.
 fn item_occludes(item: u32, ray: Ray, t_max: f32, mailbox: ptr<function, Mailbox>) -> bool {
-// #if MESH
     let inst = load_instance(item);
+    if mailboxed(inst.kind) && mailbox_seen(mailbox, item) {
+        return false;
+    }
+// #if MESH
     if inst.kind == KIND_MESH {
-        return !mailbox_seen(mailbox, item) && mesh_occludes(inst, ray, t_max);
+        return mesh_occludes(inst, ray, t_max);
     }
 // #endif
-    return intersect_item(item, ray, t_max, mailbox).t < t_max;
+    return intersect_primitive_item(inst, item, ray, t_max).t < t_max;
 }
 
 // Whether any of the items item_at(first..last) is hit in (0, t_max).

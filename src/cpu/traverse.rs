@@ -15,7 +15,7 @@ use super::intersect::intersect_instance;
 use super::ray::Ray;
 use super::traverse_mesh::{intersect_mesh, mesh_occludes};
 use crate::constants::{ITEM_MAILBOX_SIZE, KIND_CSG, KIND_MESH, KIND_TORUS, NO_ITEM};
-use crate::pack::PackedScene;
+use crate::pack::{PackedInstance, PackedScene};
 use glam::IVec3;
 
 /// The items a ray has tested, as a direct-mapped cache of `ITEM_MAILBOX_SIZE` slots
@@ -86,6 +86,22 @@ fn intersect_item(
     if inst.kind == KIND_MESH {
         return intersect_mesh(scene, inst, item, ray, t_max, counters);
     }
+    intersect_primitive_item(scene, inst, item, ray, t_max, counters)
+}
+
+/// Tests one item that is not a mesh instance (an analytic primitive or a CSG object):
+/// its hit (t = T_MISS on a miss). Its own function so that a shadow ray's test of such an
+/// item does not pass through the mesh walk (on llvmpipe every branch's code runs, taken or
+/// not: shaders/traverse.wgsl).
+// Mirror of shaders/traverse.wgsl::intersect_primitive_item — change both.
+fn intersect_primitive_item(
+    scene: &PackedScene,
+    inst: &PackedInstance,
+    item: u32,
+    ray: &Ray,
+    t_max: f32,
+    counters: &mut impl TraversalCounters,
+) -> Hit {
     counters.item_tested();
     if inst.kind == KIND_CSG {
         let h = intersect_csg(scene, inst, ray.origin, ray.dir, t_max);
@@ -208,10 +224,13 @@ fn item_occludes(
     counters: &mut impl TraversalCounters,
 ) -> bool {
     let inst = &scene.instances[item as usize];
-    if inst.kind == KIND_MESH {
-        return !mailbox.seen(item) && mesh_occludes(scene, inst, ray, t_max, counters);
+    if mailboxed(inst.kind) && mailbox.seen(item) {
+        return false;
     }
-    intersect_item(scene, item, ray, t_max, mailbox, counters).t < t_max
+    if inst.kind == KIND_MESH {
+        return mesh_occludes(scene, inst, ray, t_max, counters);
+    }
+    intersect_primitive_item(scene, inst, item, ray, t_max, counters).t < t_max
 }
 
 /// Whether any of `items` is hit in (0, t_max).

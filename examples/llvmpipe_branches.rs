@@ -1,0 +1,148 @@
+//! Micro-benchmark: what a branch that no lane takes costs a compute shader on the default
+//! adapter. `plain` is a loop of cheap integer work; `dead_alu` adds, inside the loop, an
+//! `if` that no invocation takes around ~100 float operations; `dead_loop` the same work
+//! inside a loop within the untaken `if`; `dead_switch` a switch whose untaken arms hold
+//! it. If the adapter skips branches with no active lane, all four cost the same. Run:
+//! `cargo run --release --example llvmpipe_branches`.
+use std::time::Instant;
+
+const SHADER: &str = r#"
+@group(0) @binding(0) var<storage, read_write> out_buf: array<u32>;
+@group(0) @binding(1) var<storage, read> param: array<u32>;
+fn heavy(x: f32) -> f32 {
+    var y = x;
+    for (var r = 0u; r < 12u; r++) {
+        y = sqrt(abs(y * 1.0001 + 0.5)) * 1.37 - y * 0.25;
+        y = y * y * 0.5 + 0.125 / (abs(y) + 1.0);
+        y = fma(y, 0.75, 0.2) - floor(y);
+    }
+    return y;
+}
+fn hash(i: u32) -> u32 { return i * 1664525u + 1013904223u; }
+@compute @workgroup_size(64)
+fn plain(@builtin(global_invocation_id) id: vec3<u32>) {
+    var i = id.x * 2654435761u;
+    var acc = 0u;
+    for (var k = 0u; k < 256u; k++) { i = hash(i); acc += i >> 7u; }
+    out_buf[id.x] = acc;
+}
+@compute @workgroup_size(64)
+fn dead_alu(@builtin(global_invocation_id) id: vec3<u32>) {
+    var i = id.x * 2654435761u;
+    var acc = 0u;
+    let never = param[0];
+    for (var k = 0u; k < 256u; k++) {
+        i = hash(i); acc += i >> 7u;
+        if (i == never) { acc += u32(heavy(f32(acc))); }
+    }
+    out_buf[id.x] = acc;
+}
+@compute @workgroup_size(64)
+fn dead_loop(@builtin(global_invocation_id) id: vec3<u32>) {
+    var i = id.x * 2654435761u;
+    var acc = 0u;
+    let never = param[0];
+    for (var k = 0u; k < 256u; k++) {
+        i = hash(i); acc += i >> 7u;
+        if (i == never) {
+            for (var j = 0u; j < (i & 7u); j++) { acc += u32(heavy(f32(acc + j))); }
+        }
+    }
+    out_buf[id.x] = acc;
+}
+@compute @workgroup_size(64)
+fn dead_switch(@builtin(global_invocation_id) id: vec3<u32>) {
+    var i = id.x * 2654435761u;
+    var acc = 0u;
+    let kind = param[1];
+    for (var k = 0u; k < 256u; k++) {
+        i = hash(i); acc += i >> 7u;
+        switch kind {
+            case 1u: { acc += u32(heavy(f32(acc))); }
+            case 2u: { acc += u32(heavy(f32(acc ^ 3u))); }
+            case 3u: { acc += u32(heavy(f32(acc ^ 5u))); }
+            default: { acc += 1u; }
+        }
+    }
+    out_buf[id.x] = acc;
+}
+@compute @workgroup_size(64)
+fn live_alu(@builtin(global_invocation_id) id: vec3<u32>) {
+    var i = id.x * 2654435761u;
+    var acc = 0u;
+    let never = param[0];
+    for (var k = 0u; k < 256u; k++) {
+        i = hash(i); acc += i >> 7u;
+        if (i != never) { acc += u32(heavy(f32(acc))); }
+    }
+    out_buf[id.x] = acc;
+}
+"#;
+
+fn main() {
+    let ctx = glint::gpu::context::GpuContext::new(None).expect("adapter");
+    println!("adapter: {}", ctx.info.name);
+    let device = &ctx.device;
+    let invocations = 1u32 << 18;
+    let out = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: invocations as u64 * 4,
+        usage: wgpu::BufferUsages::STORAGE,
+        mapped_at_creation: false,
+    });
+    let param = wgpu::util::DeviceExt::create_buffer_init(
+        device,
+        &wgpu::util::BufferInitDescriptor {
+            label: None,
+            contents: bytemuck::cast_slice(&[7u32, 0u32]),
+            usage: wgpu::BufferUsages::STORAGE,
+        },
+    );
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: None,
+        source: wgpu::ShaderSource::Wgsl(SHADER.into()),
+    });
+    for entry in ["plain", "dead_alu", "dead_loop", "dead_switch", "live_alu"] {
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: None,
+            layout: None,
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let layout = pipeline.get_bind_group_layout(0);
+        let mut entries = vec![wgpu::BindGroupEntry {
+            binding: 0,
+            resource: out.as_entire_binding(),
+        }];
+        if entry != "plain" {
+            entries.push(wgpu::BindGroupEntry {
+                binding: 1,
+                resource: param.as_entire_binding(),
+            });
+        }
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &layout,
+            entries: &entries,
+        });
+        let mut times = Vec::new();
+        for _ in 0..4 {
+            let start = Instant::now();
+            let mut enc = device.create_command_encoder(&Default::default());
+            {
+                let mut pass = enc.begin_compute_pass(&Default::default());
+                pass.set_pipeline(&pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.dispatch_workgroups(invocations / 64, 1, 1);
+            }
+            ctx.queue.submit([enc.finish()]);
+            device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+        let best = times[1..].iter().cloned().fold(f64::MAX, f64::min);
+        let per_iteration = best * 1e6 / (invocations as f64 * 256.0);
+        println!("{entry:12} best {best:8.1} ms  {per_iteration:6.2} ns per iteration");
+    }
+}
