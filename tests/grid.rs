@@ -83,3 +83,56 @@ fn image_is_independent_of_thread_count() {
         "a second run differs"
     );
 }
+
+/// A scene of `count` unit spheres in a row, written to a fresh folder.
+fn spheres_scene(count: usize) -> std::path::PathBuf {
+    let dir = common::temp_dir(&format!("grid-{count}-spheres"));
+    let mut lua = String::from(
+        "local root = gr.node('root')\n\
+         local m = gr.material({0.7, 0.5, 0.3}, {0.4, 0.4, 0.4}, 20)\n",
+    );
+    for k in 0..count {
+        lua += &format!(
+            "local s{k} = gr.sphere('s{k}')\ns{k}:set_material(m)\n\
+             s{k}:translate({}, 0, 0)\nroot:add_child(s{k})\n",
+            3 * k
+        );
+    }
+    lua += "gr.render(root, 'spheres.png', 40, 30, {0, 1, 9}, {0, 0, -1}, {0, 1, 0}, 50,\n\
+            {0.2, 0.2, 0.2}, {gr.light({4, 6, 8}, {0.9, 0.9, 0.9}, {1, 0, 0})})\n";
+    let path = dir.join("spheres.lua");
+    std::fs::write(&path, lua).unwrap();
+    path
+}
+
+#[test]
+fn a_single_item_gets_no_scene_grid_unless_asked() {
+    // One item: the grid's bounds would be the item's, so it could cull nothing.
+    let one = spheres_scene(1);
+    let auto = load_packed(&one, &overrides(GridMode::Auto));
+    assert_eq!(
+        auto.globals.grid_enabled, 0,
+        "auto built a grid over one item"
+    );
+    let asked = load_packed(&one, &overrides(GridMode::Density(8.0)));
+    assert_eq!(
+        asked.globals.grid_enabled, 1,
+        "an explicit density is obeyed"
+    );
+    let image = render_cpu(&auto).to_rgb8();
+    let background = &image[0..3];
+    assert!(
+        image.chunks(3).filter(|p| *p != background).count() > 100,
+        "the sphere is not in view"
+    );
+    assert!(
+        image == render_cpu(&asked).to_rgb8(),
+        "one item: brute force and the grid differ"
+    );
+    // Two items: a grid can cull one of them, and auto builds it.
+    let two = load_packed(&spheres_scene(2), &overrides(GridMode::Auto));
+    assert_eq!(
+        two.globals.grid_enabled, 1,
+        "auto built no grid over two items"
+    );
+}

@@ -93,7 +93,10 @@ fn write_grids(out: &mut String, image: &RenderedImage) {
             grid.memory_bytes as f64 / (1 << 20) as f64
         );
     } else {
-        let _ = writeln!(out, "  grid: off (brute force over {} items)", grid.items);
+        let _ = match grid.items {
+            1 => writeln!(out, "  grid: off (one item: a grid could cull nothing)"),
+            n => writeln!(out, "  grid: off (brute force over {n} items)"),
+        };
     }
     let meshes = &packed.mesh_grid_stats;
     if !packed.meshes.is_empty() {

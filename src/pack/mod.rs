@@ -207,6 +207,11 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     let lights = lights::pack_lights(scene)?;
     check_limits(num_items)?;
     let bounds = item_bounds(&instances, &csg_program, num_items, &meshes.instance_bounds);
+    // A scene grid over a single item could never cull it (the grid's bounds are the
+    // item's): its DDA would only cost each ray a set-up and a cell walk. So the automatic
+    // choice traverses such a scene by brute force; an explicit density is obeyed.
+    let density =
+        density.filter(|_| num_items > 1 || !matches!(scene.options.grid, GridMode::Auto));
     let grid = Grid::build(&bounds, None, density);
     if grid.enabled {
         features.insert(SceneFeatures::GRID);
