@@ -4,7 +4,8 @@
 //! inside a loop within the untaken `if`; `dead_switch` a switch whose untaken arms hold
 //! it. If the adapter skips branches with no active lane, all four cost the same. Run:
 //! `cargo run --release --example llvmpipe_branches`.
-use std::time::Instant;
+#[path = "llvmpipe_timing/mod.rs"]
+mod llvmpipe_timing;
 
 const SHADER: &str = r#"
 @group(0) @binding(0) var<storage, read_write> out_buf: array<u32>;
@@ -103,46 +104,15 @@ fn main() {
         source: wgpu::ShaderSource::Wgsl(SHADER.into()),
     });
     for entry in ["plain", "dead_alu", "dead_loop", "dead_switch", "live_alu"] {
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: None,
-            layout: None,
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let layout = pipeline.get_bind_group_layout(0);
-        let mut entries = vec![wgpu::BindGroupEntry {
-            binding: 0,
-            resource: out.as_entire_binding(),
-        }];
+        let mut bindings = vec![(0, out.as_entire_binding())];
         if entry != "plain" {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 1,
-                resource: param.as_entire_binding(),
-            });
+            bindings.push((1, param.as_entire_binding()));
         }
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout: &layout,
-            entries: &entries,
-        });
-        let mut times = Vec::new();
-        for _ in 0..4 {
-            let start = Instant::now();
-            let mut enc = device.create_command_encoder(&Default::default());
-            {
-                let mut pass = enc.begin_compute_pass(&Default::default());
-                pass.set_pipeline(&pipeline);
-                pass.set_bind_group(0, &bind, &[]);
-                pass.dispatch_workgroups(invocations / 64, 1, 1);
-            }
-            ctx.queue.submit([enc.finish()]);
-            device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
-            times.push(start.elapsed().as_secs_f64() * 1e3);
-        }
-        let best = times[1..].iter().cloned().fold(f64::MAX, f64::min);
+        let timing = llvmpipe_timing::time_entry(&ctx, &module, entry, &bindings, invocations);
+        let (best, first) = (timing.best_ms, timing.first_ms);
         let per_iteration = best * 1e6 / (invocations as f64 * 256.0);
-        println!("{entry:12} best {best:8.1} ms  {per_iteration:6.2} ns per iteration");
+        println!(
+            "{entry:12} best {best:8.1} ms  {per_iteration:6.2} ns per iteration (first {first:.1} ms)"
+        );
     }
 }

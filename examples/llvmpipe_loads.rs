@@ -5,7 +5,8 @@
 //! reads cost several times the texel fetches, which is why glint keeps its scene in
 //! textures (docs/gpu.md, "The scene in tables"). Run: `cargo run --release --example
 //! llvmpipe_loads`.
-use std::time::Instant;
+#[path = "llvmpipe_timing/mod.rs"]
+mod llvmpipe_timing;
 use wgpu::util::DeviceExt;
 
 const SHADER: &str = r#"
@@ -115,46 +116,8 @@ fn main() {
         contents: bytemuck::cast_slice(&words),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let tex = device.create_texture_with_data(
-        &ctx.queue,
-        &wgpu::TextureDescriptor {
-            label: None,
-            size: wgpu::Extent3d {
-                width: 256,
-                height: 256,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Uint,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(&words),
-    );
-    let view = tex.create_view(&Default::default());
-    let texr = device.create_texture_with_data(
-        &ctx.queue,
-        &wgpu::TextureDescriptor {
-            label: None,
-            size: wgpu::Extent3d {
-                width: 512,
-                height: 512,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R32Uint,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(&words),
-    );
-    let viewr = texr.create_view(&Default::default());
+    let view = texture_view(&ctx, 256, wgpu::TextureFormat::Rgba32Uint, &words);
+    let viewr = texture_view(&ctx, 512, wgpu::TextureFormat::R32Uint, &words);
     let invocations = 1u32 << 18;
     let out = device.create_buffer(&wgpu::BufferDescriptor {
         label: None,
@@ -175,68 +138,55 @@ fn main() {
         "ssbo_coherent",
         "tex_coherent",
     ] {
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: None,
-            layout: None,
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let layout = pipeline.get_bind_group_layout(0);
-        let mut entries = vec![wgpu::BindGroupEntry {
-            binding: 2,
-            resource: out.as_entire_binding(),
-        }];
+        let mut bindings = vec![(2, out.as_entire_binding())];
         if entry == "ssbo_random" || entry == "ssbo_coherent" {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 0,
-                resource: data.as_entire_binding(),
-            });
+            bindings.push((0, data.as_entire_binding()));
         }
         if entry == "ssbo_scalar" {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 3,
-                resource: data.as_entire_binding(),
-            });
+            bindings.push((3, data.as_entire_binding()));
         }
         if entry == "texr_scalar" {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 4,
-                resource: wgpu::BindingResource::TextureView(&viewr),
-            });
+            bindings.push((4, wgpu::BindingResource::TextureView(&viewr)));
         }
         if entry.starts_with("tex_") {
-            entries.push(wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::TextureView(&view),
-            });
+            bindings.push((1, wgpu::BindingResource::TextureView(&view)));
         }
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout: &layout,
-            entries: &entries,
-        });
-        let mut times = Vec::new();
-        for _ in 0..4 {
-            let start = Instant::now();
-            let mut enc = device.create_command_encoder(&Default::default());
-            {
-                let mut pass = enc.begin_compute_pass(&Default::default());
-                pass.set_pipeline(&pipeline);
-                pass.set_bind_group(0, &bind, &[]);
-                pass.dispatch_workgroups(invocations / 64, 1, 1);
-            }
-            ctx.queue.submit([enc.finish()]);
-            device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
-            times.push(start.elapsed().as_secs_f64() * 1e3);
-        }
+        let timing = llvmpipe_timing::time_entry(&ctx, &module, entry, &bindings, invocations);
+        let (best, first) = (timing.best_ms, timing.first_ms);
         let reads = invocations as f64 * 256.0;
-        let best = times[1..].iter().cloned().fold(f64::MAX, f64::min);
         println!(
             "{entry:14} best {best:8.1} ms  {:6.2} ns/read (first {:.1} ms)",
             best * 1e6 / reads,
-            times[0]
+            first
         );
     }
+}
+
+/// A `side`×`side` texture of `format` holding `words` (as many as it takes), as a view.
+fn texture_view(
+    ctx: &glint::gpu::context::GpuContext,
+    side: u32,
+    format: wgpu::TextureFormat,
+    words: &[u32],
+) -> wgpu::TextureView {
+    let texture = ctx.device.create_texture_with_data(
+        &ctx.queue,
+        &wgpu::TextureDescriptor {
+            label: None,
+            size: wgpu::Extent3d {
+                width: side,
+                height: side,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(words),
+    );
+    texture.create_view(&Default::default())
 }
