@@ -1,13 +1,14 @@
 // adaptive.wgsl — adaptive anti-aliasing (Whitted 1980) per tile, in passes over a dyadic
 // lattice of (tile.side·2^d + 1)² points in `samples` (d = aa_depth; lattice point (i, j)
-// is film position (x0 + i/2^d, y0 + j/2^d)), one sample per invocation:
-// adaptive_corners traces the pixel corners (w of each sample: whether it saw a penumbra,
-// penumbra_sample); for each level k < d, adaptive_decide flags the level-k squares to
-// split (square_splits) and appends them to level k's list, adaptive_work_args
-// turns the list's length into the indirect dispatches of the passes over it, and
-// adaptive_midpoints traces the listed squares' midpoints; then adaptive_integrate
-// averages each pixel over its quadtree. Below level 0 the passes run over the compacted
-// lists only (indirect dispatches), so idle invocations do not grow with depth. The decisions, samples and
+// is film position (x0 + i/2^d, y0 + j/2^d), sampled within the lattice cell around it,
+// jittered by a hash of its position: lattice_sample), one sample per invocation:
+// adaptive_corners traces the pixel corners (w of each sample: whether it saw a penumbra);
+// for each level k < d, adaptive_decide flags the level-k squares to split
+// (square_splits) and appends them to level k's list, adaptive_work_args turns the list's
+// length into the indirect dispatches of the passes over it, and adaptive_midpoints
+// traces the listed squares' midpoints; then adaptive_integrate averages each pixel over
+// its quadtree. Below level 0 the passes run over the compacted lists only (indirect
+// dispatches), so idle invocations do not grow with depth. The decisions, samples and
 // summation order are those of the per-pixel walk, src/cpu/render.rs::adaptive_pixel.
 // Mirror of src/cpu/adaptive.rs — change both.
 
@@ -128,7 +129,7 @@ fn lattice_position(i: u32, j: u32) -> vec2<f32> {
 // Mirror of src/cpu/adaptive.rs::trace_lattice_point — change both.
 fn trace_lattice_point(i: u32, j: u32) {
     let pos = lattice_position(i, j);
-    samples[lattice_index(i, j)] = penumbra_sample(pos.x, pos.y, adaptive_seed(pos.x, pos.y));
+    samples[lattice_index(i, j)] = lattice_sample(pos.x, pos.y);
 // #if ITERATION_GUARD
     // Every pixel whose closed square holds the point (straight-line code: after the
     // limiter trips, loops run one iteration).

@@ -29,6 +29,22 @@ fn penumbra_sample(fx: f32, fy: f32, seed: SampleSeed) -> vec4<f32> {
     return vec4<f32>(colour, select(0.0, 1.0, penumbra_seen));
 }
 
+// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact): the
+// point jittered, by hashes of its seed, within a square AA_LATTICE_JITTER steps of the
+// finest lattice (2^aa_depth per pixel) wide around it, then penumbra_sample there with
+// the point's own seed. The jitter depends only on the point, so a point shared by
+// neighbouring squares, pixels or chunks is the same sample whichever pass traces it.
+// Mirror of src/cpu/pixel_sample.rs::lattice_sample — change both.
+fn lattice_sample(fx: f32, fy: f32) -> vec4<f32> {
+    let seed = adaptive_seed(fx, fy);
+    // A power of two: the products below are exact, so a fused multiply-add rounds the
+    // sums as the CPU's separate operations do.
+    let width = AA_LATTICE_JITTER * ldexp(1.0, -i32(globals.aa_depth));
+    let jx = (random_unit(seed.pixel, seed.sample, 0u) - 0.5) * width;
+    let jy = (random_unit(seed.pixel, seed.sample, 1u) - 0.5) * width;
+    return penumbra_sample(fx + jx, fy + jy, seed);
+}
+
 // Largest per-channel spread of four colours.
 // Mirror of src/cpu/pixel_sample.rs::contrast — change both.
 fn contrast(c: array<vec3<f32>, 4>) -> f32 {

@@ -271,6 +271,7 @@ pub fn wgsl_prelude() -> String {
         ("LUMINANCE_G", LUMINANCE_G),
         ("LUMINANCE_B", LUMINANCE_B),
         ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
+        ("AA_LATTICE_JITTER", AA_LATTICE_JITTER),
         ("TORUS_ROOT_TOLERANCE", TORUS_ROOT_TOLERANCE),
         ("TORUS_BOUND_MARGIN", TORUS_BOUND_MARGIN),
         ("CSG_COINCIDENT_RELATIVE", CSG_COINCIDENT_RELATIVE),
@@ -295,6 +296,13 @@ pub const MAX_AA_DEPTH: u32 = 6;
 /// `aa_depth`): level 2 is 4×4 squares per pixel, the density of uniform 4×4, where
 /// shadow noise (n² shadow rays per sample) rather than edges sets the error.
 pub const AA_PENUMBRA_DEPTH: u32 = 2;
+/// Width of the square a lattice point of adaptive anti-aliasing is jittered in, in steps
+/// of the finest lattice (2^aa_depth per pixel): 1 spreads each point over the whole cell
+/// of the finest lattice around it, so the lattice samples the film stratified instead of
+/// on a regular grid (a regular lattice puts every sample of a long straight edge at the
+/// same offset from it, and a pixel-aligned edge exactly on its points: a visible line of
+/// the same error along the edge). A power of two, so a jittered position is exact.
+pub const AA_LATTICE_JITTER: f32 = 1.0;
 /// Largest n of uniform n×n anti-aliasing.
 pub const MAX_AA_SAMPLES: u32 = 64;
 /// Square tile side, in pixels, for both tracers' work split.

@@ -73,3 +73,60 @@ fn penumbrae_split_down_to_their_depth() {
         "deeper than penumbra depth"
     );
 }
+
+/// Two walls meeting at x = 0 straight ahead of the camera (black to the left, white to
+/// the right; ambient light only), so the edge between them lies exactly on the boundary
+/// of pixel columns 7 and 8 of a 16 × 64 image.
+fn pixel_aligned_edge(depth: u32) -> glint::pack::PackedScene {
+    let source = "
+        black = gr.material({0, 0, 0}, {0, 0, 0}, 10)
+        white = gr.material({1, 1, 1}, {0, 0, 0}, 10)
+        root = gr.node('root')
+        l = gr.cube('l') l:scale(10, 20, 1) l:translate(-10, -10, -5) l:set_material(black)
+        r = gr.cube('r') r:scale(10, 20, 1) r:translate(0, -10, -5) r:set_material(white)
+        root:add_child(l) root:add_child(r)
+        gr.render(root, 'edge.png', 16, 64, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 50,
+                  {1, 1, 1}, {})
+    ";
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Adaptive),
+        aa_threshold: Some(0.0),
+        aa_depth: Some(glint::scene::AaDepth::constant(depth)),
+        ..OptionOverrides::default()
+    };
+    common::packed_from_source(source, &overrides).remove(0)
+}
+
+/// The lattice is jittered (AA_LATTICE_JITTER): the points on a pixel boundary spread over
+/// both sides of an edge that lies exactly on it, so its two pixel columns share the
+/// boundary's error (at most half the boundary's weight, 1/32 of a pixel at depth 3, each
+/// on average; less where a square whose boundary points all fell on its own side stays
+/// unsplit and exact). A regular lattice puts them all on the edge, one side of it: one
+/// column then errs by the boundary's whole weight (1/16) in every row, a visible line,
+/// and the other not at all.
+#[test]
+fn lattice_points_on_a_pixel_aligned_edge_fall_on_both_sides() {
+    let scene = pixel_aligned_edge(3);
+    let film = glint::cpu::render(&scene, &|_, _| {});
+    let column_error = |x: usize, exact: f32| {
+        (0..64)
+            .map(|y| (film.pixels[y * 16 + x][1] - exact).abs())
+            .sum::<f32>()
+            / 64.0
+    };
+    let (left, right) = (column_error(7, 0.0), column_error(8, 1.0));
+    eprintln!("mean error: column 7 (black) {left}, column 8 (white) {right}");
+    for (name, err) in [("7", left), ("8", right)] {
+        assert!(
+            (1.0 / 128.0..=3.0 / 64.0).contains(&err),
+            "column {name}: mean error {err}: the boundary's error is not shared"
+        );
+    }
+    assert!(
+        left + right < 1.0 / 16.0,
+        "more error in all than one regular column"
+    );
+    // Away from the edge the walls are exact.
+    assert_eq!(column_error(3, 0.0), 0.0);
+    assert_eq!(column_error(12, 1.0), 0.0);
+}

@@ -4,7 +4,8 @@
 //! per-pixel walk traces a shared corner up to four times.
 //!
 //! For a tile of `size` pixels and depth d, lattice point (i, j) is film position
-//! (x0 + i/2^d, y0 + j/2^d). Squares of level k have a side of 2^(d−k) lattice steps; the
+//! (x0 + i/2^d, y0 + j/2^d), its sample taken within the lattice cell around it
+//! ([`lattice_sample`]: jittered by a hash of the position). Squares of level k have a side of 2^(d−k) lattice steps; the
 //! level-0 squares are the pixels. The passes:
 //! 1. [`adaptive_corners`]: trace every pixel corner;
 //! 2. for k in 0..d: [`adaptive_decide`] flags each level-k square that exists (every
@@ -22,8 +23,7 @@
 //! Every function here has a WGSL twin of the same name in `shaders/adaptive.wgsl`, where
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
 
-use super::pixel_sample::{contrast, penumbra_sample};
-use super::rng::adaptive_seed;
+use super::pixel_sample::{contrast, lattice_sample};
 use super::traverse::TraversalCounters;
 use crate::constants::{AA_PENUMBRA_DEPTH, AA_STACK_SIZE};
 use crate::pack::PackedScene;
@@ -66,7 +66,7 @@ fn unpack_square(entry: u32) -> (u32, u32) {
     (entry & 0xffff, entry >> 16)
 }
 
-/// A tile's lattice colours and penumbra flags ([`penumbra_sample`]; the GPU keeps the
+/// A tile's lattice colours and penumbra flags ([`lattice_sample`]; the GPU keeps the
 /// flag in the sample's fourth component), split flags and, per level, the list of split
 /// squares (at the level's split-flag offset, [`split_offset`]) and its length.
 pub struct Lattice {
@@ -119,7 +119,7 @@ fn trace_lattice_point(
 ) {
     let t = lat.tile;
     let (fx, fy) = lattice_position(&t, i, j);
-    let (colour, penumbra) = penumbra_sample(scene, fx, fy, adaptive_seed(fx, fy), counters);
+    let (colour, penumbra) = lattice_sample(scene, fx, fy, counters);
     let k = lattice_index(&t, i, j);
     lat.points[k] = colour;
     lat.penumbra[k] = penumbra;

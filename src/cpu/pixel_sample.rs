@@ -2,9 +2,10 @@
 //! both build on: one camera sample's colour, and the contrast test of four colours.
 
 use super::ray::camera_ray;
-use super::rng::SampleSeed;
+use super::rng::{adaptive_seed, random_unit, SampleSeed};
 use super::trace::trace_ray;
 use super::traverse::TraversalCounters;
+use crate::constants::AA_LATTICE_JITTER;
 use crate::pack::PackedScene;
 use glam::Vec3;
 
@@ -59,6 +60,27 @@ pub(crate) fn penumbra_sample(
     };
     let colour = sample(scene, fx, fy, seed, &mut watch);
     (colour, watch.partial)
+}
+
+/// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact): the
+/// point jittered, by hashes of its seed, within a square AA_LATTICE_JITTER steps of the
+/// finest lattice (2^aa_depth per pixel) wide around it, then [`penumbra_sample`] there
+/// with the point's own seed. The jitter depends only on the point, so a point shared by
+/// neighbouring squares, pixels or chunks is the same sample whichever pass traces it.
+// Mirror of shaders/render.wgsl::lattice_sample — change both.
+pub(crate) fn lattice_sample(
+    scene: &PackedScene,
+    fx: f32,
+    fy: f32,
+    counters: &mut impl TraversalCounters,
+) -> (Vec3, bool) {
+    let seed = adaptive_seed(fx, fy);
+    // A power of two: the products below are exact, so a fused multiply-add on the GPU
+    // rounds the sums as these do.
+    let width = AA_LATTICE_JITTER / (1u32 << scene.globals.aa_depth) as f32;
+    let jx = (random_unit(seed.pixel, seed.sample, 0) - 0.5) * width;
+    let jy = (random_unit(seed.pixel, seed.sample, 1) - 0.5) * width;
+    penumbra_sample(scene, fx + jx, fy + jy, seed, counters)
 }
 
 /// Largest per-channel spread of four colours.

@@ -4,8 +4,8 @@
 //! ([`super::adaptive`]); [`render_pixel`] is the per-pixel reference of every mode.
 
 use super::adaptive::{adaptive_tile, square_splits, Lattice};
-use super::pixel_sample::{penumbra_sample, sample};
-use super::rng::{adaptive_seed, random_unit, SampleSeed};
+use super::pixel_sample::{lattice_sample, sample};
+use super::rng::{random_unit, SampleSeed};
 use super::traverse::{Counters, NoCounters, TraversalCounters};
 use crate::constants::{
     adaptive_tile_side, AA_ADAPTIVE, AA_STACK_SIZE, AA_UNIFORM, CPU_ADAPTIVE_LATTICE_SIDE,
@@ -35,8 +35,9 @@ struct AdaptiveSquare {
 /// Adaptive anti-aliasing of pixel (x, y) (Whitted 1980): sample the corners; where they
 /// differ by more than `aa_threshold`, or one saw a penumbra and the square is above
 /// AA_PENUMBRA_DEPTH ([`square_splits`]), split into four and recurse — here with an
-/// explicit stack — down to `aa_depth`. Sample positions lie on a dyadic lattice, so
-/// neighbouring pixels see the same colour at a shared corner. The renderers run the same
+/// explicit stack — down to `aa_depth`. Sample positions lie on a dyadic lattice, each
+/// jittered by its own hash ([`lattice_sample`]), so neighbouring pixels see the same
+/// colour at a shared corner. The renderers run the same
 /// walk per tile in passes ([`super::adaptive`], on both tracers); this is its per-pixel
 /// reference.
 pub fn adaptive_pixel(
@@ -54,7 +55,7 @@ pub fn adaptive_pixel(
     let mut penumbra = [false; 4];
     for (k, (corner, p)) in corners.iter_mut().zip(&mut penumbra).enumerate() {
         let (cx, cy) = (fx + (k & 1) as f32, fy + (k >> 1) as f32);
-        (*corner, *p) = penumbra_sample(scene, cx, cy, adaptive_seed(cx, cy), counters);
+        (*corner, *p) = lattice_sample(scene, cx, cy, counters);
     }
     let mut stack = [AdaptiveSquare {
         x: fx,
@@ -90,8 +91,7 @@ pub fn adaptive_pixel(
         let mut mid_penumbra = [false; 5];
         for (m, (ox, oy)) in offsets.into_iter().enumerate() {
             let (px, py) = (sq.x + ox, sq.y + oy);
-            (mid[m], mid_penumbra[m]) =
-                penumbra_sample(scene, px, py, adaptive_seed(px, py), counters);
+            (mid[m], mid_penumbra[m]) = lattice_sample(scene, px, py, counters);
         }
         let [top, left, centre, right, bottom] = mid;
         let [p_top, p_left, p_centre, p_right, p_bottom] = mid_penumbra;
