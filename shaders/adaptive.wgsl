@@ -103,13 +103,16 @@ fn square_penumbra(level: u32, a: u32, b: u32) -> bool {
     return point_penumbra(i, j) || point_penumbra(i + l, j) || point_penumbra(i, j + l) || point_penumbra(i + l, j + l);
 }
 
-// Whether a square of `level` with these corners splits: they differ by more than
-// `threshold` (NaN included), or one of them saw a penumbra (`penumbra`) and the level is
-// above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down to the density of
-// uniform 4×4). The per-pixel walk's test too.
+// Whether a square of `level` with these corners splits: their contrast times the
+// square's side (2^−level pixels) exceeds `threshold` (NaN included), that is, they differ
+// by more than 2^level · `threshold`; or one of them saw a penumbra (`penumbra`) and the
+// level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down to the
+// density of uniform 4×4). The per-pixel walk's test too.
 // Mirror of src/cpu/adaptive.rs::square_splits — change both.
 fn square_splits(corners: array<vec3<f32>, 4>, penumbra: bool, level: u32, threshold: f32) -> bool {
-    let differ = !(contrast(corners) <= threshold);
+    // (A power of two: the product is exact, on both tracers.)
+    let level_threshold = threshold * f32(1u << level);
+    let differ = !(contrast(corners) <= level_threshold);
     return differ || (penumbra && level < AA_PENUMBRA_DEPTH);
 }
 

@@ -126,7 +126,8 @@ struct RenderArgs {
     /// n of uniform n×n anti-aliasing.
     #[arg(long, value_parser = AaSamples::parse)]
     samples: Option<AaSamples>,
-    /// Adaptive AA: corner contrast that splits a square.
+    /// Adaptive AA: the corner contrast that splits a pixel; a square of side 2^-k pixel
+    /// splits at 2^k times it.
     #[arg(long, value_parser = parse_non_negative)]
     aa_threshold: Option<f32>,
     /// Adaptive AA: deepest split.

@@ -164,10 +164,14 @@ fn square_penumbra(lat: &Lattice, level: u32, a: u32, b: u32) -> bool {
         || lat.point_penumbra(i + l, j + l)
 }
 
-/// Whether a square of `level` with these corners splits: they differ by more than
-/// `threshold` (NaN included), or one of them saw a penumbra (`penumbra`) and the level
-/// is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down to the density
-/// of uniform 4×4). The per-pixel walk's test too.
+/// Whether a square of `level` with these corners splits: their contrast times the
+/// square's side (2^−level pixels) exceeds `threshold` (NaN included), that is, they
+/// differ by more than 2^level · `threshold`; or one of them saw a penumbra (`penumbra`)
+/// and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down
+/// to the density of uniform 4×4). The side weighs the contrast because a square's error
+/// in its pixel scales with its size: a small square of the same contrast matters less
+/// (measured in docs/performance.md: fewer rays for the same error). The per-pixel walk's
+/// test too.
 // Mirror of shaders/adaptive.wgsl::square_splits — change both.
 pub(crate) fn square_splits(
     corners: &[Vec3; 4],
@@ -175,8 +179,10 @@ pub(crate) fn square_splits(
     level: u32,
     threshold: f32,
 ) -> bool {
+    // (A power of two: the product is exact, on both tracers.)
+    let level_threshold = threshold * (1u32 << level) as f32;
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    let differ = !(contrast(corners) <= threshold);
+    let differ = !(contrast(corners) <= level_threshold);
     differ || (penumbra && level < AA_PENUMBRA_DEPTH)
 }
 
@@ -297,4 +303,39 @@ pub fn adaptive_tile(
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::square_splits;
+    use glam::Vec3;
+
+    /// Four corners whose contrast is `c` (one corner brighter by c).
+    fn corners(c: f32) -> [Vec3; 4] {
+        [
+            Vec3::splat(0.5 + c),
+            Vec3::splat(0.5),
+            Vec3::splat(0.5),
+            Vec3::splat(0.5),
+        ]
+    }
+
+    #[test]
+    fn the_threshold_weighs_contrast_by_the_squares_side() {
+        // Level k compares the contrast with 2^k · threshold.
+        for (contrast, splits_down_to) in [(0.05, 0), (0.15, 1), (0.3, 2), (0.7, 3)] {
+            for level in 0..4 {
+                assert_eq!(
+                    square_splits(&corners(contrast), false, level, 0.1),
+                    level < splits_down_to,
+                    "contrast {contrast} at level {level}"
+                );
+            }
+        }
+        // A NaN contrast (∞ − ∞) splits; a penumbra splits above AA_PENUMBRA_DEPTH
+        // whatever the contrast.
+        assert!(square_splits(&[Vec3::INFINITY; 4], false, 3, 0.1));
+        assert!(square_splits(&corners(0.0), true, 1, f32::MAX));
+        assert!(!square_splits(&corners(0.0), true, 2, f32::MAX));
+    }
 }

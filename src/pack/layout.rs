@@ -159,7 +159,8 @@ pub struct PackedGlobals {
     pub aa_mode: u32,
     /// n of uniform n×n anti-aliasing.
     pub aa_samples: u32,
-    /// Adaptive anti-aliasing: corner contrast that splits a square.
+    /// Adaptive anti-aliasing: corner contrast that splits a pixel (a square of side
+    /// 2^−k pixel: 2^k times it).
     pub aa_threshold: f32,
     /// Adaptive anti-aliasing: deepest split.
     pub aa_depth: u32,
