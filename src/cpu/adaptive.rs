@@ -5,8 +5,8 @@
 //!
 //! For a tile of `size` pixels and depth d, lattice point (i, j) is film position
 //! (x0 + i/2^d, y0 + j/2^d), its sample taken within the lattice cell around it
-//! ([`lattice_sample`]: jittered by a hash of the position). Squares of level k have a side of 2^(d−k) lattice steps; the
-//! level-0 squares are the pixels. The passes:
+//! ([`lattice_sample`]: jittered by a hash of the position). Squares of level k have a
+//! side of 2^(d−k) lattice steps; the level-0 squares are the pixels. The passes:
 //! 1. [`adaptive_corners`]: trace every pixel corner;
 //! 2. for k in 0..d: [`adaptive_decide`] flags each level-k square that exists (every
 //!    pixel at k = 0, else the four children of each square split at k − 1, taken from
