@@ -81,36 +81,23 @@ fn live_alu(@builtin(global_invocation_id) id: vec3<u32>) {
 "#;
 
 fn main() {
-    let ctx = glint::gpu::context::GpuContext::new(None).expect("adapter");
-    println!("adapter: {}", ctx.info.name);
-    let device = &ctx.device;
-    let invocations = 1u32 << 18;
-    let out = device.create_buffer(&wgpu::BufferDescriptor {
-        label: None,
-        size: invocations as u64 * 4,
-        usage: wgpu::BufferUsages::STORAGE,
-        mapped_at_creation: false,
-    });
+    let bench = llvmpipe_timing::setup(SHADER);
     let param = wgpu::util::DeviceExt::create_buffer_init(
-        device,
+        &bench.ctx.device,
         &wgpu::util::BufferInitDescriptor {
             label: None,
             contents: bytemuck::cast_slice(&[7u32, 0u32]),
             usage: wgpu::BufferUsages::STORAGE,
         },
     );
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: None,
-        source: wgpu::ShaderSource::Wgsl(SHADER.into()),
-    });
     for entry in ["plain", "dead_alu", "dead_loop", "dead_switch", "live_alu"] {
-        let mut bindings = vec![(0, out.as_entire_binding())];
+        let mut bindings = vec![(0, bench.out.as_entire_binding())];
         if entry != "plain" {
             bindings.push((1, param.as_entire_binding()));
         }
-        let timing = llvmpipe_timing::time_entry(&ctx, &module, entry, &bindings, invocations);
+        let timing = llvmpipe_timing::time_entry(&bench, entry, &bindings);
         let (best, first) = (timing.best_ms, timing.first_ms);
-        let per_iteration = best * 1e6 / (invocations as f64 * 256.0);
+        let per_iteration = best * 1e6 / (llvmpipe_timing::INVOCATIONS as f64 * 256.0);
         println!(
             "{entry:12} best {best:8.1} ms  {per_iteration:6.2} ns per iteration (first {first:.1} ms)"
         );

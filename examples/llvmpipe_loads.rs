@@ -104,8 +104,8 @@ fn alu_only(@builtin(global_invocation_id) id: vec3<u32>) {
 "#;
 
 fn main() {
-    let ctx = glint::gpu::context::GpuContext::new(None).expect("adapter");
-    println!("adapter: {}", ctx.info.name);
+    let bench = llvmpipe_timing::setup(SHADER);
+    let ctx = &bench.ctx;
     let device = &ctx.device;
     let n = 65536usize;
     let words: Vec<u32> = (0..n * 4)
@@ -116,19 +116,8 @@ fn main() {
         contents: bytemuck::cast_slice(&words),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let view = texture_view(&ctx, 256, wgpu::TextureFormat::Rgba32Uint, &words);
-    let viewr = texture_view(&ctx, 512, wgpu::TextureFormat::R32Uint, &words);
-    let invocations = 1u32 << 18;
-    let out = device.create_buffer(&wgpu::BufferDescriptor {
-        label: None,
-        size: invocations as u64 * 4,
-        usage: wgpu::BufferUsages::STORAGE,
-        mapped_at_creation: false,
-    });
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: None,
-        source: wgpu::ShaderSource::Wgsl(SHADER.into()),
-    });
+    let view = texture_view(ctx, 256, wgpu::TextureFormat::Rgba32Uint, &words);
+    let viewr = texture_view(ctx, 512, wgpu::TextureFormat::R32Uint, &words);
     for entry in [
         "ssbo_scalar",
         "texr_scalar",
@@ -138,7 +127,7 @@ fn main() {
         "ssbo_coherent",
         "tex_coherent",
     ] {
-        let mut bindings = vec![(2, out.as_entire_binding())];
+        let mut bindings = vec![(2, bench.out.as_entire_binding())];
         if entry == "ssbo_random" || entry == "ssbo_coherent" {
             bindings.push((0, data.as_entire_binding()));
         }
@@ -151,9 +140,9 @@ fn main() {
         if entry.starts_with("tex_") {
             bindings.push((1, wgpu::BindingResource::TextureView(&view)));
         }
-        let timing = llvmpipe_timing::time_entry(&ctx, &module, entry, &bindings, invocations);
+        let timing = llvmpipe_timing::time_entry(&bench, entry, &bindings);
         let (best, first) = (timing.best_ms, timing.first_ms);
-        let reads = invocations as f64 * 256.0;
+        let reads = llvmpipe_timing::INVOCATIONS as f64 * 256.0;
         println!(
             "{entry:14} best {best:8.1} ms  {:6.2} ns/read (first {:.1} ms)",
             best * 1e6 / reads,
