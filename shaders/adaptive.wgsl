@@ -2,12 +2,13 @@
 // lattice of (tile.side·2^d + 1)² points in `samples` (d = aa_depth; lattice point (i, j)
 // is film position (x0 + i/2^d, y0 + j/2^d), sampled within the lattice cell around it,
 // jittered by a hash of its position: lattice_sample), one sample per invocation:
-// adaptive_corners traces the pixel corners (w of each sample: whether it saw a penumbra);
-// for each level k < d, adaptive_decide flags the level-k squares to split
-// (square_splits) and appends them to level k's list, adaptive_work_args turns the list's
-// length into the indirect dispatches of the passes over it, and adaptive_midpoints
-// traces the listed squares' midpoints; then adaptive_integrate averages each pixel over
-// its quadtree. Below level 0 the passes run over the compacted lists only (indirect
+// adaptive_corners traces the pixel corners and, at d ≥ 1, the pixel centres (w of each
+// sample: whether it saw a penumbra); for each level k < d, adaptive_decide flags the
+// level-k squares to split (square_splits; a pixel weighs its centre too) and appends
+// them to level k's list, adaptive_work_args turns the list's length into the indirect
+// dispatches of the passes over it, and adaptive_midpoints traces the listed squares'
+// midpoints; then adaptive_integrate averages each pixel over its quadtree (an unsplit
+// pixel: quincunx_mean of its corners and centre). Below level 0 the passes run over the compacted lists only (indirect
 // dispatches), so idle invocations do not grow with depth. The decisions, samples and
 // summation order are those of the per-pixel walk, src/cpu/render.rs::adaptive_pixel.
 // Mirror of src/cpu/adaptive.rs — change both.
@@ -94,25 +95,56 @@ fn point_penumbra(i: u32, j: u32) -> bool {
     return samples[lattice_index(i, j)].w != 0.0;
 }
 
-// Whether a corner of square (a, b) of `level` saw a penumbra.
+// Whether each pixel's centre is a lattice point, traced by the first pass (d ≥ 1).
+// Mirror of src/tiling.rs::AdaptiveTile::pixels_have_centres — change both.
+fn pixels_have_centres() -> bool {
+    return globals.aa_depth > 0u;
+}
+
+// Lattice point of the centre of pixel (a, b) (when pixels_have_centres).
+// Mirror of src/cpu/adaptive.rs::pixel_centre — change both.
+fn pixel_centre(a: u32, b: u32) -> vec2<u32> {
+    let s = adaptive_scale();
+    return vec2<u32>(a * s + s / 2u, b * s + s / 2u);
+}
+
+// Whether a corner of square (a, b) of `level` saw a penumbra (or, at level 0, the
+// pixel's centre).
 // Mirror of src/cpu/adaptive.rs::square_penumbra — change both.
 fn square_penumbra(level: u32, a: u32, b: u32) -> bool {
     let l = adaptive_scale() >> level;
     let i = a * l;
     let j = b * l;
-    return point_penumbra(i, j) || point_penumbra(i + l, j) || point_penumbra(i, j + l) || point_penumbra(i + l, j + l);
+    let corners = point_penumbra(i, j) || point_penumbra(i + l, j) || point_penumbra(i, j + l) || point_penumbra(i + l, j + l);
+    if level == 0u && pixels_have_centres() {
+        let c = pixel_centre(a, b);
+        return corners || point_penumbra(c.x, c.y);
+    }
+    return corners;
 }
 
-// Whether a square of `level` with these corners splits: their contrast times the
-// square's side (2^−level pixels) exceeds `threshold` (NaN included), that is, they differ
-// by more than 2^level · `threshold`; or one of them saw a penumbra (`penumbra`) and the
-// level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down to the
-// density of uniform 4×4). The per-pixel walk's test too.
+// The contrast the split decision of square (a, b) of `level` weighs: of its corners
+// (contrast), or at level 0 of the pixel's corners and centre (pixel_contrast).
+// Mirror of src/cpu/adaptive.rs::square_contrast — change both.
+fn square_contrast(level: u32, a: u32, b: u32) -> f32 {
+    let corners = square_corners(level, a, b);
+    if level == 0u && pixels_have_centres() {
+        let c = pixel_centre(a, b);
+        return pixel_contrast(corners, lattice_point(c.x, c.y));
+    }
+    return contrast(corners);
+}
+
+// Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
+// times the square's side (2^−level pixels) exceeds `threshold` (NaN included), that is,
+// the samples differ by more than 2^level · `threshold`; or one of them saw a penumbra
+// (`penumbra`) and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as
+// contrast, down to the density of uniform 4×4). The per-pixel walk's test too.
 // Mirror of src/cpu/adaptive.rs::square_splits — change both.
-fn square_splits(corners: array<vec3<f32>, 4>, penumbra: bool, level: u32, threshold: f32) -> bool {
+fn square_splits(spread: f32, penumbra: bool, level: u32, threshold: f32) -> bool {
     // (A power of two: the product is exact, on both tracers.)
     let level_threshold = threshold * f32(1u << level);
-    let differ = !(contrast(corners) <= level_threshold);
+    let differ = !(spread <= level_threshold);
     return differ || (penumbra && level < AA_PENUMBRA_DEPTH);
 }
 
@@ -150,7 +182,9 @@ fn trace_lattice_point(i: u32, j: u32) {
 // #endif
 }
 
-// Corner pass: invocation idx traces pixel corner (idx mod (w+1), idx div (w+1)).
+// Corner pass (tile.items = src/tiling.rs::AdaptiveTile::first_pass_len invocations):
+// invocation idx traces pixel corner (idx mod (w+1), idx div (w+1)) for idx < (w+1)(h+1),
+// after those the centre of pixel number idx − (w+1)(h+1).
 // Mirror of src/cpu/adaptive.rs::adaptive_corners — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -159,7 +193,15 @@ fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
         return;
     }
     let s = adaptive_scale();
-    trace_lattice_point((idx % (tile.size.x + 1u)) * s, (idx / (tile.size.x + 1u)) * s);
+    let corners = (tile.size.x + 1u) * (tile.size.y + 1u);
+    var point: vec2<u32>;
+    if idx < corners {
+        point = vec2<u32>((idx % (tile.size.x + 1u)) * s, (idx / (tile.size.x + 1u)) * s);
+    } else {
+        let pixel = idx - corners;
+        point = pixel_centre(pixel % tile.size.x, pixel / tile.size.x);
+    }
+    trace_lattice_point(point.x, point.y);
 }
 
 // Decide pass of tile.level: square (idx mod w, idx div w) at level 0, else child idx mod 4
@@ -186,7 +228,7 @@ fn adaptive_decide(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     let a = square.x;
     let b = square.y;
     var flag = 0u;
-    if square_splits(square_corners(level, a, b), square_penumbra(level, a, b), level, globals.aa_threshold) {
+    if square_splits(square_contrast(level, a, b), square_penumbra(level, a, b), level, globals.aa_threshold) {
         flag = 1u;
     }
     split[split_index(level, a, b)] = flag;
@@ -222,7 +264,8 @@ fn adaptive_work_args() {
 
 // Midpoint pass of tile.level: midpoint idx mod 5 (top, left, centre, right, bottom) of
 // entry idx div 5 of the level's list. A top (left) midpoint is the bottom (right) one of
-// the square above (to the left); when that one is split, it traces it.
+// the square above (to the left); when that one is split, it traces it. A pixel's centre
+// was traced by the corner pass.
 // Mirror of src/cpu/adaptive.rs::adaptive_midpoints — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -235,7 +278,7 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     let square = split_square(level, idx / 5u);
     let a = square.x;
     let b = square.y;
-    if (m == 0u && b > 0u && is_split(level, a, b - 1u)) || (m == 1u && a > 0u && is_split(level, a - 1u, b)) {
+    if (m == 2u && level == 0u && pixels_have_centres()) || (m == 0u && b > 0u && is_split(level, a, b - 1u)) || (m == 1u && a > 0u && is_split(level, a - 1u, b)) {
         return;
     }
     let l = adaptive_scale() >> level;
@@ -248,7 +291,9 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
 
 // Integrate pass: pixel (id.x, id.y)'s area-weighted mean over its quadtree, walked with
 // the per-pixel stack (children pushed top-left, top-right, bottom-left, bottom-right),
-// so the sum runs in the per-pixel walk's order; alpha holds its number of leaves.
+// so the sum runs in the per-pixel walk's order (a leaf: the mean of its corners; an
+// unsplit pixel with a centre: their quincunx_mean with it); alpha holds its number of
+// leaves.
 // Mirror of src/cpu/adaptive.rs::adaptive_integrate — change both.
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
 fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -277,10 +322,15 @@ fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {
             continue;
         }
         let c = square_corners(level, a, b);
+        leaves += 1u;
+        if level == 0u && pixels_have_centres() {
+            let centre = pixel_centre(a, b);
+            sum += quincunx_mean(c, lattice_point(centre.x, centre.y));
+            continue;
+        }
         let side = ldexp(1.0, -i32(level));
         let area = side * side;
         sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
-        leaves += 1u;
     }
     output[id.y * tile.side + id.x] = vec4<f32>(sum, f32(leaves));
 }

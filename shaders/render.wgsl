@@ -53,6 +53,23 @@ fn contrast(c: array<vec3<f32>, 4>) -> f32 {
     return max_element(hi - lo);
 }
 
+// Largest per-channel spread of a pixel's four corner samples and its centre sample: the
+// level-0 decision of adaptive AA.
+// Mirror of src/cpu/pixel_sample.rs::pixel_contrast — change both.
+fn pixel_contrast(c: array<vec3<f32>, 4>, centre: vec3<f32>) -> f32 {
+    let lo = min(min(min(min(c[0], c[1]), c[2]), c[3]), centre);
+    let hi = max(max(max(max(c[0], c[1]), c[2]), c[3]), centre);
+    return max_element(hi - lo);
+}
+
+// Colour of a pixel that adaptive AA did not split, from its corner samples and its
+// centre sample: the centre weighs AA_CENTRE_WEIGHT, the corners share the rest.
+// Mirror of src/cpu/pixel_sample.rs::quincunx_mean — change both.
+fn quincunx_mean(c: array<vec3<f32>, 4>, centre: vec3<f32>) -> vec3<f32> {
+    let corner_weight = 0.25 * (1.0 - AA_CENTRE_WEIGHT);
+    return (c[0] + c[1] + c[2] + c[3]) * corner_weight + centre * AA_CENTRE_WEIGHT;
+}
+
 // Sample s of pixel (x, y) under n×n stratification: stratum (s mod n, s div n),
 // jittered when `uniform`, else its centre.
 // Mirror of src/cpu/render.rs::uniform_sample — change both.

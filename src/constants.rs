@@ -272,6 +272,7 @@ pub fn wgsl_prelude() -> String {
         ("LUMINANCE_B", LUMINANCE_B),
         ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
         ("AA_LATTICE_JITTER", AA_LATTICE_JITTER),
+        ("AA_CENTRE_WEIGHT", AA_CENTRE_WEIGHT),
         ("TORUS_ROOT_TOLERANCE", TORUS_ROOT_TOLERANCE),
         ("TORUS_BOUND_MARGIN", TORUS_BOUND_MARGIN),
         ("CSG_COINCIDENT_RELATIVE", CSG_COINCIDENT_RELATIVE),
@@ -303,6 +304,12 @@ pub const AA_PENUMBRA_DEPTH: u32 = 2;
 /// same offset from it, and a pixel-aligned edge exactly on its points: a visible line of
 /// the same error along the edge). A power of two, so a jittered position is exact.
 pub const AA_LATTICE_JITTER: f32 = 1.0;
+/// Weight of a pixel's centre sample in the colour of an unsplit pixel under adaptive
+/// anti-aliasing (a quincunx: the four corners share the rest). The corners alone are a
+/// tent filter two pixels wide, which blurs texture and fine detail that never splits the
+/// pixel; the centre is the pixel's own. 1/2 measured best of 0.2–0.67 on the sweep's
+/// scenes (docs/performance.md, "A sample at each pixel's centre").
+pub const AA_CENTRE_WEIGHT: f32 = 0.5;
 /// Largest n of uniform n×n anti-aliasing.
 pub const MAX_AA_SAMPLES: u32 = 64;
 /// Square tile side, in pixels, for both tracers' work split.

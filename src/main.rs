@@ -126,8 +126,8 @@ struct RenderArgs {
     /// n of uniform n×n anti-aliasing.
     #[arg(long, value_parser = AaSamples::parse)]
     samples: Option<AaSamples>,
-    /// Adaptive AA: the corner contrast that splits a pixel; a square of side 2^-k pixel
-    /// splits at 2^k times it.
+    /// Adaptive AA: the contrast (among a pixel's corner and centre samples) that splits
+    /// the pixel; a square of side 2^-k pixel splits at 2^k times its corners' contrast.
     #[arg(long, value_parser = parse_non_negative)]
     aa_threshold: Option<f32>,
     /// Adaptive AA: deepest split.

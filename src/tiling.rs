@@ -35,6 +35,19 @@ impl AdaptiveTile {
     pub fn lattice_len(&self) -> usize {
         (self.lattice_width() as usize).pow(2)
     }
+    /// Whether each pixel's centre is a lattice point, traced by the first pass with the
+    /// corners (d ≥ 1; at d = 0 the lattice is the corners alone).
+    // Mirror of shaders/adaptive.wgsl::pixels_have_centres — change both.
+    pub fn pixels_have_centres(&self) -> bool {
+        self.depth > 0
+    }
+    /// Invocations of the first pass: every pixel corner, then every pixel centre where
+    /// [`Self::pixels_have_centres`].
+    pub fn first_pass_len(&self) -> u32 {
+        let [w, h] = self.size;
+        let centres = if self.pixels_have_centres() { w * h } else { 0 };
+        (w + 1) * (h + 1) + centres
+    }
     /// Split flags of the arrays: levels 0..d.
     pub fn split_len(&self) -> usize {
         split_offset(self.side, self.depth) as usize

@@ -130,3 +130,55 @@ fn lattice_points_on_a_pixel_aligned_edge_fall_on_both_sides() {
     assert_eq!(column_error(3, 0.0), 0.0);
     assert_eq!(column_error(12, 1.0), 0.0);
 }
+
+/// A white bar a quarter of a pixel wide down the middle of pixel column 8 of a 16 × 16
+/// image, on black (ambient light only): no corner of those pixels sees it (corners are
+/// jittered by at most 1/16 pixel at depth 3), their centres always do.
+fn bar_between_corners() -> glint::pack::PackedScene {
+    // At distance 4 with vfov 50 over 16 pixels, a pixel is 8·tan 25°/16 = 0.23314
+    // units; the bar spans pixels 8.375–8.625 (x = 0.0874–0.1457), nearly flat.
+    let source = "
+        black = gr.material({0, 0, 0}, {0, 0, 0}, 10)
+        white = gr.material({1, 1, 1}, {0, 0, 0}, 10)
+        root = gr.node('root')
+        wall = gr.cube('wall') wall:scale(20, 20, 1) wall:translate(-10, -10, -7)
+        wall:set_material(black)
+        bar = gr.cube('bar') bar:scale(0.05829, 20, 0.001) bar:translate(0.08743, -10, -4.001)
+        bar:set_material(white)
+        root:add_child(wall) root:add_child(bar)
+        gr.render(root, 'bar.png', 16, 16, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 50,
+                  {1, 1, 1}, {})
+    ";
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Adaptive),
+        // (Contrast 1 splits levels 0–2: 1 > 0.2·2^k.)
+        aa_threshold: Some(0.2),
+        aa_depth: Some(glint::scene::AaDepth::constant(3)),
+        ..OptionOverrides::default()
+    };
+    common::packed_from_source(source, &overrides).remove(0)
+}
+
+/// Each pixel's centre is sampled with its corners and takes part in its split decision
+/// (`pixel_contrast`): detail that lies between the corners splits the pixel, and its
+/// colour approaches the bar's coverage (1/4) where corners alone saw black and never
+/// split. Pixels away from the bar stay unsplit and exact.
+#[test]
+fn detail_between_a_pixels_corners_splits_it() {
+    let scene = bar_between_corners();
+    let film = glint::cpu::render(&scene, &|_, _| {});
+    let leaves = adaptive_leaf_counts(&scene);
+    for y in 0..16 {
+        let at = |x: usize| y * 16 + x;
+        assert!(leaves[at(8)] > 1, "row {y}: the bar's pixel did not split");
+        let green = film.pixels[at(8)][1];
+        assert!(
+            (0.15..=0.35).contains(&green),
+            "row {y}: the bar's pixel is {green}, its coverage 0.25"
+        );
+        for x in [3, 12] {
+            assert_eq!(leaves[at(x)], 1, "row {y}, column {x} split");
+            assert_eq!(film.pixels[at(x)][1], 0.0, "row {y}, column {x}");
+        }
+    }
+}

@@ -7,23 +7,25 @@
 //! (x0 + i/2^d, y0 + j/2^d), its sample taken within the lattice cell around it
 //! ([`lattice_sample`]: jittered by a hash of the position). Squares of level k have a
 //! side of 2^(d−k) lattice steps; the level-0 squares are the pixels. The passes:
-//! 1. [`adaptive_corners`]: trace every pixel corner;
+//! 1. [`adaptive_corners`]: trace every pixel corner and, at d ≥ 1, every pixel centre;
 //! 2. for k in 0..d: [`adaptive_decide`] flags each level-k square that exists (every
 //!    pixel at k = 0, else the four children of each square split at k − 1, taken from
-//!    the compacted list of those) and whose corners differ by more than the threshold
-//!    or, above level AA_PENUMBRA_DEPTH, one of whose corners saw a penumbra (each
-//!    lattice sample keeps that flag with its colour), appending it to level k's list of
-//!    split squares; then [`adaptive_midpoints`] traces the five midpoints of each
-//!    square on that list (a midpoint shared with a split neighbour is traced by one of
-//!    the two only). Work is over the lists, so idle
+//!    the compacted list of those) and whose samples (corners; a pixel's centre too)
+//!    differ by more than the threshold or, above level AA_PENUMBRA_DEPTH, one of which
+//!    saw a penumbra (each lattice sample keeps that flag with its colour), appending it
+//!    to level k's list of split squares; then [`adaptive_midpoints`] traces the five
+//!    midpoints of each square on that list (a midpoint shared with a split neighbour is
+//!    traced by one of the two only; a pixel's centre is traced already). Work is over
+//!    the lists, so idle
 //!    invocations do not grow with depth; the lists' order (on the GPU, that of atomic
 //!    appends) changes nothing: every sample and flag has its own slot;
-//! 3. [`adaptive_integrate`]: each pixel walks its quadtree with the per-pixel stack.
+//! 3. [`adaptive_integrate`]: each pixel walks its quadtree with the per-pixel stack; an
+//!    unsplit pixel is the quincunx mean of its corners and centre.
 //!
 //! Every function here has a WGSL twin of the same name in `shaders/adaptive.wgsl`, where
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
 
-use super::pixel_sample::{contrast, lattice_sample};
+use super::pixel_sample::{contrast, lattice_sample, pixel_contrast, quincunx_mean};
 use super::traverse::TraversalCounters;
 use crate::constants::{AA_PENUMBRA_DEPTH, AA_STACK_SIZE};
 use crate::pack::PackedScene;
@@ -125,7 +127,17 @@ fn trace_lattice_point(
     lat.penumbra[k] = penumbra;
 }
 
-/// Invocation `idx` of the corner pass: traces pixel corner (idx mod (w+1), idx div (w+1)).
+/// Lattice point of the centre of pixel (a, b) (when
+/// [`AdaptiveTile::pixels_have_centres`]).
+// Mirror of shaders/adaptive.wgsl::pixel_centre — change both.
+fn pixel_centre(tile: &AdaptiveTile, a: u32, b: u32) -> (u32, u32) {
+    let s = tile.scale();
+    (a * s + s / 2, b * s + s / 2)
+}
+
+/// Invocation `idx` of the corner pass ([`AdaptiveTile::first_pass_len`] of them): traces
+/// pixel corner (idx mod (w+1), idx div (w+1)) for idx < (w+1)(h+1), after those the
+/// centre of pixel number idx − (w+1)(h+1).
 // Mirror of shaders/adaptive.wgsl::adaptive_corners — change both.
 fn adaptive_corners(
     scene: &PackedScene,
@@ -135,7 +147,13 @@ fn adaptive_corners(
 ) {
     let t = lat.tile;
     let s = t.scale();
-    let (i, j) = ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s);
+    let corners = (t.size[0] + 1) * (t.size[1] + 1);
+    let (i, j) = if idx < corners {
+        ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s)
+    } else {
+        let pixel = idx - corners;
+        pixel_centre(&t, pixel % t.size[0], pixel / t.size[0])
+    };
     trace_lattice_point(scene, lat, i, j, counters);
 }
 
@@ -153,36 +171,49 @@ fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
     ]
 }
 
-/// Whether a corner of square (a, b) of `level` saw a penumbra.
+/// Whether a corner of square (a, b) of `level` saw a penumbra (or, at level 0, the
+/// pixel's centre).
 // Mirror of shaders/adaptive.wgsl::square_penumbra — change both.
 fn square_penumbra(lat: &Lattice, level: u32, a: u32, b: u32) -> bool {
     let l = lat.tile.scale() >> level;
     let (i, j) = (a * l, b * l);
-    lat.point_penumbra(i, j)
+    let corners = lat.point_penumbra(i, j)
         || lat.point_penumbra(i + l, j)
         || lat.point_penumbra(i, j + l)
-        || lat.point_penumbra(i + l, j + l)
+        || lat.point_penumbra(i + l, j + l);
+    if level == 0 && lat.tile.pixels_have_centres() {
+        let (ci, cj) = pixel_centre(&lat.tile, a, b);
+        return corners || lat.point_penumbra(ci, cj);
+    }
+    corners
 }
 
-/// Whether a square of `level` with these corners splits: their contrast times the
-/// square's side (2^−level pixels) exceeds `threshold` (NaN included), that is, they
-/// differ by more than 2^level · `threshold`; or one of them saw a penumbra (`penumbra`)
-/// and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down
+/// The contrast the split decision of square (a, b) of `level` weighs: of its corners
+/// ([`contrast`]), or at level 0 of the pixel's corners and centre ([`pixel_contrast`]).
+// Mirror of shaders/adaptive.wgsl::square_contrast — change both.
+fn square_contrast(lat: &Lattice, level: u32, a: u32, b: u32) -> f32 {
+    let corners = square_corners(lat, level, a, b);
+    if level == 0 && lat.tile.pixels_have_centres() {
+        let (ci, cj) = pixel_centre(&lat.tile, a, b);
+        return pixel_contrast(&corners, lat.point(ci, cj));
+    }
+    contrast(&corners)
+}
+
+/// Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
+/// times the square's side (2^−level pixels) exceeds `threshold` (NaN included), that is,
+/// the samples differ by more than 2^level · `threshold`; or one of them saw a penumbra
+/// (`penumbra`) and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down
 /// to the density of uniform 4×4). The side weighs the contrast because a square's error
 /// in its pixel scales with its size: a small square of the same contrast matters less
 /// (measured in docs/performance.md: fewer rays for the same error). The per-pixel walk's
 /// test too.
 // Mirror of shaders/adaptive.wgsl::square_splits — change both.
-pub(crate) fn square_splits(
-    corners: &[Vec3; 4],
-    penumbra: bool,
-    level: u32,
-    threshold: f32,
-) -> bool {
+pub(crate) fn square_splits(spread: f32, penumbra: bool, level: u32, threshold: f32) -> bool {
     // (A power of two: the product is exact, on both tracers.)
     let level_threshold = threshold * (1u32 << level) as f32;
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    let differ = !(contrast(corners) <= level_threshold);
+    let differ = !(spread <= level_threshold);
     differ || (penumbra && level < AA_PENUMBRA_DEPTH)
 }
 
@@ -200,7 +231,7 @@ fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
         (2 * pa + (idx % 4) % 2, 2 * pb + (idx % 4) / 2)
     };
     let split = square_splits(
-        &square_corners(lat, level, a, b),
+        square_contrast(lat, level, a, b),
         square_penumbra(lat, level, a, b),
         level,
         threshold,
@@ -216,7 +247,7 @@ fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
 /// Invocation `idx` of the midpoint pass of `level`: midpoint idx mod 5 (top, left,
 /// centre, right, bottom) of entry idx div 5 of level's split list. A top (left)
 /// midpoint is the bottom (right) one of the square above (to the left); when that one
-/// is split too, it traces the point.
+/// is split too, it traces the point. A pixel's centre was traced by the corner pass.
 // Mirror of shaders/adaptive.wgsl::adaptive_midpoints — change both.
 fn adaptive_midpoints(
     scene: &PackedScene,
@@ -228,7 +259,8 @@ fn adaptive_midpoints(
     let t = lat.tile;
     let m = idx % 5;
     let (a, b) = lat.split_square(level, idx / 5);
-    if (m == 0 && b > 0 && lat.is_split(level, a, b - 1))
+    if (m == 2 && level == 0 && t.pixels_have_centres())
+        || (m == 0 && b > 0 && lat.is_split(level, a, b - 1))
         || (m == 1 && a > 0 && lat.is_split(level, a - 1, b))
     {
         return;
@@ -242,7 +274,9 @@ fn adaptive_midpoints(
 
 /// Colour of tile pixel (tx, ty) and its number of leaf squares: the area-weighted mean
 /// over its quadtree, walked with the per-pixel stack (children pushed top-left,
-/// top-right, bottom-left, bottom-right), so the sum runs in the per-pixel walk's order.
+/// top-right, bottom-left, bottom-right), so the sum runs in the per-pixel walk's order;
+/// a leaf is the mean of its corners, an unsplit pixel with a centre their
+/// [`quincunx_mean`] with it.
 // Mirror of shaders/adaptive.wgsl::adaptive_integrate — change both.
 fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
     let t = lat.tile;
@@ -262,10 +296,15 @@ fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
             continue;
         }
         let c = square_corners(lat, level, a, b);
+        leaves += 1;
+        if level == 0 && t.pixels_have_centres() {
+            let (ci, cj) = pixel_centre(&t, a, b);
+            sum += quincunx_mean(&c, lat.point(ci, cj));
+            continue;
+        }
         let side = 1.0 / (1u32 << level) as f32;
         let area = side * side;
         sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
-        leaves += 1;
     }
     (sum, leaves)
 }
@@ -280,7 +319,7 @@ pub fn adaptive_tile(
 ) -> Vec<(Vec3, u32)> {
     let t = lat.tile;
     let [w, h] = t.size;
-    for idx in 0..(w + 1) * (h + 1) {
+    for idx in 0..t.first_pass_len() {
         adaptive_corners(scene, lat, idx, counters);
     }
     for level in 0..t.depth {
@@ -308,17 +347,6 @@ pub fn adaptive_tile(
 #[cfg(test)]
 mod tests {
     use super::square_splits;
-    use glam::Vec3;
-
-    /// Four corners whose contrast is `c` (one corner brighter by c).
-    fn corners(c: f32) -> [Vec3; 4] {
-        [
-            Vec3::splat(0.5 + c),
-            Vec3::splat(0.5),
-            Vec3::splat(0.5),
-            Vec3::splat(0.5),
-        ]
-    }
 
     #[test]
     fn the_threshold_weighs_contrast_by_the_squares_side() {
@@ -326,7 +354,7 @@ mod tests {
         for (contrast, splits_down_to) in [(0.05, 0), (0.15, 1), (0.3, 2), (0.7, 3)] {
             for level in 0..4 {
                 assert_eq!(
-                    square_splits(&corners(contrast), false, level, 0.1),
+                    square_splits(contrast, false, level, 0.1),
                     level < splits_down_to,
                     "contrast {contrast} at level {level}"
                 );
@@ -334,8 +362,8 @@ mod tests {
         }
         // A NaN contrast (∞ − ∞) splits; a penumbra splits above AA_PENUMBRA_DEPTH
         // whatever the contrast.
-        assert!(square_splits(&[Vec3::INFINITY; 4], false, 3, 0.1));
-        assert!(square_splits(&corners(0.0), true, 1, f32::MAX));
-        assert!(!square_splits(&corners(0.0), true, 2, f32::MAX));
+        assert!(square_splits(f32::NAN, false, 3, 0.1));
+        assert!(square_splits(0.0, true, 1, f32::MAX));
+        assert!(!square_splits(0.0, true, 2, f32::MAX));
     }
 }

@@ -1,11 +1,12 @@
 //! What the per-pixel reference (`render`) and the tiled adaptive passes (`adaptive`)
-//! both build on: one camera sample's colour, and the contrast test of four colours.
+//! both build on: one camera sample's colour, the contrast of a square's corners (and of
+//! a pixel's corners and centre), and an unsplit pixel's colour.
 
 use super::ray::camera_ray;
 use super::rng::{adaptive_seed, random_unit, SampleSeed};
 use super::trace::trace_ray;
 use super::traverse::TraversalCounters;
-use crate::constants::AA_LATTICE_JITTER;
+use crate::constants::{AA_CENTRE_WEIGHT, AA_LATTICE_JITTER};
 use crate::pack::PackedScene;
 use glam::Vec3;
 
@@ -89,4 +90,22 @@ pub(crate) fn contrast(c: &[Vec3; 4]) -> f32 {
     let lo = c[0].min(c[1]).min(c[2]).min(c[3]);
     let hi = c[0].max(c[1]).max(c[2]).max(c[3]);
     (hi - lo).max_element()
+}
+
+/// Largest per-channel spread of a pixel's four corner samples and its centre sample: the
+/// level-0 decision of adaptive AA, which so sees detail between the corners too.
+// Mirror of shaders/render.wgsl::pixel_contrast — change both.
+pub(crate) fn pixel_contrast(corners: &[Vec3; 4], centre: Vec3) -> f32 {
+    let c = corners;
+    let lo = c[0].min(c[1]).min(c[2]).min(c[3]).min(centre);
+    let hi = c[0].max(c[1]).max(c[2]).max(c[3]).max(centre);
+    (hi - lo).max_element()
+}
+
+/// Colour of a pixel that adaptive AA did not split, from its corner samples and its
+/// centre sample: the centre weighs AA_CENTRE_WEIGHT, the corners share the rest.
+// Mirror of shaders/render.wgsl::quincunx_mean — change both.
+pub(crate) fn quincunx_mean(corners: &[Vec3; 4], centre: Vec3) -> Vec3 {
+    let corner_weight = 0.25 * (1.0 - AA_CENTRE_WEIGHT);
+    (corners[0] + corners[1] + corners[2] + corners[3]) * corner_weight + centre * AA_CENTRE_WEIGHT
 }

@@ -4,7 +4,7 @@
 //! ([`super::adaptive`]); [`render_pixel`] is the per-pixel reference of every mode.
 
 use super::adaptive::{adaptive_tile, square_splits, Lattice};
-use super::pixel_sample::{lattice_sample, sample};
+use super::pixel_sample::{contrast, lattice_sample, pixel_contrast, quincunx_mean, sample};
 use super::rng::{random_unit, SampleSeed};
 use super::traverse::{Counters, NoCounters, TraversalCounters};
 use crate::constants::{
@@ -32,10 +32,11 @@ struct AdaptiveSquare {
     penumbra: [bool; 4],
 }
 
-/// Adaptive anti-aliasing of pixel (x, y) (Whitted 1980): sample the corners; where they
-/// differ by more than `aa_threshold`, or one saw a penumbra and the square is above
-/// AA_PENUMBRA_DEPTH ([`square_splits`]), split into four and recurse — here with an
-/// explicit stack — down to `aa_depth`. Sample positions lie on a dyadic lattice, each
+/// Adaptive anti-aliasing of pixel (x, y) (Whitted 1980): sample the corners and (at
+/// `aa_depth` ≥ 1) the centre; where they differ by more than `aa_threshold`, or one saw
+/// a penumbra and the square is above AA_PENUMBRA_DEPTH ([`square_splits`]), split into
+/// four and recurse — here with an explicit stack — down to `aa_depth`; a pixel that does
+/// not split is the [`quincunx_mean`] of its corners and centre. Sample positions lie on a dyadic lattice, each
 /// jittered by its own hash ([`lattice_sample`]), so neighbouring pixels see the same
 /// colour at a shared corner. The renderers run the same
 /// walk per tile in passes ([`super::adaptive`], on both tracers); this is its per-pixel
@@ -57,6 +58,18 @@ pub fn adaptive_pixel(
         let (cx, cy) = (fx + (k & 1) as f32, fy + (k >> 1) as f32);
         (*corner, *p) = lattice_sample(scene, cx, cy, counters);
     }
+    // The centre, when the lattice has one: it decides with the corners, and is the
+    // first split's centre midpoint.
+    let mut pixel_centre = None;
+    if max_depth > 0 {
+        let (centre, centre_penumbra) = lattice_sample(scene, fx + 0.5, fy + 0.5, counters);
+        let any_penumbra = centre_penumbra || penumbra.contains(&true);
+        let spread = pixel_contrast(&corners, centre);
+        if !square_splits(spread, any_penumbra, 0, threshold) {
+            return quincunx_mean(&corners, centre);
+        }
+        pixel_centre = Some((centre, centre_penumbra));
+    }
     let mut stack = [AdaptiveSquare {
         x: fx,
         y: fy,
@@ -72,70 +85,84 @@ pub fn adaptive_pixel(
         let sq = stack[size];
         // Weight of this square in the pixel: its area.
         let area = sq.size * sq.size;
-        if sq.depth >= max_depth
-            || !square_splits(
-                &sq.corners,
+        // (The pixel itself, at depth 0, split above when it has a centre.)
+        let splits = (sq.depth == 0 && max_depth > 0)
+            || square_splits(
+                contrast(&sq.corners),
                 sq.penumbra.contains(&true),
                 sq.depth,
                 threshold,
-            )
-        {
+            );
+        if sq.depth >= max_depth || !splits {
             sum += (sq.corners[0] + sq.corners[1] + sq.corners[2] + sq.corners[3]) * (0.25 * area);
             continue;
         }
         let h = sq.size * 0.5;
-        let [tl, tr, bl, br] = sq.corners;
         // Top, left, centre, right and bottom midpoints.
         let offsets = [(h, 0.0), (0.0, h), (h, h), (sq.size, h), (h, sq.size)];
         let mut mid = [Vec3::ZERO; 5];
         let mut mid_penumbra = [false; 5];
         for (m, (ox, oy)) in offsets.into_iter().enumerate() {
             let (px, py) = (sq.x + ox, sq.y + oy);
-            (mid[m], mid_penumbra[m]) = lattice_sample(scene, px, py, counters);
-        }
-        let [top, left, centre, right, bottom] = mid;
-        let [p_top, p_left, p_centre, p_right, p_bottom] = mid_penumbra;
-        let [p_tl, p_tr, p_bl, p_br] = sq.penumbra;
-        let depth = sq.depth + 1;
-        let children = [
-            (
-                sq.x,
-                sq.y,
-                [tl, top, left, centre],
-                [p_tl, p_top, p_left, p_centre],
-            ),
-            (
-                sq.x + h,
-                sq.y,
-                [top, tr, centre, right],
-                [p_top, p_tr, p_centre, p_right],
-            ),
-            (
-                sq.x,
-                sq.y + h,
-                [left, centre, bl, bottom],
-                [p_left, p_centre, p_bl, p_bottom],
-            ),
-            (
-                sq.x + h,
-                sq.y + h,
-                [centre, right, bottom, br],
-                [p_centre, p_right, p_bottom, p_br],
-            ),
-        ];
-        for (cx, cy, corners, penumbra) in children {
-            stack[size] = AdaptiveSquare {
-                x: cx,
-                y: cy,
-                size: h,
-                depth,
-                corners,
-                penumbra,
+            (mid[m], mid_penumbra[m]) = match pixel_centre {
+                Some(traced) if sq.depth == 0 && m == 2 => traced,
+                _ => lattice_sample(scene, px, py, counters),
             };
+        }
+        for child in square_children(&sq, &mid, &mid_penumbra) {
+            stack[size] = child;
             size += 1;
         }
     }
     sum
+}
+
+/// The four children of `sq` (top-left, top-right, bottom-left, bottom-right) from its
+/// corners and its top, left, centre, right and bottom midpoints `mid`.
+fn square_children(
+    sq: &AdaptiveSquare,
+    mid: &[Vec3; 5],
+    mid_penumbra: &[bool; 5],
+) -> [AdaptiveSquare; 4] {
+    let h = sq.size * 0.5;
+    let [tl, tr, bl, br] = sq.corners;
+    let [top, left, centre, right, bottom] = *mid;
+    let [p_top, p_left, p_centre, p_right, p_bottom] = *mid_penumbra;
+    let [p_tl, p_tr, p_bl, p_br] = sq.penumbra;
+    let child = |x: f32, y: f32, corners: [Vec3; 4], penumbra: [bool; 4]| AdaptiveSquare {
+        x,
+        y,
+        size: h,
+        depth: sq.depth + 1,
+        corners,
+        penumbra,
+    };
+    [
+        child(
+            sq.x,
+            sq.y,
+            [tl, top, left, centre],
+            [p_tl, p_top, p_left, p_centre],
+        ),
+        child(
+            sq.x + h,
+            sq.y,
+            [top, tr, centre, right],
+            [p_top, p_tr, p_centre, p_right],
+        ),
+        child(
+            sq.x,
+            sq.y + h,
+            [left, centre, bl, bottom],
+            [p_left, p_centre, p_bl, p_bottom],
+        ),
+        child(
+            sq.x + h,
+            sq.y + h,
+            [centre, right, bottom, br],
+            [p_centre, p_right, p_bottom, p_br],
+        ),
+    ]
 }
 
 /// Colour of pixel (x, y) under the scene's anti-aliasing mode: the per-pixel reference

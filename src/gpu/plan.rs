@@ -13,7 +13,7 @@ use super::buffers::GpuTile;
 use super::shader::Entry;
 use crate::constants::{AA_ADAPTIVE, AA_UNIFORM, GPU_FRAME_PARTS};
 use crate::pack::PackedGlobals;
-use crate::tiling::split_offset;
+use crate::tiling::{split_offset, AdaptiveTile};
 
 /// The AA mode's passes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -252,10 +252,17 @@ impl FramePlan {
                 ]
             }
             Mode::Adaptive { depth } => {
-                let corners = (w + 1) * (h + 1);
+                // Every pixel corner, then every pixel centre (d ≥ 1).
+                let first = AdaptiveTile {
+                    origin: c.origin,
+                    size: c.size,
+                    side: c.side,
+                    depth,
+                }
+                .first_pass_len();
                 let mut out = vec![Dispatch {
                     clears_work: true,
-                    ..run(0, params(0, corners), linear(corners))
+                    ..run(0, params(0, first), linear(first))
                 }];
                 for level in 0..depth {
                     out.push(if level == 0 {

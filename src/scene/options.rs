@@ -10,7 +10,7 @@ pub enum AaMode {
     None,
     /// n×n jittered samples per pixel (`samples`).
     Uniform,
-    /// Corner samples, subdivided where neighbours differ.
+    /// Corner and centre samples, subdivided where they differ.
     Adaptive,
 }
 
