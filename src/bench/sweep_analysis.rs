@@ -62,16 +62,31 @@ pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
 }
 
 /// The default rule: of `candidates` (a setting's name and its measurement on each
-/// scene), the one with the least total seconds among those whose FLIP mean is at most
-/// `flip_bound` on every scene. Returns its index.
-pub fn choose_default(candidates: &[(String, Vec<Measured>)], flip_bound: f64) -> Option<usize> {
-    candidates
+/// scene), among those whose FLIP mean is at most `flip_bound` on every scene, the ones
+/// whose total seconds are within a factor 1 + `time_tie` of the least count as equally
+/// fast (one run cannot tell them apart), and of those the one with the least summed FLIP
+/// mean wins. Returns its index.
+pub fn choose_default(
+    candidates: &[(String, Vec<Measured>)],
+    flip_bound: f64,
+    time_tie: f64,
+) -> Option<usize> {
+    let within: Vec<(usize, f64, f64)> = candidates
         .iter()
         .enumerate()
         .filter(|(_, (_, per_scene))| per_scene.iter().all(|m| m.flip <= flip_bound))
-        .map(|(k, (_, per_scene))| (k, per_scene.iter().map(|m| m.seconds).sum::<f64>()))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(k, _)| k)
+        .map(|(k, (_, per_scene))| {
+            let seconds = per_scene.iter().map(|m| m.seconds).sum::<f64>();
+            let flip = per_scene.iter().map(|m| m.flip).sum::<f64>();
+            (k, seconds, flip)
+        })
+        .collect();
+    let fastest = within.iter().map(|w| w.1).min_by(f64::total_cmp)?;
+    within
+        .iter()
+        .filter(|w| w.1 <= fastest * (1.0 + time_tie))
+        .min_by(|a, b| a.2.total_cmp(&b.2))
+        .map(|w| w.0)
 }
 
 #[cfg(test)]
@@ -113,10 +128,27 @@ mod tests {
             c("slow", &[(3.0, 0.01), (3.0, 0.01)]),
             c("cheap-but-misses-one", &[(0.5, 0.01), (0.5, 0.03)]),
             c("chosen", &[(1.0, 0.02), (1.5, 0.015)]),
+            c("tied-but-worse", &[(1.1, 0.02), (1.5, 0.019)]),
         ];
-        assert_eq!(choose_default(&all, 0.02), Some(2));
-        assert_eq!(choose_default(&all, 0.01), Some(0));
-        assert_eq!(choose_default(&all, 0.001), None);
+        assert_eq!(choose_default(&all, 0.02, 0.0), Some(2));
+        assert_eq!(choose_default(&all, 0.02, 0.1), Some(2));
+        assert_eq!(choose_default(&all, 0.01, 0.1), Some(0));
+        assert_eq!(choose_default(&all, 0.001, 0.1), None);
+    }
+
+    #[test]
+    fn of_settings_tied_in_time_the_default_is_the_most_accurate() {
+        let c = |name: &str, seconds: f64, flip: f64| {
+            (name.to_string(), vec![m(name, seconds, 0.0, flip)])
+        };
+        let all = [
+            c("fastest", 1.0, 0.019),
+            c("within-the-tie", 1.09, 0.012),
+            c("beyond-it", 1.2, 0.005),
+        ];
+        assert_eq!(choose_default(&all, 0.02, 0.1), Some(1));
+        assert_eq!(choose_default(&all, 0.02, 0.0), Some(0));
+        assert_eq!(choose_default(&all, 0.02, 0.25), Some(2));
     }
 
     #[test]
