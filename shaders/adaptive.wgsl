@@ -8,9 +8,10 @@
 // them to level k's list, adaptive_work_args turns the list's length into the indirect
 // dispatches of the passes over it, and adaptive_midpoints traces the listed squares'
 // midpoints; then adaptive_integrate averages each pixel over its quadtree (an unsplit
-// pixel: quincunx_mean of its corners and centre). Below level 0 the passes run over the compacted lists only (indirect
-// dispatches), so idle invocations do not grow with depth. The decisions, samples and
-// summation order are those of the per-pixel walk, src/cpu/render.rs::adaptive_pixel.
+// pixel: quincunx_mean of its corners and centre). Below level 0 the passes run over the
+// compacted lists only (indirect dispatches), so idle invocations do not grow with depth.
+// The decisions, samples and summation order are those of the per-pixel walk,
+// src/cpu/render.rs::adaptive_pixel.
 // Mirror of src/cpu/adaptive.rs — change both.
 
 // Per level, the number of split squares on its list.
@@ -115,7 +116,8 @@ fn square_penumbra(level: u32, a: u32, b: u32) -> bool {
     let l = adaptive_scale() >> level;
     let i = a * l;
     let j = b * l;
-    let corners = point_penumbra(i, j) || point_penumbra(i + l, j) || point_penumbra(i, j + l) || point_penumbra(i + l, j + l);
+    let corners = point_penumbra(i, j) || point_penumbra(i + l, j)
+        || point_penumbra(i, j + l) || point_penumbra(i + l, j + l);
     if level == 0u && pixels_have_centres() {
         let c = pixel_centre(a, b);
         return corners || point_penumbra(c.x, c.y);
@@ -278,7 +280,10 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     let square = split_square(level, idx / 5u);
     let a = square.x;
     let b = square.y;
-    if (m == 2u && level == 0u && pixels_have_centres()) || (m == 0u && b > 0u && is_split(level, a, b - 1u)) || (m == 1u && a > 0u && is_split(level, a - 1u, b)) {
+    let centre_traced = m == 2u && level == 0u && pixels_have_centres();
+    let top_traced = m == 0u && b > 0u && is_split(level, a, b - 1u);
+    let left_traced = m == 1u && a > 0u && is_split(level, a - 1u, b);
+    if centre_traced || top_traced || left_traced {
         return;
     }
     let l = adaptive_scale() >> level;

@@ -203,11 +203,11 @@ fn square_contrast(lat: &Lattice, level: u32, a: u32, b: u32) -> f32 {
 /// Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
 /// times the square's side (2^−level pixels) exceeds `threshold` (NaN included), that is,
 /// the samples differ by more than 2^level · `threshold`; or one of them saw a penumbra
-/// (`penumbra`) and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as contrast, down
-/// to the density of uniform 4×4). The side weighs the contrast because a square's error
-/// in its pixel scales with its size: a small square of the same contrast matters less
-/// (measured in docs/performance.md: fewer rays for the same error). The per-pixel walk's
-/// test too.
+/// (`penumbra`) and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as
+/// contrast, down to the density of uniform 4×4). The side weighs the contrast because a
+/// square's error in its pixel scales with its size: a small square of the same contrast
+/// matters less (measured in docs/performance.md: fewer rays for the same error). The
+/// per-pixel walk's test too.
 // Mirror of shaders/adaptive.wgsl::square_splits — change both.
 pub(crate) fn square_splits(spread: f32, penumbra: bool, level: u32, threshold: f32) -> bool {
     // (A power of two: the product is exact, on both tracers.)

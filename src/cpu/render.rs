@@ -36,10 +36,10 @@ struct AdaptiveSquare {
 /// `aa_depth` ≥ 1) the centre; where they differ by more than `aa_threshold`, or one saw
 /// a penumbra and the square is above AA_PENUMBRA_DEPTH ([`square_splits`]), split into
 /// four and recurse — here with an explicit stack — down to `aa_depth`; a pixel that does
-/// not split is the [`quincunx_mean`] of its corners and centre. Sample positions lie on a dyadic lattice, each
-/// jittered by its own hash ([`lattice_sample`]), so neighbouring pixels see the same
-/// colour at a shared corner. The renderers run the same
-/// walk per tile in passes ([`super::adaptive`], on both tracers); this is its per-pixel
+/// not split is the [`quincunx_mean`] of its corners and centre. Sample positions lie on a
+/// dyadic lattice, each jittered by its own hash ([`lattice_sample`]), so neighbouring
+/// pixels see the same colour at a shared corner. The renderers run the same walk per
+/// tile in passes ([`super::adaptive`], on both tracers); this is its per-pixel
 /// reference.
 pub fn adaptive_pixel(
     scene: &PackedScene,
