@@ -109,6 +109,14 @@ fn pixel_centre(a: u32, b: u32) -> vec2<u32> {
     return vec2<u32>(a * s + s / 2u, b * s + s / 2u);
 }
 
+// Whether a square of `level` has a traced centre of its own: a pixel (level 0) where
+// pixels_have_centres. Its decision and, unsplit, its colour use it; squares below a
+// pixel have corners only.
+// Mirror of src/cpu/adaptive.rs::square_has_centre — change both.
+fn square_has_centre(level: u32) -> bool {
+    return level == 0u && pixels_have_centres();
+}
+
 // Whether a corner of square (a, b) of `level` saw a penumbra (or, at level 0, the
 // pixel's centre).
 // Mirror of src/cpu/adaptive.rs::square_penumbra — change both.
@@ -118,7 +126,7 @@ fn square_penumbra(level: u32, a: u32, b: u32) -> bool {
     let j = b * l;
     let corners = point_penumbra(i, j) || point_penumbra(i + l, j)
         || point_penumbra(i, j + l) || point_penumbra(i + l, j + l);
-    if level == 0u && pixels_have_centres() {
+    if square_has_centre(level) {
         let c = pixel_centre(a, b);
         return corners || point_penumbra(c.x, c.y);
     }
@@ -130,7 +138,7 @@ fn square_penumbra(level: u32, a: u32, b: u32) -> bool {
 // Mirror of src/cpu/adaptive.rs::square_contrast — change both.
 fn square_contrast(level: u32, a: u32, b: u32) -> f32 {
     let corners = square_corners(level, a, b);
-    if level == 0u && pixels_have_centres() {
+    if square_has_centre(level) {
         let c = pixel_centre(a, b);
         return pixel_contrast(corners, lattice_point(c.x, c.y));
     }
@@ -280,7 +288,7 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     let square = split_square(level, idx / 5u);
     let a = square.x;
     let b = square.y;
-    let centre_traced = m == 2u && level == 0u && pixels_have_centres();
+    let centre_traced = m == 2u && square_has_centre(level);
     let top_traced = m == 0u && b > 0u && is_split(level, a, b - 1u);
     let left_traced = m == 1u && a > 0u && is_split(level, a - 1u, b);
     if centre_traced || top_traced || left_traced {
@@ -328,7 +336,7 @@ fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let c = square_corners(level, a, b);
         leaves += 1u;
-        if level == 0u && pixels_have_centres() {
+        if square_has_centre(level) {
             let centre = pixel_centre(a, b);
             sum += quincunx_mean(c, lattice_point(centre.x, centre.y));
             continue;

@@ -88,9 +88,15 @@ fn pixel_aligned_edge(depth: u32) -> glint::pack::PackedScene {
         gr.render(root, 'edge.png', 16, 64, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 50,
                   {1, 1, 1}, {})
     ";
+    adaptive_scene(source, 0.0, depth)
+}
+
+/// The first render of scene script `source` under adaptive AA at `threshold` and
+/// `depth`.
+fn adaptive_scene(source: &str, threshold: f32, depth: u32) -> glint::pack::PackedScene {
     let overrides = OptionOverrides {
         aa: Some(AaMode::Adaptive),
-        aa_threshold: Some(0.0),
+        aa_threshold: Some(threshold),
         aa_depth: Some(glint::scene::AaDepth::constant(depth)),
         ..OptionOverrides::default()
     };
@@ -149,14 +155,8 @@ fn bar_between_corners() -> glint::pack::PackedScene {
         gr.render(root, 'bar.png', 16, 16, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 50,
                   {1, 1, 1}, {})
     ";
-    let overrides = OptionOverrides {
-        aa: Some(AaMode::Adaptive),
-        // (Contrast 1 splits levels 0–2: 1 > 0.2·2^k.)
-        aa_threshold: Some(0.2),
-        aa_depth: Some(glint::scene::AaDepth::constant(3)),
-        ..OptionOverrides::default()
-    };
-    common::packed_from_source(source, &overrides).remove(0)
+    // (Contrast 1 splits levels 0–2: 1 > 0.2·2^k.)
+    adaptive_scene(source, 0.2, 3)
 }
 
 /// Each pixel's centre is sampled with its corners and takes part in its split decision

@@ -135,6 +135,14 @@ fn pixel_centre(tile: &AdaptiveTile, a: u32, b: u32) -> (u32, u32) {
     (a * s + s / 2, b * s + s / 2)
 }
 
+/// Whether square (a, b) of `level` has a traced centre of its own: a pixel (level 0)
+/// where [`AdaptiveTile::pixels_have_centres`]. Its decision and, unsplit, its colour use
+/// it; squares below a pixel have corners only.
+// Mirror of shaders/adaptive.wgsl::square_has_centre — change both.
+fn square_has_centre(tile: &AdaptiveTile, level: u32) -> bool {
+    level == 0 && tile.pixels_have_centres()
+}
+
 /// Invocation `idx` of the corner pass ([`AdaptiveTile::first_pass_len`] of them): traces
 /// pixel corner (idx mod (w+1), idx div (w+1)) for idx < (w+1)(h+1), after those the
 /// centre of pixel number idx − (w+1)(h+1).
@@ -181,7 +189,7 @@ fn square_penumbra(lat: &Lattice, level: u32, a: u32, b: u32) -> bool {
         || lat.point_penumbra(i + l, j)
         || lat.point_penumbra(i, j + l)
         || lat.point_penumbra(i + l, j + l);
-    if level == 0 && lat.tile.pixels_have_centres() {
+    if square_has_centre(&lat.tile, level) {
         let (ci, cj) = pixel_centre(&lat.tile, a, b);
         return corners || lat.point_penumbra(ci, cj);
     }
@@ -193,7 +201,7 @@ fn square_penumbra(lat: &Lattice, level: u32, a: u32, b: u32) -> bool {
 // Mirror of shaders/adaptive.wgsl::square_contrast — change both.
 fn square_contrast(lat: &Lattice, level: u32, a: u32, b: u32) -> f32 {
     let corners = square_corners(lat, level, a, b);
-    if level == 0 && lat.tile.pixels_have_centres() {
+    if square_has_centre(&lat.tile, level) {
         let (ci, cj) = pixel_centre(&lat.tile, a, b);
         return pixel_contrast(&corners, lat.point(ci, cj));
     }
@@ -259,7 +267,7 @@ fn adaptive_midpoints(
     let t = lat.tile;
     let m = idx % 5;
     let (a, b) = lat.split_square(level, idx / 5);
-    if (m == 2 && level == 0 && t.pixels_have_centres())
+    if (m == 2 && square_has_centre(&t, level))
         || (m == 0 && b > 0 && lat.is_split(level, a, b - 1))
         || (m == 1 && a > 0 && lat.is_split(level, a - 1, b))
     {
@@ -297,7 +305,7 @@ fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
         }
         let c = square_corners(lat, level, a, b);
         leaves += 1;
-        if level == 0 && t.pixels_have_centres() {
+        if square_has_centre(&t, level) {
             let (ci, cj) = pixel_centre(&t, a, b);
             sum += quincunx_mean(&c, lat.point(ci, cj));
             continue;
