@@ -85,7 +85,7 @@ fn uniform_sample(x: u32, y: u32, s: u32, n: u32, uniform: bool) -> vec3<f32> {
     }
     let fx = f32(x) + (f32(i) + jx) / f32(n);
     let fy = f32(y) + (f32(j) + jy) / f32(n);
-    return sample(fx, fy, SampleSeed(pixel, s, 0u));
+    return sample(fx, fy, SampleSeed(pixel, s, 0u, false));
 }
 
 // Index of a one-dimensional kernel's invocation: a dispatch wider than the adapter's

@@ -275,9 +275,10 @@ fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3
     let scale = 1.0 / f32(k);
     var sum = vec3<f32>(0.0);
     var lit = 0u;
+    let stream = shadow_stream(seed, index);
     for (var stratum = 0u; stratum < k * k; stratum++) {
-        let a = (f32(stratum % k) + shadow_random(seed, index, stratum, 0u)) * scale - 0.5;
-        let b = (f32(stratum / k) + shadow_random(seed, index, stratum, 1u)) * scale - 0.5;
+        let a = (f32(stratum % k) + shadow_random(stream, stratum, 0u)) * scale - 0.5;
+        let b = (f32(stratum / k) + shadow_random(stream, stratum, 1u)) * scale - 0.5;
         let position = light.position + light.edge_u * a + light.edge_v * b;
         let c = point_light(s, phong, n, v, origin, position, light);
         lit += select(0u, 1u, any(c != vec3<f32>(0.0)));

@@ -83,7 +83,9 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
 // #if REFRACTION
         shading_media = entry.media;
 // #endif
-        colour += entry.weight * shade_phong(s, n, v, SampleSeed(seed.pixel, seed.sample, entry.depth));
+        var shade_seed = seed;
+        shade_seed.depth = entry.depth;
+        colour += entry.weight * shade_phong(s, n, v, shade_seed);
 // #if REFLECTION|REFRACTION
         let m = load_material(s.material);
         var reflectance = vec3<f32>(0.0);

@@ -1,5 +1,6 @@
 //! Area lights (`gr.area_light`) on the CPU tracer: packing, a zero-size area light equals
-//! a point light, and the soft-shadow error falls as the n×n shadow samples grow.
+//! a point light, the soft-shadow error falls as the n×n shadow samples grow, and an
+//! adaptive-AA pixel centre's shadow jitter mirrors its corners'.
 //! (CPU–GPU parity is in `gpu_images.rs`.)
 
 mod common;
@@ -7,7 +8,7 @@ mod common;
 use common::{packed_from_source, render_cpu};
 use glint::constants::{LIGHT_AREA, LIGHT_POINT};
 use glint::pack::{PackedScene, SceneFeatures};
-use glint::scene::{AaMode, OptionOverrides, ShadowSamples};
+use glint::scene::{AaDepth, AaMode, AaSamples, OptionOverrides, ShadowSamples};
 
 /// A sphere over a floor, lit by `light` (a Lua expression).
 fn scene(light: &str, overrides: &OptionOverrides) -> PackedScene {
@@ -133,4 +134,61 @@ fn soft_shadow_error_falls_with_more_samples() {
     for w in errors.windows(2) {
         assert!(w[1] < w[0], "error did not fall: {errors:?}");
     }
+}
+
+/// A shiny floor under a large area light with 2×2 shadow samples and nothing to cast a
+/// shadow: every pixel's colour varies only with where its shadow samples fall on the
+/// light. Rendered with `overrides` (64×64).
+fn lit_floor(overrides: &OptionOverrides) -> glint::film::Film {
+    let source = "
+        grey = gr.material({0.6, 0.6, 0.6}, {0.4, 0.4, 0.4}, 10)
+        root = gr.node('root')
+        floor = gr.cube('floor') floor:scale(10, 0.5, 10) floor:translate(-5, -1.5, -9)
+        floor:set_material(grey) root:add_child(floor)
+        a = gr.area_light({0, 3, -4}, {6, 0, 0}, {0, 0, 6}, {0.9, 0.9, 0.9}, {1, 0, 0})
+        gr.render(root, 'floor.png', 64, 64, {0, 2, 3}, {0, -0.5, -1}, {0, 1, 0}, 50,
+                  {0.1, 0.1, 0.1}, {a})
+    ";
+    let overrides = OptionOverrides {
+        shadow_samples: Some(ShadowSamples::constant(2)),
+        ..overrides.clone()
+    };
+    render_cpu(&packed_from_source(source, &overrides).remove(0))
+}
+
+/// An unsplit adaptive pixel is the quincunx mean of its corners and centre, and its
+/// centre's shadow jitter is its corners' mirrored through each stratum's centre, which
+/// cancels their error where the light's contribution varies linearly across a stratum.
+/// With no contrast and no penumbra to split anything, its five samples so err less
+/// against a 16×16 reference than uniform 4×4's sixteen independent ones (RMSE 0.0045
+/// against 0.0057 when written; with independent jitters the pixels erred 0.0134, as
+/// the quincunx's variance is 0.31 of one sample's and 4×4's 0.06).
+#[test]
+fn pixel_centres_mirror_their_corners_shadow_jitter() {
+    let uniform = |n: u32| {
+        lit_floor(&OptionOverrides {
+            aa: Some(AaMode::Uniform),
+            samples: Some(AaSamples::constant(n)),
+            ..OptionOverrides::default()
+        })
+    };
+    let reference = uniform(16);
+    let adaptive = lit_floor(&OptionOverrides {
+        aa: Some(AaMode::Adaptive),
+        aa_threshold: Some(f32::MAX),
+        aa_depth: Some(AaDepth::constant(1)),
+        ..OptionOverrides::default()
+    });
+    let none = lit_floor(&no_aa());
+    let (adaptive, four, one) = (
+        rmse(&adaptive, &reference),
+        rmse(&uniform(4), &reference),
+        rmse(&none, &reference),
+    );
+    eprintln!("RMSE against 16×16: adaptive {adaptive:.5}, uniform 4×4 {four:.5}, none {one:.5}");
+    assert!(
+        four < one,
+        "4×4 ({four}) should err less than one sample ({one})"
+    );
+    assert!(adaptive < four, "adaptive {adaptive} vs uniform 4×4 {four}");
 }

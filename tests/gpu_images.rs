@@ -345,6 +345,36 @@ fn soft_shadows_split_the_same() {
     }
 }
 
+/// A pixel centre's shadow jitter mirrors its pixel's corners' (shadow_stream,
+/// shadow_random): a shiny floor under a large area light with one shadow sample and
+/// nothing to split, so each pixel is the quincunx mean and its colour moves with where
+/// the centre's one sample falls on the light. Both tracers must draw the same points (a
+/// centre mirrored from other corners, or not at all, moves most pixels by more than
+/// 2/255).
+#[test]
+fn mirrored_shadow_jitter_matches() {
+    let Some(ctx) = gpu_context() else { return };
+    let source = "
+        shiny = gr.material({0.6, 0.6, 0.6}, {0.6, 0.6, 0.6}, 20)
+        root = gr.node('root')
+        floor = gr.cube('floor') floor:scale(10, 0.5, 10) floor:translate(-5, -1.5, -9)
+        floor:set_material(shiny) root:add_child(floor)
+        a = gr.area_light({0, 3, -4}, {6, 0, 0}, {0, 0, 6}, {0.9, 0.9, 0.9}, {1, 0, 0})
+        gr.render(root, 'floor.png', 64, 64, {0, 2, 3}, {0, -0.5, -1}, {0, 1, 0}, 50,
+                  {0.1, 0.1, 0.1}, {a})
+    ";
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Adaptive),
+        aa_threshold: Some(f32::MAX),
+        aa_depth: Some(glint::scene::AaDepth::constant(1)),
+        shadow_samples: Some(glint::scene::ShadowSamples::constant(1)),
+        ..OptionOverrides::default()
+    };
+    let scene = packed_from_source(source, &overrides).remove(0);
+    let features = compare(&ctx, "mirrored-shadow-jitter", &scene);
+    assert!(features.contains(SceneFeatures::AREA_LIGHT), "{features}");
+}
+
 /// An area light's soft shadows (the AREA_LIGHT specialisation) under the default
 /// adaptive AA and under uniform AA: both tracers draw the same shadow samples, and
 /// adaptive AA splits the same squares (penumbrae included) on both.

@@ -216,6 +216,7 @@ fn uniform_sample(
         pixel,
         sample: s,
         depth: 0,
+        mirrors_corners: false,
     };
     sample(scene, fx, fy, seed, counters)
 }

@@ -24,37 +24,96 @@ pub fn random_unit(pixel: u32, sample: u32, dimension: u32) -> f32 {
 
 /// Which camera sample a shading point belongs to, for the random numbers drawn there:
 /// the pixel (or, under adaptive AA, a lattice coordinate), the camera sample's index,
-/// and the bounce depth of the ray being shaded.
+/// the bounce depth of the ray being shaded, and whether the sample is an adaptive-AA
+/// pixel centre, whose shadow jitter mirrors its pixel's corners' ([`shadow_random`]).
 // Mirror of shaders/rng.wgsl::SampleSeed — change both.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SampleSeed {
     pub pixel: u32,
     pub sample: u32,
     pub depth: u32,
+    pub mirrors_corners: bool,
 }
 
 /// The seed of the adaptive-AA sample at film position (fx, fy): its coordinates on the
 /// finest lattice (2^MAX_AA_DEPTH steps per pixel; exact, as every lattice position is a
 /// dyadic fraction of at most MAX_AA_DEPTH bits), so a point shared by neighbouring pixels
-/// or tiles draws the same numbers whichever pass traces it.
+/// or tiles draws the same numbers whichever pass traces it. A point halfway between
+/// pixel corners on both axes is a pixel's centre.
 // Mirror of shaders/rng.wgsl::adaptive_seed — change both.
 pub fn adaptive_seed(fx: f32, fy: f32) -> SampleSeed {
-    let scale = (1u32 << MAX_AA_DEPTH) as f32;
+    let steps = 1u32 << MAX_AA_DEPTH;
+    let (pixel, sample) = ((fx * steps as f32) as u32, (fy * steps as f32) as u32);
     SampleSeed {
-        pixel: (fx * scale) as u32,
-        sample: (fy * scale) as u32,
+        pixel,
+        sample,
         depth: 0,
+        mirrors_corners: pixel % steps == steps / 2 && sample % steps == steps / 2,
     }
 }
 
-/// Jitter (`axis` 0 or 1) of stratum `stratum` of light `light`'s shadow samples at a
-/// shading point of `seed`: depends on nothing else.
+/// The random streams of light `light`'s shadow jitters at a shading point of `seed`
+/// ([`shadow_stream`]): hashed once per light, so that each jitter costs three hashes.
+// Mirror of shaders/rng.wgsl::ShadowStream — change both.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadowStream {
+    /// The seed's sample index hashed with the light and depth; for a mirrored stream,
+    /// those of the pixel's top and bottom corners.
+    rows: [u32; 2],
+    /// The seed's pixel coordinate; for a mirrored stream, the left and right corners'.
+    columns: [u32; 2],
+    mirrored: bool,
+}
+
+/// Light `light`'s shadow-jitter streams at `seed`. They are drawn independently for
+/// every seed but one kind: at the first hit of an adaptive-AA pixel centre
+/// (`mirrors_corners`) the jitters are its pixel's four corners' mirrored through each
+/// stratum's centre ([`shadow_random`]).
+// Mirror of shaders/rng.wgsl::shadow_stream — change both.
+pub fn shadow_stream(seed: SampleSeed, light: u32) -> ShadowStream {
+    let light_hash = pcg_hash(light ^ pcg_hash(seed.depth));
+    if seed.mirrors_corners && seed.depth == 0 {
+        let half = 1u32 << (MAX_AA_DEPTH - 1);
+        ShadowStream {
+            rows: [
+                pcg_hash((seed.sample - half) ^ light_hash),
+                pcg_hash((seed.sample + half) ^ light_hash),
+            ],
+            columns: [seed.pixel - half, seed.pixel + half],
+            mirrored: true,
+        }
+    } else {
+        let row = pcg_hash(seed.sample ^ light_hash);
+        ShadowStream {
+            rows: [row, row],
+            columns: [seed.pixel, seed.pixel],
+            mirrored: false,
+        }
+    }
+}
+
+/// Jitter (`axis` 0 or 1) of stratum `stratum` of a light's shadow samples from its
+/// `stream`: `random_unit`'s hash chain, the sample index hashed with light and depth.
+/// A mirrored stream's jitter is 2^24 − 1 minus the mean of its four corners' 24-bit
+/// jitters (integers: exact on both tracers), 1 − their mean. Why: an unsplit pixel is
+/// the quincunx mean (centre 1/2, corners 1/8 each), so where a light's contribution
+/// varies linearly across a stratum the centre's jitter cancels the corners' error
+/// exactly; with independent jitters that noise set adaptive AA's error over evenly lit
+/// areas. Each corner's own jitter stays uniform in its stratum.
 // Mirror of shaders/rng.wgsl::shadow_random — change both.
-pub fn shadow_random(seed: SampleSeed, light: u32, stratum: u32, axis: u32) -> f32 {
-    let sample = pcg_hash(seed.sample ^ pcg_hash(light ^ pcg_hash(seed.depth)));
-    random_unit(
-        seed.pixel,
-        sample,
-        SHADOW_DIMENSION_BASE + 2 * stratum + axis,
-    )
+pub fn shadow_random(stream: &ShadowStream, stratum: u32, axis: u32) -> f32 {
+    let dimension_hash = pcg_hash(SHADOW_DIMENSION_BASE + 2 * stratum + axis);
+    let top = pcg_hash(stream.rows[0] ^ dimension_hash);
+    let [left, right] = stream.columns;
+    let bits = if stream.mirrored {
+        let bottom = pcg_hash(stream.rows[1] ^ dimension_hash);
+        let sum = (pcg_hash(left ^ top) >> 8)
+            + (pcg_hash(right ^ top) >> 8)
+            + (pcg_hash(left ^ bottom) >> 8)
+            + (pcg_hash(right ^ bottom) >> 8);
+        0x00ff_ffff - (sum >> 2)
+    } else {
+        pcg_hash(left ^ top) >> 8
+    };
+    bits as f32 * RANDOM_UNIT_SCALE
 }

@@ -2,7 +2,7 @@
 
 use super::dielectric::{shadow_transmittance, MediumStack};
 use super::ray::{offset_ray, Ray};
-use super::rng::{shadow_random, SampleSeed};
+use super::rng::{shadow_random, shadow_stream, SampleSeed};
 use super::surface::{Phong, Surface};
 use super::texture::surface_colours;
 use super::traverse::{any_hit, TraversalCounters};
@@ -170,9 +170,10 @@ fn area_light(
     );
     let mut sum = Vec3::ZERO;
     let mut lit = 0;
+    let stream = shadow_stream(seed, index);
     for stratum in 0..k * k {
-        let a = ((stratum % k) as f32 + shadow_random(seed, index, stratum, 0)) * scale - 0.5;
-        let b = ((stratum / k) as f32 + shadow_random(seed, index, stratum, 1)) * scale - 0.5;
+        let a = ((stratum % k) as f32 + shadow_random(&stream, stratum, 0)) * scale - 0.5;
+        let b = ((stratum / k) as f32 + shadow_random(&stream, stratum, 1)) * scale - 0.5;
         let position = centre + u * a + w * b;
         let c = point_light(
             scene, s, phong, n, v, origin, media, position, light, counters,
