@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{packed_from_source, render_cpu};
+use common::{area_lit_floor_source, packed_from_source, render_cpu};
 use glint::constants::{LIGHT_AREA, LIGHT_POINT};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaDepth, AaMode, AaSamples, OptionOverrides, ShadowSamples};
@@ -136,24 +136,15 @@ fn soft_shadow_error_falls_with_more_samples() {
     }
 }
 
-/// A shiny floor under a large area light with 2×2 shadow samples and nothing to cast a
-/// shadow: every pixel's colour varies only with where its shadow samples fall on the
-/// light. Rendered with `overrides` (64×64).
+/// `area_lit_floor_source` (a slightly shiny floor) with 2×2 shadow samples, rendered
+/// with `overrides`.
 fn lit_floor(overrides: &OptionOverrides) -> glint::film::Film {
-    let source = "
-        grey = gr.material({0.6, 0.6, 0.6}, {0.4, 0.4, 0.4}, 10)
-        root = gr.node('root')
-        floor = gr.cube('floor') floor:scale(10, 0.5, 10) floor:translate(-5, -1.5, -9)
-        floor:set_material(grey) root:add_child(floor)
-        a = gr.area_light({0, 3, -4}, {6, 0, 0}, {0, 0, 6}, {0.9, 0.9, 0.9}, {1, 0, 0})
-        gr.render(root, 'floor.png', 64, 64, {0, 2, 3}, {0, -0.5, -1}, {0, 1, 0}, 50,
-                  {0.1, 0.1, 0.1}, {a})
-    ";
     let overrides = OptionOverrides {
         shadow_samples: Some(ShadowSamples::constant(2)),
         ..overrides.clone()
     };
-    render_cpu(&packed_from_source(source, &overrides).remove(0))
+    let source = area_lit_floor_source(0.6, 0.4, 10.0);
+    render_cpu(&packed_from_source(&source, &overrides).remove(0))
 }
 
 /// An unsplit adaptive pixel is the quincunx mean of its corners and centre, and its

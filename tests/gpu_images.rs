@@ -6,7 +6,9 @@
 
 mod common;
 
-use common::{corpus, gpu_context, packed_from_file, packed_from_source, root};
+use common::{
+    area_lit_floor_source, corpus, gpu_context, packed_from_file, packed_from_source, root,
+};
 use glint::cpu::render::adaptive_leaf_counts;
 use glint::diff::assert_images_match;
 use glint::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderOptions};
@@ -354,15 +356,7 @@ fn soft_shadows_split_the_same() {
 #[test]
 fn mirrored_shadow_jitter_matches() {
     let Some(ctx) = gpu_context() else { return };
-    let source = "
-        shiny = gr.material({0.6, 0.6, 0.6}, {0.6, 0.6, 0.6}, 20)
-        root = gr.node('root')
-        floor = gr.cube('floor') floor:scale(10, 0.5, 10) floor:translate(-5, -1.5, -9)
-        floor:set_material(shiny) root:add_child(floor)
-        a = gr.area_light({0, 3, -4}, {6, 0, 0}, {0, 0, 6}, {0.9, 0.9, 0.9}, {1, 0, 0})
-        gr.render(root, 'floor.png', 64, 64, {0, 2, 3}, {0, -0.5, -1}, {0, 1, 0}, 50,
-                  {0.1, 0.1, 0.1}, {a})
-    ";
+    let source = area_lit_floor_source(0.6, 0.6, 20.0);
     let overrides = OptionOverrides {
         aa: Some(AaMode::Adaptive),
         aa_threshold: Some(f32::MAX),
@@ -370,7 +364,7 @@ fn mirrored_shadow_jitter_matches() {
         shadow_samples: Some(glint::scene::ShadowSamples::constant(1)),
         ..OptionOverrides::default()
     };
-    let scene = packed_from_source(source, &overrides).remove(0);
+    let scene = packed_from_source(&source, &overrides).remove(0);
     let features = compare(&ctx, "mirrored-shadow-jitter", &scene);
     assert!(features.contains(SceneFeatures::AREA_LIGHT), "{features}");
 }

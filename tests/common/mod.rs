@@ -183,6 +183,23 @@ pub fn packed_from_source(source: &str, overrides: &OptionOverrides) -> Vec<Pack
     out
 }
 
+/// A floor lit by a large area light (6 × 6, 3 units above) with nothing to cast a
+/// shadow, 64×64: every pixel's colour moves only with where its shadow samples fall on
+/// the light. The floor's material: diffuse `kd`, specular `ks`, `shininess` (grey).
+pub fn area_lit_floor_source(kd: f32, ks: f32, shininess: f32) -> String {
+    format!(
+        "
+        floor_mat = gr.material({{{kd}, {kd}, {kd}}}, {{{ks}, {ks}, {ks}}}, {shininess})
+        root = gr.node('root')
+        floor = gr.cube('floor') floor:scale(10, 0.5, 10) floor:translate(-5, -1.5, -9)
+        floor:set_material(floor_mat) root:add_child(floor)
+        a = gr.area_light({{0, 3, -4}}, {{6, 0, 0}}, {{0, 0, 6}}, {{0.9, 0.9, 0.9}}, {{1, 0, 0}})
+        gr.render(root, 'floor.png', 64, 64, {{0, 2, 3}}, {{0, -0.5, -1}}, {{0, 1, 0}}, 50,
+                  {{0.1, 0.1, 0.1}}, {{a}})
+        "
+    )
+}
+
 /// Packed scenes of every gr.render in a scene file, with `overrides` applied.
 pub fn packed_from_file(path: &Path, overrides: &OptionOverrides) -> Vec<PackedScene> {
     load_scenes(path, overrides)
