@@ -3,7 +3,7 @@
 // is film position (x0 + i/2^d, y0 + j/2^d), sampled within the lattice cell around it,
 // jittered by a hash of its position: lattice_sample), one sample per invocation:
 // adaptive_corners traces the pixel corners and, at d ≥ 1, the pixel centres (w of each
-// sample: whether it saw a penumbra); for each level k < d, adaptive_decide flags the
+// sample: its hint, whether it saw a penumbra and which item it hit); for each level k < d, adaptive_decide flags the
 // level-k squares to split (square_splits; a pixel weighs its centre too) and appends
 // them to level k's list, adaptive_work_args turns the list's length into the indirect
 // dispatches of the passes over it, and adaptive_midpoints traces the listed squares'
@@ -90,10 +90,10 @@ fn square_corners(level: u32, a: u32, b: u32) -> array<vec3<f32>, 4> {
     );
 }
 
-// Whether the sample at lattice point (i, j) saw a penumbra.
-// Mirror of src/cpu/adaptive.rs::Lattice::point_penumbra — change both.
-fn point_penumbra(i: u32, j: u32) -> bool {
-    return samples[lattice_index(i, j)].w != 0.0;
+// The hint of the sample at lattice point (i, j).
+// Mirror of src/cpu/adaptive.rs::Lattice::point_hint — change both.
+fn point_hint(i: u32, j: u32) -> SampleHint {
+    return decode_hint(samples[lattice_index(i, j)].w);
 }
 
 // Whether each pixel's centre is a lattice point, traced by the first pass (d ≥ 1).
@@ -117,20 +117,23 @@ fn square_has_centre(level: u32) -> bool {
     return level == 0u && pixels_have_centres();
 }
 
-// Whether a corner of square (a, b) of `level` saw a penumbra (or, at level 0, the
-// pixel's centre).
-// Mirror of src/cpu/adaptive.rs::square_penumbra — change both.
-fn square_penumbra(level: u32, a: u32, b: u32) -> bool {
+// The hints of square (a, b) of `level`: whether one of its corners (or, at level 0, the
+// pixel's centre) saw a penumbra, and whether their camera rays hit different items.
+// Mirror of src/cpu/adaptive.rs::square_hints — change both.
+fn square_hints(level: u32, a: u32, b: u32) -> SquareHints {
     let l = adaptive_scale() >> level;
     let i = a * l;
     let j = b * l;
-    let corners = point_penumbra(i, j) || point_penumbra(i + l, j)
-        || point_penumbra(i, j + l) || point_penumbra(i + l, j + l);
+    let first = point_hint(i, j);
+    var hints = SquareHints(first.penumbra, false);
+    hints = add_sample_hint(hints, first, point_hint(i + l, j));
+    hints = add_sample_hint(hints, first, point_hint(i, j + l));
+    hints = add_sample_hint(hints, first, point_hint(i + l, j + l));
     if square_has_centre(level) {
         let c = pixel_centre(a, b);
-        return corners || point_penumbra(c.x, c.y);
+        hints = add_sample_hint(hints, first, point_hint(c.x, c.y));
     }
-    return corners;
+    return hints;
 }
 
 // The contrast the split decision of square (a, b) of `level` weighs: of its corners
@@ -147,15 +150,18 @@ fn square_contrast(level: u32, a: u32, b: u32) -> f32 {
 
 // Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
 // times the square's side (2^−level pixels) exceeds `threshold` (NaN included), that is,
-// the samples differ by more than 2^level · `threshold`; or one of them saw a penumbra
-// (`penumbra`) and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as
-// contrast, down to the density of uniform 4×4). The per-pixel walk's test too.
+// the samples differ by more than 2^level · `threshold`; or, whatever the contrast, one of
+// them saw a penumbra and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts
+// as contrast, down to the density of uniform 4×4), or their camera rays hit different
+// items and the level is above AA_ITEM_EDGE_DEPTH (an edge between objects of about the
+// same colour). The per-pixel walk's test too.
 // Mirror of src/cpu/adaptive.rs::square_splits — change both.
-fn square_splits(spread: f32, penumbra: bool, level: u32, threshold: f32) -> bool {
+fn square_splits(spread: f32, hints: SquareHints, level: u32, threshold: f32) -> bool {
     // (A power of two: the product is exact, on both tracers.)
     let level_threshold = threshold * f32(1u << level);
     let differ = !(spread <= level_threshold);
-    return differ || (penumbra && level < AA_PENUMBRA_DEPTH);
+    return differ || (hints.penumbra && level < AA_PENUMBRA_DEPTH)
+        || (hints.items_differ && level < AA_ITEM_EDGE_DEPTH);
 }
 
 // Film position of lattice point (i, j), exact (a dyadic fraction of few bits; ldexp
@@ -170,7 +176,7 @@ fn lattice_position(i: u32, j: u32) -> vec2<f32> {
     );
 }
 
-// Traces lattice point (i, j) into the lattice: its colour and, in w, its penumbra flag.
+// Traces lattice point (i, j) into the lattice: its colour and, in w, its hint.
 // Mirror of src/cpu/adaptive.rs::trace_lattice_point — change both.
 fn trace_lattice_point(i: u32, j: u32) {
     let pos = lattice_position(i, j);
@@ -238,7 +244,7 @@ fn adaptive_decide(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     let a = square.x;
     let b = square.y;
     var flag = 0u;
-    if square_splits(square_contrast(level, a, b), square_penumbra(level, a, b), level, globals.aa_threshold) {
+    if square_splits(square_contrast(level, a, b), square_hints(level, a, b), level, globals.aa_threshold) {
         flag = 1u;
     }
     split[split_index(level, a, b)] = flag;

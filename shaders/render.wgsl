@@ -20,18 +20,59 @@ fn sample(fx: f32, fy: f32, seed: SampleSeed) -> vec3<f32> {
     return trace_ray(camera_ray(fx, fy), seed);
 }
 
-// sample, and in w 1 where an area light reached the first surface it hits through some
-// of its shadow samples but not all (penumbra_seen), else 0. Adaptive AA's lattice samples.
-// Mirror of src/cpu/pixel_sample.rs::penumbra_sample — change both.
-fn penumbra_sample(fx: f32, fy: f32, seed: SampleSeed) -> vec4<f32> {
+// What adaptive AA's split decisions read from a lattice sample beside its colour: whether
+// an area light reached its first surface through some of its shadow samples but not all
+// (penumbra_seen), and the item its camera ray hit first, as item_key (camera_item).
+// Mirror of src/cpu/pixel_sample.rs::SampleHint — change both.
+struct SampleHint {
+    penumbra: bool,
+    item: u32,
+}
+
+// The part of item number `item` (NO_ITEM: none) that a SampleHint keeps: its low
+// AA_ITEM_KEY_MASK bits, which encode_hint's float holds exactly.
+// Mirror of src/cpu/pixel_sample.rs::item_key — change both.
+fn item_key(item: u32) -> u32 {
+    return item & AA_ITEM_KEY_MASK;
+}
+
+// A hint as a lattice sample's fourth component: ±(item + 1), negative for a penumbra (an
+// integer of at most 2^24, so the float is exact and decode_hint gives it back).
+fn encode_hint(hint: SampleHint) -> f32 {
+    return select(1.0, -1.0, hint.penumbra) * f32(hint.item + 1u);
+}
+
+// The hint encode_hint stored in w.
+fn decode_hint(w: f32) -> SampleHint {
+    return SampleHint(w < 0.0, u32(abs(w)) - 1u);
+}
+
+// What the split decision of a square reads beside its samples' contrast: whether one of
+// its samples saw a penumbra, and whether they hit different items.
+// Mirror of src/cpu/pixel_sample.rs::SquareHints — change both.
+struct SquareHints {
+    penumbra: bool,
+    items_differ: bool,
+}
+
+// hints with sample hint h added (first: the square's first sample's hint).
+// Mirror of src/cpu/pixel_sample.rs::add_sample_hint — change both.
+fn add_sample_hint(hints: SquareHints, first: SampleHint, h: SampleHint) -> SquareHints {
+    return SquareHints(hints.penumbra || h.penumbra, hints.items_differ || h.item != first.item);
+}
+
+// sample, and in w its SampleHint (encode_hint). Adaptive AA's lattice samples.
+// Mirror of src/cpu/pixel_sample.rs::hinted_sample — change both.
+fn hinted_sample(fx: f32, fy: f32, seed: SampleSeed) -> vec4<f32> {
     penumbra_seen = false;
+    camera_item = NO_ITEM;
     let colour = sample(fx, fy, seed);
-    return vec4<f32>(colour, select(0.0, 1.0, penumbra_seen));
+    return vec4<f32>(colour, encode_hint(SampleHint(penumbra_seen, item_key(camera_item))));
 }
 
 // Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact): the
 // point jittered, by hashes of its seed, within a square AA_LATTICE_JITTER steps of the
-// finest lattice (2^aa_depth per pixel) wide around it, then penumbra_sample there with
+// finest lattice (2^aa_depth per pixel) wide around it, then hinted_sample there with
 // the point's own seed. The jitter depends only on the point, so a point shared by
 // neighbouring squares, pixels or chunks is the same sample whichever pass traces it.
 // Mirror of src/cpu/pixel_sample.rs::lattice_sample — change both.
@@ -42,7 +83,7 @@ fn lattice_sample(fx: f32, fy: f32) -> vec4<f32> {
     let width = AA_LATTICE_JITTER * ldexp(1.0, -i32(globals.aa_depth));
     let jx = (random_unit(seed.pixel, seed.sample, 0u) - 0.5) * width;
     let jy = (random_unit(seed.pixel, seed.sample, 1u) - 0.5) * width;
-    return penumbra_sample(fx + jx, fy + jy, seed);
+    return hinted_sample(fx + jx, fy + jy, seed);
 }
 
 // Largest per-channel spread of four colours.

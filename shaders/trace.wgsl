@@ -3,6 +3,10 @@
 // textures or bump maps) its cone for texture filtering (see texture.wgsl) and (with
 // refraction) the media it travels in (see dielectric.wgsl).
 
+// The item the camera ray of the last sample hit first (NO_ITEM: none; the CPU's
+// TraversalCounters::camera_hit); render.wgsl's hinted_sample reads it after a sample.
+var<private> camera_item: u32;
+
 // Mirror of src/cpu/trace.rs::StackEntry — change both.
 struct StackEntry {
     ray: Ray,
@@ -52,6 +56,9 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
         let entry = stack[size];
         let ray = entry.ray;
         let hit = closest_hit(ray, T_MISS);
+        if entry.depth == 0u {
+            camera_item = hit.item;
+        }
         if !is_hit(hit) {
             colour += entry.weight * background(ray.dir);
             continue;

@@ -246,6 +246,8 @@ pub fn wgsl_prelude() -> String {
         ("MAX_SHADOW_CROSSINGS", MAX_SHADOW_CROSSINGS),
         ("MAX_AA_DEPTH", MAX_AA_DEPTH),
         ("AA_PENUMBRA_DEPTH", AA_PENUMBRA_DEPTH),
+        ("AA_ITEM_EDGE_DEPTH", AA_ITEM_EDGE_DEPTH),
+        ("AA_ITEM_KEY_MASK", AA_ITEM_KEY_MASK),
         ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
         ("TILE_SIZE", TILE_SIZE),
         ("AA_STACK_SIZE", AA_STACK_SIZE),
@@ -297,6 +299,17 @@ pub const MAX_AA_DEPTH: u32 = 6;
 /// `aa_depth`): level 2 is 4×4 squares per pixel, the density of uniform 4×4, where
 /// shadow noise (n² shadow rays per sample) rather than edges sets the error.
 pub const AA_PENUMBRA_DEPTH: u32 = 2;
+/// Adaptive anti-aliasing splits a square whose samples' camera rays hit different items
+/// (scene items: a primitive, a CSG object, a mesh instance; or none) down to this level
+/// at most (and `aa_depth`), whatever their colours' contrast: the boundary between two
+/// objects of about the same colour, where a seam, gap or bevel thinner than the samples'
+/// spacing hides (measured in docs/performance.md, "Item edges split").
+pub const AA_ITEM_EDGE_DEPTH: u32 = 2;
+/// The bits of an item number that adaptive anti-aliasing's samples keep for
+/// [`AA_ITEM_EDGE_DEPTH`]'s test (the GPU keeps them in the sample's fourth component, a
+/// float, exact up to 2^24): items 2^24 apart look the same to it, which only costs a
+/// split.
+pub const AA_ITEM_KEY_MASK: u32 = 0x00ff_ffff;
 /// Width of the square a lattice point of adaptive anti-aliasing is jittered in, in steps
 /// of the finest lattice (2^aa_depth per pixel): 1 spreads each point over the whole cell
 /// of the finest lattice around it, so the lattice samples the film stratified instead of

@@ -5,7 +5,7 @@
 mod common;
 
 use common::{corpus, packed_from_file, root};
-use glint::constants::AA_PENUMBRA_DEPTH;
+use glint::constants::{AA_ITEM_EDGE_DEPTH, AA_PENUMBRA_DEPTH};
 use glint::cpu::render::{adaptive_leaf_counts, render_pixel};
 use glint::cpu::traverse::NoCounters;
 use glint::scene::{AaMode, OptionOverrides};
@@ -78,17 +78,7 @@ fn penumbrae_split_down_to_their_depth() {
 /// the right; ambient light only), so the edge between them lies exactly on the boundary
 /// of pixel columns 7 and 8 of a 16 × 64 image.
 fn pixel_aligned_edge(depth: u32) -> glint::pack::PackedScene {
-    let source = "
-        black = gr.material({0, 0, 0}, {0, 0, 0}, 10)
-        white = gr.material({1, 1, 1}, {0, 0, 0}, 10)
-        root = gr.node('root')
-        l = gr.cube('l') l:scale(10, 20, 1) l:translate(-10, -10, -5) l:set_material(black)
-        r = gr.cube('r') r:scale(10, 20, 1) r:translate(0, -10, -5) r:set_material(white)
-        root:add_child(l) root:add_child(r)
-        gr.render(root, 'edge.png', 16, 64, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 50,
-                  {1, 1, 1}, {})
-    ";
-    adaptive_scene(source, 0.0, depth)
+    adaptive_scene(&common::two_walls_source(0.0, 1.0), 0.0, depth)
 }
 
 /// The first render of scene script `source` under adaptive AA at `threshold` and
@@ -181,4 +171,51 @@ fn detail_between_a_pixels_corners_splits_it() {
             assert_eq!(film.pixels[at(x)][1], 0.0, "row {y}, column {x}");
         }
     }
+}
+
+/// An edge between two items of the same colour splits the squares around it down to
+/// AA_ITEM_EDGE_DEPTH, whatever the threshold (here one no contrast exceeds), in the passes
+/// as in the per-pixel walk; nothing else splits. The edge lies on the boundary of
+/// columns 7 and 8, whose lattice points are jittered to either side of it; column 7's
+/// centres are always left of it and column 8's right, so in every row one of the two
+/// pixels (or both) sees both walls.
+#[test]
+fn item_edges_split_whatever_the_contrast() {
+    let scene = adaptive_scene(&common::two_walls_source(1.0, 1.0), f32::MAX, 3);
+    let film = glint::cpu::render(&scene, &|_, _| {});
+    let leaves = adaptive_leaf_counts(&scene);
+    let deepest = 1 << (2 * AA_ITEM_EDGE_DEPTH);
+    for y in 0..64 {
+        let at = |x: usize| y * 16 + x;
+        assert!(
+            leaves[at(7)] > 1 || leaves[at(8)] > 1,
+            "row {y}: neither pixel at the edge split ({}, {})",
+            leaves[at(7)],
+            leaves[at(8)]
+        );
+        for x in 0..16 {
+            let reference = render_pixel(&scene, x as u32, y as u32, &mut NoCounters).to_array();
+            assert_eq!(film.pixels[at(x)], reference, "pixel ({x}, {y})");
+            assert_eq!(film.pixels[at(x)], [1.0, 1.0, 1.0], "pixel ({x}, {y})");
+            assert!(
+                leaves[at(x)] <= deepest,
+                "pixel ({x}, {y}): {}",
+                leaves[at(x)]
+            );
+            if !(7..=8).contains(&x) {
+                assert_eq!(
+                    leaves[at(x)],
+                    1,
+                    "pixel ({x}, {y}) away from the edge split"
+                );
+            }
+        }
+    }
+    // Level AA_ITEM_EDGE_DEPTH − 1 splits too (the halves of a pixel that straddle the
+    // edge), and no deeper level.
+    let above = 1 << (2 * (AA_ITEM_EDGE_DEPTH - 1));
+    assert!(
+        leaves.iter().any(|&l| l > above),
+        "no square below a pixel split"
+    );
 }

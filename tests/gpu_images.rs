@@ -347,6 +347,33 @@ fn soft_shadows_split_the_same() {
     }
 }
 
+/// Item-edge splits (squares whose samples hit different items split down to
+/// AA_ITEM_EDGE_DEPTH whatever their contrast): two walls of the same colour, and
+/// macho-cows with a threshold no contrast exceeds (only its silhouettes and the edges
+/// between its objects split): the same samples-per-pixel maps on both tracers.
+#[test]
+fn item_edge_splits_match() {
+    let Some(ctx) = gpu_context() else { return };
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Adaptive),
+        aa_threshold: Some(f32::MAX),
+        ..OptionOverrides::default()
+    };
+    let walls =
+        common::packed_from_source(&common::two_walls_source(1.0, 1.0), &overrides).remove(0);
+    compare(&ctx, "same-colour-walls", &walls);
+    assert_same_splits(&ctx, "same-colour-walls", &walls);
+    let cows = cows_with(
+        48,
+        OptionOverrides {
+            aa_depth: Some(glint::scene::AaDepth::constant(3)),
+            ..overrides
+        },
+    );
+    compare(&ctx, "macho-cows-item-edges", &cows);
+    assert_same_splits(&ctx, "macho-cows-item-edges", &cows);
+}
+
 /// A pixel centre's shadow jitter mirrors its pixel's corners' (shadow_stream,
 /// shadow_random): a shiny floor under a large area light with one shadow sample and
 /// nothing to split, so each pixel is the quincunx mean and its colour moves with where

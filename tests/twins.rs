@@ -43,6 +43,18 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          value does not depend on it",
     ),
     (
+        "shaders/render.wgsl",
+        "encode_hint",
+        "stores a SampleHint in the float fourth component of a lattice sample; the CPU's \
+         lattice keeps its hints in a Vec<SampleHint>",
+    ),
+    (
+        "shaders/render.wgsl",
+        "decode_hint",
+        "reads encode_hint's float back; the CPU's lattice keeps its hints in a \
+         Vec<SampleHint>",
+    ),
+    (
         "shaders/layout.wgsl",
         "table_at",
         "reads the texel of a table element (src/gpu/tables.rs): the CPU indexes its slices",

@@ -12,7 +12,8 @@
 //!    pixel at k = 0, else the four children of each square split at k − 1, taken from
 //!    the compacted list of those) and whose samples (corners; a pixel's centre too)
 //!    differ by more than the threshold or, above level AA_PENUMBRA_DEPTH, one of which
-//!    saw a penumbra (each lattice sample keeps that flag with its colour), appending it
+//!    saw a penumbra or, above AA_ITEM_EDGE_DEPTH, whose camera rays hit different items
+//!    (each lattice sample keeps that hint with its colour), appending it
 //!    to level k's list of split squares; then [`adaptive_midpoints`] traces the five
 //!    midpoints of each square on that list (a midpoint shared with a split neighbour is
 //!    traced by one of the two only; a pixel's centre is traced already). Work is over
@@ -25,9 +26,12 @@
 //! Every function here has a WGSL twin of the same name in `shaders/adaptive.wgsl`, where
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
 
-use super::pixel_sample::{contrast, lattice_sample, pixel_contrast, quincunx_mean};
+use super::pixel_sample::{
+    add_sample_hint, contrast, lattice_sample, pixel_contrast, quincunx_mean, SampleHint,
+    SquareHints,
+};
 use super::traverse::TraversalCounters;
-use crate::constants::{AA_PENUMBRA_DEPTH, AA_STACK_SIZE};
+use crate::constants::{AA_ITEM_EDGE_DEPTH, AA_PENUMBRA_DEPTH, AA_STACK_SIZE, NO_ITEM};
 use crate::pack::PackedScene;
 pub use crate::tiling::{split_offset, AdaptiveTile};
 use glam::Vec3;
@@ -68,13 +72,13 @@ fn unpack_square(entry: u32) -> (u32, u32) {
     (entry & 0xffff, entry >> 16)
 }
 
-/// A tile's lattice colours and penumbra flags ([`lattice_sample`]; the GPU keeps the
-/// flag in the sample's fourth component), split flags and, per level, the list of split
+/// A tile's lattice colours and hints ([`lattice_sample`]; the GPU keeps the hint in the
+/// sample's fourth component, see shaders/render.wgsl::encode_hint), split flags and, per level, the list of split
 /// squares (at the level's split-flag offset, [`split_offset`]) and its length.
 pub struct Lattice {
     pub tile: AdaptiveTile,
     pub points: Vec<Vec3>,
-    pub penumbra: Vec<bool>,
+    pub hints: Vec<SampleHint>,
     pub split: Vec<u32>,
     pub work_list: Vec<u32>,
     pub work_counts: Vec<u32>,
@@ -85,7 +89,13 @@ impl Lattice {
         Lattice {
             tile,
             points: vec![Vec3::ZERO; tile.lattice_len()],
-            penumbra: vec![false; tile.lattice_len()],
+            hints: vec![
+                SampleHint {
+                    penumbra: false,
+                    item: NO_ITEM,
+                };
+                tile.lattice_len()
+            ],
             split: vec![0; tile.split_len()],
             work_list: vec![0; tile.split_len()],
             work_counts: vec![0; tile.depth as usize],
@@ -95,9 +105,9 @@ impl Lattice {
     fn point(&self, i: u32, j: u32) -> Vec3 {
         self.points[lattice_index(&self.tile, i, j)]
     }
-    // Mirror of shaders/adaptive.wgsl::point_penumbra — change both.
-    fn point_penumbra(&self, i: u32, j: u32) -> bool {
-        self.penumbra[lattice_index(&self.tile, i, j)]
+    // Mirror of shaders/adaptive.wgsl::point_hint — change both.
+    fn point_hint(&self, i: u32, j: u32) -> SampleHint {
+        self.hints[lattice_index(&self.tile, i, j)]
     }
     // Mirror of shaders/adaptive.wgsl::is_split — change both.
     fn is_split(&self, level: u32, a: u32, b: u32) -> bool {
@@ -110,7 +120,7 @@ impl Lattice {
     }
 }
 
-/// Traces lattice point (i, j) into the lattice: its colour and penumbra flag.
+/// Traces lattice point (i, j) into the lattice: its colour and hint.
 // Mirror of shaders/adaptive.wgsl::trace_lattice_point — change both.
 fn trace_lattice_point(
     scene: &PackedScene,
@@ -121,10 +131,10 @@ fn trace_lattice_point(
 ) {
     let t = lat.tile;
     let (fx, fy) = lattice_position(&t, i, j);
-    let (colour, penumbra) = lattice_sample(scene, fx, fy, counters);
+    let (colour, hint) = lattice_sample(scene, fx, fy, counters);
     let k = lattice_index(&t, i, j);
     lat.points[k] = colour;
-    lat.penumbra[k] = penumbra;
+    lat.hints[k] = hint;
 }
 
 /// Lattice point of the centre of pixel (a, b) (when
@@ -179,21 +189,25 @@ fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
     ]
 }
 
-/// Whether a corner of square (a, b) of `level` saw a penumbra (or, at level 0, the
-/// pixel's centre).
-// Mirror of shaders/adaptive.wgsl::square_penumbra — change both.
-fn square_penumbra(lat: &Lattice, level: u32, a: u32, b: u32) -> bool {
+/// The hints of square (a, b) of `level`: whether one of its corners (or, at level 0,
+/// the pixel's centre) saw a penumbra, and whether their camera rays hit different items.
+// Mirror of shaders/adaptive.wgsl::square_hints — change both.
+fn square_hints(lat: &Lattice, level: u32, a: u32, b: u32) -> SquareHints {
     let l = lat.tile.scale() >> level;
     let (i, j) = (a * l, b * l);
-    let corners = lat.point_penumbra(i, j)
-        || lat.point_penumbra(i + l, j)
-        || lat.point_penumbra(i, j + l)
-        || lat.point_penumbra(i + l, j + l);
+    let first = lat.point_hint(i, j);
+    let mut hints = SquareHints {
+        penumbra: first.penumbra,
+        items_differ: false,
+    };
+    hints = add_sample_hint(hints, first, lat.point_hint(i + l, j));
+    hints = add_sample_hint(hints, first, lat.point_hint(i, j + l));
+    hints = add_sample_hint(hints, first, lat.point_hint(i + l, j + l));
     if square_has_centre(&lat.tile, level) {
         let (ci, cj) = pixel_centre(&lat.tile, a, b);
-        return corners || lat.point_penumbra(ci, cj);
+        hints = add_sample_hint(hints, first, lat.point_hint(ci, cj));
     }
-    corners
+    hints
 }
 
 /// The contrast the split decision of square (a, b) of `level` weighs: of its corners
@@ -210,19 +224,23 @@ fn square_contrast(lat: &Lattice, level: u32, a: u32, b: u32) -> f32 {
 
 /// Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
 /// times the square's side (2^−level pixels) exceeds `threshold` (NaN included), that is,
-/// the samples differ by more than 2^level · `threshold`; or one of them saw a penumbra
-/// (`penumbra`) and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts as
-/// contrast, down to the density of uniform 4×4). The side weighs the contrast because a
-/// square's error in its pixel scales with its size: a small square of the same contrast
-/// matters less (measured in docs/performance.md: fewer rays for the same error). The
-/// per-pixel walk's test too.
+/// the samples differ by more than 2^level · `threshold`; or, whatever the contrast, one
+/// of them saw a penumbra and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise
+/// counts as contrast, down to the density of uniform 4×4), or their camera rays hit
+/// different items and the level is above AA_ITEM_EDGE_DEPTH (an edge between objects of
+/// about the same colour, where a seam or gap thinner than the samples' spacing may lie).
+/// The side weighs the contrast because a square's error in its pixel scales with its
+/// size: a small square of the same contrast matters less (measured in
+/// docs/performance.md: fewer rays for the same error). The per-pixel walk's test too.
 // Mirror of shaders/adaptive.wgsl::square_splits — change both.
-pub(crate) fn square_splits(spread: f32, penumbra: bool, level: u32, threshold: f32) -> bool {
+pub(crate) fn square_splits(spread: f32, hints: SquareHints, level: u32, threshold: f32) -> bool {
     // (A power of two: the product is exact, on both tracers.)
     let level_threshold = threshold * (1u32 << level) as f32;
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     let differ = !(spread <= level_threshold);
-    differ || (penumbra && level < AA_PENUMBRA_DEPTH)
+    differ
+        || (hints.penumbra && level < AA_PENUMBRA_DEPTH)
+        || (hints.items_differ && level < AA_ITEM_EDGE_DEPTH)
 }
 
 /// Invocation `idx` of the decide pass of `level`: square (idx mod w, idx div w) at
@@ -240,7 +258,7 @@ fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
     };
     let split = square_splits(
         square_contrast(lat, level, a, b),
-        square_penumbra(lat, level, a, b),
+        square_hints(lat, level, a, b),
         level,
         threshold,
     );
@@ -355,6 +373,13 @@ pub fn adaptive_tile(
 #[cfg(test)]
 mod tests {
     use super::square_splits;
+    use crate::constants::{AA_ITEM_EDGE_DEPTH, AA_PENUMBRA_DEPTH};
+    use crate::cpu::pixel_sample::SquareHints;
+
+    const PLAIN: SquareHints = SquareHints {
+        penumbra: false,
+        items_differ: false,
+    };
 
     #[test]
     fn the_threshold_weighs_contrast_by_the_squares_side() {
@@ -362,16 +387,36 @@ mod tests {
         for (contrast, splits_down_to) in [(0.05, 0), (0.15, 1), (0.3, 2), (0.7, 3)] {
             for level in 0..4 {
                 assert_eq!(
-                    square_splits(contrast, false, level, 0.1),
+                    square_splits(contrast, PLAIN, level, 0.1),
                     level < splits_down_to,
                     "contrast {contrast} at level {level}"
                 );
             }
         }
-        // A NaN contrast (∞ − ∞) splits; a penumbra splits above AA_PENUMBRA_DEPTH
-        // whatever the contrast.
-        assert!(square_splits(f32::NAN, false, 3, 0.1));
-        assert!(square_splits(0.0, true, 1, f32::MAX));
-        assert!(!square_splits(0.0, true, 2, f32::MAX));
+        // A NaN contrast (∞ − ∞) splits.
+        assert!(square_splits(f32::NAN, PLAIN, 3, 0.1));
+    }
+
+    #[test]
+    fn penumbrae_and_item_edges_split_down_to_their_depths_whatever_the_contrast() {
+        let penumbra = SquareHints {
+            penumbra: true,
+            ..PLAIN
+        };
+        let items = SquareHints {
+            items_differ: true,
+            ..PLAIN
+        };
+        for level in 0..5 {
+            assert_eq!(
+                square_splits(0.0, penumbra, level, f32::MAX),
+                level < AA_PENUMBRA_DEPTH
+            );
+            assert_eq!(
+                square_splits(0.0, items, level, f32::MAX),
+                level < AA_ITEM_EDGE_DEPTH
+            );
+            assert!(!square_splits(0.0, PLAIN, level, f32::MAX));
+        }
     }
 }

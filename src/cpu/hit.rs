@@ -41,8 +41,11 @@ pub trait TraversalCounters {
     fn item_tested(&mut self) {}
     /// An area light reached a shaded point through some of its shadow samples but not
     /// all (a penumbra): adaptive AA splits the squares around such a sample
-    /// (`cpu::pixel_sample::penumbra_sample`).
+    /// (`cpu::pixel_sample::hinted_sample`).
     fn partial_light(&mut self) {}
+    /// The item the camera ray of a sample hit first (`NO_ITEM`: none): adaptive AA splits
+    /// squares whose samples hit different items (`cpu::pixel_sample::hinted_sample`).
+    fn camera_hit(&mut self, _item: u32) {}
 }
 
 /// Counters that count nothing.

@@ -6,7 +6,7 @@ use super::ray::camera_ray;
 use super::rng::{adaptive_seed, random_unit, SampleSeed};
 use super::trace::trace_ray;
 use super::traverse::TraversalCounters;
-use crate::constants::{AA_CENTRE_WEIGHT, AA_LATTICE_JITTER};
+use crate::constants::{AA_CENTRE_WEIGHT, AA_ITEM_KEY_MASK, AA_LATTICE_JITTER, NO_ITEM};
 use crate::pack::PackedScene;
 use glam::Vec3;
 
@@ -22,13 +22,62 @@ pub(crate) fn sample(
     trace_ray(scene, camera_ray(&scene.globals, fx, fy), seed, counters)
 }
 
-/// Counters that pass everything on and note whether an area light was partly lit.
-struct PenumbraWatch<'a, C: TraversalCounters> {
-    inner: &'a mut C,
-    partial: bool,
+/// What adaptive AA's split decisions read from a lattice sample beside its colour:
+/// whether an area light reached its first surface through some of its shadow samples but
+/// not all ([`TraversalCounters::partial_light`]: soft-shadow noise that the colours of a
+/// few samples may not show), and the item its camera ray hit first, as [`item_key`].
+// Mirror of shaders/render.wgsl::SampleHint — change both.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SampleHint {
+    pub penumbra: bool,
+    pub item: u32,
 }
 
-impl<C: TraversalCounters> TraversalCounters for PenumbraWatch<'_, C> {
+/// The part of item number `item` (`NO_ITEM`: none) that a [`SampleHint`] keeps: its
+/// low AA_ITEM_KEY_MASK bits (what the GPU's float can hold exactly).
+// Mirror of shaders/render.wgsl::item_key — change both.
+pub(crate) fn item_key(item: u32) -> u32 {
+    item & AA_ITEM_KEY_MASK
+}
+
+/// What the split decision of a square reads beside its samples' contrast: whether one of
+/// its samples saw a penumbra, and whether they hit different items.
+// Mirror of shaders/render.wgsl::SquareHints — change both.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct SquareHints {
+    pub penumbra: bool,
+    pub items_differ: bool,
+}
+
+/// `hints` with sample hint `h` added (`first`: the square's first sample's hint).
+// Mirror of shaders/render.wgsl::add_sample_hint — change both.
+pub(crate) fn add_sample_hint(hints: SquareHints, first: SampleHint, h: SampleHint) -> SquareHints {
+    SquareHints {
+        penumbra: hints.penumbra || h.penumbra,
+        items_differ: hints.items_differ || h.item != first.item,
+    }
+}
+
+/// The [`SquareHints`] of a square's samples (its corners; a pixel's centre too), as
+/// `adaptive::square_hints` combines them.
+pub(crate) fn square_hints_of(hints: &[SampleHint]) -> SquareHints {
+    let first = hints[0];
+    let start = SquareHints {
+        penumbra: first.penumbra,
+        items_differ: false,
+    };
+    hints[1..]
+        .iter()
+        .fold(start, |acc, &h| add_sample_hint(acc, first, h))
+}
+
+/// Counters that pass everything on and note what a [`SampleHint`] keeps.
+struct HintWatch<'a, C: TraversalCounters> {
+    inner: &'a mut C,
+    hint: SampleHint,
+}
+
+impl<C: TraversalCounters> TraversalCounters for HintWatch<'_, C> {
     fn traversal_started(&mut self) {
         self.inner.traversal_started();
     }
@@ -39,33 +88,38 @@ impl<C: TraversalCounters> TraversalCounters for PenumbraWatch<'_, C> {
         self.inner.item_tested();
     }
     fn partial_light(&mut self) {
-        self.partial = true;
+        self.hint.penumbra = true;
         self.inner.partial_light();
+    }
+    fn camera_hit(&mut self, item: u32) {
+        self.hint.item = item_key(item);
+        self.inner.camera_hit(item);
     }
 }
 
-/// [`sample`], and whether an area light reached the first surface it hits through some
-/// of its shadow samples but not all ([`TraversalCounters::partial_light`]): soft-shadow
-/// noise that the colours of a few samples may not show. Adaptive AA's lattice samples.
-// Mirror of shaders/render.wgsl::penumbra_sample — change both.
-pub(crate) fn penumbra_sample(
+/// [`sample`], and its [`SampleHint`]. Adaptive AA's lattice samples.
+// Mirror of shaders/render.wgsl::hinted_sample — change both.
+pub(crate) fn hinted_sample(
     scene: &PackedScene,
     fx: f32,
     fy: f32,
     seed: SampleSeed,
     counters: &mut impl TraversalCounters,
-) -> (Vec3, bool) {
-    let mut watch = PenumbraWatch {
+) -> (Vec3, SampleHint) {
+    let mut watch = HintWatch {
         inner: counters,
-        partial: false,
+        hint: SampleHint {
+            penumbra: false,
+            item: item_key(NO_ITEM),
+        },
     };
     let colour = sample(scene, fx, fy, seed, &mut watch);
-    (colour, watch.partial)
+    (colour, watch.hint)
 }
 
 /// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact): the
 /// point jittered, by hashes of its seed, within a square AA_LATTICE_JITTER steps of the
-/// finest lattice (2^aa_depth per pixel) wide around it, then [`penumbra_sample`] there
+/// finest lattice (2^aa_depth per pixel) wide around it, then [`hinted_sample`] there
 /// with the point's own seed. The jitter depends only on the point, so a point shared by
 /// neighbouring squares, pixels or chunks is the same sample whichever pass traces it.
 // Mirror of shaders/render.wgsl::lattice_sample — change both.
@@ -74,14 +128,14 @@ pub(crate) fn lattice_sample(
     fx: f32,
     fy: f32,
     counters: &mut impl TraversalCounters,
-) -> (Vec3, bool) {
+) -> (Vec3, SampleHint) {
     let seed = adaptive_seed(fx, fy);
     // A power of two: the products below are exact, so a fused multiply-add on the GPU
     // rounds the sums as these do.
     let width = AA_LATTICE_JITTER / (1u32 << scene.globals.aa_depth) as f32;
     let jx = (random_unit(seed.pixel, seed.sample, 0) - 0.5) * width;
     let jy = (random_unit(seed.pixel, seed.sample, 1) - 0.5) * width;
-    penumbra_sample(scene, fx + jx, fy + jy, seed, counters)
+    hinted_sample(scene, fx + jx, fy + jy, seed, counters)
 }
 
 /// Largest per-channel spread of four colours.

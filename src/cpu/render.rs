@@ -4,7 +4,9 @@
 //! ([`super::adaptive`]); [`render_pixel`] is the per-pixel reference of every mode.
 
 use super::adaptive::{adaptive_tile, square_splits, Lattice};
-use super::pixel_sample::{contrast, lattice_sample, pixel_contrast, quincunx_mean, sample};
+use super::pixel_sample::{
+    contrast, lattice_sample, pixel_contrast, quincunx_mean, sample, square_hints_of, SampleHint,
+};
 use super::rng::{random_unit, SampleSeed};
 use super::traverse::{Counters, NoCounters, TraversalCounters};
 use crate::constants::{
@@ -20,8 +22,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// A square of the adaptive subdivision: top-left corner, side, depth, and the colours
-/// at its four corners (top-left, top-right, bottom-left, bottom-right) and whether each
-/// saw a penumbra.
+/// at its four corners (top-left, top-right, bottom-left, bottom-right) and their hints.
 #[derive(Clone, Copy)]
 struct AdaptiveSquare {
     x: f32,
@@ -29,12 +30,12 @@ struct AdaptiveSquare {
     size: f32,
     depth: u32,
     corners: [Vec3; 4],
-    penumbra: [bool; 4],
+    hints: [SampleHint; 4],
 }
 
 /// Adaptive anti-aliasing of pixel (x, y) (Whitted 1980): sample the corners and (at
-/// `aa_depth` ≥ 1) the centre; where they differ by more than `aa_threshold`, or one saw
-/// a penumbra and the square is above AA_PENUMBRA_DEPTH ([`square_splits`]), split into
+/// `aa_depth` ≥ 1) the centre; where they differ by more than `aa_threshold`, or their
+/// hints call for it ([`square_splits`]: a penumbra, or different items hit), split into
 /// four and recurse — here with an explicit stack — down to `aa_depth`; a pixel that does
 /// not split is the [`quincunx_mean`] of its corners and centre. Sample positions lie on a
 /// dyadic lattice, each jittered by its own hash ([`lattice_sample`]), so neighbouring
@@ -53,22 +54,25 @@ pub fn adaptive_pixel(
     // Corner k is (k & 1, k >> 1). (One `sample` call site per loop: the GPU compiler
     // inlines every call, and the shader's size and compile time grow with the sites.)
     let mut corners = [Vec3::ZERO; 4];
-    let mut penumbra = [false; 4];
-    for (k, (corner, p)) in corners.iter_mut().zip(&mut penumbra).enumerate() {
+    let mut hints = [SampleHint {
+        penumbra: false,
+        item: 0,
+    }; 4];
+    for (k, (corner, hint)) in corners.iter_mut().zip(&mut hints).enumerate() {
         let (cx, cy) = (fx + (k & 1) as f32, fy + (k >> 1) as f32);
-        (*corner, *p) = lattice_sample(scene, cx, cy, counters);
+        (*corner, *hint) = lattice_sample(scene, cx, cy, counters);
     }
     // The centre, when the lattice has one: it decides with the corners, and is the
     // first split's centre midpoint.
     let mut pixel_centre = None;
     if max_depth > 0 {
-        let (centre, centre_penumbra) = lattice_sample(scene, fx + 0.5, fy + 0.5, counters);
-        let any_penumbra = centre_penumbra || penumbra.contains(&true);
+        let (centre, centre_hint) = lattice_sample(scene, fx + 0.5, fy + 0.5, counters);
+        let pixel_hints = square_hints_of(&[hints[0], hints[1], hints[2], hints[3], centre_hint]);
         let spread = pixel_contrast(&corners, centre);
-        if !square_splits(spread, any_penumbra, 0, threshold) {
+        if !square_splits(spread, pixel_hints, 0, threshold) {
             return quincunx_mean(&corners, centre);
         }
-        pixel_centre = Some((centre, centre_penumbra));
+        pixel_centre = Some((centre, centre_hint));
     }
     let mut stack = [AdaptiveSquare {
         x: fx,
@@ -76,7 +80,7 @@ pub fn adaptive_pixel(
         size: 1.0,
         depth: 0,
         corners,
-        penumbra,
+        hints,
     }; AA_STACK_SIZE as usize];
     let mut size = 1;
     let mut sum = Vec3::ZERO;
@@ -89,7 +93,7 @@ pub fn adaptive_pixel(
         let splits = (sq.depth == 0 && max_depth > 0)
             || square_splits(
                 contrast(&sq.corners),
-                sq.penumbra.contains(&true),
+                square_hints_of(&sq.hints),
                 sq.depth,
                 threshold,
             );
@@ -101,15 +105,15 @@ pub fn adaptive_pixel(
         // Top, left, centre, right and bottom midpoints.
         let offsets = [(h, 0.0), (0.0, h), (h, h), (sq.size, h), (h, sq.size)];
         let mut mid = [Vec3::ZERO; 5];
-        let mut mid_penumbra = [false; 5];
+        let mut mid_hints = [hints[0]; 5];
         for (m, (ox, oy)) in offsets.into_iter().enumerate() {
             let (px, py) = (sq.x + ox, sq.y + oy);
-            (mid[m], mid_penumbra[m]) = match pixel_centre {
+            (mid[m], mid_hints[m]) = match pixel_centre {
                 Some(traced) if sq.depth == 0 && m == 2 => traced,
                 _ => lattice_sample(scene, px, py, counters),
             };
         }
-        for child in square_children(&sq, &mid, &mid_penumbra) {
+        for child in square_children(&sq, &mid, &mid_hints) {
             stack[size] = child;
             size += 1;
         }
@@ -122,20 +126,20 @@ pub fn adaptive_pixel(
 fn square_children(
     sq: &AdaptiveSquare,
     mid: &[Vec3; 5],
-    mid_penumbra: &[bool; 5],
+    mid_hints: &[SampleHint; 5],
 ) -> [AdaptiveSquare; 4] {
     let h = sq.size * 0.5;
     let [tl, tr, bl, br] = sq.corners;
     let [top, left, centre, right, bottom] = *mid;
-    let [p_top, p_left, p_centre, p_right, p_bottom] = *mid_penumbra;
-    let [p_tl, p_tr, p_bl, p_br] = sq.penumbra;
-    let child = |x: f32, y: f32, corners: [Vec3; 4], penumbra: [bool; 4]| AdaptiveSquare {
+    let [p_top, p_left, p_centre, p_right, p_bottom] = *mid_hints;
+    let [p_tl, p_tr, p_bl, p_br] = sq.hints;
+    let child = |x: f32, y: f32, corners: [Vec3; 4], hints: [SampleHint; 4]| AdaptiveSquare {
         x,
         y,
         size: h,
         depth: sq.depth + 1,
         corners,
-        penumbra,
+        hints,
     };
     [
         child(

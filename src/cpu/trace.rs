@@ -59,6 +59,9 @@ pub fn trace_ray(
         let entry = stack[size];
         let ray = entry.ray;
         let hit = closest_hit(scene, &ray, T_MISS, counters);
+        if entry.depth == 0 {
+            counters.camera_hit(hit.item);
+        }
         if !hit.is_hit() {
             colour += entry.weight * background(g, ray.dir);
             continue;

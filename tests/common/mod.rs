@@ -200,6 +200,25 @@ pub fn area_lit_floor_source(kd: f32, ks: f32, shininess: f32) -> String {
     )
 }
 
+/// Two walls meeting at x = 0 straight ahead of the camera, on the boundary of pixel
+/// columns 7 and 8 of a 16 × 64 image, the left one grey level `left`, the right one
+/// `right` (ambient light only, so every sample of a wall is exactly its level). They
+/// fill the view.
+pub fn two_walls_source(left: f32, right: f32) -> String {
+    format!(
+        "
+        left_mat = gr.material({{{left}, {left}, {left}}}, {{0, 0, 0}}, 10)
+        right_mat = gr.material({{{right}, {right}, {right}}}, {{0, 0, 0}}, 10)
+        root = gr.node('root')
+        l = gr.cube('l') l:scale(10, 20, 1) l:translate(-10, -10, -5) l:set_material(left_mat)
+        r = gr.cube('r') r:scale(10, 20, 1) r:translate(0, -10, -5) r:set_material(right_mat)
+        root:add_child(l) root:add_child(r)
+        gr.render(root, 'walls.png', 16, 64, {{0, 0, 0}}, {{0, 0, -1}}, {{0, 1, 0}}, 50,
+                  {{1, 1, 1}}, {{}})
+        "
+    )
+}
+
 /// Packed scenes of every gr.render in a scene file, with `overrides` applied.
 pub fn packed_from_file(path: &Path, overrides: &OptionOverrides) -> Vec<PackedScene> {
     load_scenes(path, overrides)
