@@ -76,12 +76,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             continue;
         }
 // #endif
-        // Two-sided shading: the normal faces the incoming ray. Secondary rays leave along
-        // this geometric side (a bumped normal may lean across the surface).
-        var facing = s.normal;
-        if dot(s.normal, ray.dir) > 0.0 {
-            facing = -s.normal;
-        }
+        let facing = facing_normal(s.normal, ray.dir);
         var n = facing;
 // #if BUMP
         n = shading_normal(s, n);
@@ -140,4 +135,14 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
 // #endif
     }
     return colour;
+}
+
+// Two-sided shading: normal, negated where it faces away from a ray along dir. Secondary
+// rays leave along this geometric side (a bumped normal may lean across the surface).
+// Mirror of src/cpu/trace.rs::facing_normal — change both.
+fn facing_normal(normal: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+    if dot(normal, dir) > 0.0 {
+        return -normal;
+    }
+    return normal;
 }

@@ -75,13 +75,7 @@ pub fn trace_ray(
             colour += entry.weight * Vec3::new(uv.x, uv.y, 0.0);
             continue;
         }
-        // Two-sided shading: the normal faces the incoming ray. Secondary rays leave along
-        // this geometric side (a bumped normal may lean across the surface).
-        let facing = if s.normal.dot(ray.dir) > 0.0 {
-            -s.normal
-        } else {
-            s.normal
-        };
+        let facing = facing_normal(s.normal, ray.dir);
         let mut n = facing;
         if scene.features.contains(SceneFeatures::BUMP) {
             n = shading_normal(scene, &s, n);
@@ -140,6 +134,18 @@ pub fn trace_ray(
         }
     }
     colour
+}
+
+/// Two-sided shading: `normal`, negated where it faces away from a ray along `dir`.
+/// Secondary rays leave along this geometric side (a bumped normal may lean across the
+/// surface).
+// Mirror of shaders/trace.wgsl::facing_normal — change both.
+fn facing_normal(normal: Vec3, dir: Vec3) -> Vec3 {
+    if normal.dot(dir) > 0.0 {
+        -normal
+    } else {
+        normal
+    }
 }
 
 /// The media primary rays start in, as packing found them (`dielectric::camera_media`).
