@@ -5,7 +5,13 @@
 // found in a cell is accepted only if it lies inside that cell; an item met again in a
 // later cell (a mesh instance, a large sphere) is not tested again (Mailbox). Unlike the
 // CPU tracer, the choice between grid and brute force is made when the shader is
-// specialised: the GRID feature is set exactly when `grid_enabled` is 1.
+// specialised: the GRID feature is set exactly when `grid_enabled` is 1. Through the
+// grid, in scenes with meshes (MESH), the walk tests the analytic items it meets and only
+// collects the mesh instances (PendingMeshes), which it walks when two are waiting and
+// when it leaves a cell with some waiting: llvmpipe runs every branch of a loop body, taken or not, so a
+// mesh walk inside the item loop cost every item tested a masked mesh walk (docs/gpu.md).
+// Without MESH nothing is ever pending, and the cell-by-cell loop below makes the same
+// tests in the same order as the CPU's walk.
 
 // The items a ray has tested, as a direct-mapped cache of ITEM_MAILBOX_SIZE slots (item
 // number modulo the size). Only kinds for which a second test is sure to change nothing
@@ -154,6 +160,18 @@ fn closest_hit_inside(entered: EnteredRay) -> Hit {
     if !dda.valid {
         return hit_miss();
     }
+// #if MESH
+    var walk = scene_walk_start(grid, dda);
+    var pending = pending_meshes_new();
+    loop {
+        closest_walk(grid, &walk, ray, &best, &mailbox, &pending);
+        best = walk_pending_meshes(pending, ray, best);
+        pending = pending_meshes_new();
+        if walk.done {
+            break;
+        }
+    }
+// #else
     loop {
         let cell = cell_index(grid, dda.cell);
         best = test_items(cell_start_at(cell), cell_start_at(cell + 1u), ray, best, &mailbox);
@@ -163,6 +181,7 @@ fn closest_hit_inside(entered: EnteredRay) -> Hit {
             break;
         }
     }
+// #endif
 // #else
     best = test_items(0u, globals.num_instances, ray, best, &mailbox);
 // #endif
@@ -221,6 +240,22 @@ fn any_hit_inside(entered: EnteredRay) -> bool {
     if !dda.valid {
         return false;
     }
+// #if MESH
+    var walk = scene_walk_start(grid, dda);
+    var pending = pending_meshes_new();
+    // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
+    loop {
+        let occluded = occlusion_walk(grid, &walk, ray, t_max, &mailbox, &pending);
+        if occluded || pending_meshes_occlude(pending, ray, t_max) {
+            return true;
+        }
+        pending = pending_meshes_new();
+        if walk.done {
+            break;
+        }
+    }
+    return false;
+// #else
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
     loop {
         let cell = cell_index(grid, dda.cell);
@@ -232,7 +267,215 @@ fn any_hit_inside(entered: EnteredRay) -> bool {
         }
     }
     return false;
+// #endif
 // #else
     return any_item_hit(0u, globals.num_instances, ray, t_max, &mailbox);
 // #endif
 }
+
+// #if GRID
+// #if MESH
+// The mesh instances a scene walk has met and not walked yet: two at most (two scalars:
+// llvmpipe would keep a dynamically indexed array in memory, per lane).
+// Mirror of src/cpu/traverse.rs::PendingMeshes — change both.
+struct PendingMeshes {
+    first: u32,
+    second: u32,
+    count: u32,
+}
+
+// Mirror of src/cpu/traverse.rs::PendingMeshes::new — change both.
+fn pending_meshes_new() -> PendingMeshes {
+    return PendingMeshes(NO_ITEM, NO_ITEM, 0u);
+}
+
+// Mirror of src/cpu/traverse.rs::PendingMeshes::full — change both.
+fn pending_meshes_full(pending: PendingMeshes) -> bool {
+    return pending.count == 2u;
+}
+
+// Mirror of src/cpu/traverse.rs::PendingMeshes::push — change both.
+fn pending_meshes_push(pending: ptr<function, PendingMeshes>, item: u32) {
+    if (*pending).count == 0u {
+        (*pending).first = item;
+    } else {
+        (*pending).second = item;
+    }
+    (*pending).count += 1u;
+}
+
+// The k-th pending instance (k < count).
+// Mirror of src/cpu/traverse.rs::PendingMeshes::item — change both.
+fn pending_meshes_item(pending: PendingMeshes, k: u32) -> u32 {
+    return select(pending.second, pending.first, k == 0u);
+}
+
+// Where a walk of the scene grid stands: its DDA, the rest of the current cell's item list
+// (cell_items[next..end]), and whether it has ended (left the grid, passed t_max, or kept
+// a hit inside the cell it left).
+// Mirror of src/cpu/traverse.rs::SceneWalk — change both.
+struct SceneWalk {
+    dda: Dda,
+    next: u32,
+    end: u32,
+    done: bool,
+}
+
+// A walk standing at the start of the DDA's first cell.
+// Mirror of src/cpu/traverse.rs::scene_walk_start — change both.
+fn scene_walk_start(grid: GridView, dda: Dda) -> SceneWalk {
+    var walk = SceneWalk(dda, 0u, 0u, false);
+    scene_walk_enter_cell(grid, &walk);
+    return walk;
+}
+
+// Points walk at the item list of the cell its DDA stands in.
+// Mirror of src/cpu/traverse.rs::scene_walk_enter_cell — change both.
+fn scene_walk_enter_cell(grid: GridView, walk: ptr<function, SceneWalk>) {
+    let cell = cell_index(grid, (*walk).dda.cell);
+    (*walk).next = cell_start_at(cell);
+    (*walk).end = cell_start_at(cell + 1u);
+}
+
+// Takes the walk's next item (walk.next < walk.end): the item to test when it is an
+// analytic one; NO_ITEM when it was passed over (in the mailbox, or a mesh instance, now
+// pending); WALK_FULL, without taking it, when it is a mesh instance and two are pending
+// already.
+// Mirror of src/cpu/traverse.rs::scene_walk_take — change both.
+fn scene_walk_take(
+    walk: ptr<function, SceneWalk>,
+    mailbox: ptr<function, Mailbox>,
+    pending: ptr<function, PendingMeshes>,
+) -> u32 {
+    let item = cell_item_at((*walk).next);
+    let kind = load_instance(item).kind;
+    if kind == KIND_MESH && pending_meshes_full(*pending) {
+        return WALK_FULL;
+    }
+    (*walk).next += 1u;
+    if mailboxed(kind) && mailbox_seen(mailbox, item) {
+        return NO_ITEM;
+    }
+    if kind == KIND_MESH {
+        pending_meshes_push(pending, item);
+        return NO_ITEM;
+    }
+    return item;
+}
+
+// Walks the scene grid on from where walk stands, keeping in best the nearest hit of the
+// analytic items it meets and collecting the mesh instances in pending, until the walk
+// ends (walk.done), a third instance waits (walk then stands on it) or the cell is done
+// with instances pending.
+// Mirror of src/cpu/traverse.rs::closest_walk — change both.
+fn closest_walk(
+    grid: GridView,
+    walk: ptr<function, SceneWalk>,
+    ray: Ray,
+    best: ptr<function, Hit>,
+    mailbox: ptr<function, Mailbox>,
+    pending: ptr<function, PendingMeshes>,
+) {
+    loop {
+        if (*walk).next < (*walk).end {
+            let item = scene_walk_take(walk, mailbox, pending);
+            if item == WALK_FULL {
+                return;
+            }
+            if item == NO_ITEM {
+                continue;
+            }
+            let inst = load_instance(item);
+            let h = intersect_primitive_item(inst, item, ray, (*best).t);
+            if h.t < (*best).t {
+                *best = h;
+            }
+            continue;
+        }
+        // The cell's pending instances are walked before the walk leaves it, so that a hit
+        // inside this cell is final, theirs or not; so is leaving the grid or passing t_max.
+        if (*pending).count > 0u {
+            return;
+        }
+        var dda = (*walk).dda;
+        let step = dda_step(grid, &dda);
+        (*walk).dda = dda;
+        if !step.valid || (*best).t <= step.t_cell_exit {
+            (*walk).done = true;
+            return;
+        }
+        scene_walk_enter_cell(grid, walk);
+    }
+}
+
+// best, or the nearest hit below best.t of the pending mesh instances, walked in the order
+// met.
+// Mirror of src/cpu/traverse.rs::walk_pending_meshes — change both.
+fn walk_pending_meshes(pending: PendingMeshes, ray: Ray, best_in: Hit) -> Hit {
+    var best = best_in;
+    for (var k = 0u; k < pending.count; k++) {
+        let item = pending_meshes_item(pending, k);
+        let h = intersect_mesh(load_instance(item), item, ray, best.t);
+        if h.t < best.t {
+            best = h;
+        }
+    }
+    return best;
+}
+
+// Walks the scene grid on from where walk stands until an analytic item it meets is hit in
+// (0, t_max) (true), the walk leaves the grid (walk.done), a third mesh instance waits
+// (walk then stands on it) or the cell is done with instances pending, collecting the
+// instances in pending.
+// Mirror of src/cpu/traverse.rs::occlusion_walk — change both.
+fn occlusion_walk(
+    grid: GridView,
+    walk: ptr<function, SceneWalk>,
+    ray: Ray,
+    t_max: f32,
+    mailbox: ptr<function, Mailbox>,
+    pending: ptr<function, PendingMeshes>,
+) -> bool {
+    loop {
+        if (*walk).next < (*walk).end {
+            let item = scene_walk_take(walk, mailbox, pending);
+            if item == WALK_FULL {
+                return false;
+            }
+            if item == NO_ITEM {
+                continue;
+            }
+            let inst = load_instance(item);
+            if intersect_primitive_item(inst, item, ray, t_max).t < t_max {
+                return true;
+            }
+            continue;
+        }
+        // The cell's pending instances are walked before the walk leaves it.
+        if (*pending).count > 0u {
+            return false;
+        }
+        var dda = (*walk).dda;
+        let step = dda_step(grid, &dda);
+        (*walk).dda = dda;
+        if !step.valid {
+            (*walk).done = true;
+            return false;
+        }
+        scene_walk_enter_cell(grid, walk);
+    }
+    return false;
+}
+
+// Whether one of the pending mesh instances is hit in (0, t_max).
+// Mirror of src/cpu/traverse.rs::pending_meshes_occlude — change both.
+fn pending_meshes_occlude(pending: PendingMeshes, ray: Ray, t_max: f32) -> bool {
+    for (var k = 0u; k < pending.count; k++) {
+        if mesh_occludes(load_instance(pending_meshes_item(pending, k)), ray, t_max) {
+            return true;
+        }
+    }
+    return false;
+}
+// #endif
+// #endif

@@ -144,6 +144,10 @@ pub const AA_ADAPTIVE: u32 = 2;
 pub const T_MISS: f32 = f32::MAX;
 /// Item index meaning "no item".
 pub const NO_ITEM: u32 = u32::MAX;
+/// What a scene walk's `scene_walk_take` answers, instead of an item to test, when the
+/// next item is a mesh instance and two are pending already (`NO_ITEM`: the item was
+/// passed over). No item has this number.
+pub const WALK_FULL: u32 = u32::MAX - 1;
 
 /// Capacity of the explicit secondary-ray stack (no recursion in either tracer).
 pub const RAY_STACK_SIZE: u32 = 16;
@@ -239,6 +243,7 @@ pub fn wgsl_prelude() -> String {
         ("AA_UNIFORM", AA_UNIFORM),
         ("AA_ADAPTIVE", AA_ADAPTIVE),
         ("NO_ITEM", NO_ITEM),
+        ("WALK_FULL", WALK_FULL),
         ("RAY_STACK_SIZE", RAY_STACK_SIZE),
         ("PRIMARY_RAY_STACK_SIZE", PRIMARY_RAY_STACK_SIZE),
         ("MAX_TRACE_DEPTH", MAX_TRACE_DEPTH),

@@ -223,3 +223,57 @@ fn probes_instanced_meshes() {
         }
     }
 }
+
+/// Rays along the stacked frames' axis (tests/common::stacked_frames_source) meet up to six
+/// mesh instances before their hit, so the scene walk's list of pending instances fills
+/// and the walk resumes after walking it: both tracers give the same answers (hit,
+/// instance, triangle; any-hit rays under half the hit's t and beyond it), with every
+/// mailbox variant.
+#[test]
+fn probes_rays_past_many_mesh_instances() {
+    use glint::constants::{PROBE_ANY_HIT, T_MISS};
+    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
+    let Some(mut ctx) = gpu_context() else { return };
+    let mut s =
+        packed_from_source(&common::stacked_frames_source(), &grid(GridMode::Auto)).remove(0);
+    assert!(s.features.contains(SceneFeatures::GRID) && s.features.contains(SceneFeatures::MESH));
+    let mut rays = Vec::new();
+    for i in 0..=220 {
+        let x = i as f32 * 0.01;
+        let ray = ProbeRay {
+            origin: [x, 0.37 * x, 20.0],
+            t_max: T_MISS,
+            dir: [0.0, 0.0, -1.0],
+            mode: 0,
+        };
+        let t = cpu_probe(&s, &ray).t;
+        rays.push(ray);
+        for t_max in [0.5 * t, 1.001 * t] {
+            rays.push(ProbeRay {
+                t_max,
+                mode: PROBE_ANY_HIT,
+                ..ray
+            });
+        }
+    }
+    for mailboxes in Mailboxes::ALL {
+        ctx.kernel.mailboxes = mailboxes;
+        s.mailboxes = mailboxes;
+        let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{mailboxes}: {e}"));
+        let mut items = std::collections::BTreeSet::new();
+        for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
+            let c = cpu_probe(&s, ray);
+            if ray.mode == PROBE_ANY_HIT {
+                assert_eq!(g.hit, c.hit, "{mailboxes}: any-hit ray {i} {ray:?}");
+                continue;
+            }
+            assert_eq!(
+                (g.hit, g.item, g.part),
+                (c.hit, c.item, c.part),
+                "{mailboxes}: ray {i} {ray:?}: gpu {g:?} cpu {c:?}"
+            );
+            items.insert(c.item);
+        }
+        assert_eq!(items.len(), 7, "{mailboxes}: items hit {items:?}");
+    }
+}

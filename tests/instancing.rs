@@ -246,3 +246,49 @@ gr.render(scene, 'stadium.png', 64, 48, {0, 1.2, 4}, {0, -0.25, -1}, {0, 1, 0}, 
     assert!(cow_hits as f64 > 0.05 * rays);
     assert!(per_ray < 50.0, "{per_ray} items tested per ray");
 }
+
+/// The scene walk collects the mesh instances it meets and walks them two at a time
+/// (`PendingMeshes`): rays along the stacked frames' axis meet up to six instances before
+/// their hit, so the list fills and the walk resumes after walking it, and the answers
+/// are still those of brute force (closest hit: t bit for bit and the item; any hit under
+/// t_max below, at and beyond the hit).
+#[test]
+fn pending_mesh_instances_give_brute_forces_answers() {
+    let grid = |mode: GridMode| OptionOverrides {
+        grid: Some(mode),
+        ..OptionOverrides::default()
+    };
+    let source = common::stacked_frames_source();
+    let with_grid = common::packed_from_source(&source, &grid(GridMode::Auto)).remove(0);
+    let brute = common::packed_from_source(&source, &grid(GridMode::Off)).remove(0);
+    assert_eq!(with_grid.globals.grid_enabled, 1);
+    assert_eq!(with_grid.meshes.len(), 1, "the frame is stored once");
+    let mut items_hit = std::collections::BTreeSet::new();
+    for i in 0..=220 {
+        // From the axis out past the widest frame, off the diagonal.
+        let x = i as f32 * 0.01;
+        let ray = Ray {
+            origin: Vec3::new(x, 0.37 * x, 20.0),
+            dir: Vec3::new(0.0, 0.0, -1.0),
+        };
+        let a = closest_hit(&with_grid, &ray, f32::MAX, &mut NoCounters);
+        let b = closest_hit(&brute, &ray, f32::MAX, &mut NoCounters);
+        assert_eq!(
+            (a.t.to_bits(), a.item),
+            (b.t.to_bits(), b.item),
+            "x = {x}: grid {a:?}, brute force {b:?}"
+        );
+        items_hit.insert(a.item);
+        let t = if a.is_hit() { a.t } else { 100.0 };
+        for t_max in [t * 0.5, t * 0.999, t * 1.001] {
+            assert_eq!(
+                any_hit(&with_grid, &ray, t_max, &mut NoCounters),
+                any_hit(&brute, &ray, t_max, &mut NoCounters),
+                "x = {x}, t_max {t_max}"
+            );
+        }
+    }
+    // Every frame and the ball stop some ray: the deepest frames only after the walk has
+    // passed (and walked) the instances before them.
+    assert_eq!(items_hit.len(), 7, "items hit: {items_hit:?}");
+}

@@ -5,16 +5,20 @@
 //! accepted only if it lies inside that cell (an item may span several cells, and a
 //! nearer item may wait in the next one); an item met again in a later cell (a mesh
 //! instance, a large sphere) is not tested again (its nearest hit does not depend on the
-//! cell: [`Mailbox`]).
+//! cell: [`Mailbox`]). Through the grid, the walk tests the analytic items it meets and
+//! only collects the mesh instances ([`PendingMeshes`]), which it walks when two are
+//! waiting and when it leaves a cell with some waiting: on llvmpipe every branch of a loop body runs,
+//! taken or not, so a mesh walk inside the item loop cost every item tested a masked mesh
+//! walk (docs/gpu.md); out of it, the GPU runs that code once per two instances.
 
 use super::csg::intersect_csg;
-use super::dda::{cell_index, dda_setup, dda_step, scene_grid};
+use super::dda::{cell_index, dda_setup, dda_step, scene_grid, Dda, GridView};
 pub use super::dda::{enter_scene, EnteredRay};
 pub use super::hit::{Counters, Hit, NoCounters, TraversalCounters};
 use super::intersect::intersect_instance;
 use super::ray::Ray;
 use super::traverse_mesh::{intersect_mesh, mesh_occludes};
-use crate::constants::{ITEM_MAILBOX_SIZE, KIND_CSG, KIND_MESH, KIND_TORUS, NO_ITEM};
+use crate::constants::{ITEM_MAILBOX_SIZE, KIND_CSG, KIND_MESH, KIND_TORUS, NO_ITEM, WALK_FULL};
 use crate::pack::{PackedInstance, PackedScene};
 use glam::IVec3;
 
@@ -184,25 +188,26 @@ fn closest_hit_inside(
         return if best.is_hit() { best } else { Hit::MISS };
     }
     let grid = scene_grid(g);
-    let Some(mut dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
+    let Some(dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return Hit::MISS;
     };
+    let mut walk = scene_walk_start(scene, &grid, dda, counters);
+    let mut pending = PendingMeshes::new();
     loop {
-        counters.cell_visited();
-        let cell = cell_index(&grid, IVec3::from(dda.cell));
-        let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
-        test_items(
+        closest_walk(
             scene,
-            range.map(|i| scene.cell_items[i as usize]),
+            &grid,
+            &mut walk,
             ray,
             &mut best,
             &mut mailbox,
+            &mut pending,
             counters,
         );
-        // A hit inside this cell is final; so is leaving the grid or passing t_max.
-        match dda_step(&grid, &mut dda) {
-            Some(t_cell_exit) if best.t > t_cell_exit => {}
-            _ => break,
+        best = walk_pending_meshes(scene, &pending, ray, best, counters);
+        pending = PendingMeshes::new();
+        if walk.done {
+            break;
         }
     }
     if best.is_hit() {
@@ -210,6 +215,195 @@ fn closest_hit_inside(
     } else {
         Hit::MISS
     }
+}
+
+/// The mesh instances a scene walk has met and not walked yet: two at most (two scalars
+/// on the GPU, where llvmpipe would keep a dynamically indexed array in memory, per lane).
+// Mirror of shaders/traverse.wgsl::PendingMeshes — change both.
+struct PendingMeshes {
+    first: u32,
+    second: u32,
+    count: u32,
+}
+
+impl PendingMeshes {
+    // Mirror of shaders/traverse.wgsl::pending_meshes_new — change both.
+    fn new() -> PendingMeshes {
+        PendingMeshes {
+            first: NO_ITEM,
+            second: NO_ITEM,
+            count: 0,
+        }
+    }
+
+    // Mirror of shaders/traverse.wgsl::pending_meshes_full — change both.
+    fn full(&self) -> bool {
+        self.count == 2
+    }
+
+    // Mirror of shaders/traverse.wgsl::pending_meshes_push — change both.
+    fn push(&mut self, item: u32) {
+        if self.count == 0 {
+            self.first = item;
+        } else {
+            self.second = item;
+        }
+        self.count += 1;
+    }
+
+    /// The k-th pending instance (k < count).
+    // Mirror of shaders/traverse.wgsl::pending_meshes_item — change both.
+    fn item(&self, k: u32) -> u32 {
+        if k == 0 {
+            self.first
+        } else {
+            self.second
+        }
+    }
+}
+
+/// Where a walk of the scene grid stands: its DDA, the rest of the current cell's item
+/// list (`cell_items[next..end]`), and whether it has ended (left the grid, passed t_max,
+/// or kept a hit inside the cell it left).
+// Mirror of shaders/traverse.wgsl::SceneWalk — change both.
+struct SceneWalk {
+    dda: Dda,
+    next: u32,
+    end: u32,
+    done: bool,
+}
+
+/// A walk standing at the start of the DDA's first cell.
+// Mirror of shaders/traverse.wgsl::scene_walk_start — change both.
+fn scene_walk_start(
+    scene: &PackedScene,
+    grid: &GridView,
+    dda: Dda,
+    counters: &mut impl TraversalCounters,
+) -> SceneWalk {
+    let mut walk = SceneWalk {
+        dda,
+        next: 0,
+        end: 0,
+        done: false,
+    };
+    scene_walk_enter_cell(scene, grid, &mut walk, counters);
+    walk
+}
+
+/// Points `walk` at the item list of the cell its DDA stands in.
+// Mirror of shaders/traverse.wgsl::scene_walk_enter_cell — change both.
+#[inline(always)]
+fn scene_walk_enter_cell(
+    scene: &PackedScene,
+    grid: &GridView,
+    walk: &mut SceneWalk,
+    counters: &mut impl TraversalCounters,
+) {
+    counters.cell_visited();
+    let cell = cell_index(grid, IVec3::from(walk.dda.cell));
+    walk.next = scene.cell_start[cell];
+    walk.end = scene.cell_start[cell + 1];
+}
+
+/// Takes the walk's next item (`walk.next < walk.end`): the item to test when it is an
+/// analytic one; `NO_ITEM` when it was passed over (in the mailbox, or a mesh instance,
+/// now pending); `WALK_FULL`, without taking it, when it is a mesh instance and two are
+/// pending already.
+// Mirror of shaders/traverse.wgsl::scene_walk_take — change both.
+#[inline(always)]
+fn scene_walk_take(
+    scene: &PackedScene,
+    walk: &mut SceneWalk,
+    mailbox: &mut Mailbox,
+    pending: &mut PendingMeshes,
+) -> u32 {
+    let item = scene.cell_items[walk.next as usize];
+    let kind = scene.instances[item as usize].kind;
+    if kind == KIND_MESH && pending.full() {
+        return WALK_FULL;
+    }
+    walk.next += 1;
+    if mailboxed(kind) && mailbox.seen(item) {
+        return NO_ITEM;
+    }
+    if kind == KIND_MESH {
+        pending.push(item);
+        return NO_ITEM;
+    }
+    item
+}
+
+/// Walks the scene grid on from where `walk` stands, keeping in `best` the nearest hit
+/// of the analytic items it meets and collecting the mesh instances in `pending`, until
+/// the walk ends (`walk.done`), a third instance waits (`walk` then stands on it) or the
+/// cell is done with instances pending.
+// Mirror of shaders/traverse.wgsl::closest_walk — change both.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn closest_walk(
+    scene: &PackedScene,
+    grid: &GridView,
+    walk: &mut SceneWalk,
+    ray: &Ray,
+    best: &mut Hit,
+    mailbox: &mut Mailbox,
+    pending: &mut PendingMeshes,
+    counters: &mut impl TraversalCounters,
+) {
+    loop {
+        if walk.next < walk.end {
+            let item = scene_walk_take(scene, walk, mailbox, pending);
+            if item == WALK_FULL {
+                return;
+            }
+            if item == NO_ITEM {
+                continue;
+            }
+            let inst = &scene.instances[item as usize];
+            let h = intersect_primitive_item(scene, inst, item, ray, best.t, counters);
+            if h.t < best.t {
+                *best = h;
+            }
+            continue;
+        }
+        // The cell's pending instances are walked before the walk leaves it, so that a
+        // hit inside this cell is final, theirs or not; so is leaving the grid or passing
+        // t_max.
+        if pending.count > 0 {
+            return;
+        }
+        match dda_step(grid, &mut walk.dda) {
+            Some(t_cell_exit) if best.t > t_cell_exit => {
+                scene_walk_enter_cell(scene, grid, walk, counters)
+            }
+            _ => {
+                walk.done = true;
+                return;
+            }
+        }
+    }
+}
+
+/// `best`, or the nearest hit below `best.t` of the pending mesh instances, walked in the
+/// order met.
+// Mirror of shaders/traverse.wgsl::walk_pending_meshes — change both.
+fn walk_pending_meshes(
+    scene: &PackedScene,
+    pending: &PendingMeshes,
+    ray: &Ray,
+    mut best: Hit,
+    counters: &mut impl TraversalCounters,
+) -> Hit {
+    for k in 0..pending.count {
+        let item = pending.item(k);
+        let inst = &scene.instances[item as usize];
+        let h = intersect_mesh(scene, inst, item, ray, best.t, counters);
+        if h.t < best.t {
+            best = h;
+        }
+    }
+    best
 }
 
 /// Whether item `item` is hit in (0, t_max); an item in `mailbox` is not tested again (it
@@ -282,19 +476,90 @@ fn any_hit_inside(
         return any_item_hit(scene, items, ray, t_max, &mut mailbox, counters);
     }
     let grid = scene_grid(g);
-    let Some(mut dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
+    let Some(dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return false;
     };
+    let mut walk = scene_walk_start(scene, &grid, dda, counters);
+    let mut pending = PendingMeshes::new();
     loop {
-        counters.cell_visited();
-        let cell = cell_index(&grid, IVec3::from(dda.cell));
-        let range = scene.cell_start[cell]..scene.cell_start[cell + 1];
-        let items = range.map(|i| scene.cell_items[i as usize]);
-        if any_item_hit(scene, items, ray, t_max, &mut mailbox, counters) {
+        let occluded = occlusion_walk(
+            scene,
+            &grid,
+            &mut walk,
+            ray,
+            t_max,
+            &mut mailbox,
+            &mut pending,
+            counters,
+        );
+        if occluded || pending_meshes_occlude(scene, &pending, ray, t_max, counters) {
             return true;
         }
-        if dda_step(&grid, &mut dda).is_none() {
+        pending = PendingMeshes::new();
+        if walk.done {
             return false;
         }
     }
+}
+
+/// Walks the scene grid on from where `walk` stands until an analytic item it meets is hit
+/// in (0, t_max) (true), the walk leaves the grid (`walk.done`), a third mesh instance
+/// waits (`walk` then stands on it) or the cell is done with instances pending,
+/// collecting the instances in `pending`.
+// Mirror of shaders/traverse.wgsl::occlusion_walk — change both.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn occlusion_walk(
+    scene: &PackedScene,
+    grid: &GridView,
+    walk: &mut SceneWalk,
+    ray: &Ray,
+    t_max: f32,
+    mailbox: &mut Mailbox,
+    pending: &mut PendingMeshes,
+    counters: &mut impl TraversalCounters,
+) -> bool {
+    loop {
+        if walk.next < walk.end {
+            let item = scene_walk_take(scene, walk, mailbox, pending);
+            if item == WALK_FULL {
+                return false;
+            }
+            if item == NO_ITEM {
+                continue;
+            }
+            let inst = &scene.instances[item as usize];
+            if intersect_primitive_item(scene, inst, item, ray, t_max, counters).t < t_max {
+                return true;
+            }
+            continue;
+        }
+        // The cell's pending instances are walked before the walk leaves it.
+        if pending.count > 0 {
+            return false;
+        }
+        if dda_step(grid, &mut walk.dda).is_none() {
+            walk.done = true;
+            return false;
+        }
+        scene_walk_enter_cell(scene, grid, walk, counters);
+    }
+}
+
+/// Whether one of the pending mesh instances is hit in (0, t_max).
+// Mirror of shaders/traverse.wgsl::pending_meshes_occlude — change both.
+fn pending_meshes_occlude(
+    scene: &PackedScene,
+    pending: &PendingMeshes,
+    ray: &Ray,
+    t_max: f32,
+    counters: &mut impl TraversalCounters,
+) -> bool {
+    for k in 0..pending.count {
+        let inst = &scene.instances[pending.item(k) as usize];
+        if mesh_occludes(scene, inst, ray, t_max, counters) {
+            return true;
+        }
+    }
+    false
 }

@@ -219,6 +219,32 @@ pub fn two_walls_source(left: f32, right: f32) -> String {
     )
 }
 
+/// Lua for six instances of one mesh, a flat square frame (outer half-width 1, a square
+/// hole of half-width 0.5), scaled by 2, 1.75, … 0.75 and stacked along −z (frame k at
+/// z = −2k), with a sphere behind them all: a ray along −z at distance r from the axis
+/// passes through the holes of the frames wider than 2r and is stopped by the first
+/// frame whose ring it meets, or by the sphere.
+pub fn stacked_frames_source() -> String {
+    let mut lua = String::from(
+        "m = gr.material({0.5, 0.5, 0.5}, {0, 0, 0}, 10)
+        frame = gr.mesh('frame', {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0},
+            {-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0.5, 0.5, 0}, {-0.5, 0.5, 0}},
+            {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}})
+        frame:set_material(m)
+        root = gr.node('root')
+        ",
+    );
+    for k in 0..6 {
+        let s = 2.0 - 0.25 * k as f64;
+        lua += &format!(
+            "n{k} = gr.node('frame{k}') n{k}:scale({s}, {s}, {s}) n{k}:translate(0, 0, {}) n{k}:add_child(frame) root:add_child(n{k})\n",
+            -2.0 * k as f64
+        );
+    }
+    lua + "ball = gr.sphere('ball') ball:scale(3, 3, 3) ball:translate(0, 0, -20) ball:set_material(m) root:add_child(ball)
+        gr.render(root, 'frames.png', 32, 32, {0, 0, 20}, {0, 0, -1}, {0, 1, 0}, 30, {0.1, 0.1, 0.1}, {})\n"
+}
+
 /// Packed scenes of every gr.render in a scene file, with `overrides` applied.
 pub fn packed_from_file(path: &Path, overrides: &OptionOverrides) -> Vec<PackedScene> {
     load_scenes(path, overrides)
