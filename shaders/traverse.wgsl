@@ -8,8 +8,9 @@
 // specialised: the GRID feature is set exactly when `grid_enabled` is 1. Through the
 // grid, in scenes with meshes (MESH), the walk tests the analytic items it meets and only
 // collects the mesh instances (PendingMeshes), which it walks when two are waiting and
-// when it leaves a cell with some waiting: llvmpipe runs every branch of a loop body, taken or not, so a
-// mesh walk inside the item loop cost every item tested a masked mesh walk (docs/gpu.md).
+// when it leaves a cell with some waiting: llvmpipe runs every branch of a loop body,
+// taken or not, so a mesh walk inside the item loop cost every item tested a masked mesh
+// walk (docs/gpu.md).
 // Without MESH nothing is ever pending, and the cell-by-cell loop below makes the same
 // tests in the same order as the CPU's walk.
 

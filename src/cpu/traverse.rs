@@ -7,9 +7,10 @@
 //! instance, a large sphere) is not tested again (its nearest hit does not depend on the
 //! cell: [`Mailbox`]). Through the grid, the walk tests the analytic items it meets and
 //! only collects the mesh instances ([`PendingMeshes`]), which it walks when two are
-//! waiting and when it leaves a cell with some waiting: on llvmpipe every branch of a loop body runs,
-//! taken or not, so a mesh walk inside the item loop cost every item tested a masked mesh
-//! walk (docs/gpu.md); out of it, the GPU runs that code once per two instances.
+//! waiting and when it leaves a cell with some waiting: on llvmpipe every branch of a
+//! loop body runs, taken or not, so a mesh walk inside the item loop cost every item
+//! tested a masked mesh walk (docs/gpu.md); out of it, the GPU runs that code once per
+//! cell that held an instance.
 
 use super::csg::intersect_csg;
 use super::dda::{cell_index, dda_setup, dda_step, scene_grid, Dda, GridView};
