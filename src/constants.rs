@@ -312,8 +312,8 @@ pub const AA_PENUMBRA_DEPTH: u32 = 2;
 pub const AA_ITEM_EDGE_DEPTH: u32 = 2;
 /// The bits of an item number that adaptive anti-aliasing's samples keep for
 /// [`AA_ITEM_EDGE_DEPTH`]'s test (the GPU keeps them in the sample's fourth component, a
-/// float, exact up to 2^24): items 2^24 apart look the same to it, which only costs a
-/// split.
+/// float, exact up to 2^24): items 2^24 apart look the same to it, so at worst an edge
+/// between two such items does not split by itself (its contrast still can).
 pub const AA_ITEM_KEY_MASK: u32 = 0x00ff_ffff;
 /// Width of the square a lattice point of adaptive anti-aliasing is jittered in, in steps
 /// of the finest lattice (2^aa_depth per pixel): 1 spreads each point over the whole cell

@@ -238,10 +238,9 @@ fn probes_rays_past_many_mesh_instances() {
         packed_from_source(&common::stacked_frames_source(), &grid(GridMode::Auto)).remove(0);
     assert!(s.features.contains(SceneFeatures::GRID) && s.features.contains(SceneFeatures::MESH));
     let mut rays = Vec::new();
-    for i in 0..=220 {
-        let x = i as f32 * 0.01;
+    for origin in common::stacked_frames_origins() {
         let ray = ProbeRay {
-            origin: [x, 0.37 * x, 20.0],
+            origin,
             t_max: T_MISS,
             dir: [0.0, 0.0, -1.0],
             mode: 0,

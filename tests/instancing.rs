@@ -264,13 +264,12 @@ fn pending_mesh_instances_give_brute_forces_answers() {
     assert_eq!(with_grid.globals.grid_enabled, 1);
     assert_eq!(with_grid.meshes.len(), 1, "the frame is stored once");
     let mut items_hit = std::collections::BTreeSet::new();
-    for i in 0..=220 {
-        // From the axis out past the widest frame, off the diagonal.
-        let x = i as f32 * 0.01;
+    for origin in common::stacked_frames_origins() {
         let ray = Ray {
-            origin: Vec3::new(x, 0.37 * x, 20.0),
+            origin: Vec3::from(origin),
             dir: Vec3::new(0.0, 0.0, -1.0),
         };
+        let x = origin[0];
         let a = closest_hit(&with_grid, &ray, f32::MAX, &mut NoCounters);
         let b = closest_hit(&brute, &ray, f32::MAX, &mut NoCounters);
         assert_eq!(

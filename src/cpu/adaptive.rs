@@ -73,8 +73,9 @@ fn unpack_square(entry: u32) -> (u32, u32) {
 }
 
 /// A tile's lattice colours and hints ([`lattice_sample`]; the GPU keeps the hint in the
-/// sample's fourth component, see shaders/render.wgsl::encode_hint), split flags and, per level, the list of split
-/// squares (at the level's split-flag offset, [`split_offset`]) and its length.
+/// sample's fourth component, see shaders/render.wgsl::encode_hint), split flags and, per
+/// level, the list of split squares (at the level's split-flag offset, [`split_offset`])
+/// and its length.
 pub struct Lattice {
     pub tile: AdaptiveTile,
     pub points: Vec<Vec3>,

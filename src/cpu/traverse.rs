@@ -294,6 +294,9 @@ fn scene_walk_start(
 
 /// Points `walk` at the item list of the cell its DDA stands in.
 // Mirror of shaders/traverse.wgsl::scene_walk_enter_cell — change both.
+// (This and the walk functions below are forced inline: they run per item and per cell
+// of every ray. Without the hint one alternated round of `glint bench --trace` gave 8%
+// fewer primary rays/s than the walk before; with it the rates were within noise.)
 #[inline(always)]
 fn scene_walk_enter_cell(
     scene: &PackedScene,

@@ -245,6 +245,17 @@ pub fn stacked_frames_source() -> String {
         gr.render(root, 'frames.png', 32, 32, {0, 0, 20}, {0, 0, -1}, {0, 1, 0}, 30, {0.1, 0.1, 0.1}, {})\n"
 }
 
+/// Origins of rays along −z past the stacked frames of [`stacked_frames_source`]: from
+/// the axis out past the widest frame (x = 0 … 2.2), off the diagonal (y = 0.37 x).
+pub fn stacked_frames_origins() -> Vec<[f32; 3]> {
+    (0..=220)
+        .map(|i| {
+            let x = i as f32 * 0.01;
+            [x, 0.37 * x, 20.0]
+        })
+        .collect()
+}
+
 /// Packed scenes of every gr.render in a scene file, with `overrides` applied.
 pub fn packed_from_file(path: &Path, overrides: &OptionOverrides) -> Vec<PackedScene> {
     load_scenes(path, overrides)
