@@ -1,11 +1,12 @@
 //! Uniform grid build: resolution after Cleary & Wyvill (cells ≈ λ·N, cubical cells over
 //! the items' bounds), each item listed in every cell its (padded) bounds overlap; a
-//! triangle item also skips the cells its plane misses. Cells are stored CSR-style
+//! triangle item also skips the cells it does not overlap (`overlap`). Cells are stored CSR-style
 //! (`cell_start`, `cell_items`), items in ascending order inside each cell so the build
 //! is deterministic. Items are plain bounds (and, for triangles, corners) with ids
 //! 0..n: what an item is, is the caller's business.
 
 use super::aabb::{Aabb, BOUNDS_PAD};
+use super::overlap::TriangleOverlap;
 use glam::Vec3;
 use rayon::prelude::*;
 use std::time::{Duration, Instant};
@@ -198,7 +199,7 @@ pub const MAX_REFERENCES: u64 = 1 << 25;
 /// The grid's placement for λ = `density`, made coarser (7/8 per axis at a time) while
 /// the items' bounding boxes would overlap more than [`MAX_REFERENCES`] cells in all.
 /// Counted from the boxes, before any reference is made; the boxes bound the references
-/// from above (a triangle's plane test only removes cells).
+/// from above (a triangle's overlap test only removes cells).
 fn bounded_geometry(
     min: Vec3,
     extent: Vec3,
@@ -246,31 +247,21 @@ impl CellGeometry {
     }
 
     /// Calls `f` with the index of every cell that `bounds` overlaps (and, for a triangle,
-    /// that its plane passes through).
+    /// that the triangle itself may overlap: [`TriangleOverlap`]).
     fn for_each_cell(&self, bounds: &Aabb, triangle: Option<&[Vec3; 3]>, mut f: impl FnMut(u32)) {
         let lo = [0, 1, 2].map(|a| self.cell_coord(bounds.min, a));
         let hi = [0, 1, 2].map(|a| self.cell_coord(bounds.max, a));
         let single = lo == hi;
-        let plane = triangle.filter(|_| !single).map(|&[p0, p1, p2]| {
-            let normal = (p1 - p0).cross(p2 - p0);
-            (p0, normal)
-        });
-        // Cells grow by the same relative pad as the item bounds for the plane test.
+        let overlap = triangle.filter(|_| !single).map(TriangleOverlap::new);
+        // Cells grow by the same relative pad as the item bounds.
         let half = self.cell_size * (0.5 + BOUNDS_PAD);
         for z in lo[2]..=hi[2] {
             for y in lo[1]..=hi[1] {
                 for x in lo[0]..=hi[0] {
-                    if let Some((p0, normal)) = plane {
+                    if let Some(overlap) = &overlap {
                         let centre = self.min
                             + (Vec3::new(x as f32, y as f32, z as f32) + 0.5) * self.cell_size;
-                        // Plane–box overlap: the box's projected radius on the normal
-                        // must reach the plane.
-                        let radius = half.dot(normal.abs());
-                        let distance = normal.dot(centre - p0);
-                        let slack = BOUNDS_PAD
-                            * (normal.length()
-                                * (centre.abs().max_element() + p0.abs().max_element()));
-                        if distance.abs() > radius + slack {
+                        if !overlap.overlaps(centre, half) {
                             continue;
                         }
                     }

@@ -7,3 +7,4 @@
 
 pub mod aabb;
 pub mod grid;
+pub mod overlap;
