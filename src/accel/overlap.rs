@@ -68,6 +68,7 @@ impl TriangleOverlap {
 #[cfg(test)]
 mod tests {
     use super::TriangleOverlap;
+    use crate::accel::aabb::BOUNDS_PAD;
     use glam::Vec3;
 
     const UNIT: Vec3 = Vec3::splat(0.5);
@@ -114,7 +115,9 @@ mod tests {
     }
 
     /// Every point of random triangles, sampled on a barycentric lattice, lies in a cell
-    /// (of a unit grid around the origin) that the test says the triangle overlaps.
+    /// (of a grid of cells `scale` wide, the triangles `offset` cells from the origin)
+    /// that the test says the triangle overlaps: at small and large scales, near the
+    /// origin and far from it.
     #[test]
     fn every_cell_a_triangle_touches_overlaps_it() {
         let mut state = 0x9e37_79b9_7f4a_7c15u64;
@@ -124,16 +127,29 @@ mod tests {
             state ^= state << 17;
             (state >> 40) as f32 / (1u64 << 24) as f32 * 8.0 - 4.0
         };
-        for _ in 0..300 {
-            let corners = [0, 1, 2].map(|_| Vec3::new(next(), next(), next()));
-            let t = TriangleOverlap::new(&corners);
-            let n = 40;
-            for i in 0..=n {
-                for j in 0..=(n - i) {
-                    let (a, b) = (i as f32 / n as f32, j as f32 / n as f32);
-                    let p = corners[0] * (1.0 - a - b) + corners[1] * a + corners[2] * b;
-                    let centre = p.floor() + 0.5;
-                    assert!(t.overlaps(centre, UNIT), "{corners:?} at {p}");
+        for (scale, offset) in [
+            (1.0, 0.0),
+            (1e-4, 0.0),
+            (1e4, 0.0),
+            (1e-3, 1e3),
+            (10.0, -1e4),
+        ] {
+            let half = Vec3::splat(0.5 * scale) * (1.0 + BOUNDS_PAD);
+            for _ in 0..100 {
+                let corners =
+                    [0, 1, 2].map(|_| (Vec3::new(next(), next(), next()) + offset) * scale);
+                let t = TriangleOverlap::new(&corners);
+                let n = 40;
+                for i in 0..=n {
+                    for j in 0..=(n - i) {
+                        let (a, b) = (i as f32 / n as f32, j as f32 / n as f32);
+                        let p = corners[0] * (1.0 - a - b) + corners[1] * a + corners[2] * b;
+                        let centre = ((p / scale).floor() + 0.5) * scale;
+                        assert!(
+                            t.overlaps(centre, half),
+                            "{corners:?} at {p}, scale {scale}"
+                        );
+                    }
                 }
             }
         }
