@@ -57,10 +57,12 @@ impl TriangleOverlap {
         if n.dot(v[0]).abs() > half.dot(n.abs()) + slack * n.length() {
             return false;
         }
-        self.edge_axes.iter().all(|&a| {
+        // Separated only by a comparison that holds: one that overflowed to NaN (corners
+        // near f32::MAX) keeps the cell, as the plane test above does.
+        !self.edge_axes.iter().any(|&a| {
             let (d0, d1, d2) = (a.dot(v[0]), a.dot(v[1]), a.dot(v[2]));
             let reach = half.dot(a.abs()) + slack * a.length();
-            d0.min(d1).min(d2) <= reach && d0.max(d1).max(d2) >= -reach
+            d0.min(d1).min(d2) > reach || d0.max(d1).max(d2) < -reach
         })
     }
 }
@@ -112,6 +114,25 @@ mod tests {
         let point = TriangleOverlap::new(&[Vec3::splat(0.2); 3]);
         assert!(point.overlaps(Vec3::ZERO, UNIT));
         // (A box away from the point is separated by its own axes: the caller's test.)
+    }
+
+    #[test]
+    fn overflowing_arithmetic_never_separates() {
+        // Edges near f32::MAX: the cross products and dot products overflow to ±∞ and NaN.
+        let big = f32::MAX / 4.0;
+        let t = TriangleOverlap::new(&[
+            Vec3::new(-big, -big, big),
+            Vec3::new(big, -big, -big),
+            Vec3::new(0.0, big, 0.0),
+        ]);
+        assert!(t.overlaps(Vec3::ZERO, UNIT));
+        assert!(t.overlaps(Vec3::new(1e30, 0.0, 0.0), UNIT));
+        // Where an axis's products come out NaN, nothing is compared true: kept.
+        let nan_axes = TriangleOverlap {
+            edge_axes: [Vec3::NAN; 9],
+            ..TriangleOverlap::new(&[Vec3::ZERO, Vec3::X, Vec3::Y])
+        };
+        assert!(nan_axes.overlaps(Vec3::ZERO, UNIT));
     }
 
     /// Every point of random triangles, sampled on a barycentric lattice, lies in a cell
