@@ -57,12 +57,13 @@ impl TriangleOverlap {
         if n.dot(v[0]).abs() > half.dot(n.abs()) + slack * n.length() {
             return false;
         }
-        // Separated only by a comparison that holds: one that overflowed to NaN (corners
-        // near f32::MAX) keeps the cell, as the plane test above does.
+        // Separated only when every corner's projection compares beyond the box's reach:
+        // a projection that overflowed to NaN (corners near f32::MAX) compares false and
+        // keeps the cell, as the plane test above does.
         !self.edge_axes.iter().any(|&a| {
-            let (d0, d1, d2) = (a.dot(v[0]), a.dot(v[1]), a.dot(v[2]));
+            let d = v.map(|c| a.dot(c));
             let reach = half.dot(a.abs()) + slack * a.length();
-            d0.min(d1).min(d2) > reach || d0.max(d1).max(d2) < -reach
+            d.iter().all(|&x| x > reach) || d.iter().all(|&x| x < -reach)
         })
     }
 }
