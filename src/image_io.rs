@@ -191,11 +191,20 @@ enum Pixels<'a> {
 /// running on another thread can never read freed memory.
 static SIGNAL_TEMP: AtomicPtr<libc::c_char> = AtomicPtr::new(std::ptr::null_mut());
 
-/// Makes SIGINT, SIGTERM, SIGHUP and SIGABRT (also raised when an allocation fails)
-/// remove the temporary image being written, if any, then end the process as the
-/// signal would have. Signals the process ignores stay ignored. For the command line.
+/// Makes SIGINT, SIGTERM, SIGHUP, SIGABRT (also raised when an allocation fails) and
+/// SIGPIPE remove the temporary image being written, if any, then end the process as the
+/// signal would have. Signals the caller ignored stay ignored. For the command line.
+/// (Rust ignores SIGPIPE in every program, so a report printed into a closed pipe, as in
+/// `glint diff a b | head -0`, would panic; a command-line tool ends quietly instead.)
 pub fn remove_temp_files_on_signals() {
-    for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP, libc::SIGABRT] {
+    let signals = [
+        libc::SIGINT,
+        libc::SIGTERM,
+        libc::SIGHUP,
+        libc::SIGABRT,
+        libc::SIGPIPE,
+    ];
+    for sig in signals {
         // SAFETY: installs an async-signal-safe handler (atomic load, unlink, signal,
         // raise); `signal` is called before any thread writes an image.
         unsafe {
@@ -203,7 +212,8 @@ pub fn remove_temp_files_on_signals() {
                 sig,
                 on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t,
             );
-            if old == libc::SIG_IGN {
+            // (The Rust runtime, not the caller, set SIGPIPE to ignored before main.)
+            if old == libc::SIG_IGN && sig != libc::SIGPIPE {
                 libc::signal(sig, libc::SIG_IGN);
             }
         }

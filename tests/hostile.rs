@@ -743,6 +743,37 @@ fn diff_refuses_what_flip_cannot_hold_and_missing_files_once() {
     assert_eq!(listing(&dir), vec!["a.png", "b.png", "small.png"]);
 }
 
+/// A report printed into a pipe nobody reads any more (`glint diff a b | head -0`) ends
+/// glint as SIGPIPE ends any command-line tool, quietly: no panic ("failed printing to
+/// stdout") and no message.
+#[test]
+fn a_closed_stdout_ends_glint_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    let (dir, _logs) = case_dir("closed-stdout");
+    std::fs::write(dir.join("small.png"), png(4, 4)).unwrap();
+    for args in [vec!["diff", "small.png", "small.png"], vec!["--help"]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_glint"))
+            .args(&args)
+            .current_dir(&dir)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // The reading end closes before glint has read its images or parsed its flags.
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+        assert!(
+            out.status.success() || out.status.signal() == Some(libc::SIGPIPE),
+            "{args:?}: {:?}, {stderr}",
+            out.status
+        );
+        assert!(stderr.is_empty(), "{args:?}: {stderr}");
+    }
+}
+
 /// A JPEG of `w`×`h` whose frame header is rewritten to claim `claim`×`claim`.
 fn forged_jpeg(w: u32, h: u32, claim: u16) -> Vec<u8> {
     let mut bytes = Vec::new();
