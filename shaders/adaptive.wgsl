@@ -309,11 +309,12 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     trace_lattice_point(a * l + ox, b * l + oy);
 }
 
-// Integrate pass: pixel (id.x, id.y)'s area-weighted mean over its quadtree, walked with
-// the per-pixel stack (children pushed top-left, top-right, bottom-left, bottom-right),
-// so the sum runs in the per-pixel walk's order (a leaf: the mean of its corners; an
-// unsplit pixel with a centre: their quincunx_mean with it); alpha holds its number of
-// leaves.
+// Integrate pass: pixel (id.x, id.y)'s area-weighted mean over its quadtree, walked depth
+// first without a stack: a split square's children in the order bottom-right,
+// bottom-left, top-right, top-left (next_square), the sum in that walk's order (a leaf:
+// the mean of its corners; an unsplit pixel with a centre: their quincunx_mean with it);
+// alpha holds its number of leaves. (A private stack indexed at run time costs llvmpipe
+// per-lane scatters and gathers: docs/gpu.md.)
 // Mirror of src/cpu/adaptive.rs::adaptive_integrate — change both.
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
 fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -322,23 +323,15 @@ fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let depth = globals.aa_depth;
     // (level, a, b)
-    var stack: array<vec3<u32>, AA_STACK_SIZE>;
-    stack[0] = vec3<u32>(0u, id.x, id.y);
-    var size = 1u;
+    var sq = vec3<u32>(0u, id.x, id.y);
     var sum = vec3<f32>(0.0);
     var leaves = 0u;
-    while size > 0u {
-        size -= 1u;
-        let sq = stack[size];
+    loop {
         let level = sq.x;
         let a = sq.y;
         let b = sq.z;
         if level < depth && is_split(level, a, b) {
-            stack[size] = vec3<u32>(level + 1u, 2u * a, 2u * b);
-            stack[size + 1u] = vec3<u32>(level + 1u, 2u * a + 1u, 2u * b);
-            stack[size + 2u] = vec3<u32>(level + 1u, 2u * a, 2u * b + 1u);
-            stack[size + 3u] = vec3<u32>(level + 1u, 2u * a + 1u, 2u * b + 1u);
-            size += 4u;
+            sq = vec3<u32>(level + 1u, 2u * a + 1u, 2u * b + 1u);
             continue;
         }
         let c = square_corners(level, a, b);
@@ -346,11 +339,33 @@ fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {
         if square_has_centre(level) {
             let centre = pixel_centre(a, b);
             sum += quincunx_mean(c, lattice_point(centre.x, centre.y));
-            continue;
+        } else {
+            let side = ldexp(1.0, -i32(level));
+            let area = side * side;
+            sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
         }
-        let side = ldexp(1.0, -i32(level));
-        let area = side * side;
-        sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
+        sq = next_square(level, a, b);
+        if sq.x == 0u {
+            break;
+        }
     }
     output[id.y * tile.side + id.x] = vec4<f32>(sum, f32(leaves));
+}
+
+// The square the integrate walk visits after the subtree of square (level, a, b): its
+// next sibling (bottom-right → bottom-left → top-right → top-left), or after a top-left
+// child its parent's next; level 0 when the pixel's walk is over.
+// Mirror of src/cpu/adaptive.rs::next_square — change both.
+fn next_square(level: u32, a: u32, b: u32) -> vec3<u32> {
+    var sq = vec3<u32>(level, a, b);
+    while sq.x > 0u && (sq.y & 1u) == 0u && (sq.z & 1u) == 0u {
+        sq = vec3<u32>(sq.x - 1u, sq.y / 2u, sq.z / 2u);
+    }
+    if sq.x == 0u {
+        return sq;
+    }
+    if (sq.y & 1u) == 1u {
+        return vec3<u32>(sq.x, sq.y - 1u, sq.z);
+    }
+    return vec3<u32>(sq.x, sq.y + 1u, sq.z - 1u);
 }

@@ -255,7 +255,6 @@ pub fn wgsl_prelude() -> String {
         ("AA_ITEM_KEY_MASK", AA_ITEM_KEY_MASK),
         ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
         ("TILE_SIZE", TILE_SIZE),
-        ("AA_STACK_SIZE", AA_STACK_SIZE),
         ("GPU_INDIRECT_MAX_WORKGROUPS", GPU_INDIRECT_MAX_WORKGROUPS),
         ("PCG_MULTIPLIER", PCG_MULTIPLIER),
         ("PROBE_CLOSEST_HIT", PROBE_CLOSEST_HIT),
@@ -332,8 +331,9 @@ pub const AA_CENTRE_WEIGHT: f32 = 0.5;
 pub const MAX_AA_SAMPLES: u32 = 64;
 /// Square tile side, in pixels, for both tracers' work split.
 pub const TILE_SIZE: u32 = 16;
-/// Capacity of adaptive anti-aliasing's explicit square stack: each split pops one square
-/// and pushes four, so depth d needs at most 3·d + 1 entries.
+/// Capacity of the CPU's per-pixel adaptive walk's square stack (src/cpu/render.rs): each
+/// split pops one square and pushes four, so depth d needs at most 3·d + 1 entries. (The
+/// lattice passes' integrate walk needs none: src/cpu/adaptive.rs::next_square.)
 pub const AA_STACK_SIZE: u32 = 3 * MAX_AA_DEPTH + 1;
 
 /// Largest side of the square GPU workgroup (`@workgroup_size(WORKGROUP_SIZE,

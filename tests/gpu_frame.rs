@@ -120,3 +120,65 @@ fn every_kernel_variant_renders_the_same_image() {
         }
     }
 }
+
+/// Timing each pass (`glint bench --gpu --passes`) changes how the frame is encoded (a
+/// compute pass per dispatch, two timestamps each), not what it renders: the same image
+/// and submits as a plain frame; every dispatch counted once, under its own entry point
+/// and, for adaptive AA's per-level passes, its level; and the passes' times within the
+/// frame's.
+#[test]
+fn pass_times_cover_every_dispatch_and_change_no_pixel() {
+    let Some(ctx) = gpu_context() else { return };
+    if !ctx
+        .device
+        .features()
+        .contains(wgpu::Features::TIMESTAMP_QUERY)
+    {
+        eprintln!("skipped: the adapter has no timestamp queries");
+        return;
+    }
+    for aa in [AaMode::None, AaMode::Adaptive] {
+        let overrides = OptionOverrides {
+            width: Some(300),
+            height: Some(200),
+            aa: Some(aa),
+            aa_depth: Some(glint::scene::AaDepth::constant(2)),
+            ..OptionOverrides::default()
+        };
+        let scene = packed_from_source(SCENE, &overrides).remove(0);
+        let plain = render_gpu(&ctx, &scene, &GpuRenderOptions::default()).unwrap();
+        assert!(plain.pass_times.is_empty());
+        let timed_options = GpuRenderOptions {
+            pass_times: true,
+            ..GpuRenderOptions::default()
+        };
+        let timed = render_gpu(&ctx, &scene, &timed_options).unwrap();
+        assert!(plain.film.pixels == timed.film.pixels, "{aa:?}");
+        assert_eq!(plain.info.submits, timed.info.submits, "{aa:?}");
+        let counted: u32 = timed.pass_times.iter().map(|p| p.dispatches).sum();
+        assert_eq!(counted, timed.info.dispatches, "{aa:?}");
+        let kinds: Vec<(&str, u32)> = timed
+            .pass_times
+            .iter()
+            .map(|p| (p.entry, p.level))
+            .collect();
+        let expected: Vec<(&str, u32)> = match aa {
+            AaMode::Adaptive => vec![
+                ("adaptive_corners", 0),
+                ("adaptive_decide", 0),
+                ("adaptive_work_args", 0),
+                ("adaptive_midpoints", 0),
+                ("adaptive_decide", 1),
+                ("adaptive_work_args", 1),
+                ("adaptive_midpoints", 1),
+                ("adaptive_integrate", 0),
+            ],
+            _ => vec![("main", 0)],
+        };
+        assert_eq!(kinds, expected, "{aa:?}");
+        let passes: std::time::Duration = timed.pass_times.iter().map(|p| p.time).sum();
+        let frame = timed.info.gpu_time.unwrap();
+        assert!(passes <= frame, "{aa:?}: {passes:?} > {frame:?}");
+        assert!(passes > std::time::Duration::ZERO, "{aa:?}");
+    }
+}

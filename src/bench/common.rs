@@ -43,6 +43,10 @@ pub struct BenchArgs {
     /// To measure a GPU.
     #[arg(long, value_parser = ["on", "last", "off"])]
     pub mailboxes: Option<String>,
+    /// --gpu: also time each pass of the frame with the scene's own AA (timestamp queries
+    /// around every dispatch), summed per kernel and quadtree level.
+    #[arg(long)]
+    pub passes: bool,
     /// Only the error-against-time sweep of the AA and shadow settings (`bench_sweep`).
     #[arg(long)]
     pub sweep: bool,

@@ -7,6 +7,8 @@
 //! (FLIP mean and share of pixels within 2/255). Pipeline creation and the driver's
 //! first-dispatch compile are kept out of the steady times. Then a spheres-only scene
 //! with its specialised shader against the generic one (every feature compiled in).
+//! With `--passes`, a table of GPU time per pass (kernel and quadtree level) of each
+//! scene's default-AA frame, the fastest of `--repeat` frames timed pass by pass.
 
 use super::common::{load_scene, BenchArgs};
 use super::timing::fastest;
@@ -74,7 +76,57 @@ pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
             bench_scene(&ctx, args, path, aa)?;
         }
     }
+    if args.passes {
+        bench_passes(&ctx, args, &paths)?;
+    }
     bench_specialisation(&ctx, args)
+}
+
+/// Per scene, its default-AA frame's GPU time per kind of pass (the frame of least
+/// total of `--repeat`), and the share of each in the total.
+fn bench_passes(
+    ctx: &GpuContext,
+    args: &BenchArgs,
+    paths: &[std::path::PathBuf],
+) -> anyhow::Result<()> {
+    println!("\n## GPU time per pass, {SIDE}×{SIDE}, default AA (each dispatch timed alone; fastest frame of {})", args.repeat);
+    println!("| scene | pass | level | dispatches | GPU time | share |");
+    println!("| --- | --- | ---: | ---: | ---: | ---: |");
+    let options = GpuRenderOptions {
+        pass_times: true,
+        ..GpuRenderOptions::default()
+    };
+    for path in paths {
+        let packed = pack_scene(&load_scene(path, SIDE, SIDE)?)?;
+        let name = path.file_stem().unwrap_or_default().to_string_lossy();
+        let mut best: Option<Vec<crate::gpu::PassTime>> = None;
+        let total =
+            |p: &[crate::gpu::PassTime]| p.iter().map(|t| t.time).sum::<std::time::Duration>();
+        for _ in 0..args.repeat.max(1) {
+            let times = render_gpu(ctx, &packed, &options)?.pass_times;
+            anyhow::ensure!(
+                !times.is_empty(),
+                "--passes: the adapter has no timestamp queries"
+            );
+            if best.as_ref().is_none_or(|b| total(&times) < total(b)) {
+                best = Some(times);
+            }
+        }
+        let best = best.unwrap_or_default();
+        let sum = total(&best).as_secs_f64();
+        for p in &best {
+            println!(
+                "| {name} | {} | {} | {} | {:.1} ms | {:.1}% |",
+                p.entry,
+                p.level,
+                p.dispatches,
+                p.time.as_secs_f64() * 1e3,
+                100.0 * p.time.as_secs_f64() / sum
+            );
+        }
+        println!("| {name} | all | | | {:.1} ms | 100% |", sum * 1e3);
+    }
+    Ok(())
 }
 
 /// One row: `path` at SIDE² under `aa` (None: the scene's own AA).

@@ -31,7 +31,7 @@ use super::pixel_sample::{
     SquareHints,
 };
 use super::traverse::TraversalCounters;
-use crate::constants::{AA_ITEM_EDGE_DEPTH, AA_PENUMBRA_DEPTH, AA_STACK_SIZE, NO_ITEM};
+use crate::constants::{AA_ITEM_EDGE_DEPTH, AA_PENUMBRA_DEPTH, NO_ITEM};
 use crate::pack::PackedScene;
 pub use crate::tiling::{split_offset, AdaptiveTile};
 use glam::Vec3;
@@ -300,26 +300,23 @@ fn adaptive_midpoints(
 }
 
 /// Colour of tile pixel (tx, ty) and its number of leaf squares: the area-weighted mean
-/// over its quadtree, walked with the per-pixel stack (children pushed top-left,
-/// top-right, bottom-left, bottom-right), so the sum runs in the per-pixel walk's order;
-/// a leaf is the mean of its corners, an unsplit pixel with a centre their
-/// [`quincunx_mean`] with it.
+/// over its quadtree, walked depth first without a stack (a split square's children
+/// bottom-right, bottom-left, top-right, top-left: [`next_square`]), which is the order
+/// in which the per-pixel walk pops them, so the sum runs in that walk's order; a leaf is
+/// the mean of its corners, an unsplit pixel with a centre their [`quincunx_mean`] with
+/// it. (Stackless because the GPU twin's private stack, indexed at run time, cost
+/// llvmpipe per-lane scatters and gathers: docs/gpu.md.)
 // Mirror of shaders/adaptive.wgsl::adaptive_integrate — change both.
 fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
     let t = lat.tile;
-    let mut stack = [[0u32; 3]; AA_STACK_SIZE as usize];
-    stack[0] = [0, tx, ty];
-    let mut size = 1;
+    // (level, a, b)
+    let mut sq = [0, tx, ty];
     let mut sum = Vec3::ZERO;
     let mut leaves = 0;
-    while size > 0 {
-        size -= 1;
-        let [level, a, b] = stack[size];
+    loop {
+        let [level, a, b] = sq;
         if level < t.depth && lat.is_split(level, a, b) {
-            for (da, db) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                stack[size] = [level + 1, 2 * a + da, 2 * b + db];
-                size += 1;
-            }
+            sq = [level + 1, 2 * a + 1, 2 * b + 1];
             continue;
         }
         let c = square_corners(lat, level, a, b);
@@ -327,13 +324,34 @@ fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
         if square_has_centre(&t, level) {
             let (ci, cj) = pixel_centre(&t, a, b);
             sum += quincunx_mean(&c, lat.point(ci, cj));
-            continue;
+        } else {
+            let side = 1.0 / (1u32 << level) as f32;
+            let area = side * side;
+            sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
         }
-        let side = 1.0 / (1u32 << level) as f32;
-        let area = side * side;
-        sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
+        sq = next_square(level, a, b);
+        if sq[0] == 0 {
+            return (sum, leaves);
+        }
     }
-    (sum, leaves)
+}
+
+/// The square the integrate walk visits after the subtree of square (level, a, b): its
+/// next sibling (bottom-right → bottom-left → top-right → top-left), or, after a top-left
+/// child, its parent's next; level 0 when the pixel's walk is over.
+// Mirror of shaders/adaptive.wgsl::next_square — change both.
+fn next_square(level: u32, a: u32, b: u32) -> [u32; 3] {
+    let mut sq = [level, a, b];
+    while sq[0] > 0 && sq[1] & 1 == 0 && sq[2] & 1 == 0 {
+        sq = [sq[0] - 1, sq[1] / 2, sq[2] / 2];
+    }
+    if sq[0] == 0 {
+        return sq;
+    }
+    if sq[1] & 1 == 1 {
+        return [sq[0], sq[1] - 1, sq[2]];
+    }
+    [sq[0], sq[1] + 1, sq[2] - 1]
 }
 
 /// Runs every pass over `lat`'s tile; returns its pixels, row-major, with their leaf
@@ -373,9 +391,11 @@ pub fn adaptive_tile(
 
 #[cfg(test)]
 mod tests {
-    use super::square_splits;
+    use super::{adaptive_integrate, next_square, split_index, square_splits, Lattice};
     use crate::constants::{AA_ITEM_EDGE_DEPTH, AA_PENUMBRA_DEPTH};
     use crate::cpu::pixel_sample::SquareHints;
+    use crate::tiling::AdaptiveTile;
+    use glam::Vec3;
 
     const PLAIN: SquareHints = SquareHints {
         penumbra: false,
@@ -419,5 +439,85 @@ mod tests {
             );
             assert!(!square_splits(0.0, PLAIN, level, f32::MAX));
         }
+    }
+
+    /// The integrate walk against the per-pixel walk's stack (children pushed top-left,
+    /// top-right, bottom-left, bottom-right, popped last first) on random split trees and
+    /// colours: the same leaves in the same order, so the same sums bit for bit.
+    #[test]
+    fn the_stackless_integrate_walk_sums_in_the_stacks_order() {
+        let mut state = 0x9e37_79b9_u32;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            state
+        };
+        for depth in 0..=4 {
+            let tile = AdaptiveTile {
+                origin: [0, 0],
+                size: [3, 2],
+                side: 3,
+                depth,
+            };
+            let mut lat = Lattice::new(tile);
+            for p in lat.points.iter_mut() {
+                *p = Vec3::new(next() as f32, next() as f32, next() as f32) / 4e9;
+            }
+            for level in 0..depth {
+                for b in 0..(tile.size[1] << level) {
+                    for a in 0..(tile.size[0] << level) {
+                        let parent_split = level == 0 || lat.is_split(level - 1, a / 2, b / 2);
+                        let flag = parent_split && next() % 3 != 0;
+                        lat.split[split_index(&tile, level, a, b)] = flag as u32;
+                    }
+                }
+            }
+            for (tx, ty) in [(0, 0), (1, 0), (2, 1)] {
+                let (sum, leaves) = adaptive_integrate(&lat, tx, ty);
+                let (want_sum, want_leaves, order) = stack_walk(&lat, tx, ty);
+                assert_eq!(leaves, want_leaves, "depth {depth}, pixel ({tx}, {ty})");
+                assert_eq!(sum.to_array(), want_sum.to_array(), "depth {depth}");
+                // next_square visits the stack's order: each leaf's successor.
+                for pair in order.windows(2) {
+                    let [level, a, b] = pair[0];
+                    let mut sq = next_square(level, a, b);
+                    while sq != pair[1] {
+                        assert!(sq[0] < depth && lat.is_split(sq[0], sq[1], sq[2]));
+                        sq = [sq[0] + 1, 2 * sq[1] + 1, 2 * sq[2] + 1];
+                    }
+                }
+                if let Some(last) = order.last() {
+                    let [level, a, b] = *last;
+                    assert_eq!(next_square(level, a, b)[0], 0);
+                }
+            }
+        }
+    }
+
+    /// The per-pixel walk's order with an explicit stack: the sum, the leaves and their
+    /// (level, a, b) in visiting order.
+    fn stack_walk(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32, Vec<[u32; 3]>) {
+        let t = lat.tile;
+        let mut stack = vec![[0, tx, ty]];
+        let (mut sum, mut order) = (Vec3::ZERO, Vec::new());
+        while let Some([level, a, b]) = stack.pop() {
+            if level < t.depth && lat.is_split(level, a, b) {
+                for (da, db) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                    stack.push([level + 1, 2 * a + da, 2 * b + db]);
+                }
+                continue;
+            }
+            let c = super::square_corners(lat, level, a, b);
+            if super::square_has_centre(&t, level) {
+                let (ci, cj) = super::pixel_centre(&t, a, b);
+                sum += super::quincunx_mean(&c, lat.point(ci, cj));
+            } else {
+                let side = 1.0 / (1u32 << level) as f32;
+                sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * side * side);
+            }
+            order.push([level, a, b]);
+        }
+        (sum, order.len() as u32, order)
     }
 }

@@ -5,6 +5,8 @@
 //! the dispatches' storage accesses).
 //! The read-back staging buffer receives the output, the guard flags and, where the
 //! adapter has timestamp queries, the frame's GPU time — all copied once, at the end.
+//! Asked for per-pass times (`glint bench --gpu --passes`), each dispatch runs in a
+//! compute pass of its own between two timestamps of its own.
 
 use super::buffers::{scene_entries, GpuTile, SceneBuffers};
 use super::context::GpuContext;
@@ -25,11 +27,17 @@ pub struct Block {
     pub guard_size: u64,
 }
 
-/// Timestamp queries at the start of the frame's first pass and the end of its last.
+/// Timestamp queries at the start of the frame's first pass and the end of its last, or
+/// (`per_dispatch`) at the start and end of each dispatch's own pass.
 struct Timestamps {
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
+    per_dispatch: bool,
+    count: u32,
 }
+
+/// Most timestamp queries a frame asks for (wgpu's cap on a query set).
+const MAX_QUERIES: usize = wgpu::QUERY_SET_MAX_QUERIES as usize;
 
 /// The frame's buffers and bind groups.
 pub struct Frame<'a> {
@@ -40,7 +48,7 @@ pub struct Frame<'a> {
     work_counts: wgpu::Buffer,
     work_args: wgpu::Buffer,
     pub blocks: Vec<Block>,
-    /// Bytes of output, then of guard flags, then 16 of timestamps in `staging`.
+    /// Bytes of output, then of guard flags, then 8 per timestamp in `staging`.
     pub output_bytes: u64,
     pub guard_bytes: u64,
     pub staging: wgpu::Buffer,
@@ -117,9 +125,16 @@ fn records(ctx: &GpuContext, dispatches: &[Dispatch]) -> (wgpu::Buffer, u64) {
     (records, stride)
 }
 
-/// The frame's timestamp queries, where the device has them.
-fn timestamps(ctx: &GpuContext) -> Option<Timestamps> {
+/// The frame's timestamp queries, where the device has them: two, or two per dispatch
+/// when `per_dispatch` (and the query set can hold them).
+fn timestamps(ctx: &GpuContext, dispatches: usize, per_dispatch: bool) -> Option<Timestamps> {
     use wgpu::BufferUsages as U;
+    let per_dispatch = per_dispatch && 2 * dispatches <= MAX_QUERIES;
+    let count = if per_dispatch {
+        2 * dispatches as u32
+    } else {
+        2
+    };
     ctx.device
         .features()
         .contains(wgpu::Features::TIMESTAMP_QUERY)
@@ -127,14 +142,22 @@ fn timestamps(ctx: &GpuContext) -> Option<Timestamps> {
             queries: ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("frame time"),
                 ty: wgpu::QueryType::Timestamp,
-                count: 2,
+                count,
             }),
-            resolve: buffer(ctx, "frame time", 16, U::QUERY_RESOLVE | U::COPY_SRC),
+            resolve: buffer(
+                ctx,
+                "frame time",
+                8 * count as u64,
+                U::QUERY_RESOLVE | U::COPY_SRC,
+            ),
+            per_dispatch,
+            count,
         })
 }
 
 impl<'a> Frame<'a> {
-    /// Creates the frame's buffers and one bind group per dispatch (call inside the
+    /// Creates the frame's buffers and one bind group per dispatch, and timestamps per
+    /// dispatch when `pass_times` (call inside the
     /// frame's error scope).
     pub fn new(
         ctx: &'a GpuContext,
@@ -142,6 +165,7 @@ impl<'a> Frame<'a> {
         scene: &SceneBuffers,
         layout: &wgpu::BindGroupLayout,
         dispatches: &[Dispatch],
+        pass_times: bool,
     ) -> Frame<'a> {
         use wgpu::BufferUsages as U;
         let storage = U::STORAGE | U::COPY_SRC | U::COPY_DST;
@@ -193,11 +217,12 @@ impl<'a> Frame<'a> {
                 })
             })
             .collect();
-        let timestamps = timestamps(ctx);
+        let timestamps = timestamps(ctx, dispatches.len(), pass_times);
+        let stamps = timestamps.as_ref().map_or(0, |t| 8 * t.count as u64);
         let staging = buffer(
             ctx,
             "frame staging",
-            output_bytes + guard_bytes + 16,
+            output_bytes + guard_bytes + stamps,
             U::MAP_READ | U::COPY_DST,
         );
         Frame {
@@ -219,6 +244,12 @@ impl<'a> Frame<'a> {
     /// Whether the frame measures its GPU time with timestamp queries.
     pub fn timed(&self) -> bool {
         self.timestamps.is_some()
+    }
+
+    /// Whether each dispatch has its own pair of timestamps (then `staging` holds the
+    /// start and end of dispatch k at 2k and 2k + 1, else the frame's start and end).
+    pub fn timed_per_dispatch(&self) -> bool {
+        self.timestamps.as_ref().is_some_and(|t| t.per_dispatch)
     }
 
     /// Encodes dispatches `range` (of the frame's `dispatches`) as one command buffer:
@@ -247,39 +278,73 @@ impl<'a> Frame<'a> {
                 encoder.clear_buffer(&self.split, 0, None);
                 encoder.clear_buffer(&self.work_counts, 0, None);
             }
-            let (begin, end) = (first && s == 0, last && s + 2 == starts.len());
-            let timestamp_writes = self.timestamps.as_ref().filter(|_| begin || end).map(|t| {
-                wgpu::ComputePassTimestampWrites {
-                    query_set: &t.queries,
-                    beginning_of_pass_write_index: begin.then_some(0),
-                    end_of_pass_write_index: end.then_some(1),
+            if self.timed_per_dispatch() {
+                for k in pair[0]..pair[1] {
+                    let at = 2 * k as u32;
+                    self.encode_pass(
+                        &mut encoder,
+                        pipelines,
+                        dispatches,
+                        k..k + 1,
+                        Some((Some(at), Some(at + 1))),
+                    );
                 }
-            });
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("glint frame part"),
-                timestamp_writes,
-            });
-            let run = dispatches.iter().zip(&self.bind_groups);
-            for (d, bind_group) in run.take(pair[1]).skip(pair[0]) {
-                pass.set_pipeline(&pipelines[d.entry].pipeline);
-                pass.set_bind_group(0, bind_group, &[]);
-                match d.workgroups {
-                    Workgroups::Direct(x, y) => pass.dispatch_workgroups(x, y, 1),
-                    Workgroups::Indirect(at) => {
-                        pass.dispatch_workgroups_indirect(&self.work_args, at)
-                    }
-                }
+                continue;
             }
+            let (begin, end) = (first && s == 0, last && s + 2 == starts.len());
+            let writes = (begin || end).then_some((begin.then_some(0), end.then_some(1)));
+            self.encode_pass(
+                &mut encoder,
+                pipelines,
+                dispatches,
+                pair[0]..pair[1],
+                writes,
+            );
         }
         if last {
             let (o, g) = (self.output_bytes, self.guard_bytes);
             encoder.copy_buffer_to_buffer(&self.output, 0, &self.staging, 0, o);
             encoder.copy_buffer_to_buffer(&self.guard, 0, &self.staging, o, g);
             if let Some(t) = &self.timestamps {
-                encoder.resolve_query_set(&t.queries, 0..2, &t.resolve, 0);
-                encoder.copy_buffer_to_buffer(&t.resolve, 0, &self.staging, o + g, 16);
+                encoder.resolve_query_set(&t.queries, 0..t.count, &t.resolve, 0);
+                let bytes = 8 * t.count as u64;
+                encoder.copy_buffer_to_buffer(&t.resolve, 0, &self.staging, o + g, bytes);
             }
         }
         encoder.finish()
+    }
+
+    /// One compute pass over dispatches `range`, with timestamps at its start and end
+    /// where `writes` names query indices.
+    fn encode_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        pipelines: &[Arc<CompiledPipeline>],
+        dispatches: &[Dispatch],
+        range: std::ops::Range<usize>,
+        writes: Option<(Option<u32>, Option<u32>)>,
+    ) {
+        let timestamp_writes = self
+            .timestamps
+            .as_ref()
+            .zip(writes)
+            .map(|(t, (begin, end))| wgpu::ComputePassTimestampWrites {
+                query_set: &t.queries,
+                beginning_of_pass_write_index: begin,
+                end_of_pass_write_index: end,
+            });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("glint frame part"),
+            timestamp_writes,
+        });
+        let run = dispatches.iter().zip(&self.bind_groups);
+        for (d, bind_group) in run.take(range.end).skip(range.start) {
+            pass.set_pipeline(&pipelines[d.entry].pipeline);
+            pass.set_bind_group(0, bind_group, &[]);
+            match d.workgroups {
+                Workgroups::Direct(x, y) => pass.dispatch_workgroups(x, y, 1),
+                Workgroups::Indirect(at) => pass.dispatch_workgroups_indirect(&self.work_args, at),
+            }
+        }
     }
 }

@@ -18,4 +18,4 @@ pub mod tables;
 pub use context::{list_adapters, AdapterSummary, GpuContext};
 pub use error::GpuError;
 pub use kernel::KernelConfig;
-pub use render::{render_gpu, GpuRender, GpuRenderInfo, GpuRenderOptions};
+pub use render::{render_gpu, GpuRender, GpuRenderInfo, GpuRenderOptions, PassTime};

@@ -23,6 +23,7 @@ use super::context::GpuContext;
 use super::frame::Frame;
 use super::pipeline::{get_pipeline, CompiledPipeline};
 use super::plan::{AdapterBounds, Dispatch, FramePlan};
+use super::shader::Entry;
 use super::GpuError;
 use crate::cpu::render::render_pixel;
 use crate::cpu::traverse::NoCounters;
@@ -67,6 +68,11 @@ pub struct GpuRenderOptions<'a> {
     /// fallback.
     #[doc(hidden)]
     pub limiter_sentinel: u32,
+    /// Time each dispatch on its own (timestamp queries around a compute pass each) and
+    /// return the sums per kind of pass in [`GpuRender::pass_times`]; the passes then
+    /// cannot overlap, so the frame may take a little longer (`glint bench --gpu
+    /// --passes`).
+    pub pass_times: bool,
 }
 
 impl Default for GpuRenderOptions<'_> {
@@ -74,6 +80,7 @@ impl Default for GpuRenderOptions<'_> {
         GpuRenderOptions {
             progress: &|_, _| {},
             limiter_sentinel: LIMITER_SENTINEL,
+            pass_times: false,
         }
     }
 }
@@ -85,6 +92,21 @@ pub struct GpuRender {
     /// Adaptive AA's leaf squares per pixel, row-major (see
     /// [`crate::cpu::render::adaptive_leaf_counts`]); meaningful with adaptive AA only.
     pub leaf_counts: Vec<u32>,
+    /// With [`GpuRenderOptions::pass_times`] on an adapter with timestamp queries: GPU
+    /// time per kind of pass, in the order of the frame's first dispatch of each.
+    pub pass_times: Vec<PassTime>,
+}
+
+/// The GPU time of one kind of pass of a frame, summed over its dispatches.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassTime {
+    /// The kernel's entry point, as the WGSL names it (`adaptive_midpoints`).
+    pub entry: &'static str,
+    /// The quadtree level of adaptive AA's decide and midpoint passes (else 0).
+    pub level: u32,
+    /// Dispatches summed (one per chunk).
+    pub dispatches: u32,
+    pub time: Duration,
 }
 
 /// The frame's results as read back: colours (alpha: adaptive AA's leaf count), guard
@@ -92,6 +114,8 @@ pub struct GpuRender {
 struct ReadBack {
     bytes: Vec<u8>,
     gpu_time: Option<Duration>,
+    /// Each dispatch's GPU time, when timed per dispatch.
+    dispatch_times: Vec<Duration>,
     /// Host waits it took.
     host_waits: u32,
 }
@@ -130,7 +154,15 @@ pub fn render_gpu(
         part_ends.push(dispatches.len());
     }
     let (frame, submissions) = ctx.scoped("frame", || {
-        let frame = Frame::new(ctx, &plan, &buffers, &pipelines[0].layout, &dispatches);
+        let layout = &pipelines[0].layout;
+        let frame = Frame::new(
+            ctx,
+            &plan,
+            &buffers,
+            layout,
+            &dispatches,
+            options.pass_times,
+        );
         let mut start = 0;
         let mut submissions = Vec::new();
         for (k, &end) in part_ends.iter().enumerate() {
@@ -160,7 +192,38 @@ pub fn render_gpu(
         film,
         info,
         leaf_counts: alpha,
+        pass_times: pass_times(&plan, &dispatches, &read.dispatch_times),
     })
+}
+
+/// The dispatches' `times` summed per entry point and level, in the order of each
+/// kind's first dispatch (empty when `times` is).
+fn pass_times(plan: &FramePlan, dispatches: &[Dispatch], times: &[Duration]) -> Vec<PassTime> {
+    let mut sums: Vec<PassTime> = Vec::new();
+    for (d, &time) in dispatches.iter().zip(times) {
+        let entry = plan.mode.entries()[d.entry];
+        let per_level = matches!(
+            entry,
+            Entry::AdaptiveDecide | Entry::AdaptiveWorkArgs | Entry::AdaptiveMidpoints
+        );
+        let (entry, level) = (entry.name(), if per_level { d.params.level } else { 0 });
+        match sums
+            .iter_mut()
+            .find(|p| p.entry == entry && p.level == level)
+        {
+            Some(sum) => {
+                sum.dispatches += 1;
+                sum.time += time;
+            }
+            None => sums.push(PassTime {
+                entry,
+                level,
+                dispatches: 1,
+                time,
+            }),
+        }
+    }
+    sums
 }
 
 /// Waits for each submitted part in turn (one host wait each, reporting progress) and
@@ -190,14 +253,23 @@ fn wait_and_read(
     }
     let bytes = take_mapped(&frame.staging, size, rx.try_recv().ok())?;
     let at = (frame.output_bytes + frame.guard_bytes) as usize;
-    let gpu_time = frame.timed().then(|| {
-        let ticks: [u64; 2] = bytemuck::pod_read_unaligned(&bytes[at..at + 16]);
-        let ns = ticks[1].saturating_sub(ticks[0]) as f64 * ctx.queue.get_timestamp_period() as f64;
-        Duration::from_secs_f64(ns * 1e-9)
-    });
+    let ticks: Vec<u64> = bytemuck::pod_collect_to_vec(&bytes[at..]);
+    let period = ctx.queue.get_timestamp_period() as f64;
+    let between = |from: u64, to: u64| {
+        Duration::from_secs_f64(to.saturating_sub(from) as f64 * period * 1e-9)
+    };
+    // The frame's start and end, or every dispatch's.
+    let gpu_time = frame
+        .timed()
+        .then(|| between(ticks[0], ticks[ticks.len() - 1]));
+    let dispatch_times = match frame.timed_per_dispatch() {
+        true => ticks.chunks(2).map(|t| between(t[0], t[1])).collect(),
+        false => Vec::new(),
+    };
     Ok(ReadBack {
         bytes,
         gpu_time,
+        dispatch_times,
         host_waits,
     })
 }
