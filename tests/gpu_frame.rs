@@ -182,3 +182,37 @@ fn pass_times_cover_every_dispatch_and_change_no_pixel() {
         assert!(passes > std::time::Duration::ZERO, "{aa:?}");
     }
 }
+
+/// A frame takes its large buffers from the context's pool and gives them back
+/// (`gpu::scratch`): the next frame of the same size reuses them instead of growing the
+/// pool, and a frame on kept buffers that held another scene's lattice and flags renders
+/// the image a fresh context renders.
+#[test]
+fn kept_frame_buffers_are_reused_and_change_no_pixel() {
+    let Some(ctx) = gpu_context() else { return };
+    let fresh = gpu_context().unwrap();
+    let frame = |ctx: &glint::gpu::GpuContext, source: &str, depth: u32| {
+        let overrides = OptionOverrides {
+            width: Some(300),
+            height: Some(200),
+            aa: Some(AaMode::Adaptive),
+            aa_depth: Some(glint::scene::AaDepth::constant(depth)),
+            ..OptionOverrides::default()
+        };
+        let scene = packed_from_source(source, &overrides).remove(0);
+        render_gpu(ctx, &scene, &GpuRenderOptions::default()).unwrap()
+    };
+    let other = SCENE.replace("s:translate(0, 0, -4)", "s:translate(0.7, -0.3, -3)");
+    frame(&ctx, &other, 3);
+    let kept = ctx.kept_frame_bytes();
+    assert!(kept > 0);
+    let on_kept = frame(&ctx, SCENE, 3);
+    assert_eq!(ctx.kept_frame_bytes(), kept, "the pool grew");
+    let on_fresh = frame(&fresh, SCENE, 3);
+    assert!(on_kept.film.pixels == on_fresh.film.pixels);
+    assert_eq!(on_kept.leaf_counts, on_fresh.leaf_counts);
+    // A shallower frame fits in the kept buffers too (at most twice its size each), or
+    // gets its own; either way the same image.
+    let shallow = frame(&ctx, SCENE, 1);
+    assert!(shallow.film.pixels == frame(&fresh, SCENE, 1).film.pixels);
+}

@@ -65,6 +65,8 @@ pub struct GpuContext {
     /// Set by the device-lost callback; checked after every wait.
     pub(crate) lost: Arc<Mutex<Option<String>>>,
     pub(crate) pipelines: PipelineCache,
+    /// Frame buffers kept between frames (`super::scratch`).
+    pub(crate) scratch: super::scratch::ScratchPool,
 }
 
 /// One adapter, as `glint info` lists it.
@@ -127,6 +129,11 @@ pub fn list_adapters() -> Vec<AdapterSummary> {
 }
 
 impl GpuContext {
+    /// Bytes of frame buffers kept for the next frame (`super::scratch`).
+    pub fn kept_frame_bytes(&self) -> u64 {
+        self.scratch.kept_bytes()
+    }
+
     /// A device on the first adapter whose name contains `adapter_name` (any case), or on
     /// the default adapter when None; with the adapter's own limits (wgpu's defaults are
     /// lower than what lavapipe and real GPUs offer).
@@ -187,6 +194,7 @@ impl GpuContext {
             limits,
             lost,
             pipelines: PipelineCache::default(),
+            scratch: Default::default(),
         })
     }
 

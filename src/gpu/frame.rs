@@ -47,11 +47,15 @@ pub struct Frame<'a> {
     split: wgpu::Buffer,
     work_counts: wgpu::Buffer,
     work_args: wgpu::Buffer,
+    samples: wgpu::Buffer,
+    work_list: wgpu::Buffer,
     pub blocks: Vec<Block>,
     /// Bytes of output, then of guard flags, then 8 per timestamp in `staging`.
     pub output_bytes: u64,
     pub guard_bytes: u64,
     pub staging: wgpu::Buffer,
+    /// Bytes of `staging` the frame fills (a kept buffer may be larger).
+    pub staging_len: u64,
     timestamps: Option<Timestamps>,
     /// One per dispatch, in the order of `dispatches`.
     bind_groups: Vec<wgpu::BindGroup>,
@@ -170,12 +174,14 @@ impl<'a> Frame<'a> {
         use wgpu::BufferUsages as U;
         let storage = U::STORAGE | U::COPY_SRC | U::COPY_DST;
         let (blocks, output_bytes, guard_bytes) = blocks(ctx, plan);
-        let output = buffer(ctx, "frame output", output_bytes, storage);
-        let guard = buffer(ctx, "frame guard flags", guard_bytes, storage);
-        let samples = buffer(ctx, "chunk samples", plan.samples_len * 16, storage);
-        let split = buffer(ctx, "chunk split flags", plan.split_len * 4, storage);
+        // The large buffers come from the context's pool (`super::scratch`).
+        let scratch = |size: u64, usage| ctx.scratch.take(&ctx.device, size, usage);
+        let output = scratch(output_bytes, storage);
+        let guard = scratch(guard_bytes, storage);
+        let samples = scratch(plan.samples_len * 16, storage);
+        let split = scratch(plan.split_len * 4, storage);
         let work_counts = buffer(ctx, "work counts", plan.work_levels * 4, storage);
-        let work_list = buffer(ctx, "work lists", plan.split_len * 4, storage);
+        let work_list = scratch(plan.split_len * 4, storage);
         let work_args = buffer(
             ctx,
             "work args",
@@ -219,12 +225,8 @@ impl<'a> Frame<'a> {
             .collect();
         let timestamps = timestamps(ctx, dispatches.len(), pass_times);
         let stamps = timestamps.as_ref().map_or(0, |t| 8 * t.count as u64);
-        let staging = buffer(
-            ctx,
-            "frame staging",
-            output_bytes + guard_bytes + stamps,
-            U::MAP_READ | U::COPY_DST,
-        );
+        let staging_len = output_bytes + guard_bytes + stamps;
+        let staging = scratch(staging_len, U::MAP_READ | U::COPY_DST);
         Frame {
             ctx,
             output,
@@ -232,10 +234,13 @@ impl<'a> Frame<'a> {
             split,
             work_counts,
             work_args,
+            samples,
+            work_list,
             blocks,
             output_bytes,
             guard_bytes,
             staging,
+            staging_len,
             timestamps,
             bind_groups,
         }
@@ -346,5 +351,21 @@ impl<'a> Frame<'a> {
                 Workgroups::Indirect(at) => pass.dispatch_workgroups_indirect(&self.work_args, at),
             }
         }
+    }
+}
+
+impl Drop for Frame<'_> {
+    /// The large buffers go back to the context's pool for the next frame (the queue
+    /// orders that frame's work after this one's).
+    fn drop(&mut self) {
+        let buffers = [
+            &self.output,
+            &self.guard,
+            &self.samples,
+            &self.split,
+            &self.work_list,
+            &self.staging,
+        ];
+        self.ctx.scratch.give_back(buffers.map(|b| b.clone()));
     }
 }

@@ -12,6 +12,7 @@ pub mod pipeline;
 pub mod pipeline_cache;
 pub mod plan;
 pub mod render;
+pub mod scratch;
 pub mod shader;
 pub mod tables;
 

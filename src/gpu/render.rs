@@ -235,7 +235,7 @@ fn wait_and_read(
     progress: RenderProgress,
 ) -> Result<ReadBack, GpuError> {
     let total = submissions.len() as u64;
-    let size = frame.staging.size();
+    let size = frame.staging_len;
     let (tx, rx) = std::sync::mpsc::channel();
     let mut host_waits = 0;
     for (k, index) in submissions.into_iter().enumerate() {
