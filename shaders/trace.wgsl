@@ -29,6 +29,7 @@ struct StackEntry {
 // Mirror of src/cpu/trace.rs::trace_ray — change both.
 fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     let g = globals;
+// #if REFLECTION|REFRACTION
 // #if REFRACTION
     var stack: array<StackEntry, RAY_STACK_SIZE>;
 // #else
@@ -63,38 +64,22 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             colour += entry.weight * background(ray.dir);
             continue;
         }
-        var s = surface_at(ray, hit);
-// #if TEXTURE|BUMP
-        s = with_footprint(s, ray.dir, entry.cone, hit.t);
-        let cone = cone_at(entry.cone, hit.t);
-// #endif
-// #if TEXTURE
-        // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
-        if g.debug_view == DEBUG_VIEW_UV {
-            let uv = s.uv - floor(s.uv);
-            colour += entry.weight * vec3<f32>(uv.x, uv.y, 0.0);
+        let shaded = shade_hit(entry, hit, seed);
+        colour += entry.weight * shaded.colour;
+        if shaded.ends {
             continue;
         }
+        let s = shaded.s;
+        let facing = shaded.facing;
+        let n = shaded.n;
+// #if TEXTURE|BUMP
+        let cone = cone_at(entry.cone, hit.t);
 // #endif
-        let facing = facing_normal(s.normal, ray.dir);
-        var n = facing;
-// #if BUMP
-        n = shading_normal(s, n);
-// #endif
-        let v = -ray.dir;
-// #if REFRACTION
-        shading_media = entry.media;
-// #endif
-        var shade_seed = seed;
-        shade_seed.depth = entry.depth;
-        colour += entry.weight * shade_phong(s, n, v, shade_seed);
-// #if REFLECTION|REFRACTION
         let m = load_material(s.material);
         var reflectance = vec3<f32>(0.0);
         if (m.flags & MATERIAL_REFLECTIVE) != 0u {
             reflectance = m.reflection;
         }
-// #endif
 // #if REFRACTION
         if (m.flags & MATERIAL_REFRACTIVE) != 0u && entry.depth < g.max_depth {
             let crossing = dielectric_interface(ray.dir, s.normal, m.ior, entry.media);
@@ -115,7 +100,6 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             }
         }
 // #endif
-// #if REFLECTION|REFRACTION
         if max_element(reflectance) > 0.0 && entry.depth < g.max_depth {
             let weight = entry.weight * reflectance;
             if max_element(weight) >= g.min_weight && size < RAY_STACK_SIZE {
@@ -132,9 +116,67 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
                 size += 1u;
             }
         }
-// #endif
     }
     return colour;
+// #else
+    // Without mirrors or dielectrics a camera ray spawns no other ray: its hit, shaded,
+    // is the colour, with no loop around it (the CPU's loop runs once here). On llvmpipe
+    // a loop that runs once around the traversal and the shading cost 20–25% of the
+    // render, with or without the stack (docs/gpu.md).
+    var entry: StackEntry;
+    entry.ray = primary;
+    entry.weight = vec3<f32>(1.0);
+    entry.depth = 0u;
+// #if TEXTURE|BUMP
+    entry.cone = camera_cone(primary);
+// #endif
+    let hit = closest_hit(primary, T_MISS);
+    camera_item = hit.item;
+    if !is_hit(hit) {
+        return background(primary.dir);
+    }
+    return shade_hit(entry, hit, seed).colour;
+// #endif
+}
+
+// A ray's hit as the trace loop uses it: the shading point (with its texture footprint),
+// the normal facing the ray and the shading normal (bumped), and the colour the point
+// gives by itself — Phong shading, or the UV debug view, which `ends` the ray.
+// Mirror of src/cpu/trace.rs::ShadedHit — change both.
+struct ShadedHit {
+    s: Surface,
+    facing: vec3<f32>,
+    n: vec3<f32>,
+    colour: vec3<f32>,
+    ends: bool,
+}
+
+// The hit of the ray of `entry`, shaded (see ShadedHit).
+// Mirror of src/cpu/trace.rs::shade_hit — change both.
+fn shade_hit(entry: StackEntry, hit: Hit, seed: SampleSeed) -> ShadedHit {
+    let ray = entry.ray;
+    var s = surface_at(ray, hit);
+// #if TEXTURE|BUMP
+    s = with_footprint(s, ray.dir, entry.cone, hit.t);
+// #endif
+// #if TEXTURE
+    // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
+    if globals.debug_view == DEBUG_VIEW_UV {
+        let uv = s.uv - floor(s.uv);
+        return ShadedHit(s, s.normal, s.normal, vec3<f32>(uv.x, uv.y, 0.0), true);
+    }
+// #endif
+    let facing = facing_normal(s.normal, ray.dir);
+    var n = facing;
+// #if BUMP
+    n = shading_normal(s, n);
+// #endif
+// #if REFRACTION
+    shading_media = entry.media;
+// #endif
+    var shade_seed = seed;
+    shade_seed.depth = entry.depth;
+    return ShadedHit(s, facing, n, shade_phong(s, n, -ray.dir, shade_seed), false);
 }
 
 // Two-sided shading: normal, negated where it faces away from a ray along dir. Secondary

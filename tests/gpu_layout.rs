@@ -490,7 +490,7 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
                 ("fn sample_texture_filtered(", texture || bump),
                 ("fn camera_cone(", texture || bump),
                 (
-                    "stack[0].cone = camera_cone(primary)",
+                    ".cone = camera_cone(primary)",
                     (texture || bump) && entry == Entry::Render,
                 ),
                 ("cone: vec2<f32>,", texture || bump),

@@ -4,10 +4,11 @@
 //! (see `dielectric`).
 
 use super::dielectric::{dielectric_interface, MediumStack};
+use super::hit::Hit;
 use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
 use super::shade::{background, shade_phong};
-use super::surface::surface_at;
+use super::surface::{surface_at, Surface};
 use super::texture::{camera_cone, cone_at, shading_normal, with_footprint};
 use super::traverse::{closest_hit, TraversalCounters};
 use crate::constants::{
@@ -66,26 +67,13 @@ pub fn trace_ray(
             colour += entry.weight * background(g, ray.dir);
             continue;
         }
-        let s = surface_at(scene, &ray, &hit);
-        let s = with_footprint(scene, s, ray.dir, entry.cone, hit.t);
-        let cone = cone_at(entry.cone, hit.t);
-        // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
-        if g.debug_view == DEBUG_VIEW_UV {
-            let uv = s.uv - s.uv.floor();
-            colour += entry.weight * Vec3::new(uv.x, uv.y, 0.0);
+        let shaded = shade_hit(scene, &entry, &hit, seed, counters);
+        colour += entry.weight * shaded.colour;
+        if shaded.ends {
             continue;
         }
-        let facing = facing_normal(s.normal, ray.dir);
-        let mut n = facing;
-        if scene.features.contains(SceneFeatures::BUMP) {
-            n = shading_normal(scene, &s, n);
-        }
-        let v = -ray.dir;
-        let shade_seed = SampleSeed {
-            depth: entry.depth,
-            ..seed
-        };
-        colour += entry.weight * shade_phong(scene, &s, n, v, &entry.media, shade_seed, counters);
+        let ShadedHit { s, facing, n, .. } = shaded;
+        let cone = cone_at(entry.cone, hit.t);
         let m = &scene.materials[s.material as usize];
         let mut reflectance = if m.flags & MATERIAL_REFLECTIVE != 0 {
             Vec3::from(m.reflection)
@@ -134,6 +122,64 @@ pub fn trace_ray(
         }
     }
     colour
+}
+
+/// A ray's hit as the trace loop uses it: the shading point (with its texture
+/// footprint), the normal facing the ray and the shading normal (bumped), and the colour
+/// the point gives by itself — Phong shading, or the UV debug view, which `ends` the ray.
+// Mirror of shaders/trace.wgsl::ShadedHit — change both.
+struct ShadedHit {
+    s: Surface,
+    facing: Vec3,
+    n: Vec3,
+    colour: Vec3,
+    ends: bool,
+}
+
+/// The hit of the ray of `entry`, shaded (see [`ShadedHit`]). Without mirrors or
+/// dielectrics it is all `trace_ray` does for a camera ray; the GPU twin of `trace_ray`
+/// then calls it without the loop, which runs once (docs/gpu.md).
+// Mirror of shaders/trace.wgsl::shade_hit — change both.
+fn shade_hit(
+    scene: &PackedScene,
+    entry: &StackEntry,
+    hit: &Hit,
+    seed: SampleSeed,
+    counters: &mut impl TraversalCounters,
+) -> ShadedHit {
+    let ray = entry.ray;
+    let s = surface_at(scene, &ray, hit);
+    let s = with_footprint(scene, s, ray.dir, entry.cone, hit.t);
+    // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
+    if scene.globals.debug_view == DEBUG_VIEW_UV {
+        let uv = s.uv - s.uv.floor();
+        let colour = Vec3::new(uv.x, uv.y, 0.0);
+        let (facing, n, ends) = (s.normal, s.normal, true);
+        return ShadedHit {
+            s,
+            facing,
+            n,
+            colour,
+            ends,
+        };
+    }
+    let facing = facing_normal(s.normal, ray.dir);
+    let mut n = facing;
+    if scene.features.contains(SceneFeatures::BUMP) {
+        n = shading_normal(scene, &s, n);
+    }
+    let shade_seed = SampleSeed {
+        depth: entry.depth,
+        ..seed
+    };
+    let colour = shade_phong(scene, &s, n, -ray.dir, &entry.media, shade_seed, counters);
+    ShadedHit {
+        s,
+        facing,
+        n,
+        colour,
+        ends: false,
+    }
 }
 
 /// Two-sided shading: `normal`, negated where it faces away from a ray along `dir`.
