@@ -21,125 +21,132 @@ struct StackEntry {
 // #endif
 }
 
+// #if REFLECTION|REFRACTION
+// The stack of secondary rays. Without dielectrics it never holds more than one ray: at
+// most one reflected ray per shading point, pushed after that point's own entry was
+// popped (the CPU's has RAY_STACK_SIZE entries and uses the first). A private array sized
+// for rays the scene cannot spawn costs a software adapter memory traffic on every access
+// (llvmpipe keeps a dynamically indexed array in memory, per lane).
+// #if REFRACTION
+alias RayStack = array<StackEntry, RAY_STACK_SIZE>;
+// #else
+alias RayStack = array<StackEntry, PRIMARY_RAY_STACK_SIZE>;
+// #endif
+// #endif
+
 // Colour seen along a primary ray, mirrors and dielectrics included (down to max_depth
 // bounces or min_weight contribution). A dielectric pushes its transmitted ray, (1 − F) of
 // the weight, then the reflected ray, whose weight is the mirror colour plus F (one ray:
 // both go the same way); Phong shading is added as for any material. seed names the
-// camera sample (its depth is ignored: each shading point gets its own ray's depth).
+// camera sample (its depth is ignored: each shading point gets its own ray's depth). The
+// camera ray's hit is traced and shaded before the loop over secondary rays, which only
+// rays it spawns enter, and which scenes without mirrors or dielectrics do not have: on
+// llvmpipe a loop around the first hit costs 20–25% of the render even when it runs once
+// (docs/gpu.md).
 // Mirror of src/cpu/trace.rs::trace_ray — change both.
 fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
-    let g = globals;
-// #if REFLECTION|REFRACTION
-// #if REFRACTION
-    var stack: array<StackEntry, RAY_STACK_SIZE>;
-// #else
-    // Without dielectrics the stack never holds more than one ray: the primary ray, then
-    // at most one reflected ray per shading point, pushed after that point's own entry
-    // was popped (the CPU's has RAY_STACK_SIZE entries and uses the first). A private
-    // array sized for rays the scene cannot spawn costs a software adapter memory
-    // traffic on every access (llvmpipe keeps a dynamically indexed array in memory, per
-    // lane); one entry is always entry 0.
-    var stack: array<StackEntry, PRIMARY_RAY_STACK_SIZE>;
-// #endif
-    stack[0].ray = primary;
-    stack[0].weight = vec3<f32>(1.0);
-    stack[0].depth = 0u;
+    var first: StackEntry;
+    first.ray = primary;
+    first.weight = vec3<f32>(1.0);
+    first.depth = 0u;
 // #if TEXTURE|BUMP
-    stack[0].cone = camera_cone(primary);
+    first.cone = camera_cone(primary);
 // #endif
 // #if REFRACTION
-    stack[0].media = camera_medium_stack();
+    first.media = camera_medium_stack();
 // #endif
-    var size = 1u;
-    var colour = vec3<f32>(0.0);
+    let first_hit = closest_hit(primary, T_MISS);
+    camera_item = first_hit.item;
+    if !is_hit(first_hit) {
+        return background(primary.dir);
+    }
+    let first_shaded = shade_hit(first, first_hit, seed);
+// #if REFLECTION|REFRACTION
+    var stack: RayStack;
+    var size = 0u;
+    var colour = first_shaded.colour;
+    if !first_shaded.ends {
+        push_secondary_rays(&stack, &size, first, first_shaded, first_hit);
+    }
     while size > 0u {
         size -= 1u;
         let entry = stack[size];
-        let ray = entry.ray;
-        let hit = closest_hit(ray, T_MISS);
-        if entry.depth == 0u {
-            camera_item = hit.item;
-        }
+        let hit = closest_hit(entry.ray, T_MISS);
         if !is_hit(hit) {
-            colour += entry.weight * background(ray.dir);
+            colour += entry.weight * background(entry.ray.dir);
             continue;
         }
         let shaded = shade_hit(entry, hit, seed);
         colour += entry.weight * shaded.colour;
-        if shaded.ends {
-            continue;
-        }
-        let s = shaded.s;
-        let facing = shaded.facing;
-        let n = shaded.n;
-// #if TEXTURE|BUMP
-        let cone = cone_at(entry.cone, hit.t);
-// #endif
-        let m = load_material(s.material);
-        var reflectance = vec3<f32>(0.0);
-        if (m.flags & MATERIAL_REFLECTIVE) != 0u {
-            reflectance = m.reflection;
-        }
-// #if REFRACTION
-        if (m.flags & MATERIAL_REFRACTIVE) != 0u && entry.depth < g.max_depth {
-            let crossing = dielectric_interface(ray.dir, s.normal, m.ior, entry.media);
-            reflectance += vec3<f32>(crossing.reflectance);
-            let weight = entry.weight * (1.0 - crossing.reflectance);
-            if max_element(weight) >= g.min_weight && size < RAY_STACK_SIZE {
-                // The transmitted ray starts on the far side of the surface.
-                var transmitted = entry;
-                transmitted.ray = Ray(offset_ray(s.p, -facing, s.magnitude), crossing.dir);
-                transmitted.weight = weight;
-                transmitted.depth = entry.depth + 1u;
-// #if TEXTURE|BUMP
-                transmitted.cone = cone;
-// #endif
-                transmitted.media = crossing.media;
-                stack[size] = transmitted;
-                size += 1u;
-            }
-        }
-// #endif
-        if max_element(reflectance) > 0.0 && entry.depth < g.max_depth {
-            let weight = entry.weight * reflectance;
-            if max_element(weight) >= g.min_weight && size < RAY_STACK_SIZE {
-                let dir = ray.dir - n * (2.0 * dot(ray.dir, n));
-                // A reflected ray stays in the medium it came from.
-                var next = entry;
-                next.ray = Ray(offset_ray(s.p, facing, s.magnitude), normalize(dir));
-                next.weight = weight;
-                next.depth = entry.depth + 1u;
-// #if TEXTURE|BUMP
-                next.cone = cone;
-// #endif
-                stack[size] = next;
-                size += 1u;
-            }
+        if !shaded.ends {
+            push_secondary_rays(&stack, &size, entry, shaded, hit);
         }
     }
     return colour;
 // #else
-    // Without mirrors or dielectrics a camera ray spawns no other ray: its hit, shaded,
-    // is the colour, with no loop around it (the CPU's loop runs once here). On llvmpipe
-    // a loop that runs once around the traversal and the shading cost 20–25% of the
-    // render, with or without the stack (docs/gpu.md).
-    var entry: StackEntry;
-    entry.ray = primary;
-    entry.weight = vec3<f32>(1.0);
-    entry.depth = 0u;
-// #if TEXTURE|BUMP
-    entry.cone = camera_cone(primary);
-// #endif
-    let hit = closest_hit(primary, T_MISS);
-    camera_item = hit.item;
-    if !is_hit(hit) {
-        return background(primary.dir);
-    }
-    return shade_hit(entry, hit, seed).colour;
+    return first_shaded.colour;
 // #endif
 }
 
-// A ray's hit as the trace loop uses it: the shading point (with its texture footprint),
+// #if REFLECTION|REFRACTION
+// Pushes the rays that the shaded hit of entry's ray spawns onto the stack (which holds
+// size entries): with refraction the transmitted ray, then the reflected ray, each while
+// the depth, its weight and the stack allow.
+// Mirror of src/cpu/trace.rs::push_secondary_rays — change both.
+fn push_secondary_rays(stack: ptr<function, RayStack>, size: ptr<function, u32>, entry: StackEntry, shaded: ShadedHit, hit: Hit) {
+    let g = globals;
+    let ray = entry.ray;
+    let s = shaded.s;
+    let facing = shaded.facing;
+    let n = shaded.n;
+// #if TEXTURE|BUMP
+    let cone = cone_at(entry.cone, hit.t);
+// #endif
+    let m = load_material(s.material);
+    var reflectance = vec3<f32>(0.0);
+    if (m.flags & MATERIAL_REFLECTIVE) != 0u {
+        reflectance = m.reflection;
+    }
+// #if REFRACTION
+    if (m.flags & MATERIAL_REFRACTIVE) != 0u && entry.depth < g.max_depth {
+        let crossing = dielectric_interface(ray.dir, s.normal, m.ior, entry.media);
+        reflectance += vec3<f32>(crossing.reflectance);
+        let weight = entry.weight * (1.0 - crossing.reflectance);
+        if max_element(weight) >= g.min_weight && *size < RAY_STACK_SIZE {
+            // The transmitted ray starts on the far side of the surface.
+            var transmitted = entry;
+            transmitted.ray = Ray(offset_ray(s.p, -facing, s.magnitude), crossing.dir);
+            transmitted.weight = weight;
+            transmitted.depth = entry.depth + 1u;
+// #if TEXTURE|BUMP
+            transmitted.cone = cone;
+// #endif
+            transmitted.media = crossing.media;
+            (*stack)[*size] = transmitted;
+            *size += 1u;
+        }
+    }
+// #endif
+    if max_element(reflectance) > 0.0 && entry.depth < g.max_depth {
+        let weight = entry.weight * reflectance;
+        if max_element(weight) >= g.min_weight && *size < RAY_STACK_SIZE {
+            let dir = ray.dir - n * (2.0 * dot(ray.dir, n));
+            // A reflected ray stays in the medium it came from.
+            var next = entry;
+            next.ray = Ray(offset_ray(s.p, facing, s.magnitude), normalize(dir));
+            next.weight = weight;
+            next.depth = entry.depth + 1u;
+// #if TEXTURE|BUMP
+            next.cone = cone;
+// #endif
+            (*stack)[*size] = next;
+            *size += 1u;
+        }
+    }
+}
+// #endif
+
+// A ray's hit as trace_ray uses it: the shading point (with its texture footprint),
 // the normal facing the ray and the shading normal (bumped), and the colour the point
 // gives by itself — Phong shading, or the UV debug view, which `ends` the ray.
 // Mirror of src/cpu/trace.rs::ShadedHit — change both.

@@ -37,7 +37,10 @@ struct StackEntry {
 /// ray, (1 − F) of the weight, then the reflected ray, whose weight is the mirror colour
 /// plus F (one ray: both go the same way); Phong shading is added as for any material.
 /// `seed` names the camera sample (its `depth` is ignored: each shading point gets its
-/// own ray's depth).
+/// own ray's depth). The camera ray's hit is traced and shaded before the loop over
+/// secondary rays, which only rays it spawns enter: the GPU twin needs that shape (on
+/// llvmpipe a loop around the first hit costs 20–25% of the render even when it runs
+/// once, docs/gpu.md), and both tracers keep the same steps.
 // Mirror of shaders/trace.wgsl::trace_ray — change both.
 pub fn trace_ray(
     scene: &PackedScene,
@@ -46,85 +49,114 @@ pub fn trace_ray(
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let g = &scene.globals;
-    let mut stack = [StackEntry {
+    let first = StackEntry {
         ray: primary,
         weight: Vec3::ONE,
         depth: 0,
         cone: camera_cone(g, &primary),
         media: camera_media_of(&scene.globals),
-    }; RAY_STACK_SIZE as usize];
-    let mut size = 1;
-    let mut colour = Vec3::ZERO;
+    };
+    let first_hit = closest_hit(scene, &primary, T_MISS, counters);
+    counters.camera_hit(first_hit.item);
+    if !first_hit.is_hit() {
+        return background(g, primary.dir);
+    }
+    let first_shaded = shade_hit(scene, &first, &first_hit, seed, counters);
+    let mut stack = [first; RAY_STACK_SIZE as usize];
+    let mut size = 0;
+    let mut colour = first_shaded.colour;
+    if !first_shaded.ends {
+        push_secondary_rays(
+            scene,
+            &mut stack,
+            &mut size,
+            &first,
+            &first_shaded,
+            &first_hit,
+        );
+    }
     while size > 0 {
         size -= 1;
         let entry = stack[size];
-        let ray = entry.ray;
-        let hit = closest_hit(scene, &ray, T_MISS, counters);
-        if entry.depth == 0 {
-            counters.camera_hit(hit.item);
-        }
+        let hit = closest_hit(scene, &entry.ray, T_MISS, counters);
         if !hit.is_hit() {
-            colour += entry.weight * background(g, ray.dir);
+            colour += entry.weight * background(g, entry.ray.dir);
             continue;
         }
         let shaded = shade_hit(scene, &entry, &hit, seed, counters);
         colour += entry.weight * shaded.colour;
-        if shaded.ends {
-            continue;
-        }
-        let ShadedHit { s, facing, n, .. } = shaded;
-        let cone = cone_at(entry.cone, hit.t);
-        let m = &scene.materials[s.material as usize];
-        let mut reflectance = if m.flags & MATERIAL_REFLECTIVE != 0 {
-            Vec3::from(m.reflection)
-        } else {
-            Vec3::ZERO
-        };
-        if scene.features.contains(SceneFeatures::REFRACTION)
-            && m.flags & MATERIAL_REFRACTIVE != 0
-            && entry.depth < g.max_depth
-        {
-            let crossing = dielectric_interface(ray.dir, s.normal, m.ior, &entry.media);
-            reflectance += Vec3::splat(crossing.reflectance);
-            let weight = entry.weight * (1.0 - crossing.reflectance);
-            if weight.max_element() >= g.min_weight && size < RAY_STACK_SIZE as usize {
-                // The transmitted ray starts on the far side of the surface.
-                stack[size] = StackEntry {
-                    ray: Ray {
-                        origin: offset_ray(s.p, -facing, s.magnitude),
-                        dir: crossing.dir,
-                    },
-                    weight,
-                    depth: entry.depth + 1,
-                    cone,
-                    media: crossing.media,
-                };
-                size += 1;
-            }
-        }
-        if reflectance.max_element() > 0.0 && entry.depth < g.max_depth {
-            let weight = entry.weight * reflectance;
-            if weight.max_element() >= g.min_weight && size < RAY_STACK_SIZE as usize {
-                let dir = ray.dir - n * (2.0 * ray.dir.dot(n));
-                // A reflected ray stays in the medium it came from.
-                stack[size] = StackEntry {
-                    ray: Ray {
-                        origin: offset_ray(s.p, facing, s.magnitude),
-                        dir: dir.normalize(),
-                    },
-                    weight,
-                    depth: entry.depth + 1,
-                    cone,
-                    ..entry
-                };
-                size += 1;
-            }
+        if !shaded.ends {
+            push_secondary_rays(scene, &mut stack, &mut size, &entry, &shaded, &hit);
         }
     }
     colour
 }
 
-/// A ray's hit as the trace loop uses it: the shading point (with its texture
+/// Pushes the rays that the shaded hit of `entry`'s ray spawns onto `stack` (which holds
+/// `size` entries): with refraction the transmitted ray, then the reflected ray, each
+/// while the depth, its weight and the stack allow.
+// Mirror of shaders/trace.wgsl::push_secondary_rays — change both.
+fn push_secondary_rays(
+    scene: &PackedScene,
+    stack: &mut [StackEntry; RAY_STACK_SIZE as usize],
+    size: &mut usize,
+    entry: &StackEntry,
+    shaded: &ShadedHit,
+    hit: &Hit,
+) {
+    let g = &scene.globals;
+    let ray = entry.ray;
+    let ShadedHit { s, facing, n, .. } = *shaded;
+    let cone = cone_at(entry.cone, hit.t);
+    let m = &scene.materials[s.material as usize];
+    let mut reflectance = if m.flags & MATERIAL_REFLECTIVE != 0 {
+        Vec3::from(m.reflection)
+    } else {
+        Vec3::ZERO
+    };
+    if scene.features.contains(SceneFeatures::REFRACTION)
+        && m.flags & MATERIAL_REFRACTIVE != 0
+        && entry.depth < g.max_depth
+    {
+        let crossing = dielectric_interface(ray.dir, s.normal, m.ior, &entry.media);
+        reflectance += Vec3::splat(crossing.reflectance);
+        let weight = entry.weight * (1.0 - crossing.reflectance);
+        if weight.max_element() >= g.min_weight && *size < RAY_STACK_SIZE as usize {
+            // The transmitted ray starts on the far side of the surface.
+            stack[*size] = StackEntry {
+                ray: Ray {
+                    origin: offset_ray(s.p, -facing, s.magnitude),
+                    dir: crossing.dir,
+                },
+                weight,
+                depth: entry.depth + 1,
+                cone,
+                media: crossing.media,
+            };
+            *size += 1;
+        }
+    }
+    if reflectance.max_element() > 0.0 && entry.depth < g.max_depth {
+        let weight = entry.weight * reflectance;
+        if weight.max_element() >= g.min_weight && *size < RAY_STACK_SIZE as usize {
+            let dir = ray.dir - n * (2.0 * ray.dir.dot(n));
+            // A reflected ray stays in the medium it came from.
+            stack[*size] = StackEntry {
+                ray: Ray {
+                    origin: offset_ray(s.p, facing, s.magnitude),
+                    dir: dir.normalize(),
+                },
+                weight,
+                depth: entry.depth + 1,
+                cone,
+                ..*entry
+            };
+            *size += 1;
+        }
+    }
+}
+
+/// A ray's hit as `trace_ray` uses it: the shading point (with its texture
 /// footprint), the normal facing the ray and the shading normal (bumped), and the colour
 /// the point gives by itself — Phong shading, or the UV debug view, which `ends` the ray.
 // Mirror of shaders/trace.wgsl::ShadedHit — change both.
@@ -136,9 +168,7 @@ struct ShadedHit {
     ends: bool,
 }
 
-/// The hit of the ray of `entry`, shaded (see [`ShadedHit`]). Without mirrors or
-/// dielectrics it is all `trace_ray` does for a camera ray; the GPU twin of `trace_ray`
-/// then calls it without the loop, which runs once (docs/gpu.md).
+/// The hit of the ray of `entry`, shaded (see [`ShadedHit`]).
 // Mirror of shaders/trace.wgsl::shade_hit — change both.
 fn shade_hit(
     scene: &PackedScene,
