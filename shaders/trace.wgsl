@@ -38,11 +38,12 @@ alias RayStack = array<StackEntry, PRIMARY_RAY_STACK_SIZE>;
 // bounces or min_weight contribution). A dielectric pushes its transmitted ray, (1 − F) of
 // the weight, then the reflected ray, whose weight is the mirror colour plus F (one ray:
 // both go the same way); Phong shading is added as for any material. seed names the
-// camera sample (its depth is ignored: each shading point gets its own ray's depth). The
-// camera ray's hit is traced and shaded before the loop over secondary rays, which only
-// rays it spawns enter, and which scenes without mirrors or dielectrics do not have: on
-// llvmpipe a loop around the first hit costs 20–25% of the render even when it runs once
-// (docs/gpu.md).
+// camera sample (its depth is ignored: each shading point gets its own ray's depth).
+// Without dielectrics the camera ray's hit is traced and shaded before the loop over
+// secondary rays, which only rays it spawns enter, and which scenes without mirrors do not
+// have: on llvmpipe a loop around the first hit costs 20–25% of the render even when it
+// runs once (docs/gpu.md). With dielectrics the camera ray is the loop's first entry
+// (below); either way the steps are the CPU twin's, in its order.
 // Mirror of src/cpu/trace.rs::trace_ray — change both.
 fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     var first: StackEntry;
@@ -55,23 +56,43 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
 // #if REFRACTION
     first.media = camera_medium_stack();
 // #endif
+// #if REFRACTION
+    // With dielectrics the kernel is large (and scenes with them tend to have many other
+    // features): a second inlined copy of the first hit's traversal and shading costs
+    // llvmpipe more than the loop around it saves (scrabble +15%, the every-feature
+    // kernel 2.6×: docs/gpu.md), so the camera ray is the loop's first entry.
+    var stack: RayStack;
+    stack[0] = first;
+    var size = 1u;
+    var colour = vec3<f32>(0.0);
+// #else
     let first_hit = closest_hit(primary, T_MISS);
     camera_item = first_hit.item;
     if !is_hit(first_hit) {
         return background(primary.dir);
     }
     let first_shaded = shade_hit(first, first_hit, seed);
-// #if REFLECTION|REFRACTION
+// #if REFLECTION
     var stack: RayStack;
     var size = 0u;
     var colour = first_shaded.colour;
     if !first_shaded.ends {
         push_secondary_rays(&stack, &size, first, first_shaded, first_hit);
     }
+// #else
+    return first_shaded.colour;
+// #endif
+// #endif
+// #if REFLECTION|REFRACTION
     while size > 0u {
         size -= 1u;
         let entry = stack[size];
         let hit = closest_hit(entry.ray, T_MISS);
+// #if REFRACTION
+        if entry.depth == 0u {
+            camera_item = hit.item;
+        }
+// #endif
         if !is_hit(hit) {
             colour += entry.weight * background(entry.ray.dir);
             continue;
@@ -83,8 +104,6 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
         }
     }
     return colour;
-// #else
-    return first_shaded.colour;
 // #endif
 }
 
