@@ -106,7 +106,7 @@ fn bench_passes(
             let times = render_gpu(ctx, &packed, &options)?.pass_times;
             anyhow::ensure!(
                 !times.is_empty(),
-                "--passes: the adapter has no timestamp queries"
+                "--passes: no per-pass times (the adapter has no timestamp queries, or the frame has more dispatches than a query set holds)"
             );
             if best.as_ref().is_none_or(|b| total(&times) < total(b)) {
                 best = Some(times);

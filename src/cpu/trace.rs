@@ -38,9 +38,10 @@ struct StackEntry {
 /// plus F (one ray: both go the same way); Phong shading is added as for any material.
 /// `seed` names the camera sample (its `depth` is ignored: each shading point gets its
 /// own ray's depth). The camera ray's hit is traced and shaded before the loop over
-/// secondary rays, which only rays it spawns enter: the GPU twin needs that shape (on
-/// llvmpipe a loop around the first hit costs 20–25% of the render even when it runs
-/// once, docs/gpu.md), and both tracers keep the same steps.
+/// secondary rays, which only rays it spawns enter: the GPU twin has that shape without
+/// dielectrics (on llvmpipe a loop around the first hit costs 20–25% of the render even
+/// when it runs once; with dielectrics the camera ray is its loop's first entry,
+/// docs/gpu.md), and both tracers take the same steps in the same order.
 // Mirror of shaders/trace.wgsl::trace_ray — change both.
 pub fn trace_ray(
     scene: &PackedScene,

@@ -102,7 +102,8 @@ pub struct GpuRender {
 pub struct PassTime {
     /// The kernel's entry point, as the WGSL names it (`adaptive_midpoints`).
     pub entry: &'static str,
-    /// The quadtree level of adaptive AA's decide and midpoint passes (else 0).
+    /// The quadtree level of adaptive AA's per-level passes (decide, work arguments,
+    /// midpoints; else 0).
     pub level: u32,
     /// Dispatches summed (one per chunk).
     pub dispatches: u32,

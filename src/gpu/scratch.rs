@@ -2,7 +2,7 @@
 //! large buffers (output, guard flags, adaptive AA's lattice, split flags and lists, the
 //! read-back staging) from the pool and gives them back when it ends. A buffer created
 //! fresh costs its first frame wgpu's zero fill (every buffer is cleared before its first
-//! use) and, on a software adapter, the page faults of new memory: 65–75 ms of an
+//! use) and, on a software adapter, the page faults of new memory: 25–111 ms of an
 //! adaptive 512² frame on lavapipe, whose lattice of 2049² samples is 67 MB (docs/gpu.md).
 //! Every word a frame reads it has written or cleared first in that frame, so what a kept
 //! buffer held before changes nothing (the GPU parity tests render frame after frame on
@@ -56,7 +56,7 @@ impl ScratchPool {
         }
     }
 
-    /// Bytes kept (for tests and `--stats`).
+    /// Bytes kept (for tests).
     pub fn kept_bytes(&self) -> u64 {
         let kept = self.kept.lock().unwrap_or_else(|e| e.into_inner());
         kept.iter().map(|b| b.size()).sum()
