@@ -3,7 +3,7 @@
 // is film position (x0 + i/2^d, y0 + j/2^d), sampled within the lattice cell around it,
 // jittered by a hash of its position: lattice_sample), one sample per invocation:
 // adaptive_corners traces the pixel corners and, at d ≥ 1, the pixel centres (w of each
-// sample: its hint, whether it saw a penumbra and which item it hit); for each level
+// sample: its hint, whether it saw fine detail and which item it hit); for each level
 // k < d, adaptive_decide flags the level-k squares to split (square_splits; a pixel
 // weighs its centre too) and appends them to level k's list, adaptive_work_args turns
 // the list's length into the indirect dispatches of the passes over it, and
@@ -119,14 +119,14 @@ fn square_has_centre(level: u32) -> bool {
 }
 
 // The hints of square (a, b) of `level`: whether one of its corners (or, at level 0, the
-// pixel's centre) saw a penumbra, and whether their camera rays hit different items.
+// pixel's centre) saw fine detail, and whether their camera rays hit different items.
 // Mirror of src/cpu/adaptive.rs::square_hints — change both.
 fn square_hints(level: u32, a: u32, b: u32) -> SquareHints {
     let l = adaptive_scale() >> level;
     let i = a * l;
     let j = b * l;
     let first = point_hint(i, j);
-    var hints = SquareHints(first.penumbra, false);
+    var hints = SquareHints(first.fine_detail, false);
     hints = add_sample_hint(hints, first, point_hint(i + l, j));
     hints = add_sample_hint(hints, first, point_hint(i, j + l));
     hints = add_sample_hint(hints, first, point_hint(i + l, j + l));
@@ -152,8 +152,8 @@ fn square_contrast(level: u32, a: u32, b: u32) -> f32 {
 // Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
 // times the square's side (2^−level pixels) exceeds `threshold` (NaN included), that is,
 // the samples differ by more than 2^level · `threshold`; or, whatever the contrast, one of
-// them saw a penumbra and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise counts
-// as contrast, down to the density of uniform 4×4), or their camera rays hit different
+// them saw fine detail and the level is above AA_FINE_DETAIL_DEPTH (soft-shadow noise and
+// texture detail at the pixel's scale count as contrast, down to the density of uniform 4×4), or their camera rays hit different
 // items and the level is above AA_ITEM_EDGE_DEPTH (an edge between objects of about the
 // same colour). The per-pixel walk's test too.
 // Mirror of src/cpu/adaptive.rs::square_splits — change both.
@@ -161,7 +161,7 @@ fn square_splits(spread: f32, hints: SquareHints, level: u32, threshold: f32) ->
     // (A power of two: the product is exact, on both tracers.)
     let level_threshold = threshold * f32(1u << level);
     let differ = !(spread <= level_threshold);
-    return differ || (hints.penumbra && level < AA_PENUMBRA_DEPTH)
+    return differ || (hints.fine_detail && level < AA_FINE_DETAIL_DEPTH)
         || (hints.items_differ && level < AA_ITEM_EDGE_DEPTH);
 }
 

@@ -21,11 +21,13 @@ fn sample(fx: f32, fy: f32, seed: SampleSeed) -> vec3<f32> {
 }
 
 // What adaptive AA's split decisions read from a lattice sample beside its colour: whether
-// an area light reached its first surface through some of its shadow samples but not all
-// (penumbra_seen), and the item its camera ray hit first, as item_key (camera_item).
+// its first surface showed fine detail that the colours of a few samples may not show (an
+// area light reaching it through some of its shadow samples but not all, or a texture's
+// detail at the pixel's scale: fine_detail_seen), and the item its camera ray hit first,
+// as sample_item_key (camera_item; mirrored_item where that is a mirror).
 // Mirror of src/cpu/pixel_sample.rs::SampleHint — change both.
 struct SampleHint {
-    penumbra: bool,
+    fine_detail: bool,
     item: u32,
 }
 
@@ -36,10 +38,10 @@ fn item_key(item: u32) -> u32 {
     return item & AA_ITEM_KEY_MASK;
 }
 
-// A hint as a lattice sample's fourth component: ±(item + 1), negative for a penumbra (an
+// A hint as a lattice sample's fourth component: ±(item + 1), negative for fine detail (an
 // integer of at most 2^24, so the float is exact and decode_hint gives it back).
 fn encode_hint(hint: SampleHint) -> f32 {
-    return select(1.0, -1.0, hint.penumbra) * f32(hint.item + 1u);
+    return select(1.0, -1.0, hint.fine_detail) * f32(hint.item + 1u);
 }
 
 // The hint encode_hint stored in w.
@@ -48,26 +50,39 @@ fn decode_hint(w: f32) -> SampleHint {
 }
 
 // What the split decision of a square reads beside its samples' contrast: whether one of
-// its samples saw a penumbra, and whether they hit different items.
+// its samples saw fine detail, and whether they hit different items.
 // Mirror of src/cpu/pixel_sample.rs::SquareHints — change both.
 struct SquareHints {
-    penumbra: bool,
+    fine_detail: bool,
     items_differ: bool,
 }
 
 // hints with sample hint h added (first: the square's first sample's hint).
 // Mirror of src/cpu/pixel_sample.rs::add_sample_hint — change both.
 fn add_sample_hint(hints: SquareHints, first: SampleHint, h: SampleHint) -> SquareHints {
-    return SquareHints(hints.penumbra || h.penumbra, hints.items_differ || h.item != first.item);
+    return SquareHints(hints.fine_detail || h.fine_detail, hints.items_differ || h.item != first.item);
+}
+
+// item_key of a sample whose camera ray hit item `camera` first and, where that is a
+// mirror, whose reflected ray hit item `mirrored` first (NO_ITEM: not a mirror, or the
+// reflected ray hit nothing): the camera item's key mixed with a hash of the mirrored one.
+// Mirror of src/cpu/pixel_sample.rs::sample_item_key — change both.
+fn sample_item_key(camera: u32, mirrored: u32) -> u32 {
+    if mirrored == NO_ITEM {
+        return item_key(camera);
+    }
+    return item_key(camera ^ ((mirrored + 1u) * 0x9e3779b1u));
 }
 
 // sample, and in w its SampleHint (encode_hint). Adaptive AA's lattice samples.
 // Mirror of src/cpu/pixel_sample.rs::hinted_sample — change both.
 fn hinted_sample(fx: f32, fy: f32, seed: SampleSeed) -> vec4<f32> {
-    penumbra_seen = false;
+    fine_detail_seen = false;
     camera_item = NO_ITEM;
+    mirrored_item = NO_ITEM;
     let colour = sample(fx, fy, seed);
-    return vec4<f32>(colour, encode_hint(SampleHint(penumbra_seen, item_key(camera_item))));
+    let key = sample_item_key(camera_item, mirrored_item);
+    return vec4<f32>(colour, encode_hint(SampleHint(fine_detail_seen, key)));
 }
 
 // Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact): the

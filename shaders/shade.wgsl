@@ -4,7 +4,7 @@
 // Set when an area light reaches a shaded point through some of its shadow samples but
 // not all (a penumbra; the CPU's TraversalCounters::partial_light); render.wgsl's
 // penumbra_sample clears it before a sample and reads it after.
-var<private> penumbra_seen: bool;
+var<private> fine_detail_seen: bool;
 
 // What shading needs to know about a hit point.
 // Mirror of src/cpu/surface.rs::Surface — change both.
@@ -267,7 +267,7 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
 // #if AREA_LIGHT
 // Light from area light number `index`: the mean of point_light over one jittered point
 // in each of the n×n strata of its parallelogram, stratum k = (k mod n, k div n); sets
-// penumbra_seen when some of those points light it and others do not, at the first hit of
+// fine_detail_seen when some of those points light it and others do not, at the first hit of
 // a camera ray only (seed.depth 0; see the twin for why).
 // Mirror of src/cpu/shade.rs::area_light — change both.
 fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: PackedLight, index: u32, seed: SampleSeed) -> vec3<f32> {
@@ -285,7 +285,7 @@ fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3
         sum += c;
     }
     if seed.depth == 0u && lit > 0u && lit < k * k {
-        penumbra_seen = true;
+        fine_detail_seen = true;
     }
     return sum * (scale * scale);
 }

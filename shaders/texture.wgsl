@@ -220,6 +220,21 @@ fn shading_normal(s: Surface, n: vec3<f32>) -> vec3<f32> {
 // #endif
 
 // #if TEXTURE
+// The texture detail at the pixel's scale that hit s shows: the largest per-channel
+// difference between its material's diffuse texture filtered over the hit's footprint and
+// filtered over twice that (0 without a diffuse texture). Adaptive AA's hint for detail
+// that a pixel's few samples alias (trace.wgsl's note_texture_detail).
+// Mirror of src/cpu/texture.rs::texture_detail — change both.
+fn texture_detail(s: Surface) -> f32 {
+    let m = load_material(s.material);
+    if m.diffuse_texture == NO_TEXTURE {
+        return 0.0;
+    }
+    let at_pixel = sample_texture_filtered(m.diffuse_texture, s.uv, s.footprint);
+    let coarser = sample_texture_filtered(m.diffuse_texture, s.uv, 2.0 * s.footprint);
+    return max_element(abs(at_pixel - coarser));
+}
+
 // (kd, ks) at s: the material's colours, or its textures' at the hit's UV, filtered over
 // the hit's footprint.
 // Mirror of src/cpu/texture.rs::surface_colours — change both.

@@ -6,6 +6,10 @@
 // The item the camera ray of the last sample hit first (NO_ITEM: none; the CPU's
 // TraversalCounters::camera_hit); render.wgsl's hinted_sample reads it after a sample.
 var<private> camera_item: u32;
+// The item the ray reflected by the camera ray's first surface hit first, where that
+// surface is a mirror (is_mirror), else NO_ITEM (the CPU's TraversalCounters::mirror_hit);
+// render.wgsl's hinted_sample reads it too.
+var<private> mirrored_item: u32;
 
 // Mirror of src/cpu/trace.rs::StackEntry — change both.
 struct StackEntry {
@@ -65,6 +69,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     stack[0] = first;
     var size = 1u;
     var colour = vec3<f32>(0.0);
+    var camera_mirror = false;
 // #else
     let first_hit = closest_hit(primary, T_MISS);
     camera_item = first_hit.item;
@@ -72,7 +77,11 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
         return background(primary.dir);
     }
     let first_shaded = shade_hit(first, first_hit, seed);
+// #if TEXTURE
+    note_texture_detail(first_shaded.s);
+// #endif
 // #if REFLECTION
+    let camera_mirror = is_mirror(first_shaded.s.material);
     var stack: RayStack;
     var size = 0u;
     var colour = first_shaded.colour;
@@ -93,11 +102,23 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             camera_item = hit.item;
         }
 // #endif
+        if camera_mirror && entry.depth == 1u {
+            // The one ray a mirror spawns: what the camera sees in it.
+            mirrored_item = hit.item;
+        }
         if !is_hit(hit) {
             colour += entry.weight * background(entry.ray.dir);
             continue;
         }
         let shaded = shade_hit(entry, hit, seed);
+// #if REFRACTION
+        if entry.depth == 0u {
+// #if TEXTURE
+            note_texture_detail(shaded.s);
+// #endif
+            camera_mirror = is_mirror(shaded.s.material);
+        }
+// #endif
         colour += entry.weight * shaded.colour;
         if !shaded.ends {
             push_secondary_rays(&stack, &size, entry, shaded, hit);
@@ -106,6 +127,31 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     return colour;
 // #endif
 }
+
+// #if REFLECTION|REFRACTION
+// Whether material `material` is a mirror to adaptive AA's item keys (render.wgsl's
+// sample_item_key): reflective and not a dielectric, so its camera hit spawns one ray.
+// Mirror of src/cpu/trace.rs::is_mirror — change both.
+fn is_mirror(material: u32) -> bool {
+    let flags = load_material(material).flags;
+    return (flags & MATERIAL_REFLECTIVE) != 0u && (flags & MATERIAL_REFRACTIVE) == 0u;
+}
+// #endif
+
+// #if TEXTURE
+// Sets fine_detail_seen (adaptive AA's hint) when the camera ray's first hit s shows
+// texture detail at the pixel's scale: texture_detail above AA_TEXTURE_DETAIL_SHARE of
+// aa_threshold. Only adaptive AA reads the hint, so only it pays the lookups.
+// Mirror of src/cpu/trace.rs::note_texture_detail — change both.
+fn note_texture_detail(s: Surface) {
+    if globals.aa_mode != AA_ADAPTIVE {
+        return;
+    }
+    if texture_detail(s) > AA_TEXTURE_DETAIL_SHARE * globals.aa_threshold {
+        fine_detail_seen = true;
+    }
+}
+// #endif
 
 // #if REFLECTION|REFRACTION
 // Pushes the rays that the shaded hit of entry's ray spawns onto the stack (which holds

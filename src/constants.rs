@@ -250,7 +250,7 @@ pub fn wgsl_prelude() -> String {
         ("MEDIUM_STACK_SIZE", MEDIUM_STACK_SIZE),
         ("MAX_SHADOW_CROSSINGS", MAX_SHADOW_CROSSINGS),
         ("MAX_AA_DEPTH", MAX_AA_DEPTH),
-        ("AA_PENUMBRA_DEPTH", AA_PENUMBRA_DEPTH),
+        ("AA_FINE_DETAIL_DEPTH", AA_FINE_DETAIL_DEPTH),
         ("AA_ITEM_EDGE_DEPTH", AA_ITEM_EDGE_DEPTH),
         ("AA_ITEM_KEY_MASK", AA_ITEM_KEY_MASK),
         ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
@@ -278,6 +278,7 @@ pub fn wgsl_prelude() -> String {
         ("LUMINANCE_B", LUMINANCE_B),
         ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
         ("AA_LATTICE_JITTER", AA_LATTICE_JITTER),
+        ("AA_TEXTURE_DETAIL_SHARE", AA_TEXTURE_DETAIL_SHARE),
         ("AA_CENTRE_WEIGHT", AA_CENTRE_WEIGHT),
         ("TORUS_ROOT_TOLERANCE", TORUS_ROOT_TOLERANCE),
         ("TORUS_BOUND_MARGIN", TORUS_BOUND_MARGIN),
@@ -298,11 +299,20 @@ pub fn wgsl_prelude() -> String {
 
 /// Deepest adaptive anti-aliasing split accepted (`aa_depth`).
 pub const MAX_AA_DEPTH: u32 = 6;
-/// Adaptive anti-aliasing splits a square with a corner sample that saw a penumbra (an
-/// area light partly occluded among its shadow samples) down to this level at most (and
-/// `aa_depth`): level 2 is 4×4 squares per pixel, the density of uniform 4×4, where
-/// shadow noise (n² shadow rays per sample) rather than edges sets the error.
-pub const AA_PENUMBRA_DEPTH: u32 = 2;
+/// Adaptive anti-aliasing splits a square with a corner sample that saw fine detail its
+/// colour may not show, down to this level at most (and `aa_depth`): a penumbra (an area
+/// light partly occluded among its shadow samples) or texture detail at the pixel's scale
+/// ([`AA_TEXTURE_DETAIL_SHARE`]). Level 2 is 4×4 squares per pixel, the density of
+/// uniform 4×4, where shadow noise (n² shadow rays per sample) or a texture's detail
+/// rather than edges sets the error.
+pub const AA_FINE_DETAIL_DEPTH: u32 = 2;
+/// A camera ray's first hit on a diffuse texture counts as fine detail for adaptive
+/// anti-aliasing when the texture, filtered over the pixel's footprint, differs from the
+/// same texture filtered over twice that footprint by more than this share of
+/// `aa_threshold` (in some channel): detail at the pixel's own scale, such as printed
+/// letters or the seams of a wood grain, that a pixel's five samples alias (measured in
+/// docs/performance.md, "Texture detail and mirrored edges split").
+pub const AA_TEXTURE_DETAIL_SHARE: f32 = 0.5;
 /// Adaptive anti-aliasing splits a square whose samples' camera rays hit different items
 /// (scene items: a primitive, a CSG object, a mesh instance; or none) down to this level
 /// at most (and `aa_depth`), whatever their colours' contrast: the boundary between two

@@ -128,8 +128,8 @@ struct RenderArgs {
     samples: Option<AaSamples>,
     /// Adaptive AA: the contrast (among a pixel's corner and centre samples) that splits
     /// the pixel; a square of side 2^-k pixel splits at 2^k times its corners' contrast
-    /// (samples that hit different objects, or saw a penumbra, split down to 4×4 squares
-    /// per pixel whatever it is).
+    /// (samples that hit different objects, also in a mirror, or saw a penumbra or texture
+    /// detail at the pixel's scale, split down to 4×4 squares per pixel whatever it is).
     #[arg(long, value_parser = parse_non_negative)]
     aa_threshold: Option<f32>,
     /// Adaptive AA: deepest split.

@@ -5,7 +5,7 @@
 mod common;
 
 use common::{corpus, packed_from_file, root};
-use glint::constants::{AA_ITEM_EDGE_DEPTH, AA_PENUMBRA_DEPTH};
+use glint::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH};
 use glint::cpu::render::{adaptive_leaf_counts, render_pixel};
 use glint::cpu::traverse::NoCounters;
 use glint::scene::{AaMode, OptionOverrides};
@@ -54,17 +54,17 @@ fn lattice_matches_per_pixel_walk() {
 }
 
 /// Soft shadows: a lattice sample that saw a penumbra splits the squares it is a corner
-/// of down to AA_PENUMBRA_DEPTH, in the passes as in the per-pixel walk. With a threshold
+/// of down to AA_FINE_DETAIL_DEPTH, in the passes as in the per-pixel walk. With a threshold
 /// no contrast exceeds, only penumbrae split, and no deeper than that.
 #[test]
 fn penumbrae_split_down_to_their_depth() {
     let path = root().join("scenes/soft-shadows.lua");
     check_path(&path, 40, 3, None);
     let leaves = check_path(&path, 40, 3, Some(f32::MAX));
-    let deepest = 1 << (2 * AA_PENUMBRA_DEPTH);
+    let deepest = 1 << (2 * AA_FINE_DETAIL_DEPTH);
     let full = leaves.iter().filter(|&&l| l == deepest).count();
     eprintln!(
-        "{full} of {} pixels split to 4^{AA_PENUMBRA_DEPTH}",
+        "{full} of {} pixels split to 4^{AA_FINE_DETAIL_DEPTH}",
         leaves.len()
     );
     assert!(full > 0, "no penumbra split");
@@ -182,9 +182,29 @@ fn detail_between_a_pixels_corners_splits_it() {
 #[test]
 fn item_edges_split_whatever_the_contrast() {
     let scene = adaptive_scene(&common::two_walls_source(1.0, 1.0), f32::MAX, 3);
-    let film = glint::cpu::render(&scene, &|_, _| {});
-    let leaves = adaptive_leaf_counts(&scene);
+    let (film, leaves) = assert_splits_only_at_the_middle_edge(&scene);
     let deepest = 1 << (2 * AA_ITEM_EDGE_DEPTH);
+    for (k, pixel) in film.pixels.iter().enumerate() {
+        assert_eq!(*pixel, [1.0, 1.0, 1.0], "pixel {k}");
+        assert!(leaves[k] <= deepest, "pixel {k}: {}", leaves[k]);
+    }
+    // Level AA_ITEM_EDGE_DEPTH − 1 splits too (the halves of a pixel that straddle the
+    // edge), and no deeper level.
+    let above = 1 << (2 * (AA_ITEM_EDGE_DEPTH - 1));
+    assert!(
+        leaves.iter().any(|&l| l > above),
+        "no square below a pixel split"
+    );
+}
+
+/// Renders a 16×64 scene whose only edge lies between pixel columns 7 and 8 and checks
+/// that in every row a pixel beside it splits, no other pixel does, and the passes give
+/// the per-pixel walk's colours. Returns the film and the leaves per pixel.
+fn assert_splits_only_at_the_middle_edge(
+    scene: &glint::pack::PackedScene,
+) -> (glint::film::Film, Vec<u32>) {
+    let film = glint::cpu::render(scene, &|_, _| {});
+    let leaves = adaptive_leaf_counts(scene);
     for y in 0..64 {
         let at = |x: usize| y * 16 + x;
         assert!(
@@ -194,14 +214,8 @@ fn item_edges_split_whatever_the_contrast() {
             leaves[at(8)]
         );
         for x in 0..16 {
-            let reference = render_pixel(&scene, x as u32, y as u32, &mut NoCounters).to_array();
+            let reference = render_pixel(scene, x as u32, y as u32, &mut NoCounters).to_array();
             assert_eq!(film.pixels[at(x)], reference, "pixel ({x}, {y})");
-            assert_eq!(film.pixels[at(x)], [1.0, 1.0, 1.0], "pixel ({x}, {y})");
-            assert!(
-                leaves[at(x)] <= deepest,
-                "pixel ({x}, {y}): {}",
-                leaves[at(x)]
-            );
             if !(7..=8).contains(&x) {
                 assert_eq!(
                     leaves[at(x)],
@@ -211,11 +225,54 @@ fn item_edges_split_whatever_the_contrast() {
             }
         }
     }
-    // Level AA_ITEM_EDGE_DEPTH − 1 splits too (the halves of a pixel that straddle the
-    // edge), and no deeper level.
-    let above = 1 << (2 * (AA_ITEM_EDGE_DEPTH - 1));
+    (film, leaves)
+}
+
+/// An edge seen in a mirror splits as an edge seen directly: two white walls meeting on a
+/// pixel boundary, seen only in a mirror, with a threshold no contrast exceeds. Every
+/// sample hits the mirror first; the item its reflected ray hits keys it too
+/// (`sample_item_key`), so in every row a pixel at the reflected edge splits and no other
+/// pixel does (keyed by the mirror alone, nothing would split).
+#[test]
+fn edges_seen_in_a_mirror_split_whatever_the_contrast() {
+    let scene = adaptive_scene(&common::mirrored_walls_source(), f32::MAX, 3);
+    assert_splits_only_at_the_middle_edge(&scene);
+}
+
+/// Texture detail at the pixel's scale splits down to AA_FINE_DETAIL_DEPTH: a quad with
+/// thin dark lines (`striped_quad`) at threshold 0.15, so a square of level 1 splits by
+/// contrast only over 0.3, which no two samples reach. The samples on a line see its
+/// texture lose about 0.1 between the pixel's footprint and twice it (more than
+/// AA_TEXTURE_DETAIL_SHARE × 0.15): their squares split to level 2 all the same (without
+/// the hint no pixel gets more than four leaves), and no further.
+#[test]
+fn texture_detail_splits_down_to_the_fine_detail_depth() {
+    let dir = common::temp_dir("adaptive-texture-detail");
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Adaptive),
+        aa_threshold: Some(0.15),
+        aa_depth: Some(glint::scene::AaDepth::constant(3)),
+        ..OptionOverrides::default()
+    };
+    let scene = common::striped_quad(&dir, &overrides);
+    let film = glint::cpu::render(&scene, &|_, _| {});
+    let leaves = adaptive_leaf_counts(&scene);
+    let level_one = 1 << 2;
+    let deepest = 1 << (2 * AA_FINE_DETAIL_DEPTH);
+    let below_level_one = leaves.iter().filter(|&&l| l > level_one).count();
     assert!(
-        leaves.iter().any(|&l| l > above),
-        "no square below a pixel split"
+        below_level_one > 0,
+        "no square below level 1 split: {leaves:?}"
     );
+    assert!(leaves.iter().all(|&l| l <= deepest), "{leaves:?}");
+    for y in 0..32 {
+        for x in 0..32 {
+            let reference = render_pixel(&scene, x, y, &mut NoCounters).to_array();
+            assert_eq!(
+                film.pixels[(y * 32 + x) as usize],
+                reference,
+                "pixel ({x}, {y})"
+            );
+        }
+    }
 }

@@ -341,7 +341,7 @@ fn assert_same_splits(ctx: &GpuContext, name: &str, scene: &PackedScene) {
 }
 
 /// Penumbra splits (a lattice sample whose area light was partly occluded among its
-/// shadow samples splits its squares down to AA_PENUMBRA_DEPTH) on the soft-shadow
+/// shadow samples splits its squares down to AA_FINE_DETAIL_DEPTH) on the soft-shadow
 /// scene: the same samples-per-pixel map on both tracers, with the scene's threshold and
 /// with one no contrast exceeds (penumbrae alone split).
 #[test]
@@ -389,6 +389,35 @@ fn item_edge_splits_match() {
     );
     compare(&ctx, "macho-cows-item-edges", &cows);
     assert_same_splits(&ctx, "macho-cows-item-edges", &cows);
+}
+
+/// Splits from what a mirror shows (the item its reflected ray hits keys a sample too:
+/// mirrored walls of one colour, a threshold no contrast exceeds) and from texture detail
+/// at the pixel's scale (thin lines on a quad, `striped_quad`): the same images and the
+/// same samples-per-pixel maps on both tracers (a twin that keys by the mirror alone, or
+/// does not look at the texture, splits nothing or fewer pixels there).
+#[test]
+fn mirror_and_texture_detail_splits_match() {
+    let Some(ctx) = gpu_context() else { return };
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Adaptive),
+        aa_threshold: Some(f32::MAX),
+        ..OptionOverrides::default()
+    };
+    let mirror = packed_from_source(&common::mirrored_walls_source(), &overrides).remove(0);
+    compare(&ctx, "mirrored-walls", &mirror);
+    assert_same_splits(&ctx, "mirrored-walls", &mirror);
+    let dir = common::temp_dir("gpu-texture-detail");
+    let stripes = common::striped_quad(
+        &dir,
+        &OptionOverrides {
+            aa_threshold: Some(0.15),
+            aa_depth: Some(glint::scene::AaDepth::constant(3)),
+            ..overrides
+        },
+    );
+    compare(&ctx, "striped-quad", &stripes);
+    assert_same_splits(&ctx, "striped-quad", &stripes);
 }
 
 /// A pixel centre's shadow jitter mirrors its pixel's corners' (shadow_stream,

@@ -11,9 +11,10 @@
 //! 2. for k in 0..d: [`adaptive_decide`] flags each level-k square that exists (every
 //!    pixel at k = 0, else the four children of each square split at k − 1, taken from
 //!    the compacted list of those) and whose samples (corners; a pixel's centre too)
-//!    differ by more than the threshold or, above level AA_PENUMBRA_DEPTH, one of which
-//!    saw a penumbra or, above AA_ITEM_EDGE_DEPTH, whose camera rays hit different items
-//!    (each lattice sample keeps that hint with its colour), appending it
+//!    differ by more than the threshold or, above level AA_FINE_DETAIL_DEPTH, one of which
+//!    saw fine detail (a penumbra, or texture detail at the pixel's scale) or, above
+//!    AA_ITEM_EDGE_DEPTH, whose camera rays hit different items (or a mirror that shows
+//!    different items; each lattice sample keeps that hint with its colour), appending it
 //!    to level k's list of split squares; then [`adaptive_midpoints`] traces the five
 //!    midpoints of each square on that list (a midpoint shared with a split neighbour is
 //!    traced by one of the two only; a pixel's centre is traced already). Work is over
@@ -31,7 +32,7 @@ use super::pixel_sample::{
     SquareHints,
 };
 use super::traverse::TraversalCounters;
-use crate::constants::{AA_ITEM_EDGE_DEPTH, AA_PENUMBRA_DEPTH, NO_ITEM};
+use crate::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH, NO_ITEM};
 use crate::pack::PackedScene;
 pub use crate::tiling::{split_offset, AdaptiveTile};
 use glam::Vec3;
@@ -92,7 +93,7 @@ impl Lattice {
             points: vec![Vec3::ZERO; tile.lattice_len()],
             hints: vec![
                 SampleHint {
-                    penumbra: false,
+                    fine_detail: false,
                     item: NO_ITEM,
                 };
                 tile.lattice_len()
@@ -191,14 +192,14 @@ fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
 }
 
 /// The hints of square (a, b) of `level`: whether one of its corners (or, at level 0,
-/// the pixel's centre) saw a penumbra, and whether their camera rays hit different items.
+/// the pixel's centre) saw fine detail, and whether their camera rays hit different items.
 // Mirror of shaders/adaptive.wgsl::square_hints — change both.
 fn square_hints(lat: &Lattice, level: u32, a: u32, b: u32) -> SquareHints {
     let l = lat.tile.scale() >> level;
     let (i, j) = (a * l, b * l);
     let first = lat.point_hint(i, j);
     let mut hints = SquareHints {
-        penumbra: first.penumbra,
+        fine_detail: first.fine_detail,
         items_differ: false,
     };
     hints = add_sample_hint(hints, first, lat.point_hint(i + l, j));
@@ -226,8 +227,9 @@ fn square_contrast(lat: &Lattice, level: u32, a: u32, b: u32) -> f32 {
 /// Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
 /// times the square's side (2^−level pixels) exceeds `threshold` (NaN included), that is,
 /// the samples differ by more than 2^level · `threshold`; or, whatever the contrast, one
-/// of them saw a penumbra and the level is above AA_PENUMBRA_DEPTH (soft-shadow noise
-/// counts as contrast, down to the density of uniform 4×4), or their camera rays hit
+/// of them saw fine detail and the level is above AA_FINE_DETAIL_DEPTH (soft-shadow noise
+/// and texture detail at the pixel's scale count as contrast, down to the density of
+/// uniform 4×4), or their camera rays hit
 /// different items and the level is above AA_ITEM_EDGE_DEPTH (an edge between objects of
 /// about the same colour, where a seam or gap thinner than the samples' spacing may lie).
 /// The side weighs the contrast because a square's error in its pixel scales with its
@@ -240,7 +242,7 @@ pub(crate) fn square_splits(spread: f32, hints: SquareHints, level: u32, thresho
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     let differ = !(spread <= level_threshold);
     differ
-        || (hints.penumbra && level < AA_PENUMBRA_DEPTH)
+        || (hints.fine_detail && level < AA_FINE_DETAIL_DEPTH)
         || (hints.items_differ && level < AA_ITEM_EDGE_DEPTH)
 }
 
@@ -392,13 +394,13 @@ pub fn adaptive_tile(
 #[cfg(test)]
 mod tests {
     use super::{adaptive_integrate, next_square, split_index, square_splits, Lattice};
-    use crate::constants::{AA_ITEM_EDGE_DEPTH, AA_PENUMBRA_DEPTH};
+    use crate::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH};
     use crate::cpu::pixel_sample::SquareHints;
     use crate::tiling::AdaptiveTile;
     use glam::Vec3;
 
     const PLAIN: SquareHints = SquareHints {
-        penumbra: false,
+        fine_detail: false,
         items_differ: false,
     };
 
@@ -421,7 +423,7 @@ mod tests {
     #[test]
     fn penumbrae_and_item_edges_split_down_to_their_depths_whatever_the_contrast() {
         let penumbra = SquareHints {
-            penumbra: true,
+            fine_detail: true,
             ..PLAIN
         };
         let items = SquareHints {
@@ -431,7 +433,7 @@ mod tests {
         for level in 0..5 {
             assert_eq!(
                 square_splits(0.0, penumbra, level, f32::MAX),
-                level < AA_PENUMBRA_DEPTH
+                level < AA_FINE_DETAIL_DEPTH
             );
             assert_eq!(
                 square_splits(0.0, items, level, f32::MAX),

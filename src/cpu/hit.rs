@@ -46,6 +46,14 @@ pub trait TraversalCounters {
     /// The item the camera ray of a sample hit first (`NO_ITEM`: none): adaptive AA splits
     /// squares whose samples hit different items (`cpu::pixel_sample::hinted_sample`).
     fn camera_hit(&mut self, _item: u32) {}
+    /// The camera ray's first hit showed texture detail at the pixel's scale
+    /// (`texture::texture_detail` over AA_TEXTURE_DETAIL_SHARE of `aa_threshold`):
+    /// adaptive AA splits around it as around a penumbra.
+    fn texture_detail(&mut self) {}
+    /// The camera ray's first surface is a mirror (reflective, not a dielectric) and
+    /// the ray it reflects hit `item` first (`NO_ITEM`: none): adaptive AA keys the sample
+    /// by both items, so edges seen in a mirror split as edges seen directly do.
+    fn mirror_hit(&mut self, _item: u32) {}
 }
 
 /// Counters that count nothing.

@@ -23,13 +23,15 @@ pub(crate) fn sample(
 }
 
 /// What adaptive AA's split decisions read from a lattice sample beside its colour:
-/// whether an area light reached its first surface through some of its shadow samples but
-/// not all ([`TraversalCounters::partial_light`]: soft-shadow noise that the colours of a
-/// few samples may not show), and the item its camera ray hit first, as [`item_key`].
+/// whether its first surface showed fine detail that the colours of a few samples may not
+/// show (an area light reaching it through some of its shadow samples but not all,
+/// [`TraversalCounters::partial_light`]: soft-shadow noise; or a texture's detail at the
+/// pixel's scale, [`TraversalCounters::texture_detail`]), and the item its camera ray hit
+/// first, as [`sample_item_key`] (with the item seen in it, where that is a mirror).
 // Mirror of shaders/render.wgsl::SampleHint — change both.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SampleHint {
-    pub penumbra: bool,
+    pub fine_detail: bool,
     pub item: u32,
 }
 
@@ -41,11 +43,11 @@ pub(crate) fn item_key(item: u32) -> u32 {
 }
 
 /// What the split decision of a square reads beside its samples' contrast: whether one of
-/// its samples saw a penumbra, and whether they hit different items.
+/// its samples saw fine detail, and whether they hit different items.
 // Mirror of shaders/render.wgsl::SquareHints — change both.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct SquareHints {
-    pub penumbra: bool,
+    pub fine_detail: bool,
     pub items_differ: bool,
 }
 
@@ -53,7 +55,7 @@ pub(crate) struct SquareHints {
 // Mirror of shaders/render.wgsl::add_sample_hint — change both.
 pub(crate) fn add_sample_hint(hints: SquareHints, first: SampleHint, h: SampleHint) -> SquareHints {
     SquareHints {
-        penumbra: hints.penumbra || h.penumbra,
+        fine_detail: hints.fine_detail || h.fine_detail,
         items_differ: hints.items_differ || h.item != first.item,
     }
 }
@@ -63,7 +65,7 @@ pub(crate) fn add_sample_hint(hints: SquareHints, first: SampleHint, h: SampleHi
 pub(crate) fn square_hints_of(hints: &[SampleHint]) -> SquareHints {
     let first = hints[0];
     let start = SquareHints {
-        penumbra: first.penumbra,
+        fine_detail: first.fine_detail,
         items_differ: false,
     };
     hints[1..]
@@ -71,10 +73,26 @@ pub(crate) fn square_hints_of(hints: &[SampleHint]) -> SquareHints {
         .fold(start, |acc, &h| add_sample_hint(acc, first, h))
 }
 
+/// [`item_key`] of a sample whose camera ray hit item `camera` first and, where that is a
+/// mirror, whose reflected ray hit item `mirrored` first (`NO_ITEM`: not a mirror, or the
+/// reflected ray hit nothing): the camera item's key mixed with a hash of the mirrored
+/// one, so two samples of one mirror that show different items differ. Two keys may
+/// collide (24 bits); that can only cost a split that the contrast may still make.
+// Mirror of shaders/render.wgsl::sample_item_key — change both.
+pub(crate) fn sample_item_key(camera: u32, mirrored: u32) -> u32 {
+    if mirrored == NO_ITEM {
+        return item_key(camera);
+    }
+    // (mirrored + 1 ≠ 0; the odd multiplier spreads neighbouring item numbers.)
+    item_key(camera ^ (mirrored + 1).wrapping_mul(0x9e37_79b1))
+}
+
 /// Counters that pass everything on and note what a [`SampleHint`] keeps.
 struct HintWatch<'a, C: TraversalCounters> {
     inner: &'a mut C,
-    hint: SampleHint,
+    fine_detail: bool,
+    camera: u32,
+    mirrored: u32,
 }
 
 impl<C: TraversalCounters> TraversalCounters for HintWatch<'_, C> {
@@ -88,12 +106,20 @@ impl<C: TraversalCounters> TraversalCounters for HintWatch<'_, C> {
         self.inner.item_tested();
     }
     fn partial_light(&mut self) {
-        self.hint.penumbra = true;
+        self.fine_detail = true;
         self.inner.partial_light();
     }
     fn camera_hit(&mut self, item: u32) {
-        self.hint.item = item_key(item);
+        self.camera = item;
         self.inner.camera_hit(item);
+    }
+    fn texture_detail(&mut self) {
+        self.fine_detail = true;
+        self.inner.texture_detail();
+    }
+    fn mirror_hit(&mut self, item: u32) {
+        self.mirrored = item;
+        self.inner.mirror_hit(item);
     }
 }
 
@@ -108,13 +134,16 @@ pub(crate) fn hinted_sample(
 ) -> (Vec3, SampleHint) {
     let mut watch = HintWatch {
         inner: counters,
-        hint: SampleHint {
-            penumbra: false,
-            item: item_key(NO_ITEM),
-        },
+        fine_detail: false,
+        camera: NO_ITEM,
+        mirrored: NO_ITEM,
     };
     let colour = sample(scene, fx, fy, seed, &mut watch);
-    (colour, watch.hint)
+    let hint = SampleHint {
+        fine_detail: watch.fine_detail,
+        item: sample_item_key(watch.camera, watch.mirrored),
+    };
+    (colour, hint)
 }
 
 /// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact): the
@@ -162,4 +191,25 @@ pub(crate) fn pixel_contrast(corners: &[Vec3; 4], centre: Vec3) -> f32 {
 pub(crate) fn quincunx_mean(corners: &[Vec3; 4], centre: Vec3) -> Vec3 {
     let corner_weight = 0.25 * (1.0 - AA_CENTRE_WEIGHT);
     (corners[0] + corners[1] + corners[2] + corners[3]) * corner_weight + centre * AA_CENTRE_WEIGHT
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sample that saw no mirror keeps its camera item's key; one that saw a mirror is
+    /// keyed by what it saw in it too: different items seen in one mirror give different
+    /// keys (over the first thousand item numbers, and the miss), each within the mask.
+    #[test]
+    fn mirrored_items_key_samples_apart() {
+        for camera in [0, 1, 7, 1 << 20, NO_ITEM] {
+            assert_eq!(sample_item_key(camera, NO_ITEM), item_key(camera));
+            let keys: std::collections::HashSet<u32> = (0..1000)
+                .map(|mirrored| sample_item_key(camera, mirrored))
+                .collect();
+            assert_eq!(keys.len(), 1000, "camera item {camera}");
+            assert!(keys.iter().all(|&k| k <= AA_ITEM_KEY_MASK));
+            assert!(!keys.contains(&item_key(camera)), "camera item {camera}");
+        }
+    }
 }

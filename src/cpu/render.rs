@@ -55,7 +55,7 @@ pub fn adaptive_pixel(
     // inlines every call, and the shader's size and compile time grow with the sites.)
     let mut corners = [Vec3::ZERO; 4];
     let mut hints = [SampleHint {
-        penumbra: false,
+        fine_detail: false,
         item: 0,
     }; 4];
     for (k, (corner, hint)) in corners.iter_mut().zip(&mut hints).enumerate() {

@@ -271,6 +271,22 @@ pub fn shading_normal(scene: &PackedScene, s: &Surface, n: Vec3) -> Vec3 {
     }
 }
 
+/// The texture detail at the pixel's scale that hit `s` shows: the largest per-channel
+/// difference between its material's diffuse texture filtered over the hit's footprint
+/// and filtered over twice that (0 without a diffuse texture). Adaptive AA's hint for
+/// detail that a pixel's few samples alias (`trace::note_texture_detail`).
+// Mirror of shaders/texture.wgsl::texture_detail — change both.
+pub fn texture_detail(scene: &PackedScene, s: &Surface) -> f32 {
+    let m = &scene.materials[s.material as usize];
+    if m.diffuse_texture == NO_TEXTURE {
+        return 0.0;
+    }
+    let texels = &scene.texels;
+    let at_pixel = sample_texture_filtered(texels, m.diffuse_texture, s.uv, s.footprint);
+    let coarser = sample_texture_filtered(texels, m.diffuse_texture, s.uv, 2.0 * s.footprint);
+    (at_pixel - coarser).abs().max_element()
+}
+
 /// (kd, ks) at `s`: the material's colours, or its textures' at the hit's UV, filtered
 /// over the hit's footprint.
 // Mirror of shaders/texture.wgsl::surface_colours — change both.

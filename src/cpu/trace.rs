@@ -9,10 +9,11 @@ use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
 use super::shade::{background, shade_phong};
 use super::surface::{surface_at, Surface};
-use super::texture::{camera_cone, cone_at, shading_normal, with_footprint};
+use super::texture::{camera_cone, cone_at, shading_normal, texture_detail, with_footprint};
 use super::traverse::{closest_hit, TraversalCounters};
 use crate::constants::{
-    DEBUG_VIEW_UV, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, RAY_STACK_SIZE, T_MISS,
+    AA_ADAPTIVE, AA_TEXTURE_DETAIL_SHARE, DEBUG_VIEW_UV, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE,
+    RAY_STACK_SIZE, T_MISS,
 };
 use crate::pack::{PackedScene, SceneFeatures};
 use glam::{Vec2, Vec3};
@@ -63,6 +64,8 @@ pub fn trace_ray(
         return background(g, primary.dir);
     }
     let first_shaded = shade_hit(scene, &first, &first_hit, seed, counters);
+    note_texture_detail(scene, &first_shaded.s, counters);
+    let camera_mirror = is_mirror(scene, first_shaded.s.material);
     let mut stack = [first; RAY_STACK_SIZE as usize];
     let mut size = 0;
     let mut colour = first_shaded.colour;
@@ -80,6 +83,10 @@ pub fn trace_ray(
         size -= 1;
         let entry = stack[size];
         let hit = closest_hit(scene, &entry.ray, T_MISS, counters);
+        if camera_mirror && entry.depth == 1 {
+            // The one ray a mirror spawns: what the camera sees in it.
+            counters.mirror_hit(hit.item);
+        }
         if !hit.is_hit() {
             colour += entry.weight * background(g, entry.ray.dir);
             continue;
@@ -91,6 +98,30 @@ pub fn trace_ray(
         }
     }
     colour
+}
+
+/// Whether material `material` is a mirror to adaptive AA's item keys
+/// (`pixel_sample::sample_item_key`): reflective and not a dielectric, so its camera hit
+/// spawns one ray. (Keying a dielectric's rays too split nearly every sample behind glass,
+/// whose paths part ways everywhere: docs/performance.md, "Item edges split".)
+// Mirror of shaders/trace.wgsl::is_mirror — change both.
+pub(crate) fn is_mirror(scene: &PackedScene, material: u32) -> bool {
+    let flags = scene.materials[material as usize].flags;
+    flags & MATERIAL_REFLECTIVE != 0 && flags & MATERIAL_REFRACTIVE == 0
+}
+
+/// Tells `counters` (adaptive AA's hints) that the camera ray's first hit `s` shows
+/// texture detail at the pixel's scale: [`texture_detail`] above AA_TEXTURE_DETAIL_SHARE
+/// of `aa_threshold`. Only adaptive AA reads the hint, so only it pays the lookups.
+// Mirror of shaders/trace.wgsl::note_texture_detail — change both.
+fn note_texture_detail(scene: &PackedScene, s: &Surface, counters: &mut impl TraversalCounters) {
+    let g = &scene.globals;
+    if g.aa_mode != AA_ADAPTIVE || !scene.features.contains(SceneFeatures::TEXTURE) {
+        return;
+    }
+    if texture_detail(scene, s) > AA_TEXTURE_DETAIL_SHARE * g.aa_threshold {
+        counters.texture_detail();
+    }
 }
 
 /// Pushes the rays that the shaded hit of `entry`'s ray spawns onto `stack` (which holds

@@ -219,6 +219,45 @@ pub fn two_walls_source(left: f32, right: f32) -> String {
     )
 }
 
+/// Lua for a mirror (black, reflection 1) filling a 16×64 view along −z, and behind the
+/// camera, facing it, two white walls meeting at x = 0: the image shows only the walls'
+/// reflection, white everywhere, their edge on the boundary between pixel columns 7 and 8.
+/// No contrast anywhere; only what the mirror shows differs.
+pub fn mirrored_walls_source() -> String {
+    "white = gr.material({1, 1, 1}, {0, 0, 0}, 10)
+    mirror = gr.material({0, 0, 0}, {0, 0, 0}, 10) mirror:set_reflection(1)
+    root = gr.node('root')
+    l = gr.cube('l') l:scale(10, 20, 1) l:translate(-10, -10, 10) l:set_material(white)
+    r = gr.cube('r') r:scale(10, 20, 1) r:translate(0, -10, 10) r:set_material(white)
+    m = gr.cube('m') m:scale(40, 40, 1) m:translate(-20, -20, -6) m:set_material(mirror)
+    root:add_child(l) root:add_child(r) root:add_child(m)
+    gr.render(root, 'mirror.png', 16, 64, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 50, {1, 1, 1}, {})
+    "
+    .to_string()
+}
+
+/// A quad overfilling a 32×32 view (a narrow field of view, so the footprint hardly
+/// changes across it), lit by ambient 1 alone, with a 64×64 diffuse texture of grey 0.7
+/// crossed by vertical lines of grey 0.3, one texel wide, every 8 texels (written to
+/// `dir`): 1.8 texels a pixel, mip level 0.87, which keeps under a quarter of the lines'
+/// contrast (no two samples differ by 0.3), and twice the footprint about half that. Packed
+/// with `overrides`.
+pub fn striped_quad(dir: &Path, overrides: &OptionOverrides) -> PackedScene {
+    let texture = image::RgbImage::from_fn(64, 64, |x, _| {
+        let grey = if x % 8 == 0 { 77 } else { 179 };
+        image::Rgb([grey, grey, grey])
+    });
+    texture.save(dir.join("stripes.png")).unwrap();
+    let source = "m = gr.material('m') m:set_diffuse('stripes.png') \
+        q = gr.mesh('q', {{0,0,0},{1,0,0},{1,1,0},{0,1,0}}, {{0,1,2,3}}, \
+                         {{0,0},{1,0},{1,1},{0,1}}) \
+        q:set_material(m) \
+        gr.render(q, 'o.png', 32, 32, {0.5,0.5,2.6}, {0,0,-1}, {0,1,0}, 20, {1,1,1}, {})";
+    let path = dir.join("stripes.lua");
+    std::fs::write(&path, source).unwrap();
+    packed_from_file(&path, overrides).remove(0)
+}
+
 /// Lua for six instances of one mesh, a flat square frame (outer half-width 1, a square
 /// hole of half-width 0.5), scaled by 2, 1.75, … 0.75 and stacked along −z (frame k at
 /// z = −2k), with a sphere behind them all: a ray along −z at distance r from the axis
