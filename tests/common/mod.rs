@@ -239,9 +239,9 @@ pub fn mirrored_walls_source() -> String {
 /// A quad overfilling a 32×32 view (a narrow field of view, so the footprint hardly
 /// changes across it), lit by ambient 1 alone, with a 64×64 diffuse texture of grey 0.7
 /// crossed by vertical lines of grey 0.3, one texel wide, every 8 texels (written to
-/// `dir`): 1.8 texels a pixel, mip level 0.87, which keeps under a quarter of the lines'
-/// contrast (no two samples differ by 0.3), and twice the footprint about half that. Packed
-/// with `overrides`.
+/// `dir`): 1.8 texels a pixel, mip level 0.87, which keeps a bit over half of the lines'
+/// 0.4 of contrast (no two samples differ by 0.3), and twice the footprint about half of
+/// that. Packed with `overrides`.
 pub fn striped_quad(dir: &Path, overrides: &OptionOverrides) -> PackedScene {
     let texture = image::RgbImage::from_fn(64, 64, |x, _| {
         let grey = if x % 8 == 0 { 77 } else { 179 };
