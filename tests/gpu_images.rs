@@ -34,18 +34,24 @@ fn small(aa: Option<AaMode>) -> OptionOverrides {
 }
 
 fn compare(ctx: &GpuContext, name: &str, scene: &PackedScene) -> SceneFeatures {
+    compare_render(ctx, name, scene).info.features
+}
+
+/// [`compare`], returning the GPU's render (its leaf counts for [`assert_same_splits`]).
+fn compare_render(ctx: &GpuContext, name: &str, scene: &PackedScene) -> GpuRender {
     let start = Instant::now();
+    let render = render_gpu(ctx, scene, &GpuRenderOptions::default())
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
     let GpuRender {
         film: gpu, info, ..
-    } = render_gpu(ctx, scene, &GpuRenderOptions::default())
-        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    } = &render;
     let gpu_time = start.elapsed();
     let start = Instant::now();
     let cpu = glint::cpu::render(scene, &|_, _| {});
     let cpu_time = start.elapsed();
     let report = assert_images_match(
         name,
-        &gpu,
+        gpu,
         &cpu,
         MAX_FLIP_MEAN,
         MIN_SHARE_WITHIN_2_255,
@@ -64,7 +70,7 @@ fn compare(ctx: &GpuContext, name: &str, scene: &PackedScene) -> SceneFeatures {
         info.cpu_fallback_pixels,
         cpu_time.as_secs_f64() * 1e3
     );
-    info.features
+    render
 }
 
 fn corpus_scene(file: &str, aa: Option<AaMode>) -> PackedScene {
@@ -309,11 +315,10 @@ fn loop_limit_guard_falls_back_to_the_cpu() {
     }
 }
 
-/// Leaf squares per pixel of adaptive AA on both tracers: identical, and some pixels split.
-fn assert_same_splits(ctx: &GpuContext, name: &str, scene: &PackedScene) {
-    let gpu = render_gpu(ctx, scene, &GpuRenderOptions::default())
-        .unwrap_or_else(|e| panic!("{name}: {e}"))
-        .leaf_counts;
+/// Leaf squares per pixel of adaptive AA in `gpu` (the GPU tracer's render of `scene`) and
+/// on the CPU tracer: identical, and some pixels split.
+fn assert_same_splits(name: &str, scene: &PackedScene, gpu: &GpuRender) {
+    let gpu = &gpu.leaf_counts;
     let cpu = adaptive_leaf_counts(scene);
     let differ: Vec<usize> = (0..cpu.len()).filter(|&k| gpu[k] != cpu[k]).collect();
     let split = cpu.iter().filter(|&&l| l > 1).count();
@@ -359,8 +364,8 @@ fn soft_shadows_split_the_same() {
             ..OptionOverrides::default()
         };
         let scene = packed_from_file(&root().join("scenes/soft-shadows.lua"), &overrides).remove(0);
-        compare(&ctx, name, &scene);
-        assert_same_splits(&ctx, name, &scene);
+        let gpu = compare_render(&ctx, name, &scene);
+        assert_same_splits(name, &scene, &gpu);
     }
 }
 
@@ -378,8 +383,8 @@ fn item_edge_splits_match() {
     };
     let walls =
         common::packed_from_source(&common::two_walls_source(1.0, 1.0), &overrides).remove(0);
-    compare(&ctx, "same-colour-walls", &walls);
-    assert_same_splits(&ctx, "same-colour-walls", &walls);
+    let gpu = compare_render(&ctx, "same-colour-walls", &walls);
+    assert_same_splits("same-colour-walls", &walls, &gpu);
     let cows = cows_with(
         48,
         OptionOverrides {
@@ -387,8 +392,8 @@ fn item_edge_splits_match() {
             ..overrides
         },
     );
-    compare(&ctx, "macho-cows-item-edges", &cows);
-    assert_same_splits(&ctx, "macho-cows-item-edges", &cows);
+    let gpu = compare_render(&ctx, "macho-cows-item-edges", &cows);
+    assert_same_splits("macho-cows-item-edges", &cows, &gpu);
 }
 
 /// Splits from what a mirror shows (the item its reflected ray hits keys a sample too:
@@ -405,8 +410,8 @@ fn mirror_and_texture_detail_splits_match() {
         ..OptionOverrides::default()
     };
     let mirror = packed_from_source(&common::mirrored_walls_source(), &overrides).remove(0);
-    compare(&ctx, "mirrored-walls", &mirror);
-    assert_same_splits(&ctx, "mirrored-walls", &mirror);
+    let gpu = compare_render(&ctx, "mirrored-walls", &mirror);
+    assert_same_splits("mirrored-walls", &mirror, &gpu);
     let dir = common::temp_dir("gpu-texture-detail");
     let stripes = common::striped_quad(
         &dir,
@@ -416,8 +421,8 @@ fn mirror_and_texture_detail_splits_match() {
             ..overrides
         },
     );
-    compare(&ctx, "striped-quad", &stripes);
-    assert_same_splits(&ctx, "striped-quad", &stripes);
+    let gpu = compare_render(&ctx, "striped-quad", &stripes);
+    assert_same_splits("striped-quad", &stripes, &gpu);
 }
 
 /// A pixel centre's shadow jitter mirrors its pixel's corners' (shadow_stream,
@@ -476,10 +481,11 @@ fn area_light_matches() {
             ..OptionOverrides::default()
         };
         let scene = packed_from_source(source, &overrides).remove(0);
-        let features = compare(&ctx, name, &scene);
+        let gpu = compare_render(&ctx, name, &scene);
+        let features = gpu.info.features;
         assert!(features.contains(SceneFeatures::AREA_LIGHT), "{features}");
         if aa.is_none() {
-            assert_same_splits(&ctx, name, &scene);
+            assert_same_splits(name, &scene, &gpu);
         }
     }
 }
