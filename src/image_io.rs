@@ -333,12 +333,8 @@ mod tests {
     use super::*;
 
     /// A fresh scratch directory per test, under the system temp dir.
-    fn scratch(name: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("glint-image-io-{}-{name}", std::process::id()));
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).unwrap();
-        dir
+    fn scratch(name: &str) -> crate::testing::scratch::TempDir {
+        crate::testing::scratch::temp_dir(&format!("image-io-{name}"))
     }
 
     fn gradient(width: u32, height: u32) -> Film {

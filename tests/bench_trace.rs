@@ -45,7 +45,7 @@ gr.render(root, 'out.png', 48, 40, {0, 1, 6}, {0, -0.3, -1}, {0, 1, 0}, 50,
   {gr.light({2, 5, 4}, {0.8, 0.8, 0.8}, {1, 0, 0}), gr.light({-4, 2, 1}, {0.3, 0.3, 0.3}, {1, 0, 0})})
 "#;
 
-fn scene_dir(tag: &str) -> std::path::PathBuf {
+fn scene_dir(tag: &str) -> glint::testing::scratch::TempDir {
     let dir = temp_dir(tag);
     std::fs::write(dir.join("scene.lua"), SCENE).unwrap();
     std::fs::copy(

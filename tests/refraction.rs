@@ -447,7 +447,7 @@ fn camera_inside_glass_starts_in_glass() {
         &render_cpu(&flat),
         0.005,
         0.999,
-        &std::env::temp_dir()
+        &common::temp_dir("eye-ball")
     )
     .is_err());
 }

@@ -5,9 +5,9 @@
 use glam::DMat4;
 use glint::scene::lua::{run_scene_file, run_scene_source, SceneError, ScriptConfig, ScriptReport};
 use glint::scene::{NodeId, NodeKind, RenderRequest, SceneGraph, TransformOrder};
+use glint::testing::scratch::TempDir;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 fn corpus() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cs488")
@@ -30,16 +30,9 @@ fn run_file(
     Ok((report, renders))
 }
 
-/// A fresh folder under the system temp dir (no tempfile crate).
-fn temp_dir(tag: &str) -> PathBuf {
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "glint-scene-{tag}-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh folder under the system temp dir, removed when dropped.
+fn temp_dir(tag: &str) -> TempDir {
+    glint::testing::scratch::temp_dir(&format!("scene-{tag}"))
 }
 
 /// Writes `files` into a temp folder and runs `scene.lua` from there; the error message.

@@ -102,8 +102,7 @@ mod tests {
 
     #[test]
     fn missing_and_undecodable_files_name_the_path() {
-        let dir = std::env::temp_dir().join(format!("glint-texture-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::testing::scratch::temp_dir("texture");
         let missing = dir.join("missing.png");
         let e = load_texture(&missing, u64::MAX).unwrap_err();
         assert!(
@@ -118,8 +117,7 @@ mod tests {
 
     #[test]
     fn texels_are_kept_as_stored_top_row_first() {
-        let dir = std::env::temp_dir().join(format!("glint-texture-ok-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::testing::scratch::temp_dir("texture-ok");
         let path = dir.join("two.png");
         let img = image::RgbImage::from_raw(1, 2, vec![10, 20, 30, 200, 100, 0]).unwrap();
         img.save(&path).unwrap();

@@ -5,11 +5,13 @@
 //! - [`probe`]: tier-3 kernel probes, the same rays traced by the GPU's and the CPU's
 //!   `closest_hit` + `surface_at`, compared ray by ray.
 //! - [`csg_interval_ends`]: one CSG object's inside intervals along a line.
+//! - [`scratch`]: test folders under the temp dir that remove themselves.
 //!
 //! (The GPU's test hook, the loop limiter's sentinel, is a hidden field of
 //! [`crate::gpu::GpuRenderOptions`].)
 
 pub mod probe;
+pub mod scratch;
 
 use crate::cpu::csg::{csg_evaluate, CsgStack};
 use crate::pack::PackedScene;

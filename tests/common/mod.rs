@@ -10,7 +10,6 @@ use glint::scene::flatten::{flatten, FlatScene};
 use glint::scene::lua::{run_scene_file, ScriptConfig};
 use glint::scene::{OptionOverrides, TransformOrder};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The CS488 sample corpus beside the repository.
 pub fn corpus() -> PathBuf {
@@ -27,18 +26,9 @@ pub fn failure_dir() -> PathBuf {
     root().join("target/test-failures")
 }
 
-/// A fresh, empty folder under the system temp dir.
-pub fn temp_dir(tag: &str) -> PathBuf {
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "glint-{tag}-{}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+/// Scratch folders that remove themselves (shared with the unit tests).
+#[allow(unused_imports)]
+pub use glint::testing::scratch::temp_dir;
 
 /// The transform order a corpus folder's scenes were written for.
 pub fn family_order(path: &Path) -> Option<TransformOrder> {
