@@ -261,4 +261,4 @@ local fill = gr.light({16, 14, 10}, {0.22, 0.22, 0.26}, {1, 0, 0})
 gr.render(root, 'scrabble.png', 1280, 720,
   {0, 17.5, 19}, {0, -17.5, -19.6}, {0, 1, 0}, 48,
   {0.3, 0.3, 0.3}, {lamp, fill},
-  {aa = 'adaptive', aa_threshold = 0.1, aa_depth = 2, max_depth = 8})
+  {aa = 'adaptive', max_depth = 8})

@@ -97,29 +97,24 @@ fn point_hint(i: u32, j: u32) -> SampleHint {
     return decode_hint(samples[lattice_index(i, j)].w);
 }
 
-// Whether each pixel's centre is a lattice point, traced by the first pass (d ≥ 1).
-// Mirror of src/tiling.rs::AdaptiveTile::pixels_have_centres — change both.
-fn pixels_have_centres() -> bool {
-    return globals.aa_depth > 0u;
+// Lattice point of the centre of square (a, b) of `level` (when square_has_centre).
+// Mirror of src/cpu/adaptive.rs::square_centre — change both.
+fn square_centre(level: u32, a: u32, b: u32) -> vec2<u32> {
+    let l = adaptive_scale() >> level;
+    return vec2<u32>(a * l + l / 2u, b * l + l / 2u);
 }
 
-// Lattice point of the centre of pixel (a, b) (when pixels_have_centres).
-// Mirror of src/cpu/adaptive.rs::pixel_centre — change both.
-fn pixel_centre(a: u32, b: u32) -> vec2<u32> {
-    let s = adaptive_scale();
-    return vec2<u32>(a * s + s / 2u, b * s + s / 2u);
-}
-
-// Whether a square of `level` has a traced centre of its own: a pixel (level 0) where
-// pixels_have_centres. Its decision and, unsplit, its colour use it; squares below a
-// pixel have corners only.
+// Whether the squares of `level` have a traced centre of their own: every level above
+// aa_depth (a square of the deepest level, one lattice step wide, has corners only). Its
+// decision and, unsplit, its colour use it.
 // Mirror of src/cpu/adaptive.rs::square_has_centre — change both.
 fn square_has_centre(level: u32) -> bool {
-    return level == 0u && pixels_have_centres();
+    return level < globals.aa_depth;
 }
 
-// The hints of square (a, b) of `level`: whether one of its corners (or, at level 0, the
-// pixel's centre) saw fine detail, and whether their camera rays hit different items.
+// The hints of square (a, b) of `level` (< aa_depth: a square that decides has a
+// centre): whether one of its corners or its centre saw fine detail, and whether their
+// camera rays hit different items.
 // Mirror of src/cpu/adaptive.rs::square_hints — change both.
 fn square_hints(level: u32, a: u32, b: u32) -> SquareHints {
     let l = adaptive_scale() >> level;
@@ -130,23 +125,17 @@ fn square_hints(level: u32, a: u32, b: u32) -> SquareHints {
     hints = add_sample_hint(hints, first, point_hint(i + l, j));
     hints = add_sample_hint(hints, first, point_hint(i, j + l));
     hints = add_sample_hint(hints, first, point_hint(i + l, j + l));
-    if square_has_centre(level) {
-        let c = pixel_centre(a, b);
-        hints = add_sample_hint(hints, first, point_hint(c.x, c.y));
-    }
-    return hints;
+    let c = square_centre(level, a, b);
+    return add_sample_hint(hints, first, point_hint(c.x, c.y));
 }
 
-// The contrast the split decision of square (a, b) of `level` weighs: of its corners
-// (contrast), or at level 0 of the pixel's corners and centre (pixel_contrast).
+// The contrast the split decision of square (a, b) of `level` (< aa_depth) weighs: of its
+// corners and centre (square_contrast_of).
 // Mirror of src/cpu/adaptive.rs::square_contrast — change both.
 fn square_contrast(level: u32, a: u32, b: u32) -> f32 {
     let corners = square_corners(level, a, b);
-    if square_has_centre(level) {
-        let c = pixel_centre(a, b);
-        return pixel_contrast(corners, lattice_point(c.x, c.y));
-    }
-    return contrast(corners);
+    let c = square_centre(level, a, b);
+    return square_contrast_of(corners, lattice_point(c.x, c.y));
 }
 
 // Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
@@ -216,7 +205,7 @@ fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
         point = vec2<u32>((idx % (tile.size.x + 1u)) * s, (idx / (tile.size.x + 1u)) * s);
     } else {
         let pixel = idx - corners;
-        point = pixel_centre(pixel % tile.size.x, pixel / tile.size.x);
+        point = square_centre(0u, pixel % tile.size.x, pixel / tile.size.x);
     }
     trace_lattice_point(point.x, point.y);
 }
@@ -263,12 +252,12 @@ fn indirect_workgroups(items: u32) -> vec3<u32> {
 }
 
 // After the decide pass of tile.level (one invocation): the indirect arguments of the
-// midpoint pass over the level's list (5 per square) and of the next level's decide pass
-// (4 children per square), at work_args[6·level ..].
+// midpoint pass over the level's list (AA_SPLIT_POINTS per square) and of the next
+// level's decide pass (4 children per square), at work_args[6·level ..].
 @compute @workgroup_size(1)
 fn adaptive_work_args() {
     let n = atomicLoad(&work_counts[tile.level]);
-    let midpoints = indirect_workgroups(5u * n);
+    let midpoints = indirect_workgroups(AA_SPLIT_POINTS * n);
     let children = indirect_workgroups(4u * n);
     let at = 6u * tile.level;
     work_args[at] = midpoints.x;
@@ -279,40 +268,46 @@ fn adaptive_work_args() {
     work_args[at + 5u] = children.z;
 }
 
-// Midpoint pass of tile.level: midpoint idx mod 5 (top, left, centre, right, bottom) of
-// entry idx div 5 of the level's list. A top (left) midpoint is the bottom (right) one of
-// the square above (to the left); when that one is split, it traces it. A pixel's centre
-// was traced by the corner pass.
+// Midpoint pass of tile.level: point idx mod AA_SPLIT_POINTS of entry idx div
+// AA_SPLIT_POINTS of the level's list — its top, left, right and bottom edge midpoints,
+// then the centres of its top-left, top-right, bottom-left and bottom-right children where
+// those have centres (square_has_centre); its own centre was traced with its corners. A
+// top (left) midpoint is the bottom (right) one of the square above (to the left); when
+// that one is split, it traces it.
 // Mirror of src/cpu/adaptive.rs::adaptive_midpoints — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
     let level = tile.level;
-    if idx >= 5u * atomicLoad(&work_counts[level]) {
+    if idx >= AA_SPLIT_POINTS * atomicLoad(&work_counts[level]) {
         return;
     }
-    let m = idx % 5u;
-    let square = split_square(level, idx / 5u);
+    let m = idx % AA_SPLIT_POINTS;
+    let square = split_square(level, idx / AA_SPLIT_POINTS);
     let a = square.x;
     let b = square.y;
-    let centre_traced = m == 2u && square_has_centre(level);
     let top_traced = m == 0u && b > 0u && is_split(level, a, b - 1u);
     let left_traced = m == 1u && a > 0u && is_split(level, a - 1u, b);
-    if centre_traced || top_traced || left_traced {
+    let no_centre = m >= 4u && !square_has_centre(level + 1u);
+    if top_traced || left_traced || no_centre {
         return;
     }
     let l = adaptive_scale() >> level;
     let h = l / 2u;
-    // Offsets (h, 0), (0, h), (h, h), (l, h), (h, l).
-    let ox = select(select(h, l, m == 3u), 0u, m == 1u);
-    let oy = select(select(h, l, m == 4u), 0u, m == 0u);
+    let q = l / 4u;
+    // Edges (h, 0), (0, h), (l, h), (h, l); child k = m − 4's centre
+    // (q + h·(k mod 2), q + h·(k div 2)).
+    let k = m - 4u;
+    let ox = select(select(select(h, l, m == 2u), 0u, m == 1u), q + h * (k & 1u), m >= 4u);
+    let oy = select(select(select(h, l, m == 3u), 0u, m == 0u), q + h * (k >> 1u), m >= 4u);
     trace_lattice_point(a * l + ox, b * l + oy);
 }
 
 // Integrate pass: pixel (id.x, id.y)'s area-weighted mean over its quadtree, walked depth
 // first without a stack: a split square's children in the order bottom-right,
-// bottom-left, top-right, top-left (next_square), the sum in that walk's order (a leaf:
-// the mean of its corners; an unsplit pixel with a centre: their quincunx_mean with it);
+// bottom-left, top-right, top-left (next_square), the sum in that walk's order (a leaf
+// with a centre: the quincunx_mean of its corners and centre; one of the deepest level:
+// the mean of its corners; each weighted by its area);
 // alpha holds its number of leaves. (A private stack indexed at run time costs llvmpipe
 // per-lane scatters and gathers: docs/gpu.md.)
 // Mirror of src/cpu/adaptive.rs::adaptive_integrate — change both.
@@ -336,12 +331,12 @@ fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let c = square_corners(level, a, b);
         leaves += 1u;
+        let side = ldexp(1.0, -i32(level));
+        let area = side * side;
         if square_has_centre(level) {
-            let centre = pixel_centre(a, b);
-            sum += quincunx_mean(c, lattice_point(centre.x, centre.y));
+            let centre = square_centre(level, a, b);
+            sum += quincunx_mean(c, lattice_point(centre.x, centre.y)) * area;
         } else {
-            let side = ldexp(1.0, -i32(level));
-            let area = side * side;
             sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
         }
         sq = next_square(level, a, b);

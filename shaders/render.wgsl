@@ -101,24 +101,16 @@ fn lattice_sample(fx: f32, fy: f32) -> vec4<f32> {
     return hinted_sample(fx + jx, fy + jy, seed);
 }
 
-// Largest per-channel spread of four colours.
-// Mirror of src/cpu/pixel_sample.rs::contrast — change both.
-fn contrast(c: array<vec3<f32>, 4>) -> f32 {
-    let lo = min(min(min(c[0], c[1]), c[2]), c[3]);
-    let hi = max(max(max(c[0], c[1]), c[2]), c[3]);
-    return max_element(hi - lo);
-}
-
-// Largest per-channel spread of a pixel's four corner samples and its centre sample: the
-// level-0 decision of adaptive AA.
-// Mirror of src/cpu/pixel_sample.rs::pixel_contrast — change both.
-fn pixel_contrast(c: array<vec3<f32>, 4>, centre: vec3<f32>) -> f32 {
+// Largest per-channel spread of a square's four corner samples and its centre sample:
+// what the split decision of adaptive AA weighs.
+// Mirror of src/cpu/pixel_sample.rs::square_contrast_of — change both.
+fn square_contrast_of(c: array<vec3<f32>, 4>, centre: vec3<f32>) -> f32 {
     let lo = min(min(min(min(c[0], c[1]), c[2]), c[3]), centre);
     let hi = max(max(max(max(c[0], c[1]), c[2]), c[3]), centre);
     return max_element(hi - lo);
 }
 
-// Colour of a pixel that adaptive AA did not split, from its corner samples and its
+// Colour of a square that adaptive AA did not split, from its corner samples and its
 // centre sample: the centre weighs AA_CENTRE_WEIGHT, the corners share the rest.
 // Mirror of src/cpu/pixel_sample.rs::quincunx_mean — change both.
 fn quincunx_mean(c: array<vec3<f32>, 4>, centre: vec3<f32>) -> vec3<f32> {

@@ -30,23 +30,25 @@ struct SampleSeed {
 }
 
 // The seed of the adaptive-AA sample at film position (fx, fy): its coordinates on the
-// finest lattice (2^MAX_AA_DEPTH steps per pixel, exact). A point halfway between pixel
-// corners on both axes is a pixel's centre.
+// finest lattice (2^MAX_AA_DEPTH steps per pixel, exact). A point whose two coordinates
+// are odd multiples of the same power of two 2^t (t < MAX_AA_DEPTH) is the centre of a
+// square 2^(t+1) steps wide (a pixel's, or a smaller square's).
 // Mirror of src/cpu/rng.rs::adaptive_seed — change both.
 fn adaptive_seed(fx: f32, fy: f32) -> SampleSeed {
     let steps = 1u << MAX_AA_DEPTH;
     let pixel = u32(fx * f32(steps));
     let sample = u32(fy * f32(steps));
-    let centre = pixel % steps == steps / 2u && sample % steps == steps / 2u;
+    let t = countTrailingZeros(pixel);
+    let centre = t == countTrailingZeros(sample) && t < MAX_AA_DEPTH;
     return SampleSeed(pixel, sample, 0u, centre);
 }
 
 // #if AREA_LIGHT
 // The random streams of light `light`'s shadow jitters at a shading point of `seed`
 // (shadow_stream): hashed once per light, so that each jitter costs three hashes. rows:
-// the seed's sample index hashed with the light and depth (a mirrored stream: the pixel's
-// top and bottom corners'); columns: the seed's pixel coordinate (the left and right
-// corners').
+// the seed's sample index hashed with the light and depth (a mirrored stream: its
+// square's top and bottom corners'); columns: the seed's pixel coordinate (the left and
+// right corners').
 // Mirror of src/cpu/rng.rs::ShadowStream — change both.
 struct ShadowStream {
     rows: vec2<u32>,
@@ -60,7 +62,8 @@ struct ShadowStream {
 fn shadow_stream(seed: SampleSeed, light: u32) -> ShadowStream {
     let light_hash = pcg_hash(light ^ pcg_hash(seed.depth));
     if seed.mirrors_corners && seed.depth == 0u {
-        let half = 1u << (MAX_AA_DEPTH - 1u);
+        // Half the square's side: the lowest set bit of the centre's coordinates.
+        let half = 1u << countTrailingZeros(seed.pixel);
         let rows = vec2<u32>(
             pcg_hash((seed.sample - half) ^ light_hash),
             pcg_hash((seed.sample + half) ^ light_hash),

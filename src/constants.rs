@@ -253,6 +253,7 @@ pub fn wgsl_prelude() -> String {
         ("AA_FINE_DETAIL_DEPTH", AA_FINE_DETAIL_DEPTH),
         ("AA_ITEM_EDGE_DEPTH", AA_ITEM_EDGE_DEPTH),
         ("AA_ITEM_KEY_MASK", AA_ITEM_KEY_MASK),
+        ("AA_SPLIT_POINTS", AA_SPLIT_POINTS),
         ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
         ("TILE_SIZE", TILE_SIZE),
         ("GPU_INDIRECT_MAX_WORKGROUPS", GPU_INDIRECT_MAX_WORKGROUPS),
@@ -299,13 +300,15 @@ pub fn wgsl_prelude() -> String {
 
 /// Deepest adaptive anti-aliasing split accepted (`aa_depth`).
 pub const MAX_AA_DEPTH: u32 = 6;
-/// Adaptive anti-aliasing splits a square with a corner sample that saw fine detail its
-/// colour may not show, down to this level at most (and `aa_depth`): a penumbra (an area
-/// light partly occluded among its shadow samples) or texture detail at the pixel's scale
-/// ([`AA_TEXTURE_DETAIL_SHARE`]). Level 2 is 4×4 squares per pixel, the density of
-/// uniform 4×4, where shadow noise (n² shadow rays per sample) or a texture's detail
-/// rather than edges sets the error.
-pub const AA_FINE_DETAIL_DEPTH: u32 = 2;
+/// Adaptive anti-aliasing splits a square with a sample (corner or centre) that saw fine
+/// detail its colour may not show, down to this level at most (and `aa_depth`): a
+/// penumbra (an area light partly occluded among its shadow samples) or texture detail at
+/// the pixel's scale ([`AA_TEXTURE_DETAIL_SHARE`]). Level 1, whose four squares each have
+/// a centre of their own, samples such a pixel at 13 points a quarter pixel apart, where
+/// shadow noise (n² shadow rays per sample) or a texture's detail rather than edges sets
+/// the error; level 2 measured no more accurate per ray once squares had centres
+/// (docs/performance.md, "A centre in every square").
+pub const AA_FINE_DETAIL_DEPTH: u32 = 1;
 /// A camera ray's first hit on a diffuse texture counts as fine detail for adaptive
 /// anti-aliasing when the texture, filtered over the pixel's footprint, differs from the
 /// same texture filtered over twice that footprint by more than this share of
@@ -337,6 +340,11 @@ pub const AA_LATTICE_JITTER: f32 = 1.0;
 /// pixel; the centre is the pixel's own. 1/2 measured best of 0.2–0.67 on the sweep's
 /// scenes (docs/performance.md, "A sample at each pixel's centre").
 pub const AA_CENTRE_WEIGHT: f32 = 0.5;
+/// Points an adaptive anti-aliasing split traces (one midpoint-pass invocation each): the
+/// square's four edge midpoints and its four children's centres (the centres only where
+/// the children are above `aa_depth`; a midpoint shared with a split neighbour is traced
+/// by one of the two).
+pub const AA_SPLIT_POINTS: u32 = 8;
 /// Largest n of uniform n×n anti-aliasing.
 pub const MAX_AA_SAMPLES: u32 = 64;
 /// Square tile side, in pixels, for both tracers' work split.

@@ -37,7 +37,6 @@ impl AdaptiveTile {
     }
     /// Whether each pixel's centre is a lattice point, traced by the first pass with the
     /// corners (d ≥ 1; at d = 0 the lattice is the corners alone).
-    // Mirror of shaders/adaptive.wgsl::pixels_have_centres — change both.
     pub fn pixels_have_centres(&self) -> bool {
         self.depth > 0
     }

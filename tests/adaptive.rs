@@ -9,6 +9,7 @@ use glint::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH};
 use glint::cpu::render::{adaptive_leaf_counts, render_pixel};
 use glint::cpu::traverse::NoCounters;
 use glint::scene::{AaMode, OptionOverrides};
+use glint::testing::adaptive_lattice_sample;
 
 fn check(file: &str, size: u32, depth: u32) {
     check_path(&corpus().join("a4-2021plus").join(file), size, depth, None);
@@ -54,8 +55,9 @@ fn lattice_matches_per_pixel_walk() {
 }
 
 /// Soft shadows: a lattice sample that saw a penumbra splits the squares it is a corner
-/// of down to AA_FINE_DETAIL_DEPTH, in the passes as in the per-pixel walk. With a threshold
-/// no contrast exceeds, only penumbrae split, and no deeper than that.
+/// or centre of down to AA_FINE_DETAIL_DEPTH, in the passes as in the per-pixel walk. With a
+/// threshold no contrast exceeds, only penumbrae and edges between items split, each no
+/// deeper than its depth.
 #[test]
 fn penumbrae_split_down_to_their_depth() {
     let path = root().join("scenes/soft-shadows.lua");
@@ -68,9 +70,11 @@ fn penumbrae_split_down_to_their_depth() {
         leaves.len()
     );
     assert!(full > 0, "no penumbra split");
+    // Edges between items split deeper (AA_ITEM_EDGE_DEPTH), whatever their contrast.
+    let item_edges = 1 << (2 * AA_FINE_DETAIL_DEPTH.max(AA_ITEM_EDGE_DEPTH));
     assert!(
-        leaves.iter().all(|&l| l <= deepest),
-        "deeper than penumbra depth"
+        leaves.iter().all(|&l| l <= item_edges),
+        "deeper than the hints' depths"
     );
 }
 
@@ -127,30 +131,42 @@ fn lattice_points_on_a_pixel_aligned_edge_fall_on_both_sides() {
     assert_eq!(column_error(12, 1.0), 0.0);
 }
 
-/// A white bar a quarter of a pixel wide down the middle of pixel column 8 of a 16 × 16
-/// image, on black (ambient light only): no corner of those pixels sees it (corners are
-/// jittered by at most 1/16 pixel at depth 3), their centres always do.
-fn bar_between_corners() -> glint::pack::PackedScene {
+/// White vertical bars on black (ambient light only) in a 16 × 16 image, each given by
+/// the pixel column where it starts and its width in pixels, rendered under adaptive AA
+/// at threshold 0.2 and depth 3 (contrast 1 splits levels 0–2: 1 > 0.2·2^k).
+fn white_bars(bars: &[(f64, f64)]) -> glint::pack::PackedScene {
     // At distance 4 with vfov 50 over 16 pixels, a pixel is 8·tan 25°/16 = 0.23314
-    // units; the bar spans pixels 8.375–8.625 (x = 0.0874–0.1457), nearly flat.
-    let source = "
-        black = gr.material({0, 0, 0}, {0, 0, 0}, 10)
+    // units, and pixel 8 starts at x = 0; the bars' fronts are at distance 4.
+    let pixel = 8.0 * 25f64.to_radians().tan() / 16.0;
+    let mut source = String::from(
+        "black = gr.material({0, 0, 0}, {0, 0, 0}, 10)
         white = gr.material({1, 1, 1}, {0, 0, 0}, 10)
         root = gr.node('root')
         wall = gr.cube('wall') wall:scale(20, 20, 1) wall:translate(-10, -10, -7)
-        wall:set_material(black)
-        bar = gr.cube('bar') bar:scale(0.05829, 20, 0.001) bar:translate(0.08743, -10, -4.001)
-        bar:set_material(white)
-        root:add_child(wall) root:add_child(bar)
-        gr.render(root, 'bar.png', 16, 16, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 50,
-                  {1, 1, 1}, {})
-    ";
-    // (Contrast 1 splits levels 0–2: 1 > 0.2·2^k.)
-    adaptive_scene(source, 0.2, 3)
+        wall:set_material(black) root:add_child(wall)\n",
+    );
+    for (k, (start, width)) in bars.iter().enumerate() {
+        source += &format!(
+            "bar{k} = gr.cube('bar{k}') bar{k}:scale({}, 20, 0.001) \
+             bar{k}:translate({}, -10, -4.001) bar{k}:set_material(white) root:add_child(bar{k})\n",
+            width * pixel,
+            (start - 8.0) * pixel
+        );
+    }
+    source +=
+        "gr.render(root, 'bars.png', 16, 16, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 50, {1, 1, 1}, {})";
+    adaptive_scene(&source, 0.2, 3)
+}
+
+/// A white bar a quarter of a pixel wide down the middle of pixel column 8 (8.375–8.625):
+/// no corner of those pixels sees it (corners are jittered by at most 1/16 pixel at depth
+/// 3), their centres always do.
+fn bar_between_corners() -> glint::pack::PackedScene {
+    white_bars(&[(8.375, 0.25)])
 }
 
 /// Each pixel's centre is sampled with its corners and takes part in its split decision
-/// (`pixel_contrast`): detail that lies between the corners splits the pixel, and its
+/// (`square_contrast_of`): detail that lies between the corners splits the pixel, and its
 /// colour approaches the bar's coverage (1/4) where corners alone saw black and never
 /// split. Pixels away from the bar stay unsplit and exact.
 #[test]
@@ -170,6 +186,39 @@ fn detail_between_a_pixels_corners_splits_it() {
             assert_eq!(leaves[at(x)], 1, "row {y}, column {x} split");
             assert_eq!(film.pixels[at(x)][1], 0.0, "row {y}, column {x}");
         }
+    }
+}
+
+/// Pixel column 8: a white bar 0.16 of a pixel wide around the centre of its left half
+/// (8.17–8.33), which no pixel corner, pixel centre or pixel midpoint sees (all jittered
+/// by at most 1/16 pixel at depth 3), only the centres of the left half's squares; and a
+/// white wall from 8.9 onwards, which the pixel's right corners see, so every pixel of the
+/// column splits.
+fn bar_inside_a_half() -> glint::pack::PackedScene {
+    white_bars(&[(8.17, 0.16), (8.9, 1.1)])
+}
+
+/// Every square above aa_depth has a centre sample that takes part in its split decision
+/// and its colour, not only the pixel: a split pixel's left half, whose corners all see
+/// black, still splits where its squares' centres see a bar between those corners, and
+/// the pixel's colour counts the bar (coverage 0.16 + 0.1 = 0.26; without the squares'
+/// centres only the wall's 0.1 or so shows).
+#[test]
+fn detail_between_a_squares_corners_splits_it_at_every_level() {
+    let scene = bar_inside_a_half();
+    let film = glint::cpu::render(&scene, &|_, _| {});
+    let leaves = adaptive_leaf_counts(&scene);
+    for y in 0..16 {
+        let at = |x: usize| y * 16 + x;
+        // The right quarters split where the wall is (10 leaves each); the left ones
+        // split for the bar, down to level 3 (16 leaves each), where left whole they
+        // would be one leaf each: 22 leaves in all.
+        assert!(leaves[at(8)] > 30, "row {y}: {} leaves", leaves[at(8)]);
+        let green = film.pixels[at(8)][1];
+        assert!(
+            (0.2..=0.32).contains(&green),
+            "row {y}: the pixel is {green}, its coverage 0.26"
+        );
     }
 }
 
@@ -240,31 +289,47 @@ fn edges_seen_in_a_mirror_split_whatever_the_contrast() {
 }
 
 /// Texture detail at the pixel's scale splits down to AA_FINE_DETAIL_DEPTH: a quad with
-/// thin dark lines (`striped_quad`) at threshold 0.15, so a square of level 1 splits by
-/// contrast only over 0.3, which no two samples reach. The samples on a line see its
-/// texture lose about 0.1 between the pixel's footprint and twice it (more than
-/// AA_TEXTURE_DETAIL_SHARE × 0.15): their squares split to level 2 all the same (without
-/// the hint no pixel gets more than four leaves), and no further.
+/// thin dark lines (`striped_quad`) at threshold 0.15, so a pixel splits by contrast only
+/// where two of its five samples differ by more than 0.15, and a square of level 1 only
+/// over 0.3, which no two samples reach. The samples near a line see its texture lose
+/// about 0.1 between the pixel's footprint and twice it (more than
+/// AA_TEXTURE_DETAIL_SHARE × 0.15): the pixels they belong to split all the same, also
+/// where the contrast does not reach the threshold (without the hint those stay whole),
+/// and no deeper than the hint's depth; pixels with neither stay whole.
 #[test]
 fn texture_detail_splits_down_to_the_fine_detail_depth() {
     let dir = common::temp_dir("adaptive-texture-detail");
+    let threshold = 0.15;
     let overrides = OptionOverrides {
         aa: Some(AaMode::Adaptive),
-        aa_threshold: Some(0.15),
+        aa_threshold: Some(threshold),
         aa_depth: Some(glint::scene::AaDepth::constant(3)),
         ..OptionOverrides::default()
     };
     let scene = common::striped_quad(&dir, &overrides);
     let film = glint::cpu::render(&scene, &|_, _| {});
     let leaves = adaptive_leaf_counts(&scene);
-    let level_one = 1 << 2;
     let deepest = 1 << (2 * AA_FINE_DETAIL_DEPTH);
-    let below_level_one = leaves.iter().filter(|&&l| l > level_one).count();
-    assert!(
-        below_level_one > 0,
-        "no square below level 1 split: {leaves:?}"
-    );
     assert!(leaves.iter().all(|&l| l <= deepest), "{leaves:?}");
+    let mut split_by_the_hint_alone = 0;
+    for y in 0..32 {
+        for x in 0..32 {
+            let (fx, fy) = (x as f32, y as f32);
+            let samples = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0), (0.5, 0.5)]
+                .map(|(dx, dy)| adaptive_lattice_sample(&scene, fx + dx, fy + dy));
+            let green = samples.map(|(c, _)| c.y);
+            let contrast = green.iter().fold(f32::MIN, |a, &g| a.max(g))
+                - green.iter().fold(f32::MAX, |a, &g| a.min(g));
+            let detail = samples.iter().any(|&(_, d)| d);
+            let leaves = leaves[(y * 32 + x) as usize];
+            if contrast <= threshold {
+                assert_eq!(leaves > 1, detail, "pixel ({x}, {y}): {leaves} leaves");
+                split_by_the_hint_alone += detail as u32;
+            }
+        }
+    }
+    eprintln!("{split_by_the_hint_alone} pixels split by texture detail alone");
+    assert!(split_by_the_hint_alone > 0, "{leaves:?}");
     for y in 0..32 {
         for x in 0..32 {
             let reference = render_pixel(&scene, x, y, &mut NoCounters).to_array();

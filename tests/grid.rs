@@ -84,8 +84,9 @@ fn image_is_independent_of_thread_count() {
     );
 }
 
-/// A scene of `count` unit spheres in a row, written to a fresh folder.
-fn spheres_scene(count: usize) -> std::path::PathBuf {
+/// A scene of `count` unit spheres in a row, written to a fresh folder: the folder's
+/// guard (the folder goes with it) and the scene's path.
+fn spheres_scene(count: usize) -> (glint::testing::scratch::TempDir, std::path::PathBuf) {
     let dir = common::temp_dir(&format!("grid-{count}-spheres"));
     let mut lua = String::from(
         "local root = gr.node('root')\n\
@@ -102,13 +103,13 @@ fn spheres_scene(count: usize) -> std::path::PathBuf {
             {0.2, 0.2, 0.2}, {gr.light({4, 6, 8}, {0.9, 0.9, 0.9}, {1, 0, 0})})\n";
     let path = dir.join("spheres.lua");
     std::fs::write(&path, lua).unwrap();
-    path
+    (dir, path)
 }
 
 #[test]
 fn a_single_item_gets_no_scene_grid_unless_asked() {
     // One item: the grid's bounds would be the item's, so it could cull nothing.
-    let one = spheres_scene(1);
+    let (_dir, one) = spheres_scene(1);
     let auto = load_packed(&one, &overrides(GridMode::Auto));
     assert_eq!(
         auto.globals.grid_enabled, 0,
@@ -130,7 +131,8 @@ fn a_single_item_gets_no_scene_grid_unless_asked() {
         "one item: brute force and the grid differ"
     );
     // Two items: a grid can cull one of them, and auto builds it.
-    let two = load_packed(&spheres_scene(2), &overrides(GridMode::Auto));
+    let (_dir2, two) = spheres_scene(2);
+    let two = load_packed(&two, &overrides(GridMode::Auto));
     assert_eq!(
         two.globals.grid_enabled, 1,
         "auto built no grid over two items"

@@ -1,7 +1,7 @@
 //! The figures `glint bench --sweep` derives from its measurements: the cheapest setting
 //! whose error is within a bound, the log-log slope of error against n, and the rule that
-//! picks the default setting. Pure functions of (time, error) pairs, so they are tested
-//! without rendering anything.
+//! picks the default setting (issue 16's target as one number per setting). Pure
+//! functions of (time, error) pairs, so they are tested without rendering anything.
 
 /// One measured setting: its name, time in seconds, and errors against the reference.
 #[derive(Clone, Debug, PartialEq)]
@@ -61,32 +61,54 @@ pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
     (sxx > 0.0).then(|| sxy / sxx)
 }
 
+/// Issue 16's target as one number for one scene: the largest of a setting's FLIP mean
+/// and RMSE over uniform 4×4's and of its core time over `time_share` of 4×4's. At most 1
+/// where the setting reaches 4×4's error by both measures in at most that share of its
+/// time; 1.1 where it misses by 10% on the worst of the three; NaN where one is not a
+/// number.
+pub fn target_ratio(m: &Measured, uniform4: &Measured, time_share: f64) -> f64 {
+    worst_of([
+        m.flip / uniform4.flip,
+        m.rmse / uniform4.rmse,
+        m.seconds / (time_share * uniform4.seconds),
+    ])
+}
+
+/// The largest of `ratios`, NaN if one is NaN (f64::max would drop it).
+fn worst_of(ratios: impl IntoIterator<Item = f64>) -> f64 {
+    ratios.into_iter().fold(f64::NEG_INFINITY, |worst, r| {
+        if worst.is_nan() || r.is_nan() {
+            f64::NAN
+        } else {
+            worst.max(r)
+        }
+    })
+}
+
 /// The default rule: of `candidates` (a setting's name and its measurement on each
-/// scene), among those whose FLIP mean is at most `flip_bound` on every scene, the ones
-/// whose total seconds are within a factor 1 + `time_tie` of the least count as equally
-/// fast (one run cannot tell them apart), and of those the one with the least summed FLIP
-/// mean wins. Returns its index.
+/// scene, in the order of `uniform4`, uniform 4×4's measurements), the one whose worst
+/// scene is nearest the target — the least largest [`target_ratio`] over the scenes —
+/// with that ratio. A setting that meets the target on every scene has a worst ratio of
+/// at most 1, and of several such settings the one with the most margin wins.
 pub fn choose_default(
     candidates: &[(String, Vec<Measured>)],
-    flip_bound: f64,
-    time_tie: f64,
-) -> Option<usize> {
-    let within: Vec<(usize, f64, f64)> = candidates
+    uniform4: &[Measured],
+    time_share: f64,
+) -> Option<(usize, f64)> {
+    candidates
         .iter()
         .enumerate()
-        .filter(|(_, (_, per_scene))| per_scene.iter().all(|m| m.flip <= flip_bound))
         .map(|(k, (_, per_scene))| {
-            let seconds = per_scene.iter().map(|m| m.seconds).sum::<f64>();
-            let flip = per_scene.iter().map(|m| m.flip).sum::<f64>();
-            (k, seconds, flip)
+            let worst = worst_of(
+                per_scene
+                    .iter()
+                    .zip(uniform4)
+                    .map(|(m, u)| target_ratio(m, u, time_share)),
+            );
+            (k, worst)
         })
-        .collect();
-    let fastest = within.iter().map(|w| w.1).min_by(f64::total_cmp)?;
-    within
-        .iter()
-        .filter(|w| w.1 <= fastest * (1.0 + time_tie))
-        .min_by(|a, b| a.2.total_cmp(&b.2))
-        .map(|w| w.0)
+        .filter(|(_, worst)| !worst.is_nan())
+        .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
 #[cfg(test)]
@@ -114,41 +136,39 @@ mod tests {
     }
 
     #[test]
-    fn default_is_the_cheapest_within_the_bound_everywhere() {
-        let c = |name: &str, per_scene: &[(f64, f64)]| {
-            (
-                name.to_string(),
-                per_scene
-                    .iter()
-                    .map(|&(seconds, flip)| m(name, seconds, 0.0, flip))
-                    .collect::<Vec<_>>(),
-            )
-        };
-        let all = [
-            c("slow", &[(3.0, 0.01), (3.0, 0.01)]),
-            c("cheap-but-misses-one", &[(0.5, 0.01), (0.5, 0.03)]),
-            c("chosen", &[(1.0, 0.02), (1.5, 0.015)]),
-            c("tied-but-worse", &[(1.1, 0.02), (1.5, 0.019)]),
-        ];
-        assert_eq!(choose_default(&all, 0.02, 0.0), Some(2));
-        assert_eq!(choose_default(&all, 0.02, 0.1), Some(2));
-        assert_eq!(choose_default(&all, 0.01, 0.1), Some(0));
-        assert_eq!(choose_default(&all, 0.001, 0.1), None);
+    fn the_target_ratio_is_the_worst_of_both_errors_and_the_time() {
+        let u4 = m("4x4", 10.0, 0.004, 0.02);
+        assert_eq!(target_ratio(&m("a", 5.0, 0.004, 0.02), &u4, 0.5), 1.0);
+        assert_eq!(target_ratio(&m("b", 6.0, 0.002, 0.01), &u4, 0.5), 1.2);
+        assert_eq!(target_ratio(&m("c", 1.0, 0.006, 0.01), &u4, 0.5), 1.5);
+        assert_eq!(target_ratio(&m("d", 1.0, 0.002, 0.03), &u4, 0.5), 1.5);
     }
 
     #[test]
-    fn of_settings_tied_in_time_the_default_is_the_most_accurate() {
-        let c = |name: &str, seconds: f64, flip: f64| {
-            (name.to_string(), vec![m(name, seconds, 0.0, flip)])
+    fn default_is_the_setting_whose_worst_scene_is_nearest_the_target() {
+        let u4 = [m("4x4", 10.0, 0.004, 0.02), m("4x4", 20.0, 0.002, 0.01)];
+        let c = |name: &str, per_scene: [(f64, f64, f64); 2]| {
+            let ms = per_scene.map(|(seconds, rmse, flip)| m(name, seconds, rmse, flip));
+            (name.to_string(), ms.to_vec())
         };
         let all = [
-            c("fastest", 1.0, 0.019),
-            c("within-the-tie", 1.09, 0.012),
-            c("beyond-it", 1.2, 0.005),
+            // Meets the target on the first scene with room to spare, misses the second's
+            // FLIP by 30%.
+            c("lopsided", [(2.0, 0.001, 0.005), (5.0, 0.001, 0.013)]),
+            // Misses only the second scene's time, by 10%.
+            c("chosen", [(4.0, 0.003, 0.015), (11.0, 0.0015, 0.009)]),
+            // Meets the first scene exactly, misses the second's RMSE by 20%.
+            c("close", [(5.0, 0.004, 0.02), (9.0, 0.0024, 0.01)]),
+            c("not-measured", [(f64::NAN, 0.0, 0.0), (1.0, 0.0, 0.0)]),
         ];
-        assert_eq!(choose_default(&all, 0.02, 0.1), Some(1));
-        assert_eq!(choose_default(&all, 0.02, 0.0), Some(0));
-        assert_eq!(choose_default(&all, 0.02, 0.25), Some(2));
+        let (k, worst) = choose_default(&all, &u4, 0.5).unwrap();
+        assert_eq!(all[k].0, "chosen");
+        assert!((worst - 1.1).abs() < 1e-12);
+        // With a fifth of 4×4's time allowed, the cheap, lopsided setting comes nearest.
+        let (k, worst) = choose_default(&all, &u4, 0.2).unwrap();
+        assert_eq!(all[k].0, "lopsided");
+        assert!((worst - 1.3).abs() < 1e-12);
+        assert_eq!(choose_default(&[], &u4, 0.5), None);
     }
 
     #[test]

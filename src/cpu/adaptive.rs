@@ -28,11 +28,10 @@
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
 
 use super::pixel_sample::{
-    add_sample_hint, contrast, lattice_sample, pixel_contrast, quincunx_mean, SampleHint,
-    SquareHints,
+    add_sample_hint, lattice_sample, quincunx_mean, square_contrast_of, SampleHint, SquareHints,
 };
 use super::traverse::TraversalCounters;
-use crate::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH, NO_ITEM};
+use crate::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH, AA_SPLIT_POINTS, NO_ITEM};
 use crate::pack::PackedScene;
 pub use crate::tiling::{split_offset, AdaptiveTile};
 use glam::Vec3;
@@ -139,20 +138,20 @@ fn trace_lattice_point(
     lat.hints[k] = hint;
 }
 
-/// Lattice point of the centre of pixel (a, b) (when
-/// [`AdaptiveTile::pixels_have_centres`]).
-// Mirror of shaders/adaptive.wgsl::pixel_centre — change both.
-fn pixel_centre(tile: &AdaptiveTile, a: u32, b: u32) -> (u32, u32) {
-    let s = tile.scale();
-    (a * s + s / 2, b * s + s / 2)
+/// Lattice point of the centre of square (a, b) of `level` (when [`square_has_centre`]).
+// Mirror of shaders/adaptive.wgsl::square_centre — change both.
+fn square_centre(tile: &AdaptiveTile, level: u32, a: u32, b: u32) -> (u32, u32) {
+    let l = tile.scale() >> level;
+    (a * l + l / 2, b * l + l / 2)
 }
 
-/// Whether square (a, b) of `level` has a traced centre of its own: a pixel (level 0)
-/// where [`AdaptiveTile::pixels_have_centres`]. Its decision and, unsplit, its colour use
-/// it; squares below a pixel have corners only.
+/// Whether the squares of `level` have a traced centre of its own: every level above
+/// aa_depth (a square of the deepest level, one lattice step wide, has corners only). Its
+/// decision and, unsplit, its colour use it: the quincunx of corners and centre samples
+/// rows half the square apart, where the corners alone sample them a whole square apart.
 // Mirror of shaders/adaptive.wgsl::square_has_centre — change both.
 fn square_has_centre(tile: &AdaptiveTile, level: u32) -> bool {
-    level == 0 && tile.pixels_have_centres()
+    level < tile.depth
 }
 
 /// Invocation `idx` of the corner pass ([`AdaptiveTile::first_pass_len`] of them): traces
@@ -172,7 +171,7 @@ fn adaptive_corners(
         ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s)
     } else {
         let pixel = idx - corners;
-        pixel_centre(&t, pixel % t.size[0], pixel / t.size[0])
+        square_centre(&t, 0, pixel % t.size[0], pixel / t.size[0])
     };
     trace_lattice_point(scene, lat, i, j, counters);
 }
@@ -191,8 +190,9 @@ fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
     ]
 }
 
-/// The hints of square (a, b) of `level`: whether one of its corners (or, at level 0,
-/// the pixel's centre) saw fine detail, and whether their camera rays hit different items.
+/// The hints of square (a, b) of `level` (< aa_depth: a square that decides has a centre):
+/// whether one of its corners or its centre saw fine detail, and whether their camera rays
+/// hit different items.
 // Mirror of shaders/adaptive.wgsl::square_hints — change both.
 fn square_hints(lat: &Lattice, level: u32, a: u32, b: u32) -> SquareHints {
     let l = lat.tile.scale() >> level;
@@ -205,23 +205,17 @@ fn square_hints(lat: &Lattice, level: u32, a: u32, b: u32) -> SquareHints {
     hints = add_sample_hint(hints, first, lat.point_hint(i + l, j));
     hints = add_sample_hint(hints, first, lat.point_hint(i, j + l));
     hints = add_sample_hint(hints, first, lat.point_hint(i + l, j + l));
-    if square_has_centre(&lat.tile, level) {
-        let (ci, cj) = pixel_centre(&lat.tile, a, b);
-        hints = add_sample_hint(hints, first, lat.point_hint(ci, cj));
-    }
-    hints
+    let (ci, cj) = square_centre(&lat.tile, level, a, b);
+    add_sample_hint(hints, first, lat.point_hint(ci, cj))
 }
 
-/// The contrast the split decision of square (a, b) of `level` weighs: of its corners
-/// ([`contrast`]), or at level 0 of the pixel's corners and centre ([`pixel_contrast`]).
+/// The contrast the split decision of square (a, b) of `level` (< aa_depth) weighs: of
+/// its corners and centre ([`square_contrast_of`]).
 // Mirror of shaders/adaptive.wgsl::square_contrast — change both.
 fn square_contrast(lat: &Lattice, level: u32, a: u32, b: u32) -> f32 {
     let corners = square_corners(lat, level, a, b);
-    if square_has_centre(&lat.tile, level) {
-        let (ci, cj) = pixel_centre(&lat.tile, a, b);
-        return pixel_contrast(&corners, lat.point(ci, cj));
-    }
-    contrast(&corners)
+    let (ci, cj) = square_centre(&lat.tile, level, a, b);
+    square_contrast_of(&corners, lat.point(ci, cj))
 }
 
 /// Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
@@ -273,10 +267,13 @@ fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
     }
 }
 
-/// Invocation `idx` of the midpoint pass of `level`: midpoint idx mod 5 (top, left,
-/// centre, right, bottom) of entry idx div 5 of level's split list. A top (left)
+/// Invocation `idx` of the midpoint pass of `level`: point idx mod AA_SPLIT_POINTS of
+/// entry idx div AA_SPLIT_POINTS of level's split list — its top, left, right and bottom
+/// edge midpoints, then the centres of its top-left, top-right, bottom-left and
+/// bottom-right children where those have centres ([`square_has_centre`]). (Its own
+/// centre, the children's shared corner, was traced with its corners.) A top (left)
 /// midpoint is the bottom (right) one of the square above (to the left); when that one
-/// is split too, it traces the point. A pixel's centre was traced by the corner pass.
+/// is split too, it traces the point.
 // Mirror of shaders/adaptive.wgsl::adaptive_midpoints — change both.
 fn adaptive_midpoints(
     scene: &PackedScene,
@@ -286,17 +283,26 @@ fn adaptive_midpoints(
     counters: &mut impl TraversalCounters,
 ) {
     let t = lat.tile;
-    let m = idx % 5;
-    let (a, b) = lat.split_square(level, idx / 5);
-    if (m == 2 && square_has_centre(&t, level))
-        || (m == 0 && b > 0 && lat.is_split(level, a, b - 1))
+    let m = idx % AA_SPLIT_POINTS;
+    let (a, b) = lat.split_square(level, idx / AA_SPLIT_POINTS);
+    if (m == 0 && b > 0 && lat.is_split(level, a, b - 1))
         || (m == 1 && a > 0 && lat.is_split(level, a - 1, b))
+        || (m >= 4 && !square_has_centre(&t, level + 1))
     {
         return;
     }
     let l = t.scale() >> level;
-    let h = l / 2;
-    let offsets = [(h, 0), (0, h), (h, h), (l, h), (h, l)];
+    let (h, q) = (l / 2, l / 4);
+    let offsets = [
+        (h, 0),
+        (0, h),
+        (l, h),
+        (h, l),
+        (q, q),
+        (h + q, q),
+        (q, h + q),
+        (h + q, h + q),
+    ];
     let (i, j) = (a * l + offsets[m as usize].0, b * l + offsets[m as usize].1);
     trace_lattice_point(scene, lat, i, j, counters);
 }
@@ -304,9 +310,9 @@ fn adaptive_midpoints(
 /// Colour of tile pixel (tx, ty) and its number of leaf squares: the area-weighted mean
 /// over its quadtree, walked depth first without a stack (a split square's children
 /// bottom-right, bottom-left, top-right, top-left: [`next_square`]), which is the order
-/// in which the per-pixel walk pops them, so the sum runs in that walk's order; a leaf is
-/// the mean of its corners, an unsplit pixel with a centre their [`quincunx_mean`] with
-/// it. (Stackless because the GPU twin's private stack, indexed at run time, cost
+/// in which the per-pixel walk pops them, so the sum runs in that walk's order; a leaf
+/// with a centre is the [`quincunx_mean`] of its corners and centre, one of the deepest
+/// level the mean of its corners, each weighted by its area. (Stackless because the GPU twin's private stack, indexed at run time, cost
 /// llvmpipe per-lane scatters and gathers: docs/gpu.md.)
 // Mirror of shaders/adaptive.wgsl::adaptive_integrate — change both.
 fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
@@ -323,12 +329,12 @@ fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
         }
         let c = square_corners(lat, level, a, b);
         leaves += 1;
+        let side = 1.0 / (1u32 << level) as f32;
+        let area = side * side;
         if square_has_centre(&t, level) {
-            let (ci, cj) = pixel_centre(&t, a, b);
-            sum += quincunx_mean(&c, lat.point(ci, cj));
+            let (ci, cj) = square_centre(&t, level, a, b);
+            sum += quincunx_mean(&c, lat.point(ci, cj)) * area;
         } else {
-            let side = 1.0 / (1u32 << level) as f32;
-            let area = side * side;
             sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
         }
         sq = next_square(level, a, b);
@@ -378,7 +384,7 @@ pub fn adaptive_tile(
         for idx in 0..squares {
             adaptive_decide(lat, level, idx, threshold);
         }
-        for idx in 0..5 * lat.work_counts[level as usize] {
+        for idx in 0..AA_SPLIT_POINTS * lat.work_counts[level as usize] {
             adaptive_midpoints(scene, lat, level, idx, counters);
         }
     }
@@ -511,11 +517,11 @@ mod tests {
                 continue;
             }
             let c = super::square_corners(lat, level, a, b);
+            let side = 1.0 / (1u32 << level) as f32;
             if super::square_has_centre(&t, level) {
-                let (ci, cj) = super::pixel_centre(&t, a, b);
-                sum += super::quincunx_mean(&c, lat.point(ci, cj));
+                let (ci, cj) = super::square_centre(&t, level, a, b);
+                sum += super::quincunx_mean(&c, lat.point(ci, cj)) * (side * side);
             } else {
-                let side = 1.0 / (1u32 << level) as f32;
                 sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * side * side);
             }
             order.push([level, a, b]);

@@ -167,25 +167,18 @@ pub(crate) fn lattice_sample(
     hinted_sample(scene, fx + jx, fy + jy, seed, counters)
 }
 
-/// Largest per-channel spread of four colours.
-// Mirror of shaders/render.wgsl::contrast — change both.
-pub(crate) fn contrast(c: &[Vec3; 4]) -> f32 {
-    let lo = c[0].min(c[1]).min(c[2]).min(c[3]);
-    let hi = c[0].max(c[1]).max(c[2]).max(c[3]);
-    (hi - lo).max_element()
-}
-
-/// Largest per-channel spread of a pixel's four corner samples and its centre sample: the
-/// level-0 decision of adaptive AA, which so sees detail between the corners too.
-// Mirror of shaders/render.wgsl::pixel_contrast — change both.
-pub(crate) fn pixel_contrast(corners: &[Vec3; 4], centre: Vec3) -> f32 {
+/// Largest per-channel spread of a square's four corner samples and its centre sample:
+/// what the split decision of adaptive AA weighs, which so sees detail between the
+/// corners too.
+// Mirror of shaders/render.wgsl::square_contrast_of — change both.
+pub(crate) fn square_contrast_of(corners: &[Vec3; 4], centre: Vec3) -> f32 {
     let c = corners;
     let lo = c[0].min(c[1]).min(c[2]).min(c[3]).min(centre);
     let hi = c[0].max(c[1]).max(c[2]).max(c[3]).max(centre);
     (hi - lo).max_element()
 }
 
-/// Colour of a pixel that adaptive AA did not split, from its corner samples and its
+/// Colour of a square that adaptive AA did not split, from its corner samples and its
 /// centre sample: the centre weighs AA_CENTRE_WEIGHT, the corners share the rest.
 // Mirror of shaders/render.wgsl::quincunx_mean — change both.
 pub(crate) fn quincunx_mean(corners: &[Vec3; 4], centre: Vec3) -> Vec3 {

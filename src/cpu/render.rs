@@ -5,7 +5,7 @@
 
 use super::adaptive::{adaptive_tile, square_splits, Lattice};
 use super::pixel_sample::{
-    contrast, lattice_sample, pixel_contrast, quincunx_mean, sample, square_hints_of, SampleHint,
+    lattice_sample, quincunx_mean, sample, square_contrast_of, square_hints_of, SampleHint,
 };
 use super::rng::{random_unit, SampleSeed};
 use super::traverse::{Counters, NoCounters, TraversalCounters};
@@ -21,8 +21,9 @@ use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// A square of the adaptive subdivision: top-left corner, side, depth, and the colours
-/// at its four corners (top-left, top-right, bottom-left, bottom-right) and their hints.
+/// A square of the adaptive subdivision: top-left corner, side, depth, the colours at its
+/// four corners (top-left, top-right, bottom-left, bottom-right) and their hints, and
+/// (above the deepest level) its centre's colour and hint.
 #[derive(Clone, Copy)]
 struct AdaptiveSquare {
     x: f32,
@@ -31,17 +32,20 @@ struct AdaptiveSquare {
     depth: u32,
     corners: [Vec3; 4],
     hints: [SampleHint; 4],
+    centre: Vec3,
+    centre_hint: SampleHint,
 }
 
-/// Adaptive anti-aliasing of pixel (x, y) (Whitted 1980): sample the corners and (at
-/// `aa_depth` ≥ 1) the centre; where they differ by more than `aa_threshold`, or their
+/// Adaptive anti-aliasing of pixel (x, y) (after Whitted 1980): sample the corners and
+/// (at `aa_depth` ≥ 1) the centre; where they differ by more than `aa_threshold`, or their
 /// hints call for it ([`square_splits`]: a penumbra, or different items hit), split into
-/// four and recurse — here with an explicit stack — down to `aa_depth`; a pixel that does
-/// not split is the [`quincunx_mean`] of its corners and centre. Sample positions lie on a
-/// dyadic lattice, each jittered by its own hash ([`lattice_sample`]), so neighbouring
-/// pixels see the same colour at a shared corner. The renderers run the same walk per
-/// tile in passes ([`super::adaptive`], on both tracers); this is its per-pixel
-/// reference.
+/// four and recurse — here with an explicit stack — down to `aa_depth`, each square above
+/// the deepest level with a centre sample of its own; a square that does not split is
+/// the [`quincunx_mean`] of its corners and centre (the mean of its corners at the
+/// deepest level), weighted by its area. Sample positions lie on a dyadic lattice, each
+/// jittered by its own hash ([`lattice_sample`]), so neighbouring squares see the same
+/// colour at a shared corner. The renderers run the same walk per tile in passes
+/// ([`super::adaptive`], on both tracers); this is its per-pixel reference.
 pub fn adaptive_pixel(
     scene: &PackedScene,
     x: u32,
@@ -51,37 +55,31 @@ pub fn adaptive_pixel(
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let (fx, fy) = (x as f32, y as f32);
-    // Corner k is (k & 1, k >> 1). (One `sample` call site per loop: the GPU compiler
-    // inlines every call, and the shader's size and compile time grow with the sites.)
-    let mut corners = [Vec3::ZERO; 4];
-    let mut hints = [SampleHint {
-        fine_detail: false,
-        item: 0,
-    }; 4];
-    for (k, (corner, hint)) in corners.iter_mut().zip(&mut hints).enumerate() {
-        let (cx, cy) = (fx + (k & 1) as f32, fy + (k >> 1) as f32);
-        (*corner, *hint) = lattice_sample(scene, cx, cy, counters);
-    }
-    // The centre, when the lattice has one: it decides with the corners, and is the
-    // first split's centre midpoint.
-    let mut pixel_centre = None;
-    if max_depth > 0 {
-        let (centre, centre_hint) = lattice_sample(scene, fx + 0.5, fy + 0.5, counters);
-        let pixel_hints = square_hints_of(&[hints[0], hints[1], hints[2], hints[3], centre_hint]);
-        let spread = pixel_contrast(&corners, centre);
-        if !square_splits(spread, pixel_hints, 0, threshold) {
-            return quincunx_mean(&corners, centre);
-        }
-        pixel_centre = Some((centre, centre_hint));
-    }
-    let mut stack = [AdaptiveSquare {
+    let mut pixel = AdaptiveSquare {
         x: fx,
         y: fy,
         size: 1.0,
         depth: 0,
-        corners,
-        hints,
-    }; AA_STACK_SIZE as usize];
+        corners: [Vec3::ZERO; 4],
+        hints: [SampleHint {
+            fine_detail: false,
+            item: 0,
+        }; 4],
+        centre: Vec3::ZERO,
+        centre_hint: SampleHint {
+            fine_detail: false,
+            item: 0,
+        },
+    };
+    // Corner k is (k & 1, k >> 1).
+    for k in 0..4 {
+        let (cx, cy) = (fx + (k & 1) as f32, fy + (k >> 1) as f32);
+        (pixel.corners[k], pixel.hints[k]) = lattice_sample(scene, cx, cy, counters);
+    }
+    if max_depth > 0 {
+        (pixel.centre, pixel.centre_hint) = lattice_sample(scene, fx + 0.5, fy + 0.5, counters);
+    }
+    let mut stack = [pixel; AA_STACK_SIZE as usize];
     let mut size = 1;
     let mut sum = Vec3::ZERO;
     while size > 0 {
@@ -89,31 +87,32 @@ pub fn adaptive_pixel(
         let sq = stack[size];
         // Weight of this square in the pixel: its area.
         let area = sq.size * sq.size;
-        // (The pixel itself, at depth 0, split above when it has a centre.)
-        let splits = (sq.depth == 0 && max_depth > 0)
-            || square_splits(
-                contrast(&sq.corners),
-                square_hints_of(&sq.hints),
-                sq.depth,
-                threshold,
-            );
-        if sq.depth >= max_depth || !splits {
+        if sq.depth >= max_depth {
             sum += (sq.corners[0] + sq.corners[1] + sq.corners[2] + sq.corners[3]) * (0.25 * area);
             continue;
         }
-        let h = sq.size * 0.5;
-        // Top, left, centre, right and bottom midpoints.
-        let offsets = [(h, 0.0), (0.0, h), (h, h), (sq.size, h), (h, sq.size)];
-        let mut mid = [Vec3::ZERO; 5];
-        let mut mid_hints = [hints[0]; 5];
-        for (m, (ox, oy)) in offsets.into_iter().enumerate() {
-            let (px, py) = (sq.x + ox, sq.y + oy);
-            (mid[m], mid_hints[m]) = match pixel_centre {
-                Some(traced) if sq.depth == 0 && m == 2 => traced,
-                _ => lattice_sample(scene, px, py, counters),
-            };
+        let [h0, h1, h2, h3] = sq.hints;
+        let hints = square_hints_of(&[h0, h1, h2, h3, sq.centre_hint]);
+        let spread = square_contrast_of(&sq.corners, sq.centre);
+        if !square_splits(spread, hints, sq.depth, threshold) {
+            sum += quincunx_mean(&sq.corners, sq.centre) * area;
+            continue;
         }
-        for child in square_children(&sq, &mid, &mid_hints) {
+        let h = sq.size * 0.5;
+        // Top, left, centre, right and bottom midpoints (the centre traced already).
+        let offsets = [(h, 0.0), (0.0, h), (h, h), (sq.size, h), (h, sq.size)];
+        let mut mid = [sq.centre; 5];
+        let mut mid_hints = [sq.centre_hint; 5];
+        for m in [0, 1, 3, 4] {
+            let (px, py) = (sq.x + offsets[m].0, sq.y + offsets[m].1);
+            (mid[m], mid_hints[m]) = lattice_sample(scene, px, py, counters);
+        }
+        for mut child in square_children(&sq, &mid, &mid_hints) {
+            if child.depth < max_depth {
+                let q = child.size * 0.5;
+                (child.centre, child.centre_hint) =
+                    lattice_sample(scene, child.x + q, child.y + q, counters);
+            }
             stack[size] = child;
             size += 1;
         }
@@ -140,6 +139,8 @@ fn square_children(
         depth: sq.depth + 1,
         corners,
         hints,
+        centre: Vec3::ZERO,
+        centre_hint: p_centre,
     };
     [
         child(

@@ -24,8 +24,9 @@ pub fn random_unit(pixel: u32, sample: u32, dimension: u32) -> f32 {
 
 /// Which camera sample a shading point belongs to, for the random numbers drawn there:
 /// the pixel (or, under adaptive AA, a lattice coordinate), the camera sample's index,
-/// the bounce depth of the ray being shaded, and whether the sample is an adaptive-AA
-/// pixel centre, whose shadow jitter mirrors its pixel's corners' ([`shadow_random`]).
+/// the bounce depth of the ray being shaded, and whether the sample is the centre of an
+/// adaptive-AA square (a pixel or a smaller one), whose shadow jitter mirrors its
+/// square's corners' ([`shadow_random`]).
 // Mirror of shaders/rng.wgsl::SampleSeed — change both.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SampleSeed {
@@ -38,17 +39,20 @@ pub struct SampleSeed {
 /// The seed of the adaptive-AA sample at film position (fx, fy): its coordinates on the
 /// finest lattice (2^MAX_AA_DEPTH steps per pixel; exact, as every lattice position is a
 /// dyadic fraction of at most MAX_AA_DEPTH bits), so a point shared by neighbouring pixels
-/// or tiles draws the same numbers whichever pass traces it. A point halfway between
-/// pixel corners on both axes is a pixel's centre.
+/// or tiles draws the same numbers whichever pass traces it. A point whose two
+/// coordinates are odd multiples of the same power of two 2^t below a pixel (t <
+/// MAX_AA_DEPTH) is the centre of a square 2^(t+1) steps wide: a pixel's at t =
+/// MAX_AA_DEPTH − 1, else a smaller square's.
 // Mirror of shaders/rng.wgsl::adaptive_seed — change both.
 pub fn adaptive_seed(fx: f32, fy: f32) -> SampleSeed {
     let steps = 1u32 << MAX_AA_DEPTH;
     let (pixel, sample) = ((fx * steps as f32) as u32, (fy * steps as f32) as u32);
+    let t = pixel.trailing_zeros();
     SampleSeed {
         pixel,
         sample,
         depth: 0,
-        mirrors_corners: pixel % steps == steps / 2 && sample % steps == steps / 2,
+        mirrors_corners: t == sample.trailing_zeros() && t < MAX_AA_DEPTH,
     }
 }
 
@@ -58,22 +62,24 @@ pub fn adaptive_seed(fx: f32, fy: f32) -> SampleSeed {
 #[derive(Clone, Copy, Debug)]
 pub struct ShadowStream {
     /// The seed's sample index hashed with the light and depth; for a mirrored stream,
-    /// those of the pixel's top and bottom corners.
+    /// those of its square's top and bottom corners.
     rows: [u32; 2],
-    /// The seed's pixel coordinate; for a mirrored stream, the left and right corners'.
+    /// The seed's pixel coordinate; for a mirrored stream, its square's left and right
+    /// corners'.
     columns: [u32; 2],
     mirrored: bool,
 }
 
 /// Light `light`'s shadow-jitter streams at `seed`. They are drawn independently for
-/// every seed but one kind: at the first hit of an adaptive-AA pixel centre
-/// (`mirrors_corners`) the jitters are its pixel's four corners' mirrored through each
-/// stratum's centre ([`shadow_random`]).
+/// every seed but one kind: at the first hit of an adaptive-AA square's centre
+/// (`mirrors_corners`) the jitters are its square's four corners' mirrored through each
+/// stratum's centre ([`shadow_random`]); the corners are half the square's side away, as
+/// many finest-lattice steps as the lowest set bit of the centre's coordinates.
 // Mirror of shaders/rng.wgsl::shadow_stream — change both.
 pub fn shadow_stream(seed: SampleSeed, light: u32) -> ShadowStream {
     let light_hash = pcg_hash(light ^ pcg_hash(seed.depth));
     if seed.mirrors_corners && seed.depth == 0 {
-        let half = 1u32 << (MAX_AA_DEPTH - 1);
+        let half = 1u32 << seed.pixel.trailing_zeros();
         ShadowStream {
             rows: [
                 pcg_hash((seed.sample - half) ^ light_hash),
@@ -95,7 +101,7 @@ pub fn shadow_stream(seed: SampleSeed, light: u32) -> ShadowStream {
 /// Jitter (`axis` 0 or 1) of stratum `stratum` of a light's shadow samples from its
 /// `stream`: `random_unit`'s hash chain, the sample index hashed with light and depth.
 /// A mirrored stream's jitter is 2^24 − 1 minus the mean of its four corners' 24-bit
-/// jitters (integers: exact on both tracers), 1 − their mean. Why: an unsplit pixel is
+/// jitters (integers: exact on both tracers), 1 − their mean. Why: an unsplit square is
 /// the quincunx mean (centre 1/2, corners 1/8 each), so where a light's contribution
 /// varies linearly across a stratum the centre's jitter cancels the corners' error
 /// exactly; with independent jitters that noise set adaptive AA's error over evenly lit
@@ -116,4 +122,49 @@ pub fn shadow_random(stream: &ShadowStream, stratum: u32, axis: u32) -> f32 {
         pcg_hash(left ^ top) >> 8
     };
     bits as f32 * RANDOM_UNIT_SCALE
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The 24-bit jitter of `seed`'s stratum `stratum`, axis `axis`, for light 2.
+    fn jitter_bits(seed: SampleSeed, stratum: u32, axis: u32) -> u32 {
+        (shadow_random(&shadow_stream(seed, 2), stratum, axis) / RANDOM_UNIT_SCALE) as u32
+    }
+
+    /// The centre of an adaptive square of every level (not only a pixel's) mirrors the
+    /// shadow jitter of that square's four corners: 2^24 − 1 minus the mean of the
+    /// jitters their own streams draw. Its edge midpoints draw their own.
+    #[test]
+    fn square_centres_mirror_their_own_squares_corners() {
+        for level in 0..MAX_AA_DEPTH {
+            let side = 1.0 / (1u32 << level) as f32;
+            let (x0, y0) = (3.0 + 2.0 * side, 5.0 + 3.0 * side);
+            let centre = adaptive_seed(x0 + side / 2.0, y0 + side / 2.0);
+            assert!(centre.mirrors_corners, "level {level}");
+            for (mx, my) in [(0.5, 0.0), (0.0, 0.5), (1.0, 0.5), (0.5, 1.0)] {
+                let midpoint = adaptive_seed(x0 + mx * side, y0 + my * side);
+                assert!(!midpoint.mirrors_corners, "level {level} ({mx}, {my})");
+            }
+            let corners =
+                [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)].map(|(cx, cy)| SampleSeed {
+                    mirrors_corners: false,
+                    ..adaptive_seed(x0 + cx * side, y0 + cy * side)
+                });
+            for stratum in 0..4 {
+                for axis in 0..2 {
+                    let sum: u32 = corners.iter().map(|&c| jitter_bits(c, stratum, axis)).sum();
+                    assert_eq!(
+                        jitter_bits(centre, stratum, axis),
+                        0x00ff_ffff - sum / 4,
+                        "level {level}, stratum {stratum}, axis {axis}"
+                    );
+                }
+            }
+        }
+        // Pixel corners are no square's centre.
+        assert!(!adaptive_seed(7.0, 9.0).mirrors_corners);
+        assert!(!adaptive_seed(0.0, 0.0).mirrors_corners);
+    }
 }

@@ -113,7 +113,9 @@ impl Default for RenderOptions {
         RenderOptions {
             aa: AaMode::Adaptive,
             samples: AaSamples::constant(4),
-            aa_threshold: 0.1,
+            // The sampling defaults are chosen by `glint bench --sweep`'s stated rule
+            // (docs/performance.md, "A centre in every square").
+            aa_threshold: 0.2,
             aa_depth: AaDepth::constant(3),
             shadow_samples: None,
             max_depth: TraceDepth::constant(8),

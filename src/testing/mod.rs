@@ -5,6 +5,8 @@
 //! - [`probe`]: tier-3 kernel probes, the same rays traced by the GPU's and the CPU's
 //!   `closest_hit` + `surface_at`, compared ray by ray.
 //! - [`csg_interval_ends`]: one CSG object's inside intervals along a line.
+//! - [`adaptive_lattice_sample`]: one sample of adaptive AA's lattice and its fine-detail
+//!   hint.
 //! - [`scratch`]: test folders under the temp dir that remove themselves.
 //!
 //! (The GPU's test hook, the loop limiter's sentinel, is a hidden field of
@@ -25,4 +27,14 @@ pub fn csg_interval_ends(scene: &PackedScene, item: u32, o: Vec3, d: Vec3) -> Ve
     (0..stack.list_count[0] as usize)
         .map(|k| (stack.t[k], stack.tag[k]))
         .collect()
+}
+
+/// Adaptive anti-aliasing's sample at lattice position (fx, fy) of `scene` (jittered as
+/// the passes jitter it): its colour and whether it saw fine detail (a penumbra, or
+/// texture detail at the pixel's scale), the hint that splits its squares down to
+/// AA_FINE_DETAIL_DEPTH whatever their contrast.
+pub fn adaptive_lattice_sample(scene: &PackedScene, fx: f32, fy: f32) -> (Vec3, bool) {
+    let mut counters = crate::cpu::traverse::NoCounters;
+    let (colour, hint) = crate::cpu::pixel_sample::lattice_sample(scene, fx, fy, &mut counters);
+    (colour, hint.fine_detail)
 }
