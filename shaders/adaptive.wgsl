@@ -4,12 +4,12 @@
 // jittered by a hash of its position: lattice_sample), one sample per invocation:
 // adaptive_corners traces the pixel corners and, at d ≥ 1, the pixel centres (w of each
 // sample: its hint, whether it saw fine detail and which item it hit); for each level
-// k < d, adaptive_decide flags the level-k squares to split (square_splits; a pixel
-// weighs its centre too) and appends them to level k's list, adaptive_work_args turns
-// the list's length into the indirect dispatches of the passes over it, and
-// adaptive_midpoints traces the listed squares' midpoints; then adaptive_integrate
-// averages each pixel over its quadtree (an unsplit pixel: quincunx_mean of its corners
-// and centre). Below level 0 the passes run over the compacted lists only (indirect
+// k < d, adaptive_decide flags the level-k squares to split (square_splits, over each
+// square's corners and centre) and appends them to level k's list, adaptive_work_args
+// turns the list's length into the indirect dispatches of the passes over it, and
+// adaptive_midpoints traces the listed squares' edge midpoints and their children's
+// centres; then adaptive_integrate averages each pixel over its quadtree (an unsplit
+// square above level d: quincunx_mean of its corners and centre, weighted by its area). Below level 0 the passes run over the compacted lists only (indirect
 // dispatches), so idle invocations do not grow with depth.
 // The decisions, samples and summation order are those of the per-pixel walk,
 // src/cpu/render.rs::adaptive_pixel.

@@ -10,19 +10,20 @@
 //! 1. [`adaptive_corners`]: trace every pixel corner and, at d ≥ 1, every pixel centre;
 //! 2. for k in 0..d: [`adaptive_decide`] flags each level-k square that exists (every
 //!    pixel at k = 0, else the four children of each square split at k − 1, taken from
-//!    the compacted list of those) and whose samples (corners; a pixel's centre too)
-//!    differ by more than the threshold or, above level AA_FINE_DETAIL_DEPTH, one of which
+//!    the compacted list of those) and whose samples (corners and centre) differ by
+//!    more than the threshold or, above level AA_FINE_DETAIL_DEPTH, one of which
 //!    saw fine detail (a penumbra, or texture detail at the pixel's scale) or, above
 //!    AA_ITEM_EDGE_DEPTH, whose camera rays hit different items (or a mirror that shows
 //!    different items; each lattice sample keeps that hint with its colour), appending it
-//!    to level k's list of split squares; then [`adaptive_midpoints`] traces the five
-//!    midpoints of each square on that list (a midpoint shared with a split neighbour is
-//!    traced by one of the two only; a pixel's centre is traced already). Work is over
-//!    the lists, so idle
+//!    to level k's list of split squares; then [`adaptive_midpoints`] traces the four
+//!    edge midpoints of each square on that list (one shared with a split neighbour is
+//!    traced by one of the two only) and, below level d − 1, its four children's
+//!    centres (its own centre was traced before). Work is over the lists, so idle
 //!    invocations do not grow with depth; the lists' order (on the GPU, that of atomic
 //!    appends) changes nothing: every sample and flag has its own slot;
-//! 3. [`adaptive_integrate`]: each pixel walks its quadtree with the per-pixel stack; an
-//!    unsplit pixel is the quincunx mean of its corners and centre.
+//! 3. [`adaptive_integrate`]: each pixel walks its quadtree in the per-pixel walk's order;
+//!    an unsplit square above level d is the quincunx mean of its corners and centre, one
+//!    of level d the mean of its corners, each weighted by its area.
 //!
 //! Every function here has a WGSL twin of the same name in `shaders/adaptive.wgsl`, where
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
@@ -145,7 +146,7 @@ fn square_centre(tile: &AdaptiveTile, level: u32, a: u32, b: u32) -> (u32, u32) 
     (a * l + l / 2, b * l + l / 2)
 }
 
-/// Whether the squares of `level` have a traced centre of its own: every level above
+/// Whether the squares of `level` have a traced centre of their own: every level above
 /// aa_depth (a square of the deepest level, one lattice step wide, has corners only). Its
 /// decision and, unsplit, its colour use it: the quincunx of corners and centre samples
 /// rows half the square apart, where the corners alone sample them a whole square apart.
