@@ -4,6 +4,7 @@
 //! file (and line), no panic, no abort, and no file left behind. Each case of
 //! `docs/limits.md` has its class here, with variants of each.
 
+use glint::testing::scratch::{temp_dir, TempDir};
 use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -62,15 +63,15 @@ impl<'a> Case<'a> {
     }
 }
 
-/// A fresh folder for one case, beside a log folder (so the logs are no stray files).
-fn case_dir(tag: &str) -> (PathBuf, PathBuf) {
-    let root = std::env::temp_dir().join(format!("glint-hostile-{}", std::process::id()));
+/// A fresh folder for one case, beside a log folder (so the logs are no stray files),
+/// both in a scratch folder that goes when the returned guard drops.
+fn case_dir(tag: &str) -> (PathBuf, PathBuf, TempDir) {
+    let root = temp_dir(&format!("hostile-{tag}"));
     let dir = root.join(tag);
     let logs = root.join(format!("{tag}.logs"));
-    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::create_dir_all(&logs).unwrap();
-    (dir, logs)
+    (dir, logs, root)
 }
 
 /// How a child ended.
@@ -162,7 +163,7 @@ fn listing(dir: &Path) -> Vec<String> {
 
 /// Runs one case and checks everything the issue asks of it.
 fn check(case: Case) {
-    let (dir, logs) = case_dir(case.tag);
+    let (dir, logs, _root) = case_dir(case.tag);
     std::fs::write(dir.join("scene.lua"), case.scene).unwrap();
     let mut expected = vec!["scene.lua".to_string()];
     for (name, bytes) in &case.files {
@@ -440,7 +441,7 @@ fn add_child_is_cheap_for_wide_graphs() {
 
 #[test]
 fn special_files_are_refused() {
-    let (dir, logs) = case_dir("fifo");
+    let (dir, logs, _root) = case_dir("fifo");
     for (i, scene) in [
         "gr.mesh('m', 'pipe')\n",
         "gr.material('m'):set_diffuse('pipe')\n",
@@ -519,7 +520,7 @@ fn files_outside_the_scene_folder_are_refused_unless_allowed() {
             3,
             &["scene.lua:1:", "outside the folders", "--allow-read"],
         );
-        let (dir, _) = case_dir(&tag);
+        let (dir, _, _root) = case_dir(&tag);
         std::os::unix::fs::symlink(outside.join("secret.obj"), dir.join("link.obj")).unwrap();
         check_in(case, &dir, &["link.obj"]);
         assert!(
@@ -530,7 +531,7 @@ fn files_outside_the_scene_folder_are_refused_unless_allowed() {
     }
     // Widened by the flag, the same mesh loads (no face error, no refusal).
     let tag = "outside-allowed";
-    let (dir, _) = case_dir(tag);
+    let (dir, _, _root) = case_dir(tag);
     let scene = with_render(&format!("root:add_child(gr.mesh('m', '{abs}'))\n"));
     let case = Case::new(tag, &scene, 0, &["wrote out.png"])
         .args(&["--allow-read", outside.to_str().unwrap()])
@@ -543,7 +544,7 @@ fn files_outside_the_scene_folder_are_refused_unless_allowed() {
     )
     .unwrap();
     let tag = "outside-excerpt";
-    let (dir, _) = case_dir(tag);
+    let (dir, _, _root) = case_dir(tag);
     let case = Case::new(
         tag,
         "gr.mesh('m', 'bad.obj')\n",
@@ -628,7 +629,7 @@ fn an_interrupted_write_leaves_nothing_behind() {
     for sig in [libc::SIGINT, libc::SIGTERM] {
         let mut interrupted = false;
         for attempt in 0..ATTEMPTS {
-            let (dir, logs) = case_dir(&format!("signal-{sig}-{attempt}"));
+            let (dir, logs, _root) = case_dir(&format!("signal-{sig}-{attempt}"));
             let scene = "root = gr.node('root')\ngr.render(root, 'out.png', 4000, 4000, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {}, {aa='none'})\n";
             std::fs::write(dir.join("scene.lua"), scene).unwrap();
             let args: Vec<String> = ["render", "scene.lua", "--backend", "cpu"]
@@ -706,7 +707,7 @@ fn crc32(bytes: &[u8]) -> u32 {
 
 #[test]
 fn diff_refuses_what_flip_cannot_hold_and_missing_files_once() {
-    let (dir, logs) = case_dir("diff");
+    let (dir, logs, _root) = case_dir("diff");
     std::fs::write(dir.join("a.png"), png_header(8000, 8000)).unwrap();
     std::fs::write(dir.join("b.png"), png_header(8000, 8000)).unwrap();
     std::fs::write(dir.join("small.png"), png(4, 4)).unwrap();
@@ -749,7 +750,7 @@ fn diff_refuses_what_flip_cannot_hold_and_missing_files_once() {
 #[test]
 fn a_closed_stdout_ends_glint_quietly() {
     use std::os::unix::process::ExitStatusExt;
-    let (dir, _logs) = case_dir("closed-stdout");
+    let (dir, _logs, _root) = case_dir("closed-stdout");
     std::fs::write(dir.join("small.png"), png(4, 4)).unwrap();
     for args in [vec!["diff", "small.png", "small.png"], vec!["--help"]] {
         let mut child = Command::new(env!("CARGO_BIN_EXE_glint"))
@@ -889,7 +890,7 @@ fn messages_name_the_scene_file_and_line() {
     ));
     let coro = "local co = coroutine.wrap(function()\n  error('boom')\nend)\nco()\n";
     let case = Case::new("coroutine", coro, 3, &["scene.lua:2: boom"]);
-    let (dir, logs) = case_dir("coroutine");
+    let (dir, logs, _root) = case_dir("coroutine");
     std::fs::write(dir.join("scene.lua"), coro).unwrap();
     let args: Vec<String> = ["render", "scene.lua", "--backend", "cpu"]
         .map(String::from)
