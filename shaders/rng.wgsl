@@ -57,7 +57,7 @@ struct ShadowStream {
 }
 
 // Light `light`'s shadow-jitter streams at `seed`: independent for every seed but an
-// adaptive-AA pixel centre's first hit, whose jitters mirror its pixel's corners'.
+// adaptive-AA square centre's first hit, whose jitters mirror its square's corners'.
 // Mirror of src/cpu/rng.rs::shadow_stream — change both.
 fn shadow_stream(seed: SampleSeed, light: u32) -> ShadowStream {
     let light_hash = pcg_hash(light ^ pcg_hash(seed.depth));

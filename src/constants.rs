@@ -334,11 +334,12 @@ pub const AA_ITEM_KEY_MASK: u32 = 0x00ff_ffff;
 /// same offset from it, and a pixel-aligned edge exactly on its points: a visible line of
 /// the same error along the edge). A power of two, so a jittered position is exact.
 pub const AA_LATTICE_JITTER: f32 = 1.0;
-/// Weight of a pixel's centre sample in the colour of an unsplit pixel under adaptive
-/// anti-aliasing (a quincunx: the four corners share the rest). The corners alone are a
-/// tent filter two pixels wide, which blurs texture and fine detail that never splits the
-/// pixel; the centre is the pixel's own. 1/2 measured best of 0.2–0.67 on the sweep's
-/// scenes (docs/performance.md, "A sample at each pixel's centre").
+/// Weight of a square's centre sample in the colour of an unsplit square (a pixel or a
+/// smaller one) under adaptive anti-aliasing (a quincunx: the four corners share the
+/// rest). The corners alone are a tent filter twice the square's width, which blurs
+/// texture and fine detail that never splits the square; the centre is the square's own.
+/// 1/2 measured best of 0.2–0.67 on the sweep's scenes, for pixels (docs/performance.md,
+/// "A sample at each pixel's centre").
 pub const AA_CENTRE_WEIGHT: f32 = 0.5;
 /// Points an adaptive anti-aliasing split traces (one midpoint-pass invocation each): the
 /// square's four edge midpoints and its four children's centres (the centres only where

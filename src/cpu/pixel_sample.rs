@@ -1,6 +1,6 @@
 //! What the per-pixel reference (`render`) and the tiled adaptive passes (`adaptive`)
-//! both build on: one camera sample's colour, the contrast of a square's corners (and of
-//! a pixel's corners and centre), and an unsplit pixel's colour.
+//! both build on: one camera sample's colour, the contrast of a square's corners and
+//! centre, and an unsplit square's colour.
 
 use super::ray::camera_ray;
 use super::rng::{adaptive_seed, random_unit, SampleSeed};
@@ -60,7 +60,7 @@ pub(crate) fn add_sample_hint(hints: SquareHints, first: SampleHint, h: SampleHi
     }
 }
 
-/// The [`SquareHints`] of a square's samples (its corners; a pixel's centre too), as
+/// The [`SquareHints`] of a square's samples (its corners and centre), as
 /// `adaptive::square_hints` combines them.
 pub(crate) fn square_hints_of(hints: &[SampleHint]) -> SquareHints {
     let first = hints[0];
