@@ -9,8 +9,9 @@
 // turns the list's length into the indirect dispatches of the passes over it, and
 // adaptive_midpoints traces the listed squares' edge midpoints and their children's
 // centres; then adaptive_integrate averages each pixel over its quadtree (an unsplit
-// square above level d: quincunx_mean of its corners and centre, weighted by its area). Below level 0 the passes run over the compacted lists only (indirect
-// dispatches), so idle invocations do not grow with depth.
+// square above level d: quincunx_mean of its corners and centre, weighted by its area).
+// Below level 0 the passes run over the compacted lists only (indirect dispatches), so
+// idle invocations do not grow with depth.
 // The decisions, samples and summation order are those of the per-pixel walk,
 // src/cpu/render.rs::adaptive_pixel.
 // Mirror of src/cpu/adaptive.rs — change both.
