@@ -6,9 +6,9 @@
 //! stated as its difference from a second one at 12×12 (other strata, other jitter).
 //! Then every setting — no AA, uniform n×n, adaptive at several thresholds and depths —
 //! timed (best of `--repeat`; a setting whose first run takes over [`TWO_RUNS_ABOVE`]
-//! runs twice at most, over [`SINGLE_RUN_ABOVE`] once; settings are compared by core time, which other load on a shared machine
-//! stretches far less than wall time) and compared with the reference (RMSE and FLIP
-//! mean, `crate::diff`). Scenes with area lights also sweep the shadow samples n×n with
+//! runs twice at most, over [`SINGLE_RUN_ABOVE`] once; settings are compared by core
+//! time, which other load on a shared machine stretches far less than wall time) and
+//! compared with the reference (RMSE and FLIP mean, `crate::diff`). Scenes with area lights also sweep the shadow samples n×n with
 //! AA off against a reference at n = 32 (residual: against n = 24), so that error is the
 //! shadows' alone. The GPU tracer renders a subset where an adapter exists, within a time
 //! budget. Then the figures of [`super::sweep_analysis`] and the plot.

@@ -313,8 +313,9 @@ fn adaptive_midpoints(
 /// bottom-right, bottom-left, top-right, top-left: [`next_square`]), which is the order
 /// in which the per-pixel walk pops them, so the sum runs in that walk's order; a leaf
 /// with a centre is the [`quincunx_mean`] of its corners and centre, one of the deepest
-/// level the mean of its corners, each weighted by its area. (Stackless because the GPU twin's private stack, indexed at run time, cost
-/// llvmpipe per-lane scatters and gathers: docs/gpu.md.)
+/// level the mean of its corners, each weighted by its area. (Stackless because the GPU
+/// twin's private stack, indexed at run time, cost llvmpipe per-lane scatters and
+/// gathers: docs/gpu.md.)
 // Mirror of shaders/adaptive.wgsl::adaptive_integrate — change both.
 fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
     let t = lat.tile;
