@@ -38,8 +38,8 @@ const TWO_RUNS_ABOVE: Duration = Duration::from_secs(2);
 /// dominate the sweep).
 const SINGLE_RUN_ABOVE: Duration = Duration::from_secs(20);
 
-/// FLIP mean below which two images count as the same (the GPU parity tests' bound), the
-/// "stated error" of the default settings' check.
+/// FLIP mean below which two images count as the same (the GPU parity tests' bound): the
+/// bound of the sweep's "cheapest setting within it" report.
 pub const SAME_IMAGE_FLIP: f64 = 0.01;
 
 /// The default rule's share of uniform 4×4's core time (issue 16's target: 4×4's error by

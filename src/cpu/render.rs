@@ -55,21 +55,20 @@ pub fn adaptive_pixel(
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let (fx, fy) = (x as f32, y as f32);
+    // (Overwritten below: the corners always, the centre where the pixel has one.)
+    let unsampled = SampleHint {
+        fine_detail: false,
+        item: 0,
+    };
     let mut pixel = AdaptiveSquare {
         x: fx,
         y: fy,
         size: 1.0,
         depth: 0,
         corners: [Vec3::ZERO; 4],
-        hints: [SampleHint {
-            fine_detail: false,
-            item: 0,
-        }; 4],
+        hints: [unsampled; 4],
         centre: Vec3::ZERO,
-        centre_hint: SampleHint {
-            fine_detail: false,
-            item: 0,
-        },
+        centre_hint: unsampled,
     };
     // Corner k is (k & 1, k >> 1).
     for k in 0..4 {
