@@ -155,50 +155,77 @@ struct GpuTile {
 // texels wide read with textureLoad, since llvmpipe loads a storage buffer lane by lane
 // and a texel for all lanes at once (src/gpu/tables.rs; src/gpu/buffers.rs binds them,
 // an empty array as one zeroed row). Elements of 16-byte-texel tables take *_TABLE_TEXELS
-// texels each; one-word tables hold a word a texel.
+// texels each; one-word tables hold a word a texel. On software adapters the tables are
+// bound as read-only storage textures (STORAGE_TABLES: llvmpipe's image load skips the
+// sampler's paths, and fetches are most of a frame there: docs/gpu.md), elsewhere as
+// sampled textures; the texels are the same.
+// #if STORAGE_TABLES
+alias QuadTable = texture_storage_2d<rgba32uint, read>;
+alias WordTable = texture_storage_2d<r32uint, read>;
+// #else
+alias QuadTable = texture_2d<u32>;
+alias WordTable = texture_2d<u32>;
+// #endif
 @group(0) @binding(0) var<uniform> globals: PackedGlobals;
-@group(0) @binding(1) var instance_table: texture_2d<u32>;
-@group(0) @binding(2) var triangle_table: texture_2d<u32>;
-@group(0) @binding(3) var material_table: texture_2d<u32>;
-@group(0) @binding(4) var light_table: texture_2d<u32>;
+@group(0) @binding(1) var instance_table: QuadTable;
+@group(0) @binding(2) var triangle_table: QuadTable;
+@group(0) @binding(3) var material_table: QuadTable;
+@group(0) @binding(4) var light_table: QuadTable;
 // The cells of all grids, CSR-style: the scene grid's, then each mesh's.
-@group(0) @binding(5) var cell_start_table: texture_2d<u32>;
-@group(0) @binding(6) var cell_items_table: texture_2d<u32>;
+@group(0) @binding(5) var cell_start_table: WordTable;
+@group(0) @binding(6) var cell_items_table: WordTable;
 // CSG programs (post-order, see intersect_csg) and the texture table + texels.
-@group(0) @binding(14) var csg_program_table: texture_2d<u32>;
-@group(0) @binding(15) var texel_table: texture_2d<u32>;
+@group(0) @binding(14) var csg_program_table: WordTable;
+@group(0) @binding(15) var texel_table: WordTable;
 // Corner UVs of each triangle (same order as the triangles; used with TEXTURE or BUMP).
-@group(0) @binding(16) var triangle_uv_table: texture_2d<u32>;
+@group(0) @binding(16) var triangle_uv_table: QuadTable;
 // Each mesh's triangle range and grid (KIND_MESH instances index it).
-@group(0) @binding(23) var mesh_table: texture_2d<u32>;
+@group(0) @binding(23) var mesh_table: QuadTable;
 
-// Texel i of a table (src/gpu/tables.rs lays them out row by row).
-fn table_at(table: texture_2d<u32>, i: u32) -> vec4<u32> {
-    let texel = vec2<u32>(i & ((1u << TABLE_ROW_BITS) - 1u), i >> TABLE_ROW_BITS);
-    return textureLoad(table, texel, 0);
+// Where element i of a table lies (src/gpu/tables.rs lays them out row by row).
+fn table_texel(i: u32) -> vec2<u32> {
+    return vec2<u32>(i & ((1u << TABLE_ROW_BITS) - 1u), i >> TABLE_ROW_BITS);
+}
+
+// Texel i of a 16-byte-texel table.
+fn table_at(table: QuadTable, i: u32) -> vec4<u32> {
+// #if STORAGE_TABLES
+    return textureLoad(table, table_texel(i));
+// #else
+    return textureLoad(table, table_texel(i), 0);
+// #endif
+}
+
+// Word i of a one-word table.
+fn word_at(table: WordTable, i: u32) -> u32 {
+// #if STORAGE_TABLES
+    return textureLoad(table, table_texel(i)).x;
+// #else
+    return textureLoad(table, table_texel(i), 0).x;
+// #endif
 }
 
 // cell_start[i]: where cell i's items begin in cell_items (cell i + 1's start ends them).
 fn cell_start_at(i: u32) -> u32 {
-    return table_at(cell_start_table, i).x;
+    return word_at(cell_start_table, i);
 }
 
 // cell_items[i].
 fn cell_item_at(i: u32) -> u32 {
-    return table_at(cell_items_table, i).x;
+    return word_at(cell_items_table, i);
 }
 
 // #if CSG
 // csg_program[i].
 fn csg_program_at(i: u32) -> u32 {
-    return table_at(csg_program_table, i).x;
+    return word_at(csg_program_table, i);
 }
 // #endif
 
 // #if TEXTURE|BUMP
 // texels[i]: a word of the texture table or of a texture's texels.
 fn texel_word(i: u32) -> u32 {
-    return table_at(texel_table, i).x;
+    return word_at(texel_table, i);
 }
 // #endif
 

@@ -64,7 +64,8 @@ fn submits_and_host_waits_do_not_grow_with_the_image() {
 }
 
 /// Every kernel variant (the workgroup side an adapter's limits may force, with each of
-/// the traversal's mailbox variants) renders the very same image, in every AA mode (the
+/// the traversal's mailbox variants, the scene's tables bound sampled or as read-only
+/// storage textures) renders the very same image, in every AA mode (the
 /// 1-D kernels and the indirect arguments of adaptive AA depend on the workgroup size),
 /// and that image matches the CPU tracer's: a mismatch between the dispatch plan's
 /// workgroup counts and the shader's `@workgroup_size` would leave pixels unrendered.
@@ -91,16 +92,18 @@ fn every_kernel_variant_renders_the_same_image() {
         let first = render_gpu(&ctx, &scene, &GpuRenderOptions::default())
             .unwrap()
             .film;
-        for (workgroup_side, mailboxes) in [
-            (8, Mailboxes::Full),
-            (8, Mailboxes::LastItem),
-            (8, Mailboxes::Off),
-            (4, Mailboxes::Full),
-            (2, Mailboxes::LastItem),
+        for (workgroup_side, mailboxes, storage_tables) in [
+            (8, Mailboxes::Full, !chosen.storage_tables),
+            (8, Mailboxes::LastItem, chosen.storage_tables),
+            (8, Mailboxes::LastItem, !chosen.storage_tables),
+            (8, Mailboxes::Off, chosen.storage_tables),
+            (4, Mailboxes::Full, chosen.storage_tables),
+            (2, Mailboxes::LastItem, !chosen.storage_tables),
         ] {
             ctx.kernel = KernelConfig {
                 workgroup_side,
                 mailboxes,
+                storage_tables,
                 ..chosen
             };
             let film = render_gpu(&ctx, &scene, &GpuRenderOptions::default())

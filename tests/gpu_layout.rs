@@ -185,14 +185,16 @@ fn every_specialisation_validates() {
     let mut failures = Vec::new();
     for features in sets {
         // Every render kernel is in one module, so Render covers them all; each kernel
-        // variant an adapter may choose (hardware: mailboxes, no guard; software: one
-        // mailbox slot and the guard; a smaller workgroup where the adapter's limits ask
+        // variant an adapter may choose (hardware: mailboxes, no guard, sampled tables;
+        // software: one mailbox slot, the guard and storage-texture tables; a smaller
+        // workgroup where the adapter's limits ask
         // for it), and the variant without mailboxes the tests compare them with. The
         // guard is in the render module only.
         let hardware = KernelConfig::default();
         let software = KernelConfig {
             mailboxes: Mailboxes::LastItem,
             iteration_guard: true,
+            storage_tables: true,
             ..hardware
         };
         let small = KernelConfig {

@@ -61,6 +61,16 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     ),
     (
         "shaders/layout.wgsl",
+        "word_at",
+        "reads a word of a one-word table (src/gpu/tables.rs): the CPU indexes its slices",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "table_texel",
+        "where a table element lies in its texture (src/gpu/tables.rs); the CPU has slices",
+    ),
+    (
+        "shaders/layout.wgsl",
         "cell_start_at",
         "reads `cell_start[i]` from its table texture; the CPU indexes the slice",
     ),

@@ -4,7 +4,7 @@
 //! limits first, so an oversized scene is an error that names the array; [`check_size`]
 //! does the same for the frame's storage buffers.
 
-pub use super::bindings::SCENE_TABLE_BINDINGS;
+pub use super::bindings::{SCENE_TABLE_BINDINGS, SCENE_TABLE_FORMATS};
 use super::context::GpuContext;
 use super::tables::{check_table, padded_texels, upload_table, TableFormat};
 use super::GpuError;
@@ -71,27 +71,27 @@ pub fn check_size(ctx: &GpuContext, array: &'static str, bytes: u64) -> Result<(
 /// Uploads `scene` to `ctx`'s device.
 pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffers, GpuError> {
     use std::borrow::Cow::{Borrowed, Owned};
-    use TableFormat::{Quads, Words};
     // (Only the two padded arrays are copied; the rest are uploaded from the scene.)
+    let f = SCENE_TABLE_FORMATS;
     let tables: [(&'static str, TableFormat, Cow<[u32]>); 10] = [
-        ("instances", Quads, words(&scene.instances)),
+        ("instances", f[0], words(&scene.instances)),
         (
             "triangles",
-            Quads,
+            f[1],
             Owned(padded_texels(&scene.triangles, TRIANGLE_TABLE_TEXELS)),
         ),
-        ("materials", Quads, words(&scene.materials)),
-        ("lights", Quads, words(&scene.lights)),
-        ("cell_start", Words, Borrowed(&scene.cell_start)),
-        ("cell_items", Words, Borrowed(&scene.cell_items)),
-        ("csg_program", Words, Borrowed(&scene.csg_program)),
-        ("texels", Words, Borrowed(&scene.texels)),
+        ("materials", f[2], words(&scene.materials)),
+        ("lights", f[3], words(&scene.lights)),
+        ("cell_start", f[4], Borrowed(&scene.cell_start)),
+        ("cell_items", f[5], Borrowed(&scene.cell_items)),
+        ("csg_program", f[6], Borrowed(&scene.csg_program)),
+        ("texels", f[7], Borrowed(&scene.texels)),
         (
             "triangle_uvs",
-            Quads,
+            f[8],
             Owned(padded_texels(&scene.triangle_uvs, TRIANGLE_UV_TABLE_TEXELS)),
         ),
-        ("meshes", Quads, words(&scene.meshes)),
+        ("meshes", f[9], words(&scene.meshes)),
     ];
     for (name, format, words) in &tables {
         check_table(&ctx.limits, name, format.texels(words.len()))?;

@@ -3,6 +3,7 @@
 //! None of them changes an answer (the tests render and probe every variant against the
 //! CPU tracer); they change what the kernel costs on a given kind of device.
 
+use super::bindings::SCENE_TABLE_BINDINGS;
 use crate::constants::WORKGROUP_SIZE;
 use crate::mailboxes::Mailboxes;
 use std::fmt;
@@ -19,6 +20,9 @@ pub struct KernelConfig {
     pub mailboxes: Mailboxes,
     /// Whether loops check Mesa's loop limiter (`ITERATION_GUARD`).
     pub iteration_guard: bool,
+    /// Whether the scene's tables are bound as read-only storage textures
+    /// (`STORAGE_TABLES`) rather than sampled ones: the same texels, read by another path.
+    pub storage_tables: bool,
 }
 
 impl Default for KernelConfig {
@@ -28,6 +32,7 @@ impl Default for KernelConfig {
             workgroup_side: WORKGROUP_SIZE,
             mailboxes: Mailboxes::Full,
             iteration_guard: false,
+            storage_tables: false,
         }
     }
 }
@@ -48,8 +53,14 @@ impl KernelConfig {
     ///   docs/gpu.md); the full caches elsewhere (not yet measured on hardware).
     /// - iteration guard: on software adapters, whose gallivm caps the loop iterations of
     ///   one invocation.
+    /// - storage tables: on software adapters that bind as many storage textures as the
+    ///   scene has tables. llvmpipe reads a read-only storage texture in about half the
+    ///   instructions of a sampled one (its image load skips the sampler's paths), and
+    ///   fetches are most of a frame there: a macho-cows frame took 694M instructions
+    ///   instead of 1 294M (docs/gpu.md); hardware keeps sampled textures (unmeasured).
     pub fn for_adapter(device_type: wgpu::DeviceType, limits: &wgpu::Limits) -> KernelConfig {
         let software = device_type == wgpu::DeviceType::Cpu;
+        let tables = SCENE_TABLE_BINDINGS.len() as u32;
         KernelConfig {
             workgroup_side: workgroup_side_within(limits),
             mailboxes: if software {
@@ -58,6 +69,7 @@ impl KernelConfig {
                 Mailboxes::Full
             },
             iteration_guard: software,
+            storage_tables: software && limits.max_storage_textures_per_shader_stage >= tables,
         }
     }
 
@@ -69,7 +81,7 @@ impl KernelConfig {
 
 impl fmt::Display for KernelConfig {
     /// As `glint bench --gpu`, `glint info` and the shader header print it: "workgroup
-    /// 8×8/64, last-item mailbox, iteration guard".
+    /// 8×8/64, last-item mailbox, iteration guard, storage-texture tables".
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let side = self.workgroup_side;
         write!(
@@ -80,6 +92,9 @@ impl fmt::Display for KernelConfig {
         write!(f, ", {}", self.mailboxes)?;
         if self.iteration_guard {
             write!(f, ", iteration guard")?;
+        }
+        if self.storage_tables {
+            write!(f, ", storage-texture tables")?;
         }
         Ok(())
     }

@@ -3,13 +3,14 @@
 //! scene is always bound), so one layout serves every specialisation.
 
 use super::context::GpuContext;
+use super::kernel::KernelConfig;
 use super::shader::{assemble_with, validate, Entry};
 use super::GpuError;
 use crate::pack::SceneFeatures;
 use std::sync::Arc;
 use std::time::Instant;
 
-pub use super::bindings::SCENE_TABLE_BINDINGS;
+pub use super::bindings::{SCENE_TABLE_BINDINGS, SCENE_TABLE_FORMATS};
 pub use super::pipeline_cache::{CompiledPipeline, PipelineCache};
 use super::tables::table_layout_entry;
 /// Render entry: tile uniform and output buffer.
@@ -55,9 +56,14 @@ fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
 }
 
 /// The bind group layout of `entry`: globals, the scene's tables, then the entry's own.
-fn bind_group_layout(device: &wgpu::Device, entry: Entry) -> wgpu::BindGroupLayout {
+fn bind_group_layout(
+    device: &wgpu::Device,
+    entry: Entry,
+    kernel: KernelConfig,
+) -> wgpu::BindGroupLayout {
     let mut entries = vec![uniform(0)];
-    entries.extend(SCENE_TABLE_BINDINGS.iter().map(|&b| table_layout_entry(b)));
+    let tables = SCENE_TABLE_BINDINGS.iter().zip(SCENE_TABLE_FORMATS);
+    entries.extend(tables.map(|(&b, f)| table_layout_entry(b, f, kernel.storage_tables)));
     if entry.is_render() {
         entries.push(uniform(TILE_BINDING));
         for b in [
@@ -108,7 +114,7 @@ pub fn get_pipeline(
             label: Some("glint tracer"),
             source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
         });
-        let layout = bind_group_layout(device, entry);
+        let layout = bind_group_layout(device, entry, kernel);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("glint"),
             bind_group_layouts: &[Some(&layout)],

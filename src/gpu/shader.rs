@@ -9,7 +9,8 @@
 //! three flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
 //! check, see `shaders/render.wgsl`), and `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
 //! traversal's per-ray mailboxes, all of them or one item slot: see
-//! `shaders/traverse.wgsl`).
+//! `shaders/traverse.wgsl`) and `STORAGE_TABLES` (the scene's tables bound as read-only
+//! storage textures: see `shaders/layout.wgsl`).
 
 use super::kernel::KernelConfig;
 use crate::constants::wgsl_prelude;
@@ -226,6 +227,10 @@ fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Resul
             any |= kernel.mailboxes == Mailboxes::LastItem;
             continue;
         }
+        if name == "STORAGE_TABLES" {
+            any |= kernel.storage_tables;
+            continue;
+        }
         let flag = SceneFeatures::ALL
             .iter()
             .find(|(_, n)| n.replace('-', "_").eq_ignore_ascii_case(name))
@@ -234,7 +239,15 @@ fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Resul
                 let valid: Vec<String> = SceneFeatures::ALL
                     .iter()
                     .map(|(_, n)| n.to_uppercase().replace('-', "_"))
-                    .chain(["ITERATION_GUARD", "MAILBOXES", "LAST_ITEM_MAILBOX"].map(String::from))
+                    .chain(
+                        [
+                            "ITERATION_GUARD",
+                            "MAILBOXES",
+                            "LAST_ITEM_MAILBOX",
+                            "STORAGE_TABLES",
+                        ]
+                        .map(String::from),
+                    )
                     .collect();
                 format!("unknown feature '{name}' (valid: {})", valid.join(", "))
             })?;

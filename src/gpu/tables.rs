@@ -122,7 +122,8 @@ pub fn upload_table(
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: format.texture_format(),
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            // Either binding: sampled, or read-only storage (KernelConfig::storage_tables).
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING,
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
@@ -131,16 +132,30 @@ pub fn upload_table(
     texture.create_view(&wgpu::TextureViewDescriptor::default())
 }
 
-/// The bind group layout entry of a table at `binding`.
-pub fn table_layout_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Texture {
+/// The bind group layout entry of a table of `format` at `binding`: a sampled texture,
+/// or with `storage` a read-only storage texture (`KernelConfig::storage_tables`).
+pub fn table_layout_entry(
+    binding: u32,
+    format: TableFormat,
+    storage: bool,
+) -> wgpu::BindGroupLayoutEntry {
+    let ty = if storage {
+        wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::ReadOnly,
+            format: format.texture_format(),
+            view_dimension: wgpu::TextureViewDimension::D2,
+        }
+    } else {
+        wgpu::BindingType::Texture {
             sample_type: wgpu::TextureSampleType::Uint,
             view_dimension: wgpu::TextureViewDimension::D2,
             multisampled: false,
-        },
+        }
+    };
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty,
         count: None,
     }
 }
