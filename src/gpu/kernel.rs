@@ -54,10 +54,10 @@ impl KernelConfig {
     /// - iteration guard: on software adapters, whose gallivm caps the loop iterations of
     ///   one invocation.
     /// - storage tables: on software adapters that bind as many storage textures as the
-    ///   scene has tables. llvmpipe reads a read-only storage texture in about half the
-    ///   instructions of a sampled one (its image load skips the sampler's paths), and
-    ///   fetches are most of a frame there: a macho-cows frame took 694M instructions
-    ///   instead of 1 294M (docs/gpu.md); hardware keeps sampled textures (unmeasured).
+    ///   scene has tables. llvmpipe's image load skips the sampler's paths (a random read
+    ///   measured 22–30% faster), and fetches are most of a frame there: a macho-cows
+    ///   frame took 694M instructions instead of 1 294M (docs/gpu.md); hardware keeps
+    ///   sampled textures (unmeasured).
     pub fn for_adapter(device_type: wgpu::DeviceType, limits: &wgpu::Limits) -> KernelConfig {
         let software = device_type == wgpu::DeviceType::Cpu;
         let tables = SCENE_TABLE_BINDINGS.len() as u32;
@@ -133,6 +133,27 @@ mod tests {
         let hard = KernelConfig::for_adapter(wgpu::DeviceType::DiscreteGpu, &limits);
         assert!(hard.mailboxes == Mailboxes::Full && !hard.iteration_guard);
         assert_eq!(hard.workgroup_side, 8);
+    }
+
+    /// Storage-texture tables only on software adapters, and only where a stage may bind
+    /// a storage texture for every table (WebGPU's default allows 4).
+    #[test]
+    fn storage_tables_on_software_adapters_that_bind_them_all() {
+        let mut limits = wgpu::Limits::default();
+        let soft = KernelConfig::for_adapter(wgpu::DeviceType::Cpu, &limits);
+        assert!(
+            !soft.storage_tables,
+            "default limits: 4 storage textures a stage"
+        );
+        limits.max_storage_textures_per_shader_stage = SCENE_TABLE_BINDINGS.len() as u32;
+        let soft = KernelConfig::for_adapter(wgpu::DeviceType::Cpu, &limits);
+        assert!(soft.storage_tables);
+        assert_eq!(
+            soft.to_string(),
+            "workgroup 8×8/64, last-item mailbox, iteration guard, storage-texture tables"
+        );
+        let hard = KernelConfig::for_adapter(wgpu::DeviceType::DiscreteGpu, &limits);
+        assert!(!hard.storage_tables);
     }
 
     #[test]
