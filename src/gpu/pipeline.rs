@@ -1,6 +1,8 @@
-//! Compute pipelines specialised per feature set, compiled once per (features, entry) on
-//! a context and cached there. The bind group layout is fixed (every table of the packed
-//! scene is always bound), so one layout serves every specialisation.
+//! Compute pipelines specialised per feature set, compiled once per (features, kernel,
+//! entry) on a context and cached there. The bind group layout depends only on the entry
+//! and the kernel variant (every table of the packed scene is always bound, sampled or,
+//! with `storage_tables`, as a read-only storage texture), so one layout serves every
+//! feature specialisation.
 
 use super::context::GpuContext;
 use super::kernel::KernelConfig;
