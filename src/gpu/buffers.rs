@@ -4,8 +4,9 @@
 //! limits first, so an oversized scene is an error that names the array; [`check_size`]
 //! does the same for the frame's storage buffers.
 
-pub use super::bindings::{SCENE_TABLE_BINDINGS, SCENE_TABLE_FORMATS};
+pub use super::bindings::SCENE_TABLE_BINDINGS;
 use super::context::GpuContext;
+pub use super::tables::SCENE_TABLE_FORMATS;
 use super::tables::{check_table, padded_texels, upload_table, TableFormat};
 use super::GpuError;
 use crate::constants::{TRIANGLE_TABLE_TEXELS, TRIANGLE_UV_TABLE_TEXELS};

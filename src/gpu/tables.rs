@@ -29,6 +29,16 @@ pub enum TableFormat {
     Quads,
 }
 
+/// The texel format of each table of `SCENE_TABLE_BINDINGS` (bindings.rs), in the same
+/// order: one word a texel for cell_start, cell_items, csg_program and texels, four for
+/// the rest. The upload (`buffers`) and the bind group layout (`pipeline`) both read it.
+pub const SCENE_TABLE_FORMATS: [TableFormat; 10] = {
+    use TableFormat::{Quads, Words};
+    [
+        Quads, Quads, Quads, Quads, Words, Words, Words, Words, Quads, Quads,
+    ]
+};
+
 impl TableFormat {
     fn texture_format(self) -> wgpu::TextureFormat {
         match self {
