@@ -6,8 +6,7 @@
 
 pub use super::bindings::SCENE_TABLE_BINDINGS;
 use super::context::GpuContext;
-pub use super::tables::SCENE_TABLE_FORMATS;
-use super::tables::{check_table, padded_texels, upload_table, TableFormat};
+use super::tables::{check_table, padded_texels, upload_table, TableFormat, SCENE_TABLE_FORMATS};
 use super::GpuError;
 use crate::constants::{TRIANGLE_TABLE_TEXELS, TRIANGLE_UV_TABLE_TEXELS};
 use crate::pack::PackedScene;

@@ -14,8 +14,7 @@ use std::time::Instant;
 
 pub use super::bindings::SCENE_TABLE_BINDINGS;
 pub use super::pipeline_cache::{CompiledPipeline, PipelineCache};
-use super::tables::table_layout_entry;
-pub use super::tables::SCENE_TABLE_FORMATS;
+use super::tables::{table_layout_entry, SCENE_TABLE_FORMATS};
 /// Render entry: tile uniform and output buffer.
 pub const TILE_BINDING: u32 = 7;
 pub const OUTPUT_BINDING: u32 = 8;

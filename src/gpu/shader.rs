@@ -207,6 +207,17 @@ pub fn preprocess_with(
     Ok(out)
 }
 
+/// Whether a kernel variant sets one of its flags.
+type KernelFlag = fn(KernelConfig) -> bool;
+
+/// The kernel variant's flags a shader may test with `#if`, and whether `kernel` sets each.
+const KERNEL_FLAGS: [(&str, KernelFlag); 4] = [
+    ("ITERATION_GUARD", |k| k.iteration_guard),
+    ("MAILBOXES", |k| k.mailboxes == Mailboxes::Full),
+    ("LAST_ITEM_MAILBOX", |k| k.mailboxes == Mailboxes::LastItem),
+    ("STORAGE_TABLES", |k| k.storage_tables),
+];
+
 /// Evaluates `NAME`, `A|B` or `!A|B` against `features` and `kernel`'s flags.
 fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Result<bool, String> {
     let (negate, names) = match text.strip_prefix('!') {
@@ -215,20 +226,8 @@ fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Resul
     };
     let mut any = false;
     for name in names.split('|').map(str::trim) {
-        if name == "ITERATION_GUARD" {
-            any |= kernel.iteration_guard;
-            continue;
-        }
-        if name == "MAILBOXES" {
-            any |= kernel.mailboxes == Mailboxes::Full;
-            continue;
-        }
-        if name == "LAST_ITEM_MAILBOX" {
-            any |= kernel.mailboxes == Mailboxes::LastItem;
-            continue;
-        }
-        if name == "STORAGE_TABLES" {
-            any |= kernel.storage_tables;
+        if let Some((_, set)) = KERNEL_FLAGS.iter().find(|(flag, _)| *flag == name) {
+            any |= set(kernel);
             continue;
         }
         let flag = SceneFeatures::ALL
@@ -239,15 +238,7 @@ fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Resul
                 let valid: Vec<String> = SceneFeatures::ALL
                     .iter()
                     .map(|(_, n)| n.to_uppercase().replace('-', "_"))
-                    .chain(
-                        [
-                            "ITERATION_GUARD",
-                            "MAILBOXES",
-                            "LAST_ITEM_MAILBOX",
-                            "STORAGE_TABLES",
-                        ]
-                        .map(String::from),
-                    )
+                    .chain(KERNEL_FLAGS.iter().map(|(flag, _)| flag.to_string()))
                     .collect();
                 format!("unknown feature '{name}' (valid: {})", valid.join(", "))
             })?;
