@@ -133,10 +133,11 @@ fn test_items(first: u32, last: u32, ray: Ray, best_in: Hit, mailbox: ptr<functi
     return best;
 }
 
-// Nearest hit along ray in (0, t_max).
+// Nearest hit along ray in (0, t_max). A t_max past T_MISS (infinity) is taken as T_MISS:
+// a miss's t, T_MISS, must not count as a hit.
 // Mirror of src/cpu/traverse.rs::closest_hit — change both.
 fn closest_hit(ray: Ray, t_max: f32) -> Hit {
-    let entered = enter_scene(ray, t_max);
+    let entered = enter_scene(ray, min(t_max, T_MISS));
     if !entered.valid {
         return hit_miss();
     }
@@ -219,10 +220,11 @@ fn any_item_hit(first: u32, last: u32, ray: Ray, t_max: f32, mailbox: ptr<functi
     return false;
 }
 
-// Whether anything blocks ray in (0, t_max) (shadow rays).
+// Whether anything blocks ray in (0, t_max) (shadow rays). A t_max past T_MISS is taken
+// as T_MISS, as in closest_hit.
 // Mirror of src/cpu/traverse.rs::any_hit — change both.
 fn any_hit(ray: Ray, t_max: f32) -> bool {
-    let entered = enter_scene(ray, t_max);
+    let entered = enter_scene(ray, min(t_max, T_MISS));
     if !entered.valid {
         return false;
     }

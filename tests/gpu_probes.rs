@@ -177,8 +177,8 @@ fn instanced_scene(seed: u64, triangles: usize, instances: usize) -> String {
 #[test]
 fn probes_instanced_meshes() {
     use common::probes::{agree, random_rays};
-    use glint::constants::PROBE_ANY_HIT;
-    use glint::testing::probe::{cpu_probe, gpu_probe};
+    use glint::constants::{PROBE_ANY_HIT, T_MISS};
+    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
     let Some(mut ctx) = gpu_context() else { return };
     for (mode, grid_name) in [(GridMode::Auto, "grid"), (GridMode::Off, "brute force")] {
         let mut s = packed_from_source(&instanced_scene(11, 400, 8), &grid(mode)).remove(0);
@@ -187,6 +187,10 @@ fn probes_instanced_meshes() {
         let mut rays = random_rays(111);
         for (i, r) in rays.iter_mut().enumerate() {
             r.mode = if i % 4 == 3 { PROBE_ANY_HIT } else { 0 };
+            if i % 8 == 1 || i % 8 == 7 {
+                // Past T_MISS: a triangle missed (t = T_MISS) must not count as a hit.
+                r.t_max = f32::INFINITY;
+            }
         }
         s.mailboxes = Mailboxes::Full;
         let with_mailboxes: Vec<_> = rays.iter().map(|r| cpu_probe(&s, r)).collect();
@@ -206,7 +210,21 @@ fn probes_instanced_meshes() {
                 hits += c.hit;
                 if ray.mode == PROBE_ANY_HIT {
                     assert_eq!(g.hit, c.hit, "{name}: any-hit ray {i} {ray:?}");
+                    if ray.t_max == f32::INFINITY {
+                        let closest = cpu_probe(&s, &ProbeRay { mode: 0, ..*ray });
+                        assert_eq!(c.hit, closest.hit, "{name}: any-hit ray {i} past T_MISS");
+                    }
                     continue;
+                }
+                if ray.t_max == f32::INFINITY {
+                    let below_t_miss = cpu_probe(
+                        &s,
+                        &ProbeRay {
+                            t_max: T_MISS,
+                            ..*ray
+                        },
+                    );
+                    assert_eq!(c, below_t_miss, "{name}: ray {i} past T_MISS");
                 }
                 let (ok, dt, _) = agree(g, &c);
                 assert!(

@@ -183,6 +183,7 @@ fn mesh_grids_and_brute_force_give_the_same_hits() {
             b.t.to_bits(),
             "ray {i}: grid {a:?}, brute force {b:?}"
         );
+        // (A miss's t * 1.001 is infinity: past T_MISS, where no miss may count as a hit.)
         for t_max in [a.t * 0.5, a.t * 0.999, a.t * 1.001] {
             assert_eq!(
                 any_hit(&with_grid, ray, t_max, &mut NoCounters),
@@ -190,6 +191,11 @@ fn mesh_grids_and_brute_force_give_the_same_hits() {
                 "ray {i}, t_max {t_max}"
             );
         }
+        assert_eq!(
+            any_hit(&brute, ray, f32::INFINITY, &mut NoCounters),
+            a.is_hit(),
+            "ray {i}: any hit up to infinity"
+        );
     }
 }
 

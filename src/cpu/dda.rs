@@ -68,6 +68,7 @@ pub struct Dda {
 /// `inv` is `safe_rcp3(ray.dir)`, already computed by `enter_bounds` for the same
 /// direction (the divisions are a good part of a set-up).
 // Mirror of shaders/dda.wgsl::dda_setup — change both.
+#[inline(always)]
 pub fn dda_setup(grid: &GridView, ray: &Ray, inv: Vec3, t_max: f32) -> Option<Dda> {
     let t0 = (grid.min - ray.origin) * inv;
     let t1 = (grid.max - ray.origin) * inv;
@@ -165,6 +166,7 @@ pub struct EnteredRay {
 /// by the cell walk and by each item test, which could otherwise disagree on which cell
 /// a hit lies in and lose it.
 // Mirror of shaders/dda.wgsl::enter_bounds — change both.
+#[inline(always)]
 pub fn enter_bounds(
     min: Vec3,
     max: Vec3,

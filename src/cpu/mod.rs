@@ -22,6 +22,7 @@ pub mod torus;
 pub mod trace;
 pub mod traverse;
 pub mod traverse_mesh;
+pub mod triangle4;
 pub mod uv;
 
 pub use render::{render, RenderProgress};

@@ -19,7 +19,9 @@ pub use super::hit::{Counters, Hit, NoCounters, TraversalCounters};
 use super::intersect::intersect_instance;
 use super::ray::Ray;
 use super::traverse_mesh::{intersect_mesh, mesh_occludes};
-use crate::constants::{ITEM_MAILBOX_SIZE, KIND_CSG, KIND_MESH, KIND_TORUS, NO_ITEM, WALK_FULL};
+use crate::constants::{
+    ITEM_MAILBOX_SIZE, KIND_CSG, KIND_MESH, KIND_TORUS, NO_ITEM, T_MISS, WALK_FULL,
+};
 use crate::pack::{PackedInstance, PackedScene};
 use glam::IVec3;
 
@@ -143,7 +145,9 @@ fn test_items(
     }
 }
 
-/// Nearest hit along `ray` in (0, t_max).
+/// Nearest hit along `ray` in (0, t_max). A t_max past [`T_MISS`] (infinity) is taken as
+/// T_MISS: the tests below keep an item's t when it is below the best so far, and a
+/// miss's t, T_MISS, must not count as a hit.
 // Mirror of shaders/traverse.wgsl::closest_hit — change both.
 pub fn closest_hit(
     scene: &PackedScene,
@@ -152,7 +156,7 @@ pub fn closest_hit(
     counters: &mut impl TraversalCounters,
 ) -> Hit {
     counters.traversal_started();
-    let Some(entered) = enter_scene(&scene.globals, ray, t_max) else {
+    let Some(entered) = enter_scene(&scene.globals, ray, t_max.min(T_MISS)) else {
         return Hit::MISS;
     };
     let mut hit = closest_hit_inside(scene, &entered, counters);
@@ -449,7 +453,8 @@ fn any_item_hit(
     false
 }
 
-/// Whether anything blocks `ray` in (0, t_max) (shadow rays).
+/// Whether anything blocks `ray` in (0, t_max) (shadow rays). A t_max past [`T_MISS`] is
+/// taken as T_MISS, as in [`closest_hit`].
 // Mirror of shaders/traverse.wgsl::any_hit — change both.
 pub fn any_hit(
     scene: &PackedScene,
@@ -458,7 +463,7 @@ pub fn any_hit(
     counters: &mut impl TraversalCounters,
 ) -> bool {
     counters.traversal_started();
-    match enter_scene(&scene.globals, ray, t_max) {
+    match enter_scene(&scene.globals, ray, t_max.min(T_MISS)) {
         Some(entered) => any_hit_inside(scene, &entered, counters),
         None => false,
     }

@@ -1,0 +1,253 @@
+//! The watertight triangle test of [`intersect_triangle`] on four triangles at once, one
+//! per SIMD lane (glam's `Vec4`: SSE2 on x86-64, four scalars elsewhere). CPU only: the
+//! GPU tracer tests a cell's triangles one by one (shaders/traverse_mesh.wgsl), and this
+//! file changes no answer, only how many the CPU computes per instruction.
+//!
+//! Each lane performs the scalar test's operations on its triangle in the same order, so
+//! its hit/miss decision and its t are the scalar test's bit for bit (IEEE arithmetic is
+//! the same in a lane as in a scalar register, and Rust fuses no multiply-add). One step
+//! is written differently: the edge function's canonical endpoint order
+//! ([`edge_function`], there for GPU compilers that fuse an FMA) is left out, since
+//! without fusion a·d − b·c = −(c·b − d·a) exactly; the two forms then differ only in
+//! the sign of a zero, which no decision or t depends on, but the barycentrics can. So a
+//! caller that keeps a hit recomputes its barycentrics with [`intersect_triangle`] itself
+//! ([`TriangleBatch::keep_nearest`]), and the result stays the scalar one.
+//! `tests/triangle4.rs` checks the lanes against the scalar test, grazing and edge-on
+//! rays included. (Measured on cow.obj, `glint bench --trace`, one thread: with the
+//! batches and their inlining, −30% time per shadow ray and −20% per camera ray;
+//! docs/performance-trace.md.)
+//!
+//! [`edge_function`]: super::intersect::edge_function
+
+use super::intersect::{intersect_triangle, triangle_ray_setup, triangle_vertices, TriangleRay};
+use super::math::Axis;
+use crate::constants::NO_ITEM;
+use crate::pack::PackedTriangle;
+use glam::{BVec4A, Vec3, Vec4};
+
+/// Triangles per batch: the lanes of a `Vec4`.
+pub const LANES: usize = 4;
+
+/// A [`TriangleRay`] spread over four lanes: the origin's coordinates and the shear
+/// already in the ray's axis order (x = `kx`, y = `ky`, z = `kz`), so a lane reads its
+/// triangle's coordinates straight in that order.
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleRay4 {
+    axes: [Axis; 3],
+    origin: [Vec4; 3],
+    shear: [Vec4; 3],
+}
+
+impl TriangleRay4 {
+    /// The four-lane form of `r`.
+    pub fn new(r: &TriangleRay) -> TriangleRay4 {
+        let axes = [r.kx, r.ky, r.kz];
+        let origin = r.origin.to_array();
+        TriangleRay4 {
+            axes,
+            origin: axes.map(|axis| Vec4::splat(origin[axis as usize])),
+            shear: [r.shear.x, r.shear.y, r.shear.z].map(Vec4::splat),
+        }
+    }
+}
+
+/// Coordinate `axis` of vertex `vertex` (0–2) of each of the four triangles.
+#[inline(always)]
+fn gather(tris: &[&PackedTriangle; LANES], vertex: usize, axis: Axis) -> Vec4 {
+    // (As nine floats, so that a coordinate is one load at a computed offset.)
+    let at =
+        |tri: &PackedTriangle| bytemuck::cast_ref::<_, [f32; 9]>(tri)[3 * vertex + axis as usize];
+    Vec4::new(at(tris[0]), at(tris[1]), at(tris[2]), at(tris[3]))
+}
+
+/// Vertex `vertex` of the four triangles relative to the ray origin and sheared, as the
+/// scalar `shear_vertex`: (x, y) in the plane where the ray is the +z axis, and the
+/// unscaled z.
+#[inline(always)]
+fn shear_vertex4(r: &TriangleRay4, tris: &[&PackedTriangle; LANES], vertex: usize) -> [Vec4; 3] {
+    let [kx, ky, kz] = r.axes;
+    let a_kx = gather(tris, vertex, kx) - r.origin[0];
+    let a_ky = gather(tris, vertex, ky) - r.origin[1];
+    let a_kz = gather(tris, vertex, kz) - r.origin[2];
+    [a_kx - r.shear[0] * a_kz, a_ky - r.shear[1] * a_kz, a_kz]
+}
+
+/// The edge function p.x·q.y − p.y·q.x of each lane (see the file's header on the
+/// canonical order the scalar form adds).
+#[inline(always)]
+fn edge4(px: Vec4, py: Vec4, qx: Vec4, qy: Vec4) -> Vec4 {
+    px * qy - py * qx
+}
+
+/// Which of the four triangles the ray hits in (0, t_max), as bits (lane k: bit k), and
+/// each lane's t (meaningful where its bit is set): exactly the hits and t of
+/// `intersect_triangle` on each triangle.
+#[inline]
+pub fn intersect_triangles4(
+    r: &TriangleRay4,
+    tris: &[&PackedTriangle; LANES],
+    t_max: f32,
+) -> (u32, Vec4) {
+    let zero = Vec4::ZERO;
+    let [ax, ay, a_kz] = shear_vertex4(r, tris, 0);
+    let [bx, by, b_kz] = shear_vertex4(r, tris, 1);
+    let [cx, cy, c_kz] = shear_vertex4(r, tris, 2);
+    let u = edge4(cx, cy, bx, by);
+    let v = edge4(ax, ay, cx, cy);
+    let w = edge4(bx, by, ax, ay);
+    let negative = u.cmplt(zero) | v.cmplt(zero) | w.cmplt(zero);
+    let positive = u.cmpgt(zero) | v.cmpgt(zero) | w.cmpgt(zero);
+    let det = u + v + w;
+    let sz = r.shear[2];
+    let t_scaled = u * (sz * a_kz) + v * (sz * b_kz) + w * (sz * c_kz);
+    let t = t_scaled / det;
+    let inside: BVec4A = !(negative & positive) & det.cmpne(zero);
+    let in_range = t.cmpgt(zero) & t.cmplt(Vec4::splat(t_max));
+    ((inside & in_range).bitmask(), t)
+}
+
+/// The scalar test's per-ray set-up and its four-lane form, made once per mesh walk.
+pub struct TriangleRays {
+    pub scalar: TriangleRay,
+    pub lanes: TriangleRay4,
+}
+
+impl TriangleRays {
+    /// `triangle_ray_setup` of the ray, in both forms.
+    #[inline(always)]
+    pub fn new(origin: Vec3, dir: Vec3) -> TriangleRays {
+        let scalar = triangle_ray_setup(origin, dir);
+        TriangleRays {
+            scalar,
+            lanes: TriangleRay4::new(&scalar),
+        }
+    }
+}
+
+/// The nearest triangle hit so far in a mesh walk: t (the walk's t_max until a hit), the
+/// triangle's mesh-local number (`NO_ITEM` until a hit) and its barycentrics.
+#[derive(Clone, Copy, Debug)]
+pub struct NearestTriangle {
+    pub t: f32,
+    pub local: u32,
+    pub b1: f32,
+    pub b2: f32,
+}
+
+impl NearestTriangle {
+    /// No hit yet, in a walk up to `t_max`.
+    pub fn none(t_max: f32) -> NearestTriangle {
+        NearestTriangle {
+            t: t_max,
+            local: NO_ITEM,
+            b1: 0.0,
+            b2: 0.0,
+        }
+    }
+}
+
+/// Up to [`LANES`] mesh-local triangle numbers waiting for one four-lane test, in the
+/// order the cell lists them.
+pub struct TriangleBatch {
+    locals: [u32; LANES],
+    len: usize,
+}
+
+impl TriangleBatch {
+    pub const EMPTY: TriangleBatch = TriangleBatch {
+        locals: [0; LANES],
+        len: 0,
+    };
+
+    /// Adds a triangle; true when the batch is now full (test it before the next push).
+    #[inline(always)]
+    pub fn push(&mut self, local: u32) -> bool {
+        self.locals[self.len & (LANES - 1)] = local;
+        self.len += 1;
+        self.len == LANES
+    }
+
+    /// The batch's triangles, lanes past its length repeating the first (their answers
+    /// are masked off).
+    #[inline(always)]
+    fn lanes<'a>(&self, triangles: &'a [PackedTriangle]) -> [&'a PackedTriangle; LANES] {
+        let at = |k: usize| &triangles[self.locals[if k < self.len { k } else { 0 }] as usize];
+        [at(0), at(1), at(2), at(3)]
+    }
+
+    /// The hit bits of the batch's own lanes, then empties it.
+    #[inline(always)]
+    fn test(
+        &mut self,
+        rays: &TriangleRays,
+        triangles: &[PackedTriangle],
+        t_max: f32,
+    ) -> (u32, Vec4) {
+        let (hits, t) = intersect_triangles4(&rays.lanes, &self.lanes(triangles), t_max);
+        let own = (1u32 << self.len) - 1;
+        self.len = 0;
+        (hits & own, t)
+    }
+
+    /// Whether one of the batch's triangles is hit in (0, t_max); empties the batch. A
+    /// single triangle goes through the scalar test (one lane would cost four).
+    #[inline(always)]
+    pub fn any_hit(
+        &mut self,
+        rays: &TriangleRays,
+        triangles: &[PackedTriangle],
+        t_max: f32,
+    ) -> bool {
+        match self.len {
+            0 => false,
+            1 => {
+                self.len = 0;
+                let [p0, p1, p2] = triangle_vertices(&triangles[self.locals[0] as usize]);
+                intersect_triangle(&rays.scalar, p0, p1, p2, t_max).x < t_max
+            }
+            _ => self.test(rays, triangles, t_max).0 != 0,
+        }
+    }
+
+    /// Keeps in `best` the nearest hit below `best.t` among the batch's triangles (the
+    /// first in order on a tie, as the scalar loop's strict `<`); empties the batch. The
+    /// kept triangle is tested again by the scalar test, whose barycentrics it keeps
+    /// (see the file's header).
+    #[inline(always)]
+    pub fn keep_nearest(
+        &mut self,
+        rays: &TriangleRays,
+        triangles: &[PackedTriangle],
+        best: &mut NearestTriangle,
+    ) {
+        let nearest = match self.len {
+            0 => return,
+            1 => self.locals[0],
+            len => {
+                let (hits, t) = self.test(rays, triangles, best.t);
+                if hits == 0 {
+                    return;
+                }
+                let t = t.to_array();
+                let mut nearest = 0;
+                for k in 1..len {
+                    if hits & (1 << k) != 0 && (hits & (1 << nearest) == 0 || t[k] < t[nearest]) {
+                        nearest = k;
+                    }
+                }
+                self.locals[nearest]
+            }
+        };
+        self.len = 0;
+        let [p0, p1, p2] = triangle_vertices(&triangles[nearest as usize]);
+        let h = intersect_triangle(&rays.scalar, p0, p1, p2, best.t);
+        if h.x < best.t {
+            *best = NearestTriangle {
+                t: h.x,
+                local: nearest,
+                b1: h.y,
+                b2: h.z,
+            };
+        }
+    }
+}
