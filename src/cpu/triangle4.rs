@@ -14,7 +14,7 @@
 //! ([`TriangleBatch::keep_nearest`]), and the result stays the scalar one.
 //! `tests/triangle4.rs` checks the lanes against the scalar test, grazing and edge-on
 //! rays included. (Measured on cow.obj, `glint bench --trace`, one thread: with the
-//! batches and their inlining, −30% time per shadow ray and −20% per camera ray;
+//! batches and their inlining, about −30% time per shadow ray and −25% per camera ray;
 //! docs/performance-trace.md.)
 //!
 //! [`edge_function`]: super::intersect::edge_function
