@@ -133,16 +133,30 @@ pub fn min_axis(v: Vec3) -> Axis {
 /// the ray leaves the grid or passes t_exit there.
 // Mirror of shaders/dda.wgsl::dda_step — change both.
 pub fn dda_step(grid: &GridView, dda: &mut Dda) -> Option<f32> {
-    let axis = min_axis(Vec3::from(dda.t_next)) as usize;
-    let t_cell_exit = dda.t_next[axis];
+    // (`min_axis`'s comparisons, then one branch per axis with constant indices, so the
+    // walk's `Dda` can live in registers instead of being indexed in memory.)
+    let [tx, ty, tz] = dda.t_next;
+    if tx <= ty && tx <= tz {
+        step_axis::<0>(grid, dda)
+    } else if ty <= tz {
+        step_axis::<1>(grid, dda)
+    } else {
+        step_axis::<2>(grid, dda)
+    }
+}
+
+/// `dda_step` along axis `AXIS`.
+#[inline(always)]
+fn step_axis<const AXIS: usize>(grid: &GridView, dda: &mut Dda) -> Option<f32> {
+    let t_cell_exit = dda.t_next[AXIS];
     if t_cell_exit >= dda.t_exit {
         return None;
     }
-    dda.cell[axis] += dda.step[axis];
-    if dda.cell[axis] < 0 || dda.cell[axis] >= grid.dims.to_array()[axis] {
+    dda.cell[AXIS] += dda.step[AXIS];
+    if dda.cell[AXIS] < 0 || dda.cell[AXIS] >= grid.dims.to_array()[AXIS] {
         return None;
     }
-    dda.t_next[axis] += dda.t_delta[axis];
+    dda.t_next[AXIS] += dda.t_delta[AXIS];
     Some(t_cell_exit)
 }
 
