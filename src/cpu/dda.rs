@@ -220,6 +220,7 @@ pub fn enter_bounds(
 /// have unit directions, so the margin is a distance: more than the rounding of the
 /// moved origin). Brute force does the same, so both give the same hits.
 // Mirror of shaders/dda.wgsl::enter_scene — change both.
+#[inline(always)]
 pub fn enter_scene(g: &PackedGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
     let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE;
     enter_bounds(
@@ -236,6 +237,7 @@ pub fn enter_scene(g: &PackedGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRa
 /// relative margin of the origin divided by the direction's largest component: at least
 /// the distance margin, in t.
 // Mirror of shaders/dda.wgsl::enter_mesh — change both.
+#[inline(always)]
 pub fn enter_mesh(mesh: &PackedMesh, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
     let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE
         / ray.dir.abs().max_element().max(F32_MIN_POSITIVE);
