@@ -6,7 +6,7 @@
 
 pub use super::bindings::SCENE_TABLE_BINDINGS;
 use super::context::GpuContext;
-use super::tables::{check_table, padded_texels, upload_table, TableFormat, SCENE_TABLE_FORMATS};
+use super::tables::{check_table, padded_texels, upload_table, SCENE_TABLE_FORMATS};
 use super::GpuError;
 use crate::constants::{TRIANGLE_TABLE_TEXELS, TRIANGLE_UV_TABLE_TEXELS};
 use crate::pack::PackedScene;
@@ -71,29 +71,27 @@ pub fn check_size(ctx: &GpuContext, array: &'static str, bytes: u64) -> Result<(
 /// Uploads `scene` to `ctx`'s device.
 pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffers, GpuError> {
     use std::borrow::Cow::{Borrowed, Owned};
-    // (Only the two padded arrays are copied; the rest are uploaded from the scene.)
-    let f = SCENE_TABLE_FORMATS;
-    let tables: [(&'static str, TableFormat, Cow<[u32]>); 10] = [
-        ("instances", f[0], words(&scene.instances)),
+    // (Only the two padded arrays are copied; the rest are uploaded from the scene.) In
+    // `SCENE_TABLE_BINDINGS` order, which `SCENE_TABLE_FORMATS` follows too.
+    let tables: [(&'static str, Cow<[u32]>); 10] = [
+        ("instances", words(&scene.instances)),
         (
             "triangles",
-            f[1],
             Owned(padded_texels(&scene.triangles, TRIANGLE_TABLE_TEXELS)),
         ),
-        ("materials", f[2], words(&scene.materials)),
-        ("lights", f[3], words(&scene.lights)),
-        ("cell_start", f[4], Borrowed(&scene.cell_start)),
-        ("cell_items", f[5], Borrowed(&scene.cell_items)),
-        ("csg_program", f[6], Borrowed(&scene.csg_program)),
-        ("texels", f[7], Borrowed(&scene.texels)),
+        ("materials", words(&scene.materials)),
+        ("lights", words(&scene.lights)),
+        ("cell_start", Borrowed(&scene.cell_start)),
+        ("cell_items", Borrowed(&scene.cell_items)),
+        ("csg_program", Borrowed(&scene.csg_program)),
+        ("texels", Borrowed(&scene.texels)),
         (
             "triangle_uvs",
-            f[8],
             Owned(padded_texels(&scene.triangle_uvs, TRIANGLE_UV_TABLE_TEXELS)),
         ),
-        ("meshes", f[9], words(&scene.meshes)),
+        ("meshes", words(&scene.meshes)),
     ];
-    for (name, format, words) in &tables {
+    for ((name, words), format) in tables.iter().zip(SCENE_TABLE_FORMATS) {
         check_table(&ctx.limits, name, format.texels(words.len()))?;
     }
     let device = &ctx.device;
@@ -103,7 +101,10 @@ pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffer
             contents: bytemuck::bytes_of(&scene.globals),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let tables = tables.map(|(name, format, words)| upload_table(ctx, name, format, &words));
+        let tables = std::array::from_fn(|i| {
+            let (name, words) = &tables[i];
+            upload_table(ctx, name, SCENE_TABLE_FORMATS[i], words)
+        });
         SceneBuffers { globals, tables }
     })
 }
