@@ -34,12 +34,16 @@ fn mesh_grid(mesh: PackedMesh) -> GridView {
 }
 // #endif
 
-// A grid's state for one ray: current cell, per-axis step, next boundary t and t per
-// cell; `valid` is false when the ray misses the grid bounds (Rust's None).
+// A grid's state for one ray: the current cell, as its index in cell_start, and per axis
+// what a step adds to that index, the steps left before the grid ends, the next
+// boundary's t and t per cell; `valid` is false when the ray misses the grid bounds
+// (Rust's None). (The index moves by a stride per step rather than being recomputed from
+// coordinates, as on the CPU.)
 // Mirror of src/cpu/dda.rs::Dda — change both.
 struct Dda {
-    cell: vec3<i32>,
-    step: vec3<i32>,
+    cell: u32,
+    cell_step: vec3<i32>,
+    steps_left: vec3<u32>,
     t_next: vec3<f32>,
     t_delta: vec3<f32>,
     t_exit: f32,
@@ -64,24 +68,29 @@ fn dda_setup(grid: GridView, ray: Ray, inv: vec3<f32>, t_max: f32) -> Dda {
     // Truncation, not floor: the two differ only below 0, which the clamp takes to cell 0
     // either way (as on the CPU, where floor is a library call).
     let cell = clamp(vec3<i32>((p - grid.min) / grid.cell_size), vec3<i32>(0), grid.dims - 1);
-    var step = vec3<i32>(0);
+    let strides = vec3<i32>(1, grid.dims.x, grid.dims.x * grid.dims.y);
+    var cell_step = vec3<i32>(0);
+    var steps_left = vec3<u32>(0u);
     var t_next = vec3<f32>(0.0);
     var t_delta = vec3<f32>(0.0);
     for (var axis = 0u; axis < 3u; axis++) {
         if ray.dir[axis] == 0.0 {
             // Parallel to this axis's planes: never step along it.
-            step[axis] = 0;
+            cell_step[axis] = 0;
+            steps_left[axis] = 0u;
             t_next[axis] = T_MISS;
             t_delta[axis] = T_MISS;
         } else {
-            step[axis] = select(-1, 1, ray.dir[axis] > 0.0);
-            let boundary_cell = cell[axis] + select(0, 1, ray.dir[axis] > 0.0);
+            let forward = ray.dir[axis] > 0.0;
+            cell_step[axis] = select(-strides[axis], strides[axis], forward);
+            steps_left[axis] = u32(select(cell[axis], grid.dims[axis] - 1 - cell[axis], forward));
+            let boundary_cell = cell[axis] + select(0, 1, forward);
             let boundary = grid.min[axis] + f32(boundary_cell) * grid.cell_size[axis];
             t_next[axis] = (boundary - ray.origin[axis]) * inv[axis];
             t_delta[axis] = grid.cell_size[axis] * abs(inv[axis]);
         }
     }
-    return Dda(cell, step, t_next, t_delta, t_exit, true);
+    return Dda(cell_index(grid, cell), cell_step, steps_left, t_next, t_delta, t_exit, true);
 }
 
 // Index of the DDA's current cell in cell_start (x fastest).
@@ -112,16 +121,15 @@ struct DdaStep {
 
 // Steps the DDA to the next cell.
 // Mirror of src/cpu/dda.rs::dda_step — change both.
-fn dda_step(grid: GridView, dda: ptr<function, Dda>) -> DdaStep {
+fn dda_step(dda: ptr<function, Dda>) -> DdaStep {
     let axis = min_axis((*dda).t_next);
     let t_cell_exit = (*dda).t_next[axis];
-    if t_cell_exit >= (*dda).t_exit {
+    if t_cell_exit >= (*dda).t_exit || (*dda).steps_left[axis] == 0u {
         return DdaStep(t_cell_exit, false);
     }
-    (*dda).cell[axis] += (*dda).step[axis];
-    if (*dda).cell[axis] < 0 || (*dda).cell[axis] >= grid.dims[axis] {
-        return DdaStep(t_cell_exit, false);
-    }
+    (*dda).steps_left[axis] -= 1u;
+    // (u32 arithmetic wraps, as the CPU's wrapping_add_signed: a negative stride subtracts.)
+    (*dda).cell += bitcast<u32>((*dda).cell_step[axis]);
     (*dda).t_next[axis] += (*dda).t_delta[axis];
     return DdaStep(t_cell_exit, true);
 }

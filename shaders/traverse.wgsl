@@ -163,10 +163,10 @@ fn closest_hit_inside(entered: EnteredRay) -> Hit {
         return hit_miss();
     }
 // #if MESH
-    var walk = scene_walk_start(grid, dda);
+    var walk = scene_walk_start(dda);
     var pending = pending_meshes_new();
     loop {
-        closest_walk(grid, &walk, ray, &best, &mailbox, &pending);
+        closest_walk(&walk, ray, &best, &mailbox, &pending);
         best = walk_pending_meshes(pending, ray, best);
         pending = pending_meshes_new();
         if walk.done {
@@ -175,10 +175,10 @@ fn closest_hit_inside(entered: EnteredRay) -> Hit {
     }
 // #else
     loop {
-        let cell = cell_index(grid, dda.cell);
+        let cell = dda.cell;
         best = test_items(cell_start_at(cell), cell_start_at(cell + 1u), ray, best, &mailbox);
         // A hit inside this cell is final; so is leaving the grid or passing t_max.
-        let step = dda_step(grid, &dda);
+        let step = dda_step(&dda);
         if !step.valid || best.t <= step.t_cell_exit {
             break;
         }
@@ -244,11 +244,11 @@ fn any_hit_inside(entered: EnteredRay) -> bool {
         return false;
     }
 // #if MESH
-    var walk = scene_walk_start(grid, dda);
+    var walk = scene_walk_start(dda);
     var pending = pending_meshes_new();
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
     loop {
-        let occluded = occlusion_walk(grid, &walk, ray, t_max, &mailbox, &pending);
+        let occluded = occlusion_walk(&walk, ray, t_max, &mailbox, &pending);
         if occluded || pending_meshes_occlude(pending, ray, t_max) {
             return true;
         }
@@ -261,11 +261,11 @@ fn any_hit_inside(entered: EnteredRay) -> bool {
 // #else
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
     loop {
-        let cell = cell_index(grid, dda.cell);
+        let cell = dda.cell;
         if any_item_hit(cell_start_at(cell), cell_start_at(cell + 1u), ray, t_max, &mailbox) {
             return true;
         }
-        if !dda_step(grid, &dda).valid {
+        if !dda_step(&dda).valid {
             break;
         }
     }
@@ -326,16 +326,16 @@ struct SceneWalk {
 
 // A walk standing at the start of the DDA's first cell.
 // Mirror of src/cpu/traverse.rs::scene_walk_start — change both.
-fn scene_walk_start(grid: GridView, dda: Dda) -> SceneWalk {
+fn scene_walk_start(dda: Dda) -> SceneWalk {
     var walk = SceneWalk(dda, 0u, 0u, false);
-    scene_walk_enter_cell(grid, &walk);
+    scene_walk_enter_cell(&walk);
     return walk;
 }
 
 // Points walk at the item list of the cell its DDA stands in.
 // Mirror of src/cpu/traverse.rs::scene_walk_enter_cell — change both.
-fn scene_walk_enter_cell(grid: GridView, walk: ptr<function, SceneWalk>) {
-    let cell = cell_index(grid, (*walk).dda.cell);
+fn scene_walk_enter_cell(walk: ptr<function, SceneWalk>) {
+    let cell = (*walk).dda.cell;
     (*walk).next = cell_start_at(cell);
     (*walk).end = cell_start_at(cell + 1u);
 }
@@ -372,7 +372,6 @@ fn scene_walk_take(
 // with instances pending.
 // Mirror of src/cpu/traverse.rs::closest_walk — change both.
 fn closest_walk(
-    grid: GridView,
     walk: ptr<function, SceneWalk>,
     ray: Ray,
     best: ptr<function, Hit>,
@@ -401,13 +400,13 @@ fn closest_walk(
             return;
         }
         var dda = (*walk).dda;
-        let step = dda_step(grid, &dda);
+        let step = dda_step(&dda);
         (*walk).dda = dda;
         if !step.valid || (*best).t <= step.t_cell_exit {
             (*walk).done = true;
             return;
         }
-        scene_walk_enter_cell(grid, walk);
+        scene_walk_enter_cell(walk);
     }
 }
 
@@ -432,7 +431,6 @@ fn walk_pending_meshes(pending: PendingMeshes, ray: Ray, best_in: Hit) -> Hit {
 // instances in pending.
 // Mirror of src/cpu/traverse.rs::occlusion_walk — change both.
 fn occlusion_walk(
-    grid: GridView,
     walk: ptr<function, SceneWalk>,
     ray: Ray,
     t_max: f32,
@@ -459,13 +457,13 @@ fn occlusion_walk(
             return false;
         }
         var dda = (*walk).dda;
-        let step = dda_step(grid, &dda);
+        let step = dda_step(&dda);
         (*walk).dda = dda;
         if !step.valid {
             (*walk).done = true;
             return false;
         }
-        scene_walk_enter_cell(grid, walk);
+        scene_walk_enter_cell(walk);
     }
     return false;
 }

@@ -50,6 +50,29 @@ fn instance_mesh(inst: PackedInstance) -> PackedMesh {
     return load_mesh(u32(inst.params.x));
 }
 
+// Steps dda on past empty cells, from the cell it stands in, until one lists something
+// (true) or the walk ends (false): it leaves the grid, passes t_exit, or leaves a cell past
+// t_stop (a closest hit below t_stop is final there). The same cells and the same stop as
+// testing each empty cell's nothing in the walk's loop (on the CPU the small loop keeps the
+// Dda in registers).
+// Mirror of src/cpu/traverse_mesh.rs::skip_empty_cells — change both.
+fn skip_empty_cells(dda: ptr<function, Dda>, t_stop: f32) -> bool {
+    // (naga wants a return after the loop, so the loop breaks where Rust returns.)
+    var found = false;
+    loop {
+        let cell = (*dda).cell;
+        if cell_start_at(cell) != cell_start_at(cell + 1u) {
+            found = true;
+            break;
+        }
+        let step = dda_step(dda);
+        if !step.valid || t_stop <= step.t_cell_exit {
+            break;
+        }
+    }
+    return found;
+}
+
 // Nearest hit in (0, t_max) with mesh instance `item` (inst): t, the barycentrics and the
 // triangle as part; hit_miss() (t = T_MISS) when nothing is hit.
 // Mirror of src/cpu/traverse_mesh.rs::intersect_mesh — change both.
@@ -68,12 +91,14 @@ fn intersect_mesh(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit 
     var mailbox = triangle_mailbox_new();
     var best = hit_miss();
     best.t = entered.t_max;
-    var cell = cell_index(grid, dda.cell);
     loop {
+        if !skip_empty_cells(&dda, best.t) {
+            break;
+        }
+        let cell = dda.cell;
         // The step comes before the cell's tests, as on the CPU (which prefetches the
         // next cell's range meanwhile).
-        let step = dda_step(grid, &dda);
-        let next_cell = cell_index(grid, dda.cell);
+        let step = dda_step(&dda);
         let end = cell_start_at(cell + 1u);
         for (var i = cell_start_at(cell); i < end; i++) {
             let local = cell_item_at(i);
@@ -91,7 +116,6 @@ fn intersect_mesh(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit 
         if !step.valid || best.t <= step.t_cell_exit {
             break;
         }
-        cell = next_cell;
     }
     if is_hit(best) {
         best.t += entered.t_moved;
@@ -117,11 +141,14 @@ fn mesh_occludes(inst: PackedInstance, ray: Ray, t_max: f32) -> bool {
     let tri_ray = triangle_ray_setup(entered.ray.origin, entered.ray.dir);
     var mailbox = triangle_mailbox_new();
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
-    var cell = cell_index(grid, dda.cell);
+    // (Any step the walk takes ends before t_exit <= t_max: t_max stops nothing.)
     loop {
+        if !skip_empty_cells(&dda, entered.t_max) {
+            break;
+        }
+        let cell = dda.cell;
         // The step comes before the cell's tests, as on the CPU.
-        let step = dda_step(grid, &dda);
-        let next_cell = cell_index(grid, dda.cell);
+        let step = dda_step(&dda);
         let end = cell_start_at(cell + 1u);
         for (var i = cell_start_at(cell); i < end; i++) {
             let local = cell_item_at(i);
@@ -136,7 +163,6 @@ fn mesh_occludes(inst: PackedInstance, ray: Ray, t_max: f32) -> bool {
         if !step.valid {
             break;
         }
-        cell = next_cell;
     }
     return false;
 }

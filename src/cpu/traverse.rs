@@ -13,7 +13,7 @@
 //! cell that held an instance.
 
 use super::csg::intersect_csg;
-use super::dda::{cell_index, dda_setup, dda_step, scene_grid, Dda, GridView};
+use super::dda::{dda_setup, dda_step, scene_grid, Dda};
 pub use super::dda::{enter_scene, EnteredRay};
 pub use super::hit::{Counters, Hit, NoCounters, TraversalCounters};
 use super::intersect::intersect_instance;
@@ -23,7 +23,6 @@ use crate::constants::{
     ITEM_MAILBOX_SIZE, KIND_CSG, KIND_MESH, KIND_TORUS, NO_ITEM, T_MISS, WALK_FULL,
 };
 use crate::pack::{PackedInstance, PackedScene};
-use glam::IVec3;
 
 /// The items a ray has tested, as a direct-mapped cache of `ITEM_MAILBOX_SIZE` slots
 /// (item number modulo the size: one compare). Only kinds for which a second test is
@@ -196,12 +195,11 @@ fn closest_hit_inside(
     let Some(dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return Hit::MISS;
     };
-    let mut walk = scene_walk_start(scene, &grid, dda, counters);
+    let mut walk = scene_walk_start(scene, dda, counters);
     let mut pending = PendingMeshes::new();
     loop {
         closest_walk(
             scene,
-            &grid,
             &mut walk,
             ray,
             &mut best,
@@ -282,7 +280,6 @@ struct SceneWalk {
 // Mirror of shaders/traverse.wgsl::scene_walk_start — change both.
 fn scene_walk_start(
     scene: &PackedScene,
-    grid: &GridView,
     dda: Dda,
     counters: &mut impl TraversalCounters,
 ) -> SceneWalk {
@@ -292,7 +289,7 @@ fn scene_walk_start(
         end: 0,
         done: false,
     };
-    scene_walk_enter_cell(scene, grid, &mut walk, counters);
+    scene_walk_enter_cell(scene, &mut walk, counters);
     walk
 }
 
@@ -304,12 +301,11 @@ fn scene_walk_start(
 #[inline(always)]
 fn scene_walk_enter_cell(
     scene: &PackedScene,
-    grid: &GridView,
     walk: &mut SceneWalk,
     counters: &mut impl TraversalCounters,
 ) {
     counters.cell_visited();
-    let cell = cell_index(grid, IVec3::from(walk.dda.cell));
+    let cell = walk.dda.cell as usize;
     walk.next = scene.cell_start[cell];
     walk.end = scene.cell_start[cell + 1];
 }
@@ -351,7 +347,6 @@ fn scene_walk_take(
 #[inline(always)]
 fn closest_walk(
     scene: &PackedScene,
-    grid: &GridView,
     walk: &mut SceneWalk,
     ray: &Ray,
     best: &mut Hit,
@@ -381,9 +376,9 @@ fn closest_walk(
         if pending.count > 0 {
             return;
         }
-        match dda_step(grid, &mut walk.dda) {
+        match dda_step(&mut walk.dda) {
             Some(t_cell_exit) if best.t > t_cell_exit => {
-                scene_walk_enter_cell(scene, grid, walk, counters)
+                scene_walk_enter_cell(scene, walk, counters)
             }
             _ => {
                 walk.done = true;
@@ -488,12 +483,11 @@ fn any_hit_inside(
     let Some(dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return false;
     };
-    let mut walk = scene_walk_start(scene, &grid, dda, counters);
+    let mut walk = scene_walk_start(scene, dda, counters);
     let mut pending = PendingMeshes::new();
     loop {
         let occluded = occlusion_walk(
             scene,
-            &grid,
             &mut walk,
             ray,
             t_max,
@@ -520,7 +514,6 @@ fn any_hit_inside(
 #[inline(always)]
 fn occlusion_walk(
     scene: &PackedScene,
-    grid: &GridView,
     walk: &mut SceneWalk,
     ray: &Ray,
     t_max: f32,
@@ -547,11 +540,11 @@ fn occlusion_walk(
         if pending.count > 0 {
             return false;
         }
-        if dda_step(grid, &mut walk.dda).is_none() {
+        if dda_step(&mut walk.dda).is_none() {
             walk.done = true;
             return false;
         }
-        scene_walk_enter_cell(scene, grid, walk, counters);
+        scene_walk_enter_cell(scene, walk, counters);
     }
 }
 

@@ -4,14 +4,13 @@
 //! testing the triangles listed there with the watertight test: on the CPU four at a time
 //! (`triangle4`: the same answers, bit for bit, as the WGSL twins' one by one).
 
-use super::dda::{cell_index, dda_setup, dda_step, enter_mesh, mesh_grid, Dda, GridView};
+use super::dda::{dda_setup, dda_step, enter_mesh, mesh_grid, Dda};
 use super::hit::{Hit, TraversalCounters};
 use super::intersect::to_object_space;
 use super::ray::Ray;
 use super::triangle4::{NearestTriangle, TriangleBatch, TriangleRays};
 use crate::constants::{NO_ITEM, TRIANGLE_MAILBOX_SIZE};
 use crate::pack::{PackedInstance, PackedMesh, PackedScene, PackedTriangle};
-use glam::IVec3;
 
 /// The mesh of a `KIND_MESH` instance.
 // Mirror of shaders/traverse_mesh.wgsl::instance_mesh — change both.
@@ -93,10 +92,10 @@ pub fn intersect_mesh(
     let triangles = mesh_triangles(scene, mesh);
     let mut mailbox = TriangleMailbox::new(scene);
     let mut best = NearestTriangle::none(entered.t_max);
-    let mut cell = cell_index(&grid, IVec3::from(dda.cell));
-    loop {
+    while skip_empty_cells(scene, &mut dda, best.t, counters) {
+        let cell = dda.cell as usize;
         counters.cell_visited();
-        let (next, next_cell) = step_and_prefetch(scene, &grid, &mut dda);
+        let next = step_and_prefetch(scene, &mut dda);
         // The cell's untested triangles in batches of four lanes, in list order.
         let mut batch = TriangleBatch::EMPTY;
         for &local in cell_items(scene, cell) {
@@ -111,7 +110,7 @@ pub fn intersect_mesh(
         batch.keep_nearest(&tri_rays, triangles, &mut best);
         // A hit inside this cell is final; so is leaving the grid or passing t_max.
         match next {
-            Some(t_cell_exit) if best.t > t_cell_exit => cell = next_cell,
+            Some(t_cell_exit) if best.t > t_cell_exit => {}
             _ => break,
         }
     }
@@ -127,20 +126,45 @@ pub fn intersect_mesh(
     }
 }
 
+/// Steps `dda` on past empty cells, from the cell it stands in, until one lists something
+/// (true) or the walk ends (false): it leaves the grid, passes t_exit, or leaves a cell
+/// past `t_stop` (a closest hit below `t_stop` is final there). The same cells and the same
+/// stop as testing each empty cell's nothing in the walk's loop, but in a loop small enough
+/// for the `Dda` to stay in registers (the full loop spills it to the stack).
+// Mirror of shaders/traverse_mesh.wgsl::skip_empty_cells — change both.
+#[inline(always)]
+fn skip_empty_cells(
+    scene: &PackedScene,
+    dda: &mut Dda,
+    t_stop: f32,
+    counters: &mut impl TraversalCounters,
+) -> bool {
+    loop {
+        let cell = dda.cell as usize;
+        let range = &scene.cell_start[cell..cell + 2];
+        if range[0] != range[1] {
+            return true;
+        }
+        counters.cell_visited();
+        match dda_step(dda) {
+            Some(t_cell_exit) if t_stop > t_cell_exit => {}
+            _ => return false,
+        }
+    }
+}
+
 /// Steps the DDA to the next cell (`dda_step`) before the current cell's triangles are
 /// tested, and asks the cache for the next cell's range meanwhile: in a large mesh that
-/// load misses the cache, and the tests of this cell hide its latency. Returns the step
-/// and the next cell's index (meaningless when the step is None).
-fn step_and_prefetch(scene: &PackedScene, grid: &GridView, dda: &mut Dda) -> (Option<f32>, usize) {
-    let next = dda_step(grid, dda);
-    if next.is_none() {
-        return (None, 0);
+/// load misses the cache, and the tests of this cell hide its latency.
+#[inline(always)]
+fn step_and_prefetch(scene: &PackedScene, dda: &mut Dda) -> Option<f32> {
+    let next = dda_step(dda);
+    if next.is_some() {
+        // (No bounds check: the cell is inside the grid, and a prefetch of any address is
+        // harmless.)
+        prefetch(scene.cell_start.as_ptr().wrapping_add(dda.cell as usize));
     }
-    let cell = cell_index(grid, IVec3::from(dda.cell));
-    // (No bounds check: the cell is inside the grid, and a prefetch of any address is
-    // harmless.)
-    prefetch(scene.cell_start.as_ptr().wrapping_add(cell));
-    (next, cell)
+    next
 }
 
 /// A hint to fetch the cache line at `address` (no effect on results; none off x86-64).
@@ -184,10 +208,11 @@ pub fn mesh_occludes(
     let tri_rays = TriangleRays::new(entered.ray.origin, entered.ray.dir);
     let triangles = mesh_triangles(scene, mesh);
     let mut mailbox = TriangleMailbox::new(scene);
-    let mut cell = cell_index(&grid, IVec3::from(dda.cell));
-    loop {
+    // (Any step the walk takes ends before t_exit ≤ t_max: t_max stops nothing.)
+    while skip_empty_cells(scene, &mut dda, entered.t_max, counters) {
+        let cell = dda.cell as usize;
         counters.cell_visited();
-        let (next, next_cell) = step_and_prefetch(scene, &grid, &mut dda);
+        let next = step_and_prefetch(scene, &mut dda);
         let mut batch = TriangleBatch::EMPTY;
         for &local in cell_items(scene, cell) {
             if mailbox.seen(local) {
@@ -204,6 +229,6 @@ pub fn mesh_occludes(
         if next.is_none() {
             return false;
         }
-        cell = next_cell;
     }
+    false
 }
