@@ -29,13 +29,40 @@ use glam::{BVec4A, Vec3, Vec4};
 pub const LANES: usize = 4;
 
 /// A [`TriangleRay`] spread over four lanes: the origin's coordinates and the shear
-/// already in the ray's axis order (x = `kx`, y = `ky`, z = `kz`), so a lane reads its
-/// triangle's coordinates straight in that order.
+/// already in the ray's axis order (x = `kx`, y = `ky`, z = `kz`), and that order as one of
+/// the six [`AxisOrder`]s, so a lane reads its triangle's coordinates in that order with
+/// indices known when compiled.
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleRay4 {
-    axes: [Axis; 3],
+    order: AxisOrder,
     origin: [Vec4; 3],
     shear: [Vec4; 3],
+}
+
+/// The ray's axis order (kx, ky, kz): kz the direction's largest axis, kx and ky the other
+/// two in cyclic order, swapped when the direction along kz is negative
+/// (`triangle_ray_setup`), so six orders in all.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum AxisOrder {
+    Xyz,
+    Yxz,
+    Yzx,
+    Zyx,
+    Zxy,
+    Xzy,
+}
+
+impl AxisOrder {
+    fn of(kx: Axis, ky: Axis, kz: Axis) -> AxisOrder {
+        match (kx, ky, kz) {
+            (Axis::X, Axis::Y, _) => AxisOrder::Xyz,
+            (Axis::Y, Axis::X, _) => AxisOrder::Yxz,
+            (Axis::Y, Axis::Z, _) => AxisOrder::Yzx,
+            (Axis::Z, Axis::Y, _) => AxisOrder::Zyx,
+            (Axis::Z, Axis::X, _) => AxisOrder::Zxy,
+            _ => AxisOrder::Xzy,
+        }
+    }
 }
 
 impl TriangleRay4 {
@@ -44,31 +71,69 @@ impl TriangleRay4 {
         let axes = [r.kx, r.ky, r.kz];
         let origin = r.origin.to_array();
         TriangleRay4 {
-            axes,
+            order: AxisOrder::of(r.kx, r.ky, r.kz),
             origin: axes.map(|axis| Vec4::splat(origin[axis as usize])),
             shear: [r.shear.x, r.shear.y, r.shear.z].map(Vec4::splat),
         }
     }
 }
 
-/// Coordinate `axis` of vertex `vertex` (0–2) of each of the four triangles.
+/// The four triangles' nine coordinates, one `Vec4` each (lane k: triangle k):
+/// `[vertex][axis]`.
+type Coordinates4 = [[Vec4; 3]; 3];
+
+/// Loads the four triangles' coordinates into lanes: each triangle as two four-float
+/// loads and one float, then a 4×4 transpose of each group of four (shuffles: cheaper than
+/// filling the 36 lanes one float at a time).
 #[inline(always)]
-fn gather(tris: &[&PackedTriangle; LANES], vertex: usize, axis: Axis) -> Vec4 {
-    // (As nine floats, so that a coordinate is one load at a computed offset.)
-    let at =
-        |tri: &PackedTriangle| bytemuck::cast_ref::<_, [f32; 9]>(tri)[3 * vertex + axis as usize];
-    Vec4::new(at(tris[0]), at(tris[1]), at(tris[2]), at(tris[3]))
+fn load_coordinates4(tris: &[&PackedTriangle; LANES]) -> Coordinates4 {
+    let floats = tris.map(bytemuck::cast_ref::<_, [f32; 9]>);
+    let [a0, a1, a2, a3] = transpose4(floats.map(|f| Vec4::from_slice(&f[0..4])));
+    let [b0, b1, b2, b3] = transpose4(floats.map(|f| Vec4::from_slice(&f[4..8])));
+    let c = Vec4::new(floats[0][8], floats[1][8], floats[2][8], floats[3][8]);
+    [[a0, a1, a2], [a3, b0, b1], [b2, b3, c]]
+}
+
+/// The 4×4 transpose of four rows: column k of the rows as lane vector k.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn transpose4(rows: [Vec4; 4]) -> [Vec4; 4] {
+    use std::arch::x86_64::{_mm_movehl_ps, _mm_movelh_ps, _mm_unpackhi_ps, _mm_unpacklo_ps};
+    let [r0, r1, r2, r3] = rows.map(std::arch::x86_64::__m128::from);
+    // SAFETY: SSE is part of every x86-64 CPU (the target's baseline), and these shuffles
+    // read nothing but their register arguments.
+    let columns = unsafe {
+        let (lo01, lo23) = (_mm_unpacklo_ps(r0, r1), _mm_unpacklo_ps(r2, r3));
+        let (hi01, hi23) = (_mm_unpackhi_ps(r0, r1), _mm_unpackhi_ps(r2, r3));
+        [
+            _mm_movelh_ps(lo01, lo23),
+            _mm_movehl_ps(lo23, lo01),
+            _mm_movelh_ps(hi01, hi23),
+            _mm_movehl_ps(hi23, hi01),
+        ]
+    };
+    columns.map(Vec4::from)
+}
+
+/// The 4×4 transpose of four rows (portable form).
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+fn transpose4(rows: [Vec4; 4]) -> [Vec4; 4] {
+    let r = rows.map(Vec4::to_array);
+    [0, 1, 2, 3].map(|k| Vec4::new(r[0][k], r[1][k], r[2][k], r[3][k]))
 }
 
 /// Vertex `vertex` of the four triangles relative to the ray origin and sheared, as the
 /// scalar `shear_vertex`: (x, y) in the plane where the ray is the +z axis, and the
-/// unscaled z.
+/// unscaled z. `KX`, `KY`, `KZ`: the ray's axis order.
 #[inline(always)]
-fn shear_vertex4(r: &TriangleRay4, tris: &[&PackedTriangle; LANES], vertex: usize) -> [Vec4; 3] {
-    let [kx, ky, kz] = r.axes;
-    let a_kx = gather(tris, vertex, kx) - r.origin[0];
-    let a_ky = gather(tris, vertex, ky) - r.origin[1];
-    let a_kz = gather(tris, vertex, kz) - r.origin[2];
+fn shear_vertex4<const KX: usize, const KY: usize, const KZ: usize>(
+    r: &TriangleRay4,
+    vertex: &[Vec4; 3],
+) -> [Vec4; 3] {
+    let a_kx = vertex[KX] - r.origin[0];
+    let a_ky = vertex[KY] - r.origin[1];
+    let a_kz = vertex[KZ] - r.origin[2];
     [a_kx - r.shear[0] * a_kz, a_ky - r.shear[1] * a_kz, a_kz]
 }
 
@@ -88,10 +153,30 @@ pub fn intersect_triangles4(
     tris: &[&PackedTriangle; LANES],
     t_max: f32,
 ) -> (u32, Vec4) {
+    let p = load_coordinates4(tris);
+    // (One branch, the same for the whole walk, to a test whose axis indices are
+    // constants.)
+    match r.order {
+        AxisOrder::Xyz => intersect_ordered4::<0, 1, 2>(r, &p, t_max),
+        AxisOrder::Yxz => intersect_ordered4::<1, 0, 2>(r, &p, t_max),
+        AxisOrder::Yzx => intersect_ordered4::<1, 2, 0>(r, &p, t_max),
+        AxisOrder::Zyx => intersect_ordered4::<2, 1, 0>(r, &p, t_max),
+        AxisOrder::Zxy => intersect_ordered4::<2, 0, 1>(r, &p, t_max),
+        AxisOrder::Xzy => intersect_ordered4::<0, 2, 1>(r, &p, t_max),
+    }
+}
+
+/// `intersect_triangles4` for the axis order `KX`, `KY`, `KZ` (the ray's).
+#[inline(always)]
+fn intersect_ordered4<const KX: usize, const KY: usize, const KZ: usize>(
+    r: &TriangleRay4,
+    p: &Coordinates4,
+    t_max: f32,
+) -> (u32, Vec4) {
     let zero = Vec4::ZERO;
-    let [ax, ay, a_kz] = shear_vertex4(r, tris, 0);
-    let [bx, by, b_kz] = shear_vertex4(r, tris, 1);
-    let [cx, cy, c_kz] = shear_vertex4(r, tris, 2);
+    let [ax, ay, a_kz] = shear_vertex4::<KX, KY, KZ>(r, &p[0]);
+    let [bx, by, b_kz] = shear_vertex4::<KX, KY, KZ>(r, &p[1]);
+    let [cx, cy, c_kz] = shear_vertex4::<KX, KY, KZ>(r, &p[2]);
     let u = edge4(cx, cy, bx, by);
     let v = edge4(ax, ay, cx, cy);
     let w = edge4(bx, by, ax, ay);
