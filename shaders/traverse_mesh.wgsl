@@ -1,7 +1,8 @@
 // traverse_mesh.wgsl — the second level: a mesh instance traversed through its mesh's own
 // grid. The ray goes to the mesh's space through the instance's world→object rows
 // (direction not normalised, so t carries over), enters the mesh's grid bounds and walks
-// its cells, testing the triangles listed there with the watertight test.
+// its cells (runs of empty cells in a loop of their own), testing the triangles listed
+// there with the watertight test.
 
 // #if MESH
 // The triangles a ray has tested in one mesh, as a direct-mapped cache of

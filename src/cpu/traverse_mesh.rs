@@ -1,8 +1,9 @@
 //! The second level: a mesh instance traversed through its mesh's own grid. The ray goes
 //! to the mesh's space through the instance's world→object rows (direction not
-//! normalised, so t carries over), enters the mesh's grid bounds and walks its cells,
-//! testing the triangles listed there with the watertight test: on the CPU four at a time
-//! (`triangle4`: the same answers, bit for bit, as the WGSL twins' one by one).
+//! normalised, so t carries over), enters the mesh's grid bounds and walks its cells
+//! (runs of empty cells in a loop of their own), testing the triangles listed there with
+//! the watertight test: on the CPU four at a time (`triangle4`: the same answers, bit for
+//! bit, as the WGSL twins' one by one).
 
 use super::dda::{dda_setup, dda_step, enter_mesh, mesh_grid, Dda};
 use super::hit::{Hit, TraversalCounters};
