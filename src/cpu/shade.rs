@@ -1,7 +1,7 @@
 //! A4 Phong shading with shadow rays, and the background.
 
 use super::dielectric::{shadow_transmittance, MediumStack};
-use super::ray::{offset_ray, Ray};
+use super::ray::{offset_ray, shadow_reach, Ray};
 use super::rng::{shadow_random, shadow_stream, SampleSeed};
 use super::surface::{Phong, Surface};
 use super::texture::surface_colours;
@@ -86,7 +86,8 @@ pub fn shade_phong(
 
 /// Light from a point at `position` with `light`'s colour and falloff: the A4 term, or
 /// zero when the point is behind the surface or a shadow ray from `origin` is blocked
-/// (dimmed instead by the glass it crosses, in scenes with refraction).
+/// (dimmed instead by the glass it crosses, in scenes with refraction) before
+/// [`shadow_reach`], just short of the light.
 // Mirror of shaders/shade.wgsl::point_light — change both.
 #[allow(clippy::too_many_arguments)]
 fn point_light(
@@ -112,7 +113,7 @@ fn point_light(
     }
     // With dielectrics, light passes through glass, dimmed (see dielectric.rs).
     let transmittance = if scene.features.contains(SceneFeatures::REFRACTION) {
-        shadow_transmittance(scene, origin, position, media, counters)
+        shadow_transmittance(scene, origin, position, s.magnitude, media, counters)
     } else {
         let shadow_dir = position - origin;
         let shadow_distance = shadow_dir.length();
@@ -120,7 +121,9 @@ fn point_light(
             origin,
             dir: shadow_dir / shadow_distance,
         };
-        if any_hit(scene, &shadow_ray, shadow_distance, counters) {
+        // Stop short of the light, so a surface through it does not speckle.
+        let reach = shadow_reach(origin, position, shadow_distance, s.magnitude);
+        if any_hit(scene, &shadow_ray, reach, counters) {
             0.0
         } else {
             1.0
