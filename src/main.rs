@@ -101,6 +101,10 @@ struct RenderArgs {
     /// (repeatable).
     #[arg(long, value_name = "DIR")]
     allow_read: Vec<PathBuf>,
+    /// No notes on stderr about arguments the scene passes that glint does not use (as a
+    /// scene's own gr.ignore_extra_arguments()).
+    #[arg(long)]
+    ignore_extra_arguments: bool,
     /// Tracer: cpu (the reference), gpu (wgpu compute: Vulkan, Metal or DX12), auto (a
     /// hardware GPU when one exists, else the CPU, with a one-line notice), or both
     /// (render on each, write NAME-cpu and NAME-gpu, print the difference and both times;
@@ -242,6 +246,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         script_timeout: Some(Duration::from_secs(args.script_timeout)),
         memory_limit: Some((args.memory_limit << 20) as usize),
         allow_read: args.allow_read.clone(),
+        ignore_extra_arguments: args.ignore_extra_arguments,
         hard_time_limit: true,
         backend: match args.backend {
             BackendArg::Cpu => glint::pipeline::Backend::Cpu,

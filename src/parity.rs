@@ -124,6 +124,7 @@ pub fn run_scene_both(
     if let Some(limit) = settings.instruction_limit {
         config.instruction_limit = limit;
     }
+    config.ignore_extra_arguments = settings.ignore_extra_arguments;
     let ctx = GpuContext::new(settings.adapter.as_deref())?;
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
     let mut index = 0;

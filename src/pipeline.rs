@@ -37,6 +37,8 @@ pub struct RenderSettings {
     pub memory_limit: Option<usize>,
     /// `--allow-read`: folders the scene may read besides its own.
     pub allow_read: Vec<PathBuf>,
+    /// `--ignore-extra-arguments`: no notes on arguments glint does not use.
+    pub ignore_extra_arguments: bool,
     /// End the process (exit code 3) when the script overruns its time where it cannot
     /// be interrupted (the command line sets it).
     pub hard_time_limit: bool,
@@ -337,6 +339,7 @@ pub fn run_scene(
     }
     config.allow_read = settings.allow_read.clone();
     config.hard_time_limit = settings.hard_time_limit;
+    config.ignore_extra_arguments = settings.ignore_extra_arguments;
     let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref())?;
     let tracer = gpu.as_ref().map_or(Tracer::Cpu, Tracer::Gpu);
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);

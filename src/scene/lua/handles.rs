@@ -8,10 +8,23 @@
 //! material changed after it was set. Methods return their receiver so calls chain.
 
 use super::args::Args;
+use super::unknown::unknown_method;
 use super::with_state;
 use crate::scene::{Light, Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
 use mlua::{MetaMethod, MultiValue, UserData, UserDataMethods};
+
+/// The methods of a node, for the error on one it does not have.
+const NODE_METHODS: &[&str] = &["add_child", "set_material", "scale", "translate", "rotate"];
+/// The methods of a material.
+const MATERIAL_METHODS: &[&str] = &[
+    "set_diffuse",
+    "set_specular",
+    "set_bump",
+    "set_shininess",
+    "set_reflection",
+    "set_refraction",
+];
 
 /// A node made by `gr.node`, `gr.sphere`, … (index into `SceneGraph::nodes`).
 #[derive(Clone, Copy, Debug)]
@@ -33,6 +46,7 @@ impl UserData for NodeHandle {
                     let a = Args::method(lua, concat!("node:", $name), args);
                     a.receiver::<NodeHandle>("node")?;
                     $f(&a)?;
+                    super::notes::check_extra_arguments(&a);
                     Ok(a.receiver_value())
                 });
             };
@@ -77,6 +91,15 @@ impl UserData for NodeHandle {
                 format!("node '{}'", s.graph.nodes[id].name)
             }))
         });
+        // Reached only for names that are not methods (mlua looks methods up first).
+        methods.add_meta_function(
+            MetaMethod::Index,
+            |lua, (this, key): (mlua::AnyUserData, mlua::Value)| -> mlua::Result<()> {
+                let id = this.borrow::<NodeHandle>()?.0;
+                let kind = with_state(lua, |s| format!("node '{}'", s.graph.nodes[id].name));
+                Err(unknown_method(lua, &kind, &key, NODE_METHODS))
+            },
+        );
     }
 }
 
@@ -269,6 +292,7 @@ impl UserData for MaterialHandle {
                     let id = a.receiver::<MaterialHandle>("material")?.0;
                     let edit = $f(&a)?;
                     with_state(lua, |s| edit(&mut s.graph.materials[id]));
+                    super::notes::check_extra_arguments(&a);
                     Ok(a.receiver_value())
                 });
             };
@@ -301,6 +325,16 @@ impl UserData for MaterialHandle {
                 format!("material '{}'", s.graph.materials[id].name)
             }))
         });
+        methods.add_meta_function(
+            MetaMethod::Index,
+            |lua, (this, key): (mlua::AnyUserData, mlua::Value)| -> mlua::Result<()> {
+                let id = this.borrow::<MaterialHandle>()?.0;
+                let kind = with_state(lua, |s| {
+                    format!("material '{}'", s.graph.materials[id].name)
+                });
+                Err(unknown_method(lua, &kind, &key, MATERIAL_METHODS))
+            },
+        );
     }
 }
 
@@ -312,5 +346,12 @@ impl UserData for LightHandle {
                 this.0.position.x, this.0.position.y, this.0.position.z
             ))
         });
+        // Without it Lua would report `attempt to index a LightHandle value`.
+        methods.add_meta_function(
+            MetaMethod::Index,
+            |lua, (_this, key): (mlua::AnyUserData, mlua::Value)| -> mlua::Result<()> {
+                Err(unknown_method(lua, "a light", &key, &[]))
+            },
+        );
     }
 }

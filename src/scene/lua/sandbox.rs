@@ -218,6 +218,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     let name = a.string(1, "module")?;
     with_state(lua, |s| s.report.looks_pre2015 = true);
     if name == "readobj" {
+        super::notes::check_extra_arguments(&a);
         return Ok(Value::Boolean(true));
     }
     let loaded: Table = lua.named_registry_value(LOADED_KEY)?;
@@ -225,14 +226,11 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     if !cached.is_nil() {
         return Ok(cached);
     }
-    let (path, checked) = with_state(lua, |s| {
-        let path = s.base_dir.join(format!("{}.lua", name.replace('.', "/")));
-        let checked = s.read_policy.check(&path, "module");
-        (path, checked)
-    });
-    let source = checked
-        .and_then(|_| read_regular(&path, "module", MAX_FILE_BYTES))
-        .map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
+    let file = format!("{}.lua", name.replace('.', "/"));
+    let found = with_state(lua, |s| s.folders.find(&s.read_policy, &file, "module"));
+    let source = found
+        .and_then(|(path, _)| read_regular(&path, "module", MAX_FILE_BYTES).map(|b| (path, b)));
+    let (path, source) = source.map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
     charge(&a, source.len() as u64, &format!("module '{name}'"))?;
     let value: Value = lua
         .load(&source[..])
@@ -245,6 +243,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
         value
     };
     loaded.set(name.as_str(), &value)?;
+    super::notes::check_extra_arguments(&a);
     Ok(value)
 }
 
@@ -253,13 +252,11 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
 fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     let a = Args::new(lua, "readobj", args);
     let file = a.string(1, "path")?;
-    let (path, checked) = with_state(lua, |s| {
+    let found = with_state(lua, |s| {
         s.report.looks_pre2015 = true;
-        let path = s.base_dir.join(&file);
-        let checked = s.read_policy.check(&path, "mesh file");
-        (path, checked)
+        s.folders.find(&s.read_policy, &file, "mesh file")
     });
-    checked.map_err(|e| a.error(e))?;
+    let (path, _) = found.map_err(|e| a.error(e))?;
     super::check_file_cost(&a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
     let (verts, faces) = crate::scene::obj::read_obj_raw(&path).map_err(|e| a.error(e))?;
     let vt = lua.create_table_with_capacity(verts.len(), 0)?;
@@ -270,5 +267,6 @@ fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     for f in faces {
         ft.raw_push(lua.create_sequence_from(f)?)?;
     }
+    super::notes::check_extra_arguments(&a);
     Ok((vt, ft))
 }
