@@ -511,27 +511,9 @@ fn look_at_hint(eye: DVec3, view: DVec3) -> String {
     )
 }
 
-/// `gr.render(root, file, w, h, eye, view, up, fov, ambient, lights[, options])`.
-pub(super) fn render(
-    lua: &Lua,
-    args: MultiValue,
-    on_render: &mut OnRender<'_>,
-) -> mlua::Result<()> {
-    let a = Args::new(lua, "gr.render", args);
-    if with_state(lua, |s| s.render_error.is_some()) {
-        return Err(a.error("an earlier gr.render failed; no more renders"));
-    }
-    let root = a.node(1, "root")?;
-    let output = PathBuf::from(a.string(2, "file")?);
-    let width = a.positive_int(3, "width", MAX_IMAGE_SIDE)?;
-    let height = a.positive_int(4, "height", MAX_IMAGE_SIDE)?;
-    if u64::from(width) * u64::from(height) > MAX_PIXELS {
-        return Err(a.bad_in(
-            4,
-            "height",
-            format!("a {width}×{height} image has more than glint's limit of {MAX_PIXELS} pixels"),
-        ));
-    }
+/// Arguments 5–8 of `gr.render`: eye, view (a non-zero direction), up (not parallel to
+/// it) and the vertical field of view.
+fn camera(a: &Args) -> mlua::Result<Camera> {
     let eye = a.vec3(5, "eye")?;
     let view = a.vec3(6, "view")?;
     if view == DVec3::ZERO {
@@ -557,6 +539,52 @@ pub(super) fn render(
         Some(f) if f > 0.0 && f < 180.0 => f,
         _ => return Err(a.bad(8, "fov", "a number of degrees between 0 and 180")),
     };
+    Ok(Camera {
+        eye,
+        view,
+        up,
+        fov_deg,
+    })
+}
+
+/// Argument 11 of `gr.render`: a table of render options, or nil. The course's binding
+/// ignored whatever followed the lights (thread counts, depths): so does glint, noting it.
+fn render_options(a: &Args) -> mlua::Result<crate::scene::RenderOptions> {
+    Ok(match a.get(11) {
+        Value::Nil | Value::Table(_) => {
+            let options = options::parse(a, 11)?;
+            notes::check_extra_arguments(a);
+            options
+        }
+        _ => {
+            notes::ignored_render_tail(a);
+            crate::scene::RenderOptions::default()
+        }
+    })
+}
+
+/// `gr.render(root, file, w, h, eye, view, up, fov, ambient, lights[, options])`.
+pub(super) fn render(
+    lua: &Lua,
+    args: MultiValue,
+    on_render: &mut OnRender<'_>,
+) -> mlua::Result<()> {
+    let a = Args::new(lua, "gr.render", args);
+    if with_state(lua, |s| s.render_error.is_some()) {
+        return Err(a.error("an earlier gr.render failed; no more renders"));
+    }
+    let root = a.node(1, "root")?;
+    let output = PathBuf::from(a.string(2, "file")?);
+    let width = a.positive_int(3, "width", MAX_IMAGE_SIDE)?;
+    let height = a.positive_int(4, "height", MAX_IMAGE_SIDE)?;
+    if u64::from(width) * u64::from(height) > MAX_PIXELS {
+        return Err(a.bad_in(
+            4,
+            "height",
+            format!("a {width}×{height} image has more than glint's limit of {MAX_PIXELS} pixels"),
+        ));
+    }
+    let camera = camera(&a)?;
     let ambient = a.colour(9, "ambient")?;
     let list = a.table(10, "lights", "a table of lights made by gr.light")?;
     let mut lights = Vec::new();
@@ -578,30 +606,14 @@ pub(super) fn render(
             )
         })?);
     }
-    // The course's binding ignored whatever followed the lights (thread counts, depths).
-    let options = match a.get(11) {
-        Value::Nil | Value::Table(_) => {
-            let options = options::parse(&a, 11)?;
-            notes::check_extra_arguments(&a);
-            options
-        }
-        _ => {
-            notes::ignored_render_tail(&a);
-            crate::scene::RenderOptions::default()
-        }
-    };
+    let options = render_options(&a)?;
     with_state(lua, notes::flush);
     let request = RenderRequest {
         root,
         output,
         width,
         height,
-        camera: Camera {
-            eye,
-            view,
-            up,
-            fov_deg,
-        },
+        camera,
         ambient,
         lights,
         options,
