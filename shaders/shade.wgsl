@@ -245,13 +245,8 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
 // #if REFRACTION
     let transmittance = shadow_transmittance(origin, position, s.magnitude);
 // #else
-    let shadow_dir = position - origin;
-    let shadow_distance = length(shadow_dir);
-    let shadow_ray = Ray(origin, shadow_dir / shadow_distance);
     var transmittance = 1.0;
-    // Stop short of the light, so a surface through it does not speckle.
-    let reach = shadow_reach(origin, position, shadow_distance, s.magnitude);
-    if any_hit(shadow_ray, reach) {
+    if shadow_blocked(origin, position, s.magnitude) {
         transmittance = 0.0;
     }
 // #endif
@@ -265,6 +260,18 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
     let c2 = light.falloff.z;
     let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
     return (phong.kd * n_dot_l + phong.ks * specular) * light.colour * attenuation * transmittance;
+}
+
+// Whether anything blocks the shadow ray from origin to a light at position before
+// shadow_reach (magnitude: the shaded surface's), just short of the light, so that a
+// surface through the light does not speckle.
+// Mirror of src/cpu/shade.rs::shadow_blocked — change both.
+fn shadow_blocked(origin: vec3<f32>, position: vec3<f32>, magnitude: f32) -> bool {
+    let shadow_dir = position - origin;
+    let shadow_distance = length(shadow_dir);
+    let shadow_ray = Ray(origin, shadow_dir / shadow_distance);
+    let reach = shadow_reach(origin, position, shadow_distance, magnitude);
+    return any_hit(shadow_ray, reach);
 }
 
 // #if AREA_LIGHT

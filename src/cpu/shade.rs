@@ -114,20 +114,10 @@ fn point_light(
     // With dielectrics, light passes through glass, dimmed (see dielectric.rs).
     let transmittance = if scene.features.contains(SceneFeatures::REFRACTION) {
         shadow_transmittance(scene, origin, position, s.magnitude, media, counters)
+    } else if shadow_blocked(scene, origin, position, s.magnitude, counters) {
+        0.0
     } else {
-        let shadow_dir = position - origin;
-        let shadow_distance = shadow_dir.length();
-        let shadow_ray = Ray {
-            origin,
-            dir: shadow_dir / shadow_distance,
-        };
-        // Stop short of the light, so a surface through it does not speckle.
-        let reach = shadow_reach(origin, position, shadow_distance, s.magnitude);
-        if any_hit(scene, &shadow_ray, reach, counters) {
-            0.0
-        } else {
-            1.0
-        }
+        1.0
     };
     if transmittance <= 0.0 {
         return Vec3::ZERO;
@@ -140,6 +130,27 @@ fn point_light(
         * Vec3::from(light.colour)
         * attenuation
         * transmittance
+}
+
+/// Whether anything blocks the shadow ray from `origin` to a light at `position` before
+/// [`shadow_reach`] (`magnitude`: the shaded surface's), just short of the light, so that
+/// a surface through the light does not speckle.
+// Mirror of shaders/shade.wgsl::shadow_blocked — change both.
+pub fn shadow_blocked(
+    scene: &PackedScene,
+    origin: Vec3,
+    position: Vec3,
+    magnitude: f32,
+    counters: &mut impl TraversalCounters,
+) -> bool {
+    let shadow_dir = position - origin;
+    let shadow_distance = shadow_dir.length();
+    let shadow_ray = Ray {
+        origin,
+        dir: shadow_dir / shadow_distance,
+    };
+    let reach = shadow_reach(origin, position, shadow_distance, magnitude);
+    any_hit(scene, &shadow_ray, reach, counters)
 }
 
 /// Light from area light number `index`: the mean of [`point_light`] over one jittered
