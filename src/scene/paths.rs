@@ -26,14 +26,14 @@ impl SceneFolders {
         } else {
             scene_dir
         };
-        let start = std::env::current_dir()
-            .and_then(|d| d.canonicalize())
-            .ok()
-            .filter(|start| {
-                scene_dir
-                    .canonicalize()
-                    .is_ok_and(|scene| scene.starts_with(start) && scene != *start)
-            });
+        let home = std::env::var_os("HOME").and_then(|h| Path::new(&h).canonicalize().ok());
+        let start = match (
+            std::env::current_dir().and_then(|d| d.canonicalize()),
+            scene_dir.canonicalize(),
+        ) {
+            (Ok(start), Ok(scene)) => start_folder(&start, &scene, home.as_deref()),
+            _ => None,
+        };
         SceneFolders {
             scene: scene_dir.to_path_buf(),
             start,
@@ -90,6 +90,15 @@ impl SceneFolders {
     }
 }
 
+/// The start folder `start` as a second folder for a scene in `scene` (both canonical):
+/// only when the scene lies below it, and never the filesystem's root or the home folder
+/// `home` (a scene anywhere below those would gain the whole disk or every file of the
+/// user; the course's layout is an assignment folder).
+fn start_folder(start: &Path, scene: &Path, home: Option<&Path>) -> Option<PathBuf> {
+    let too_wide = start.parent().is_none() || Some(start) == home;
+    (scene.starts_with(start) && scene != start && !too_wide).then(|| start.to_path_buf())
+}
+
 /// `rel` under `base` with each component that does not exist replaced by the one entry
 /// of its folder that differs from it in case only, if that finds a file (None
 /// otherwise, or when nothing differed). Only folders the scene may read are listed.
@@ -131,6 +140,17 @@ fn case_near_miss(policy: &ReadPolicy, base: &Path, rel: &Path) -> Option<PathBu
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_start_folder_counts_only_above_the_scene_and_never_root_or_home() {
+        let (a4, home) = (Path::new("/h/me/a4"), Some(Path::new("/h/me")));
+        let assets = Path::new("/h/me/a4/Assets");
+        assert_eq!(start_folder(a4, assets, home), Some(a4.to_path_buf()));
+        assert_eq!(start_folder(a4, a4, home), None, "the scene's own folder");
+        assert_eq!(start_folder(a4, Path::new("/h/me/other"), home), None);
+        assert_eq!(start_folder(Path::new("/h/me"), assets, home), None, "home");
+        assert_eq!(start_folder(Path::new("/"), assets, home), None, "root");
+    }
 
     #[test]
     fn a_case_only_near_miss_is_found_component_by_component() {
