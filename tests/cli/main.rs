@@ -1,0 +1,11 @@
+//! The `cli` test binary: The command line and the scene language end to end: renders, errors, hostile scripts, fuzzing, the house rules.
+//! One binary per tier (docs/testing.md) links glint once instead of once per file.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod cli;
+mod fuzz_front_end;
+mod hostile;
+mod house;
+mod scene_script;

@@ -1,0 +1,14 @@
+//! The `images` test binary: Whole images on the CPU tracer: the exact goldens, the final scene, textures and their assets.
+//! One binary per tier (docs/testing.md) links glint once instead of once per file.
+
+#[path = "../common/mod.rs"]
+mod common;
+#[path = "../../examples/texture_gen/mod.rs"]
+mod texture_gen;
+#[path = "../texture_support/mod.rs"]
+mod texture_support;
+
+mod golden;
+mod scrabble;
+mod texture_assets;
+mod textures;
