@@ -146,27 +146,25 @@ fn normalise(path: &Path) -> PathBuf {
 
 /// Resolves link targets against files and their headings, reading each file once.
 struct Checker<'a> {
+    /// A markdown file's text, `None` where there is none.
     read: &'a dyn Fn(&Path) -> Option<String>,
+    /// Whether any other file (an image, a folder, a scene) exists.
+    exists: &'a dyn Fn(&Path) -> bool,
     anchors: HashMap<PathBuf, Option<HashSet<String>>>,
 }
 
 impl<'a> Checker<'a> {
-    fn new(read: &'a dyn Fn(&Path) -> Option<String>) -> Self {
+    fn new(read: &'a dyn Fn(&Path) -> Option<String>, exists: &'a dyn Fn(&Path) -> bool) -> Self {
         Checker {
             read,
+            exists,
             anchors: HashMap::new(),
         }
     }
 
-    /// `Ok` when `target` (a path relative to `from_dir`, with an optional `#anchor`, or
-    /// an anchor alone in `from_file`) exists; otherwise why not. `exists` answers for
-    /// files that are not markdown (images, folders, scenes).
-    fn check(
-        &mut self,
-        from_file: &Path,
-        target: &str,
-        exists: &dyn Fn(&Path) -> bool,
-    ) -> Result<(), String> {
+    /// `Ok` when `target` (a path relative to `from_file`'s folder, with an optional
+    /// `#anchor`, or an anchor alone in `from_file`) exists; otherwise why not.
+    fn check(&mut self, from_file: &Path, target: &str) -> Result<(), String> {
         if target.contains("://") || target.starts_with("mailto:") {
             return Ok(());
         }
@@ -188,7 +186,7 @@ impl<'a> Checker<'a> {
             }
         });
         match (anchors, anchor) {
-            (None, _) if !is_markdown && exists(&file) => Ok(()),
+            (None, _) if !is_markdown && (self.exists)(&file) => Ok(()),
             (None, _) => Err(format!("{} does not exist", file.display())),
             (Some(_), None) => Ok(()),
             (Some(found), Some(anchor)) if found.contains(anchor) => Ok(()),
@@ -198,47 +196,42 @@ impl<'a> Checker<'a> {
             )),
         }
     }
-}
 
-/// The broken links of one markdown file, as `file:line: target: why`.
-fn broken_links_of_markdown(
-    checker: &mut Checker,
-    file: &Path,
-    text: &str,
-    exists: &dyn Fn(&Path) -> bool,
-) -> Vec<String> {
-    let mut broken = Vec::new();
-    for (number, line) in prose_lines(text) {
-        for target in link_targets(line) {
-            if let Err(why) = checker.check(file, target, exists) {
-                broken.push(format!("{}:{number}: {target}: {why}", file.display()));
+    /// The broken targets among `lines` (line number, targets on it) of `file`, each as
+    /// `file:line: target: why`; `from_file` is what relative targets start from.
+    fn broken<'t>(
+        &mut self,
+        file: &Path,
+        from_file: &Path,
+        lines: impl IntoIterator<Item = (usize, Vec<&'t str>)>,
+    ) -> Vec<String> {
+        let mut broken = Vec::new();
+        for (number, targets) in lines {
+            for target in targets {
+                if let Err(why) = self.check(from_file, target) {
+                    broken.push(format!("{}:{number}: {target}: {why}", file.display()));
+                }
             }
         }
+        broken
     }
-    broken
 }
 
-/// The broken `docs/…` citations of one source file (paths relative to the repository).
-fn broken_citations_of_source(
-    checker: &mut Checker,
-    file: &Path,
-    text: &str,
-    exists: &dyn Fn(&Path) -> bool,
-) -> Vec<String> {
-    let root_file = Path::new("citing-file");
-    let mut broken = Vec::new();
-    for (index, line) in text.lines().enumerate() {
-        for citation in doc_citations(line) {
-            if let Err(why) = checker.check(root_file, citation, exists) {
-                broken.push(format!(
-                    "{}:{}: {citation}: {why}",
-                    file.display(),
-                    index + 1
-                ));
-            }
-        }
-    }
-    broken
+/// The broken links of one markdown file.
+fn broken_links_of_markdown(checker: &mut Checker, file: &Path, text: &str) -> Vec<String> {
+    let lines = prose_lines(text)
+        .into_iter()
+        .map(|(number, line)| (number, link_targets(line)));
+    checker.broken(file, file, lines)
+}
+
+/// The broken `docs/…` citations of one source file: paths from the repository's root.
+fn broken_citations_of_source(checker: &mut Checker, file: &Path, text: &str) -> Vec<String> {
+    let lines = text
+        .lines()
+        .enumerate()
+        .map(|(index, line)| (index + 1, doc_citations(line)));
+    checker.broken(file, Path::new("a-file-at-the-root"), lines)
 }
 
 fn repository() -> PathBuf {
@@ -290,16 +283,11 @@ fn markdown_pages() -> Vec<PathBuf> {
 
 #[test]
 fn every_relative_link_of_readme_and_docs_exists() {
-    let mut checker = Checker::new(&read_in_repository);
+    let mut checker = Checker::new(&read_in_repository, &exists_in_repository);
     let mut broken = Vec::new();
     for page in markdown_pages() {
         let text = read_in_repository(&page).expect("read a markdown page");
-        broken.extend(broken_links_of_markdown(
-            &mut checker,
-            &page,
-            &text,
-            &exists_in_repository,
-        ));
+        broken.extend(broken_links_of_markdown(&mut checker, &page, &text));
     }
     assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
 }
@@ -307,7 +295,7 @@ fn every_relative_link_of_readme_and_docs_exists() {
 #[test]
 fn every_docs_page_cited_by_the_code_exists_with_its_anchor() {
     let this_file = Path::new("tests/doc_links.rs"); // its own tests cite broken pages on purpose
-    let mut checker = Checker::new(&read_in_repository);
+    let mut checker = Checker::new(&read_in_repository, &exists_in_repository);
     let mut broken = Vec::new();
     let mut cited = 0;
     for file in ["src", "shaders", "tests", "benches"]
@@ -321,12 +309,7 @@ fn every_docs_page_cited_by_the_code_exists_with_its_anchor() {
             .lines()
             .map(|line| doc_citations(line).len())
             .sum::<usize>();
-        broken.extend(broken_citations_of_source(
-            &mut checker,
-            &file,
-            &text,
-            &exists_in_repository,
-        ));
+        broken.extend(broken_citations_of_source(&mut checker, &file, &text));
     }
     assert!(
         cited >= 20,
@@ -384,13 +367,8 @@ mod checker {
     }
 
     fn broken(text: &str) -> Vec<String> {
-        let mut checker = Checker::new(&synthetic);
-        broken_links_of_markdown(
-            &mut checker,
-            Path::new("docs/other.md"),
-            text,
-            &image_exists,
-        )
+        let mut checker = Checker::new(&synthetic, &image_exists);
+        broken_links_of_markdown(&mut checker, Path::new("docs/other.md"), text)
     }
 
     #[test]
@@ -462,9 +440,8 @@ mod checker {
             doc_citations(line),
             ["docs/page.md#notes", "docs/page.md#gone", "docs/gone.md"]
         );
-        let mut checker = Checker::new(&synthetic);
-        let found =
-            broken_citations_of_source(&mut checker, Path::new("src/x.rs"), line, &image_exists);
+        let mut checker = Checker::new(&synthetic, &image_exists);
+        let found = broken_citations_of_source(&mut checker, Path::new("src/x.rs"), line);
         assert_eq!(found.len(), 2, "{found:?}");
         assert!(
             found[0].starts_with(
