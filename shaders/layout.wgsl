@@ -157,7 +157,7 @@ struct GpuTile {
 // an empty array as one zeroed row). Elements of 16-byte-texel tables take *_TABLE_TEXELS
 // texels each; one-word tables hold a word a texel. On software adapters the tables are
 // bound as read-only storage textures (STORAGE_TABLES: llvmpipe's image load skips the
-// sampler's paths, and fetches are most of a frame there: docs/gpu.md), elsewhere as
+// sampler's paths, and fetches are most of a frame there: docs/gpu.md#the-scene-in-tables-textures-not-storage-buffers), elsewhere as
 // sampled textures; the texels are the same.
 // #if STORAGE_TABLES
 alias QuadTable = texture_storage_2d<rgba32uint, read>;

@@ -15,7 +15,7 @@
 //! `tests/triangle4.rs` checks the lanes against the scalar test, grazing and edge-on
 //! rays included. (Measured on cow.obj, `glint bench --trace`, one thread: with the
 //! batches and their inlining, about −30% time per shadow ray and −25% per camera ray;
-//! docs/performance-trace.md.)
+//! docs/journal/2026-12-01-four-triangles-at-a-time.md.)
 //!
 //! [`edge_function`]: super::intersect::edge_function
 
