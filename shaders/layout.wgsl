@@ -1,5 +1,5 @@
 // layout.wgsl — twins of the Pod structs in src/pack/layout.rs (same names, same field
-// order; tests/gpu_layout.rs checks every offset and size against Rust) and the bindings
+// order; tests/gpu/gpu_layout.rs checks every offset and size against Rust) and the bindings
 // both entry points share. Change both.
 
 // Mirror of src/pack/layout.rs::PackedInstance — change both.

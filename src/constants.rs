@@ -58,7 +58,7 @@ pub const CSG_LIST_CAPACITY: u32 = CSG_MAX_DEPTH + 1;
 /// zero-width sliver of a's cap (speckles), and touching operands of a union leave no
 /// internal face. Scale-free, like `OFFSET_RELATIVE`: 2⁻¹⁶ ≈ 128 f32 ulps, twice that
 /// offset. The two caps' rounding is a few ulps of that magnitude divided by the sine of
-/// the ray's angle to the cap; `tests/csg.rs` measures no speckle down to 1° from the
+/// the ray's angle to the cap; `tests/oracle/csg.rs` measures no speckle down to 1° from the
 /// plane (0.5% of rays at 0.5°; with no tolerance, a quarter of the rays at every angle).
 /// Features thinner than it (along the ray) merge away.
 pub const CSG_COINCIDENT_RELATIVE: f32 = 1.0 / 65536.0;

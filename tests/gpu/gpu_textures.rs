@@ -1,7 +1,7 @@
 //! Textures, UVs and bump maps on the GPU against the CPU reference (tier 4): the texture
 //! scene (every primitive textured, a bump-mapped sphere, a specular map), its UV debug
 //! view, and the TEXTURE-only and BUMP-only specialisations, each compared with
-//! `diff::assert_images_match` at the thresholds of tests/gpu_images.rs (FLIP mean < 0.01,
+//! `diff::assert_images_match` at the thresholds of tests/gpu/gpu_images.rs (FLIP mean < 0.01,
 //! ≥ 99.9% of pixels within 2/255). Failures write actual, expected and heat-map PNGs to
 //! `<target tmp>/gpu_textures/`.
 

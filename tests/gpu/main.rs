@@ -1,4 +1,5 @@
-//! The `gpu` test binary: The GPU tracer against the CPU reference at the four tiers (layout and naga validation, kernel probes, frames, images) and the twins.
+//! The `gpu` test binary: the GPU tracer against the CPU reference at the four tiers (layout and
+//! naga validation, kernel probes, frames, images) and the twins.
 //! One binary per tier (docs/testing.md) links glint once instead of once per file.
 
 #[path = "../common/mod.rs"]

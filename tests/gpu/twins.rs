@@ -364,7 +364,7 @@ fn check_untwinned(sources: &Sources, problems: &mut Vec<String>) {
     missing.sort();
     for (file, name) in missing {
         problems.push(format!(
-            "{file}: fn {name} has no twin comment and is not on WGSL_WITHOUT_TWIN (tests/twins.rs)"
+            "{file}: fn {name} has no twin comment and is not on WGSL_WITHOUT_TWIN (tests/gpu/twins.rs)"
         ));
     }
     let mut stale: Vec<_> = allowed.difference(&untwinned).collect();

@@ -31,7 +31,7 @@ fn every_scene_matches_its_golden_image() {
     let bless = bless_requested();
     let golden_dir = root().join("tests/golden");
     let mut differing = Vec::new();
-    // scenes/scrabble.lua renders at 1280×720; its golden is a small one, in tests/scrabble.rs.
+    // scenes/scrabble.lua renders at 1280×720; its golden is a small one, in tests/images/scrabble.rs.
     let scenes: Vec<_> = corpus_scenes()
         .into_iter()
         .chain(own_scenes())

@@ -1,4 +1,5 @@
-//! The `images` test binary: Whole images on the CPU tracer: the exact goldens, the final scene, textures and their assets.
+//! The `images` test binary: whole images on the CPU tracer: the exact goldens, the final
+//! scene, textures and their assets.
 //! One binary per tier (docs/testing.md) links glint once instead of once per file.
 
 #[path = "../common/mod.rs"]

@@ -2,7 +2,7 @@
 //! filtering, a texture on a fully lit matte quad reproducing itself (PNG and JPEG), each
 //! primitive's UV convention and tangent frame, the bump direction (a height ramp rising
 //! along u tilts the normal towards −u), the UV debug view, and the scene errors for bad
-//! texture arguments. (The committed assets are checked by tests/texture_assets.rs.)
+//! texture arguments. (The committed assets are checked by tests/images/texture_assets.rs.)
 
 use crate::common;
 use crate::texture_support;

@@ -271,7 +271,7 @@ fn analytic_case(kind: ObjectKind, seed: u64, stats: &mut Agreement) {
                 rng.range(-0.3, 1.3),
                 rng.range(-0.3, 1.3),
             ),
-            _ => unreachable!("cylinders and cones: tests/cylinder_cone_oracle.rs"),
+            _ => unreachable!("cylinders and cones: tests/oracle/cylinder_cone_oracle.rs"),
         };
         let (o, d, t_max) = random_ray(&mut rng, m.transform_point3(target_obj), size);
         let t = intersect_instance(inst, o, d, t_max);
@@ -283,7 +283,7 @@ fn analytic_case(kind: ObjectKind, seed: u64, stats: &mut Agreement) {
         let oracle = match kind {
             ObjectKind::Sphere => oracle_sphere(oo, od, t_max as f64, margin, floor),
             ObjectKind::Cube => oracle_box(oo, od, t_max as f64, margin, floor),
-            _ => unreachable!("cylinders and cones: tests/cylinder_cone_oracle.rs"),
+            _ => unreachable!("cylinders and cones: tests/oracle/cylinder_cone_oracle.rs"),
         };
         stats.record(seed, &oracle, t, || {
             format!("size {size:e}, o {o}, d {d}, t_max {t_max}, object-space o {oo}")
@@ -389,7 +389,7 @@ fn leave_case(kind: ObjectKind, from_inside: bool, seed: u64, stats: &mut LeaveS
         let centre = match kind {
             ObjectKind::Sphere => DVec3::ZERO,
             ObjectKind::Cube => DVec3::splat(0.5),
-            _ => unreachable!("cylinders and cones: tests/cylinder_cone_oracle.rs"),
+            _ => unreachable!("cylinders and cones: tests/oracle/cylinder_cone_oracle.rs"),
         };
         let (o, d) = if from_inside {
             // From a random inside point (at most 0.9 of the radius) to the far wall.

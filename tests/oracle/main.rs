@@ -1,4 +1,5 @@
-//! The `oracle` test binary: Geometry and the CPU tracer against f64 oracles and brute force; no GPU, no images on disk.
+//! The `oracle` test binary: geometry and the CPU tracer against f64 oracles and brute force;
+//! no GPU, no images on disk.
 //! One binary per tier (docs/testing.md) links glint once instead of once per file.
 
 #[path = "../common/mod.rs"]
