@@ -4,11 +4,11 @@
 //! that lists what is valid, rather than an option silently left at its default.
 
 use super::args::{describe, finite, int_value, Args};
-use crate::scene::{AaMode, Background, Bounded, DebugView, GridMode, RenderOptions};
+use crate::scene::{AaMode, Background, Bounded, DebugView, GridMode, RenderOptions, Shading};
 use mlua::{Table, Value};
 
 const KEYS: &str = "aa, samples, aa_threshold, aa_depth, shadow_samples, max_depth, \
-                    min_weight, background, grid, debug";
+                    min_weight, background, grid, debug, shading";
 
 /// Parses argument `n` of `a` (nil gives the defaults).
 pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
@@ -96,6 +96,13 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
             .ok_or_else(|| bad(DebugView::CHOICES))?;
         }
         "grid" => o.grid = grid(a, n, v, &bad)?,
+        "shading" => {
+            o.shading = match v {
+                Value::String(s) => Shading::parse(&s.to_string_lossy()),
+                _ => None,
+            }
+            .ok_or_else(|| bad(Shading::CHOICES))?;
+        }
         _ => {
             return Err(a.bad_in(
                 n,

@@ -1,0 +1,87 @@
+//! Smooth shading of meshes with vertex normals (Phong normal interpolation): the
+//! shading normal of a hit on a smooth triangle ([`smooth_normal`]), and the terminator
+//! rule that keeps it on the side the viewer sees ([`visible_normal`]). Only scenes with
+//! the SMOOTH feature call them; the geometric normal (`Surface::normal`) still decides
+//! the side a ray is on, where secondary rays start, and refraction.
+//!
+//! The terminator rule follows Keller et al., "The Iray light transport simulation and
+//! rendering system" (2017), on local shading normals: an interpolated normal may lean so
+//! far that the viewer sees the surface from behind it (N·V < 0: the facet would shade as
+//! unlit, black) or that the view reflected about it points into the surface (a mirror
+//! would show the mesh's inside). Where the reflected view leaves the visible side at less
+//! than `SMOOTH_MIN_REFLECTION_COSINE` to the geometric normal, the reflection is lifted to
+//! exactly that cosine in the plane it spans with the geometric normal, and the shading
+//! normal becomes the half vector between the view and the lifted reflection (the normal
+//! that reflects one into the other). Elsewhere the interpolated normal is left alone, so
+//! the bend shows only in a thin band along silhouettes.
+
+use super::hit::Hit;
+use super::surface::Surface;
+use crate::constants::{KIND_MESH, SMOOTH_MIN_REFLECTION_COSINE};
+use crate::pack::PackedScene;
+use glam::Vec3;
+
+/// The shading normal at `hit` on surface `s`: on a mesh triangle with vertex normals,
+/// the corners' normals interpolated with the hit's barycentrics, mapped to world space
+/// through the transpose of world→object, normalised and turned to the side of the
+/// geometric normal `s.normal` (so a mesh whose normals disagree with its winding shades
+/// the same); `s.normal` itself elsewhere, on flat triangles, and where the interpolated
+/// normals cancel out (no direction).
+// Mirror of shaders/smooth.wgsl::smooth_normal — change both.
+pub fn smooth_normal(scene: &PackedScene, hit: &Hit, s: &Surface) -> Vec3 {
+    let inst = &scene.instances[hit.item as usize];
+    if inst.kind != KIND_MESH {
+        return s.normal;
+    }
+    let corners = &scene.triangle_normals[hit.part as usize];
+    let n0 = Vec3::from(corners.n0);
+    // Packing zeroes every corner of a flat triangle.
+    if n0 == Vec3::ZERO {
+        return s.normal;
+    }
+    let b0 = 1.0 - hit.b1 - hit.b2;
+    let n_obj = n0 * b0 + Vec3::from(corners.n1) * hit.b1 + Vec3::from(corners.n2) * hit.b2;
+    let w2o = &inst.world_to_object;
+    let row = |r: &[f32; 4]| Vec3::new(r[0], r[1], r[2]);
+    let n = row(&w2o[0]) * n_obj.x + row(&w2o[1]) * n_obj.y + row(&w2o[2]) * n_obj.z;
+    let length = n.length();
+    // The negated test also rejects NaN and ∞.
+    if !(length > 0.0 && length < f32::MAX) {
+        return s.normal;
+    }
+    let n = n / length;
+    if n.dot(s.normal) < 0.0 {
+        -n
+    } else {
+        n
+    }
+}
+
+/// The terminator rule (module header): the shading normal `n`, already on the viewer's
+/// side of the geometric normal `facing`, for a viewer in the unit direction `v`; bent
+/// towards `facing` where the view reflected about `n` would leave the visible side at
+/// less than `SMOOTH_MIN_REFLECTION_COSINE` (which includes every `n` facing away from
+/// the viewer). `facing` itself where nothing finite comes out.
+// Mirror of shaders/smooth.wgsl::visible_normal — change both.
+pub fn visible_normal(n: Vec3, facing: Vec3, v: Vec3) -> Vec3 {
+    let r = n * (2.0 * n.dot(v)) - v;
+    let above = r.dot(facing);
+    if above >= SMOOTH_MIN_REFLECTION_COSINE {
+        return n;
+    }
+    // The reflection's part along the surface, kept; its height set to the minimum.
+    let along = r - facing * above;
+    let along_length = along.length();
+    let c = SMOOTH_MIN_REFLECTION_COSINE;
+    let lifted = if along_length > 0.0 {
+        facing * c + along * ((1.0 - c * c).sqrt() / along_length)
+    } else {
+        facing
+    };
+    let bent = (v + lifted).normalize();
+    if bent.is_finite() {
+        bent
+    } else {
+        facing
+    }
+}
