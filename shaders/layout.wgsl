@@ -44,7 +44,7 @@ struct PackedTriangleUv {
     uv2: vec2<f32>,
 }
 
-// The unit vertex normals of a triangle's corners in its mesh's space (same order as the
+// The vertex normals of a triangle's corners in its mesh's space (same order as the
 // triangles; packed only with SMOOTH, all zero on a flat triangle).
 // Mirror of src/pack/layout.rs::PackedTriangleNormals — change both.
 struct PackedTriangleNormals {

@@ -73,8 +73,9 @@ pub struct PackedTriangleUv {
     pub uv2: [f32; 2],
 }
 
-/// The unit vertex normals of a triangle's corners (p0, p1, p2) in its mesh's space, in
-/// an array parallel to the triangles, packed only in scenes with the SMOOTH feature
+/// The vertex normals of a triangle's corners (p0, p1, p2) in its mesh's space (unit in
+/// the mesh's own; a mesh baked into world space keeps them unnormalised, as
+/// `scene::instancing` says), in an array parallel to the triangles, packed only in scenes with the SMOOTH feature
 /// (others keep the traversal's triangles alone); all zero on a flat triangle. Nine
 /// packed floats, like `PackedTriangle`.
 // Mirror of shaders/layout.wgsl::PackedTriangleNormals — change both.

@@ -68,17 +68,23 @@ pub fn store_meshes(graph: &SceneGraph, scene: &mut FlatScene) {
 }
 
 /// The mesh's vertex normals in the stored space (`to_stored` maps the mesh's space to
-/// it): through the inverse transpose of its linear part, renormalised (zero stays zero);
-/// empty without normals.
+/// it): through the inverse transpose of its linear part, divided by that matrix's largest
+/// entry but not renormalised one by one (zero stays zero), so that a baked mesh's normals
+/// interpolate exactly as an instanced mesh's, whose object-space normals the tracer
+/// interpolates before mapping them (under a non-uniform scale, renormalising each would
+/// move the blend); empty without normals.
 fn stored_normals(mesh: &super::Mesh, to_stored: &DMat4) -> Vec<DVec3> {
     let Some(normals) = &mesh.normals else {
         return Vec::new();
     };
     let normal_matrix = DMat3::from_mat4(*to_stored).inverse().transpose();
-    normals
-        .iter()
-        .map(|&n| super::obj::unit_or_zero(normal_matrix * n))
-        .collect()
+    let largest = normal_matrix
+        .abs()
+        .to_cols_array()
+        .into_iter()
+        .fold(0.0, f64::max);
+    let normal_matrix = normal_matrix * (1.0 / largest);
+    normals.iter().map(|&n| normal_matrix * n).collect()
 }
 
 /// The corner normals of triangle `t` (vertex indices) for packing, as f32: all zero,
