@@ -489,3 +489,34 @@ fn area_light_matches() {
         }
     }
 }
+
+/// Smooth meshes (interpolated vertex normals, the terminator rule): scenes/smooth.lua
+/// (the OBJ torus smooth and, through `readobj`, flat; the same OBJ instanced as a smooth
+/// mirror; an inline mesh with normals and UVs, smooth and bump-mapped on top) and the
+/// POV-Ray comparison torus, on both tracers; and scenes/smooth.lua under
+/// `shading = 'flat'`, which packs no normals and compiles no smooth code.
+#[test]
+fn smooth_meshes_match() {
+    use glint::scene::Shading;
+    let Some(ctx) = gpu_context() else { return };
+    let smooth = root().join("scenes/smooth.lua");
+    let scene = packed_from_file(&smooth, &small(Some(AaMode::None))).remove(0);
+    let features = compare(&ctx, "smooth", &scene);
+    for feature in [
+        SceneFeatures::SMOOTH,
+        SceneFeatures::BUMP,
+        SceneFeatures::REFLECTION,
+    ] {
+        assert!(features.contains(feature), "{features}");
+    }
+    let torus = root().join("scenes/meshes/torus-povray.lua");
+    let scene = packed_from_file(&torus, &OptionOverrides::default()).remove(0);
+    assert!(compare(&ctx, "smooth-torus", &scene).contains(SceneFeatures::SMOOTH));
+    let flat = OptionOverrides {
+        shading: Some(Shading::Flat),
+        ..small(Some(AaMode::None))
+    };
+    let scene = packed_from_file(&smooth, &flat).remove(0);
+    assert!(scene.triangle_normals.is_empty());
+    assert!(!compare(&ctx, "smooth-flat", &scene).contains(SceneFeatures::SMOOTH));
+}
