@@ -192,6 +192,7 @@ fn images_are_scale_invariant() {
         common::root().join("scenes/demo.lua"),
         common::root().join("scenes/columns.lua"),
         common::root().join("scenes/tori.lua"),
+        common::root().join("scenes/smooth.lua"),
         common::corpus().join("a4-2021plus/macho-cows.lua"),
     ] {
         let scene = &load_scenes(&path, &overrides)[0];

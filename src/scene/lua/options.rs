@@ -189,7 +189,7 @@ fn background(a: &Args, n: usize, v: &Value) -> mlua::Result<Background> {
 #[cfg(test)]
 mod tests {
     use crate::scene::lua::{run_scene_source, ScriptConfig};
-    use crate::scene::{AaMode, Background, DebugView, GridMode, RenderOptions};
+    use crate::scene::{AaMode, Background, DebugView, GridMode, RenderOptions, Shading};
     use std::path::Path;
 
     /// Runs a one-line render with `opts` as the options argument.
@@ -245,6 +245,13 @@ mod tests {
             }
         );
         assert_eq!(o.grid, GridMode::Density(3.0));
+        assert_eq!(options("{shading='flat'}").unwrap().shading, Shading::Flat);
+        assert_eq!(options("{}").unwrap().shading, Shading::Smooth);
+        let e = options("{shading='phong'}").unwrap_err();
+        assert!(
+            e.ends_with("shading must be 'smooth' or 'flat', got 'phong'"),
+            "{e}"
+        );
         assert_eq!(options("{debug='uv'}").unwrap().debug, DebugView::Uv);
         assert_eq!(
             options("{debug='aa-samples'}").unwrap().debug,
