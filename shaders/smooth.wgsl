@@ -65,4 +65,30 @@ fn visible_normal(n: vec3<f32>, facing: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
     }
     return facing;
 }
+
+// #if REFRACTION
+// dielectric_interface with the shading normal (from smooth_normal, on the side of the
+// geometric normal): the sides and media from the geometric normal, the Fresnel share and
+// the refracted direction from the shading one; where that direction would not cross the
+// facet, the facet's own refraction.
+// Mirror of src/cpu/smooth.rs::smooth_interface — change both.
+fn smooth_interface(dir: vec3<f32>, normal: vec3<f32>, shading: vec3<f32>, ior: f32, media: MediumStack) -> Interface {
+    let sides = surface_sides(dir, normal, ior, media);
+    var n = shading;
+    if dot(shading, sides.n) < 0.0 {
+        n = -shading;
+    }
+    let cos_incident = clamp(-dot(n, dir), 0.0, 1.0);
+    let reflectance = schlick_reflectance(cos_incident, sides.n1, sides.n2);
+    let transmitted = refract_direction(dir, n, sides.n1 / sides.n2);
+    // refract_direction and schlick_reflectance decide TIR from the same sin²θt.
+    if !transmitted.valid {
+        return Interface(1.0, dir, sides.beyond);
+    }
+    if dot(transmitted.dir, sides.n) < 0.0 {
+        return Interface(reflectance, transmitted.dir, sides.beyond);
+    }
+    return dielectric_interface(dir, normal, ior, media);
+}
+// #endif
 // #endif

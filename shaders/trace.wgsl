@@ -174,7 +174,11 @@ fn push_secondary_rays(stack: ptr<function, RayStack>, size: ptr<function, u32>,
     }
 // #if REFRACTION
     if (m.flags & MATERIAL_REFRACTIVE) != 0u && entry.depth < g.max_depth {
+// #if SMOOTH
+        let crossing = smooth_interface(ray.dir, s.normal, smooth_normal(hit, s), m.ior, entry.media);
+// #else
         let crossing = dielectric_interface(ray.dir, s.normal, m.ior, entry.media);
+// #endif
         reflectance += vec3<f32>(crossing.reflectance);
         let weight = entry.weight * (1.0 - crossing.reflectance);
         if max_element(weight) >= g.min_weight && *size < RAY_STACK_SIZE {

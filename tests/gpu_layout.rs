@@ -518,6 +518,7 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
 fn smooth_code_only_with_smooth_meshes() {
     for features in all_feature_sets() {
         let smooth = features.contains(SceneFeatures::SMOOTH);
+        let refraction = features.contains(SceneFeatures::REFRACTION);
         for entry in [Entry::Render, Entry::Probe] {
             let source = assemble(features, entry);
             let expect = [

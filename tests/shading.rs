@@ -212,36 +212,6 @@ fn images_are_scale_invariant() {
     }
 }
 
-/// Lua for a coarse UV sphere mesh named `name` (`around` × `down` quads) of radius
-/// `radius` at `centre`, with its unit positions as inline vertex normals (smooth
-/// shading) and material `m`, added to `root`.
-fn smooth_sphere_lua(name: &str, around: usize, down: usize, radius: f64, centre: DVec3) -> String {
-    let (mut verts, mut normals, mut faces) = (Vec::new(), Vec::new(), Vec::new());
-    for j in 0..=down {
-        let lat = std::f64::consts::PI * (j as f64 / down as f64 - 0.5);
-        for i in 0..=around {
-            let lon = std::f64::consts::TAU * i as f64 / around as f64;
-            let n = DVec3::new(lat.cos() * lon.cos(), lat.sin(), -lat.cos() * lon.sin());
-            let p = centre + n * radius;
-            verts.push(format!("{{{:e}, {:e}, {:e}}}", p.x, p.y, p.z));
-            normals.push(format!("{{{:e}, {:e}, {:e}}}", n.x, n.y, n.z));
-        }
-    }
-    for j in 0..down {
-        for i in 0..around {
-            let a = j * (around + 1) + i;
-            let b = a + around + 1;
-            faces.push(format!("{{{a}, {}, {}, {b}}}", a + 1, b + 1));
-        }
-    }
-    format!(
-        "{name} = gr.mesh('{name}', {{{}}}, {{{}}}, nil, {{{}}})\n{name}:set_material(m)\nroot:add_child({name})\n",
-        verts.join(", "),
-        faces.join(", "),
-        normals.join(", ")
-    )
-}
-
 /// POV-Ray is an exact oracle for A4 Phong, and its `smooth_triangle` (mesh2 with
 /// `normal_vectors`) interpolates vertex normals as glint does: the smooth torus of
 /// scenes/meshes/torus-povray.lua against POV-Ray's render of its twin
@@ -305,7 +275,7 @@ fn smooth_silhouettes_are_neither_black_nor_see_inside() {
             "m = gr.material({{1, 1, 0}}, {{0, 0, 0}}, 1)\nroot = gr.node('root')\n{}\
              gr.render(root, 'x.png', 96, 96, {{0, 0, {eye:e}}}, {{0, 0, -1}}, {{0, 1, 0}}, 40, {{0, 0, 0}}, \
              {{gr.light({{0, 0, {eye:e}}}, {{1, 1, 1}}, {{1, 0, 0}})}}, {{background = {{0, 0, 1}}}})\n",
-            smooth_sphere_lua("ball", 8, 4, scale, DVec3::ZERO)
+            common::smooth_sphere_lua("ball", 8, 4, scale, DVec3::ZERO)
         );
         let scene = common::packed_from_source(&lit, &overrides).remove(0);
         assert!(scene.features.contains(SceneFeatures::SMOOTH));
@@ -328,7 +298,7 @@ fn smooth_silhouettes_are_neither_black_nor_see_inside() {
             "m = gr.material({{0, 0, 0}}, {{0, 0, 0}}, 1) m:set_reflection(0.9)\nroot = gr.node('root')\n{}\
              gr.render(root, 'x.png', 96, 96, {{0, 0, {eye:e}}}, {{0, 0, -1}}, {{0, 1, 0}}, 40, {{0, 0, 0}}, {{}}, \
              {{background = {{top = {{0, 0, 1}}, bottom = {{0, 1, 0}}}}}})\n",
-            smooth_sphere_lua("ball", 8, 4, scale, DVec3::ZERO)
+            common::smooth_sphere_lua("ball", 8, 4, scale, DVec3::ZERO)
         );
         let film = common::render_cpu(&common::packed_from_source(&mirror, &overrides).remove(0));
         let sums: Vec<f32> = film.pixels.iter().map(|p| p[1] + p[2]).collect();

@@ -2,7 +2,9 @@
 //! shading normal of a hit on a smooth triangle ([`smooth_normal`]), and the terminator
 //! rule that keeps it on the side the viewer sees ([`visible_normal`]). Only scenes with
 //! the SMOOTH feature call them; the geometric normal (`Surface::normal`) still decides
-//! the side a ray is on, where secondary rays start, and refraction.
+//! the side a ray is on and where secondary rays start. A smooth dielectric refracts by
+//! the interpolated normal ([`smooth_interface`]) unless that would send the ray back
+//! across its facet.
 //!
 //! The terminator rule follows Keller et al., "The Iray light transport simulation and
 //! rendering system" (2017), on local shading normals: an interpolated normal may lean so
@@ -15,6 +17,10 @@
 //! that reflects one into the other). Elsewhere the interpolated normal is left alone, so
 //! the bend shows only in a thin band along silhouettes.
 
+use super::dielectric::{
+    dielectric_interface, refract_direction, schlick_reflectance, surface_sides, Interface,
+    MediumStack,
+};
 use super::hit::Hit;
 use super::surface::Surface;
 use crate::constants::{KIND_MESH, SMOOTH_MIN_REFLECTION_COSINE};
@@ -83,5 +89,42 @@ pub fn visible_normal(n: Vec3, facing: Vec3, v: Vec3) -> Vec3 {
         bent
     } else {
         facing
+    }
+}
+
+/// [`dielectric_interface`] with the shading normal `shading` (from [`smooth_normal`], on
+/// the side of the geometric normal `normal`): the sides and media from the geometric
+/// normal, the Fresnel share and the refracted direction from the shading one, which
+/// bends them smoothly across a smooth glass mesh. Where that direction would not cross
+/// the facet (it leans back out, near the terminator), the facet's own refraction.
+// Mirror of shaders/smooth.wgsl::smooth_interface — change both.
+pub fn smooth_interface(
+    dir: Vec3,
+    normal: Vec3,
+    shading: Vec3,
+    ior: f32,
+    media: &MediumStack,
+) -> Interface {
+    let sides = surface_sides(dir, normal, ior, media);
+    let n = if shading.dot(sides.n) < 0.0 {
+        -shading
+    } else {
+        shading
+    };
+    let cos_incident = (-n.dot(dir)).clamp(0.0, 1.0);
+    let reflectance = schlick_reflectance(cos_incident, sides.n1, sides.n2);
+    match refract_direction(dir, n, sides.n1 / sides.n2) {
+        // refract_direction and schlick_reflectance decide TIR from the same sin²θt.
+        None => Interface {
+            reflectance: 1.0,
+            dir,
+            media: sides.beyond,
+        },
+        Some(t) if t.dot(sides.n) < 0.0 => Interface {
+            reflectance,
+            dir: t,
+            media: sides.beyond,
+        },
+        Some(_) => dielectric_interface(dir, normal, ior, media),
     }
 }

@@ -8,7 +8,7 @@ use super::hit::Hit;
 use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
 use super::shade::{background, shade_phong};
-use super::smooth::{smooth_normal, visible_normal};
+use super::smooth::{smooth_interface, smooth_normal, visible_normal};
 use super::surface::{surface_at, Surface};
 use super::texture::{camera_cone, cone_at, shading_normal, texture_detail, with_footprint};
 use super::traverse::{closest_hit, TraversalCounters};
@@ -151,7 +151,12 @@ fn push_secondary_rays(
         && m.flags & MATERIAL_REFRACTIVE != 0
         && entry.depth < g.max_depth
     {
-        let crossing = dielectric_interface(ray.dir, s.normal, m.ior, &entry.media);
+        let crossing = if scene.features.contains(SceneFeatures::SMOOTH) {
+            let shading = smooth_normal(scene, hit, &s);
+            smooth_interface(ray.dir, s.normal, shading, m.ior, &entry.media)
+        } else {
+            dielectric_interface(ray.dir, s.normal, m.ior, &entry.media)
+        };
         reflectance += Vec3::splat(crossing.reflectance);
         let weight = entry.weight * (1.0 - crossing.reflectance);
         if weight.max_element() >= g.min_weight && *size < RAY_STACK_SIZE as usize {
