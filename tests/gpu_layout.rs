@@ -512,7 +512,7 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
 }
 
 /// Smooth shading (shaders/smooth.wgsl, the triangle normals' loader, the interpolated
-/// normal in shade_hit and the probe) is compiled only into scenes with the SMOOTH
+/// normal in shade_hit and the probe, smooth refraction with REFRACTION) is compiled only into scenes with the SMOOTH
 /// feature (which packing sets only for meshes with vertex normals).
 #[test]
 fn smooth_code_only_with_smooth_meshes() {
@@ -529,6 +529,11 @@ fn smooth_code_only_with_smooth_meshes() {
                 (
                     "visible_normal(n, facing, -ray.dir)",
                     smooth && entry == Entry::Render,
+                ),
+                ("fn smooth_interface(", smooth && refraction),
+                (
+                    "smooth_interface(ray.dir",
+                    smooth && refraction && entry == Entry::Render,
                 ),
             ];
             for (code, present) in expect {
