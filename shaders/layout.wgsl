@@ -44,6 +44,15 @@ struct PackedTriangleUv {
     uv2: vec2<f32>,
 }
 
+// The vertex normals of a triangle's corners in its mesh's space (same order as the
+// triangles; packed only with SMOOTH, all zero on a flat triangle).
+// Mirror of src/pack/layout.rs::PackedTriangleNormals — change both.
+struct PackedTriangleNormals {
+    n0: array<f32, 3>,
+    n1: array<f32, 3>,
+    n2: array<f32, 3>,
+}
+
 // Mirror of src/pack/layout.rs::PackedMaterial — change both.
 struct PackedMaterial {
     kd: vec3<f32>,
@@ -181,6 +190,8 @@ alias WordTable = texture_2d<u32>;
 @group(0) @binding(16) var triangle_uv_table: QuadTable;
 // Each mesh's triangle range and grid (KIND_MESH instances index it).
 @group(0) @binding(23) var mesh_table: QuadTable;
+// Corner normals of each triangle (same order as the triangles; used with SMOOTH).
+@group(0) @binding(24) var triangle_normal_table: QuadTable;
 
 // Where element i of a table lies (src/gpu/tables.rs lays them out row by row).
 fn table_texel(i: u32) -> vec2<u32> {
@@ -282,6 +293,21 @@ fn load_triangle_uv(i: u32) -> PackedTriangleUv {
     return PackedTriangleUv(a.xy, a.zw, b.xy);
 }
 // #endif
+// #endif
+
+// #if SMOOTH
+// triangle_normals[i]: n0.xyz n1.x | n1.yz n2.xy | n2.z, as triangles are laid out.
+fn load_triangle_normals(i: u32) -> PackedTriangleNormals {
+    let base = i * TRIANGLE_NORMAL_TABLE_TEXELS;
+    let a = bitcast<vec4<f32>>(table_at(triangle_normal_table, base));
+    let b = bitcast<vec4<f32>>(table_at(triangle_normal_table, base + 1u));
+    let c = bitcast<vec4<f32>>(table_at(triangle_normal_table, base + 2u));
+    return PackedTriangleNormals(
+        array<f32, 3>(a.x, a.y, a.z),
+        array<f32, 3>(a.w, b.x, b.y),
+        array<f32, 3>(b.z, b.w, c.x),
+    );
+}
 // #endif
 
 // instances[i].

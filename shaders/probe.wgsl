@@ -9,8 +9,8 @@ struct ProbeRay {
     t_max: f32,
     // Unit direction.
     dir: vec3<f32>,
-    // PROBE_CLOSEST_HIT, PROBE_ANY_HIT or PROBE_SHADOW_RAY (then dir holds the light's
-    // position and t_max the shaded surface's magnitude).
+    // PROBE_CLOSEST_HIT, PROBE_ANY_HIT, PROBE_SHADOW_RAY (then dir holds the light's
+    // position and t_max the shaded surface's magnitude) or PROBE_SHADING_NORMAL.
     mode: u32,
 }
 
@@ -22,7 +22,8 @@ struct ProbeResult {
     item: u32,
     // A CSG hit's surface (leaf instance | CSG_FLIP); NO_ITEM otherwise.
     part: u32,
-    // surface_at's geometric normal (zero on a miss).
+    // surface_at's geometric normal, or in PROBE_SHADING_NORMAL mode in a scene with
+    // smooth meshes smooth_normal's (zero on a miss).
     normal: vec3<f32>,
     _pad1: u32,
 }
@@ -55,7 +56,13 @@ fn probe(@builtin(global_invocation_id) id: vec3<u32>) {
     var result = ProbeResult(0u, hit.t, hit.item, hit.part, vec3<f32>(0.0), 0u);
     if is_hit(hit) {
         result.hit = 1u;
-        result.normal = surface_at(ray, hit).normal;
+        let s = surface_at(ray, hit);
+        result.normal = s.normal;
+// #if SMOOTH
+        if pr.mode == PROBE_SHADING_NORMAL {
+            result.normal = smooth_normal(hit, s);
+        }
+// #endif
     }
     probe_results[index] = result;
 }

@@ -203,8 +203,9 @@ fn bump_normal(m: PackedMaterial, s: Surface) -> vec3<f32> {
     return normalize(n - tilt);
 }
 
-// The normal shading uses: n (the geometric normal facing the viewer) or, with a bump
-// map, the bumped normal turned to the same side.
+// The normal shading uses: n (the normal facing the viewer: the geometric one, or on a
+// smooth mesh the interpolated one, which s.normal then holds) or, with a bump map,
+// s.normal bumped and turned to n's side.
 // Mirror of src/cpu/texture.rs::shading_normal — change both.
 fn shading_normal(s: Surface, n: vec3<f32>) -> vec3<f32> {
     let m = load_material(s.material);

@@ -174,7 +174,11 @@ fn push_secondary_rays(stack: ptr<function, RayStack>, size: ptr<function, u32>,
     }
 // #if REFRACTION
     if (m.flags & MATERIAL_REFRACTIVE) != 0u && entry.depth < g.max_depth {
+// #if SMOOTH
+        let crossing = smooth_interface(ray.dir, s.normal, smooth_normal(hit, s), m.ior, entry.media);
+// #else
         let crossing = dielectric_interface(ray.dir, s.normal, m.ior, entry.media);
+// #endif
         reflectance += vec3<f32>(crossing.reflectance);
         let weight = entry.weight * (1.0 - crossing.reflectance);
         if max_element(weight) >= g.min_weight && *size < RAY_STACK_SIZE {
@@ -212,7 +216,8 @@ fn push_secondary_rays(stack: ptr<function, RayStack>, size: ptr<function, u32>,
 // #endif
 
 // A ray's hit as trace_ray uses it: the shading point (with its texture footprint),
-// the normal facing the ray and the shading normal (bumped), and the colour the point
+// the normal facing the ray and the shading normal (interpolated on smooth meshes,
+// bumped, kept visible: smooth.wgsl), and the colour the point
 // gives by itself — Phong shading, or the UV debug view, which `ends` the ray.
 // Mirror of src/cpu/trace.rs::ShadedHit — change both.
 struct ShadedHit {
@@ -240,8 +245,25 @@ fn shade_hit(entry: StackEntry, hit: Hit, seed: SampleSeed) -> ShadedHit {
 // #endif
     let facing = facing_normal(s.normal, ray.dir);
     var n = facing;
+// #if SMOOTH
+    // The surface as shading sees it: with smooth meshes, its normal interpolated.
+    var shading = s;
+    shading.normal = smooth_normal(hit, s);
+    if dot(facing, s.normal) < 0.0 {
+        n = -shading.normal;
+    } else {
+        n = shading.normal;
+    }
+// #else
+    let shading = s;
+// #endif
 // #if BUMP
-    n = shading_normal(s, n);
+    n = shading_normal(shading, n);
+// #endif
+// #if SMOOTH
+    if any(shading.normal != s.normal) {
+        n = visible_normal(n, facing, -ray.dir);
+    }
 // #endif
 // #if REFRACTION
     shading_media = entry.media;

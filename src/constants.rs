@@ -102,6 +102,9 @@ pub const MATERIAL_TABLE_TEXELS: u32 = 4;
 pub const LIGHT_TABLE_TEXELS: u32 = 5;
 /// 16-byte texels of one triangle's corner UVs (`PackedTriangleUv`'s 24 bytes, padded).
 pub const TRIANGLE_UV_TABLE_TEXELS: u32 = 2;
+/// 16-byte texels of one triangle's corner normals (`PackedTriangleNormals`'s 36 bytes,
+/// padded) in its table.
+pub const TRIANGLE_NORMAL_TABLE_TEXELS: u32 = 3;
 /// `TEXTURE_HEADER_WORDS·i ..` = (offset of its first texel in `texels`, width, height,
 /// header index of level 1 for a texture's level 0); headers 0 … n − 1 are the scene's
 /// textures, the mip levels' headers follow; texels follow, row-major from the image's top
@@ -120,6 +123,14 @@ pub const LUMINANCE_B: f32 = 0.0722;
 /// Smallest sine of the angle between ∂p/∂u and ∂p/∂v for which bump mapping tilts the
 /// normal (a scale-free test: below it the tangent frame is degenerate).
 pub const BUMP_MIN_FRAME_SINE: f32 = 1.0e-4;
+
+/// Smooth shading's terminator rule (`visible_normal`): the view direction reflected
+/// about the shading normal must leave the surface's visible side with at least this
+/// cosine to the geometric normal, else the shading normal is bent towards the geometric
+/// one until it does (dimensionless, so scale-free). An interpolated normal that faces
+/// away from the viewer, or reflects the view into the surface, would otherwise shade its
+/// facet black or mirror the inside of the mesh.
+pub const SMOOTH_MIN_REFLECTION_COSINE: f32 = 1.0e-2;
 
 /// `triangle_frame`: a mesh triangle's UV triangle is degenerate (no ∂p/∂u, ∂p/∂v can be
 /// solved from it) when its doubled signed area is at most this fraction of the product
@@ -237,6 +248,7 @@ pub fn wgsl_prelude() -> String {
         ("MATERIAL_TABLE_TEXELS", MATERIAL_TABLE_TEXELS),
         ("LIGHT_TABLE_TEXELS", LIGHT_TABLE_TEXELS),
         ("TRIANGLE_UV_TABLE_TEXELS", TRIANGLE_UV_TABLE_TEXELS),
+        ("TRIANGLE_NORMAL_TABLE_TEXELS", TRIANGLE_NORMAL_TABLE_TEXELS),
         ("DEBUG_VIEW_NONE", DEBUG_VIEW_NONE),
         ("DEBUG_VIEW_UV", DEBUG_VIEW_UV),
         ("AA_NONE", AA_NONE),
@@ -261,12 +273,14 @@ pub fn wgsl_prelude() -> String {
         ("PROBE_CLOSEST_HIT", PROBE_CLOSEST_HIT),
         ("PROBE_ANY_HIT", PROBE_ANY_HIT),
         ("PROBE_SHADOW_RAY", PROBE_SHADOW_RAY),
+        ("PROBE_SHADING_NORMAL", PROBE_SHADING_NORMAL),
         ("PCG_INCREMENT", PCG_INCREMENT),
         ("PCG_WORD_MULTIPLIER", PCG_WORD_MULTIPLIER),
         ("TORUS_NEWTON_ITERATIONS", TORUS_NEWTON_ITERATIONS),
     ];
     let f32s: &[(&str, f32)] = &[
         ("T_MISS", T_MISS),
+        ("F32_MAX", f32::MAX),
         ("OFFSET_RELATIVE", OFFSET_RELATIVE),
         ("TEXTURE_FOOTPRINT_MIN_COSINE", TEXTURE_FOOTPRINT_MIN_COSINE),
         ("ENTER_MARGIN_RELATIVE", ENTER_MARGIN_RELATIVE),
@@ -275,6 +289,7 @@ pub fn wgsl_prelude() -> String {
         ("TWO_PI", TWO_PI),
         ("AIR_IOR", AIR_IOR),
         ("BUMP_MIN_FRAME_SINE", BUMP_MIN_FRAME_SINE),
+        ("SMOOTH_MIN_REFLECTION_COSINE", SMOOTH_MIN_REFLECTION_COSINE),
         ("LUMINANCE_R", LUMINANCE_R),
         ("LUMINANCE_G", LUMINANCE_G),
         ("LUMINANCE_B", LUMINANCE_B),
@@ -408,6 +423,9 @@ pub const PROBE_ANY_HIT: u32 = 1;
 /// position and `t_max` the shaded surface's magnitude; the result's `t` is the ray's
 /// reach (`shadow_reach`).
 pub const PROBE_SHADOW_RAY: u32 = 2;
+/// As `PROBE_CLOSEST_HIT`, reporting the smooth shading normal (`smooth_normal`) rather
+/// than the geometric one in scenes with the SMOOTH feature.
+pub const PROBE_SHADING_NORMAL: u32 = 3;
 
 #[cfg(test)]
 mod tests {

@@ -3,10 +3,10 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::scene::flatten::MAX_PIXELS;
 use glint::scene::lua::MAX_IMAGE_SIDE;
-use glint::scene::options::{parse_background, parse_debug_view, parse_grid_mode};
+use glint::scene::options::{parse_background, parse_debug_view, parse_grid_mode, parse_shading};
 use glint::scene::{
-    AaDepth, AaMode, AaSamples, Background, DebugView, GridMode, OptionOverrides, ShadowSamples,
-    TraceDepth, TransformOrder,
+    AaDepth, AaMode, AaSamples, Background, DebugView, GridMode, OptionOverrides, Shading,
+    ShadowSamples, TraceDepth, TransformOrder,
 };
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -144,6 +144,11 @@ struct RenderArgs {
     /// adaptive AA.
     #[arg(long, value_parser = parse_debug_view)]
     debug: Option<DebugView>,
+    /// Mesh shading (overrides the scene option `shading`): smooth interpolates the
+    /// vertex normals of meshes that have them (OBJ `vn`, inline normals); flat shades
+    /// every triangle with its own plane's normal.
+    #[arg(long, value_parser = parse_shading)]
+    shading: Option<Shading>,
 }
 
 fn parse_aa(s: &str) -> Result<AaMode, String> {
@@ -221,6 +226,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             background: args.background,
             grid: args.grid,
             debug: args.debug,
+            shading: args.shading,
             width: args.width.filter(|&w| w > 0),
             height: args.height.filter(|&h| h > 0),
         },

@@ -16,6 +16,7 @@ pub mod ray;
 pub mod render;
 pub mod rng;
 pub mod shade;
+pub mod smooth;
 pub mod surface;
 pub mod texture;
 pub mod torus;

@@ -255,8 +255,9 @@ pub fn bump_normal(texels: &[u32], m: &PackedMaterial, s: &Surface) -> Vec3 {
     (n - tilt).normalize()
 }
 
-/// The normal shading uses: `n` (the geometric normal facing the viewer) or, with a bump
-/// map, the bumped normal turned to the same side.
+/// The normal shading uses: `n` (the normal facing the viewer: the geometric one, or on a
+/// smooth mesh the interpolated one, which `s.normal` then holds) or, with a bump map,
+/// `s.normal` bumped and turned to `n`'s side.
 // Mirror of shaders/texture.wgsl::shading_normal — change both.
 pub fn shading_normal(scene: &PackedScene, s: &Surface, n: Vec3) -> Vec3 {
     let m = &scene.materials[s.material as usize];

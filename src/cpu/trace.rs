@@ -8,6 +8,7 @@ use super::hit::Hit;
 use super::ray::{offset_ray, Ray};
 use super::rng::SampleSeed;
 use super::shade::{background, shade_phong};
+use super::smooth::{smooth_interface, smooth_normal, visible_normal};
 use super::surface::{surface_at, Surface};
 use super::texture::{camera_cone, cone_at, shading_normal, texture_detail, with_footprint};
 use super::traverse::{closest_hit, TraversalCounters};
@@ -150,7 +151,12 @@ fn push_secondary_rays(
         && m.flags & MATERIAL_REFRACTIVE != 0
         && entry.depth < g.max_depth
     {
-        let crossing = dielectric_interface(ray.dir, s.normal, m.ior, &entry.media);
+        let crossing = if scene.features.contains(SceneFeatures::SMOOTH) {
+            let shading = smooth_normal(scene, hit, &s);
+            smooth_interface(ray.dir, s.normal, shading, m.ior, &entry.media)
+        } else {
+            dielectric_interface(ray.dir, s.normal, m.ior, &entry.media)
+        };
         reflectance += Vec3::splat(crossing.reflectance);
         let weight = entry.weight * (1.0 - crossing.reflectance);
         if weight.max_element() >= g.min_weight && *size < RAY_STACK_SIZE as usize {
@@ -189,7 +195,8 @@ fn push_secondary_rays(
 }
 
 /// A ray's hit as `trace_ray` uses it: the shading point (with its texture
-/// footprint), the normal facing the ray and the shading normal (bumped), and the colour
+/// footprint), the normal facing the ray and the shading normal (interpolated on smooth
+/// meshes, bumped, kept visible: `smooth`), and the colour
 /// the point gives by itself — Phong shading, or the UV debug view, which `ends` the ray.
 // Mirror of shaders/trace.wgsl::ShadedHit — change both.
 struct ShadedHit {
@@ -227,8 +234,22 @@ fn shade_hit(
     }
     let facing = facing_normal(s.normal, ray.dir);
     let mut n = facing;
+    // The surface as shading sees it: with smooth meshes, its normal interpolated.
+    let mut shading = s;
+    let smooth = scene.features.contains(SceneFeatures::SMOOTH);
+    if smooth {
+        shading.normal = smooth_normal(scene, hit, &s);
+        n = if facing.dot(s.normal) < 0.0 {
+            -shading.normal
+        } else {
+            shading.normal
+        };
+    }
     if scene.features.contains(SceneFeatures::BUMP) {
-        n = shading_normal(scene, &s, n);
+        n = shading_normal(scene, &shading, n);
+    }
+    if smooth && shading.normal != s.normal {
+        n = visible_normal(n, facing, -ray.dir);
     }
     let shade_seed = SampleSeed {
         depth: entry.depth,

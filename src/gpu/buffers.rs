@@ -8,7 +8,9 @@ pub use super::bindings::SCENE_TABLE_BINDINGS;
 use super::context::GpuContext;
 use super::tables::{check_table, padded_texels, upload_table, SCENE_TABLE_FORMATS};
 use super::GpuError;
-use crate::constants::{TRIANGLE_TABLE_TEXELS, TRIANGLE_UV_TABLE_TEXELS};
+use crate::constants::{
+    TRIANGLE_NORMAL_TABLE_TEXELS, TRIANGLE_TABLE_TEXELS, TRIANGLE_UV_TABLE_TEXELS,
+};
 use crate::pack::PackedScene;
 use bytemuck::{Pod, Zeroable};
 use std::borrow::Cow;
@@ -41,8 +43,8 @@ pub const LIMITER_SENTINEL: u32 = 2;
 pub struct SceneBuffers {
     pub globals: wgpu::Buffer,
     /// instances, triangles, materials, lights, cell_start, cell_items, csg_program,
-    /// texels, triangle_uvs, meshes, bound at [`SCENE_TABLE_BINDINGS`].
-    pub tables: [wgpu::TextureView; 10],
+    /// texels, triangle_uvs, meshes, triangle_normals, bound at [`SCENE_TABLE_BINDINGS`].
+    pub tables: [wgpu::TextureView; 11],
 }
 
 /// `data` as u32 words, not copied (every packed struct is a whole number of words of
@@ -71,9 +73,9 @@ pub fn check_size(ctx: &GpuContext, array: &'static str, bytes: u64) -> Result<(
 /// Uploads `scene` to `ctx`'s device.
 pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffers, GpuError> {
     use std::borrow::Cow::{Borrowed, Owned};
-    // (Only the two padded arrays are copied; the rest are uploaded from the scene.) In
+    // (Only the padded arrays are copied; the rest are uploaded from the scene.) In
     // `SCENE_TABLE_BINDINGS` order, which `SCENE_TABLE_FORMATS` follows too.
-    let tables: [(&'static str, Cow<[u32]>); 10] = [
+    let tables: [(&'static str, Cow<[u32]>); 11] = [
         ("instances", words(&scene.instances)),
         (
             "triangles",
@@ -90,6 +92,13 @@ pub fn upload_scene(ctx: &GpuContext, scene: &PackedScene) -> Result<SceneBuffer
             Owned(padded_texels(&scene.triangle_uvs, TRIANGLE_UV_TABLE_TEXELS)),
         ),
         ("meshes", words(&scene.meshes)),
+        (
+            "triangle_normals",
+            Owned(padded_texels(
+                &scene.triangle_normals,
+                TRIANGLE_NORMAL_TABLE_TEXELS,
+            )),
+        ),
     ];
     for ((name, words), format) in tables.iter().zip(SCENE_TABLE_FORMATS) {
         check_table(&ctx.limits, name, format.texels(words.len()))?;

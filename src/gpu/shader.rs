@@ -96,6 +96,7 @@ const COMMON: &[(&str, &str)] = &[
     ),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
+    ("smooth.wgsl", include_str!("../../shaders/smooth.wgsl")),
     (
         "dielectric.wgsl",
         include_str!("../../shaders/dielectric.wgsl"),

@@ -1,6 +1,6 @@
 //! The packed scene's arrays as textures ("tables"): instances, triangles, materials,
-//! lights, cell starts and items, CSG programs, image texels, triangle UVs and mesh
-//! headers, each a 2-D texture 2^`TABLE_ROW_BITS` texels wide that the kernel reads with
+//! lights, cell starts and items, CSG programs, image texels, triangle UVs, mesh headers
+//! and triangle normals, each a 2-D texture 2^`TABLE_ROW_BITS` texels wide that the kernel reads with
 //! `textureLoad` (`shaders/layout.wgsl`: `cell_start_at`, `load_instance`, …). Element i
 //! of a one-word table is texel i; an element of a 16-byte-texel table is
 //! `*_TABLE_TEXELS` consecutive texels.
@@ -32,10 +32,10 @@ pub enum TableFormat {
 /// The texel format of each table of `SCENE_TABLE_BINDINGS` (bindings.rs), in the same
 /// order: one word a texel for cell_start, cell_items, csg_program and texels, four for
 /// the rest. The upload (`buffers`) and the bind group layout (`pipeline`) both read it.
-pub const SCENE_TABLE_FORMATS: [TableFormat; 10] = {
+pub const SCENE_TABLE_FORMATS: [TableFormat; 11] = {
     use TableFormat::{Quads, Words};
     [
-        Quads, Quads, Quads, Quads, Words, Words, Words, Words, Quads, Quads,
+        Quads, Quads, Quads, Quads, Words, Words, Words, Words, Quads, Quads, Quads,
     ]
 };
 
@@ -192,13 +192,16 @@ mod tests {
             MATERIAL_TABLE_TEXELS as usize * 16
         );
         assert_eq!(size_of::<PackedLight>(), LIGHT_TABLE_TEXELS as usize * 16);
-        // The two padded ones: the padding is less than a texel.
+        // The padded ones: the padding is less than a texel.
         let triangle = TRIANGLE_TABLE_TEXELS as usize * 16;
         assert!(
             size_of::<PackedTriangle>() <= triangle && triangle - size_of::<PackedTriangle>() < 16
         );
         let uv = TRIANGLE_UV_TABLE_TEXELS as usize * 16;
         assert!(size_of::<PackedTriangleUv>() <= uv && uv - size_of::<PackedTriangleUv>() < 16);
+        let normals = TRIANGLE_NORMAL_TABLE_TEXELS as usize * 16;
+        let packed = size_of::<PackedTriangleNormals>();
+        assert!(packed <= normals && normals - packed < 16);
         assert_eq!(TableFormat::Quads.texels(4 * 7 + 1), 8);
         assert_eq!(TableFormat::Words.texels(5), 5);
     }

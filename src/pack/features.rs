@@ -21,6 +21,8 @@ impl SceneFeatures {
     pub const REFRACTION: SceneFeatures = SceneFeatures(1 << 10);
     pub const TEXTURE: SceneFeatures = SceneFeatures(1 << 11);
     pub const BUMP: SceneFeatures = SceneFeatures(1 << 12);
+    /// A mesh triangle with vertex normals (and `shading` not `'flat'`): smooth shading.
+    pub const SMOOTH: SceneFeatures = SceneFeatures(1 << 13);
 
     /// Every feature with its name, in display order.
     pub const ALL: &'static [(SceneFeatures, &'static str)] = &[
@@ -37,6 +39,7 @@ impl SceneFeatures {
         (Self::REFRACTION, "refraction"),
         (Self::TEXTURE, "texture"),
         (Self::BUMP, "bump"),
+        (Self::SMOOTH, "smooth"),
     ];
 
     pub const fn empty() -> SceneFeatures {

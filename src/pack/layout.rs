@@ -73,6 +73,20 @@ pub struct PackedTriangleUv {
     pub uv2: [f32; 2],
 }
 
+/// The vertex normals of a triangle's corners (p0, p1, p2) in its mesh's space (unit in
+/// the mesh's own; a mesh baked into world space keeps them unnormalised, as
+/// `scene::instancing` says), in an array parallel to the triangles, packed only in scenes with the SMOOTH feature
+/// (others keep the traversal's triangles alone); all zero on a flat triangle. Nine
+/// packed floats, like `PackedTriangle`.
+// Mirror of shaders/layout.wgsl::PackedTriangleNormals — change both.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct PackedTriangleNormals {
+    pub n0: [f32; 3],
+    pub n1: [f32; 3],
+    pub n2: [f32; 3],
+}
+
 /// A4 Phong material plus the mirror colour, the dielectric's index and texture maps.
 // Mirror of shaders/layout.wgsl::PackedMaterial — change both.
 #[repr(C)]
@@ -179,6 +193,7 @@ pub struct PackedGlobals {
 const _: () = assert!(std::mem::size_of::<PackedInstance>() == 112);
 const _: () = assert!(std::mem::size_of::<PackedTriangle>() == 36);
 const _: () = assert!(std::mem::size_of::<PackedTriangleUv>() == 24);
+const _: () = assert!(std::mem::size_of::<PackedTriangleNormals>() == 36);
 const _: () = assert!(std::mem::size_of::<PackedMesh>() == 64);
 const _: () = assert!(std::mem::size_of::<PackedMaterial>() == 64);
 const _: () = assert!(std::mem::size_of::<PackedLight>() == 80);

@@ -4,7 +4,9 @@
 //! become one world-space mesh per material.
 
 use super::bounds::mesh_instance_bounds;
-use super::layout::{PackedInstance, PackedMesh, PackedTriangle, PackedTriangleUv};
+use super::layout::{
+    PackedInstance, PackedMesh, PackedTriangle, PackedTriangleNormals, PackedTriangleUv,
+};
 use super::{affine_rows, PackError};
 use crate::accel::aabb::Aabb;
 use crate::accel::grid::{Grid, GridBuildStats};
@@ -20,6 +22,10 @@ pub struct PackedMeshes {
     pub triangles: Vec<PackedTriangle>,
     /// Parallel to `triangles`.
     pub triangle_uvs: Vec<PackedTriangleUv>,
+    /// Parallel to `triangles` (all zero on flat triangles).
+    pub triangle_normals: Vec<PackedTriangleNormals>,
+    /// Whether some triangle has vertex normals (the SMOOTH feature).
+    pub smooth: bool,
     pub meshes: Vec<PackedMesh>,
     pub instances: Vec<PackedInstance>,
     /// World bounds of each instance (for the scene grid).
@@ -64,6 +70,8 @@ pub fn pack_meshes(scene: &FlatScene, density: Option<f32>) -> Result<PackedMesh
     let mut out = PackedMeshes {
         triangles: Vec::new(),
         triangle_uvs: Vec::new(),
+        triangle_normals: Vec::new(),
+        smooth: false,
         meshes: Vec::new(),
         instances: Vec::new(),
         instance_bounds: Vec::new(),
@@ -100,6 +108,7 @@ fn loose_meshes(scene: &FlatScene) -> Vec<(u32, Vec<MeshTriangle>)> {
         let triangle = MeshTriangle {
             positions: t.positions,
             uvs: t.uvs,
+            normals: [[0.0; 3]; 3],
         };
         match groups.iter_mut().find(|g| g.0 == material) {
             Some(group) => group.1.push(triangle),
@@ -141,6 +150,13 @@ impl PackedMeshes {
                 uv1: t.uvs[1],
                 uv2: t.uvs[2],
             }));
+        self.triangle_normals
+            .extend(order.iter().map(|t| PackedTriangleNormals {
+                n0: t.normals[0],
+                n1: t.normals[1],
+                n2: t.normals[2],
+            }));
+        self.smooth |= order.iter().any(|t| t.normals[0] != [0.0; 3]);
         let item_offset = self.cell_items.len() as u32;
         let first_cell = self.cell_start.len() as u32;
         // Cell c's items are cell_start[c]..cell_start[c + 1]: keep one entry per cell

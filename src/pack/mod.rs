@@ -48,6 +48,9 @@ pub struct PackedScene {
     /// Corner UVs of each triangle, parallel to `triangles`; empty unless the scene has
     /// the TEXTURE or BUMP feature.
     pub triangle_uvs: Vec<PackedTriangleUv>,
+    /// Corner normals of each triangle (smooth shading), parallel to `triangles`; empty
+    /// unless the scene has the SMOOTH feature.
+    pub triangle_normals: Vec<PackedTriangleNormals>,
     pub features: SceneFeatures,
     /// Which per-ray mailboxes the CPU tracer's traversal keeps (`Mailboxes::Full`; the
     /// twin of the GPU kernel variant's, `gpu::KernelConfig`). They change no answer,
@@ -190,6 +193,12 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     if !triangles.is_empty() {
         features.insert(SceneFeatures::MESH);
     }
+    let triangle_normals = if meshes.smooth {
+        features.insert(SceneFeatures::SMOOTH);
+        std::mem::take(&mut meshes.triangle_normals)
+    } else {
+        Vec::new()
+    };
     check_finite(&instances, &triangles)?;
     let materials = materials::pack_materials(scene);
     features.insert(materials::material_features(scene, &materials));
@@ -230,6 +239,7 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
         csg_program,
         texels,
         triangle_uvs,
+        triangle_normals,
         features,
         mailboxes: Mailboxes::Full,
         grid_stats: grid.stats,

@@ -122,6 +122,10 @@ pub struct MeshTriangle {
     pub positions: [DVec3; 3],
     /// The corners' UVs: the mesh's own, else the planar projection of `scene::uv`.
     pub uvs: [[f32; 2]; 3],
+    /// The corners' normals in the mesh's space, for smooth shading (see
+    /// `scene::instancing::stored_normals`); all zero when the triangle is flat (its mesh
+    /// has no normals, or a corner lacks one).
+    pub normals: [[f32; 3]; 3],
 }
 
 /// A mesh as the tracers store it: once, however many instances use it.

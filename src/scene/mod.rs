@@ -20,7 +20,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 pub use bounded::{AaDepth, AaSamples, Bounded, ShadowSamples, TraceDepth};
-pub use options::{AaMode, Background, DebugView, GridMode, OptionOverrides, RenderOptions};
+pub use options::{
+    AaMode, Background, DebugView, GridMode, OptionOverrides, RenderOptions, Shading,
+};
 pub use texture::{Texture, TextureId};
 
 /// Index of a node in [`SceneGraph::nodes`].
@@ -138,6 +140,9 @@ pub struct Mesh {
     pub triangles: Vec<[u32; 3]>,
     /// Per-vertex UVs (inline `uvs` table or OBJ `vt` resolved per vertex), if given.
     pub uvs: Option<Vec<[f32; 2]>>,
+    /// Per-vertex unit normals (inline `normals` table or OBJ `vn` resolved per vertex),
+    /// if given; a zero vector marks a vertex without one (its triangles are flat).
+    pub normals: Option<Vec<DVec3>>,
 }
 
 /// A light in world space: a point light at `position`, or, with `area`, a parallelogram

@@ -2,10 +2,11 @@
 //!
 //! Our own small parser rather than a crate, so that every error can name the file and
 //! line (`cow.obj:17: face index 912 out of range (file has 300 vertices)`), which is
-//! what a student fixing a scene needs. Supported: `v`, `vt`, `vn` (parsed and checked,
-//! normals not used yet), `f` with `a`, `a/b`, `a/b/c`, `a//c` and negative (relative)
-//! indices, polygons of 3+ corners (fan-triangulated). Grouping, smoothing, material and
-//! line statements are ignored, as are statements this renderer has no use for.
+//! what a student fixing a scene needs. Supported: `v`, `vt`, `vn` (vertex normals, for
+//! smooth shading; normalised here, a zero `vn` leaves its corners without a normal),
+//! `f` with `a`, `a/b`, `a/b/c`, `a//c` and negative (relative) indices, polygons of 3+
+//! corners (fan-triangulated). Grouping, smoothing groups (`s`), material and line
+//! statements are ignored, as are statements this renderer has no use for.
 
 use super::files::{excerpt, read_regular, MAX_FILE_BYTES};
 use super::Mesh;
@@ -34,14 +35,16 @@ pub enum ObjError {
     },
 }
 
-/// One face corner: 0-based position index and optional 0-based texture index.
-type Corner = (u32, Option<u32>);
+/// One face corner: 0-based position index and optional 0-based texture and normal
+/// indices.
+type Corner = (u32, Option<u32>, Option<u32>);
 
 /// A parsed, validated OBJ file: every index is checked and 0-based.
 #[derive(Debug, Default)]
 struct ParsedObj {
     positions: Vec<[f64; 3]>,
     texcoords: Vec<[f64; 2]>,
+    normals: Vec<[f64; 3]>,
     faces: Vec<Vec<Corner>>,
 }
 
@@ -73,7 +76,7 @@ pub fn read_obj_raw(path: &Path) -> Result<RawObj, ObjError> {
     let faces = parsed
         .faces
         .into_iter()
-        .map(|f| f.into_iter().map(|(v, _)| v).collect())
+        .map(|f| f.into_iter().map(|(v, _, _)| v).collect())
         .collect();
     Ok((parsed.positions, faces))
 }
@@ -97,7 +100,7 @@ fn read(path: &Path) -> Result<String, ObjError> {
 /// most loaders); negative ones are resolved against the counts at that line.
 struct RawFace {
     line: usize,
-    corners: Vec<(i64, Option<i64>)>,
+    corners: Vec<(i64, Option<i64>, Option<i64>)>,
 }
 
 fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
@@ -107,7 +110,6 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
         message,
     };
     let mut out = ParsedObj::default();
-    let mut normals = 0usize;
     let mut raw_faces = Vec::new();
 
     for (i, line) in text.lines().enumerate() {
@@ -139,15 +141,20 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
                     "vt" => out
                         .texcoords
                         .push([nums[0], nums.get(1).copied().unwrap_or(0.0)]),
-                    _ => normals += 1,
+                    _ => out.normals.push([nums[0], nums[1], nums[2]]),
                 }
             }
             "f" => {
                 let mut corners = Vec::new();
                 for w in words {
                     corners.push(
-                        corner(w, out.positions.len(), out.texcoords.len(), normals)
-                            .map_err(|m| err(lineno, m))?,
+                        corner(
+                            w,
+                            out.positions.len(),
+                            out.texcoords.len(),
+                            out.normals.len(),
+                        )
+                        .map_err(|m| err(lineno, m))?,
                     );
                 }
                 if corners.len() < 3 {
@@ -172,15 +179,20 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
 
     let nv = out.positions.len();
     let nt = out.texcoords.len();
+    let nn = out.normals.len();
     for face in raw_faces {
         let mut corners = Vec::with_capacity(face.corners.len());
-        for (v, t) in face.corners {
+        for (v, t, n) in face.corners {
             let v = check_index(v, nv, "face index", "vertices").map_err(|m| err(face.line, m))?;
             let t = t
                 .map(|t| check_index(t, nt, "texture index", "texture coordinates"))
                 .transpose()
                 .map_err(|m| err(face.line, m))?;
-            corners.push((v, t));
+            let n = n
+                .map(|n| check_index(n, nn, "normal index", "normals"))
+                .transpose()
+                .map_err(|m| err(face.line, m))?;
+            corners.push((v, t, n));
         }
         out.faces.push(corners);
     }
@@ -201,7 +213,12 @@ fn number(word: &str) -> Result<f64, String> {
 
 /// Parses one `f` corner (`a`, `a/b`, `a/b/c`, `a//c`). Negative indices count back from
 /// the last element defined so far and are resolved here (to 1-based).
-fn corner(word: &str, nv: usize, nt: usize, nn: usize) -> Result<(i64, Option<i64>), String> {
+fn corner(
+    word: &str,
+    nv: usize,
+    nt: usize,
+    nn: usize,
+) -> Result<(i64, Option<i64>, Option<i64>), String> {
     let mut parts = word.split('/');
     let index = |s: &str, count: usize, what: &str| -> Result<i64, String> {
         let i: i64 = s.parse().map_err(|_| {
@@ -234,16 +251,14 @@ fn corner(word: &str, nv: usize, nt: usize, nn: usize) -> Result<(i64, Option<i6
         None | Some("") => None,
         Some(s) => Some(index(s, nt, "texture")?),
     };
-    match parts.next() {
-        None | Some("") => {}
-        Some(s) => {
-            index(s, nn, "normal")?;
-        }
-    }
+    let n = match parts.next() {
+        None | Some("") => None,
+        Some(s) => Some(index(s, nn, "normal")?),
+    };
     if parts.next().is_some() {
         return Err(format!("bad face corner '{}'", excerpt(word)));
     }
-    Ok((v, t))
+    Ok((v, t, n))
 }
 
 /// Checks a resolved 1-based index against the file's count, giving a 0-based index.
@@ -257,15 +272,18 @@ fn check_index(i: i64, count: usize, what: &str, plural: &str) -> Result<u32, St
     }
 }
 
-/// Fan-triangulates the polygons. Without texture coordinates the vertices are kept as
-/// they are; with them, each distinct (position, texcoord) pair becomes one vertex, since
-/// the mesh stores one UV per vertex.
+/// Fan-triangulates the polygons. Without texture coordinates or normals the vertices
+/// are kept as they are; with either, each distinct (position, texcoord, normal) corner
+/// becomes one vertex, since the mesh stores one UV and one normal per vertex.
 fn to_mesh(parsed: ParsedObj, name: &str) -> Mesh {
-    let has_uv = parsed.faces.iter().flatten().any(|(_, t)| t.is_some());
+    let has_uv = parsed.faces.iter().flatten().any(|c| c.1.is_some());
+    let has_normals = parsed.faces.iter().flatten().any(|c| c.2.is_some());
+    let split = has_uv || has_normals;
     let mut positions: Vec<DVec3> = Vec::new();
     let mut uvs: Vec<[f32; 2]> = Vec::new();
+    let mut normals: Vec<DVec3> = Vec::new();
     let mut remap: HashMap<Corner, u32> = HashMap::new();
-    if !has_uv {
+    if !split {
         positions = parsed
             .positions
             .iter()
@@ -276,17 +294,19 @@ fn to_mesh(parsed: ParsedObj, name: &str) -> Mesh {
     for face in &parsed.faces {
         let ids: Vec<u32> = face
             .iter()
-            .map(|&(v, t)| {
-                if !has_uv {
+            .map(|&(v, t, n)| {
+                if !split {
                     return v;
                 }
-                *remap.entry((v, t)).or_insert_with(|| {
+                *remap.entry((v, t, n)).or_insert_with(|| {
                     positions.push(DVec3::from_array(parsed.positions[v as usize]));
-                    let uv = t.map_or([0.0, 0.0], |t| {
+                    uvs.push(t.map_or([0.0, 0.0], |t| {
                         let [u, v] = parsed.texcoords[t as usize];
                         [u as f32, v as f32]
-                    });
-                    uvs.push(uv);
+                    }));
+                    normals.push(n.map_or(DVec3::ZERO, |n| {
+                        unit_or_zero(DVec3::from_array(parsed.normals[n as usize]))
+                    }));
                     (positions.len() - 1) as u32
                 })
             })
@@ -300,6 +320,18 @@ fn to_mesh(parsed: ParsedObj, name: &str) -> Mesh {
         positions,
         triangles,
         uvs: has_uv.then_some(uvs),
+        normals: has_normals.then_some(normals),
+    }
+}
+
+/// `n` normalised, or zero when it has no direction (a zero `vn`, or one whose length
+/// overflows): a corner without a normal.
+pub(crate) fn unit_or_zero(n: DVec3) -> DVec3 {
+    let unit = n.normalize_or_zero();
+    if unit.is_finite() {
+        unit
+    } else {
+        DVec3::ZERO
     }
 }
 
@@ -325,7 +357,12 @@ mod tests {
                     v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n\
                     f 1//1 2//1 3//1\nf -3 -2 -1\nl 1 2\n";
         let m = parse_str(text).unwrap();
-        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 1, 2]]);
+        // The first face's corners have a normal, the second's not: six vertices.
+        assert_eq!(m.triangles, vec![[0, 1, 2], [3, 4, 5]]);
+        assert_eq!(&m.positions[..3], &m.positions[3..]);
+        let normals = m.normals.unwrap();
+        assert_eq!(normals[..3], [DVec3::Z; 3]);
+        assert_eq!(normals[3..], [DVec3::ZERO; 3]);
     }
 
     #[test]
@@ -340,6 +377,42 @@ mod tests {
         assert_eq!(m.triangles[0], [0, 1, 2]);
         assert_eq!(m.triangles[1][0], 1);
         assert_eq!(uvs[m.triangles[1][2] as usize], [0.5, 0.5]);
+    }
+
+    #[test]
+    fn normals_give_per_vertex_unit_normals_splitting_where_needed() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 2\nvn 0 3 4\nvn 0 0 0\n\
+                    f 1//1 2//1 3//2\nf 2//1 4//3 3//1\n";
+        let m = parse_str(text).unwrap();
+        // Vertex 3 (index 2) has two normals: (3,2) and (3,1) are two vertices.
+        assert_eq!(m.positions.len(), 5);
+        assert!(m.uvs.is_none());
+        let normals = m.normals.unwrap();
+        let t = &m.triangles;
+        assert_eq!(normals[t[0][0] as usize], DVec3::Z, "normalised");
+        assert!((normals[t[0][2] as usize] - DVec3::new(0.0, 0.6, 0.8)).length() < 1e-15);
+        // A zero `vn` leaves its corner without a normal.
+        assert_eq!(normals[t[1][1] as usize], DVec3::ZERO);
+        assert_eq!(normals[t[1][2] as usize], DVec3::Z);
+        // Faces without normals in a file that has some: corners without one.
+        let m =
+            parse_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1 2 3\nf 1//1 2//1 3//1\n").unwrap();
+        let normals = m.normals.unwrap();
+        assert_eq!(normals[m.triangles[0][0] as usize], DVec3::ZERO);
+        assert_eq!(normals[m.triangles[1][0] as usize], DVec3::Z);
+        assert!(parse_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+            .unwrap()
+            .normals
+            .is_none());
+    }
+
+    #[test]
+    fn normal_index_out_of_range_names_file_line_and_count() {
+        let e = parse_str("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "test.obj:5: normal index 2 out of range (file has 1 normals)"
+        );
     }
 
     #[test]

@@ -94,6 +94,34 @@ pub fn parse_debug_view(s: &str) -> Result<DebugView, String> {
     DebugView::parse(s).ok_or_else(|| format!("debug must be {}, got '{s}'", DebugView::CHOICES))
 }
 
+/// Mesh shading (`shading`): whether meshes with vertex normals interpolate them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Shading {
+    /// Triangles whose corners all have normals shade with the normals interpolated at
+    /// the hit (Phong normal interpolation); the rest are flat.
+    #[default]
+    Smooth,
+    /// Every triangle shades with its geometric normal; vertex normals are ignored.
+    Flat,
+}
+
+impl Shading {
+    pub const CHOICES: &'static str = "'smooth' or 'flat'";
+
+    pub fn parse(s: &str) -> Option<Shading> {
+        match s {
+            "smooth" => Some(Shading::Smooth),
+            "flat" => Some(Shading::Flat),
+            _ => None,
+        }
+    }
+}
+
+/// Parses `--shading`'s value.
+pub fn parse_shading(s: &str) -> Result<Shading, String> {
+    Shading::parse(s).ok_or_else(|| format!("shading must be {}, got '{s}'", Shading::CHOICES))
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderOptions {
     pub aa: AaMode,
@@ -106,6 +134,7 @@ pub struct RenderOptions {
     pub background: Background,
     pub grid: GridMode,
     pub debug: DebugView,
+    pub shading: Shading,
 }
 
 impl Default for RenderOptions {
@@ -123,6 +152,7 @@ impl Default for RenderOptions {
             background: Background::DEFAULT,
             grid: GridMode::Auto,
             debug: DebugView::None,
+            shading: Shading::Smooth,
         }
     }
 }
@@ -140,6 +170,7 @@ pub struct OptionOverrides {
     pub background: Option<Background>,
     pub grid: Option<GridMode>,
     pub debug: Option<DebugView>,
+    pub shading: Option<Shading>,
     pub width: Option<u32>,
     pub height: Option<u32>,
 }
@@ -164,6 +195,7 @@ impl OptionOverrides {
         set(&mut options.background, &self.background);
         set(&mut options.grid, &self.grid);
         set(&mut options.debug, &self.debug);
+        set(&mut options.shading, &self.shading);
     }
 }
 

@@ -2,19 +2,21 @@
 //! `surface_at` through the `probe` entry point, and the same with the CPU functions, so
 //! tests compare the two ray by ray.
 
-use crate::constants::{NO_ITEM, PROBE_ANY_HIT, PROBE_SHADOW_RAY};
+use crate::constants::{NO_ITEM, PROBE_ANY_HIT, PROBE_SHADING_NORMAL, PROBE_SHADOW_RAY};
 pub use crate::constants::{
-    PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT, PROBE_SHADOW_RAY as SHADOW_RAY,
+    PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT,
+    PROBE_SHADING_NORMAL as SHADING_NORMAL, PROBE_SHADOW_RAY as SHADOW_RAY,
 };
 use crate::cpu::ray::{shadow_reach, Ray};
 use crate::cpu::shade::shadow_blocked;
+use crate::cpu::smooth::smooth_normal;
 use crate::cpu::surface::surface_at;
 use crate::cpu::traverse::{any_hit, closest_hit, NoCounters};
 use crate::gpu::buffers::{read_back, scene_entries, upload_scene};
 use crate::gpu::pipeline::{get_pipeline, PROBE_RAYS_BINDING, PROBE_RESULTS_BINDING};
 use crate::gpu::shader::Entry;
 use crate::gpu::{GpuContext, GpuError};
-use crate::pack::PackedScene;
+use crate::pack::{PackedScene, SceneFeatures};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
@@ -27,8 +29,9 @@ pub struct ProbeRay {
     pub t_max: f32,
     /// Unit direction.
     pub dir: [f32; 3],
-    /// [`PROBE_CLOSEST_HIT`], [`PROBE_ANY_HIT`] or [`PROBE_SHADOW_RAY`] (then `dir` holds
-    /// the light's position and `t_max` the shaded surface's magnitude).
+    /// [`PROBE_CLOSEST_HIT`], [`PROBE_ANY_HIT`], [`PROBE_SHADOW_RAY`] (then `dir` holds
+    /// the light's position and `t_max` the shaded surface's magnitude) or
+    /// [`PROBE_SHADING_NORMAL`].
     pub mode: u32,
 }
 
@@ -43,7 +46,8 @@ pub struct ProbeResult {
     pub item: u32,
     /// A CSG hit's surface (leaf instance | `CSG_FLIP`); `NO_ITEM` otherwise.
     pub part: u32,
-    /// `surface_at`'s geometric normal (zero on a miss).
+    /// `surface_at`'s geometric normal, or in `PROBE_SHADING_NORMAL` mode in a scene
+    /// with smooth meshes `smooth_normal`'s (zero on a miss).
     pub normal: [f32; 3],
     pub _pad1: u32,
 }
@@ -88,7 +92,11 @@ pub fn cpu_probe(scene: &PackedScene, pr: &ProbeRay) -> ProbeResult {
     };
     if hit.is_hit() {
         result.hit = 1;
-        result.normal = surface_at(scene, &ray, &hit).normal.to_array();
+        let s = surface_at(scene, &ray, &hit);
+        result.normal = s.normal.to_array();
+        if scene.features.contains(SceneFeatures::SMOOTH) && pr.mode == PROBE_SHADING_NORMAL {
+            result.normal = smooth_normal(scene, &hit, &s).to_array();
+        }
     }
     result
 }

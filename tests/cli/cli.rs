@@ -222,6 +222,49 @@ fn unknown_debug_view_is_a_usage_error() {
     );
 }
 
+/// `--shading flat` beats the scene's vertex normals (a different image, the same as the
+/// scene option `shading = 'flat'`); a bad value is a usage error naming the choices.
+#[test]
+fn shading_flag_forces_flat_shading() {
+    let dir = temp_dir("cli-shading");
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn -1 -1 1\nvn 1 0 1\nvn 0 1 1\nf 1//1 2//2 3//3\n";
+    std::fs::write(dir.join("t.obj"), obj).unwrap();
+    let scene = |options: &str| {
+        format!(
+            "root = gr.node('root')\nt = gr.mesh('t', 't.obj')\nroot:add_child(t)\n\
+             gr.render(root, 'out.png', 8, 8, {{0.3,0.3,3}}, {{0,0,-1}}, {{0,1,0}}, 30, {{0.1,0.1,0.1}}, \
+             {{gr.light({{5,5,5}}, {{1,1,1}}, {{1,0,0}})}}{options})\n"
+        )
+    };
+    std::fs::write(dir.join("scene.lua"), scene("")).unwrap();
+    std::fs::write(dir.join("flat.lua"), scene(", {shading = 'flat'}")).unwrap();
+    let render = |args: &[&str], out: &str| {
+        let mut all = vec!["render"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["-o", out]);
+        let o = glint(&all, &dir);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(dir.join(out)).unwrap()
+    };
+    let smooth = render(&["scene.lua"], "smooth.png");
+    let flag = render(&["scene.lua", "--shading", "flat"], "flag.png");
+    let option = render(&["flat.lua"], "option.png");
+    assert_ne!(smooth, flag, "--shading flat changed nothing");
+    assert_eq!(flag, option);
+    assert_eq!(
+        render(&["flat.lua", "--shading", "smooth"], "back.png"),
+        smooth
+    );
+    assert_fails(
+        "shading",
+        GOOD_RENDER,
+        &[],
+        &["--shading", "phong"],
+        2,
+        &["'smooth'", "'flat'"],
+    );
+}
+
 #[test]
 fn malformed_obj() {
     let scene = format!(

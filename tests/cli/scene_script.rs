@@ -448,6 +448,48 @@ fn inline_mesh_errors() {
 }
 
 #[test]
+fn inline_mesh_with_normals() {
+    let src = format!(
+        "root = gr.node('root')\n\
+         m = gr.mesh('t', {{{{0,0,0}},{{1,0,0}},{{0,1,0}}}}, {{{{0,1,2}}}}, nil, {{{{0,0,2}},{{3,0,4}},{{0,1,1}}}})\n\
+         root:add_child(m)\n{RENDER})"
+    );
+    let (_, r) = run_src(&src, &ScriptConfig::default());
+    let mesh = &r[0].0.meshes[0];
+    assert!(mesh.uvs.is_none());
+    let normals = mesh.normals.as_ref().unwrap();
+    assert_eq!(normals[0], glam::DVec3::Z, "normalised");
+    assert!((normals[1] - glam::DVec3::new(0.6, 0.0, 0.8)).length() < 1e-15);
+    let three = "{{0,0,0},{1,0,0},{0,1,0}}, {{0,1,2}}, nil";
+    let m = message_of(&format!(
+        "m = gr.mesh('m', {three}, {{{{0,0,1}},{{0,0,1}}}})\n"
+    ));
+    assert_eq!(
+        m,
+        ":1: gr.mesh: argument 5 (normals): has 2 normals but there are 3 vertices"
+    );
+    let m = message_of(&format!(
+        "m = gr.mesh('m', {three}, {{{{0,0,1}},{{0,0,0}},{{0,0,1}}}})\n"
+    ));
+    assert_eq!(
+        m,
+        ":1: gr.mesh: argument 5 (normals): element 2 is {0, 0, 0}, which has no direction: a normal must be non-zero"
+    );
+    let m = message_of(&format!(
+        "m = gr.mesh('m', {three}, {{{{0,0,1}},'up',{{0,0,1}}}})\n"
+    ));
+    assert_eq!(
+        m,
+        ":1: gr.mesh: argument 5 (normals): element 2 must be a normal of 3 finite numbers {x, y, z}, got 'up'"
+    );
+    let m = message_of(&format!("m = gr.mesh('m', {three}, 7)\n"));
+    assert!(
+        m.contains("argument 5 (normals) must be a table of normals"),
+        "{m}"
+    );
+}
+
+#[test]
 fn missing_and_malformed_obj() {
     let (e, scene) = error_of(
         &[("scene.lua", "\nm = gr.mesh('cow', 'cow.obj')\n")],

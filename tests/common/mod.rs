@@ -459,3 +459,39 @@ pub fn assert_gpu_matches_cpu(
     );
     info
 }
+
+/// Lua for a coarse UV sphere mesh named `name` (`around` × `down` quads) of radius
+/// `radius` at `centre`, with its unit positions as inline vertex normals (smooth
+/// shading) and material `m`, added to `root`.
+pub fn smooth_sphere_lua(
+    name: &str,
+    around: usize,
+    down: usize,
+    radius: f64,
+    centre: glam::DVec3,
+) -> String {
+    let (mut verts, mut normals, mut faces) = (Vec::new(), Vec::new(), Vec::new());
+    for j in 0..=down {
+        let lat = std::f64::consts::PI * (j as f64 / down as f64 - 0.5);
+        for i in 0..=around {
+            let lon = std::f64::consts::TAU * i as f64 / around as f64;
+            let n = glam::DVec3::new(lat.cos() * lon.cos(), lat.sin(), -lat.cos() * lon.sin());
+            let p = centre + n * radius;
+            verts.push(format!("{{{:e}, {:e}, {:e}}}", p.x, p.y, p.z));
+            normals.push(format!("{{{:e}, {:e}, {:e}}}", n.x, n.y, n.z));
+        }
+    }
+    for j in 0..down {
+        for i in 0..around {
+            let a = j * (around + 1) + i;
+            let b = a + around + 1;
+            faces.push(format!("{{{a}, {}, {}, {b}}}", a + 1, b + 1));
+        }
+    }
+    format!(
+        "{name} = gr.mesh('{name}', {{{}}}, {{{}}}, nil, {{{}}})\n{name}:set_material(m)\nroot:add_child({name})\n",
+        verts.join(", "),
+        faces.join(", "),
+        normals.join(", ")
+    )
+}

@@ -546,3 +546,48 @@ fn light_on_a_surface_does_not_speckle_on_the_gpu() {
     }
     assert!(failures.is_empty(), "speckle on the GPU: {failures:?}");
 }
+
+/// Smooth meshes (interpolated vertex normals, the terminator rule): scenes/smooth.lua
+/// (the OBJ torus smooth and, through `readobj`, flat; the same OBJ instanced as a smooth
+/// mirror; an inline mesh with normals and UVs, smooth and bump-mapped on top) and the
+/// POV-Ray comparison torus, and a smooth glass ball, on both tracers; and scenes/smooth.lua under
+/// `shading = 'flat'`, which packs no normals and compiles no smooth code.
+#[test]
+fn smooth_meshes_match() {
+    use glint::scene::Shading;
+    let Some(ctx) = gpu_context() else { return };
+    let smooth = root().join("scenes/smooth.lua");
+    let scene = packed_from_file(&smooth, &small(Some(AaMode::None))).remove(0);
+    let features = compare(&ctx, "smooth", &scene);
+    for feature in [
+        SceneFeatures::SMOOTH,
+        SceneFeatures::BUMP,
+        SceneFeatures::REFLECTION,
+    ] {
+        assert!(features.contains(feature), "{features}");
+    }
+    let torus = root().join("scenes/meshes/torus-povray.lua");
+    let scene = packed_from_file(&torus, &OptionOverrides::default()).remove(0);
+    assert!(compare(&ctx, "smooth-torus", &scene).contains(SceneFeatures::SMOOTH));
+    let flat = OptionOverrides {
+        shading: Some(Shading::Flat),
+        ..small(Some(AaMode::None))
+    };
+    let scene = packed_from_file(&smooth, &flat).remove(0);
+    assert!(scene.triangle_normals.is_empty());
+    assert!(!compare(&ctx, "smooth-flat", &scene).contains(SceneFeatures::SMOOTH));
+    // A smooth glass ball (refraction by the interpolated normals) over a floor.
+    let glass = format!(
+        "m = gr.material({{0, 0, 0}}, {{0.8, 0.8, 0.8}}, 80) m:set_refraction(1.5)\n\
+         f = gr.material({{0.7, 0.6, 0.4}}, {{0, 0, 0}}, 1)\nroot = gr.node('root')\n{}\
+         floor = gr.cube('floor') floor:set_material(f) floor:scale(8, 0.1, 8) floor:translate(-4, -1.2, -4) root:add_child(floor)\n\
+         gr.render(root, 'x.png', 128, 128, {{0, 1, 4}}, {{0, -0.25, -1}}, {{0, 1, 0}}, 40, {{0.2, 0.2, 0.2}}, \
+         {{gr.light({{-3, 5, 4}}, {{0.9, 0.9, 0.9}}, {{1, 0, 0}})}})\n",
+        common::smooth_sphere_lua("ball", 24, 12, 1.0, glam::DVec3::ZERO)
+    );
+    let scene = packed_from_source(&glass, &small(Some(AaMode::None))).remove(0);
+    let features = compare(&ctx, "smooth-glass", &scene);
+    for feature in [SceneFeatures::SMOOTH, SceneFeatures::REFRACTION] {
+        assert!(features.contains(feature), "{features}");
+    }
+}

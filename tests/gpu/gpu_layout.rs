@@ -8,7 +8,7 @@ use glint::gpu::KernelConfig;
 use glint::mailboxes::Mailboxes;
 use glint::pack::{
     PackedGlobals, PackedInstance, PackedLight, PackedMaterial, PackedMesh, PackedTriangle,
-    PackedTriangleUv, SceneFeatures,
+    PackedTriangleNormals, PackedTriangleUv, SceneFeatures,
 };
 use glint::testing::probe::{ProbeRay, ProbeResult};
 use std::mem::{offset_of, size_of};
@@ -63,6 +63,7 @@ fn wgsl_structs_match_rust_layout() {
     );
     check_struct(&render, rust_fields!(PackedTriangle { p0, p1, p2 }));
     check_struct(&render, rust_fields!(PackedTriangleUv { uv0, uv1, uv2 }));
+    check_struct(&render, rust_fields!(PackedTriangleNormals { n0, n1, n2 }));
     check_struct(
         &render,
         rust_fields!(PackedMesh {
@@ -496,8 +497,44 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
                     (texture || bump) && entry == Entry::Render,
                 ),
                 ("cone: vec2<f32>,", texture || bump),
-                ("shading_normal(s, n)", bump && entry == Entry::Render),
+                ("shading_normal(shading, n)", bump && entry == Entry::Render),
                 ("DEBUG_VIEW_UV {", texture && entry == Entry::Render),
+            ];
+            for (code, present) in expect {
+                assert_eq!(
+                    source.contains(code),
+                    present,
+                    "[{features}] {entry:?}: {code}"
+                );
+            }
+        }
+    }
+}
+
+/// Smooth shading (shaders/smooth.wgsl, the triangle normals' loader, the interpolated
+/// normal in shade_hit and the probe, smooth refraction with REFRACTION) is compiled only into scenes with the SMOOTH
+/// feature (which packing sets only for meshes with vertex normals).
+#[test]
+fn smooth_code_only_with_smooth_meshes() {
+    for features in all_feature_sets() {
+        let smooth = features.contains(SceneFeatures::SMOOTH);
+        let refraction = features.contains(SceneFeatures::REFRACTION);
+        for entry in [Entry::Render, Entry::Probe] {
+            let source = assemble(features, entry);
+            let expect = [
+                ("fn smooth_normal(", smooth),
+                ("fn visible_normal(", smooth),
+                ("fn load_triangle_normals(", smooth),
+                ("smooth_normal(hit, s)", smooth),
+                (
+                    "visible_normal(n, facing, -ray.dir)",
+                    smooth && entry == Entry::Render,
+                ),
+                ("fn smooth_interface(", smooth && refraction),
+                (
+                    "smooth_interface(ray.dir",
+                    smooth && refraction && entry == Entry::Render,
+                ),
             ];
             for (code, present) in expect {
                 assert_eq!(

@@ -119,6 +119,11 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "reads `triangle_uvs[i]` from its table texture; the CPU indexes the slice",
     ),
     (
+        "shaders/layout.wgsl",
+        "load_triangle_normals",
+        "reads `triangle_normals[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
         "shaders/render.wgsl",
         "loop_limiter_tripped",
         "detects lavapipe's loop limiter, which the CPU does not have",

@@ -208,7 +208,7 @@ fn csg(a: &Args) -> mlua::Result<NodeHandle> {
     Ok(handle)
 }
 
-/// `gr.mesh(name, 'file.obj')` or `gr.mesh(name, verts, faces[, uvs])`.
+/// `gr.mesh(name, 'file.obj')` or `gr.mesh(name, verts, faces[, uvs[, normals]])`.
 fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
     let name = a.string(1, "name")?;
     let id = match a.get(2) {
@@ -255,7 +255,13 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
 
 /// Bytes a mesh holds in the scene graph.
 fn mesh_bytes(mesh: &Mesh) -> u64 {
-    let vertex = std::mem::size_of::<DVec3>() + if mesh.uvs.is_some() { 8 } else { 0 };
+    let vertex = std::mem::size_of::<DVec3>()
+        + if mesh.uvs.is_some() { 8 } else { 0 }
+        + if mesh.normals.is_some() {
+            std::mem::size_of::<DVec3>()
+        } else {
+            0
+        };
     (mesh.positions.len() * vertex + mesh.triangles.len() * 12 + mesh.name.len()) as u64
 }
 
@@ -345,12 +351,53 @@ fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
         }
     }
     let uvs = inline_uvs(a, n)?;
+    let normals = inline_normals(a, n)?;
     Ok(Mesh {
         name: name.to_string(),
         positions,
         triangles,
         uvs,
+        normals,
     })
+}
+
+/// Argument 5 of the inline form: one non-zero normal `{x, y, z}` per vertex (`n` of
+/// them), normalised, if given (smooth shading; `uvs` may be nil before it).
+fn inline_normals(a: &Args, n: usize) -> mlua::Result<Option<Vec<DVec3>>> {
+    if a.is_nil(5) {
+        return Ok(None);
+    }
+    let t = a.table(5, "normals", "a table of normals {x, y, z}, one per vertex")?;
+    let mut normals = Vec::with_capacity(n);
+    for (i, v) in t.sequence_values::<Value>().enumerate() {
+        let v = v?;
+        let bad = |what: String| a.bad_in(5, "normals", format!("element {} {what}", i + 1));
+        let Some(p) = (match &v {
+            Value::Table(t) => a.vec3_from(t, 5, "normals").ok(),
+            _ => None,
+        }) else {
+            return Err(bad(format!(
+                "must be a normal of 3 finite numbers {{x, y, z}}, got {}",
+                super::args::describe(a.lua, &v)
+            )));
+        };
+        let unit = crate::scene::obj::unit_or_zero(DVec3::from_array(p));
+        if unit == DVec3::ZERO {
+            return Err(bad(format!(
+                "is {{{}, {}, {}}}, which has no direction: a normal must be non-zero",
+                p[0], p[1], p[2]
+            )));
+        }
+        normals.push(unit);
+    }
+    if normals.len() != n {
+        return Err(a.bad_in(
+            5,
+            "normals",
+            format!("has {} normals but there are {n} vertices", normals.len()),
+        ));
+    }
+    Ok(Some(normals))
 }
 
 /// Argument 4 of the inline form: one `{u, v}` per vertex (`n` of them), if given.

@@ -4,11 +4,11 @@
 //! that lists what is valid, rather than an option silently left at its default.
 
 use super::args::{describe, finite, int_value, Args};
-use crate::scene::{AaMode, Background, Bounded, DebugView, GridMode, RenderOptions};
+use crate::scene::{AaMode, Background, Bounded, DebugView, GridMode, RenderOptions, Shading};
 use mlua::{Table, Value};
 
 const KEYS: &str = "aa, samples, aa_threshold, aa_depth, shadow_samples, max_depth, \
-                    min_weight, background, grid, debug";
+                    min_weight, background, grid, debug, shading";
 
 /// Parses argument `n` of `a` (nil gives the defaults).
 pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
@@ -96,6 +96,13 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
             .ok_or_else(|| bad(DebugView::CHOICES))?;
         }
         "grid" => o.grid = grid(a, n, v, &bad)?,
+        "shading" => {
+            o.shading = match v {
+                Value::String(s) => Shading::parse(&s.to_string_lossy()),
+                _ => None,
+            }
+            .ok_or_else(|| bad(Shading::CHOICES))?;
+        }
         _ => {
             return Err(a.bad_in(
                 n,
@@ -182,7 +189,7 @@ fn background(a: &Args, n: usize, v: &Value) -> mlua::Result<Background> {
 #[cfg(test)]
 mod tests {
     use crate::scene::lua::{run_scene_source, ScriptConfig};
-    use crate::scene::{AaMode, Background, DebugView, GridMode, RenderOptions};
+    use crate::scene::{AaMode, Background, DebugView, GridMode, RenderOptions, Shading};
     use std::path::Path;
 
     /// Runs a one-line render with `opts` as the options argument.
@@ -238,6 +245,13 @@ mod tests {
             }
         );
         assert_eq!(o.grid, GridMode::Density(3.0));
+        assert_eq!(options("{shading='flat'}").unwrap().shading, Shading::Flat);
+        assert_eq!(options("{}").unwrap().shading, Shading::Smooth);
+        let e = options("{shading='phong'}").unwrap_err();
+        assert!(
+            e.ends_with("shading must be 'smooth' or 'flat', got 'phong'"),
+            "{e}"
+        );
         assert_eq!(options("{debug='uv'}").unwrap().debug, DebugView::Uv);
         assert_eq!(
             options("{debug='aa-samples'}").unwrap().debug,
