@@ -4,8 +4,9 @@
 //!
 //! Layout: `sandbox` builds the restricted Lua state (limits, `require`, `unpack`,
 //! `readobj`), `gr` defines the scene calls, `handles` the node/material/light userdata
-//! and their methods, `args` checks arguments and words the errors, `options` parses the
-//! render-options table.
+//! and their methods, `methods` the method tables scripts may extend, `args` checks
+//! arguments and words the errors, `options` parses the render-options table, `preludes`
+//! runs the `--prelude` files before the scene.
 //! The script's state lives in Lua's app data ([`State`]) so that the `'static` callbacks
 //! mlua requires can reach it; only `gr.render`, which borrows the caller's `on_render`,
 //! is a scoped function.
@@ -14,7 +15,9 @@ mod args;
 mod gr;
 mod handles;
 mod maps;
+mod methods;
 mod options;
+mod preludes;
 mod sandbox;
 mod watchdog;
 
@@ -47,6 +50,10 @@ pub struct ScriptConfig {
     pub hard_time_limit: bool,
     /// Folders the scene may read besides its own (`--allow-read`).
     pub allow_read: Vec<PathBuf>,
+    /// Lua files run before the scene, in order, in the same state and under the same
+    /// limits (`--prelude`): a dialect of another CS488 tracer mapped onto glint's calls.
+    /// Each one's folder is readable too.
+    pub preludes: Vec<PathBuf>,
 }
 
 /// Default memory budget (2 GiB).
@@ -63,6 +70,7 @@ impl Default for ScriptConfig {
             time_limit: DEFAULT_TIME_LIMIT,
             hard_time_limit: false,
             allow_read: Vec::new(),
+            preludes: Vec::new(),
         }
     }
 }
@@ -141,6 +149,7 @@ pub fn run_scene_source(
     config: &ScriptConfig,
     on_render: &mut OnRender<'_>,
 ) -> Result<ScriptReport, SceneError> {
+    let preludes = preludes::read_all(&config.preludes)?;
     let watchdog = watchdog::Watchdog::start(config.time_limit, config.hard_time_limit, chunk_name);
     let limits = sandbox::Limits::default();
     let lua =
@@ -153,7 +162,7 @@ pub fn run_scene_source(
         order: config.transform_order.unwrap_or_default(),
         order_fixed: config.transform_order.is_some(),
         base_dir: base_dir.to_path_buf(),
-        read_policy: ReadPolicy::new(base_dir, &config.allow_read),
+        read_policy: ReadPolicy::new(base_dir, &preludes::readable(config, &preludes)),
         report: ScriptReport::default(),
         mesh_cache: HashMap::new(),
         texture_cache: HashMap::new(),
@@ -164,8 +173,11 @@ pub fn run_scene_source(
         cycle_search: handles::CycleSearch::default(),
         cycle_check_visits: 0,
         clock: watchdog.clock(),
+        module_dirs: HashMap::new(),
     });
-    let setup = gr::install(&lua).and_then(|()| sandbox::install(&lua));
+    let setup = gr::install(&lua)
+        .and_then(|()| methods::install(&lua))
+        .and_then(|()| sandbox::install(&lua));
     if let Err(e) = setup {
         return Err(SceneError::Runtime {
             message: format!("{chunk_name}: cannot set up the gr module: {e}"),
@@ -180,6 +192,7 @@ pub fn run_scene_source(
         lua.globals()
             .get::<mlua::Table>("gr")?
             .set("render", render)?;
+        preludes::run_all(&lua, &preludes)?;
         lua.load(source)
             .set_name(format!("@{chunk_name}"))
             .set_mode(ChunkMode::Text)
@@ -236,6 +249,9 @@ pub(crate) struct State {
     pub cycle_check_visits: u64,
     /// The wall-clock limit's clock, paused while `gr.render` renders.
     pub clock: watchdog::ScriptClock,
+    /// Chunk names (`@path`) of the preludes and the modules they required, with the
+    /// folder their own `require` calls look in (the scene's modules look beside it).
+    pub module_dirs: HashMap<String, PathBuf>,
 }
 
 impl State {

@@ -23,7 +23,7 @@ use std::cell::Cell;
 use std::rc::Rc;
 
 /// Registry key of the `require` cache (also visible as `package.loaded`).
-const LOADED_KEY: &str = "glint.loaded";
+pub(super) const LOADED_KEY: &str = "glint.loaded";
 
 /// What the hooks report, so the error can be classified after Lua unwinds (and cannot
 /// be hidden by a `pcall` in the script).
@@ -212,31 +212,53 @@ fn stub_table(lua: &Lua, lib: &str) -> mlua::Result<Table> {
 }
 
 /// `require(name)`: `readobj` is built in; anything else is `name.lua` (dots as folder
-/// separators) beside the scene, run once in the same environment and cached.
+/// separators) beside the scene, run once in the same environment and cached. Called
+/// from a prelude (or a module of one), it looks beside the prelude instead, and caches
+/// by canonical path (see `preludes`).
 fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     let a = Args::new(lua, "require", args);
     let name = a.string(1, "module")?;
-    with_state(lua, |s| s.report.looks_pre2015 = true);
+    let prelude_dir = super::preludes::caller_module_dir(lua);
+    if prelude_dir.is_none() {
+        with_state(lua, |s| s.report.looks_pre2015 = true);
+    }
     if name == "readobj" {
         return Ok(Value::Boolean(true));
     }
     let loaded: Table = lua.named_registry_value(LOADED_KEY)?;
-    let cached: Value = loaded.get(name.as_str())?;
-    if !cached.is_nil() {
-        return Ok(cached);
+    if prelude_dir.is_none() {
+        let cached: Value = loaded.get(name.as_str())?;
+        if !cached.is_nil() {
+            return Ok(cached);
+        }
     }
     let (path, checked) = with_state(lua, |s| {
-        let path = s.base_dir.join(format!("{}.lua", name.replace('.', "/")));
+        let dir = prelude_dir.as_ref().unwrap_or(&s.base_dir);
+        let path = dir.join(format!("{}.lua", name.replace('.', "/")));
         let checked = s.read_policy.check(&path, "module");
         (path, checked)
     });
+    let key = match (&prelude_dir, &checked) {
+        (Some(_), Ok(canonical)) => canonical.display().to_string(),
+        _ => name.clone(),
+    };
+    if prelude_dir.is_some() {
+        let cached: Value = loaded.get(key.as_str())?;
+        if !cached.is_nil() {
+            return Ok(cached);
+        }
+    }
     let source = checked
         .and_then(|_| read_regular(&path, "module", MAX_FILE_BYTES))
         .map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
     charge(&a, source.len() as u64, &format!("module '{name}'"))?;
+    let chunk = format!("@{}", path.display());
+    if let Some(dir) = &prelude_dir {
+        super::preludes::adopt_module(lua, &chunk, dir);
+    }
     let value: Value = lua
         .load(&source[..])
-        .set_name(format!("@{}", path.display()))
+        .set_name(chunk)
         .set_mode(ChunkMode::Text)
         .call((name.as_str(), path.display().to_string()))?;
     let value = if value.is_nil() {
@@ -244,7 +266,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     } else {
         value
     };
-    loaded.set(name.as_str(), &value)?;
+    loaded.set(key.as_str(), &value)?;
     Ok(value)
 }
 
