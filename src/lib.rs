@@ -22,6 +22,7 @@ pub mod pack;
 pub mod parity;
 pub mod pipeline;
 pub mod scene;
+pub mod script_driver;
 #[doc(hidden)]
 pub mod testing;
 pub mod tiling;

@@ -2,7 +2,7 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::scene::flatten::MAX_PIXELS;
-use glint::scene::lua::{DEFAULT_MEMORY_LIMIT, DEFAULT_TIME_LIMIT, MAX_IMAGE_SIDE};
+use glint::scene::lua::MAX_IMAGE_SIDE;
 use glint::scene::options::{parse_background, parse_debug_view, parse_grid_mode};
 use glint::scene::{
     AaDepth, AaMode, AaSamples, Background, DebugView, GridMode, OptionOverrides, ShadowSamples,
@@ -10,7 +10,6 @@ use glint::scene::{
 };
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Duration;
 
 /// Most worker threads `--threads` accepts (each has its own stack; thousands would
 /// only cost memory and start-up time).
@@ -86,21 +85,9 @@ struct RenderArgs {
     /// Print grid, feature and ray statistics after each render.
     #[arg(long)]
     stats: bool,
-    /// Lua instructions a script may run before it is stopped as a runaway.
-    #[arg(long, default_value_t = glint::scene::lua::ScriptConfig::default().instruction_limit)]
-    instruction_limit: u64,
-    /// Wall-clock seconds the script may run (renders not counted).
-    #[arg(long, value_name = "SECONDS", default_value_t = DEFAULT_TIME_LIMIT.as_secs(),
-          value_parser = clap::value_parser!(u64).range(1..=86_400))]
-    script_timeout: u64,
-    /// Memory budget in MiB: the Lua heap, the scene and each render's build.
-    #[arg(long, value_name = "MIB", default_value_t = (DEFAULT_MEMORY_LIMIT >> 20) as u64,
-          value_parser = clap::value_parser!(u64).range(16..=1 << 20))]
-    memory_limit: u64,
-    /// A folder the scene may read meshes, textures and modules from, besides its own
-    /// (repeatable).
-    #[arg(long, value_name = "DIR")]
-    allow_read: Vec<PathBuf>,
+    /// The sandbox's limits and readable folders (the same flags as `bench`).
+    #[command(flatten)]
+    script: glint::script_driver::ScriptArgs,
     /// Tracer: cpu (the reference), gpu (wgpu compute: Vulkan, Metal or DX12), auto (a
     /// hardware GPU when one exists, else the CPU, with a one-line notice), or both
     /// (render on each, write NAME-cpu and NAME-gpu, print the difference and both times;
@@ -216,11 +203,13 @@ fn main() -> ExitCode {
 
 fn render(args: RenderArgs) -> Result<(), (String, u8)> {
     check_render_args(&args)?;
+    let transform_order = args.transform_order.map(|o| match o {
+        OrderArg::Pre => TransformOrder::Pre,
+        OrderArg::Post => TransformOrder::Post,
+    });
+    let script = args.script.settings(transform_order).map_err(|e| (e, 2))?;
     let settings = glint::pipeline::RenderSettings {
-        transform_order: args.transform_order.map(|o| match o {
-            OrderArg::Pre => TransformOrder::Pre,
-            OrderArg::Post => TransformOrder::Post,
-        }),
+        script,
         overrides: OptionOverrides {
             aa: args.aa,
             samples: args.samples,
@@ -238,11 +227,6 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         output: args.output,
         stats: args.stats,
         progress: true,
-        instruction_limit: Some(args.instruction_limit),
-        script_timeout: Some(Duration::from_secs(args.script_timeout)),
-        memory_limit: Some((args.memory_limit << 20) as usize),
-        allow_read: args.allow_read.clone(),
-        hard_time_limit: true,
         backend: match args.backend {
             BackendArg::Cpu => glint::pipeline::Backend::Cpu,
             BackendArg::Gpu => glint::pipeline::Backend::Gpu,
@@ -274,7 +258,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         Ok(report) => {
             if report.looks_pre2015
                 && !report.order_set_by_script
-                && settings.transform_order.is_none()
+                && settings.script.transform_order.is_none()
             {
                 eprintln!(
                     "glint: hint: this scene looks like a pre-2015 CS488 scene (inline meshes, require, bare unpack); if it looks wrong, try --transform-order post"
@@ -303,11 +287,6 @@ fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
                 ),
                 2,
             ));
-        }
-    }
-    for dir in &args.allow_read {
-        if !dir.is_dir() {
-            return Err((format!("--allow-read {}: not a folder", dir.display()), 2));
         }
     }
     Ok(())

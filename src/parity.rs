@@ -8,8 +8,9 @@ use crate::diff::{diff_films, DiffReport};
 use crate::gpu::GpuContext;
 use crate::image_io::{check_output_path, write_image, ImageIoError};
 use crate::pipeline::{output_path, render_request, scene_error, RenderSettings, RunError, Tracer};
-use crate::scene::lua::{run_scene_file, ScriptConfig, ScriptReport};
+use crate::scene::lua::ScriptReport;
 use crate::scene::{RenderRequest, SceneGraph};
+use crate::script_driver::run_script;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -117,13 +118,6 @@ pub fn run_scene_both(
     parity: &ParitySettings,
     on_result: &mut dyn FnMut(&ParityResult),
 ) -> Result<(ScriptReport, bool), RunError> {
-    let mut config = ScriptConfig {
-        transform_order: settings.transform_order,
-        ..ScriptConfig::default()
-    };
-    if let Some(limit) = settings.instruction_limit {
-        config.instruction_limit = limit;
-    }
     let ctx = GpuContext::new(settings.adapter.as_deref())?;
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
     let mut index = 0;
@@ -145,7 +139,7 @@ pub fn run_scene_both(
         on_result(&result);
         Ok(())
     };
-    match run_scene_file(path, &config, &mut on_render) {
+    match run_script(path, &settings.script, &mut on_render) {
         Ok(report) => Ok((report, all_agree)),
         Err(e) => Err(scene_error(e, output_error.into_inner())),
     }

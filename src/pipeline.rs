@@ -10,8 +10,9 @@ use crate::image_io::{check_output_path, write_image, ImageIoError};
 use crate::pack::{pack, PackError, PackedScene, SceneFeatures};
 use crate::scene::flatten::flatten;
 use crate::scene::flatten::FlatScene;
-use crate::scene::lua::{run_scene_file, SceneError, ScriptConfig, ScriptReport};
-use crate::scene::{AaMode, DebugView, OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
+use crate::scene::lua::{SceneError, ScriptReport};
+use crate::scene::{AaMode, DebugView, OptionOverrides, RenderRequest, SceneGraph};
+use crate::script_driver::{run_script, ScriptSettings};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -19,8 +20,9 @@ use std::time::{Duration, Instant};
 /// How to run a scene: everything the CLI can say.
 #[derive(Clone, Debug, Default)]
 pub struct RenderSettings {
-    /// `--transform-order` (beats the script).
-    pub transform_order: Option<TransformOrder>,
+    /// How the script runs: transform order and the sandbox's limits (one driver for
+    /// every mode: [`crate::script_driver`]).
+    pub script: ScriptSettings,
     /// Render-option flags (beat the script).
     pub overrides: OptionOverrides,
     /// `-o`: output of the first render; later renders of the same script get `-2`, `-3`…
@@ -29,17 +31,6 @@ pub struct RenderSettings {
     pub stats: bool,
     /// Show a progress bar (only drawn on a terminal).
     pub progress: bool,
-    /// Lua instruction limit (None: the default of [`ScriptConfig`]).
-    pub instruction_limit: Option<u64>,
-    /// `--script-timeout`: the script's wall-clock limit (None: the default).
-    pub script_timeout: Option<Duration>,
-    /// `--memory-limit`: the memory budget in bytes (None: the default).
-    pub memory_limit: Option<usize>,
-    /// `--allow-read`: folders the scene may read besides its own.
-    pub allow_read: Vec<PathBuf>,
-    /// End the process (exit code 3) when the script overruns its time where it cannot
-    /// be interrupted (the command line sets it).
-    pub hard_time_limit: bool,
     /// Which tracer renders.
     pub backend: Backend,
     /// `--adapter`: a substring of the GPU adapter's name.
@@ -322,21 +313,6 @@ pub fn run_scene(
     settings: &RenderSettings,
     on_image: &mut dyn FnMut(&RenderedImage),
 ) -> Result<ScriptReport, RunError> {
-    let mut config = ScriptConfig {
-        transform_order: settings.transform_order,
-        ..ScriptConfig::default()
-    };
-    if let Some(limit) = settings.instruction_limit {
-        config.instruction_limit = limit;
-    }
-    if let Some(limit) = settings.script_timeout {
-        config.time_limit = limit;
-    }
-    if let Some(limit) = settings.memory_limit {
-        config.memory_limit = limit;
-    }
-    config.allow_read = settings.allow_read.clone();
-    config.hard_time_limit = settings.hard_time_limit;
     let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref())?;
     let tracer = gpu.as_ref().map_or(Tracer::Cpu, Tracer::Gpu);
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
@@ -370,7 +346,7 @@ pub fn run_scene(
         on_image(&rendered);
         Ok(())
     };
-    match run_scene_file(path, &config, &mut on_render) {
+    match run_script(path, &settings.script, &mut on_render) {
         Ok(report) => Ok(report),
         Err(e) => Err(scene_error(e, output_error.into_inner())),
     }

@@ -137,7 +137,8 @@ fn hits_equal_brute_force_over_the_same_rays() {
     let text = stdout_of(&out);
 
     // Brute force: the same scene with the grid off, every item against every ray.
-    let mut scene = load_first_render(&dir.join("scene.lua"), None, None, &[], None).unwrap();
+    let mut scene =
+        load_first_render(&dir.join("scene.lua"), None, None, &Default::default()).unwrap();
     scene.options.grid = GridMode::Off;
     let brute = pack(&scene).unwrap();
     assert_eq!(brute.globals.grid_enabled, 0);
@@ -176,7 +177,8 @@ fn hits_equal_brute_force_over_the_same_rays() {
     // The work lines are the counts of the same traversal; brute force (the scene grid
     // off) tests more primitives than the grids do.
     let grid =
-        pack(&load_first_render(&dir.join("scene.lua"), None, None, &[], None).unwrap()).unwrap();
+        pack(&load_first_render(&dir.join("scene.lua"), None, None, &Default::default()).unwrap())
+            .unwrap();
     let grid_shadow = shadow_rays(&grid, &rays, &trace_primary(&grid, &rays));
     let [grid_primary_work, grid_shadow_work] = count_work(&grid, &rays, &grid_shadow);
     let [brute_primary_work, brute_shadow_work] = count_work(&brute, &rays, &shadow);
@@ -207,7 +209,8 @@ fn hits_equal_brute_force_over_the_same_rays() {
 fn mailboxes_change_the_work_not_the_answers() {
     let dir = scene_dir("mailboxes");
     let mut scene =
-        pack(&load_first_render(&dir.join("scene.lua"), None, None, &[], None).unwrap()).unwrap();
+        pack(&load_first_render(&dir.join("scene.lua"), None, None, &Default::default()).unwrap())
+            .unwrap();
     let rays = camera_rays(&scene);
     assert_eq!(
         scene.mailboxes,

@@ -693,3 +693,101 @@ fn info_names_the_kernel_variant_of_each_adapter() {
         );
     }
 }
+
+/// Every mode runs the script through one driver: `--backend both` refuses a read outside
+/// the allowed folders, stops a runaway at `--script-timeout` and honours
+/// `--memory-limit` exactly as `--backend cpu` does (same exit code, same message), and
+/// `--allow-read` widens both alike.
+#[test]
+fn backend_both_runs_the_script_under_the_same_limits_as_cpu() {
+    if common::gpu_context().is_none() {
+        return;
+    }
+    let outside = temp_dir("both-limits-outside");
+    std::fs::write(
+        outside.join("tri.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let mesh = outside.join("tri.obj").display().to_string();
+    let read_outside =
+        format!("root = gr.node('root')\nroot:add_child(gr.mesh('m', '{mesh}'))\n{GOOD_RENDER}");
+    // An instruction limit far above what the timeout allows, so only the timeout stops it.
+    let runaway = "local x = 0\nwhile true do x = x + 1 end\n";
+    let hungry = "local s = string.rep('x', 64 << 20)\n";
+    let cases: [(&str, &str, &[&str], &[&str]); 3] = [
+        (
+            "read",
+            &read_outside,
+            &[],
+            &["scene.lua:2:", "outside the folders"],
+        ),
+        (
+            "runaway",
+            runaway,
+            &[
+                "--instruction-limit",
+                "1000000000000",
+                "--script-timeout",
+                "2",
+            ],
+            &["scene.lua", "time limit"],
+        ),
+        (
+            "memory",
+            hungry,
+            &["--memory-limit", "32"],
+            &["scene.lua", "memory limit of 32 MiB"],
+        ),
+    ];
+    for (tag, scene, args, needles) in cases {
+        for backend in ["cpu", "both"] {
+            let tag = format!("both-limits-{tag}-{backend}");
+            let mut all = args.to_vec();
+            all.extend(["--backend", backend]);
+            let start = std::time::Instant::now();
+            assert_fails(&tag, scene, &[], &all, 3, needles);
+            assert!(
+                start.elapsed() < std::time::Duration::from_secs(20),
+                "{tag}: took {:?}",
+                start.elapsed()
+            );
+        }
+    }
+    // Widened by --allow-read, both modes render the mesh.
+    for backend in ["cpu", "both"] {
+        let dir = temp_dir(&format!("both-limits-allowed-{backend}"));
+        std::fs::write(dir.join("scene.lua"), &read_outside).unwrap();
+        let allow = outside.display().to_string();
+        let out = glint(
+            &[
+                "render",
+                "scene.lua",
+                "--backend",
+                backend,
+                "--allow-read",
+                &allow,
+            ],
+            &dir,
+        );
+        assert!(out.status.success(), "{backend}: {}", stderr(&out));
+    }
+}
+
+/// The default script timeout ends a runaway that the instruction hook cannot see (a
+/// backtracking pattern inside Lua's C library) well within 30 s, start-up included.
+#[test]
+fn default_script_timeout_ends_a_stuck_pattern_within_30_s() {
+    let scene = "string.find(string.rep('a', 5000), string.rep('a*', 30) .. 'b')\n";
+    let start = std::time::Instant::now();
+    assert_fails(
+        "stuck-pattern",
+        scene,
+        &[],
+        &["--backend", "cpu"],
+        3,
+        &["scene.lua", "script time limit of 15 s"],
+    );
+    let took = start.elapsed();
+    assert!(took < std::time::Duration::from_secs(30), "took {took:?}");
+}

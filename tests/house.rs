@@ -1,6 +1,6 @@
 //! The house rules, checked from the source text (no build of anything else needed):
 //! dependencies between the top-level modules of `src/` point one way, so do those between
-//! the files of one module folder, and no function in `src/` is longer than 100 lines.
+//! the files of every module folder at any depth, and no function in `src/` is longer than 100 lines.
 //! Test modules (`#[cfg(test)] mod tests` and what follows it) are not counted: tests may
 //! reach anywhere.
 
@@ -184,41 +184,175 @@ fn top_level_modules_depend_one_way() {
     );
 }
 
-#[test]
-fn files_of_one_module_folder_depend_one_way() {
-    let files = source_files();
-    let folders: BTreeSet<String> = files
-        .iter()
-        .filter(|f| f.relative.contains('/'))
-        .map(|f| top_module(&f.relative))
+/// The module path of a file relative to `src/`: `scene/lua/args.rs` is
+/// `[scene, lua, args]`, a folder's `mod.rs` is the folder's own module.
+fn module_path(relative: &str) -> Vec<String> {
+    let mut path: Vec<String> = relative
+        .trim_end_matches(".rs")
+        .split('/')
+        .map(str::to_string)
         .collect();
-    let mut problems = Vec::new();
-    for folder in folders {
-        let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-        for file in files.iter().filter(|f| top_module(&f.relative) == folder) {
-            let Some(inside) = file.relative.split_once('/').map(|(_, rest)| rest) else {
-                continue;
-            };
-            let me = inside
-                .split('/')
-                .next()
-                .unwrap()
-                .trim_end_matches(".rs")
-                .to_string();
-            let mut uses = names_used_under(&file.text, &format!("crate::{folder}::"));
-            uses.extend(names_used_under(&file.text, "super::"));
-            graph
-                .entry(me.clone())
-                .or_default()
-                .extend(uses.into_iter().filter(|u| *u != me));
+    if path.last().is_some_and(|last| last == "mod") {
+        path.pop();
+    }
+    path
+}
+
+/// `(folder, child)` for each module a file reaches by path: `crate::a::b::c` names `b`
+/// in folder `a` and `c` in folder `a/b`; `super::x` names `x` in the folder of the
+/// file's parent module, `super::super::x` one level up, and so on.
+fn reached_children(module: &[String], text: &str) -> BTreeSet<(String, String)> {
+    let mut reached = BTreeSet::new();
+    for depth in 1..module.len() {
+        let folder = &module[..depth];
+        let prefix = format!("crate::{}::", folder.join("::"));
+        for child in names_used_under(text, &prefix) {
+            reached.insert((folder.join("/"), child));
         }
-        for cycle in cycles(&graph) {
+    }
+    let mut search_from = 0;
+    while let Some(found) = text[search_from..].find("super::") {
+        let at = search_from + found;
+        search_from = at + "super::".len();
+        let before = text[..at].chars().next_back();
+        if before.is_some_and(|c| c == ':' || c.is_alphanumeric() || c == '_') {
+            continue; // a later `super::` of a chain, or part of a longer name
+        }
+        let mut levels = 0;
+        let mut rest = &text[at..];
+        while let Some(after) = rest.strip_prefix("super::") {
+            levels += 1;
+            rest = after;
+        }
+        if levels > module.len() {
+            continue;
+        }
+        // The absolute path the reference names, down to its last plain segment; a
+        // `{…}` group at the end contributes each of its heads.
+        let mut path: Vec<String> = module[..module.len() - levels].to_vec();
+        let mut tails = Vec::new();
+        loop {
+            if let Some(group) = rest.strip_prefix('{') {
+                tails = group_heads(&group[..group.find("};").unwrap_or(group.len())]);
+                break;
+            }
+            let name: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            if name.is_empty() {
+                break;
+            }
+            rest = &rest[name.len()..];
+            path.push(name);
+            match rest.strip_prefix("::") {
+                Some(after) => rest = after,
+                None => break,
+            }
+        }
+        for k in 1..path.len() {
+            reached.insert((path[..k].join("/"), path[k].clone()));
+        }
+        for tail in tails.into_iter().filter(|t| !t.is_empty()) {
+            reached.insert((path.join("/"), tail));
+        }
+    }
+    reached
+}
+
+/// The import cycles among the children of every folder of `files`, at any depth: each
+/// child (a file, or a sub-folder with everything in it) is a node, and a file's
+/// reference to a sibling's path an edge.
+fn folder_cycles(files: &[SourceFile]) -> Vec<String> {
+    let mut graphs: BTreeMap<String, BTreeMap<String, BTreeSet<String>>> = BTreeMap::new();
+    for file in files {
+        let module = module_path(&file.relative);
+        let own = file.relative.trim_end_matches(".rs");
+        let segments: Vec<&str> = own.split('/').collect();
+        // The node this file belongs to in each folder above it.
+        for depth in 1..segments.len() {
+            let folder = segments[..depth].join("/");
+            let node = segments[depth].to_string();
+            graphs.entry(folder).or_default().entry(node).or_default();
+        }
+        for (folder, child) in reached_children(&module, &file.text) {
+            let folder_segments = folder.split('/').count();
+            if !own.starts_with(&format!("{folder}/")) || segments.len() <= folder_segments {
+                continue; // a reference into a folder from outside it
+            }
+            let node = segments[folder_segments].to_string();
+            if node != child {
+                graphs
+                    .entry(folder)
+                    .or_default()
+                    .entry(node)
+                    .or_default()
+                    .insert(child);
+            }
+        }
+    }
+    let mut problems = Vec::new();
+    for (folder, graph) in &graphs {
+        for cycle in cycles(graph) {
             problems.push(format!("{folder}/: {}", cycle.join(" <-> ")));
         }
     }
+    problems
+}
+
+#[test]
+fn files_of_every_module_folder_depend_one_way() {
+    let problems = folder_cycles(&source_files());
     assert!(
         problems.is_empty(),
         "import cycles between files of one folder: {problems:#?}"
+    );
+}
+
+/// The folder check sees nested folders: a cycle two levels down (and one through
+/// `super::` and a `crate::` path alike) is found; a parent using its children is not one.
+#[test]
+fn the_folder_check_finds_a_nested_cycle() {
+    let file = |relative: &str, text: &str| SourceFile {
+        relative: relative.to_string(),
+        text: text.to_string(),
+    };
+    let cyclic = [
+        file("scene/lua/mod.rs", "mod a; mod b; use a::x;"),
+        file("scene/lua/a.rs", "use super::b::Y;"),
+        file("scene/lua/b.rs", "use crate::scene::lua::{a::X, mod_item};"),
+        file("scene/mod.rs", "mod lua;"),
+    ];
+    assert_eq!(
+        folder_cycles(&cyclic),
+        vec!["scene/lua/: a <-> b".to_string()]
+    );
+    let deeper = [
+        file("scene/lua/deep/p.rs", "use super::q::Z;"),
+        file("scene/lua/deep/q.rs", "use super::super::deep::p::W;"),
+    ];
+    assert_eq!(
+        folder_cycles(&deeper),
+        vec!["scene/lua/deep/: p <-> q".to_string()]
+    );
+    let one_way = [
+        file("scene/lua/a.rs", "use super::b::Y;"),
+        file("scene/lua/b.rs", "use super::with_state;"),
+        file("scene/flatten.rs", "use crate::scene::lua::a;"),
+        file(
+            "scene/lua/mod.rs",
+            "mod a; mod b; use a::x; use crate::scene::options::O;",
+        ),
+    ];
+    assert_eq!(folder_cycles(&one_way), Vec::<String>::new());
+    // A sub-folder is one node of its parent folder: lua/a -> flatten -> lua is a cycle.
+    let across = [
+        file("scene/lua/a.rs", "use crate::scene::flatten::F;"),
+        file("scene/flatten.rs", "use crate::scene::lua::a::A;"),
+    ];
+    assert_eq!(
+        folder_cycles(&across),
+        vec!["scene/: flatten <-> lua".to_string()]
     );
 }
 

@@ -42,8 +42,7 @@ fn run_bench_on_pool(args: &BenchArgs) -> anyhow::Result<()> {
             height: args.height,
             repeat: args.repeat,
             dump_rays: args.dump_rays.clone(),
-            allow_read: args.allow_read.clone(),
-            memory_limit: args.memory_limit.map(|mib| (mib << 20) as usize),
+            script: args.script_settings()?,
         });
     }
     println!("glint bench on {} threads", rayon::current_num_threads());

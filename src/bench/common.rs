@@ -4,8 +4,8 @@
 use crate::pack::PackedScene;
 use crate::pipeline::pack_scene;
 use crate::scene::flatten::{flatten, FlatScene};
-use crate::scene::lua::{run_scene_file, ScriptConfig};
 use crate::scene::GridMode;
+use crate::script_driver::{run_script, ScriptArgs, ScriptSettings};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Clone, Debug)]
@@ -84,37 +84,37 @@ pub struct BenchArgs {
     /// Embree harness (`benches/embree/`; format in `bench::trace_dump`).
     #[arg(long, requires = "trace", value_name = "FILE")]
     pub dump_rays: Option<PathBuf>,
-    /// --trace, --sweep: a folder the scenes may read besides their own (repeatable), as
-    /// `glint render --allow-read` (benches/scenes/ read the CS488 corpus's meshes).
-    #[arg(long, value_name = "DIR")]
-    pub allow_read: Vec<PathBuf>,
-    /// --trace: the scene's memory budget in MiB, as `glint render --memory-limit`
-    /// (default 2048; a 10⁶-triangle OBJ needs more).
-    #[arg(long, requires = "trace", value_name = "MIB")]
-    pub memory_limit: Option<u64>,
+    /// The sandbox's limits and readable folders, as `glint render`'s (benches/scenes/
+    /// read the CS488 corpus's meshes through `--allow-read`; a 10⁶-triangle OBJ needs a
+    /// larger `--memory-limit`).
+    #[command(flatten)]
+    pub script: ScriptArgs,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub threads: Option<u32>,
 }
 
-pub fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<FlatScene> {
-    load_scene_reading(path, width, height, &[])
+impl BenchArgs {
+    /// How the benchmarks run their scripts: the flags, through the one script driver.
+    pub fn script_settings(&self) -> anyhow::Result<ScriptSettings> {
+        self.script.settings(None).map_err(anyhow::Error::msg)
+    }
 }
 
-/// [`load_scene`], the scene also allowed to read the folders `allow_read` (as `glint
-/// render --allow-read`).
-pub fn load_scene_reading(
+/// The scene's first `gr.render` at `width`×`height`, run with the default settings.
+pub fn load_scene(path: &std::path::Path, width: u32, height: u32) -> anyhow::Result<FlatScene> {
+    load_scene_with(path, width, height, &ScriptSettings::default())
+}
+
+/// [`load_scene`], the script run under `settings` (as `glint render` runs it).
+pub fn load_scene_with(
     path: &std::path::Path,
     width: u32,
     height: u32,
-    allow_read: &[PathBuf],
+    settings: &ScriptSettings,
 ) -> anyhow::Result<FlatScene> {
-    let config = ScriptConfig {
-        allow_read: allow_read.to_vec(),
-        ..ScriptConfig::default()
-    };
     let mut scene = None;
-    run_scene_file(path, &config, &mut |graph, request| {
+    run_script(path, settings, &mut |graph, request| {
         if scene.is_none() {
             let mut request = request.clone();
             request.width = width;
@@ -127,13 +127,9 @@ pub fn load_scene_reading(
 }
 
 /// Height over width of the image a scene's (first) `gr.render` asks for.
-pub fn scene_aspect(path: &std::path::Path, allow_read: &[PathBuf]) -> anyhow::Result<f64> {
-    let config = ScriptConfig {
-        allow_read: allow_read.to_vec(),
-        ..ScriptConfig::default()
-    };
+pub fn scene_aspect(path: &std::path::Path, settings: &ScriptSettings) -> anyhow::Result<f64> {
     let mut aspect = None;
-    run_scene_file(path, &config, &mut |_, request| {
+    run_script(path, settings, &mut |_, request| {
         aspect.get_or_insert(f64::from(request.height) / f64::from(request.width));
         Ok(())
     })?;

@@ -13,7 +13,7 @@
 //! shadows' alone. The GPU tracer renders a subset where an adapter exists, within a time
 //! budget. Then the figures of [`super::sweep_analysis`] and the plot.
 
-use super::common::{load_scene_reading, scene_aspect, BenchArgs};
+use super::common::{load_scene_with, scene_aspect, BenchArgs};
 use super::plot_svg::{loglog_svg, write_atomically, Panel, Series};
 use super::sweep_analysis::{
     cheapest_within, choose_default, loglog_slope, target_ratio, Measured, Metric,
@@ -25,6 +25,7 @@ use crate::pack::SceneFeatures;
 use crate::pipeline::pack_scene;
 use crate::scene::flatten::FlatScene;
 use crate::scene::{AaDepth, AaMode, AaSamples, RenderOptions, ShadowSamples};
+use crate::script_driver::ScriptSettings;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -119,9 +120,10 @@ struct Plan {
 
 /// The scenes of `--scene`, each with its own aspect ratio.
 fn own_scenes(args: &BenchArgs) -> anyhow::Result<Vec<(PathBuf, f64)>> {
+    let script = args.script_settings()?;
     args.sweep_scenes
         .iter()
-        .map(|path| Ok((path.clone(), scene_aspect(path, &args.allow_read)?)))
+        .map(|path| Ok((path.clone(), scene_aspect(path, &script)?)))
         .collect()
 }
 
@@ -349,13 +351,13 @@ impl GpuSide {
 
 fn sweep_scene(
     (path, aspect): &(PathBuf, f64),
-    allow_read: &[PathBuf],
+    script: &ScriptSettings,
     plan: &Plan,
     repeat: usize,
     gpu: &mut GpuSide,
 ) -> anyhow::Result<SceneSweep> {
     let height = ((f64::from(plan.size) * aspect).round() as u32).max(1);
-    let scene = load_scene_reading(path, plan.size, height, allow_read)?;
+    let scene = load_scene_with(path, plan.size, height, script)?;
     let stem = path.file_stem().unwrap_or_default().to_string_lossy();
     let name = if height == plan.size {
         stem.into_owned()
@@ -441,15 +443,10 @@ pub fn bench_sweep(args: &BenchArgs) -> anyhow::Result<()> {
         SINGLE_RUN_ABOVE.as_secs()
     );
     println!("AA rows: against uniform {r}×{r} with the scene's shadow samples; shadow rows: aa none, against shadows {sr}×{sr}.");
+    let script = args.script_settings()?;
     let mut sweeps = Vec::new();
     for path in &plan.scenes {
-        sweeps.push(sweep_scene(
-            path,
-            &args.allow_read,
-            &plan,
-            args.repeat,
-            &mut gpu,
-        )?);
+        sweeps.push(sweep_scene(path, &script, &plan, args.repeat, &mut gpu)?);
     }
     println!("\n| scene | setting | CPU core time | CPU wall time | RMSE | FLIP mean | GPU wall time | GPU FLIP mean |");
     println!("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |");

@@ -19,6 +19,7 @@ use super::trace_rays::{
 use crate::cpu::traverse::Hit;
 use crate::pack::PackedScene;
 use crate::pipeline::pack_scene;
+use crate::script_driver::ScriptSettings;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -30,20 +31,12 @@ pub struct TraceBenchArgs {
     pub height: Option<u32>,
     pub repeat: usize,
     pub dump_rays: Option<PathBuf>,
-    /// Folders the scene may read besides its own.
-    pub allow_read: Vec<PathBuf>,
-    /// The scene's memory budget in bytes (None: the default).
-    pub memory_limit: Option<usize>,
+    /// How the script runs (readable folders, memory budget, limits).
+    pub script: ScriptSettings,
 }
 
 pub fn bench_trace(args: &TraceBenchArgs) -> anyhow::Result<()> {
-    let scene = load_first_render(
-        &args.scene,
-        args.width,
-        args.height,
-        &args.allow_read,
-        args.memory_limit,
-    )?;
+    let scene = load_first_render(&args.scene, args.width, args.height, &args.script)?;
     let build_start = Instant::now();
     let packed = pack_scene(&scene)?;
     let build = build_start.elapsed();

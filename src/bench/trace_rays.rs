@@ -10,10 +10,10 @@ use crate::cpu::traverse::{any_hit, closest_hit, Counters, Hit, NoCounters};
 use crate::cpu::traverse_mesh::instance_mesh;
 use crate::pack::PackedScene;
 use crate::scene::flatten::{flatten, FlatScene};
-use crate::scene::lua::{run_scene_file, ScriptConfig};
+use crate::script_driver::{run_script, ScriptSettings};
 use glam::Vec3;
 use rayon::prelude::*;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// A shadow ray: towards a light, blocked if anything lies in (0, t_max).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,24 +79,16 @@ impl ItemNumbering {
     }
 }
 
-/// Runs the script and flattens its first `gr.render` call, at `width`×`height` when
-/// given; the script may read its own folder and `allow_read`, within `memory_limit`
-/// bytes (None: the default budget).
+/// Runs the script under `settings` and flattens its first `gr.render` call, at
+/// `width`×`height` when given.
 pub fn load_first_render(
     path: &Path,
     width: Option<u32>,
     height: Option<u32>,
-    allow_read: &[PathBuf],
-    memory_limit: Option<usize>,
+    settings: &ScriptSettings,
 ) -> anyhow::Result<FlatScene> {
     let mut scene = None;
-    let defaults = ScriptConfig::default();
-    let config = ScriptConfig {
-        allow_read: allow_read.to_vec(),
-        memory_limit: memory_limit.unwrap_or(defaults.memory_limit),
-        ..defaults
-    };
-    run_scene_file(path, &config, &mut |graph, request| {
+    run_script(path, settings, &mut |graph, request| {
         if scene.is_none() {
             let mut request = request.clone();
             request.width = width.unwrap_or(request.width);

@@ -5,7 +5,7 @@
 //! is taken from the nearest Lua frame on the stack, since errors raised by Rust
 //! callbacks get no position from Lua itself.
 
-use super::handles::{LightHandle, MaterialHandle, NodeHandle};
+use super::handle_types::{LightHandle, MaterialHandle, NodeHandle};
 use super::with_state;
 use crate::scene::{Bounded, MaterialId, NodeId};
 use glam::DVec3;

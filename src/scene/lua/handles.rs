@@ -9,22 +9,11 @@
 //! material changed after it was set. Methods return their receiver so calls chain.
 
 use super::args::Args;
+pub(crate) use super::handle_types::{LightHandle, MaterialHandle, NodeHandle};
 use super::with_state;
-use crate::scene::{Light, Material, NodeId, NodeKind};
+use crate::scene::{Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
 use mlua::{Lua, MetaMethod, MultiValue, UserData, UserDataMethods, Value};
-
-/// A node made by `gr.node`, `gr.sphere`, … (index into `SceneGraph::nodes`).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct NodeHandle(pub NodeId);
-
-/// A material made by `gr.material` (index into `SceneGraph::materials`).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct MaterialHandle(pub usize);
-
-/// A light made by `gr.light`; lights live in `gr.render`'s list, not in the graph.
-#[derive(Clone, Debug)]
-pub(crate) struct LightHandle(pub Light);
 
 impl UserData for NodeHandle {
     fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {

@@ -1,0 +1,17 @@
+//! The userdata types the `gr` calls return, apart from their methods (in `handles`):
+//! argument checking (`args`) recognises them without depending on the methods, which
+//! themselves read their arguments through `args`.
+
+use crate::scene::{Light, NodeId};
+
+/// A node made by `gr.node`, `gr.sphere`, … (index into `SceneGraph::nodes`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NodeHandle(pub NodeId);
+
+/// A material made by `gr.material` (index into `SceneGraph::materials`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MaterialHandle(pub usize);
+
+/// A light made by `gr.light`; lights live in `gr.render`'s list, not in the graph.
+#[derive(Clone, Debug)]
+pub(crate) struct LightHandle(pub Light);

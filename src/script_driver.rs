@@ -1,0 +1,134 @@
+//! The one way a scene script is run, in every mode of the command line (`render` on
+//! either tracer, `--backend both`, `bench`): the command line's sandbox flags
+//! ([`ScriptArgs`]) become [`ScriptSettings`], and [`ScriptSettings::config`] is the only
+//! place a [`ScriptConfig`] is built from them, so no mode can run a script under
+//! weaker limits than another.
+
+use crate::scene::lua::{
+    run_scene_file, OnRender, SceneError, ScriptConfig, ScriptReport, DEFAULT_MEMORY_LIMIT,
+    DEFAULT_TIME_LIMIT,
+};
+use crate::scene::TransformOrder;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+/// What the caller says about running a script: each `None` keeps [`ScriptConfig`]'s
+/// default.
+#[derive(Clone, Debug, Default)]
+pub struct ScriptSettings {
+    /// `--transform-order` (beats the script).
+    pub transform_order: Option<TransformOrder>,
+    /// `--instruction-limit`: Lua instructions before the script is stopped.
+    pub instruction_limit: Option<u64>,
+    /// `--script-timeout`: the script's wall-clock limit.
+    pub script_timeout: Option<Duration>,
+    /// `--memory-limit`: the memory budget in bytes.
+    pub memory_limit: Option<usize>,
+    /// `--allow-read`: folders the scene may read besides its own.
+    pub allow_read: Vec<PathBuf>,
+    /// End the process (exit code 3) when the script overruns its time where it cannot
+    /// be interrupted (the command line sets it; a library caller gets an error instead).
+    pub hard_time_limit: bool,
+}
+
+impl ScriptSettings {
+    /// The script's configuration: the defaults with these settings applied.
+    pub fn config(&self) -> ScriptConfig {
+        let defaults = ScriptConfig::default();
+        ScriptConfig {
+            transform_order: self.transform_order,
+            instruction_limit: self.instruction_limit.unwrap_or(defaults.instruction_limit),
+            memory_limit: self.memory_limit.unwrap_or(defaults.memory_limit),
+            time_limit: self.script_timeout.unwrap_or(defaults.time_limit),
+            hard_time_limit: self.hard_time_limit,
+            allow_read: self.allow_read.clone(),
+        }
+    }
+}
+
+/// Runs the scene file at `path` under `settings`; `on_render` gets each `gr.render`.
+pub fn run_script(
+    path: &Path,
+    settings: &ScriptSettings,
+    on_render: &mut OnRender<'_>,
+) -> Result<ScriptReport, SceneError> {
+    run_scene_file(path, &settings.config(), on_render)
+}
+
+/// The sandbox flags every subcommand that runs a script takes (`render`, `bench`).
+#[derive(Clone, Debug, clap::Args)]
+pub struct ScriptArgs {
+    /// Lua instructions a script may run before it is stopped as a runaway.
+    #[arg(long, default_value_t = ScriptConfig::default().instruction_limit,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub instruction_limit: u64,
+    /// Wall-clock seconds the script may run (renders not counted).
+    #[arg(long, value_name = "SECONDS", default_value_t = DEFAULT_TIME_LIMIT.as_secs(),
+          value_parser = clap::value_parser!(u64).range(1..=86_400))]
+    pub script_timeout: u64,
+    /// Memory budget in MiB: the Lua heap, the scene and each render's build.
+    #[arg(long, value_name = "MIB", default_value_t = (DEFAULT_MEMORY_LIMIT >> 20) as u64,
+          value_parser = clap::value_parser!(u64).range(16..=1 << 20))]
+    pub memory_limit: u64,
+    /// A folder the scene may read meshes, textures and modules from, besides its own
+    /// (repeatable).
+    #[arg(long, value_name = "DIR")]
+    pub allow_read: Vec<PathBuf>,
+}
+
+impl ScriptArgs {
+    /// The settings these flags ask for, with the command line's hard time limit; a
+    /// `--allow-read` that names no folder is a usage error (the message says which).
+    pub fn settings(
+        &self,
+        transform_order: Option<TransformOrder>,
+    ) -> Result<ScriptSettings, String> {
+        for dir in &self.allow_read {
+            if !dir.is_dir() {
+                return Err(format!("--allow-read {}: not a folder", dir.display()));
+            }
+        }
+        Ok(ScriptSettings {
+            transform_order,
+            instruction_limit: Some(self.instruction_limit),
+            script_timeout: Some(Duration::from_secs(self.script_timeout)),
+            memory_limit: Some((self.memory_limit << 20) as usize),
+            allow_read: self.allow_read.clone(),
+            hard_time_limit: true,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_setting_reaches_the_config() {
+        let settings = ScriptSettings {
+            transform_order: Some(TransformOrder::Post),
+            instruction_limit: Some(7),
+            script_timeout: Some(Duration::from_secs(3)),
+            memory_limit: Some(1 << 24),
+            allow_read: vec![PathBuf::from("/x")],
+            hard_time_limit: true,
+        };
+        let c = settings.config();
+        assert_eq!(c.transform_order, Some(TransformOrder::Post));
+        assert_eq!(c.instruction_limit, 7);
+        assert_eq!(c.time_limit, Duration::from_secs(3));
+        assert_eq!(c.memory_limit, 1 << 24);
+        assert_eq!(c.allow_read, vec![PathBuf::from("/x")]);
+        assert!(c.hard_time_limit);
+    }
+
+    #[test]
+    fn unset_settings_keep_the_defaults() {
+        let c = ScriptSettings::default().config();
+        let d = ScriptConfig::default();
+        assert_eq!(c.instruction_limit, d.instruction_limit);
+        assert_eq!(c.time_limit, d.time_limit);
+        assert_eq!(c.memory_limit, d.memory_limit);
+        assert!(!c.hard_time_limit);
+    }
+}
