@@ -10,6 +10,7 @@
 
 use super::args::Args;
 pub(crate) use super::handle_types::{LightHandle, MaterialHandle, NodeHandle};
+use super::methods::Method;
 use super::with_state;
 use crate::scene::{Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
@@ -29,10 +30,6 @@ impl UserData for NodeHandle {
         });
     }
 }
-
-/// A built-in method: a plain function of the receiver and its arguments, kept in the
-/// methods table of its kind (see `methods`).
-pub(super) type Method = fn(&Lua, MultiValue) -> mlua::Result<Value>;
 
 /// The built-in node methods.
 pub(super) fn node_methods() -> Vec<(&'static str, Method)> {

@@ -10,8 +10,11 @@
 //! limits and can do no more than the script could by calling the built-ins itself.
 
 use super::args::{location, Args};
-use super::handles::{material_methods, node_methods, Method};
 use mlua::{Lua, MultiValue, Table, Value};
+
+/// A built-in method: a plain function of the receiver and its arguments, kept in the
+/// methods table of its kind.
+pub(super) type Method = fn(&Lua, MultiValue) -> mlua::Result<Value>;
 
 /// Which handles a method table serves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,22 +37,22 @@ impl Kind {
             Kind::Material => "material",
         }
     }
-
-    fn builtins(self) -> Vec<(&'static str, Method)> {
-        match self {
-            Kind::Node => node_methods(),
-            Kind::Material => material_methods(),
-        }
-    }
 }
 
-/// Fills the method tables with the built-ins and defines `gr.extend_node` and
-/// `gr.extend_material` (the `gr` table must exist).
-pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
+/// Fills the method tables with the built-ins (`handles`' node and material methods) and
+/// defines `gr.extend_node` and `gr.extend_material` (the `gr` table must exist).
+pub(super) fn install(
+    lua: &Lua,
+    node_methods: Vec<(&'static str, Method)>,
+    material_methods: Vec<(&'static str, Method)>,
+) -> mlua::Result<()> {
     let gr: Table = lua.globals().get("gr")?;
-    for kind in [Kind::Node, Kind::Material] {
+    for (kind, builtins) in [
+        (Kind::Node, node_methods),
+        (Kind::Material, material_methods),
+    ] {
         let table = lua.create_table()?;
-        for (name, method) in kind.builtins() {
+        for (name, method) in builtins {
             table.raw_set(name, lua.create_function(method)?)?;
         }
         lua.set_named_registry_value(kind.registry_key(), table)?;

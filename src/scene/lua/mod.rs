@@ -57,6 +57,10 @@ pub struct ScriptConfig {
     pub preludes: Vec<PathBuf>,
 }
 
+/// Registry key of the `require` cache (also visible as `package.loaded`), which also
+/// keeps preludes from running twice.
+const LOADED_KEY: &str = "glint.loaded";
+
 /// Default memory budget (2 GiB).
 pub const DEFAULT_MEMORY_LIMIT: usize = 2 << 30;
 /// Default script time limit: the slowest script of `scenes/` and the CS488 corpus runs
@@ -179,7 +183,7 @@ pub fn run_scene_source(
         module_dirs: HashMap::new(),
     });
     let setup = gr::install(&lua)
-        .and_then(|()| methods::install(&lua))
+        .and_then(|()| methods::install(&lua, handles::node_methods(), handles::material_methods()))
         .and_then(|()| sandbox::install(&lua));
     if let Err(e) = setup {
         return Err(SceneError::Runtime {

@@ -60,7 +60,7 @@ pub(super) fn readable(config: &ScriptConfig, preludes: &[Prelude]) -> Vec<PathB
 
 /// Runs the preludes in order (each at most once), before the scene.
 pub(super) fn run_all(lua: &Lua, preludes: &[Prelude]) -> mlua::Result<()> {
-    let loaded: Table = lua.named_registry_value(super::sandbox::LOADED_KEY)?;
+    let loaded: Table = lua.named_registry_value(super::LOADED_KEY)?;
     for prelude in preludes {
         let key = prelude.canonical.display().to_string();
         if !loaded.raw_get::<Value>(key.as_str())?.is_nil() {

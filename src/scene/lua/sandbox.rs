@@ -14,16 +14,13 @@
 
 use super::args::{location, Args};
 use super::watchdog::ScriptClock;
-use super::{charge, with_state, ScriptConfig};
+use super::{charge, with_state, ScriptConfig, LOADED_KEY};
 use crate::scene::files::{read_regular, MAX_FILE_BYTES};
 use crate::scene::obj::PARSE_BYTES_PER_BYTE;
 use mlua::chunk::ChunkMode;
 use mlua::{HookTriggers, Lua, LuaOptions, MultiValue, StdLib, Table, Value, VmState};
 use std::cell::Cell;
 use std::rc::Rc;
-
-/// Registry key of the `require` cache (also visible as `package.loaded`).
-pub(super) const LOADED_KEY: &str = "glint.loaded";
 
 /// What the hooks report, so the error can be classified after Lua unwinds (and cannot
 /// be hidden by a `pcall` in the script).
