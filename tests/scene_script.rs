@@ -2,9 +2,12 @@
 //! orders give the same world matrices for the two scene families, and bad input gives a
 //! message naming the file, the line, the call and the argument.
 
-use glam::DMat4;
+use glam::{DMat4, DVec3};
+use glint::film::Film;
+use glint::pipeline::pack_scene;
+use glint::scene::flatten::flatten;
 use glint::scene::lua::{run_scene_file, run_scene_source, SceneError, ScriptConfig, ScriptReport};
-use glint::scene::{NodeId, NodeKind, RenderRequest, SceneGraph, TransformOrder};
+use glint::scene::{AaMode, NodeId, NodeKind, RenderRequest, SceneGraph, TransformOrder};
 use glint::testing::scratch::TempDir;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -691,4 +694,352 @@ fn area_light_argument_errors() {
             "{n}: {m}"
         );
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// Preludes (`--prelude`) and the dialects of scenes/dialects/.
+
+fn dialects() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/dialects")
+}
+
+/// The default configuration with the named preludes of scenes/dialects/ (no `.lua`).
+fn with_dialects(names: &[&str]) -> ScriptConfig {
+    ScriptConfig {
+        preludes: names
+            .iter()
+            .map(|n| dialects().join(format!("{n}.lua")))
+            .collect(),
+        ..ScriptConfig::default()
+    }
+}
+
+/// Writes `files` into a fresh folder; its path.
+fn folder_with(tag: &str, files: &[(&str, &str)]) -> TempDir {
+    let dir = temp_dir(tag);
+    for (name, text) in files {
+        let path = dir.join(name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    }
+    dir
+}
+
+/// Every render of `scene` under `config`: the graph and request at each.
+fn renders_of(scene: &Path, config: &ScriptConfig) -> Vec<(SceneGraph, RenderRequest)> {
+    let mut renders = Vec::new();
+    run_scene_file(scene, config, &mut |g, r| {
+        renders.push((g.clone(), r.clone()));
+        Ok(())
+    })
+    .unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
+    renders
+}
+
+/// The CPU images of every render of `scene` under `config`, at `w`×`h` without
+/// anti-aliasing (one ray per pixel centre: flat colours stay exact).
+fn films_of(scene: &Path, config: &ScriptConfig, w: u32, h: u32) -> Vec<(Film, RenderRequest)> {
+    renders_of(scene, config)
+        .into_iter()
+        .map(|(graph, mut request)| {
+            request.width = w;
+            request.height = h;
+            request.options.aa = AaMode::None;
+            let packed = pack_scene(&flatten(&graph, &request).unwrap()).unwrap();
+            (glint::cpu::render(&packed, &|_, _| {}), request)
+        })
+        .collect()
+}
+
+/// The pixel (column, row) the camera of `request` sees the world point `p` in.
+fn pixel_of(request: &RenderRequest, p: [f64; 3]) -> (u32, u32) {
+    let c = &request.camera;
+    let forward = c.view.normalize();
+    let right = forward.cross(c.up).normalize();
+    let up = right.cross(forward);
+    let d = DVec3::from_array(p) - c.eye;
+    let z = d.dot(forward);
+    let tan_half = (c.fov_deg.to_radians() / 2.0).tan();
+    let aspect = request.width as f64 / request.height as f64;
+    let ndc_x = d.dot(right) / z / (tan_half * aspect);
+    let ndc_y = d.dot(up) / z / tan_half;
+    let x = (ndc_x + 1.0) / 2.0 * request.width as f64;
+    let y = (1.0 - ndc_y) / 2.0 * request.height as f64;
+    (x.floor() as u32, y.floor() as u32)
+}
+
+/// The colour the camera of `request` sees at the world point `p` in `film`.
+fn seen_at(film: &Film, request: &RenderRequest, p: [f64; 3]) -> [f32; 3] {
+    let (x, y) = pixel_of(request, p);
+    film.get(x, y)
+}
+
+fn close(a: [f32; 3], b: [f32; 3], tol: f32) -> bool {
+    a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)
+}
+
+/// The material of the geometry node named `name`.
+fn material_of<'g>(graph: &'g SceneGraph, name: &str) -> &'g glint::scene::Material {
+    let node = graph
+        .nodes
+        .iter()
+        .find(|n| n.name == name)
+        .unwrap_or_else(|| panic!("no node '{name}'"));
+    &graph.materials[node
+        .material
+        .unwrap_or_else(|| panic!("'{name}' has no material"))]
+}
+
+#[test]
+fn a_prelude_runs_first_in_the_scenes_state_and_its_errors_name_its_line() {
+    let dir = folder_with(
+        "prelude-state",
+        &[
+            (
+                "p/first.lua",
+                "greeting = 'hi'\nfunction gr.ball(n) return gr.sphere(n) end\n",
+            ),
+            ("p/second.lua", "greeting = greeting .. '!'\n"),
+            ("p/broken.lua", "x = 1\nlocal t = nil\nprint(t.field)\n"),
+            ("p/syntax.lua", "x = = 1\n"),
+            ("p/runaway.lua", "while true do end\n"),
+            ("p/escape.lua", "os.execute('true')\n"),
+            (
+                "scene.lua",
+                "assert(greeting == 'hi!', greeting)\ns = gr.ball('b')\n\
+                 gr.render(s, 'o.png', 4, 4, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {1,1,1}, {})\n",
+            ),
+        ],
+    );
+    let scene = dir.join("scene.lua");
+    let config = |names: &[&str]| ScriptConfig {
+        preludes: names.iter().map(|n| dir.join("p").join(n)).collect(),
+        instruction_limit: 1_000_000,
+        ..ScriptConfig::default()
+    };
+    let renders = renders_of(&scene, &config(&["first.lua", "second.lua"]));
+    assert_eq!(renders.len(), 1);
+    // Without the preludes the scene's calls do not exist.
+    let e = run_scene_file(&scene, &ScriptConfig::default(), &mut |_, _| Ok(())).unwrap_err();
+    assert!(e.to_string().contains("scene.lua:1:"), "{e}");
+    for (prelude, expect) in [
+        ("broken.lua", "broken.lua:3: attempt to index a nil value"),
+        ("syntax.lua", "syntax.lua:1:"),
+        ("runaway.lua", "runaway.lua:1: instruction limit"),
+        ("escape.lua", "escape.lua:1: os.execute is not available"),
+    ] {
+        let e = run_scene_file(&scene, &config(&[prelude]), &mut |_, _| Ok(())).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.contains(expect), "{prelude}: {msg}");
+        assert!(msg.contains(&dir.join("p").display().to_string()), "{msg}");
+    }
+    let missing = config(&["missing.lua"]);
+    let e = run_scene_file(&scene, &missing, &mut |_, _| Ok(())).unwrap_err();
+    assert!(matches!(e, SceneError::Read { .. }), "{e:?}");
+    assert!(e.to_string().contains("missing.lua"), "{e}");
+}
+
+#[test]
+fn a_preludes_folder_is_readable_and_its_require_looks_beside_it_once() {
+    let dir = folder_with(
+        "prelude-files",
+        &[
+            (
+                "lib/helper.lua",
+                "count = (count or 0) + 1\nreturn {n = count}\n",
+            ),
+            (
+                "lib/main.lua",
+                "local h = require('helper')\nlocal _, here = ...\nfolder = here\n",
+            ),
+            ("lib/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+            ("scene/helper.lua", "return {scene = true}\n"),
+            (
+                "scene/scene.lua",
+                "local own = require('helper')\nassert(own.scene and count == 1)\n\
+                 m = gr.mesh('m', folder .. '/tri.obj')\n\
+                 gr.render(m, 'o.png', 4, 4, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {1,1,1}, {})\n",
+            ),
+        ],
+    );
+    let lib = dir.join("lib");
+    let config = ScriptConfig {
+        // The same file twice, and once more through require: it runs once.
+        preludes: vec![
+            lib.join("main.lua"),
+            lib.join("helper.lua"),
+            lib.join("main.lua"),
+        ],
+        ..ScriptConfig::default()
+    };
+    let renders = renders_of(&dir.join("scene/scene.lua"), &config);
+    assert_eq!(renders[0].0.meshes.len(), 1);
+    // Without the prelude's folder readable, the mesh beside it is refused.
+    let source = "m = gr.mesh('m', '../lib/tri.obj')\n";
+    std::fs::write(dir.join("scene/other.lua"), source).unwrap();
+    let e = run_scene_file(
+        &dir.join("scene/other.lua"),
+        &ScriptConfig::default(),
+        &mut |_, _| Ok(()),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("outside the folders"), "{e}");
+}
+
+#[test]
+fn methods_can_be_added_and_replaced_and_unknown_ones_are_named() {
+    let (report, renders) = run_src(
+        "local builtin\nbuiltin = gr.extend_material('set_shininess', function(m, p) \
+             return builtin(m, 2 * p) end)\n\
+         assert(gr.extend_material('set_glow', function(m, c) return m:set_diffuse(c) end) == nil)\n\
+         gr.extend_node('grow', function(n, s) return n:scale(s, s, s) end)\n\
+         m = gr.material({0,0,0}, {0,0,0}, 1)\nm:set_shininess(5):set_glow(0.25)\n\
+         c = m:copy()\nc:set_diffuse(1, 0, 0)\n\
+         s = gr.sphere('s')\ns:grow(3):set_material(m)\nt = gr.sphere('t')\nt:set_material(c)\n\
+         r = gr.node('r')\nr:add_child(s)\nr:add_child(t)\n\
+         gr.render(r, 'o.png', 4, 4, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {1,1,1}, {})\n",
+        &ScriptConfig::default(),
+    );
+    assert_eq!(report.renders, 1);
+    let g = &renders[0].0;
+    let m = material_of(g, "s");
+    assert_eq!((m.shininess, m.kd), (10.0, [0.25; 3]));
+    // The copy is its own material: changing it left the original alone.
+    assert_eq!(material_of(g, "t").kd, [1.0, 0.0, 0.0]);
+    assert_eq!(material_of(g, "t").shininess, 10.0);
+    let s = g.nodes.iter().find(|n| n.name == "s").unwrap();
+    assert_eq!(s.matrix, DMat4::from_scale(glam::DVec3::splat(3.0)));
+    let msg = message_of("m = gr.material({0,0,0}, {0,0,0}, 1)\nm:set_texture('a.png')\n");
+    assert!(
+        msg.starts_with(":2: a material has no method 'set_texture'")
+            && msg.contains("set_diffuse")
+            && msg.contains("gr.extend_material"),
+        "{msg}"
+    );
+    let msg = message_of("gr.extend_node('x', 3)\n");
+    assert!(
+        msg.contains("gr.extend_node: argument 2 (method) must be a function"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn set_placement_places_a_primitive_before_the_nodes_transforms() {
+    for order in ["pre", "post"] {
+        let (_, renders) = run_src(
+            &format!(
+                "gr.transform_order('{order}')\nc = gr.cylinder('c')\n\
+                 c:set_placement({{1, 2, 3}}, {{2, 0, 0}}, {{0, 0, -2}}, {{0, 5, 0}})\n\
+                 c:rotate('y', 90)\nc:translate(10, 0, 0)\n\
+                 gr.render(c, 'o.png', 4, 4, {{0,0,5}}, {{0,0,-1}}, {{0,1,0}}, 50, {{1,1,1}}, {{}})\n"
+            ),
+            &ScriptConfig::default(),
+        );
+        let g = &renders[0].0;
+        let NodeKind::Geometry { placement, .. } = &g.nodes[0].kind else {
+            panic!("not geometry")
+        };
+        // The cylinder's axis end (0,0,1) goes to (1, 7, 3) whatever the order, and the
+        // node's own matrix is what its calls alone make.
+        let top = placement.transform_point3(DVec3::new(0.0, 0.0, 1.0));
+        assert!(
+            (top - DVec3::new(1.0, 7.0, 3.0)).length() < 1e-12,
+            "{order}: {top}"
+        );
+        let (r, t) = (
+            DMat4::from_rotation_y(90f64.to_radians()),
+            DMat4::from_translation(DVec3::new(10.0, 0.0, 0.0)),
+        );
+        let want = if order == "pre" { t * r } else { r * t };
+        assert!(g.nodes[0].matrix.abs_diff_eq(want, 1e-12), "{order}");
+    }
+    let msg =
+        message_of("c = gr.cube('c')\nc:set_placement({0,0,0}, {1,0,0}, {0,1,0}, {0,0,-1})\n");
+    assert!(
+        msg.contains("node:set_placement: argument 4 (z_axis)"),
+        "{msg}"
+    );
+    let msg = message_of("n = gr.node('n')\nn:set_placement({0,0,0}, {1,0,0}, {0,1,0}, {0,0,1})\n");
+    assert!(msg.contains("not a geometry node"), "{msg}");
+}
+
+#[test]
+fn a_glint_call_failing_inside_a_prelude_names_the_scenes_line_and_the_preludes() {
+    let dir = folder_with(
+        "prelude-call",
+        &[
+            (
+                "scene.lua",
+                "x = 1\nm = gr.mirror_material({1, 1}, {1,1,1}, 10)\n",
+            ),
+            ("inline.lua", "q = gr.nh_plane('q')\nassert(q)\n"),
+        ],
+    );
+    let config = with_dialects(&["materials"]);
+    let e = run_scene_file(&dir.join("scene.lua"), &config, &mut |_, _| Ok(())).unwrap_err();
+    let msg = e.to_string();
+    let scene = dir.join("scene.lua").display().to_string();
+    assert!(
+        msg.starts_with(&format!(
+            "{scene}:2: gr.material (called by the prelude at "
+        )) && msg.contains("materials.lua:"),
+        "{msg}"
+    );
+    // A prelude's inline meshes are no sign of a pre-2015 scene.
+    let report = run_scene_file(
+        &dir.join("inline.lua"),
+        &with_dialects(&["planes"]),
+        &mut |_, _| Ok(()),
+    )
+    .unwrap();
+    assert!(!report.looks_pre2015);
+}
+
+#[test]
+fn every_corpus_scene_means_the_same_under_all_dialects() {
+    // all.lua only adds calls (and reads extra arguments glint drops): glint's own calls
+    // mean what they meant, in every sample scene.
+    let mut compared = 0;
+    for family in ["a4-pre2015", "a4-2015", "a4-2016to2020", "a4-2021plus"] {
+        let order = (family == "a4-pre2015").then_some(TransformOrder::Post);
+        for entry in std::fs::read_dir(corpus().join(family)).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_none_or(|x| x != "lua") {
+                continue;
+            }
+            let plain = ScriptConfig {
+                transform_order: order,
+                ..ScriptConfig::default()
+            };
+            let dialect = ScriptConfig {
+                transform_order: order,
+                ..with_dialects(&["all"])
+            };
+            let run = |config: &ScriptConfig| {
+                let mut renders = Vec::new();
+                let result = run_scene_file(&path, config, &mut |g, r| {
+                    let mut r = r.clone();
+                    r.memory_left = 0; // the preludes' Lua heap
+                    renders.push((
+                        format!("{:?}", g.nodes),
+                        g.materials.len(),
+                        format!("{r:?}"),
+                    ));
+                    Ok(())
+                });
+                (result.map_err(|e| e.to_string()), renders)
+            };
+            let (a, b) = (run(&plain), run(&dialect));
+            assert_eq!(a.0.is_ok(), b.0.is_ok(), "{}", path.display());
+            assert_eq!(a.1.len(), b.1.len(), "{}", path.display());
+            for (x, y) in a.1.iter().zip(&b.1) {
+                assert_eq!(x.0, y.0, "{}: nodes", path.display());
+                assert_eq!(x.1, y.1, "{}: materials", path.display());
+                // The request names the render's line; material names name theirs.
+                assert_eq!(x.2, y.2, "{}: request", path.display());
+            }
+            compared += 1;
+        }
+    }
+    assert!(compared > 20, "{compared} scenes");
 }
