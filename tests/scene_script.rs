@@ -1043,3 +1043,297 @@ fn every_corpus_scene_means_the_same_under_all_dialects() {
     }
     assert!(compared > 20, "{compared} scenes");
 }
+
+fn example(name: &str) -> PathBuf {
+    dialects().join("examples").join(format!("{name}.lua"))
+}
+
+#[test]
+fn materials_dialect_mirrors_reflect_and_glass_refracts() {
+    let scene = example("materials");
+    let config = with_dialects(&["materials"]);
+    let (graph, _) = &renders_of(&scene, &config)[0];
+    assert_eq!(material_of(graph, "mirror_ball").reflection, [0.9; 3]);
+    assert_eq!(material_of(graph, "glass_ball").ior, Some(1.5));
+    assert_eq!(material_of(graph, "glass_ball").reflection, [0.0; 3]);
+    assert_eq!(material_of(graph, "half_mirror_ball").reflection, [0.5; 3]);
+    assert_eq!(material_of(graph, "half_mirror_ball").ior, None);
+    assert_eq!(material_of(graph, "clear_ball").ior, Some(1.5));
+    let (film, request) = &films_of(&scene, &config, 160, 100)[0];
+    // The mirror ball's middle shows the green wall behind the camera.
+    let mirror = seen_at(film, request, [-2.8, 0.0, 1.2]);
+    assert!(mirror[1] > 0.7 && mirror[0] < 0.2, "mirror {mirror:?}");
+    // The glass ball turns the red-over-blue wall behind it upside down.
+    let wall_above = seen_at(film, request, [9.0, 0.9, -5.0]);
+    let glass_above = seen_at(film, request, [2.8, 0.9, 1.0]);
+    let glass_below = seen_at(film, request, [2.8, -0.9, 1.0]);
+    assert!(wall_above[0] > 0.8, "wall {wall_above:?}");
+    assert!(
+        glass_above[2] > glass_above[0],
+        "upper half {glass_above:?}"
+    );
+    assert!(
+        glass_below[0] > glass_below[2],
+        "lower half {glass_below:?}"
+    );
+    // Refused rather than guessed: seven positional arguments.
+    let (e, _) = error_of(
+        &[(
+            "scene.lua",
+            "m = gr.material({1,1,1}, {0,0,0}, 1, 0, 0.2, 1.5, 0)\n",
+        )],
+        with_dialects(&["materials"]),
+    );
+    assert!(
+        e.to_string()
+            .contains("scene.lua:1: gr.material: 7 or more arguments"),
+        "{e}"
+    );
+}
+
+#[test]
+fn textures_dialect_puts_the_image_where_the_scene_asks() {
+    let scene = example("textures");
+    let config = with_dialects(&["textures"]);
+    let (graph, _) = &renders_of(&scene, &config)[0];
+    let upper = material_of(graph, "node_texture");
+    let lower = material_of(graph, "untextured");
+    // The node's own copy of the shared yellow material carries the texture.
+    assert!(upper.diffuse_map.is_some() && lower.diffuse_map.is_none());
+    assert_eq!((upper.kd, lower.kd), ([0.9, 0.9, 0.1], [0.9, 0.9, 0.1]));
+    assert!(material_of(graph, "material_texture").diffuse_map.is_some());
+    assert!(material_of(graph, "image_material").diffuse_map.is_some());
+    let bumpy = material_of(graph, "bumpy_ball");
+    assert_eq!(
+        (bumpy.bump_map.is_some(), bumpy.bump_strength),
+        (true, 0.05)
+    );
+    let (film, request) = &films_of(&scene, &config, 160, 120)[0];
+    // glint's UV grid: red rises with u (to the right), green with v (upwards).
+    for (x, y, s) in [(-3.2, 0.3, 2.6), (0.0, 1.2, 1.8), (3.2, 0.3, 2.6)] {
+        let at =
+            |u: f64, v: f64| seen_at(film, request, [x + (u - 0.5) * s, y + (v - 0.5) * s, -0.5]);
+        let (left, right) = (at(0.15, 0.5), at(0.85, 0.5));
+        let (bottom, top) = (at(0.5, 0.15), at(0.5, 0.85));
+        assert!(
+            right[0] > left[0] + 0.3,
+            "({x}, {y}): red {left:?} → {right:?}"
+        );
+        assert!(
+            top[1] > bottom[1] + 0.3,
+            "({x}, {y}): green {bottom:?} → {top:?}"
+        );
+    }
+    // The box sharing the yellow material without a texture stays yellow.
+    let yellow = seen_at(film, request, [0.0, -1.2, -0.5]);
+    assert!(
+        yellow[0] > 0.5 && yellow[1] > 0.5 && yellow[2] < 0.15,
+        "{yellow:?}"
+    );
+}
+
+#[test]
+fn planes_dialect_floor_reaches_the_horizon_and_quads_sit_where_asked() {
+    let scene = example("planes");
+    let config = with_dialects(&["planes"]);
+    let (film, request) = &films_of(&scene, &config, 200, 125)[0];
+    let black = |c: [f32; 3]| c.iter().all(|&x| x == 0.0);
+    // The floor: seen far out towards the horizon (the background is black).
+    for z in [-20.0, -200.0, -2000.0] {
+        let c = seen_at(film, request, [5.0, 0.0, z]);
+        assert!(!black(c), "floor at z = {z}: {c:?}");
+    }
+    let (_, horizon) = pixel_of(request, [0.0, 2.0, -1e9]);
+    let sky = film.get(10, horizon - 2);
+    assert!(black(sky), "sky {sky:?}");
+    // No pixel of the floor is lost to a crack or acne: no floor pixel far darker than
+    // all its neighbours.
+    let lum = |x: u32, y: u32| {
+        let [r, g, b] = film.get(x, y);
+        r + g + b
+    };
+    for y in horizon + 2..film.height - 1 {
+        for x in 1..film.width - 1 {
+            let darkest = (0..9)
+                .filter(|&k| k != 4)
+                .map(|k| lum(x + k % 3 - 1, y + k / 3 - 1))
+                .fold(f32::MAX, f32::min);
+            assert!(lum(x, y) >= 0.5 * darkest, "speckle at ({x}, {y})");
+        }
+    }
+    // The wall (nh_plane scaled 8×4 about its centre, moved to (0, 2, −8)).
+    let wall = |x: f64, y: f64| seen_at(film, request, [x, y, -8.0]);
+    let red = wall(3.8, 3.8);
+    assert!(red[0] > 0.5 && red[0] > 3.0 * red[1], "{red:?}");
+    assert!(
+        wall(0.0, 4.3)[0] < 0.05,
+        "above the wall {:?}",
+        wall(0.0, 4.3)
+    );
+    // The sheet (1.5 × 2 about (−3, 1, −3)) and the disc (radius 1 about (3, 1.2, −3)).
+    let green = seen_at(film, request, [-3.6, 1.9, -3.0]);
+    assert!(green[1] > 0.4 && green[0] < 0.2, "sheet {green:?}");
+    let blue = seen_at(film, request, [3.0 + 0.9, 1.2, -3.0]);
+    assert!(blue[2] > 0.4 && blue[0] < 0.2, "disc {blue:?}");
+    let corner = seen_at(film, request, [3.0 + 0.8, 1.2 + 0.8, -3.0]);
+    assert!(corner[2] < 1.5 * corner[0], "outside the disc {corner:?}");
+    // The rect box: from (−0.75, 0, −2) to (0.75, 0.8, −1), its front face at z = −1.
+    let rect = seen_at(film, request, [0.6, 0.7, -1.0]);
+    assert!(rect[0] > 0.4 && rect[2] < 0.2, "rect {rect:?}");
+}
+
+#[test]
+fn lights_dialect_lights_are_soft_and_as_bright_as_a_point_light() {
+    let scene = example("lights");
+    let config = with_dialects(&["lights"]);
+    let films = films_of(&scene, &config, 120, 120);
+    assert_eq!(films.len(), 3);
+    // The same scene lit by a point light at the lights' centre (a hard shadow), and
+    // without the ball (no shadow at all).
+    let source = std::fs::read_to_string(&scene).unwrap();
+    let point = "l[2] = gr.light({4, 4, 0}, {1, 1, 1}, {1, 0, 0})\n  gr.render(root, l[1]";
+    let point = source.replace("gr.render(root, l[1]", point);
+    let unshadowed = point.replace("root:add_child(ball)", "");
+    let dir = folder_with(
+        "lights-point",
+        &[("point.lua", &point), ("none.lua", &unshadowed)],
+    );
+    let (hard, request) = &films_of(&dir.join("point.lua"), &config, 120, 120)[0];
+    let (open, _) = &films_of(&dir.join("none.lua"), &config, 120, 120)[0];
+    // Along the row through the ball's foot, left of the ball (where its shadow falls):
+    // how lit each floor pixel is, from 0 (ambient only) to 1 (as without the ball).
+    let lum = |f: &Film, x: u32, y: u32| f.get(x, y).iter().sum::<f32>();
+    let (x0, row) = pixel_of(request, [-4.5, 0.0, 0.0]);
+    let (x1, _) = pixel_of(request, [-1.4, 0.0, 0.0]);
+    let ambient = lum(hard, x0 + (x1 - x0) / 2, row);
+    let partial = |f: &Film| {
+        (x0..x1)
+            .filter(|&x| {
+                let lit = (lum(f, x, row) - ambient) / (lum(open, x, row) - ambient);
+                lit > 0.15 && lit < 0.85
+            })
+            .count()
+    };
+    assert!(
+        partial(hard) <= 1,
+        "point light: {} partly lit pixels",
+        partial(hard)
+    );
+    let (bright_x, bright_y) = pixel_of(request, [4.0, 0.0, 2.0]);
+    for (i, (film, _)) in films.iter().enumerate() {
+        assert!(
+            partial(film) >= 4,
+            "light {i}: {} partly lit pixels",
+            partial(film)
+        );
+        // Away from the shadow the floor gets about what the point light gives it (the
+        // same total colour from about the same place).
+        let (a, b) = (lum(film, bright_x, bright_y), lum(hard, bright_x, bright_y));
+        assert!((a - b).abs() < 0.05 * b, "light {i}: {a} against {b}");
+    }
+}
+
+#[test]
+fn csg_dialect_calls_make_the_named_operations() {
+    let scene = example("csg");
+    let config = with_dialects(&["csg"]);
+    let (graph, _) = &renders_of(&scene, &config)[0];
+    let op = |name: &str| {
+        let node = graph.nodes.iter().find(|n| n.name == name).unwrap();
+        match node.kind {
+            NodeKind::Csg { op, .. } => op,
+            _ => panic!("{name} is not a CSG node"),
+        }
+    };
+    use glint::scene::CsgOp;
+    assert_eq!(op("dent"), CsgOp::Difference);
+    assert_eq!(op("lens"), CsgOp::Intersection);
+    assert_eq!(op("union"), CsgOp::Union);
+    assert_eq!(op("small_lens"), CsgOp::Intersection);
+    let (film, request) = &films_of(&scene, &config, 160, 100)[0];
+    let at = |p: [f64; 3]| seen_at(film, request, p);
+    // The dent: the drill's green inside the red box's face; the box's red beside it.
+    assert!(
+        at([-3.0, 0.0, 1.0])[1] > 0.8,
+        "dent {:?}",
+        at([-3.0, 0.0, 1.0])
+    );
+    assert!(
+        at([-3.85, 0.85, 1.0])[0] > 0.8,
+        "box {:?}",
+        at([-3.85, 0.85, 1.0])
+    );
+    // The lens is only where both balls are: blue at its middle, not at a ball's far side.
+    assert!(
+        at([0.0, 0.0, 0.5])[2] > 0.8,
+        "lens {:?}",
+        at([0.0, 0.0, 0.5])
+    );
+    assert!(
+        at([-1.3, 0.0, 0.5])[2] < 0.8,
+        "outside the lens {:?}",
+        at([-1.3, 0.0, 0.5])
+    );
+    // The union: both balls.
+    for x in [2.3, 3.9] {
+        assert!(
+            at([x, 0.0, 0.5])[1] > 0.8,
+            "union at {x}: {:?}",
+            at([x, 0.0, 0.5])
+        );
+    }
+}
+
+#[test]
+fn nh_shapes_and_y_cylinders_stand_where_the_dialect_puts_them() {
+    let (film, request) = &films_of(
+        &example("nh-shapes"),
+        &with_dialects(&["nh-shapes"]),
+        200,
+        125,
+    )[0];
+    let at = |p: [f64; 3]| seen_at(film, request, p);
+    let red = |c: [f32; 3]| c[0] > 0.8 && c[1] < 0.2;
+    let green = |c: [f32; 3]| c[1] > 0.8 && c[0] < 0.2;
+    let blue = |c: [f32; 3]| c[2] > 0.8 && c[0] < 0.2;
+    // A point on the camera's side of a round surface: centre (cx, cz) in the plane
+    // across the axis, radius r, at offset `off` from the centre.
+    let front = |c: f64, cz: f64, r: f64, off: f64| (c + off, cz + (r * r - off * off).sqrt());
+    // Standing cylinder: base (−3, −1, 0), radius 0.5, height 2.
+    for (off, y) in [(-0.3, 0.9), (0.3, -0.9), (0.0, 0.0)] {
+        let (x, z) = front(-3.0, 0.0, 0.5, off);
+        assert!(
+            red(at([x, y, z])),
+            "standing ({x}, {y}): {:?}",
+            at([x, y, z])
+        );
+    }
+    assert!(!red(at([-3.0, 1.15, 0.5])) && !red(at([-3.6, 0.0, 0.0])));
+    // Cone: base (0, −1, 0), radius 1, tip at y = 1 (radius (1 − y)/2 at height y).
+    for (off, y) in [(0.0, 0.8), (0.7, -0.9), (-0.2, 0.0)] {
+        let (x, z) = front(0.0, 0.0, (1.0 - y) / 2.0, off);
+        assert!(green(at([x, y, z])), "cone ({x}, {y}): {:?}", at([x, y, z]));
+    }
+    assert!(!green(at([0.6, 0.6, 0.0])) && !green(at([0.0, 1.15, 0.0])));
+    // Lying cylinder: from (2, 0, 0) along x for 2, radius 0.4.
+    for (x, off) in [(2.1, 0.3), (3.9, -0.3), (3.0, 0.0)] {
+        let (y, z) = front(0.0, 0.0, 0.4, off);
+        assert!(blue(at([x, y, z])), "lying ({x}, {y}): {:?}", at([x, y, z]));
+    }
+    assert!(!blue(at([4.3, 0.0, 0.0])) && !blue(at([3.0, 0.55, 0.0])));
+
+    let (film, request) = &films_of(
+        &example("y-cylinders"),
+        &with_dialects(&["y-cylinders"]),
+        200,
+        125,
+    )[0];
+    let at = |p: [f64; 3]| seen_at(film, request, p);
+    // Radius 1 around y, y from −1 to 1, at x = −2: from the front about a 2×2 square
+    // (glint's own gr.cylinder, on z, would show its round cap instead: no corners).
+    for (off, y) in [(-0.9, 0.9), (0.9, -0.9), (0.0, 0.0)] {
+        let (x, z) = front(-2.0, 0.0, 1.0, off);
+        assert!(red(at([x, y, z])), "({x}, {y}): {:?}", at([x, y, z]));
+    }
+    assert!(!red(at([-2.0, 1.15, 1.0])) && !red(at([-3.15, 0.0, 0.0])));
+}

@@ -17,9 +17,9 @@ ball:set_material(ball_m)
 root:add_child(ball)
 
 lights = {
-  {'dialect-lights-arealight.png', gr.arealight({2.5, 6, 0}, {1, 1, 1}, {1, 0, 0}, 2, 2)},
-  {'dialect-lights-disc.png', gr.disc_light({2.5, 6, 0}, {1, 1, 1}, {1, 0, 0}, {0, -1, 0}, 1)},
-  {'dialect-lights-sphere.png', gr.sphericallight({2.5, 6, 0}, {1, 1, 1}, {1, 0, 0}, 1)},
+  {'dialect-lights-arealight.png', gr.arealight({4, 4, 0}, {1, 1, 1}, {1, 0, 0}, 2, 2)},
+  {'dialect-lights-disc.png', gr.disc_light({4, 4, 0}, {1, 1, 1}, {1, 0, 0}, {0, -1, 0}, 1)},
+  {'dialect-lights-sphere.png', gr.sphericallight({4, 4, 0}, {1, 1, 1}, {1, 0, 0}, 1)},
 }
 for _, l in ipairs(lights) do
   gr.render(root, l[1], 240, 240, {0, 9, 0.001}, {0, -1, 0}, {0, 0, -1}, 50,
