@@ -24,16 +24,17 @@
 -- "Infinite": glint bounds every object (its grid needs bounds), so an infinite plane is
 -- a finite one far bigger than any CS488 scene: a square of half-side 2^17 = 131 072
 -- units (before the node's transforms), seen from a camera 100 units above it ending
--- 0.04° below the horizon (a fraction of a pixel). It is built of nested rings, each twice
--- the size of the one inside it (from 2^-8 units at the centre out), so that triangles
--- near any point are about as big as that point's distance from the centre, and hits
--- keep the precision of small ones (one pair of huge triangles would make the hit point's
--- rounding error proportional to the plane's size, and shadow acne near the camera).
--- Rings meet edge to edge (no T-junctions), so the watertight triangle test leaves no
--- cracks. The UVs of planes are in object units (u along the first in-plane axis, v along
--- the second), so a texture repeats once per unit as most tracers' infinite planes did;
--- those of quads, sheets and rects run from 0 to 1 across them; discs' are planar, (x/r +
--- 1)/2 and (y/r + 1)/2, like glint's cylinder caps. A disc is a 128-sided polygon (its rim
+-- 0.04° below the horizon (a fraction of a pixel). It is built of nested rings, each 16
+-- times the size of the one inside it (from a centre square of half-side 1/8 out), so
+-- that the triangles around any point are at most about 16 times that point's distance
+-- from the centre: a hit's rounding error stays proportional to where it is, far below
+-- glint's scale-free secondary-ray offsets (one pair of huge triangles would make it
+-- proportional to the plane's size: shadow acne near the camera). 21 quads in all, so a
+-- ray tests few triangles. Rings meet edge to edge (no T-junctions), so the watertight
+-- triangle test leaves no cracks. The UVs of planes are in object units (u along the
+-- first in-plane axis, v along the second), so a texture repeats once per unit as most
+-- tracers' infinite planes did; those of quads, sheets and rects run from 0 to 1 across
+-- them; discs' are planar, (x/r + 1)/2 and (y/r + 1)/2, like glint's cylinder caps. A disc is a 128-sided polygon (its rim
 -- within 0.03% of the radius of the circle).
 
 local function is_vec3(v)
@@ -103,17 +104,18 @@ local function flat_mesh(name, origin, u, v, polygons)
   return gr.mesh(name, verts, faces, uvs)
 end
 
-local INFINITE_HALF_SIDE_LOG2 = 17
-local INNER_HALF_SIDE_LOG2 = -8
+local INFINITE_HALF_SIDE = 2 ^ 17
+local INNER_HALF_SIDE = 2 ^ -3
+local RING_GROWTH = 16
 
 -- The "infinite" plane: a centre square and rings of four trapezoids out to 2^17.
 local function infinite_plane(name, origin, u, v)
   local polys = {}
   local function corner(a, b) return {a, b, a, b} end
-  local h = 2 ^ INNER_HALF_SIDE_LOG2
+  local h = INNER_HALF_SIDE
   polys[1] = {corner(-h, -h), corner(h, -h), corner(h, h), corner(-h, h)}
-  for _ = INNER_HALF_SIDE_LOG2, INFINITE_HALF_SIDE_LOG2 - 1 do
-    local H = 2 * h
+  while h < INFINITE_HALF_SIDE do
+    local H = RING_GROWTH * h
     -- Counter-clockwise seen from +n, as the centre square.
     polys[#polys + 1] = {corner(-H, -H), corner(H, -H), corner(h, -h), corner(-h, -h)}
     polys[#polys + 1] = {corner(H, -H), corner(H, H), corner(h, h), corner(h, -h)}
