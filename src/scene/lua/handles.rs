@@ -2,7 +2,7 @@
 //! `set_material`, `scale`, `translate`, `rotate`; `material:set_diffuse`, `set_specular`,
 //! `set_shininess`, `set_reflection`, `set_refraction`, `copy` (texture forms and
 //! `set_bump` in `maps`). The methods are plain functions kept in a table per kind that
-//! the script may extend (`methods`); the userdata's `__index` looks them up there.
+//! the script may extend (`methods`); the userdata's `__index` is that table.
 //!
 //! Userdata carry only an index into the [`SceneGraph`](crate::scene::SceneGraph) arenas
 //! (or a small value for lights), so a node can be added under several parents and a
@@ -14,14 +14,17 @@ use super::methods::Method;
 use super::with_state;
 use crate::scene::{Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
-use mlua::{Lua, MetaMethod, MultiValue, UserData, UserDataMethods, Value};
+use mlua::{Lua, MetaMethod, MultiValue, UserData, UserDataFields, UserDataMethods, Value};
 
 impl UserData for NodeHandle {
-    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
+    fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
         // Methods are looked up in a table the script may extend (`gr.extend_node`).
-        methods.add_meta_function(MetaMethod::Index, |lua, (this, key): (Value, Value)| {
-            super::methods::lookup(lua, super::methods::Kind::Node, &this, &key)
+        fields.add_meta_field_with(MetaMethod::Index, |lua| {
+            super::methods::table(lua, super::methods::Kind::Node)
         });
+    }
+
+    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
         methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
             let id = this.borrow::<NodeHandle>()?.0;
             Ok(with_state(lua, |s| {
@@ -316,11 +319,14 @@ fn set_material(a: &Args) -> mlua::Result<()> {
 }
 
 impl UserData for MaterialHandle {
-    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
+    fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
         // Methods are looked up in a table the script may extend (`gr.extend_material`).
-        methods.add_meta_function(MetaMethod::Index, |lua, (this, key): (Value, Value)| {
-            super::methods::lookup(lua, super::methods::Kind::Material, &this, &key)
+        fields.add_meta_field_with(MetaMethod::Index, |lua| {
+            super::methods::table(lua, super::methods::Kind::Material)
         });
+    }
+
+    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
         methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
             let id = this.borrow::<MaterialHandle>()?.0;
             Ok(with_state(lua, |s| {

@@ -1,9 +1,11 @@
 //! The method tables of nodes and materials, and the calls that extend them:
 //! `gr.extend_node(name, fn)` and `gr.extend_material(name, fn)`.
 //!
-//! A node's or material's methods are looked up (by the userdata's `__index`) in a plain
-//! Lua table per kind, kept in the registry: the built-ins of `handles` first, then
-//! whatever the script adds or replaces. This is the lever a dialect prelude
+//! A node's or material's methods live in a plain Lua table per kind, kept in the
+//! registry and set as the userdata's `__index` (a table lookup: as fast as mlua's own
+//! method dispatch): the built-ins of `handles` first, then whatever the script adds or
+//! replaces. A name the table lacks reaches the table's own `__index`, which raises an
+//! error naming the methods there are. This is the lever a dialect prelude
 //! (`--prelude`) pulls to give handles the methods another CS488 tracer had
 //! (`m:set_texture(file)`, `m:set_bumpmap(file)`), written in Lua the user can read. An
 //! extension is an ordinary Lua function of the sandbox: it runs under the script's
@@ -55,6 +57,16 @@ pub(super) fn install(
         for (name, method) in builtins {
             table.raw_set(name, lua.create_function(method)?)?;
         }
+        let on_miss = lua.create_table()?;
+        on_miss.raw_set(
+            "__index",
+            lua.create_function(
+                move |lua, (table, key): (Table, Value)| -> mlua::Result<()> {
+                    Err(missing(lua, kind, &table, &key))
+                },
+            )?,
+        )?;
+        table.set_metatable(Some(on_miss))?;
         lua.set_named_registry_value(kind.registry_key(), table)?;
         let call = format!("gr.extend_{}", kind.noun());
         gr.set(
@@ -85,14 +97,13 @@ fn extend(a: &Args, kind: Kind) -> mlua::Result<Value> {
     Ok(previous)
 }
 
-/// The `__index` of a handle of `kind`: its method `key`, or an error naming the
-/// methods there are.
-pub(super) fn lookup(lua: &Lua, kind: Kind, _this: &Value, key: &Value) -> mlua::Result<Value> {
-    let table: Table = lua.named_registry_value(kind.registry_key())?;
-    let found: Value = table.raw_get(key.clone())?;
-    if !found.is_nil() {
-        return Ok(found);
-    }
+/// The method table of `kind` (the handles' `__index`).
+pub(super) fn table(lua: &Lua, kind: Kind) -> mlua::Result<Table> {
+    lua.named_registry_value(kind.registry_key())
+}
+
+/// The error for a method `key` that handles of `kind` lack, naming the methods there are.
+fn missing(lua: &Lua, kind: Kind, table: &Table, key: &Value) -> mlua::Error {
     let mut names: Vec<String> = table
         .pairs::<String, Value>()
         .filter_map(|p| p.ok().map(|(k, _)| k))
@@ -102,10 +113,10 @@ pub(super) fn lookup(lua: &Lua, kind: Kind, _this: &Value, key: &Value) -> mlua:
         Value::String(s) => format!("'{}'", s.to_string_lossy()),
         other => super::args::describe(lua, other),
     };
-    Err(mlua::Error::RuntimeError(format!(
+    mlua::Error::RuntimeError(format!(
         "{}: a {noun} has no method {key} (a {noun}'s methods: {}; gr.extend_{noun} adds one)",
         location(lua),
         names.join(", "),
         noun = kind.noun(),
-    )))
+    ))
 }
