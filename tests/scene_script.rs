@@ -774,10 +774,6 @@ fn seen_at(film: &Film, request: &RenderRequest, p: [f64; 3]) -> [f32; 3] {
     film.get(x, y)
 }
 
-fn close(a: [f32; 3], b: [f32; 3], tol: f32) -> bool {
-    a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)
-}
-
 /// The material of the geometry node named `name`.
 fn material_of<'g>(graph: &'g SceneGraph, name: &str) -> &'g glint::scene::Material {
     let node = graph

@@ -110,7 +110,9 @@ fn set_placement(a: &Args) -> mlua::Result<()> {
     // Scale-free: the determinant against the product of the axes' lengths.
     let det = x.dot(y.cross(z));
     let size = x.length() * y.length() * z.length();
-    if !(det > 1e-12 * size) || !det.is_finite() {
+    // (NaN axes fail the comparison too.)
+    let spans_space = det.is_finite() && det > 1e-12 * size;
+    if !spans_space {
         return Err(a.bad_in(
             4,
             "z_axis",
