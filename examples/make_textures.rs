@@ -1,7 +1,7 @@
 //! Writes every texture and height map of glint's scenes into `textures/` (or the folder
 //! given as the first argument): `cargo run --example make_textures [-- DIR]`.
 //!
-//! The generator is deterministic: `tests/texture_assets.rs` checks that it reproduces the
+//! The generator is deterministic: `tests/images/texture_assets.rs` checks that it reproduces the
 //! committed PNGs byte for byte. What each image is, and how the Scrabble scene maps it
 //! onto its geometry, is in `docs/scrabble.md`.
 

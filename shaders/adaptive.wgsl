@@ -310,7 +310,7 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
 // with a centre: the quincunx_mean of its corners and centre; one of the deepest level:
 // the mean of its corners; each weighted by its area);
 // alpha holds its number of leaves. (A private stack indexed at run time costs llvmpipe
-// per-lane scatters and gathers: docs/gpu.md.)
+// per-lane scatters and gathers: docs/gpu.md#the-kernel-variant-chosen-from-the-adapter.)
 // Mirror of src/cpu/adaptive.rs::adaptive_integrate — change both.
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
 fn adaptive_integrate(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -1,5 +1,5 @@
 // layout.wgsl — twins of the Pod structs in src/pack/layout.rs (same names, same field
-// order; tests/gpu_layout.rs checks every offset and size against Rust) and the bindings
+// order; tests/gpu/gpu_layout.rs checks every offset and size against Rust) and the bindings
 // both entry points share. Change both.
 
 // Mirror of src/pack/layout.rs::PackedInstance — change both.
@@ -157,7 +157,7 @@ struct GpuTile {
 // an empty array as one zeroed row). Elements of 16-byte-texel tables take *_TABLE_TEXELS
 // texels each; one-word tables hold a word a texel. On software adapters the tables are
 // bound as read-only storage textures (STORAGE_TABLES: llvmpipe's image load skips the
-// sampler's paths, and fetches are most of a frame there: docs/gpu.md), elsewhere as
+// sampler's paths, and fetches are most of a frame there: docs/gpu.md#the-scene-in-tables-textures-not-storage-buffers), elsewhere as
 // sampled textures; the texels are the same.
 // #if STORAGE_TABLES
 alias QuadTable = texture_storage_2d<rgba32uint, read>;

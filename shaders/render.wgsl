@@ -165,7 +165,7 @@ fn loop_limiter_tripped() -> bool {
 // workgroup, but each run of 8 consecutive invocations (local index order, x fastest)
 // takes a 4×2 block instead of 8 pixels of one row. llvmpipe runs 8 invocations in the 8
 // lanes of one AVX2 instruction stream, as long as the slowest of them, and a 4×2 block's
-// rays stay together longer than a row's (measured on lavapipe, docs/gpu.md: 5–8% less
+// rays stay together longer than a row's (measured on lavapipe, docs/journal/2026-11-29-gpu-kernel-variant-measured.md: 5–8% less
 // GPU time on average on nonhier, macho-cows and demo, none on hier). A hardware GPU's
 // 32-lane warp gets an 8×4 block either way. Workgroup sides not a multiple of 4 keep the
 // row order. GPU-only: which invocation traces a pixel changes nothing in the pixel.

@@ -46,7 +46,7 @@ alias RayStack = array<StackEntry, PRIMARY_RAY_STACK_SIZE>;
 // Without dielectrics the camera ray's hit is traced and shaded before the loop over
 // secondary rays, which only rays it spawns enter, and which scenes without mirrors do not
 // have: on llvmpipe a loop around the first hit costs 20–25% of the render even when it
-// runs once (docs/gpu.md). With dielectrics the camera ray is the loop's first entry
+// runs once (docs/journal/2026-11-30-one-hit-no-loop.md). With dielectrics the camera ray is the loop's first entry
 // (below); either way the steps are the CPU twin's, in its order.
 // Mirror of src/cpu/trace.rs::trace_ray — change both.
 fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
@@ -64,7 +64,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     // With dielectrics the kernel is large (and scenes with them tend to have many other
     // features): a second inlined copy of the first hit's traversal and shading costs
     // llvmpipe more than the loop around it saves (scrabble +15%, the every-feature
-    // kernel 2.6×: docs/gpu.md), so the camera ray is the loop's first entry.
+    // kernel 2.6×: docs/journal/2026-11-30-one-hit-no-loop.md), so the camera ray is the loop's first entry.
     var stack: RayStack;
     stack[0] = first;
     var size = 1u;

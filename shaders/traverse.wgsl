@@ -10,7 +10,7 @@
 // collects the mesh instances (PendingMeshes), which it walks when two are waiting and
 // when it leaves a cell with some waiting: llvmpipe runs every branch of a loop body,
 // taken or not, so a mesh walk inside the item loop cost every item tested a masked mesh
-// walk (docs/gpu.md).
+// walk (docs/journal/2026-11-30-mesh-walks-out-of-item-loop.md).
 // Without MESH nothing is ever pending, and the cell-by-cell loop below makes the same
 // tests in the same order as the CPU's walk.
 
@@ -92,7 +92,7 @@ fn intersect_item(item: u32, ray: Ray, t_max: f32, mailbox: ptr<function, Mailbo
 // does not pass through intersect_item's mesh walk: llvmpipe (Mesa 22.3) runs the code of
 // every branch, taken by a lane or not, under a lane mask (examples/llvmpipe_branches.rs),
 // so that walk's set-up, one cell and one triangle test ran, masked, beside mesh_occludes's
-// for every item a shadow ray tested (within noise when removed, docs/gpu.md).
+// for every item a shadow ray tested (within noise when removed, docs/journal/2026-11-30-every-branch-runs-on-llvmpipe.md).
 // Mirror of src/cpu/traverse.rs::intersect_primitive_item — change both.
 fn intersect_primitive_item(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit {
 // #if SPHERE|CUBE|CYLINDER|CONE|TORUS

@@ -58,7 +58,7 @@ pub const CSG_LIST_CAPACITY: u32 = CSG_MAX_DEPTH + 1;
 /// zero-width sliver of a's cap (speckles), and touching operands of a union leave no
 /// internal face. Scale-free, like `OFFSET_RELATIVE`: 2⁻¹⁶ ≈ 128 f32 ulps, twice that
 /// offset. The two caps' rounding is a few ulps of that magnitude divided by the sine of
-/// the ray's angle to the cap; `tests/csg.rs` measures no speckle down to 1° from the
+/// the ray's angle to the cap; `tests/oracle/csg.rs` measures no speckle down to 1° from the
 /// plane (0.5% of rays at 0.5°; with no tolerance, a quarter of the rays at every angle).
 /// Features thinner than it (along the ray) merge away.
 pub const CSG_COINCIDENT_RELATIVE: f32 = 1.0 / 65536.0;
@@ -307,14 +307,14 @@ pub const MAX_AA_DEPTH: u32 = 6;
 /// a centre of their own, samples such a pixel at 13 points a quarter pixel apart, where
 /// shadow noise (n² shadow rays per sample) or a texture's detail rather than edges sets
 /// the error; level 2 measured no more accurate per ray once squares had centres
-/// (docs/performance.md, "A centre in every square").
+/// (docs/journal/2026-11-30-centre-in-every-square.md).
 pub const AA_FINE_DETAIL_DEPTH: u32 = 1;
 /// A camera ray's first hit on a diffuse texture counts as fine detail for adaptive
 /// anti-aliasing when the texture, filtered over the pixel's footprint, differs from the
 /// same texture filtered over twice that footprint by more than this share of
 /// `aa_threshold` (in some channel): detail at the pixel's own scale, such as printed
 /// letters or the seams of a wood grain, that a pixel's five samples alias (measured in
-/// docs/performance.md, "Texture detail and mirrored edges split"). A tenth, not the half
+/// docs/journal/2026-11-30-texture-detail-and-mirrored-edges.md). A tenth, not the half
 /// it was: once every square had a centre, a level-1 split samples a wood grain's
 /// streaks a quarter pixel apart, and splitting down to detail of a tenth of the
 /// threshold bought scrabble more accuracy per ray than any threshold did ("Texture
@@ -324,7 +324,7 @@ pub const AA_TEXTURE_DETAIL_SHARE: f32 = 0.1;
 /// (scene items: a primitive, a CSG object, a mesh instance; or none) down to this level
 /// at most (and `aa_depth`), whatever their colours' contrast: the boundary between two
 /// objects of about the same colour, where a seam, gap or bevel thinner than the samples'
-/// spacing hides (measured in docs/performance.md, "Item edges split").
+/// spacing hides (measured in docs/journal/2026-11-30-item-edges-split.md).
 pub const AA_ITEM_EDGE_DEPTH: u32 = 2;
 /// The bits of an item number that adaptive anti-aliasing's samples keep for
 /// [`AA_ITEM_EDGE_DEPTH`]'s test (the GPU keeps them in the sample's fourth component, a
@@ -342,8 +342,8 @@ pub const AA_LATTICE_JITTER: f32 = 1.0;
 /// smaller one) under adaptive anti-aliasing (a quincunx: the four corners share the
 /// rest). The corners alone are a tent filter twice the square's width, which blurs
 /// texture and fine detail that never splits the square; the centre is the square's own.
-/// 1/2 measured best of 0.2–0.67 on the sweep's scenes, for pixels (docs/performance.md,
-/// "A sample at each pixel's centre").
+/// 1/2 measured best of 0.2–0.67 on the sweep's scenes, for pixels
+/// (docs/journal/2026-11-30-sample-at-pixel-centre.md).
 pub const AA_CENTRE_WEIGHT: f32 = 0.5;
 /// Points an adaptive anti-aliasing split traces (one midpoint-pass invocation each): the
 /// square's four edge midpoints and its four children's centres (the centres only where

@@ -8,7 +8,7 @@
 //! device. On the CPU and on hardware GPUs the full caches pay. On a software adapter
 //! (llvmpipe) a private array indexed at run time becomes per-lane scatters and gathers,
 //! which cost more than the tests they save; one slot is a plain scalar there, and on
-//! balance it pays (docs/gpu.md measures both, scene by scene).
+//! balance it pays (docs/journal/2026-11-29-gpu-kernel-variant-measured.md measures both, scene by scene).
 
 use crate::constants::{ITEM_MAILBOX_SIZE, TRIANGLE_MAILBOX_SIZE};
 use std::fmt;

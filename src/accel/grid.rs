@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
 /// λ, the cells-per-item density of `grid = 'auto'`, chosen by `glint bench grid`
-/// (see docs/performance.md).
+/// (see docs/journal/2026-11-22-uniform-grid-against-brute-force.md).
 pub const DEFAULT_DENSITY: f32 = 8.0;
 /// λ of each mesh's own grid under `grid = 'auto'`: 2 keeps the structure within 64
 /// bytes per stored triangle (see docs/acceleration.md for the measurements).

@@ -229,7 +229,7 @@ fn square_contrast(lat: &Lattice, level: u32, a: u32, b: u32) -> f32 {
 /// about the same colour, where a seam or gap thinner than the samples' spacing may lie).
 /// The side weighs the contrast because a square's error in its pixel scales with its
 /// size: a small square of the same contrast matters less (measured in
-/// docs/performance.md: fewer rays for the same error). The per-pixel walk's test too.
+/// docs/journal/2026-11-30-threshold-weighed-by-side.md: fewer rays for the same error). The per-pixel walk's test too.
 // Mirror of shaders/adaptive.wgsl::square_splits — change both.
 pub(crate) fn square_splits(spread: f32, hints: SquareHints, level: u32, threshold: f32) -> bool {
     // (A power of two: the product is exact, on both tracers.)
@@ -315,7 +315,7 @@ fn adaptive_midpoints(
 /// with a centre is the [`quincunx_mean`] of its corners and centre, one of the deepest
 /// level the mean of its corners, each weighted by its area. (Stackless because the GPU
 /// twin's private stack, indexed at run time, cost llvmpipe per-lane scatters and
-/// gathers: docs/gpu.md.)
+/// gathers: docs/gpu.md#the-kernel-variant-chosen-from-the-adapter.)
 // Mirror of shaders/adaptive.wgsl::adaptive_integrate — change both.
 fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
     let t = lat.tile;

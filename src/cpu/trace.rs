@@ -42,7 +42,7 @@ struct StackEntry {
 /// secondary rays, which only rays it spawns enter: the GPU twin has that shape without
 /// dielectrics (on llvmpipe a loop around the first hit costs 20–25% of the render even
 /// when it runs once; with dielectrics the camera ray is its loop's first entry,
-/// docs/gpu.md), and both tracers take the same steps in the same order.
+/// docs/journal/2026-11-30-one-hit-no-loop.md), and both tracers take the same steps in the same order.
 // Mirror of shaders/trace.wgsl::trace_ray — change both.
 pub fn trace_ray(
     scene: &PackedScene,
@@ -103,7 +103,7 @@ pub fn trace_ray(
 /// Whether material `material` is a mirror to adaptive AA's item keys
 /// (`pixel_sample::sample_item_key`): reflective and not a dielectric, so its camera hit
 /// spawns one ray. (Keying a dielectric's rays too split nearly every sample behind glass,
-/// whose paths part ways everywhere: docs/performance.md, "Item edges split".)
+/// whose paths part ways everywhere: docs/journal/2026-11-30-item-edges-split.md.)
 // Mirror of shaders/trace.wgsl::is_mirror — change both.
 pub(crate) fn is_mirror(scene: &PackedScene, material: u32) -> bool {
     let flags = scene.materials[material as usize].flags;

@@ -9,7 +9,7 @@
 //! only collects the mesh instances ([`PendingMeshes`]), which it walks when two are
 //! waiting and when it leaves a cell with some waiting: on llvmpipe every branch of a
 //! loop body runs, taken or not, so a mesh walk inside the item loop cost every item
-//! tested a masked mesh walk (docs/gpu.md); out of it, the GPU runs that code once per
+//! tested a masked mesh walk (docs/journal/2026-11-30-mesh-walks-out-of-item-loop.md); out of it, the GPU runs that code once per
 //! cell that held an instance.
 
 use super::csg::intersect_csg;

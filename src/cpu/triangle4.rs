@@ -12,10 +12,10 @@
 //! the sign of a zero, which no decision or t depends on, but the barycentrics can. So a
 //! caller that keeps a hit recomputes its barycentrics with [`intersect_triangle`] itself
 //! ([`TriangleBatch::keep_nearest`]), and the result stays the scalar one.
-//! `tests/triangle4.rs` checks the lanes against the scalar test, grazing and edge-on
+//! `tests/oracle/triangle4.rs` checks the lanes against the scalar test, grazing and edge-on
 //! rays included. (Measured on cow.obj, `glint bench --trace`, one thread: with the
 //! batches and their inlining, about −30% time per shadow ray and −25% per camera ray;
-//! docs/performance-trace.md.)
+//! docs/journal/2026-12-01-four-triangles-at-a-time.md.)
 //!
 //! [`edge_function`]: super::intersect::edge_function
 

@@ -17,7 +17,7 @@ pub const LLVMPIPE_THREADS_VAR: &str = "LP_NUM_THREADS";
 /// the cores (Mesa caps the value itself). Mesa's default is one per core, and a dispatch then ends when the thread with the slowest
 /// workgroups does while the other cores idle (on this project's 2 cores, 13% between
 /// the two threads' work on macho-cows); with more threads than cores the operating
-/// system balances them: 5–20% less GPU time on the mesh scenes (docs/gpu.md). Only
+/// system balances them: 5–20% less GPU time on the mesh scenes (docs/journal/2026-11-29-gpu-kernel-variant-measured.md). Only
 /// llvmpipe reads the variable.
 pub fn default_llvmpipe_threads(cores: usize) -> usize {
     (4 * cores).min(16).max(cores).max(1)

@@ -43,20 +43,20 @@ impl KernelConfig {
     ///   multiple of every vendor's SIMD width: 32 on NVIDIA and Apple, 32/64 on AMD,
     ///   8–32 on Intel, 8 on llvmpipe's AVX2) that the adapter's invocation and size
     ///   limits allow. On lavapipe 4×4 measured slower on mesh scenes and 16×16 gave no
-    ///   consistent gain (docs/gpu.md).
+    ///   consistent gain (docs/journal/2026-11-29-gpu-kernel-variant-measured.md).
     /// - mailboxes: one slot (the last item tested) on software adapters (device type Cpu:
     ///   lavapipe, SwiftShader, WARP), where llvmpipe turns a private array indexed at
     ///   run time into per-lane scatters and gathers that cost more than the tests they
-    ///   save (17–38% of the render time on mesh scenes, docs/gpu.md), while one slot is
+    ///   save (17–38% of the render time on mesh scenes, docs/journal/2026-11-29-gpu-kernel-variant-measured.md), while one slot is
     ///   a scalar and saves walking a mesh instance again in the next scene cell (3–17%
     ///   less GPU time where meshes span several cells, 5–8% more on demo without AA:
-    ///   docs/gpu.md); the full caches elsewhere (not yet measured on hardware).
+    ///   docs/journal/2026-11-29-gpu-kernel-variant-measured.md); the full caches elsewhere (not yet measured on hardware).
     /// - iteration guard: on software adapters, whose gallivm caps the loop iterations of
     ///   one invocation.
     /// - storage tables: on software adapters that bind as many storage textures as the
     ///   scene has tables. llvmpipe's image load skips the sampler's paths (a random read
     ///   measured 22–30% faster), and fetches are most of a frame there: a macho-cows
-    ///   frame took 694M instructions instead of 1 294M (docs/gpu.md); hardware keeps
+    ///   frame took 694M instructions instead of 1 294M (docs/journal/2026-12-01-storage-texture-tables.md); hardware keeps
     ///   sampled textures (unmeasured).
     pub fn for_adapter(device_type: wgpu::DeviceType, limits: &wgpu::Limits) -> KernelConfig {
         let software = device_type == wgpu::DeviceType::Cpu;

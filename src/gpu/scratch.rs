@@ -3,7 +3,7 @@
 //! read-back staging) from the pool and gives them back when it ends. A buffer created
 //! fresh costs its first frame wgpu's zero fill (every buffer is cleared before its first
 //! use) and, on a software adapter, the page faults of new memory: 25–111 ms of an
-//! adaptive 512² frame on lavapipe, whose lattice of 2049² samples is 67 MB (docs/gpu.md).
+//! adaptive 512² frame on lavapipe, whose lattice of 2049² samples is 67 MB (docs/gpu.md#the-dispatch-plan-of-a-frame).
 //! Every word a frame reads it has written or cleared first in that frame, so what a kept
 //! buffer held before changes nothing (the GPU parity tests render frame after frame on
 //! one context).

@@ -114,7 +114,7 @@ impl Default for RenderOptions {
             aa: AaMode::Adaptive,
             samples: AaSamples::constant(4),
             // The sampling defaults are chosen by `glint bench --sweep`'s stated rule
-            // (docs/performance.md, "A centre in every square").
+            // (docs/performance.md#sampling-settings-error-against-time).
             aa_threshold: 0.2,
             aa_depth: AaDepth::constant(3),
             shadow_samples: None,

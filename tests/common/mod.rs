@@ -124,7 +124,19 @@ pub const GPU_INSTALL_HINT: &str = "apt-get install mesa-vulkan-drivers libvulka
 /// the install hint: a GPU test that returned early would report `ok` without comparing
 /// the tracers. Only `GLINT_SKIP_GPU=1` turns it into a skip (None), announced with one
 /// line on stderr naming the test and the reason; any other value of it is an error.
+///
+/// Built with `GLINT_SKIP_GPU=1` (`cfg(glint_skip_gpu)`, see build.rs), every GPU test
+/// is marked `#[cfg_attr(glint_skip_gpu, ignore = …)]` and never gets here: one that does
+/// lacks the mark, and fails saying so, so that the skipped tests all report as ignored.
 pub fn gpu_context() -> Option<glint::gpu::GpuContext> {
+    if cfg!(glint_skip_gpu) {
+        let test = std::thread::current().name().unwrap_or("?").to_string();
+        panic!(
+            "{test} asks for a GPU but is not marked as a GPU test: add \
+             #[cfg_attr(glint_skip_gpu, ignore = \"needs a GPU adapter (GLINT_SKIP_GPU=1)\")] \
+             under its #[test], so that GLINT_SKIP_GPU=1 reports it as ignored"
+        );
+    }
     let skip = match std::env::var("GLINT_SKIP_GPU") {
         Err(std::env::VarError::NotPresent) => false,
         Ok(v) if v == "1" => true,

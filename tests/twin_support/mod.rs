@@ -1,4 +1,4 @@
-//! Reads glint's two tracers as text for `tests/twins.rs`: each declaration (function,
+//! Reads glint's two tracers as text for `tests/gpu/twins.rs`: each declaration (function,
 //! struct, constant, variable) of the Rust sources under `src/` and the WGSL under
 //! `shaders/`, the "Mirror of … — change both." comment above it, and a function's
 //! parameters. Line-based, relying on rustfmt's layout (top-level items at column 0,

@@ -1,0 +1,303 @@
+//! Tier 3 of GPU parity: kernel probes. For each primitive kind, and for a mixed scene
+//! through the grid and by brute force, ≥ 4096 seeded rays are traced by the GPU's
+//! `closest_hit` + `surface_at` (the test-only `probe` entry point) and by the CPU's;
+//! ≥ 99.9% of rays must agree on hit/miss and item with |Δt|/t ≤ 1e-4 and normals within
+//! 1e-4 (f32 on both sides; the GPU's sqrt/division/normalize may differ by a few ulps,
+//! which moves grazing hits only). Seeds are in the messages.
+
+use crate::common;
+
+use common::probes::{check, random_placed};
+use common::{gpu_context, packed_from_source, Rng};
+use glint::mailboxes::Mailboxes;
+use glint::pack::{PackedScene, SceneFeatures};
+use glint::scene::{GridMode, OptionOverrides};
+use std::fmt::Write;
+
+/// Lua for a random scene in [-10, 10]³: spheres and cubes with random non-uniform scale,
+/// rotation and translation, and a random triangle soup of `triangles` triangles.
+fn random_scene(seed: u64, spheres: usize, cubes: usize, triangles: usize) -> String {
+    let mut rng = Rng(seed);
+    let mut lua = String::from(
+        "m = gr.material({0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, 25)\nroot = gr.node('root')\n",
+    );
+    for (kind, count) in [("sphere", spheres), ("cube", cubes)] {
+        for i in 0..count {
+            let s = [0; 3].map(|_| rng.range(0.3, 2.0));
+            let axis = ["x", "y", "z"][(rng.next_u64() % 3) as usize];
+            let angle = rng.range(0.0, 360.0);
+            let t = [0; 3].map(|_| rng.range(-9.0, 9.0));
+            let _ = writeln!(
+                lua,
+                "n = gr.{kind}('{kind}{i}') n:scale({}, {}, {}) n:rotate('{axis}', {angle}) n:translate({}, {}, {}) n:set_material(m) root:add_child(n)",
+                s[0], s[1], s[2], t[0], t[1], t[2]
+            );
+        }
+    }
+    if triangles > 0 {
+        let mut vertices = Vec::new();
+        let mut faces = Vec::new();
+        for i in 0..triangles {
+            let centre = [0; 3].map(|_| rng.range(-9.0, 9.0));
+            for _ in 0..3 {
+                let v = [0, 1, 2].map(|k| centre[k] + rng.range(-2.0, 2.0));
+                vertices.push(format!("{{{}, {}, {}}}", v[0], v[1], v[2]));
+            }
+            faces.push(format!("{{{}, {}, {}}}", 3 * i, 3 * i + 1, 3 * i + 2));
+        }
+        let _ = writeln!(
+            lua,
+            "t = gr.mesh('soup', {{{}}}, {{{}}}) t:set_material(m) root:add_child(t)",
+            vertices.join(", "),
+            faces.join(", ")
+        );
+    }
+    lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
+}
+
+fn grid(mode: GridMode) -> OptionOverrides {
+    OptionOverrides {
+        grid: Some(mode),
+        ..OptionOverrides::default()
+    }
+}
+
+fn scene(seed: u64, spheres: usize, cubes: usize, triangles: usize, mode: GridMode) -> PackedScene {
+    packed_from_source(&random_scene(seed, spheres, cubes, triangles), &grid(mode)).remove(0)
+}
+
+/// Lua for `count` random tori (ring and spindle, thin to fat tubes) in [-10, 10]³.
+fn torus_scene(seed: u64, count: usize) -> String {
+    let mut rng = Rng(seed);
+    let mut lua = String::from(
+        "m = gr.material({0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, 25)\nroot = gr.node('root')\n",
+    );
+    for i in 0..count {
+        let rin = rng.range(0.5, 2.5);
+        let rout = rin * rng.range(0.05, 1.3);
+        let ctor = format!("gr.torus('torus{i}', {rin}, {rout})");
+        lua += &random_placed(&mut rng, &ctor, (0.6, 1.5), 8.0);
+        lua.push('\n');
+    }
+    lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn probes_tori() {
+    let Some(ctx) = gpu_context() else { return };
+    for (mode, has_grid) in [(GridMode::Off, false), (GridMode::Auto, true)] {
+        let s = packed_from_source(&torus_scene(5, 30), &grid(mode)).remove(0);
+        assert!(s.features.contains(SceneFeatures::TORUS));
+        assert_eq!(s.features.contains(SceneFeatures::GRID), has_grid);
+        check(&ctx, &format!("tori, grid {has_grid}"), &s, 105);
+    }
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn probes_spheres() {
+    let Some(ctx) = gpu_context() else { return };
+    let s = scene(1, 40, 0, 0, GridMode::Off);
+    assert_eq!(s.features, SceneFeatures::SPHERE);
+    check(&ctx, "spheres", &s, 101);
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn probes_cubes() {
+    let Some(ctx) = gpu_context() else { return };
+    let s = scene(2, 0, 80, 0, GridMode::Off);
+    assert_eq!(s.features, SceneFeatures::CUBE);
+    check(&ctx, "cubes", &s, 102);
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn probes_triangles() {
+    let Some(ctx) = gpu_context() else { return };
+    let s = scene(3, 0, 0, 300, GridMode::Off);
+    assert_eq!(s.features, SceneFeatures::MESH);
+    check(&ctx, "triangles", &s, 103);
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn probes_mixed_grid_and_brute_force() {
+    let Some(ctx) = gpu_context() else { return };
+    let with_grid = scene(4, 60, 60, 600, GridMode::Auto);
+    assert!(
+        with_grid.features.contains(SceneFeatures::GRID),
+        "{}",
+        with_grid.features
+    );
+    check(&ctx, "mixed, grid", &with_grid, 104);
+    let brute = scene(4, 60, 60, 600, GridMode::Off);
+    assert!(!brute.features.contains(SceneFeatures::GRID));
+    check(&ctx, "mixed, brute force", &brute, 104);
+}
+
+/// Lua for one random triangle soup of `triangles` triangles (around the origin, ±2)
+/// placed `instances` times by random scale, rotation and translation, with a sphere
+/// among them: the soup is stored once, in its own space, with its own grid.
+fn instanced_scene(seed: u64, triangles: usize, instances: usize) -> String {
+    let mut rng = Rng(seed);
+    let mut lua = String::from(
+        "m = gr.material({0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, 25)\nroot = gr.node('root')\n",
+    );
+    let (mut vertices, mut faces) = (Vec::new(), Vec::new());
+    for i in 0..triangles {
+        let centre = [0; 3].map(|_| rng.range(-2.0, 2.0));
+        for _ in 0..3 {
+            let v = [0, 1, 2].map(|k| centre[k] + rng.range(-0.4, 0.4));
+            vertices.push(format!("{{{}, {}, {}}}", v[0], v[1], v[2]));
+        }
+        faces.push(format!("{{{}, {}, {}}}", 3 * i, 3 * i + 1, 3 * i + 2));
+    }
+    let _ = writeln!(
+        lua,
+        "soup = gr.mesh('soup', {{{}}}, {{{}}}) soup:set_material(m)",
+        vertices.join(", "),
+        faces.join(", ")
+    );
+    for i in 0..instances {
+        let s = [0; 3].map(|_| rng.range(0.5, 2.0));
+        let axis = ["x", "y", "z"][(rng.next_u64() % 3) as usize];
+        let angle = rng.range(0.0, 360.0);
+        let t = [0; 3].map(|_| rng.range(-7.0, 7.0));
+        let _ = writeln!(
+            lua,
+            "n = gr.node('place{i}') n:scale({}, {}, {}) n:rotate('{axis}', {angle}) n:translate({}, {}, {}) n:add_child(soup) root:add_child(n)",
+            s[0], s[1], s[2], t[0], t[1], t[2]
+        );
+    }
+    lua += "b = gr.sphere('ball') b:scale(2, 2, 2) b:set_material(m) root:add_child(b)\n";
+    lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
+}
+
+/// Instanced meshes through both levels of grid (and by brute force): every ray agrees
+/// on hit or miss, instance and triangle; closest-hit and any-hit rays alike; with the
+/// traversal's mailboxes (hardware kernel variant), with one item slot (software variant)
+/// and without, on both tracers, and the CPU's answers are the same bit for bit each way.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn probes_instanced_meshes() {
+    use common::probes::{agree, random_rays};
+    use glint::constants::{PROBE_ANY_HIT, T_MISS};
+    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
+    let Some(mut ctx) = gpu_context() else { return };
+    for (mode, grid_name) in [(GridMode::Auto, "grid"), (GridMode::Off, "brute force")] {
+        let mut s = packed_from_source(&instanced_scene(11, 400, 8), &grid(mode)).remove(0);
+        assert_eq!(s.meshes.len(), 1, "the soup is stored once");
+        assert_eq!(s.triangles.len(), 400);
+        let mut rays = random_rays(111);
+        for (i, r) in rays.iter_mut().enumerate() {
+            r.mode = if i % 4 == 3 { PROBE_ANY_HIT } else { 0 };
+            if i % 8 == 1 || i % 8 == 7 {
+                // Past T_MISS: a triangle missed (t = T_MISS) must not count as a hit.
+                r.t_max = f32::INFINITY;
+            }
+        }
+        s.mailboxes = Mailboxes::Full;
+        let with_mailboxes: Vec<_> = rays.iter().map(|r| cpu_probe(&s, r)).collect();
+        for mailboxes in Mailboxes::ALL {
+            let name = format!("{grid_name}, {mailboxes}");
+            ctx.kernel.mailboxes = mailboxes;
+            s.mailboxes = mailboxes;
+            let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let (mut hits, mut worst_dt) = (0, 0.0f32);
+            for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
+                let c = cpu_probe(&s, ray);
+                assert_eq!(
+                    format!("{c:?}"),
+                    format!("{:?}", with_mailboxes[i]),
+                    "{name}: the CPU's mailboxes changed ray {i}'s answer"
+                );
+                hits += c.hit;
+                if ray.mode == PROBE_ANY_HIT {
+                    assert_eq!(g.hit, c.hit, "{name}: any-hit ray {i} {ray:?}");
+                    if ray.t_max == f32::INFINITY {
+                        let closest = cpu_probe(&s, &ProbeRay { mode: 0, ..*ray });
+                        assert_eq!(c.hit, closest.hit, "{name}: any-hit ray {i} past T_MISS");
+                    }
+                    continue;
+                }
+                if ray.t_max == f32::INFINITY {
+                    let below_t_miss = cpu_probe(
+                        &s,
+                        &ProbeRay {
+                            t_max: T_MISS,
+                            ..*ray
+                        },
+                    );
+                    assert_eq!(c, below_t_miss, "{name}: ray {i} past T_MISS");
+                }
+                let (ok, dt, _) = agree(g, &c);
+                assert!(
+                    ok && g.part == c.part,
+                    "{name}: ray {i} {ray:?}: gpu {g:?} cpu {c:?}"
+                );
+                worst_dt = worst_dt.max(dt);
+            }
+            eprintln!(
+                "instanced meshes, {name}: {hits}/{} CPU hits, 100% agreement (hit, instance, triangle), worst |Δt|/t {worst_dt:.2e}",
+                rays.len()
+            );
+            assert!(hits as usize > rays.len() / 8, "{name}: too few hits");
+        }
+    }
+}
+
+/// Rays along the stacked frames' axis (tests/common::stacked_frames_source) meet up to six
+/// mesh instances before their hit, so the scene walk's list of pending instances fills
+/// and the walk resumes after walking it: both tracers give the same answers (hit,
+/// instance, triangle; any-hit rays under half the hit's t and beyond it), with every
+/// mailbox variant.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn probes_rays_past_many_mesh_instances() {
+    use glint::constants::{PROBE_ANY_HIT, T_MISS};
+    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
+    let Some(mut ctx) = gpu_context() else { return };
+    let mut s =
+        packed_from_source(&common::stacked_frames_source(), &grid(GridMode::Auto)).remove(0);
+    assert!(s.features.contains(SceneFeatures::GRID) && s.features.contains(SceneFeatures::MESH));
+    let mut rays = Vec::new();
+    for origin in common::stacked_frames_origins() {
+        let ray = ProbeRay {
+            origin,
+            t_max: T_MISS,
+            dir: [0.0, 0.0, -1.0],
+            mode: 0,
+        };
+        let t = cpu_probe(&s, &ray).t;
+        rays.push(ray);
+        for t_max in [0.5 * t, 1.001 * t] {
+            rays.push(ProbeRay {
+                t_max,
+                mode: PROBE_ANY_HIT,
+                ..ray
+            });
+        }
+    }
+    for mailboxes in Mailboxes::ALL {
+        ctx.kernel.mailboxes = mailboxes;
+        s.mailboxes = mailboxes;
+        let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{mailboxes}: {e}"));
+        let mut items = std::collections::BTreeSet::new();
+        for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
+            let c = cpu_probe(&s, ray);
+            if ray.mode == PROBE_ANY_HIT {
+                assert_eq!(g.hit, c.hit, "{mailboxes}: any-hit ray {i} {ray:?}");
+                continue;
+            }
+            assert_eq!(
+                (g.hit, g.item, g.part),
+                (c.hit, c.item, c.part),
+                "{mailboxes}: ray {i} {ray:?}: gpu {g:?} cpu {c:?}"
+            );
+            items.insert(c.item);
+        }
+        assert_eq!(items.len(), 7, "{mailboxes}: items hit {items:?}");
+    }
+}

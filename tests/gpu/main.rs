@@ -1,0 +1,23 @@
+//! The `gpu` test binary: the GPU tracer against the CPU reference at the four tiers (layout and
+//! naga validation, kernel probes, frames, images) and the twins.
+//! One binary per tier (docs/testing.md) links glint once instead of once per file.
+
+#[path = "../common/mod.rs"]
+mod common;
+#[path = "../texture_support/mod.rs"]
+mod texture_support;
+#[path = "../twin_support/mod.rs"]
+mod twin_support;
+
+mod gpu_bench_torus;
+mod gpu_corpus;
+mod gpu_csg;
+mod gpu_cylinder_cone;
+mod gpu_frame;
+mod gpu_images;
+mod gpu_layout;
+mod gpu_probes;
+mod gpu_refraction;
+mod gpu_scrabble;
+mod gpu_textures;
+mod twins;

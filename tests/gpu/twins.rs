@@ -1,0 +1,472 @@
+//! The CPU tracer and its WGSL mirror are tied function by function with comments
+//! (`// Mirror of shaders/uv.wgsl::triangle_frame — change both.`); this test reads both
+//! sides (no GPU) and checks that the ties hold:
+//! - every twin comment names a file of the other side that exists, and a declaration in
+//!   it that exists (so renaming one twin without the other fails here);
+//! - pairing is symmetric: a one-to-one twin comment (`PATH::NAME` and nothing else) on
+//!   A naming B has a twin comment on B naming A (comments such as "the sample loop of
+//!   src/cpu/render.rs::render_pixel", for a part of a function, need only exist);
+//! - paired functions take the same number of arguments, once the Rust side's module
+//!   state is set aside ([`MODULE_SCOPE`]: what WGSL reads from bindings or private
+//!   variables instead of parameters);
+//! - every WGSL function has a twin, or is on [`WGSL_WITHOUT_TWIN`] with the reason.
+
+use crate::twin_support;
+
+use std::collections::{HashMap, HashSet};
+use std::path::Path;
+use twin_support::{parse, Item, Sources, TwinRef};
+
+/// WGSL functions with no Rust twin, and why.
+const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
+    (
+        "shaders/ray.wgsl",
+        "max_element",
+        "glam's Vec3::max_element on the CPU",
+    ),
+    (
+        "shaders/ray.wgsl",
+        "min_element",
+        "glam's Vec3::min_element on the CPU",
+    ),
+    (
+        "shaders/ray.wgsl",
+        "copysign",
+        "Rust's f32::copysign on the CPU",
+    ),
+    (
+        "shaders/render.wgsl",
+        "block_pixel",
+        "chooses which invocation of a workgroup traces which pixel of its square (the \
+         order of llvmpipe's SIMD lanes); the CPU's pixels have no lanes, and the pixel's \
+         value does not depend on it",
+    ),
+    (
+        "shaders/render.wgsl",
+        "encode_hint",
+        "stores a SampleHint in the float fourth component of a lattice sample; the CPU's \
+         lattice keeps its hints in a Vec<SampleHint>",
+    ),
+    (
+        "shaders/render.wgsl",
+        "decode_hint",
+        "reads encode_hint's float back; the CPU's lattice keeps its hints in a \
+         Vec<SampleHint>",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "table_at",
+        "reads the texel of a table element (src/gpu/tables.rs): the CPU indexes its slices",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "word_at",
+        "reads a word of a one-word table (src/gpu/tables.rs): the CPU indexes its slices",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "table_texel",
+        "where a table element lies in its texture (src/gpu/tables.rs); the CPU has slices",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "cell_start_at",
+        "reads `cell_start[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "cell_item_at",
+        "reads `cell_items[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_instance",
+        "reads `instances[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "instance_row",
+        "one row of an instance's affine maps from the instance table (load_instance's helper)",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_mesh",
+        "reads `meshes[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "csg_program_at",
+        "reads `csg_program[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "texel_word",
+        "reads `texels[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_material",
+        "reads `materials[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_light",
+        "reads `lights[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/layout.wgsl",
+        "load_triangle_uv",
+        "reads `triangle_uvs[i]` from its table texture; the CPU indexes the slice",
+    ),
+    (
+        "shaders/render.wgsl",
+        "loop_limiter_tripped",
+        "detects lavapipe's loop limiter, which the CPU does not have",
+    ),
+    (
+        "shaders/adaptive.wgsl",
+        "adaptive_work_args",
+        "turns the GPU's per-level list lengths into indirect dispatch arguments; the CPU \
+         walks the same lists directly, with no dispatch",
+    ),
+    (
+        "shaders/adaptive.wgsl",
+        "indirect_workgroups",
+        "workgroup counts of an indirect pass (adaptive_work_args' helper); the CPU has no \
+         dispatches",
+    ),
+    (
+        "shaders/render.wgsl",
+        "linear_index",
+        "an invocation's index in a dispatch continued in y past the adapter's per-dimension \
+         limit (src/gpu/plan.rs plans it on the host); the CPU has no dispatches",
+    ),
+    (
+        "shaders/bench/torus.wgsl",
+        "bench_torus",
+        "the torus benchmark's kernel; on the CPU, src/bench/torus.rs loops over the \
+         rays calling the same solvers",
+    ),
+];
+
+/// Types of Rust parameters that a WGSL twin reads from module scope instead (unless the
+/// twin takes a parameter of that type too), and where.
+const MODULE_SCOPE: &[(&str, &str)] = &[
+    (
+        "PackedScene",
+        "the scene's tables (textures, src/gpu/tables.rs)",
+    ),
+    ("PackedGlobals", "the `globals` uniform"),
+    ("AdaptiveTile", "the `tile` uniform"),
+    ("Lattice", "the `samples` and `split` storage buffers"),
+    ("CsgStack", "the csg_* private variables"),
+    ("MediumStack", "the `shading_media` private variable"),
+    ("[u32]", "the `texel_table` texture"),
+    (
+        "impl TraversalCounters",
+        "nothing: `--stats` counters are CPU-only",
+    ),
+];
+
+/// This repository's sources.
+fn source_texts() -> Vec<(String, String)> {
+    twin_support::source_texts(Path::new(env!("CARGO_MANIFEST_DIR")))
+}
+
+/// What the checks found.
+#[derive(Default)]
+struct Findings {
+    problems: Vec<String>,
+    /// One-to-one pairs (each counted once).
+    pairs: usize,
+    /// Of those, function pairs whose argument counts were compared.
+    compared_functions: usize,
+    /// Twin comments about part of a declaration, or a file.
+    partial: usize,
+}
+
+fn is_wgsl(file: &str) -> bool {
+    file.ends_with(".wgsl")
+}
+
+fn check(sources: &Sources) -> Findings {
+    let mut found = Findings::default();
+    found.problems.extend(
+        sources
+            .malformed
+            .iter()
+            .map(|m| format!("{m}: names no src/…rs or shaders/…wgsl file")),
+    );
+    let files: HashSet<&str> = sources.items.iter().map(|i| i.file.as_str()).collect();
+    let index: HashMap<(&str, &str), &Item> = sources
+        .items
+        .iter()
+        .map(|i| ((i.file.as_str(), i.key.as_str()), i))
+        .collect();
+    let refs = sources
+        .items
+        .iter()
+        .filter_map(|i| i.twin.as_ref().map(|t| (i.file.as_str(), t)))
+        .chain(sources.loose.iter().map(|(f, t)| (f.as_str(), t)));
+    for (file, twin) in refs {
+        check_reference(file, twin, &files, &index, &mut found.problems);
+        found.partial += usize::from(!twin.exact);
+    }
+    let mut seen = HashSet::new();
+    for item in &sources.items {
+        let Some(twin) = item.twin.as_ref().filter(|t| t.exact) else {
+            continue;
+        };
+        let Some(other) = index.get(&(twin.path.as_str(), twin.key.as_deref().unwrap())) else {
+            continue; // reported by check_reference
+        };
+        check_symmetry(item, other, &mut found.problems);
+        let pair = if is_wgsl(&item.file) {
+            (other.line, &other.file, item.line)
+        } else {
+            (item.line, &item.file, other.line)
+        };
+        if !seen.insert(pair) {
+            continue;
+        }
+        found.pairs += 1;
+        let (rust, wgsl) = if is_wgsl(&item.file) {
+            (*other, item)
+        } else {
+            (item, *other)
+        };
+        if rust.is_fn && wgsl.is_fn && !wgsl.entry_point {
+            found.compared_functions += 1;
+            check_arguments(rust, wgsl, &mut found.problems);
+        }
+    }
+    check_untwinned(sources, &mut found.problems);
+    found
+}
+
+/// The named file is on the other side and exists, and so does the named declaration.
+fn check_reference(
+    file: &str,
+    twin: &TwinRef,
+    files: &HashSet<&str>,
+    index: &HashMap<(&str, &str), &Item>,
+    problems: &mut Vec<String>,
+) {
+    let at = format!("{file}:{}: \"Mirror of {}\"", twin.line, twin.text);
+    if is_wgsl(file) == is_wgsl(&twin.path) {
+        problems.push(format!("{at}: a twin is on the other side (Rust ↔ WGSL)"));
+    } else if !files.contains(twin.path.as_str()) {
+        problems.push(format!("{at}: no file {}", twin.path));
+    } else if let Some(key) = &twin.key {
+        if !index.contains_key(&(twin.path.as_str(), key.as_str())) {
+            problems.push(format!("{at}: {} declares no {key}", twin.path));
+        }
+    }
+}
+
+/// `item`'s one-to-one twin `other` names `item` back.
+fn check_symmetry(item: &Item, other: &Item, problems: &mut Vec<String>) {
+    let names_back = other
+        .twin
+        .as_ref()
+        .is_some_and(|t| t.path == item.file && t.key.as_ref().is_none_or(|k| *k == item.key));
+    if !names_back {
+        let says = match &other.twin {
+            Some(t) => format!("names \"{}\"", t.text),
+            None => "has no twin comment".to_string(),
+        };
+        problems.push(format!(
+            "{}:{}: {} names {}::{} as its twin, but {}:{} {says} (expected \"// Mirror of {}::{} — change both.\")",
+            item.file, item.line, item.key, other.file, other.key, other.file, other.line, item.file, item.key
+        ));
+    }
+}
+
+/// How many arguments a call of the Rust function passes that its WGSL twin takes as
+/// parameters: module state ([`MODULE_SCOPE`], a method's receiver included) set aside,
+/// an array `[T; N]` counted as N (WGSL may pass the elements one by one), an
+/// `impl Iterator` as 2 (WGSL passes the range's first and last).
+fn rust_argument_count(rust: &Item, wgsl: &Item) -> usize {
+    let wgsl_types: Vec<&str> = wgsl
+        .params
+        .iter()
+        .filter_map(|p| p.split_once(':').map(|(_, t)| t))
+        .collect();
+    let receiver = rust.key.split_once("::").map_or("", |(ty, _)| ty);
+    rust.params
+        .iter()
+        .map(|p| {
+            // `self`, `&self`, `&mut self` stand for a parameter of the impl's type.
+            let ty = p.split_once(':').map_or(receiver, |(_, t)| t);
+            let ty = ty.trim().trim_start_matches('&');
+            // A reference's lifetime (`&'a T`) is no part of the type's name.
+            let ty = match ty.strip_prefix('\'') {
+                Some(rest) => rest.split_once(' ').map_or(rest, |(_, t)| t),
+                None => ty,
+            };
+            let ty = ty.trim_start_matches("mut ").trim();
+            let base = ty.rsplit("::").next().unwrap_or(ty);
+            let module_scope = MODULE_SCOPE.iter().any(|(t, _)| *t == base || *t == ty);
+            if module_scope && !wgsl_types.iter().any(|w| w.contains(base)) {
+                0
+            } else if ty.starts_with("impl Iterator") {
+                2
+            } else {
+                array_length(ty, ';')
+            }
+        })
+        .sum()
+}
+
+/// Arguments a WGSL function takes, an `array<T, N>` counted as N.
+fn wgsl_argument_count(wgsl: &Item) -> usize {
+    wgsl.params
+        .iter()
+        .map(|p| {
+            let ty = p.split_once(':').map_or("", |(_, t)| t.trim());
+            let inner = ty.strip_prefix("array<").and_then(|t| t.strip_suffix('>'));
+            inner.map_or(1, |t| array_length(&format!("[{t}]"), ','))
+        })
+        .sum()
+}
+
+/// N for an array type `[T<sep> N]` with a literal N, else 1.
+fn array_length(ty: &str, separator: char) -> usize {
+    ty.strip_prefix('[')
+        .and_then(|t| t.strip_suffix(']'))
+        .and_then(|t| t.rsplit_once(separator))
+        .and_then(|(_, n)| n.trim().parse().ok())
+        .unwrap_or(1)
+}
+
+fn check_arguments(rust: &Item, wgsl: &Item, problems: &mut Vec<String>) {
+    let (r, w) = (rust_argument_count(rust, wgsl), wgsl_argument_count(wgsl));
+    if r != w {
+        problems.push(format!(
+            "{}:{} {} passes {r} arguments but its twin {}:{} {} takes {w}\n  Rust: ({})\n  WGSL: ({})",
+            rust.file, rust.line, rust.key, wgsl.file, wgsl.line, wgsl.key,
+            rust.params.join(", "), wgsl.params.join(", ")
+        ));
+    }
+}
+
+/// Every WGSL function has a twin comment or an allow-list entry; every entry is needed.
+fn check_untwinned(sources: &Sources, problems: &mut Vec<String>) {
+    let untwinned: HashSet<(&str, &str)> = sources
+        .items
+        .iter()
+        .filter(|i| is_wgsl(&i.file) && i.is_fn && i.twin.is_none())
+        .map(|i| (i.file.as_str(), i.key.as_str()))
+        .collect();
+    let allowed: HashSet<(&str, &str)> =
+        WGSL_WITHOUT_TWIN.iter().map(|(f, n, _)| (*f, *n)).collect();
+    let mut missing: Vec<_> = untwinned.difference(&allowed).collect();
+    missing.sort();
+    for (file, name) in missing {
+        problems.push(format!(
+            "{file}: fn {name} has no twin comment and is not on WGSL_WITHOUT_TWIN (tests/gpu/twins.rs)"
+        ));
+    }
+    let mut stale: Vec<_> = allowed.difference(&untwinned).collect();
+    stale.sort();
+    for (file, name) in stale {
+        problems.push(format!(
+            "WGSL_WITHOUT_TWIN lists {file}::{name}, which is not a WGSL function without a twin"
+        ));
+    }
+}
+
+#[test]
+fn rust_and_wgsl_twins_name_each_other() {
+    let found = check(&parse(&source_texts()));
+    println!(
+        "{} one-to-one twin pairs ({} function pairs with argument counts compared), {} partial \
+         twin comments, {} WGSL functions on the allow-list",
+        found.pairs,
+        found.compared_functions,
+        found.partial,
+        WGSL_WITHOUT_TWIN.len()
+    );
+    assert!(
+        found.problems.is_empty(),
+        "{} twin problems:\n{}",
+        found.problems.len(),
+        found.problems.join("\n")
+    );
+    // A floor, so a parser that stopped seeing the comments cannot pass vacuously.
+    assert!(
+        found.pairs >= 100 && found.compared_functions >= 80,
+        "too few twins found"
+    );
+}
+
+/// `texts` with the first `from` in `file` replaced by `to`.
+fn edited(texts: &[(String, String)], file: &str, from: &str, to: &str) -> Vec<(String, String)> {
+    let mut out = texts.to_vec();
+    let (_, text) = out.iter_mut().find(|(f, _)| f == file).unwrap();
+    assert!(text.contains(from), "{file} has no {from}");
+    *text = text.replacen(from, to, 1);
+    out
+}
+
+/// Each kind of broken tie is reported (the checks can fail).
+#[test]
+fn broken_ties_are_reported() {
+    let texts = source_texts();
+    let renamed = check(&parse(&edited(
+        &texts,
+        "shaders/uv.wgsl",
+        "fn triangle_frame(",
+        "fn triangle_frame_renamed(",
+    )));
+    assert!(
+        renamed
+            .problems
+            .iter()
+            .any(|p| p.contains("shaders/uv.wgsl declares no triangle_frame")),
+        "renaming a WGSL twin is not caught: {:?}",
+        renamed.problems
+    );
+    let extra = check(&parse(&edited(
+        &texts,
+        "shaders/uv.wgsl",
+        "fn triangle_frame(p0",
+        "fn triangle_frame(extra: f32, p0",
+    )));
+    assert!(
+        extra
+            .problems
+            .iter()
+            .any(|p| p.contains("triangle_frame passes 7 arguments but its twin shaders/uv.wgsl:")),
+        "an extra WGSL parameter is not caught: {:?}",
+        extra.problems
+    );
+    let one_sided = check(&parse(&edited(
+        &texts,
+        "src/cpu/uv.rs",
+        "// Mirror of shaders/uv.wgsl::triangle_frame — change both.\n",
+        "",
+    )));
+    assert!(
+        one_sided
+            .problems
+            .iter()
+            .any(|p| p.contains("names src/cpu/uv.rs::triangle_frame as its twin")),
+        "a one-sided twin comment is not caught: {:?}",
+        one_sided.problems
+    );
+    let new_fn = check(&parse(&edited(
+        &texts,
+        "shaders/uv.wgsl",
+        "// #if SPHERE\n",
+        "fn untwinned() {}\n// #if SPHERE\n",
+    )));
+    assert!(
+        new_fn
+            .problems
+            .iter()
+            .any(|p| p.contains("fn untwinned has no twin comment")),
+        "a WGSL function without a twin is not caught: {:?}",
+        new_fn.problems
+    );
+}
