@@ -14,9 +14,9 @@
 --     glass is clear (no partial transparency, no tint); its Phong terms still add, so a
 --     glass ball wants kd {0,0,0}.
 --     gloss (blurry reflection) is ignored: glint's mirrors are perfect.
---     Arguments after gloss are ignored too; with the first of them (the 7th) there, the
---     call is refused, since forms of 7 and more arguments put different things in the
---     same slots (transparency, index, gloss) and a guess would be wrong for half of them.
+--     A 7th argument or more is refused: forms of 7 and more arguments put different
+--     things in the same slots (transparency, index, gloss), and a guess would be wrong
+--     for half of them (the message says to use m:set_reflection and m:set_refraction).
 -- gr.mirror_material(kd, ks, p[, gloss])      a mirror whose reflected colour is ks (the
 --     specular colour: Whitted's weight for the mirror ray) [m:set_reflection(ks)].
 -- gr.clear_material(kd, ks, p, gloss, ior)    glass of index ior (any index > 0: a "clear"
