@@ -163,9 +163,10 @@ var<private> shading_media: MediumStack;
 // How much of a light at position reaches origin, a point in shading_media: 1 when
 // nothing is in between, the product of normal_transmission over the dielectric surfaces
 // crossed (indices on both sides from the medium stack), 0 when an opaque surface (or more
-// than MAX_SHADOW_CROSSINGS dielectric ones) is in between.
+// than MAX_SHADOW_CROSSINGS dielectric ones) is in between. Each leg stops at
+// shadow_reach (magnitude: the shaded surface's), just short of the light.
 // Mirror of src/cpu/dielectric.rs::shadow_transmittance — change both.
-fn shadow_transmittance(origin: vec3<f32>, position: vec3<f32>) -> f32 {
+fn shadow_transmittance(origin: vec3<f32>, position: vec3<f32>, magnitude: f32) -> f32 {
     var transmittance = 1.0;
     var start = origin;
     var current = shading_media;
@@ -173,7 +174,7 @@ fn shadow_transmittance(origin: vec3<f32>, position: vec3<f32>) -> f32 {
         let to_light = position - start;
         let distance = length(to_light);
         let ray = Ray(start, to_light / distance);
-        let hit = closest_hit(ray, distance);
+        let hit = closest_hit(ray, shadow_reach(start, position, distance, magnitude));
         if !is_hit(hit) {
             return transmittance;
         }

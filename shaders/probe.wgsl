@@ -1,6 +1,7 @@
 // probe.wgsl — test-only entry point (tier-3 kernel probes): traces seeded rays from
 // `probe_rays` with closest_hit and reports (hit, t, item, part, normal) per ray from
-// surface_at (or, in PROBE_ANY_HIT mode, any_hit's answer alone), for comparison with the CPU functions ray by ray.
+// surface_at (or, in PROBE_ANY_HIT mode, any_hit's answer alone; in PROBE_SHADOW_RAY mode,
+// shadow_blocked's answer and shadow_reach's reach), for comparison with the CPU functions ray by ray.
 
 // Mirror of src/testing/probe.rs::ProbeRay — change both.
 struct ProbeRay {
@@ -8,7 +9,8 @@ struct ProbeRay {
     t_max: f32,
     // Unit direction.
     dir: vec3<f32>,
-    // PROBE_CLOSEST_HIT or PROBE_ANY_HIT.
+    // PROBE_CLOSEST_HIT, PROBE_ANY_HIT or PROBE_SHADOW_RAY (then dir holds the light's
+    // position and t_max the shaded surface's magnitude).
     mode: u32,
 }
 
@@ -37,6 +39,14 @@ fn probe(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pr = probe_rays[index];
     let ray = Ray(pr.origin, pr.dir);
+    if pr.mode == PROBE_SHADOW_RAY {
+        // dir holds the light's position, t_max the shaded surface's magnitude.
+        let distance = length(pr.dir - pr.origin);
+        let reach = shadow_reach(pr.origin, pr.dir, distance, pr.t_max);
+        let blocked = shadow_blocked(pr.origin, pr.dir, pr.t_max);
+        probe_results[index] = ProbeResult(u32(blocked), reach, NO_ITEM, NO_ITEM, vec3<f32>(0.0), 0u);
+        return;
+    }
     if pr.mode == PROBE_ANY_HIT {
         probe_results[index] = ProbeResult(u32(any_hit(ray, pr.t_max)), 0.0, NO_ITEM, NO_ITEM, vec3<f32>(0.0), 0u);
         return;

@@ -44,3 +44,13 @@ fn camera_ray(fx: f32, fy: f32) -> Ray {
 fn offset_ray(p: vec3<f32>, n: vec3<f32>, magnitude: f32) -> vec3<f32> {
     return p + n * (max(magnitude, max_element(abs(p))) * OFFSET_RELATIVE);
 }
+
+// How far a shadow ray from origin looks for blockers on its way to a light at position,
+// distance away: the distance less offset_ray's bound, taken at the largest coordinate
+// magnitude of either end (and magnitude, the shaded surface's), so a surface through the
+// light is never hit at t ≈ distance, where rounding would decide pixel by pixel.
+// Mirror of src/cpu/ray.rs::shadow_reach — change both.
+fn shadow_reach(origin: vec3<f32>, position: vec3<f32>, distance: f32, magnitude: f32) -> f32 {
+    let ends = max(max_element(abs(origin)), max_element(abs(position)));
+    return max(distance - max(magnitude, ends) * OFFSET_RELATIVE, 0.0);
+}

@@ -227,7 +227,8 @@ fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3
 
 // Light from a point at `position` with light's colour and falloff: the A4 term, or zero
 // when the point is behind the surface or a shadow ray from origin is blocked (dimmed
-// instead by the glass it crosses, in scenes with refraction).
+// instead by the glass it crosses, in scenes with refraction) before shadow_reach, just
+// short of the light.
 // Mirror of src/cpu/shade.rs::point_light — change both.
 fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec3<f32> {
     let m = load_material(s.material);
@@ -242,13 +243,10 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
     }
     // With dielectrics, light passes through glass, dimmed (see dielectric.wgsl).
 // #if REFRACTION
-    let transmittance = shadow_transmittance(origin, position);
+    let transmittance = shadow_transmittance(origin, position, s.magnitude);
 // #else
-    let shadow_dir = position - origin;
-    let shadow_distance = length(shadow_dir);
-    let shadow_ray = Ray(origin, shadow_dir / shadow_distance);
     var transmittance = 1.0;
-    if any_hit(shadow_ray, shadow_distance) {
+    if shadow_blocked(origin, position, s.magnitude) {
         transmittance = 0.0;
     }
 // #endif
@@ -262,6 +260,18 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
     let c2 = light.falloff.z;
     let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
     return (phong.kd * n_dot_l + phong.ks * specular) * light.colour * attenuation * transmittance;
+}
+
+// Whether anything blocks the shadow ray from origin to a light at position before
+// shadow_reach (magnitude: the shaded surface's), just short of the light, so that a
+// surface through the light does not speckle.
+// Mirror of src/cpu/shade.rs::shadow_blocked — change both.
+fn shadow_blocked(origin: vec3<f32>, position: vec3<f32>, magnitude: f32) -> bool {
+    let shadow_dir = position - origin;
+    let shadow_distance = length(shadow_dir);
+    let shadow_ray = Ray(origin, shadow_dir / shadow_distance);
+    let reach = shadow_reach(origin, position, shadow_distance, magnitude);
+    return any_hit(shadow_ray, reach);
 }
 
 // #if AREA_LIGHT

@@ -260,6 +260,7 @@ pub fn wgsl_prelude() -> String {
         ("PCG_MULTIPLIER", PCG_MULTIPLIER),
         ("PROBE_CLOSEST_HIT", PROBE_CLOSEST_HIT),
         ("PROBE_ANY_HIT", PROBE_ANY_HIT),
+        ("PROBE_SHADOW_RAY", PROBE_SHADOW_RAY),
         ("PCG_INCREMENT", PCG_INCREMENT),
         ("PCG_WORD_MULTIPLIER", PCG_WORD_MULTIPLIER),
         ("TORUS_NEWTON_ITERATIONS", TORUS_NEWTON_ITERATIONS),
@@ -403,6 +404,10 @@ pub const RANDOM_UNIT_SCALE: f32 = 1.0 / 16777216.0;
 /// Kernel-probe modes (`testing::probe::ProbeRay::mode`, a test hook).
 pub const PROBE_CLOSEST_HIT: u32 = 0;
 pub const PROBE_ANY_HIT: u32 = 1;
+/// A shadow ray (`shadow_blocked`): `origin` is the ray's origin, `dir` holds the light's
+/// position and `t_max` the shaded surface's magnitude; the result's `t` is the ray's
+/// reach (`shadow_reach`).
+pub const PROBE_SHADOW_RAY: u32 = 2;
 
 #[cfg(test)]
 mod tests {

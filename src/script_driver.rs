@@ -31,6 +31,9 @@ pub struct ScriptSettings {
     /// End the process (exit code 3) when the script overruns its time where it cannot
     /// be interrupted (the command line sets it; a library caller gets an error instead).
     pub hard_time_limit: bool,
+    /// `--ignore-extra-arguments`: no notes on arguments the scene passes that glint does
+    /// not use.
+    pub ignore_extra_arguments: bool,
 }
 
 impl ScriptSettings {
@@ -45,6 +48,7 @@ impl ScriptSettings {
             hard_time_limit: self.hard_time_limit,
             allow_read: self.allow_read.clone(),
             preludes: self.preludes.clone(),
+            ignore_extra_arguments: self.ignore_extra_arguments,
         }
     }
 }
@@ -82,6 +86,10 @@ pub struct ScriptArgs {
     /// in order; see scenes/dialects/).
     #[arg(long, value_name = "FILE")]
     pub prelude: Vec<PathBuf>,
+    /// No notes on stderr about arguments the scene passes that glint does not use (as
+    /// the scene's own gr.ignore_extra_arguments()).
+    #[arg(long)]
+    pub ignore_extra_arguments: bool,
 }
 
 impl ScriptArgs {
@@ -109,6 +117,7 @@ impl ScriptArgs {
             allow_read: self.allow_read.clone(),
             preludes: self.prelude.clone(),
             hard_time_limit: true,
+            ignore_extra_arguments: self.ignore_extra_arguments,
         })
     }
 }
@@ -127,6 +136,7 @@ mod tests {
             allow_read: vec![PathBuf::from("/x")],
             preludes: vec![PathBuf::from("/d/a.lua"), PathBuf::from("b.lua")],
             hard_time_limit: true,
+            ignore_extra_arguments: true,
         };
         let c = settings.config();
         assert_eq!(c.transform_order, Some(TransformOrder::Post));
@@ -139,6 +149,7 @@ mod tests {
             vec![PathBuf::from("/d/a.lua"), PathBuf::from("b.lua")]
         );
         assert!(c.hard_time_limit);
+        assert!(c.ignore_extra_arguments);
     }
 
     #[test]

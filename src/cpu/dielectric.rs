@@ -15,7 +15,7 @@
 //!   transmission 1 − R0 with the indices on its two sides (tracked from the shaded
 //!   point's medium stack as for any ray); an opaque surface blocks.
 
-use super::ray::{offset_ray, Ray};
+use super::ray::{offset_ray, shadow_reach, Ray};
 use super::surface::surface_at;
 use super::traverse::{closest_hit, TraversalCounters};
 use crate::constants::{AIR_IOR, MATERIAL_REFRACTIVE, MAX_SHADOW_CROSSINGS, MEDIUM_STACK_SIZE};
@@ -186,12 +186,15 @@ pub fn dielectric_interface(dir: Vec3, normal: Vec3, ior: f32, media: &MediumSta
 /// nothing is in between, the product of [`normal_transmission`] over the dielectric
 /// surfaces crossed (indices on both sides from the medium stack, as for camera rays),
 /// 0 when an opaque surface (or more than [`MAX_SHADOW_CROSSINGS`] dielectric ones) is
-/// in between. Only scenes with refraction use this; the others keep `any_hit`.
+/// in between. Each leg stops at [`shadow_reach`] (`magnitude`: the shaded surface's),
+/// just short of the light, so a surface through the light does not speckle. Only scenes
+/// with refraction use this; the others keep `any_hit`.
 // Mirror of shaders/dielectric.wgsl::shadow_transmittance — change both.
 pub fn shadow_transmittance(
     scene: &PackedScene,
     origin: Vec3,
     position: Vec3,
+    magnitude: f32,
     media: &MediumStack,
     counters: &mut impl TraversalCounters,
 ) -> f32 {
@@ -205,7 +208,8 @@ pub fn shadow_transmittance(
             origin: start,
             dir: to_light / distance,
         };
-        let hit = closest_hit(scene, &ray, distance, counters);
+        let reach = shadow_reach(start, position, distance, magnitude);
+        let hit = closest_hit(scene, &ray, reach, counters);
         if !hit.is_hit() {
             return transmittance;
         }

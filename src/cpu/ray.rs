@@ -36,3 +36,17 @@ pub fn camera_ray(g: &PackedGlobals, fx: f32, fy: f32) -> Ray {
 pub fn offset_ray(p: Vec3, n: Vec3, magnitude: f32) -> Vec3 {
     p + n * (magnitude.max(p.abs().max_element()) * OFFSET_RELATIVE)
 }
+
+/// How far a shadow ray from `origin` looks for blockers on its way to a light at
+/// `position`, `distance` away: the distance less the bound [`offset_ray`] moves origins
+/// by, taken at the largest coordinate magnitude of either end (and `magnitude`, the
+/// shaded surface's). A surface through the light (a point light in a ceiling's face or
+/// on a box's edge, an area light in a panel's plane) is then never hit at t ≈ distance,
+/// where rounding alone would decide, pixel by pixel, whether it blocks (speckle); the
+/// bound scales with the scene, like the origin's offset. A light closer than the bound
+/// is reached by a zero-length ray, which nothing blocks.
+// Mirror of shaders/ray.wgsl::shadow_reach — change both.
+pub fn shadow_reach(origin: Vec3, position: Vec3, distance: f32, magnitude: f32) -> f32 {
+    let ends = origin.abs().max_element().max(position.abs().max_element());
+    (distance - magnitude.max(ends) * OFFSET_RELATIVE).max(0.0)
+}

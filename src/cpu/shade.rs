@@ -1,7 +1,7 @@
 //! A4 Phong shading with shadow rays, and the background.
 
 use super::dielectric::{shadow_transmittance, MediumStack};
-use super::ray::{offset_ray, Ray};
+use super::ray::{offset_ray, shadow_reach, Ray};
 use super::rng::{shadow_random, shadow_stream, SampleSeed};
 use super::surface::{Phong, Surface};
 use super::texture::surface_colours;
@@ -86,7 +86,8 @@ pub fn shade_phong(
 
 /// Light from a point at `position` with `light`'s colour and falloff: the A4 term, or
 /// zero when the point is behind the surface or a shadow ray from `origin` is blocked
-/// (dimmed instead by the glass it crosses, in scenes with refraction).
+/// (dimmed instead by the glass it crosses, in scenes with refraction) before
+/// [`shadow_reach`], just short of the light.
 // Mirror of shaders/shade.wgsl::point_light — change both.
 #[allow(clippy::too_many_arguments)]
 fn point_light(
@@ -112,19 +113,11 @@ fn point_light(
     }
     // With dielectrics, light passes through glass, dimmed (see dielectric.rs).
     let transmittance = if scene.features.contains(SceneFeatures::REFRACTION) {
-        shadow_transmittance(scene, origin, position, media, counters)
+        shadow_transmittance(scene, origin, position, s.magnitude, media, counters)
+    } else if shadow_blocked(scene, origin, position, s.magnitude, counters) {
+        0.0
     } else {
-        let shadow_dir = position - origin;
-        let shadow_distance = shadow_dir.length();
-        let shadow_ray = Ray {
-            origin,
-            dir: shadow_dir / shadow_distance,
-        };
-        if any_hit(scene, &shadow_ray, shadow_distance, counters) {
-            0.0
-        } else {
-            1.0
-        }
+        1.0
     };
     if transmittance <= 0.0 {
         return Vec3::ZERO;
@@ -137,6 +130,27 @@ fn point_light(
         * Vec3::from(light.colour)
         * attenuation
         * transmittance
+}
+
+/// Whether anything blocks the shadow ray from `origin` to a light at `position` before
+/// [`shadow_reach`] (`magnitude`: the shaded surface's), just short of the light, so that
+/// a surface through the light does not speckle.
+// Mirror of shaders/shade.wgsl::shadow_blocked — change both.
+pub fn shadow_blocked(
+    scene: &PackedScene,
+    origin: Vec3,
+    position: Vec3,
+    magnitude: f32,
+    counters: &mut impl TraversalCounters,
+) -> bool {
+    let shadow_dir = position - origin;
+    let shadow_distance = shadow_dir.length();
+    let shadow_ray = Ray {
+        origin,
+        dir: shadow_dir / shadow_distance,
+    };
+    let reach = shadow_reach(origin, position, shadow_distance, magnitude);
+    any_hit(scene, &shadow_ray, reach, counters)
 }
 
 /// Light from area light number `index`: the mean of [`point_light`] over one jittered

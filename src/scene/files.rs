@@ -50,10 +50,15 @@ impl ReadPolicy {
         }
     }
 
+    /// Whether `path` lies inside a folder the scene may read (whether or not it exists).
+    pub fn allows(&self, path: &Path) -> bool {
+        let resolved = resolve(path);
+        self.roots.iter().any(|root| resolved.starts_with(root))
+    }
+
     /// The canonical form of `path` if the scene may read it, else why not.
     pub fn check(&self, path: &Path, what: &str) -> Result<PathBuf, String> {
-        let resolved = resolve(path);
-        if self.roots.iter().any(|root| resolved.starts_with(root)) {
+        if self.allows(path) {
             // Inside: now a missing file may be reported as such.
             return path
                 .canonicalize()

@@ -11,6 +11,7 @@ pub mod instancing;
 pub mod lua;
 pub mod obj;
 pub mod options;
+pub mod paths;
 pub mod texture;
 pub mod uv;
 

@@ -2,9 +2,12 @@
 //! `surface_at` through the `probe` entry point, and the same with the CPU functions, so
 //! tests compare the two ray by ray.
 
-use crate::constants::{NO_ITEM, PROBE_ANY_HIT};
-pub use crate::constants::{PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT};
-use crate::cpu::ray::Ray;
+use crate::constants::{NO_ITEM, PROBE_ANY_HIT, PROBE_SHADOW_RAY};
+pub use crate::constants::{
+    PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT, PROBE_SHADOW_RAY as SHADOW_RAY,
+};
+use crate::cpu::ray::{shadow_reach, Ray};
+use crate::cpu::shade::shadow_blocked;
 use crate::cpu::surface::surface_at;
 use crate::cpu::traverse::{any_hit, closest_hit, NoCounters};
 use crate::gpu::buffers::{read_back, scene_entries, upload_scene};
@@ -24,7 +27,8 @@ pub struct ProbeRay {
     pub t_max: f32,
     /// Unit direction.
     pub dir: [f32; 3],
-    /// [`PROBE_CLOSEST_HIT`] or [`PROBE_ANY_HIT`].
+    /// [`PROBE_CLOSEST_HIT`], [`PROBE_ANY_HIT`] or [`PROBE_SHADOW_RAY`] (then `dir` holds
+    /// the light's position and `t_max` the shaded surface's magnitude).
     pub mode: u32,
 }
 
@@ -51,6 +55,18 @@ pub fn cpu_probe(scene: &PackedScene, pr: &ProbeRay) -> ProbeResult {
         origin: Vec3::from(pr.origin),
         dir: Vec3::from(pr.dir),
     };
+    if pr.mode == PROBE_SHADOW_RAY {
+        let (origin, position) = (ray.origin, ray.dir);
+        let distance = (position - origin).length();
+        return ProbeResult {
+            hit: shadow_blocked(scene, origin, position, pr.t_max, &mut NoCounters) as u32,
+            t: shadow_reach(origin, position, distance, pr.t_max),
+            item: NO_ITEM,
+            part: NO_ITEM,
+            normal: [0.0; 3],
+            _pad1: 0,
+        };
+    }
     if pr.mode == PROBE_ANY_HIT {
         return ProbeResult {
             hit: any_hit(scene, &ray, pr.t_max, &mut NoCounters) as u32,

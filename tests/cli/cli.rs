@@ -698,6 +698,93 @@ fn info_names_the_kernel_variant_of_each_adapter() {
     }
 }
 
+const TRIANGLE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+/// Issue 37: the course ran `./A4 Assets/scene.lua` from the assignment folder, and its
+/// scenes name `'Assets/cow.obj'`: found from the folder glint was started in when the
+/// scene lies inside it; otherwise the error names both paths tried, and a case-only
+/// near miss is offered.
+#[test]
+fn relative_paths_resolve_beside_the_scene_then_from_the_start_folder() {
+    let dir = temp_dir("course-layout");
+    std::fs::create_dir_all(dir.join("Assets")).unwrap();
+    std::fs::write(dir.join("Assets/cow.obj"), TRIANGLE_OBJ).unwrap();
+    std::fs::write(dir.join("Assets/Eevee.obj"), TRIANGLE_OBJ).unwrap();
+    let scene = |file: &str| {
+        format!(
+            "root = gr.node('root')\nm = gr.mesh('m', '{file}')\nroot:add_child(m)\n{GOOD_RENDER}"
+        )
+    };
+    for (file, ok) in [
+        ("Assets/cow.obj", true),
+        ("cow.obj", true),
+        ("Assets/nothere.obj", false),
+    ] {
+        std::fs::write(dir.join("Assets/scene.lua"), scene(file)).unwrap();
+        let out = glint(&["render", "Assets/scene.lua", "-o", "out.png"], &dir);
+        let err = stderr(&out);
+        assert_eq!(out.status.success(), ok, "{file}: {err}");
+        if !ok {
+            assert!(
+                err.contains(
+                    "Assets/scene.lua:2: gr.mesh: cannot read mesh file 'Assets/nothere.obj'"
+                ) && err.contains("'Assets/Assets/nothere.obj'")
+                    && err.contains("from the folder glint was started in"),
+                "{err}"
+            );
+        }
+    }
+    std::fs::write(dir.join("Assets/scene.lua"), scene("eevee.obj")).unwrap();
+    let out = glint(&["render", "Assets/scene.lua", "-o", "out.png"], &dir);
+    assert!(
+        stderr(&out).contains("did you mean 'Eevee.obj'?"),
+        "{}",
+        stderr(&out)
+    );
+    std::fs::write(dir.join("Assets/scene.lua"), scene("assets/eevee.obj")).unwrap();
+    let out = glint(&["render", "Assets/scene.lua", "-o", "out.png"], &dir);
+    assert!(
+        stderr(&out).contains("did you mean 'Assets/Eevee.obj'?"),
+        "{}",
+        stderr(&out)
+    );
+    // A scene outside the start folder gains nothing from it.
+    let elsewhere = temp_dir("course-elsewhere");
+    std::fs::write(elsewhere.join("scene.lua"), scene("Assets/cow.obj")).unwrap();
+    let path = elsewhere.join("scene.lua");
+    let out = glint(&["render", path.to_str().unwrap(), "-o", "out.png"], &dir);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+}
+
+/// Issue 37: a note per call site on stderr for arguments glint does not use (also a
+/// non-table after gr.render's lights, which is ignored); --ignore-extra-arguments
+/// silences them.
+#[test]
+fn extra_arguments_are_noted_on_stderr_unless_ignored() {
+    let dir = temp_dir("extra-arguments");
+    let scene = "root = gr.node('root')\nm = gr.material({1,1,1}, {0,0,0}, 10, 0.5)\n\
+        gr.render(root, 'out.png', 8, 8, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {gr.light({5,5,5}, {1,1,1}, {1,0,0})}, 4)\n";
+    std::fs::write(dir.join("scene.lua"), scene).unwrap();
+    let out = glint(&["render", "scene.lua"], &dir);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert_eq!(err.matches("glint: note: scene.lua:").count(), 2, "{err}");
+    assert!(
+        err.contains("glint: note: scene.lua:2: gr.material: uses 3 arguments but was passed 4"),
+        "{err}"
+    );
+    assert!(
+        err.contains("glint: note: scene.lua:3: gr.render: ignores argument 11"),
+        "{err}"
+    );
+    let out = glint(&["render", "scene.lua", "--ignore-extra-arguments"], &dir);
+    assert!(
+        out.status.success() && !stderr(&out).contains("note: scene.lua"),
+        "{}",
+        stderr(&out)
+    );
+}
+
 /// Every mode runs the script through one driver: `--backend both` refuses a read outside
 /// the allowed folders, stops a runaway at `--script-timeout` and honours
 /// `--memory-limit` exactly as `--backend cpu` does (same exit code, same message), and

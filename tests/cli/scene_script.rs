@@ -905,11 +905,16 @@ fn methods_can_be_added_and_replaced_and_unknown_ones_are_named() {
     assert_eq!(material_of(g, "t").shininess, 10.0);
     let s = g.nodes.iter().find(|n| n.name == "s").unwrap();
     assert_eq!(s.matrix, DMat4::from_scale(glam::DVec3::splat(3.0)));
-    let msg = message_of("m = gr.material({0,0,0}, {0,0,0}, 1)\nm:set_texture('a.png')\n");
+    // An unknown method names the methods there are, extensions included.
+    let msg = message_of(
+        "gr.extend_material('glow', function(m) return m end)\n\
+         m = gr.material('shiny')\nm:set_texture('a.png')\n",
+    );
     assert!(
-        msg.starts_with(":2: a material has no method 'set_texture'")
+        msg.starts_with(":3: material 'shiny' has no method `set_texture`")
             && msg.contains("set_diffuse")
-            && msg.contains("gr.extend_material"),
+            && msg.contains("glow")
+            && msg.contains("--prelude"),
         "{msg}"
     );
     let msg = message_of("gr.extend_node('x', 3)\n");
@@ -1383,4 +1388,168 @@ fn nh_shapes_and_y_cylinders_stand_where_the_dialect_puts_them() {
         assert!(red(at([x, y, z])), "({x}, {y}): {:?}", at([x, y, z]));
     }
     assert!(!red(at([-2.0, 1.15, 1.0])) && !red(at([-3.15, 0.0, 0.0])));
+}
+/// Issue 37: the course's binding ignored what followed `gr.render`'s lights (thread
+/// counts, depths, `false`); so does glint, with one note naming the line.
+#[test]
+fn render_ignores_a_non_table_after_the_lights() {
+    for tail in ["4", "false", "4, 8, 'x'", "nil, 3"] {
+        let src = format!("root = gr.node('root')\nfor i = 1, 2 do\n{RENDER}, {tail})\nend\n");
+        let (report, renders) = run_src(&src, &ScriptConfig::default());
+        assert_eq!(renders.len(), 2, "{tail}");
+        assert_eq!(renders[0].1.options, glint::scene::RenderOptions::default());
+        assert_eq!(
+            report.notes.len(),
+            1,
+            "one note per call site: {:?}",
+            report.notes
+        );
+        let note = &report.notes[0];
+        assert!(note.starts_with("t.lua:3: gr.render: "), "{note}");
+        assert!(note.contains("argument 11"), "{note}");
+    }
+    let (report, _) = run_src(
+        &format!("root = gr.node('root')\n{RENDER}, {{aa = 'none'}})\n"),
+        &ScriptConfig::default(),
+    );
+    assert_eq!(
+        report.notes,
+        Vec::<String>::new(),
+        "an options table is used"
+    );
+}
+
+/// Issue 37: every call passed more arguments than glint reads says so once per call
+/// site (how many it uses, what to call instead); trailing nils and a joint's angle
+/// ranges are not extra; the flag and the scene's own call silence the notes.
+#[test]
+fn extra_arguments_get_one_note_per_call_site() {
+    let src = format!(
+        "for i = 1, 3 do m = gr.material({{1,0,0}}, {{1,1,1}}, 25, 0.5, 1.5) end
+g = gr.material({{0,0,0}}, {{1,1,1}}, 100) g:set_refraction(0.8, 1.5)
+root = gr.node('root') s = gr.sphere('s', {{0,0,0}}, 2) root:add_child(s)
+s:scale(1, 2, 3, 4) s:set_material(g)
+q = gr.material({{1,0,0}}, {{0,0,0}}, 10, nil) j = gr.joint('j', {{0,0,0}}, {{0,0,0}})
+l = gr.light({{1,2,3}}, {{1,1,1}}, {{1,0,0}}, {{2,0,0}})
+gr.render(root, 'out.png', 64, 48, {{0,0,10}}, {{0,0,-1}}, {{0,1,0}}, 50, {{0.1,0.1,0.1}}, {{l}})
+"
+    );
+    let (report, _) = run_src(&src, &ScriptConfig::default());
+    let notes = &report.notes;
+    assert_eq!(notes.len(), 5, "{notes:#?}");
+    let expect = [
+        (
+            "t.lua:1: gr.material: uses 3 arguments but was passed 5",
+            "m:set_refraction(ior)",
+        ),
+        (
+            "t.lua:2: material:set_refraction: uses 1 argument but was passed 2",
+            "m:set_refraction(1.5)",
+        ),
+        (
+            "t.lua:3: gr.sphere: uses 1 argument but was passed 3",
+            "gr.nh_sphere",
+        ),
+        (
+            "t.lua:4: node:scale: uses 3 arguments but was passed 4",
+            "(4)",
+        ),
+        (
+            "t.lua:6: gr.light: uses 3 arguments but was passed 4",
+            "gr.area_light",
+        ),
+    ];
+    for (note, (start, hint)) in notes.iter().zip(expect) {
+        assert!(
+            note.starts_with(start) && note.contains(hint),
+            "{note}\nwanted {start} … {hint}"
+        );
+    }
+    assert!(notes[0].contains("m:set_reflection"), "{}", notes[0]);
+    assert!(
+        notes[1].contains("took 0.8 as the index of refraction"),
+        "{}",
+        notes[1]
+    );
+    for config in [
+        ScriptConfig {
+            ignore_extra_arguments: true,
+            ..ScriptConfig::default()
+        },
+        ScriptConfig::default(),
+    ] {
+        let silenced = if config.ignore_extra_arguments {
+            src.clone()
+        } else {
+            // The scene's own call, after the calls it silences.
+            src.replace("gr.render(", "gr.ignore_extra_arguments()\ngr.render(")
+        };
+        let (report, _) = run_src(&silenced, &config);
+        assert_eq!(report.notes, Vec::<String>::new());
+    }
+}
+
+/// Issue 37: errors that say what to do: a zero or parallel vector prints its value,
+/// `view` says it is a direction (and what to pass for a look-at point), a method on a
+/// light names it as the scene language does, and an unknown `gr.X` names the nearest
+/// calls and the dialect preludes.
+#[test]
+fn errors_say_what_to_do() {
+    let render = |eye: &str, view: &str, up: &str| {
+        format!("root = gr.node('root')\ngr.render(root, 'o.png', 8, 8, {eye}, {view}, {up}, 50, {{0,0,0}}, {{}})\n")
+    };
+    let m = message_of(&render("{0,0,10}", "{0,0,0}", "{0,1,0}"));
+    assert!(
+        m.starts_with(
+            ":2: gr.render: argument 6 (view) must be a non-zero direction, got {0, 0, 0}"
+        ),
+        "{m}"
+    );
+    assert!(
+        m.contains("for a point to look at, pass point − eye") && m.contains("{0, 0, -10}"),
+        "{m}"
+    );
+    let m = message_of(&render("{0,0,10}", "{0,5,0}", "{0,1,0}"));
+    assert!(
+        m.contains("got up = {0, 1, 0}, view = {0, 5, 0}") && m.contains("{0, 5, -10}"),
+        "{m}"
+    );
+    let m = message_of(&render("{0,0,10}", "{0,0,-1}", "{0,0,0}"));
+    assert!(
+        m.contains("argument 7 (up) must be a non-zero direction, got {0, 0, 0}"),
+        "{m}"
+    );
+    let m = message_of("l = gr.light({1,2,3}, {1,1,1}, {1,0,0})\nl:set_position({0,0,0})\n");
+    assert!(m.starts_with(":2: a light has no methods"), "{m}");
+    assert!(
+        m.contains("gr.light(position, colour, falloff)") && !m.contains("Handle"),
+        "{m}"
+    );
+    let m = message_of("m = gr.material('glass')\nm:set_texture('wood.png')\n");
+    assert!(
+        m.starts_with(":2: material 'glass' has no method `set_texture`"),
+        "{m}"
+    );
+    assert!(m.contains("nearest: set_"), "{m}");
+    let m = message_of("n = gr.node('n')\nn:roate('x', 90)\n");
+    assert!(
+        m.starts_with(":2: node 'n' has no method `roate`") && m.contains("nearest: rotate"),
+        "{m}"
+    );
+    let m = message_of("root = gr.node('root')\n\np = gr.plane('p', {0,1,0})\n");
+    assert!(
+        m.starts_with(":3: `gr.plane` is not part of glint's scene language (nearest: gr."),
+        "{m}"
+    );
+    assert!(
+        m.contains("gr.mesh") && m.contains("--prelude") && m.contains("scenes/dialects/"),
+        "{m}"
+    );
+    let m = message_of("s = gr.sphre('s')\n");
+    assert!(m.contains("(nearest: gr.sphere"), "{m}");
+    // A scene may still test for a call without the error.
+    run_src(
+        "assert(rawget(gr, 'plane') == nil)\nassert(rawget(gr, 'sphere'))\n",
+        &ScriptConfig::default(),
+    );
 }

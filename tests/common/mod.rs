@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests: paths, scratch folders, rendering a scene.
 #![allow(dead_code)]
 
+pub mod light_on_surface;
 pub mod probes;
 
 use glint::film::Film;

@@ -451,7 +451,7 @@ fn refraction_code_only_with_refraction() {
                 "fn medium_push(",
                 "struct MediumStack",
                 "(m.flags & MATERIAL_REFRACTIVE) != 0u",
-                "shadow_transmittance(origin, position)",
+                "shadow_transmittance(origin, position, s.magnitude)",
                 "shading_media = entry.media;",
             ] {
                 if entry == Entry::Probe && (code.starts_with("(m.") || code.starts_with("shading"))

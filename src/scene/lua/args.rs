@@ -10,6 +10,7 @@ use super::with_state;
 use crate::scene::{Bounded, MaterialId, NodeId};
 use glam::DVec3;
 use mlua::{Lua, MultiValue, Table, Value};
+use std::cell::Cell;
 
 /// `file:line` of the innermost Lua code running (skipping Rust and C frames). Code of a
 /// prelude (`--prelude`) is skipped too when scene code called it: an error in a call the
@@ -34,6 +35,9 @@ fn locations(lua: &Lua) -> (String, Option<String>) {
         });
         match frame {
             None => break,
+            // mlua's and glint's own Lua helpers (the `__index` that looks up methods,
+            // `methods::INDEX_CHUNK`) are not the scene's code.
+            Some((_, name, _)) if name.starts_with("__mlua") || name.starts_with("__glint") => {}
             Some((chunk, name, Some(line))) => {
                 let here = format!("{name}:{line}");
                 if is_prelude_chunk(lua, chunk.as_deref()) {
@@ -82,7 +86,7 @@ pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
         }
         Value::Table(t) => match t.raw_len() {
             0 => "a table".into(),
-            n => format!("a table of {n} elements"),
+            n => short_numbers(t, n).unwrap_or_else(|| format!("a table of {n} elements")),
         },
         Value::Function(_) => "a function".into(),
         Value::UserData(ud) => {
@@ -102,6 +106,23 @@ pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
         }
         other => other.type_name().to_string(),
     }
+}
+
+/// A table of at most four numbers and nothing else (a vector, a colour) as Lua writes
+/// it: `{0, 0, 0}`, so that an error shows the value that was wrong.
+fn short_numbers(t: &Table, n: usize) -> Option<String> {
+    if n > 4 || t.pairs::<Value, Value>().count() != n {
+        return None;
+    }
+    let mut parts = Vec::with_capacity(n);
+    for i in 1..=n {
+        match t.raw_get::<Value>(i).ok()? {
+            Value::Integer(x) => parts.push(x.to_string()),
+            Value::Number(x) => parts.push(format_number(x)),
+            _ => return None,
+        }
+    }
+    Some(format!("{{{}}}", parts.join(", ")))
 }
 
 /// Numbers as Lua users write them: `-1`, `0.5`, `nan`, `inf`.
@@ -132,6 +153,9 @@ pub(crate) struct Args<'a> {
     pub func: String,
     vals: Vec<Value>,
     offset: usize,
+    /// The highest argument number the call has looked at (for the notes on arguments
+    /// it was passed but does not use, `notes::check_extra_arguments`).
+    used: Cell<usize>,
 }
 
 impl<'a> Args<'a> {
@@ -141,6 +165,7 @@ impl<'a> Args<'a> {
             func: func.to_string(),
             vals: args.into_iter().collect(),
             offset: 0,
+            used: Cell::new(0),
         }
     }
 
@@ -151,9 +176,23 @@ impl<'a> Args<'a> {
         }
     }
 
-    /// Argument `n` (1-based, as the user counts; 0 is a method's receiver).
+    /// Argument `n` (1-based, as the user counts; 0 is a method's receiver). Looking at
+    /// it counts as using it.
     pub fn get(&self, n: usize) -> &Value {
+        self.used.set(self.used.get().max(n));
         self.vals.get(n + self.offset - 1).unwrap_or(&Value::Nil)
+    }
+
+    /// The highest argument number the call has looked at so far.
+    pub fn used(&self) -> usize {
+        self.used.get()
+    }
+
+    /// The number of arguments passed, trailing nils not counted (the receiver of a
+    /// method neither).
+    pub fn passed(&self) -> usize {
+        let given = &self.vals[self.offset.min(self.vals.len())..];
+        given.iter().rposition(|v| !v.is_nil()).map_or(0, |i| i + 1)
     }
 
     pub fn is_nil(&self, n: usize) -> bool {

@@ -1,11 +1,11 @@
 //! The `gr` table: the A4 core calls (the methods of what they return are in `handles`).
 //!
-//! Every call of the contract is defined; an unknown one is simply not defined: Lua then
-//! reports `attempt to call a nil value (field 'x')` with the file and line.
+//! Every call of the contract is defined; an unknown one is an error that names the
+//! nearest calls and the dialect preludes (`unknown`).
 
 use super::args::{int_value, location, Args};
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
-use super::{charge, check_file_cost, memory_left, options, with_state, OnRender};
+use super::{charge, check_file_cost, memory_left, notes, options, with_state, OnRender};
 use crate::constants::DEFAULT_SHADOW_SAMPLES;
 use crate::scene::flatten::{parallel_or_zero, CAMERA_PARALLEL_SIN2, MAX_PIXELS};
 use crate::scene::obj::PARSE_BYTES_PER_BYTE;
@@ -30,14 +30,22 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
             gr.set(
                 $name,
                 lua.create_function(|lua, args: MultiValue| {
-                    $f(&Args::new(lua, concat!("gr.", $name), args))
+                    let a = Args::new(lua, concat!("gr.", $name), args);
+                    let out = $f(&a)?;
+                    notes::check_extra_arguments(&a);
+                    Ok(out)
                 })?,
             )?;
         };
     }
     def!("node", |a: &Args| transform_node(a));
-    // A4's joints carry angle ranges for the puppet assignment; here they are plain nodes.
-    def!("joint", |a: &Args| transform_node(a));
+    // A4's joints carry angle ranges for the puppet assignment; here they are plain nodes
+    // (the ranges are accepted, and mean nothing in a still image).
+    def!("joint", |a: &Args| {
+        let node = transform_node(a);
+        let _ranges = (a.get(2), a.get(3));
+        node
+    });
     def!("sphere", |a: &Args| primitive(a, Primitive::Sphere));
     def!("cube", |a: &Args| primitive(a, Primitive::Cube));
     def!("cylinder", |a: &Args| primitive(a, Primitive::Cylinder));
@@ -51,6 +59,8 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     def!("light", light);
     def!("area_light", area_light);
     def!("transform_order", transform_order);
+    def!("ignore_extra_arguments", notes::ignore_extra_arguments);
+    super::unknown::install_gr_guard(lua, &gr)?;
     lua.globals().set("gr", gr)
 }
 
@@ -204,12 +214,10 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
     let id = match a.get(2) {
         Value::String(s) => {
             let file = s.to_string_lossy();
-            let (path, checked) = with_state(a.lua, |s| {
-                let path = s.base_dir.join(&file);
-                let checked = s.read_policy.check(&path, "mesh file");
-                (path, checked)
+            let found = with_state(a.lua, |s| {
+                s.folders.find(&s.read_policy, &file, "mesh file")
             });
-            let canonical = checked.map_err(|e| a.error(e))?;
+            let (path, canonical) = found.map_err(|e| a.error(e))?;
             match with_state(a.lua, |s| s.mesh_cache.get(&canonical).copied()) {
                 Some(id) => id,
                 None => {
@@ -487,6 +495,76 @@ fn transform_order(a: &Args) -> mlua::Result<()> {
     Ok(())
 }
 
+/// `{x, y, z}` as a scene writes it.
+fn vector(v: DVec3) -> String {
+    let [x, y, z] = v.to_array().map(super::args::format_number);
+    format!("{{{x}, {y}, {z}}}")
+}
+
+/// Scenes written for tracers that took a point to look at pass it as `view`: what to
+/// pass instead, worked out for this eye.
+fn look_at_hint(eye: DVec3, view: DVec3) -> String {
+    format!(
+        "view is the direction the camera looks in, not a point: for a point to look at, pass \
+         point − eye (for the point {} seen from the eye {}: {})",
+        vector(view),
+        vector(eye),
+        vector(view - eye)
+    )
+}
+
+/// Arguments 5–8 of `gr.render`: eye, view (a non-zero direction), up (not parallel to
+/// it) and the vertical field of view.
+fn camera(a: &Args) -> mlua::Result<Camera> {
+    let eye = a.vec3(5, "eye")?;
+    let view = a.vec3(6, "view")?;
+    if view == DVec3::ZERO {
+        return Err(a.error(format!(
+            "argument 6 (view) must be a non-zero direction, got {}; {}",
+            vector(view),
+            look_at_hint(eye, view)
+        )));
+    }
+    let up = a.vec3(7, "up")?;
+    if up == DVec3::ZERO {
+        return Err(a.bad(7, "up", "a non-zero direction"));
+    }
+    if parallel_or_zero(view, up, CAMERA_PARALLEL_SIN2) {
+        return Err(a.error(format!(
+            "argument 7 (up) must be a non-zero direction not parallel to view, got up = {}, view = {}; {}",
+            vector(up),
+            vector(view),
+            look_at_hint(eye, view)
+        )));
+    }
+    let fov_deg = match super::args::finite(a.get(8)) {
+        Some(f) if f > 0.0 && f < 180.0 => f,
+        _ => return Err(a.bad(8, "fov", "a number of degrees between 0 and 180")),
+    };
+    Ok(Camera {
+        eye,
+        view,
+        up,
+        fov_deg,
+    })
+}
+
+/// Argument 11 of `gr.render`: a table of render options, or nil. The course's binding
+/// ignored whatever followed the lights (thread counts, depths): so does glint, noting it.
+fn render_options(a: &Args) -> mlua::Result<crate::scene::RenderOptions> {
+    Ok(match a.get(11) {
+        Value::Nil | Value::Table(_) => {
+            let options = options::parse(a, 11)?;
+            notes::check_extra_arguments(a);
+            options
+        }
+        _ => {
+            notes::ignored_render_tail(a);
+            crate::scene::RenderOptions::default()
+        }
+    })
+}
+
 /// `gr.render(root, file, w, h, eye, view, up, fov, ambient, lights[, options])`.
 pub(super) fn render(
     lua: &Lua,
@@ -508,19 +586,7 @@ pub(super) fn render(
             format!("a {width}×{height} image has more than glint's limit of {MAX_PIXELS} pixels"),
         ));
     }
-    let eye = a.vec3(5, "eye")?;
-    let view = a.vec3(6, "view")?;
-    if view == DVec3::ZERO {
-        return Err(a.bad(6, "view", "a non-zero direction"));
-    }
-    let up = a.vec3(7, "up")?;
-    if parallel_or_zero(view, up, CAMERA_PARALLEL_SIN2) {
-        return Err(a.bad(7, "up", "a non-zero direction not parallel to view"));
-    }
-    let fov_deg = match super::args::finite(a.get(8)) {
-        Some(f) if f > 0.0 && f < 180.0 => f,
-        _ => return Err(a.bad(8, "fov", "a number of degrees between 0 and 180")),
-    };
+    let camera = camera(&a)?;
     let ambient = a.colour(9, "ambient")?;
     let list = a.table(10, "lights", "a table of lights made by gr.light")?;
     let mut lights = Vec::new();
@@ -542,18 +608,14 @@ pub(super) fn render(
             )
         })?);
     }
-    let options = options::parse(&a, 11)?;
+    let options = render_options(&a)?;
+    with_state(lua, notes::flush);
     let request = RenderRequest {
         root,
         output,
         width,
         height,
-        camera: Camera {
-            eye,
-            view,
-            up,
-            fov_deg,
-        },
+        camera,
         ambient,
         lights,
         options,

@@ -2,7 +2,7 @@
 //! `set_material`, `scale`, `translate`, `rotate`; `material:set_diffuse`, `set_specular`,
 //! `set_shininess`, `set_reflection`, `set_refraction`, `copy` (texture forms and
 //! `set_bump` in `maps`). The methods are plain functions kept in a table per kind that
-//! the script may extend (`methods`); the userdata's `__index` is that table.
+//! the script may extend (`methods`); the userdata's `__index` looks them up there.
 //!
 //! Userdata carry only an index into the [`SceneGraph`](crate::scene::SceneGraph) arenas
 //! (or a small value for lights), so a node can be added under several parents and a
@@ -11,6 +11,7 @@
 use super::args::Args;
 pub(crate) use super::handle_types::{LightHandle, MaterialHandle, NodeHandle};
 use super::methods::Method;
+use super::unknown::unknown_method;
 use super::with_state;
 use crate::scene::{Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
@@ -20,7 +21,7 @@ impl UserData for NodeHandle {
     fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
         // Methods are looked up in a table the script may extend (`gr.extend_node`).
         fields.add_meta_field_with(MetaMethod::Index, |lua| {
-            super::methods::table(lua, super::methods::Kind::Node)
+            super::methods::index(lua, super::methods::Kind::Node)
         });
     }
 
@@ -44,6 +45,7 @@ pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
                     let a = Args::method(lua, concat!("node:", $name), args);
                     a.receiver::<NodeHandle>("node")?;
                     $f(&a)?;
+                    super::notes::check_extra_arguments(&a);
                     Ok(a.receiver_value())
                 }) as Method,
             )
@@ -324,7 +326,7 @@ impl UserData for MaterialHandle {
     fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
         // Methods are looked up in a table the script may extend (`gr.extend_material`).
         fields.add_meta_field_with(MetaMethod::Index, |lua| {
-            super::methods::table(lua, super::methods::Kind::Material)
+            super::methods::index(lua, super::methods::Kind::Material)
         });
     }
 
@@ -349,6 +351,7 @@ pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
                     let id = a.receiver::<MaterialHandle>("material")?.0;
                     let edit = $f(&a)?;
                     with_state(lua, |s| edit(&mut s.graph.materials[id]));
+                    super::notes::check_extra_arguments(&a);
                     Ok(a.receiver_value())
                 }) as Method,
             )
@@ -405,5 +408,12 @@ impl UserData for LightHandle {
                 this.0.position.x, this.0.position.y, this.0.position.z
             ))
         });
+        // Without it Lua would report `attempt to index a LightHandle value`.
+        methods.add_meta_function(
+            MetaMethod::Index,
+            |lua, (_this, key): (mlua::AnyUserData, mlua::Value)| -> mlua::Result<()> {
+                Err(unknown_method(lua, "a light", &key, &[]))
+            },
+        );
     }
 }

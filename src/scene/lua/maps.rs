@@ -66,12 +66,8 @@ pub(super) fn set_bump(a: &Args) -> mlua::Result<Edit> {
 /// the memory budget from the image's header, before it is decoded.
 fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
     let file = a.string(n, name)?;
-    let (path, checked) = with_state(a.lua, |s| {
-        let path = s.base_dir.join(&file);
-        let checked = s.read_policy.check(&path, "texture");
-        (path, checked)
-    });
-    let canonical = checked.map_err(|e| a.bad_in(n, name, e))?;
+    let found = with_state(a.lua, |s| s.folders.find(&s.read_policy, &file, "texture"));
+    let (path, canonical) = found.map_err(|e| a.bad_in(n, name, e))?;
     if let Some(id) = with_state(a.lua, |s| s.texture_cache.get(&canonical).copied()) {
         return Ok(id);
     }

@@ -2,16 +2,17 @@
 //! `gr.extend_node(name, fn)` and `gr.extend_material(name, fn)`.
 //!
 //! A node's or material's methods live in a plain Lua table per kind, kept in the
-//! registry and set as the userdata's `__index` (a table lookup: as fast as mlua's own
-//! method dispatch): the built-ins of `handles` first, then whatever the script adds or
-//! replaces. A name the table lacks reaches the table's own `__index`, which raises an
-//! error naming the methods there are. This is the lever a dialect prelude
-//! (`--prelude`) pulls to give handles the methods another CS488 tracer had
-//! (`m:set_texture(file)`, `m:set_bumpmap(file)`), written in Lua the user can read. An
+//! registry: the built-ins of `handles` first, then whatever the script adds or
+//! replaces. The handles' `__index` is a small Lua function over that table; a name it
+//! lacks reaches Rust for the error naming the receiver and the methods there are. This
+//! is the lever a dialect prelude (`--prelude`) pulls to give handles the methods another
+//! CS488 tracer had (`m:set_texture(file)`, `m:set_bumpmap(file)`), written in Lua the
+//! user can read. An
 //! extension is an ordinary Lua function of the sandbox: it runs under the script's
 //! limits and can do no more than the script could by calling the built-ins itself.
 
-use super::args::{location, Args};
+use super::args::{describe, Args};
+use super::unknown::unknown_method;
 use mlua::{Lua, MultiValue, Table, Value};
 
 /// A built-in method: a plain function of the receiver and its arguments, kept in the
@@ -33,6 +34,13 @@ impl Kind {
         }
     }
 
+    fn index_key(self) -> &'static str {
+        match self {
+            Kind::Node => "glint.methods.node.index",
+            Kind::Material => "glint.methods.material.index",
+        }
+    }
+
     fn noun(self) -> &'static str {
         match self {
             Kind::Node => "node",
@@ -41,8 +49,9 @@ impl Kind {
     }
 }
 
-/// Fills the method tables with the built-ins (`handles`' node and material methods) and
-/// defines `gr.extend_node` and `gr.extend_material` (the `gr` table must exist).
+/// Fills the method tables with the built-ins (`handles`' node and material methods),
+/// makes each kind's `__index`, and defines `gr.extend_node` and `gr.extend_material`
+/// (the `gr` table must exist).
 pub(super) fn install(
     lua: &Lua,
     node_methods: Vec<(&'static str, Method)>,
@@ -57,19 +66,28 @@ pub(super) fn install(
         for (name, method) in builtins {
             table.raw_set(name, lua.create_function(method)?)?;
         }
-        let on_miss = lua.create_table()?;
-        on_miss.raw_set(
-            "__index",
-            lua.create_function(
-                move |lua, (table, key): (Table, Value)| -> mlua::Result<()> {
-                    Err(missing(lua, kind, &table, &key))
-                },
-            )?,
+        // A Lua function, so a method call costs a table lookup as mlua's own dispatch
+        // does; only a miss reaches Rust, to name the receiver and the methods there are.
+        let miss = lua.create_function(
+            move |lua, (this, key): (mlua::AnyUserData, Value)| -> mlua::Result<()> {
+                Err(missing(lua, kind, &this, &key))
+            },
         )?;
-        table.set_metatable(Some(on_miss))?;
-        lua.set_named_registry_value(kind.registry_key(), table)?;
+        let index: mlua::Function = lua
+            .load(
+                "local methods, miss = ...\n\
+                 return function(self, key)\n\
+                   local f = methods[key]\n\
+                   if f ~= nil then return f end\n\
+                   return miss(self, key)\n\
+                 end",
+            )
+            .set_name(INDEX_CHUNK)
+            .call((&table, miss))?;
+        lua.set_named_registry_value(kind.registry_key(), &table)?;
+        lua.set_named_registry_value(kind.index_key(), index)?;
         let call = format!("gr.extend_{}", kind.noun());
-        gr.set(
+        gr.raw_set(
             format!("extend_{}", kind.noun()),
             lua.create_function(move |lua, args: MultiValue| {
                 extend(&Args::new(lua, &call, args), kind)
@@ -78,6 +96,10 @@ pub(super) fn install(
     }
     Ok(())
 }
+
+/// The chunk name of the `__index` functions, which `args::location` skips (they are not
+/// the scene's code).
+pub(crate) const INDEX_CHUNK: &str = "=__glint_method_index";
 
 /// `gr.extend_KIND(name, fn)`: `fn` becomes method `name` of every handle of the kind,
 /// made before or after (`x:name(...)` calls `fn(x, ...)`); a built-in of that name is
@@ -97,26 +119,26 @@ fn extend(a: &Args, kind: Kind) -> mlua::Result<Value> {
     Ok(previous)
 }
 
-/// The method table of `kind` (the handles' `__index`).
-pub(super) fn table(lua: &Lua, kind: Kind) -> mlua::Result<Table> {
-    lua.named_registry_value(kind.registry_key())
+/// The `__index` of the handles of `kind` (made by [`install`]).
+pub(super) fn index(lua: &Lua, kind: Kind) -> mlua::Result<mlua::Function> {
+    lua.named_registry_value(kind.index_key())
 }
 
-/// The error for a method `key` that handles of `kind` lack, naming the methods there are.
-fn missing(lua: &Lua, kind: Kind, table: &Table, key: &Value) -> mlua::Error {
-    let mut names: Vec<String> = table
-        .pairs::<String, Value>()
-        .filter_map(|p| p.ok().map(|(k, _)| k))
-        .collect();
-    names.sort();
-    let key = match key {
-        Value::String(s) => format!("'{}'", s.to_string_lossy()),
-        other => super::args::describe(lua, other),
+/// The error for a method `key` that `this` (a handle of `kind`) lacks, naming it as the
+/// scene language does and the methods there are (extensions included).
+fn missing(lua: &Lua, kind: Kind, this: &mlua::AnyUserData, key: &Value) -> mlua::Error {
+    let names = match lua.named_registry_value::<Table>(kind.registry_key()) {
+        Ok(table) => {
+            let mut names: Vec<String> = table
+                .pairs::<String, Value>()
+                .filter_map(|p| p.ok().map(|(k, _)| k))
+                .collect();
+            names.sort();
+            names
+        }
+        Err(e) => return e,
     };
-    mlua::Error::RuntimeError(format!(
-        "{}: a {noun} has no method {key} (a {noun}'s methods: {}; gr.extend_{noun} adds one)",
-        location(lua),
-        names.join(", "),
-        noun = kind.noun(),
-    ))
+    let receiver = describe(lua, &Value::UserData(this.clone()));
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    unknown_method(lua, &receiver, key, &names)
 }

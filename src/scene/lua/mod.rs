@@ -17,14 +17,17 @@ mod handle_types;
 mod handles;
 mod maps;
 mod methods;
+mod notes;
 mod options;
 mod preludes;
 mod sandbox;
+mod unknown;
 mod watchdog;
 
 pub use gr::MAX_IMAGE_SIDE;
 
 use super::files::{read_regular, ReadPolicy, MAX_FILE_BYTES};
+use super::paths::SceneFolders;
 use super::{MeshId, NodeId, RenderRequest, SceneGraph, TransformOrder};
 use mlua::chunk::ChunkMode;
 use mlua::Lua;
@@ -55,6 +58,9 @@ pub struct ScriptConfig {
     /// limits (`--prelude`): a dialect of another CS488 tracer mapped onto glint's calls.
     /// Each one's folder is readable too.
     pub preludes: Vec<PathBuf>,
+    /// No notes about arguments glint does not use (`--ignore-extra-arguments`; a scene
+    /// can say the same with `gr.ignore_extra_arguments()`).
+    pub ignore_extra_arguments: bool,
 }
 
 /// Registry key of the `require` cache (also visible as `package.loaded`), which also
@@ -78,6 +84,7 @@ impl Default for ScriptConfig {
             hard_time_limit: false,
             allow_read: Vec::new(),
             preludes: Vec::new(),
+            ignore_extra_arguments: false,
         }
     }
 }
@@ -92,6 +99,8 @@ pub struct ScriptReport {
     /// The script used inline meshes, `require` or bare `unpack`: the pre-2015 family,
     /// which needs `--transform-order post` unless it says so itself.
     pub looks_pre2015: bool,
+    /// The notes printed on stderr (arguments glint does not use), one per call site.
+    pub notes: Vec<String>,
 }
 
 /// A scene script failed. `Display` is the whole message, starting with `file:line:`
@@ -125,7 +134,8 @@ pub enum SceneError {
 /// The callback `gr.render` invokes with the graph built so far and the request.
 pub type OnRender<'a> = dyn FnMut(&SceneGraph, &RenderRequest) -> anyhow::Result<()> + 'a;
 
-/// Runs the scene file at `path`. Meshes and modules resolve against its directory.
+/// Runs the scene file at `path`. Meshes and modules resolve against its directory (then
+/// the current one, see `scene::paths`).
 pub fn run_scene_file(
     path: &Path,
     config: &ScriptConfig,
@@ -164,12 +174,16 @@ pub fn run_scene_source(
             message: format!("{chunk_name}: cannot set up Lua: {e}"),
             traceback: None,
         })?;
+    let folders = SceneFolders::new(base_dir);
     lua.set_app_data(State {
         graph: SceneGraph::default(),
         order: config.transform_order.unwrap_or_default(),
         order_fixed: config.transform_order.is_some(),
-        base_dir: base_dir.to_path_buf(),
-        read_policy: ReadPolicy::new(base_dir, &preludes::readable(config, &preludes)),
+        read_policy: ReadPolicy::new(
+            base_dir,
+            &[preludes::readable(config, &preludes), folders.readable()].concat(),
+        ),
+        folders,
         report: ScriptReport::default(),
         mesh_cache: HashMap::new(),
         texture_cache: HashMap::new(),
@@ -181,6 +195,7 @@ pub fn run_scene_source(
         cycle_check_visits: 0,
         clock: watchdog.clock(),
         module_dirs: HashMap::new(),
+        notes: notes::Notes::new(config.ignore_extra_arguments),
     });
     let setup = gr::install(&lua)
         .and_then(|()| methods::install(&lua, handles::node_methods(), handles::material_methods()))
@@ -209,6 +224,7 @@ pub fn run_scene_source(
     // The state stays installed until the Lua state is dropped, so nothing Lua might
     // still run while closing can find it missing.
     let (render_error, report) = with_state(&lua, |s| {
+        notes::flush(s);
         (s.render_error.take(), std::mem::take(&mut s.report))
     });
     // A render failure or a reached limit ends the script even if a `pcall` in the
@@ -231,7 +247,8 @@ pub(crate) struct State {
     pub order: TransformOrder,
     /// The CLI flag fixed the order: `gr.transform_order` is recorded but has no effect.
     pub order_fixed: bool,
-    pub base_dir: PathBuf,
+    /// Where the scene's relative paths resolve (`scene::paths`).
+    pub folders: SceneFolders,
     /// The folders the scene may read.
     pub read_policy: ReadPolicy,
     pub report: ScriptReport,
@@ -259,6 +276,8 @@ pub(crate) struct State {
     /// Chunk names (`@path`) of the preludes and the modules they required, with the
     /// folder their own `require` calls look in (the scene's modules look beside it).
     pub module_dirs: HashMap<String, PathBuf>,
+    /// Notes on arguments glint does not use, printed at each render and at the end.
+    pub notes: notes::Notes,
 }
 
 impl State {

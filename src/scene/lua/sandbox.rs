@@ -220,6 +220,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
         with_state(lua, |s| s.report.looks_pre2015 = true);
     }
     if name == "readobj" {
+        super::notes::check_extra_arguments(&a);
         return Ok(Value::Boolean(true));
     }
     let loaded: Table = lua.named_registry_value(LOADED_KEY)?;
@@ -229,14 +230,19 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
             return Ok(cached);
         }
     }
-    let (path, checked) = with_state(lua, |s| {
-        let dir = prelude_dir.as_ref().unwrap_or(&s.base_dir);
-        let path = dir.join(format!("{}.lua", name.replace('.', "/")));
-        let checked = s.read_policy.check(&path, "module");
-        (path, checked)
+    let file = format!("{}.lua", name.replace('.', "/"));
+    let found = with_state(lua, |s| match &prelude_dir {
+        // A prelude's modules are beside it.
+        Some(dir) => {
+            let path = dir.join(&file);
+            s.read_policy.check(&path, "module").map(|c| (path, c))
+        }
+        None => s.folders.find(&s.read_policy, &file, "module"),
     });
-    let key = match (&prelude_dir, &checked) {
-        (Some(_), Ok(canonical)) => canonical.display().to_string(),
+    // A prelude's modules are cached by canonical path (another folder's module of the
+    // same name is another module); the scene's by name, as before.
+    let key = match (&prelude_dir, &found) {
+        (Some(_), Ok((_, canonical))) => canonical.display().to_string(),
         _ => name.clone(),
     };
     if prelude_dir.is_some() {
@@ -245,9 +251,9 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
             return Ok(cached);
         }
     }
-    let source = checked
-        .and_then(|_| read_regular(&path, "module", MAX_FILE_BYTES))
-        .map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
+    let source = found
+        .and_then(|(path, _)| read_regular(&path, "module", MAX_FILE_BYTES).map(|b| (path, b)));
+    let (path, source) = source.map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
     charge(&a, source.len() as u64, &format!("module '{name}'"))?;
     let chunk = format!("@{}", path.display());
     if let Some(dir) = &prelude_dir {
@@ -264,6 +270,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
         value
     };
     loaded.set(key.as_str(), &value)?;
+    super::notes::check_extra_arguments(&a);
     Ok(value)
 }
 
@@ -272,13 +279,11 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
 fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     let a = Args::new(lua, "readobj", args);
     let file = a.string(1, "path")?;
-    let (path, checked) = with_state(lua, |s| {
+    let found = with_state(lua, |s| {
         s.report.looks_pre2015 = true;
-        let path = s.base_dir.join(&file);
-        let checked = s.read_policy.check(&path, "mesh file");
-        (path, checked)
+        s.folders.find(&s.read_policy, &file, "mesh file")
     });
-    checked.map_err(|e| a.error(e))?;
+    let (path, _) = found.map_err(|e| a.error(e))?;
     super::check_file_cost(&a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
     let (verts, faces) = crate::scene::obj::read_obj_raw(&path).map_err(|e| a.error(e))?;
     let vt = lua.create_table_with_capacity(verts.len(), 0)?;
@@ -289,5 +294,6 @@ fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     for f in faces {
         ft.raw_push(lua.create_sequence_from(f)?)?;
     }
+    super::notes::check_extra_arguments(&a);
     Ok((vt, ft))
 }

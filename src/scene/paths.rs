@@ -1,0 +1,174 @@
+//! Where a relative path a scene names (a mesh, texture, bump map, module) is looked for:
+//! beside the scene, then, when the scene lies inside the folder glint was started in (the
+//! course ran `./A4 Assets/scene.lua` from the assignment folder, and its scenes name
+//! `'Assets/cow.obj'`), relative to that folder, which such a scene may then read. A file
+//! found in neither names both paths tried, and a case-only near miss (`eevee.obj` for
+//! `Eevee.obj`, which worked on the author's macOS disk) is offered.
+
+use super::files::ReadPolicy;
+use std::path::{Component, Path, PathBuf};
+
+/// The folders relative paths resolve against.
+#[derive(Clone, Debug)]
+pub struct SceneFolders {
+    /// The scene's folder (as given: relative to the current folder, or absolute).
+    pub scene: PathBuf,
+    /// The folder glint was started in, when the scene lies inside it (else None).
+    pub start: Option<PathBuf>,
+}
+
+impl SceneFolders {
+    /// The folders of a scene in `scene_dir`, glint having been started in the current
+    /// folder.
+    pub fn new(scene_dir: &Path) -> SceneFolders {
+        let scene_dir = if scene_dir.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            scene_dir
+        };
+        let home = std::env::var_os("HOME").and_then(|h| Path::new(&h).canonicalize().ok());
+        let start = match (
+            std::env::current_dir().and_then(|d| d.canonicalize()),
+            scene_dir.canonicalize(),
+        ) {
+            (Ok(start), Ok(scene)) => start_folder(&start, &scene, home.as_deref()),
+            _ => None,
+        };
+        SceneFolders {
+            scene: scene_dir.to_path_buf(),
+            start,
+        }
+    }
+
+    /// The folders besides the scene's own that the scene may read (the start folder).
+    pub fn readable(&self) -> Vec<PathBuf> {
+        self.start.iter().cloned().collect()
+    }
+
+    /// The file `written` (as the scene wrote it) names: the path to read it at and its
+    /// canonical form, or why it cannot be read (`what`: "mesh file", "texture", …).
+    pub fn find(
+        &self,
+        policy: &ReadPolicy,
+        written: &str,
+        what: &str,
+    ) -> Result<(PathBuf, PathBuf), String> {
+        let rel = Path::new(written);
+        let mut tried = vec![(self.scene.join(rel), self.scene.clone())];
+        if let Some(start) = &self.start {
+            if !rel.is_absolute() {
+                tried.push((start.join(rel), start.clone()));
+            }
+        }
+        let allowed: Vec<&(PathBuf, PathBuf)> =
+            tried.iter().filter(|(p, _)| policy.allows(p)).collect();
+        let Some(first) = allowed.first() else {
+            // Outside every readable folder: refused as such, whether or not it exists.
+            return policy
+                .check(&tried[0].0, what)
+                .map(|c| (tried[0].0.clone(), c));
+        };
+        for (path, _) in &allowed {
+            if std::fs::symlink_metadata(path).is_ok() {
+                return policy.check(path, what).map(|c| (path.clone(), c));
+            }
+        }
+        let near = allowed
+            .iter()
+            .find_map(|(_, base)| case_near_miss(policy, base, rel))
+            .map(|p| format!("; did you mean '{}'?", p.display()))
+            .unwrap_or_default();
+        if allowed.len() == 1 {
+            let error = policy.check(&first.0, what).err().unwrap_or_default();
+            return Err(error + &near);
+        }
+        Err(format!(
+            "cannot read {what} '{written}': no such file beside the scene ('{}') nor from the folder glint was started in ('{}'){near}",
+            allowed[0].0.display(),
+            allowed[1].0.display()
+        ))
+    }
+}
+
+/// The start folder `start` as a second folder for a scene in `scene` (both canonical):
+/// only when the scene lies below it, and never the filesystem's root or the home folder
+/// `home` (a scene anywhere below those would gain the whole disk or every file of the
+/// user; the course's layout is an assignment folder).
+fn start_folder(start: &Path, scene: &Path, home: Option<&Path>) -> Option<PathBuf> {
+    let too_wide = start.parent().is_none() || Some(start) == home;
+    (scene.starts_with(start) && scene != start && !too_wide).then(|| start.to_path_buf())
+}
+
+/// `rel` under `base` with each component that does not exist replaced by the one entry
+/// of its folder that differs from it in case only, if that finds a file (None
+/// otherwise, or when nothing differed). Only folders the scene may read are listed.
+fn case_near_miss(policy: &ReadPolicy, base: &Path, rel: &Path) -> Option<PathBuf> {
+    let mut dir = base.to_path_buf();
+    let mut out = PathBuf::new();
+    let mut changed = false;
+    for component in rel.components() {
+        let Component::Normal(name) = component else {
+            out.push(component);
+            dir.push(component);
+            continue;
+        };
+        if std::fs::symlink_metadata(dir.join(name)).is_ok() {
+            out.push(name);
+            dir.push(name);
+            continue;
+        }
+        if !policy.allows(&dir) {
+            return None;
+        }
+        let wanted = name.to_string_lossy().to_lowercase();
+        let mut matches = std::fs::read_dir(&dir)
+            .ok()?
+            .filter_map(Result::ok)
+            .map(|e| e.file_name())
+            .filter(|n| n.to_string_lossy().to_lowercase() == wanted);
+        let found = matches.next()?;
+        if matches.next().is_some() {
+            return None;
+        }
+        out.push(&found);
+        dir.push(&found);
+        changed = true;
+    }
+    changed.then_some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_start_folder_counts_only_above_the_scene_and_never_root_or_home() {
+        let (a4, home) = (Path::new("/h/me/a4"), Some(Path::new("/h/me")));
+        let assets = Path::new("/h/me/a4/Assets");
+        assert_eq!(start_folder(a4, assets, home), Some(a4.to_path_buf()));
+        assert_eq!(start_folder(a4, a4, home), None, "the scene's own folder");
+        assert_eq!(start_folder(a4, Path::new("/h/me/other"), home), None);
+        assert_eq!(start_folder(Path::new("/h/me"), assets, home), None, "home");
+        assert_eq!(start_folder(Path::new("/"), assets, home), None, "root");
+    }
+
+    #[test]
+    fn a_case_only_near_miss_is_found_component_by_component() {
+        let dir = crate::testing::scratch::temp_dir("paths-case");
+        std::fs::create_dir_all(dir.as_path().join("Assets")).unwrap();
+        std::fs::write(dir.as_path().join("Assets/Eevee.obj"), b"v 0 0 0\n").unwrap();
+        let policy = ReadPolicy::new(dir.as_path(), &[]);
+        assert_eq!(
+            case_near_miss(&policy, dir.as_path(), Path::new("assets/eevee.OBJ")),
+            Some(PathBuf::from("Assets/Eevee.obj"))
+        );
+        assert_eq!(
+            case_near_miss(&policy, dir.as_path(), Path::new("Assets/Eevee.obj")),
+            None
+        );
+        assert_eq!(
+            case_near_miss(&policy, dir.as_path(), Path::new("Assets/cow.obj")),
+            None
+        );
+    }
+}
