@@ -7,13 +7,13 @@
 -- gr.material(kd, ks, p, reflect)             reflect: a number or {r,g,b}; the colour seen
 -- gr.material(kd, ks, p, reflect, ior)        along the mirror direction, times reflect, is
 -- gr.material(kd, ks, p, reflect, ior, gloss) added to the Phong colour [m:set_reflection].
---     0 (or nil) is no mirror.
+--     0 (or nil, or false) is no mirror.
 --     ior: the index of refraction of a clear solid [m:set_refraction(ior)]. An index of
 --     1 or less (0 is the usual "not glass") leaves the material opaque: a solid of index 1
 --     in air would be no surface at all, so such scenes mean "not transparent". Glint's
 --     glass is clear (no partial transparency, no tint); its Phong terms still add, so a
 --     glass ball wants kd {0,0,0}.
---     gloss (blurry reflection) is ignored: glint's mirrors are perfect.
+--     gloss (blurry reflection), whatever it is, is ignored: glint's mirrors are perfect.
 --     A 7th argument or more is refused: forms of 7 and more arguments put different
 --     things in the same slots (transparency, index, gloss), and a guess would be wrong
 --     for half of them (the message says to use m:set_reflection and m:set_refraction).
@@ -57,7 +57,7 @@ local function check_number(call, n, name, v)
 end
 
 function gr.material(kd, ks, p, reflect, ior, gloss, ...)
-  if type(kd) == 'string' or (reflect == nil and ior == nil) then
+  if type(kd) == 'string' or (reflect == nil and ior == nil and gloss == nil) then
     return builtin_material(kd, ks, p)
   end
   if select('#', ...) > 0 then
@@ -66,15 +66,14 @@ function gr.material(kd, ks, p, reflect, ior, gloss, ...)
       .. 'm:set_refraction(ior) for the rest', 2)
   end
   local m = builtin_material(kd, ks, p)
-  if reflect ~= nil then
+  if reflect ~= nil and reflect ~= false then
     check_number_or_colour('gr.material', 4, 'reflect', reflect)
     if nonzero(reflect) then m:set_reflection(reflect) end
   end
-  if ior ~= nil then
+  if ior ~= nil and ior ~= false then
     check_number('gr.material', 5, 'ior', ior)
     if ior > 1 then m:set_refraction(ior) end
   end
-  if gloss ~= nil then check_number('gr.material', 6, 'gloss', gloss) end
   return m
 end
 
