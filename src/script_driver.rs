@@ -26,6 +26,8 @@ pub struct ScriptSettings {
     pub memory_limit: Option<usize>,
     /// `--allow-read`: folders the scene may read besides its own.
     pub allow_read: Vec<PathBuf>,
+    /// `--prelude`: Lua files run before the scene, in order (a dialect's calls).
+    pub preludes: Vec<PathBuf>,
     /// End the process (exit code 3) when the script overruns its time where it cannot
     /// be interrupted (the command line sets it; a library caller gets an error instead).
     pub hard_time_limit: bool,
@@ -45,6 +47,7 @@ impl ScriptSettings {
             time_limit: self.script_timeout.unwrap_or(defaults.time_limit),
             hard_time_limit: self.hard_time_limit,
             allow_read: self.allow_read.clone(),
+            preludes: self.preludes.clone(),
             ignore_extra_arguments: self.ignore_extra_arguments,
         }
     }
@@ -78,6 +81,11 @@ pub struct ScriptArgs {
     /// (repeatable).
     #[arg(long, value_name = "DIR")]
     pub allow_read: Vec<PathBuf>,
+    /// A Lua file run before the scene, in the same sandbox and limits, with its own
+    /// folder readable: maps another CS488 tracer's calls onto glint's (repeatable, run
+    /// in order; see scenes/dialects/).
+    #[arg(long, value_name = "FILE")]
+    pub prelude: Vec<PathBuf>,
     /// No notes on stderr about arguments the scene passes that glint does not use (as
     /// the scene's own gr.ignore_extra_arguments()).
     #[arg(long)]
@@ -96,12 +104,18 @@ impl ScriptArgs {
                 return Err(format!("--allow-read {}: not a folder", dir.display()));
             }
         }
+        for file in &self.prelude {
+            if !file.is_file() {
+                return Err(format!("--prelude {}: not a file", file.display()));
+            }
+        }
         Ok(ScriptSettings {
             transform_order,
             instruction_limit: Some(self.instruction_limit),
             script_timeout: Some(Duration::from_secs(self.script_timeout)),
             memory_limit: Some((self.memory_limit << 20) as usize),
             allow_read: self.allow_read.clone(),
+            preludes: self.prelude.clone(),
             hard_time_limit: true,
             ignore_extra_arguments: self.ignore_extra_arguments,
         })
@@ -120,6 +134,7 @@ mod tests {
             script_timeout: Some(Duration::from_secs(3)),
             memory_limit: Some(1 << 24),
             allow_read: vec![PathBuf::from("/x")],
+            preludes: vec![PathBuf::from("/d/a.lua"), PathBuf::from("b.lua")],
             hard_time_limit: true,
             ignore_extra_arguments: true,
         };
@@ -129,6 +144,10 @@ mod tests {
         assert_eq!(c.time_limit, Duration::from_secs(3));
         assert_eq!(c.memory_limit, 1 << 24);
         assert_eq!(c.allow_read, vec![PathBuf::from("/x")]);
+        assert_eq!(
+            c.preludes,
+            vec![PathBuf::from("/d/a.lua"), PathBuf::from("b.lua")]
+        );
         assert!(c.hard_time_limit);
         assert!(c.ignore_extra_arguments);
     }

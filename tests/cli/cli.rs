@@ -926,3 +926,75 @@ fn default_script_timeout_ends_a_stuck_pattern_within_30_s() {
     let took = start.elapsed();
     assert!(took < std::time::Duration::from_secs(30), "took {took:?}");
 }
+
+/// `--prelude` reaches every mode that runs a script: `render` on the CPU, `--backend
+/// both` (when a GPU adapter exists) and `bench --trace`; a flag naming no file is a
+/// command-line error, and an error inside a prelude names the prelude's line.
+#[test]
+fn prelude_runs_in_every_mode_that_runs_a_script() {
+    let dialects = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/dialects");
+    let scene = dialects.join("examples/planes.lua");
+    let prelude = dialects.join("planes.lua");
+    let (scene, prelude) = (scene.to_str().unwrap(), prelude.to_str().unwrap());
+    let dir = temp_dir("prelude-modes");
+    let small = ["--width", "24", "--height", "16", "--aa", "none"];
+    let mut cpu = vec![
+        "render",
+        scene,
+        "-o",
+        "p.png",
+        "--backend",
+        "cpu",
+        "--prelude",
+        prelude,
+    ];
+    cpu.extend(small);
+    let out = glint(&cpu, &dir);
+    assert!(out.status.success(), "cpu: {}", stderr(&out));
+    // Without it the scene's calls are unknown: exit code 3, naming the line.
+    let out = glint(&cpu[..6], &dir);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    assert!(stderr(&out).contains("planes.lua:14:"), "{}", stderr(&out));
+    let trace = [
+        "bench",
+        "--trace",
+        scene,
+        "--prelude",
+        prelude,
+        "--width",
+        "16",
+        "--height",
+        "8",
+        "--repeat",
+        "1",
+    ];
+    let out = glint(&trace, &dir);
+    assert!(out.status.success(), "bench --trace: {}", stderr(&out));
+    if common::gpu_context().is_some() {
+        let mut both = vec!["render", scene, "-o", "b.png", "--backend", "both"];
+        both.extend(["--prelude", prelude]);
+        both.extend(small);
+        let out = glint(&both, &dir);
+        assert!(out.status.success(), "both: {}", stderr(&out));
+        assert!(dir.join("b-cpu.png").exists() && dir.join("b-gpu.png").exists());
+    }
+    let missing = ["render", scene, "--prelude", "no-such-prelude.lua"];
+    let out = glint(&missing, &dir);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("--prelude no-such-prelude.lua"),
+        "{}",
+        stderr(&out)
+    );
+    assert_fails(
+        "prelude-error",
+        &format!("root = gr.node('root')\n{GOOD_RENDER}"),
+        &[(
+            "bad-prelude.lua",
+            "x = 1\nerror('this dialect is broken')\n",
+        )],
+        &["--prelude", "bad-prelude.lua"],
+        3,
+        &["bad-prelude.lua:2: this dialect is broken"],
+    );
+}

@@ -12,27 +12,61 @@ use glam::DVec3;
 use mlua::{Lua, MultiValue, Table, Value};
 use std::cell::Cell;
 
-/// `file:line` of the innermost Lua code running (skipping Rust and C frames).
+/// `file:line` of the innermost Lua code running (skipping Rust and C frames). Code of a
+/// prelude (`--prelude`) is skipped too when scene code called it: an error in a call the
+/// prelude makes on the scene's behalf names the scene's line (and [`Args::error`] names the prelude's line as well).
 pub(crate) fn location(lua: &Lua) -> String {
+    let (at, _) = locations(lua);
+    at
+}
+
+/// The location, and the innermost prelude frame it skipped (if any).
+fn locations(lua: &Lua) -> (String, Option<String>) {
+    let mut skipped = None;
     for level in 0..64 {
         let frame = lua.inspect_stack(level, |d| {
             let src = d.source();
+            let chunk = src.source.as_deref().map(str::to_string);
             let name = match src.source.as_deref() {
                 Some(s) if s.starts_with('@') || s.starts_with('=') => s[1..].to_string(),
                 _ => src.short_src.as_deref().unwrap_or("?").to_string(),
             };
-            (name, d.current_line())
+            (chunk, name, d.current_line())
         });
         match frame {
             None => break,
-            // mlua's own Lua helpers (the `__index` that looks up methods) are not the
-            // scene's code.
-            Some((name, _)) if name.starts_with("__mlua") => {}
-            Some((name, Some(line))) => return format!("{name}:{line}"),
+            // mlua's and glint's own Lua helpers (the `__index` that looks up methods,
+            // `methods::INDEX_CHUNK`) are not the scene's code.
+            Some((_, name, _)) if name.starts_with("__mlua") || name.starts_with("__glint") => {}
+            Some((chunk, name, Some(line))) => {
+                let here = format!("{name}:{line}");
+                if is_prelude_chunk(lua, chunk.as_deref()) {
+                    skipped.get_or_insert(here);
+                    continue;
+                }
+                return (here, skipped);
+            }
             Some(_) => {}
         }
     }
-    String::from("?")
+    // Only prelude code on the stack (a prelude's own top level): its line.
+    match skipped {
+        Some(at) => (at, None),
+        None => (String::from("?"), None),
+    }
+}
+
+/// Whether `chunk` (`@path`) is a prelude or one of its modules.
+fn is_prelude_chunk(lua: &Lua, chunk: Option<&str>) -> bool {
+    let Some(chunk) = chunk else {
+        return false;
+    };
+    // `try_`: a location asked for while the state is borrowed finds no preludes rather
+    // than panicking.
+    matches!(
+        lua.try_app_data_ref::<super::State>(),
+        Ok(Some(s)) if s.module_dirs.contains_key(chunk)
+    )
 }
 
 /// A Lua-style rendering of a value for "got …" in messages.
@@ -167,7 +201,11 @@ impl<'a> Args<'a> {
 
     /// `file:line: func: msg` as a Lua runtime error.
     pub fn error(&self, msg: impl std::fmt::Display) -> mlua::Error {
-        mlua::Error::RuntimeError(format!("{}: {}: {msg}", location(self.lua), self.func))
+        let (at, prelude) = locations(self.lua);
+        let via = prelude.map_or(String::new(), |p| {
+            format!(" (called by the prelude at {p})")
+        });
+        mlua::Error::RuntimeError(format!("{at}: {}{via}: {msg}", self.func))
     }
 
     /// `… argument n (name) must be WHAT, got VALUE`.

@@ -236,8 +236,10 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
         Value::Table(_) => {
             let mesh = inline_mesh(a, &name)?;
             charge(a, mesh_bytes(&mesh), "the inline mesh")?;
+            // A prelude's quads are no sign of a pre-2015 scene.
+            let from_scene = super::preludes::caller_module_dir(a.lua).is_none();
             with_state(a.lua, |s| {
-                s.report.looks_pre2015 = true;
+                s.report.looks_pre2015 |= from_scene;
                 s.graph.meshes.push(mesh);
                 s.graph.meshes.len() - 1
             })

@@ -1,7 +1,8 @@
 //! The userdata the `gr` calls return, and their methods: `node:add_child`,
 //! `set_material`, `scale`, `translate`, `rotate`; `material:set_diffuse`, `set_specular`,
-//! `set_shininess`, `set_reflection`, `set_refraction` (texture forms and `set_bump` in
-//! `maps`).
+//! `set_shininess`, `set_reflection`, `set_refraction`, `copy` (texture forms and
+//! `set_bump` in `maps`). The methods are plain functions kept in a table per kind that
+//! the script may extend (`methods`); the userdata's `__index` looks them up there.
 //!
 //! Userdata carry only an index into the [`SceneGraph`](crate::scene::SceneGraph) arenas
 //! (or a small value for lights), so a node can be added under several parents and a
@@ -9,39 +10,50 @@
 
 use super::args::Args;
 pub(crate) use super::handle_types::{LightHandle, MaterialHandle, NodeHandle};
+use super::methods::Method;
 use super::unknown::unknown_method;
 use super::with_state;
 use crate::scene::{Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
-use mlua::{MetaMethod, MultiValue, UserData, UserDataMethods};
-
-/// The methods of a node, for the error on one it does not have.
-const NODE_METHODS: &[&str] = &["add_child", "set_material", "scale", "translate", "rotate"];
-/// The methods of a material.
-const MATERIAL_METHODS: &[&str] = &[
-    "set_diffuse",
-    "set_specular",
-    "set_bump",
-    "set_shininess",
-    "set_reflection",
-    "set_refraction",
-];
+use mlua::{Lua, MetaMethod, MultiValue, UserData, UserDataFields, UserDataMethods, Value};
 
 impl UserData for NodeHandle {
+    fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
+        // Methods are looked up in a table the script may extend (`gr.extend_node`).
+        fields.add_meta_field_with(MetaMethod::Index, |lua| {
+            super::methods::index(lua, super::methods::Kind::Node)
+        });
+    }
+
     fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        macro_rules! method {
-            ($name:literal, $f:expr) => {
-                methods.add_function($name, |lua, args: MultiValue| {
+        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
+            let id = this.borrow::<NodeHandle>()?.0;
+            Ok(with_state(lua, |s| {
+                format!("node '{}'", s.graph.nodes[id].name)
+            }))
+        });
+    }
+}
+
+/// The built-in node methods.
+pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
+    macro_rules! method {
+        ($name:literal, $f:expr) => {
+            (
+                $name,
+                (|lua: &Lua, args: MultiValue| {
                     let a = Args::method(lua, concat!("node:", $name), args);
                     a.receiver::<NodeHandle>("node")?;
                     $f(&a)?;
                     super::notes::check_extra_arguments(&a);
                     Ok(a.receiver_value())
-                });
-            };
-        }
-        method!("add_child", add_child);
-        method!("set_material", set_material);
+                }) as Method,
+            )
+        };
+    }
+    vec![
+        method!("add_child", add_child),
+        method!("set_material", set_material),
         method!("scale", |a: &Args| {
             let v = [(1, "x"), (2, "y"), (3, "z")].map(|(n, name)| (n, name, a.number(n, name)));
             let mut f = [0.0; 3];
@@ -57,11 +69,11 @@ impl UserData for NodeHandle {
                 f[k] = x;
             }
             compose(a, DMat4::from_scale(DVec3::from_array(f)))
-        });
+        }),
         method!("translate", |a: &Args| {
             let t = DVec3::new(a.number(1, "x")?, a.number(2, "y")?, a.number(3, "z")?);
             compose(a, DMat4::from_translation(t))
-        });
+        }),
         method!("rotate", |a: &Args| {
             let axis = a.string(1, "axis")?;
             let deg = a.number(2, "angle")?;
@@ -73,22 +85,60 @@ impl UserData for NodeHandle {
                 _ => return Err(a.bad(1, "axis", "'x', 'y' or 'z' (any case)")),
             };
             compose(a, op)
-        });
-        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
-            let id = this.borrow::<NodeHandle>()?.0;
-            Ok(with_state(lua, |s| {
-                format!("node '{}'", s.graph.nodes[id].name)
-            }))
-        });
-        // Reached only for names that are not methods (mlua looks methods up first).
-        methods.add_meta_function(
-            MetaMethod::Index,
-            |lua, (this, key): (mlua::AnyUserData, mlua::Value)| -> mlua::Result<()> {
-                let id = this.borrow::<NodeHandle>()?.0;
-                let kind = with_state(lua, |s| format!("node '{}'", s.graph.nodes[id].name));
-                Err(unknown_method(lua, &kind, &key, NODE_METHODS))
-            },
-        );
+        }),
+        method!("set_placement", set_placement),
+    ]
+}
+
+/// `node:set_placement(origin, x_axis, y_axis, z_axis)`: where a geometry node's
+/// primitive lies in its node's frame: the object-space point (x, y, z) goes to
+/// origin + x·x_axis + y·y_axis + z·z_axis, before the node's own transforms (as
+/// `gr.nh_sphere`'s centre and radius do). Independent of the transform order, so a
+/// dialect can stand glint's z-axis cylinder on y whichever order the scene uses. The
+/// axes must span space (a flat or mirroring frame is refused: it would flatten the solid
+/// or turn it inside out).
+fn set_placement(a: &Args) -> mlua::Result<()> {
+    let id = a.receiver::<NodeHandle>("node")?.0;
+    let origin = a.vec3(1, "origin")?;
+    let x = a.vec3(2, "x_axis")?;
+    let y = a.vec3(3, "y_axis")?;
+    let z = a.vec3(4, "z_axis")?;
+    let frame = DMat4::from_cols(
+        x.extend(0.0),
+        y.extend(0.0),
+        z.extend(0.0),
+        origin.extend(1.0),
+    );
+    // Scale-free: the determinant against the product of the axes' lengths.
+    let det = x.dot(y.cross(z));
+    let size = x.length() * y.length() * z.length();
+    // (NaN axes fail the comparison too.)
+    let spans_space = det.is_finite() && det > 1e-12 * size;
+    if !spans_space {
+        return Err(a.bad_in(
+            4,
+            "z_axis",
+            format!(
+                "the axes must span space in a right-handed frame (x_axis · (y_axis × z_axis) > 0), got x_axis = {{{}, {}, {}}}, y_axis = {{{}, {}, {}}}, z_axis = {{{}, {}, {}}}",
+                x.x, x.y, x.z, y.x, y.y, y.z, z.x, z.y, z.z
+            ),
+        ));
+    }
+    let refused = with_state(a.lua, |s| {
+        let node = &mut s.graph.nodes[id];
+        match &mut node.kind {
+            NodeKind::Geometry { placement, .. } => {
+                *placement = frame;
+                None
+            }
+            _ => Some(node.name.clone()),
+        }
+    });
+    match refused {
+        None => Ok(()),
+        Some(name) => Err(a.error(format!(
+            "node '{name}' is not a geometry node; a placement places a primitive or mesh (transform it with scale, rotate and translate)"
+        ))),
     }
 }
 
@@ -273,26 +323,48 @@ fn set_material(a: &Args) -> mlua::Result<()> {
 }
 
 impl UserData for MaterialHandle {
+    fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
+        // Methods are looked up in a table the script may extend (`gr.extend_material`).
+        fields.add_meta_field_with(MetaMethod::Index, |lua| {
+            super::methods::index(lua, super::methods::Kind::Material)
+        });
+    }
+
     fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        macro_rules! method {
-            ($name:literal, $f:expr) => {
-                methods.add_function($name, |lua, args: MultiValue| {
+        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
+            let id = this.borrow::<MaterialHandle>()?.0;
+            Ok(with_state(lua, |s| {
+                format!("material '{}'", s.graph.materials[id].name)
+            }))
+        });
+    }
+}
+
+/// The built-in material methods.
+pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
+    macro_rules! method {
+        ($name:literal, $f:expr) => {
+            (
+                $name,
+                (|lua: &Lua, args: MultiValue| {
                     let a = Args::method(lua, concat!("material:", $name), args);
                     let id = a.receiver::<MaterialHandle>("material")?.0;
                     let edit = $f(&a)?;
                     with_state(lua, |s| edit(&mut s.graph.materials[id]));
                     super::notes::check_extra_arguments(&a);
                     Ok(a.receiver_value())
-                });
-            };
-        }
-        method!("set_diffuse", super::maps::set_diffuse);
-        method!("set_specular", super::maps::set_specular);
-        method!("set_bump", super::maps::set_bump);
+                }) as Method,
+            )
+        };
+    }
+    vec![
+        method!("set_diffuse", super::maps::set_diffuse),
+        method!("set_specular", super::maps::set_specular),
+        method!("set_bump", super::maps::set_bump),
         method!("set_reflection", |a: &Args| {
             a.colour_args(1, true)
                 .map(|c| move |m: &mut Material| m.reflection = c)
-        });
+        }),
         method!("set_refraction", |a: &Args| {
             a.positive(1, "ior").and_then(|ior| {
                 let ior = ior as f32;
@@ -303,28 +375,29 @@ impl UserData for MaterialHandle {
                     Err(a.bad(1, "ior", "a positive number within f32 range"))
                 }
             })
-        });
+        }),
         method!("set_shininess", |a: &Args| {
             a.non_negative(1, "shininess")
                 .map(|p| move |m: &mut Material| m.shininess = p as f32)
-        });
-        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
-            let id = this.borrow::<MaterialHandle>()?.0;
-            Ok(with_state(lua, |s| {
-                format!("material '{}'", s.graph.materials[id].name)
-            }))
-        });
-        methods.add_meta_function(
-            MetaMethod::Index,
-            |lua, (this, key): (mlua::AnyUserData, mlua::Value)| -> mlua::Result<()> {
-                let id = this.borrow::<MaterialHandle>()?.0;
-                let kind = with_state(lua, |s| {
-                    format!("material '{}'", s.graph.materials[id].name)
-                });
-                Err(unknown_method(lua, &kind, &key, MATERIAL_METHODS))
-            },
-        );
-    }
+        }),
+        ("copy", copy_material as Method),
+    ]
+}
+
+/// `material:copy()`: a new material with every property of the receiver (colours,
+/// textures, bump map, reflection, refraction), so that one node's variant of a shared
+/// material (a dialect's per-node texture) leaves the others alone.
+fn copy_material(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
+    let a = Args::method(lua, "material:copy", args);
+    let id = a.receiver::<MaterialHandle>("material")?.0;
+    let at = super::args::location(lua);
+    let copy = with_state(lua, |s| {
+        let mut m = s.graph.materials[id].clone();
+        m.name = format!("copy of {} at {at}", m.name);
+        s.graph.materials.push(m);
+        MaterialHandle(s.graph.materials.len() - 1)
+    });
+    lua.create_userdata(copy).map(Value::UserData)
 }
 
 impl UserData for LightHandle {

@@ -4,8 +4,9 @@
 //!
 //! Layout: `sandbox` builds the restricted Lua state (limits, `require`, `unpack`,
 //! `readobj`), `gr` defines the scene calls, `handles` the node/material/light userdata
-//! and their methods, `args` checks arguments and words the errors, `options` parses the
-//! render-options table.
+//! and their methods, `methods` the method tables scripts may extend, `args` checks
+//! arguments and words the errors, `options` parses the render-options table, `preludes`
+//! runs the `--prelude` files before the scene.
 //! The script's state lives in Lua's app data ([`State`]) so that the `'static` callbacks
 //! mlua requires can reach it; only `gr.render`, which borrows the caller's `on_render`,
 //! is a scoped function.
@@ -15,8 +16,10 @@ mod gr;
 mod handle_types;
 mod handles;
 mod maps;
+mod methods;
 mod notes;
 mod options;
+mod preludes;
 mod sandbox;
 mod unknown;
 mod watchdog;
@@ -51,10 +54,18 @@ pub struct ScriptConfig {
     pub hard_time_limit: bool,
     /// Folders the scene may read besides its own (`--allow-read`).
     pub allow_read: Vec<PathBuf>,
+    /// Lua files run before the scene, in order, in the same state and under the same
+    /// limits (`--prelude`): a dialect of another CS488 tracer mapped onto glint's calls.
+    /// Each one's folder is readable too.
+    pub preludes: Vec<PathBuf>,
     /// No notes about arguments glint does not use (`--ignore-extra-arguments`; a scene
     /// can say the same with `gr.ignore_extra_arguments()`).
     pub ignore_extra_arguments: bool,
 }
+
+/// Registry key of the `require` cache (also visible as `package.loaded`), which also
+/// keeps preludes from running twice.
+const LOADED_KEY: &str = "glint.loaded";
 
 /// Default memory budget (2 GiB).
 pub const DEFAULT_MEMORY_LIMIT: usize = 2 << 30;
@@ -72,6 +83,7 @@ impl Default for ScriptConfig {
             time_limit: DEFAULT_TIME_LIMIT,
             hard_time_limit: false,
             allow_read: Vec::new(),
+            preludes: Vec::new(),
             ignore_extra_arguments: false,
         }
     }
@@ -154,6 +166,7 @@ pub fn run_scene_source(
     config: &ScriptConfig,
     on_render: &mut OnRender<'_>,
 ) -> Result<ScriptReport, SceneError> {
+    let preludes = preludes::read_all(&config.preludes)?;
     let watchdog = watchdog::Watchdog::start(config.time_limit, config.hard_time_limit, chunk_name);
     let limits = sandbox::Limits::default();
     let lua =
@@ -168,7 +181,7 @@ pub fn run_scene_source(
         order_fixed: config.transform_order.is_some(),
         read_policy: ReadPolicy::new(
             base_dir,
-            &[config.allow_read.clone(), folders.readable()].concat(),
+            &[preludes::readable(config, &preludes), folders.readable()].concat(),
         ),
         folders,
         report: ScriptReport::default(),
@@ -181,9 +194,12 @@ pub fn run_scene_source(
         cycle_search: handles::CycleSearch::default(),
         cycle_check_visits: 0,
         clock: watchdog.clock(),
+        module_dirs: HashMap::new(),
         notes: notes::Notes::new(config.ignore_extra_arguments),
     });
-    let setup = gr::install(&lua).and_then(|()| sandbox::install(&lua));
+    let setup = gr::install(&lua)
+        .and_then(|()| methods::install(&lua, handles::node_methods(), handles::material_methods()))
+        .and_then(|()| sandbox::install(&lua));
     if let Err(e) = setup {
         return Err(SceneError::Runtime {
             message: format!("{chunk_name}: cannot set up the gr module: {e}"),
@@ -198,6 +214,7 @@ pub fn run_scene_source(
         lua.globals()
             .get::<mlua::Table>("gr")?
             .set("render", render)?;
+        preludes::run_all(&lua, &preludes)?;
         lua.load(source)
             .set_name(format!("@{chunk_name}"))
             .set_mode(ChunkMode::Text)
@@ -256,6 +273,9 @@ pub(crate) struct State {
     pub cycle_check_visits: u64,
     /// The wall-clock limit's clock, paused while `gr.render` renders.
     pub clock: watchdog::ScriptClock,
+    /// Chunk names (`@path`) of the preludes and the modules they required, with the
+    /// folder their own `require` calls look in (the scene's modules look beside it).
+    pub module_dirs: HashMap<String, PathBuf>,
     /// Notes on arguments glint does not use, printed at each render and at the end.
     pub notes: notes::Notes,
 }

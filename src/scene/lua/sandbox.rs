@@ -14,16 +14,13 @@
 
 use super::args::{location, Args};
 use super::watchdog::ScriptClock;
-use super::{charge, with_state, ScriptConfig};
+use super::{charge, with_state, ScriptConfig, LOADED_KEY};
 use crate::scene::files::{read_regular, MAX_FILE_BYTES};
 use crate::scene::obj::PARSE_BYTES_PER_BYTE;
 use mlua::chunk::ChunkMode;
 use mlua::{HookTriggers, Lua, LuaOptions, MultiValue, StdLib, Table, Value, VmState};
 use std::cell::Cell;
 use std::rc::Rc;
-
-/// Registry key of the `require` cache (also visible as `package.loaded`).
-const LOADED_KEY: &str = "glint.loaded";
 
 /// What the hooks report, so the error can be classified after Lua unwinds (and cannot
 /// be hidden by a `pcall` in the script).
@@ -212,29 +209,59 @@ fn stub_table(lua: &Lua, lib: &str) -> mlua::Result<Table> {
 }
 
 /// `require(name)`: `readobj` is built in; anything else is `name.lua` (dots as folder
-/// separators) beside the scene, run once in the same environment and cached.
+/// separators) beside the scene, run once in the same environment and cached. Called
+/// from a prelude (or a module of one), it looks beside the prelude instead, and caches
+/// by canonical path (see `preludes`).
 fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     let a = Args::new(lua, "require", args);
     let name = a.string(1, "module")?;
-    with_state(lua, |s| s.report.looks_pre2015 = true);
+    let prelude_dir = super::preludes::caller_module_dir(lua);
+    if prelude_dir.is_none() {
+        with_state(lua, |s| s.report.looks_pre2015 = true);
+    }
     if name == "readobj" {
         super::notes::check_extra_arguments(&a);
         return Ok(Value::Boolean(true));
     }
     let loaded: Table = lua.named_registry_value(LOADED_KEY)?;
-    let cached: Value = loaded.get(name.as_str())?;
-    if !cached.is_nil() {
-        return Ok(cached);
+    if prelude_dir.is_none() {
+        let cached: Value = loaded.get(name.as_str())?;
+        if !cached.is_nil() {
+            return Ok(cached);
+        }
     }
     let file = format!("{}.lua", name.replace('.', "/"));
-    let found = with_state(lua, |s| s.folders.find(&s.read_policy, &file, "module"));
+    let found = with_state(lua, |s| match &prelude_dir {
+        // A prelude's modules are beside it.
+        Some(dir) => {
+            let path = dir.join(&file);
+            s.read_policy.check(&path, "module").map(|c| (path, c))
+        }
+        None => s.folders.find(&s.read_policy, &file, "module"),
+    });
+    // A prelude's modules are cached by canonical path (another folder's module of the
+    // same name is another module); the scene's by name, as before.
+    let key = match (&prelude_dir, &found) {
+        (Some(_), Ok((_, canonical))) => canonical.display().to_string(),
+        _ => name.clone(),
+    };
+    if prelude_dir.is_some() {
+        let cached: Value = loaded.get(key.as_str())?;
+        if !cached.is_nil() {
+            return Ok(cached);
+        }
+    }
     let source = found
         .and_then(|(path, _)| read_regular(&path, "module", MAX_FILE_BYTES).map(|b| (path, b)));
     let (path, source) = source.map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
     charge(&a, source.len() as u64, &format!("module '{name}'"))?;
+    let chunk = format!("@{}", path.display());
+    if let Some(dir) = &prelude_dir {
+        super::preludes::adopt_module(lua, &chunk, dir);
+    }
     let value: Value = lua
         .load(&source[..])
-        .set_name(format!("@{}", path.display()))
+        .set_name(chunk)
         .set_mode(ChunkMode::Text)
         .call((name.as_str(), path.display().to_string()))?;
     let value = if value.is_nil() {
@@ -242,7 +269,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     } else {
         value
     };
-    loaded.set(name.as_str(), &value)?;
+    loaded.set(key.as_str(), &value)?;
     super::notes::check_extra_arguments(&a);
     Ok(value)
 }

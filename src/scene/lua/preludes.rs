@@ -1,0 +1,101 @@
+//! Preludes (`--prelude FILE`, repeatable): Lua files run before the scene, in the same
+//! state, sandbox and limits, so that a scene written for another CS488 tracer can have
+//! its calls mapped onto glint's in Lua the user can read (`scenes/dialects/`).
+//!
+//! A prelude's folder is readable (its own modules and assets). Its `require` calls look
+//! for modules beside it (a folder of preludes can share helpers), not beside the scene,
+//! and what it loads is cached by canonical path, so a file given twice, or given and
+//! also required by another prelude, runs once. Each prelude receives its path and its
+//! folder (canonical, absolute) as `...`. Errors inside a prelude name its file and line.
+
+use super::{with_state, SceneError, ScriptConfig};
+use crate::scene::files::{read_regular, MAX_FILE_BYTES};
+use mlua::chunk::ChunkMode;
+use mlua::{Lua, Table, Value};
+use std::path::{Path, PathBuf};
+
+/// A prelude read before the script starts.
+pub(super) struct Prelude {
+    /// As given (messages name it so).
+    path: PathBuf,
+    /// Canonical: the key that keeps it from running twice.
+    canonical: PathBuf,
+    /// Its canonical folder: readable, and where its `require` looks.
+    folder: PathBuf,
+    source: Vec<u8>,
+}
+
+/// Reads every prelude (a missing or unreadable one fails before anything runs).
+pub(super) fn read_all(paths: &[PathBuf]) -> Result<Vec<Prelude>, SceneError> {
+    paths
+        .iter()
+        .map(|path| {
+            let fail = |message: String| SceneError::Read {
+                path: path.clone(),
+                message,
+            };
+            let source = read_regular(path, "prelude", MAX_FILE_BYTES).map_err(fail)?;
+            let canonical = path
+                .canonicalize()
+                .map_err(|e| fail(format!("cannot read prelude '{}': {e}", path.display())))?;
+            let folder = canonical
+                .parent()
+                .map_or_else(|| PathBuf::from("/"), Path::to_path_buf);
+            Ok(Prelude {
+                path: path.clone(),
+                canonical,
+                folder,
+                source,
+            })
+        })
+        .collect()
+}
+
+/// The folders the scene may read besides its own: `--allow-read` and the preludes'.
+pub(super) fn readable(config: &ScriptConfig, preludes: &[Prelude]) -> Vec<PathBuf> {
+    let mut folders = config.allow_read.clone();
+    folders.extend(preludes.iter().map(|p| p.folder.clone()));
+    folders
+}
+
+/// Runs the preludes in order (each at most once), before the scene.
+pub(super) fn run_all(lua: &Lua, preludes: &[Prelude]) -> mlua::Result<()> {
+    let loaded: Table = lua.named_registry_value(super::LOADED_KEY)?;
+    for prelude in preludes {
+        let key = prelude.canonical.display().to_string();
+        if !loaded.raw_get::<Value>(key.as_str())?.is_nil() {
+            continue;
+        }
+        let chunk = format!("@{}", prelude.path.display());
+        with_state(lua, |s| {
+            s.module_dirs.insert(chunk.clone(), prelude.folder.clone());
+        });
+        lua.load(&prelude.source[..])
+            .set_name(chunk)
+            .set_mode(ChunkMode::Text)
+            .call::<()>((
+                prelude.path.display().to_string(),
+                prelude.folder.display().to_string(),
+            ))?;
+        loaded.raw_set(key, true)?;
+    }
+    Ok(())
+}
+
+/// The folder a `require` called now looks in when its caller is a prelude or one of
+/// its modules (None: the scene's folder, as for the scene's own `require`).
+pub(super) fn caller_module_dir(lua: &Lua) -> Option<PathBuf> {
+    let source = (0..64)
+        .map_while(|level| lua.inspect_stack(level, |d| d.source().source.map(|s| s.into_owned())))
+        .flatten()
+        .find(|s| s.starts_with('@'))?;
+    with_state(lua, |s| s.module_dirs.get(&source).cloned())
+}
+
+/// Records that the module loaded as chunk `chunk` belongs to the prelude folder `dir`,
+/// so that its own `require` calls look there too.
+pub(super) fn adopt_module(lua: &Lua, chunk: &str, dir: &Path) {
+    with_state(lua, |s| {
+        s.module_dirs.insert(chunk.to_string(), dir.to_path_buf());
+    });
+}
