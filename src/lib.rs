@@ -16,6 +16,7 @@ pub mod cpu;
 pub mod diff;
 pub mod film;
 pub mod gpu;
+pub mod image_check;
 pub mod image_io;
 pub mod mailboxes;
 pub mod pack;
@@ -25,3 +26,4 @@ pub mod scene;
 #[doc(hidden)]
 pub mod testing;
 pub mod tiling;
+pub mod write_policy;

@@ -87,7 +87,8 @@ struct RenderArgs {
     #[arg(long)]
     stats: bool,
     /// Lua instructions a script may run before it is stopped as a runaway.
-    #[arg(long, default_value_t = glint::scene::lua::ScriptConfig::default().instruction_limit)]
+    #[arg(long, default_value_t = glint::scene::lua::ScriptConfig::default().instruction_limit,
+          value_parser = clap::value_parser!(u64).range(1..))]
     instruction_limit: u64,
     /// Wall-clock seconds the script may run (renders not counted).
     #[arg(long, value_name = "SECONDS", default_value_t = DEFAULT_TIME_LIMIT.as_secs(),
@@ -101,6 +102,21 @@ struct RenderArgs {
     /// (repeatable).
     #[arg(long, value_name = "DIR")]
     allow_read: Vec<PathBuf>,
+    /// The folder the image names a script gives gr.render are taken from and confined
+    /// to (default: the current folder). -o is not confined.
+    #[arg(long, value_name = "DIR")]
+    output_dir: Option<PathBuf>,
+    /// A further folder a script-named image may be written under (repeatable).
+    #[arg(long, value_name = "DIR")]
+    allow_write: Vec<PathBuf>,
+    /// Most gr.render calls one script may make.
+    #[arg(long, value_name = "N", default_value_t = glint::scene::lua::ScriptConfig::default().max_renders,
+          value_parser = clap::value_parser!(u64).range(1..=1 << 20))]
+    max_renders: u64,
+    /// Most pixels all of a script's gr.render calls may ask for together.
+    #[arg(long, value_name = "N", default_value_t = glint::scene::lua::ScriptConfig::default().max_render_pixels,
+          value_parser = clap::value_parser!(u64).range(1..=1 << 40))]
+    max_render_pixels: u64,
     /// Tracer: cpu (the reference), gpu (wgpu compute: Vulkan, Metal or DX12), auto (a
     /// hardware GPU when one exists, else the CPU, with a one-line notice), or both
     /// (render on each, write NAME-cpu and NAME-gpu, print the difference and both times;
@@ -141,8 +157,8 @@ struct RenderArgs {
     /// Deepest reflection/refraction chain.
     #[arg(long, value_parser = TraceDepth::parse)]
     max_depth: Option<TraceDepth>,
-    /// Drop secondary rays contributing less than this.
-    #[arg(long, value_parser = parse_non_negative)]
+    /// Drop secondary rays contributing less than this (0–1).
+    #[arg(long, value_parser = parse_weight)]
     min_weight: Option<f32>,
     /// Background: r,g,b (solid) or r,g,b/r,g,b (top/bottom gradient).
     #[arg(long, value_parser = parse_background)]
@@ -167,6 +183,13 @@ fn parse_non_negative(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
         Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
         _ => Err(format!("expected a non-negative number, got '{s}'")),
+    }
+}
+
+fn parse_weight(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("expected a weight from 0 to 1, got '{s}'")),
     }
 }
 
@@ -208,7 +231,8 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err((message, code)) => {
-            eprintln!("glint: error: {message}");
+            // A script can make its message any size: at most a few KiB reach the terminal.
+            eprintln!("glint: error: {}", glint::scene::lua::cap_message(&message));
             ExitCode::from(code)
         }
     }
@@ -242,6 +266,10 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         script_timeout: Some(Duration::from_secs(args.script_timeout)),
         memory_limit: Some((args.memory_limit << 20) as usize),
         allow_read: args.allow_read.clone(),
+        output_dir: args.output_dir.clone(),
+        allow_write: args.allow_write.clone(),
+        max_renders: Some(args.max_renders),
+        max_render_pixels: Some(args.max_render_pixels),
         hard_time_limit: true,
         backend: match args.backend {
             BackendArg::Cpu => glint::pipeline::Backend::Cpu,
@@ -305,9 +333,12 @@ fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
             ));
         }
     }
-    for dir in &args.allow_read {
+    let folders = (args.allow_read.iter().map(|d| ("--allow-read", d)))
+        .chain(args.allow_write.iter().map(|d| ("--allow-write", d)))
+        .chain(args.output_dir.iter().map(|d| ("--output-dir", d)));
+    for (flag, dir) in folders {
         if !dir.is_dir() {
-            return Err((format!("--allow-read {}: not a folder", dir.display()), 2));
+            return Err((format!("{flag} {}: not a folder", dir.display()), 2));
         }
     }
     Ok(())

@@ -12,6 +12,7 @@ use crate::scene::flatten::flatten;
 use crate::scene::flatten::FlatScene;
 use crate::scene::lua::{run_scene_file, SceneError, ScriptConfig, ScriptReport};
 use crate::scene::{AaMode, DebugView, OptionOverrides, RenderRequest, SceneGraph, TransformOrder};
+use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -37,6 +38,16 @@ pub struct RenderSettings {
     pub memory_limit: Option<usize>,
     /// `--allow-read`: folders the scene may read besides its own.
     pub allow_read: Vec<PathBuf>,
+    /// `--output-dir`: the folder the script's own output names are taken from and
+    /// confined to (None: the current folder; `-o` is not confined).
+    pub output_dir: Option<PathBuf>,
+    /// `--allow-write`: further folders a script-named output may lie under.
+    pub allow_write: Vec<PathBuf>,
+    /// `--max-renders`: most `gr.render` calls one script may make (None: the default).
+    pub max_renders: Option<u64>,
+    /// `--max-render-pixels`: most pixels all of a script's renders may ask for together
+    /// (None: the default).
+    pub max_render_pixels: Option<u64>,
     /// End the process (exit code 3) when the script overruns its time where it cannot
     /// be interrupted (the command line sets it).
     pub hard_time_limit: bool,
@@ -131,6 +142,9 @@ pub enum RunError {
     /// The flags ask for something this render cannot give (exit code 2, as clap's).
     #[error("{0}")]
     Usage(#[from] AaMapError),
+    /// A flag names something unusable (a folder that does not exist; exit code 2).
+    #[error("{0}")]
+    Flag(String),
 }
 
 impl RunError {
@@ -139,7 +153,7 @@ impl RunError {
             RunError::Scene(_) => 3,
             RunError::Output(_) | RunError::OutputAt { .. } => 4,
             RunError::Gpu(_) => 5,
-            RunError::Usage(_) => 2,
+            RunError::Usage(_) | RunError::Flag(_) => 2,
         }
     }
 }
@@ -315,6 +329,26 @@ pub fn output_path(settings_output: Option<&Path>, script_output: &Path, index: 
     base.with_file_name(name)
 }
 
+/// The file the `index`-th render (0-based) writes: the user's `-o` (numbered after the
+/// first), else the script's own name, confined by `policy` (see [`WritePolicy`]); a
+/// refused name is the scene's error.
+pub fn render_output(
+    settings: &RenderSettings,
+    policy: &WritePolicy,
+    script_output: &Path,
+    index: usize,
+) -> anyhow::Result<PathBuf> {
+    match settings.output.as_deref() {
+        Some(base) => Ok(output_path(Some(base), script_output, index)),
+        None => policy.place(script_output).map_err(anyhow::Error::msg),
+    }
+}
+
+/// The write rule of `settings` (`--output-dir`, `--allow-write`).
+pub fn write_policy(settings: &RenderSettings) -> Result<WritePolicy, RunError> {
+    WritePolicy::new(settings.output_dir.as_deref(), &settings.allow_write).map_err(RunError::Flag)
+}
+
 /// Runs a scene file, rendering and writing each `gr.render`; `on_image` sees each image
 /// after it is written. Returns the script's report.
 pub fn run_scene(
@@ -335,14 +369,21 @@ pub fn run_scene(
     if let Some(limit) = settings.memory_limit {
         config.memory_limit = limit;
     }
+    if let Some(limit) = settings.max_renders {
+        config.max_renders = limit;
+    }
+    if let Some(limit) = settings.max_render_pixels {
+        config.max_render_pixels = limit;
+    }
     config.allow_read = settings.allow_read.clone();
     config.hard_time_limit = settings.hard_time_limit;
+    let policy = write_policy(settings)?;
     let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref())?;
     let tracer = gpu.as_ref().map_or(Tracer::Cpu, Tracer::Gpu);
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
     let mut index = 0;
     let mut on_render = |graph: &SceneGraph, request: &RenderRequest| -> anyhow::Result<()> {
-        let output = output_path(settings.output.as_deref(), &request.output, index);
+        let output = render_output(settings, &policy, &request.output, index)?;
         index += 1;
         let fail = |e: ImageIoError| {
             let message = e.to_string();

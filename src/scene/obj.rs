@@ -45,9 +45,11 @@ struct ParsedObj {
     faces: Vec<Vec<Corner>>,
 }
 
-/// Most bytes parsing takes per byte of OBJ text (the text, the parsed corners with their
-/// per-face vectors, the mesh): `f 1 2 3` is 8 bytes of text and about 100 while parsed.
-pub const PARSE_BYTES_PER_BYTE: u64 = 16;
+/// Most bytes parsing takes per byte of OBJ text: the text and its copy (2), a corner
+/// (`1 `, 2 bytes) as written (24 bytes) and checked (12) at once, 20 in all, and the
+/// allocator's blocks; a vertex line (`v 1 1 1`, 8 bytes) is 24 bytes, doubled while its
+/// vector grows.
+pub const PARSE_BYTES_PER_BYTE: u64 = 24;
 
 /// Reads and parses an OBJ file into a triangle mesh named `name`.
 pub fn load_obj(path: &Path, name: &str) -> Result<Mesh, ObjError> {
@@ -108,7 +110,12 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
     };
     let mut out = ParsedObj::default();
     let mut normals = 0usize;
+    // The largest normal index a face names, and its line (checked at the end, as
+    // positions are, so forward references work).
+    let mut max_normal: Option<(i64, usize)> = None;
     let mut raw_faces = Vec::new();
+    // A UTF-8 byte-order mark is not part of the first statement.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
 
     for (i, line) in text.lines().enumerate() {
         let lineno = i + 1;
@@ -145,11 +152,17 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
             "f" => {
                 let mut corners = Vec::new();
                 for w in words {
-                    corners.push(
-                        corner(w, out.positions.len(), out.texcoords.len(), normals)
-                            .map_err(|m| err(lineno, m))?,
-                    );
+                    let (v, t, n) = corner(w, out.positions.len(), out.texcoords.len(), normals)
+                        .map_err(|m| err(lineno, m))?;
+                    if let Some(n) = n {
+                        if max_normal.is_none_or(|(m, _)| n > m) {
+                            max_normal = Some((n, lineno));
+                        }
+                    }
+                    corners.push((v, t));
                 }
+                // Kept until the end: no growth slack (see PARSE_BYTES_PER_BYTE).
+                corners.shrink_to_fit();
                 if corners.len() < 3 {
                     return Err(err(
                         lineno,
@@ -170,6 +183,9 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
         }
     }
 
+    if let Some((n, line)) = max_normal {
+        check_index(n, normals, "normal index", "normals").map_err(|m| err(line, m))?;
+    }
     let nv = out.positions.len();
     let nt = out.texcoords.len();
     for face in raw_faces {
@@ -201,7 +217,13 @@ fn number(word: &str) -> Result<f64, String> {
 
 /// Parses one `f` corner (`a`, `a/b`, `a/b/c`, `a//c`). Negative indices count back from
 /// the last element defined so far and are resolved here (to 1-based).
-fn corner(word: &str, nv: usize, nt: usize, nn: usize) -> Result<(i64, Option<i64>), String> {
+/// The normal index is returned resolved (1-based) for the end-of-file range check.
+fn corner(
+    word: &str,
+    nv: usize,
+    nt: usize,
+    nn: usize,
+) -> Result<(i64, Option<i64>, Option<i64>), String> {
     let mut parts = word.split('/');
     let index = |s: &str, count: usize, what: &str| -> Result<i64, String> {
         let i: i64 = s.parse().map_err(|_| {
@@ -234,16 +256,14 @@ fn corner(word: &str, nv: usize, nt: usize, nn: usize) -> Result<(i64, Option<i6
         None | Some("") => None,
         Some(s) => Some(index(s, nt, "texture")?),
     };
-    match parts.next() {
-        None | Some("") => {}
-        Some(s) => {
-            index(s, nn, "normal")?;
-        }
-    }
+    let n = match parts.next() {
+        None | Some("") => None,
+        Some(s) => Some(index(s, nn, "normal")?),
+    };
     if parts.next().is_some() {
         return Err(format!("bad face corner '{}'", excerpt(word)));
     }
-    Ok((v, t))
+    Ok((v, t, n))
 }
 
 /// Checks a resolved 1-based index against the file's count, giving a 0-based index.

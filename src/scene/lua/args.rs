@@ -11,20 +11,22 @@ use crate::scene::{Bounded, MaterialId, NodeId};
 use glam::DVec3;
 use mlua::{Lua, MultiValue, Table, Value};
 
-/// `file:line` of the innermost Lua code running (skipping Rust and C frames).
+/// `file:line` of the innermost Lua code running (skipping Rust and C frames, and
+/// glint's own Lua wrappers, chunk `=glint`).
 pub(crate) fn location(lua: &Lua) -> String {
     for level in 0..64 {
         let frame = lua.inspect_stack(level, |d| {
             let src = d.source();
             let name = match src.source.as_deref() {
-                Some(s) if s.starts_with('@') || s.starts_with('=') => s[1..].to_string(),
-                _ => src.short_src.as_deref().unwrap_or("?").to_string(),
+                Some("=glint") => None,
+                Some(s) if s.starts_with('@') || s.starts_with('=') => Some(s[1..].to_string()),
+                _ => Some(src.short_src.as_deref().unwrap_or("?").to_string()),
             };
             (name, d.current_line())
         });
         match frame {
             None => break,
-            Some((name, Some(line))) => return format!("{name}:{line}"),
+            Some((Some(name), Some(line))) => return format!("{name}:{line}"),
             Some(_) => {}
         }
     }

@@ -30,6 +30,7 @@ impl UserData for NodeHandle {
         macro_rules! method {
             ($name:literal, $f:expr) => {
                 methods.add_function($name, |lua, args: MultiValue| {
+                    super::ensure_live(lua)?;
                     let a = Args::method(lua, concat!("node:", $name), args);
                     a.receiver::<NodeHandle>("node")?;
                     $f(&a)?;
@@ -96,6 +97,10 @@ fn compose(a: &Args, op: DMat4) -> mlua::Result<()> {
 /// reach it.
 pub const MAX_CYCLE_CHECK_VISITS: u64 = 1 << 26;
 
+/// Bytes one `add_child` link holds: the child in the parent's list and the parent in
+/// the child's, with vector growth.
+const LINK_BYTES: u64 = super::grown(2 * std::mem::size_of::<NodeId>());
+
 fn add_child(a: &Args) -> mlua::Result<()> {
     let parent = a.receiver::<NodeHandle>("node")?.0;
     let child = a.node(1, "child")?;
@@ -116,7 +121,7 @@ fn add_child(a: &Args) -> mlua::Result<()> {
         }
     });
     match check {
-        Ok(()) => {}
+        Ok(()) => super::charge(a, LINK_BYTES, "the child link")?,
         Err(Some((c, p))) => {
             return Err(a.bad_in(
                 1,
@@ -265,6 +270,7 @@ impl UserData for MaterialHandle {
         macro_rules! method {
             ($name:literal, $f:expr) => {
                 methods.add_function($name, |lua, args: MultiValue| {
+                    super::ensure_live(lua)?;
                     let a = Args::method(lua, concat!("material:", $name), args);
                     let id = a.receiver::<MaterialHandle>("material")?.0;
                     let edit = $f(&a)?;

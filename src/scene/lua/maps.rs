@@ -77,8 +77,8 @@ fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
     }
     // The file is held while it is decoded.
     super::check_file_cost(a, &path, 1, "texture")?;
-    // Room for the texels and the decoder's transient copy of them.
-    let left = memory_left(a.lua) / 3;
+    // The file is held while it is decoded; the decoder counts the rest itself.
+    let left = memory_left(a.lua).saturating_sub(std::fs::metadata(&path).map_or(0, |m| m.len()));
     let texture = load_texture(&path, left).map_err(|e| a.bad_in(n, name, e))?;
     charge(
         a,
