@@ -51,7 +51,7 @@ pub fn load_texture(path: &Path, max_bytes: u64) -> Result<Texture, String> {
     let bytes = read_regular(path, "texture", MAX_FILE_BYTES)?;
     let format = texture_format(&bytes).ok_or_else(|| {
         format!(
-            "texture '{}' is not a PNG or JPEG image (by its content); textures are PNG or JPEG",
+            "cannot decode texture '{}': not a PNG or JPEG image (by its content); textures are PNG or JPEG",
             path.display()
         )
     })?;

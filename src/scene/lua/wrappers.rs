@@ -187,7 +187,6 @@ fn install_weighted(lua: &Lua) -> mlua::Result<()> {
                     _ => 8,
                 })
                 .sum::<u64>()
-                / 4
         }),
         (&string, "rep", |_, a| {
             let n = int_at(a, 1).unwrap_or(0).max(0) as u64;
