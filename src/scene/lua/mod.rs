@@ -573,6 +573,14 @@ fn convert_error(
 /// prepended to its own (`a.lua:2: a.lua:1: boom`): only the innermost, where it arose,
 /// is kept.
 fn with_location(message: &str, traceback: Option<&str>) -> String {
+    // A position inside glint's own Lua wrappers says nothing to the user: the script's
+    // frame in the traceback does.
+    let message = match message.strip_prefix("glint:") {
+        Some(rest) if leading_location(message).is_some() => {
+            rest.split_once(": ").map_or(message, |(_, m)| m)
+        }
+        _ => message,
+    };
     if let Some(mut n) = leading_location(message) {
         let mut message = message;
         while let Some(inner) = leading_location(&message[n..]) {
@@ -599,7 +607,8 @@ fn traceback_frame(tb: &str) -> Option<String> {
     tb.lines().map(str::trim).find_map(|l| {
         let (file, rest) = l.split_once(':')?;
         let (line, _) = rest.split_once(':')?;
-        (!file.starts_with('[') && line.bytes().all(|b| b.is_ascii_digit()))
+        // glint's own Lua wrappers (chunk `=glint`) are not the script's place.
+        (!file.starts_with('[') && file != "glint" && line.bytes().all(|b| b.is_ascii_digit()))
             .then(|| format!("{file}:{line}"))
     })
 }

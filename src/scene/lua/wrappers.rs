@@ -42,29 +42,25 @@ pub(super) fn tick(lua: &Lua, weight: u64) -> mlua::Result<()> {
 
 fn install_load(lua: &Lua) -> mlua::Result<()> {
     let g = lua.globals();
-    let name = lua.create_function(|lua, (chunk, name): (Value, Value)| {
-        let given = match (&name, &chunk) {
-            (Value::String(s), _) | (Value::Nil, Value::String(s)) => s.as_bytes().to_vec(),
-            (Value::Nil, _) => b"=(load)".to_vec(),
-            _ => return Ok(name),
-        };
-        Ok(Value::String(lua.create_string(short_chunk_name(&given))?))
-    })?;
-    // Text chunks only: binary chunks can crash the VM. Keep `load`'s arity exact,
+    let raw: Function = g.get("load")?;
+    // Text chunks only: binary chunks can crash the VM. `load`'s arity is kept exact,
     // since an explicit nil `env` differs from none.
-    lua.load(
-        r#"
-        local raw_load, chunk_name, select = ...
-        load = function(...)
-            local chunk, name, _, env = ...
-            name = chunk_name(chunk, name)
-            if select('#', ...) >= 4 then return raw_load(chunk, name, 't', env) end
-            return raw_load(chunk, name, 't')
-        end
-        "#,
-    )
-    .set_name("=glint")
-    .call::<()>((g.get::<Value>("load")?, name, g.get::<Value>("select")?))
+    let load = lua.create_function(move |lua, args: MultiValue| {
+        let mut args: Vec<Value> = args.into_iter().collect();
+        args.resize(args.len().max(3), Value::Nil);
+        let given = match (&args[1], &args[0]) {
+            (Value::String(s), _) | (Value::Nil, Value::String(s)) => Some(s.as_bytes().to_vec()),
+            (Value::Nil, _) => Some(b"=(load)".to_vec()),
+            _ => None,
+        };
+        if let Some(given) = given {
+            args[1] = Value::String(lua.create_string(short_chunk_name(&given))?);
+        }
+        args[2] = Value::String(lua.create_string("t")?);
+        raw.call::<MultiValue>(MultiValue::from_iter(args))
+            .map_err(|e| relocate(lua, "load", e))
+    })?;
+    g.set("load", load)
 }
 
 /// The first line of `given`, at most [`MAX_CHUNK_NAME`] bytes, without the leading `@`
@@ -103,22 +99,22 @@ fn install_protected_calls(lua: &Lua) -> mlua::Result<()> {
     let coroutine: Table = g.get("coroutine")?;
     lua.load(
         r#"
-        local raw_pcall, raw_xpcall, raw_resume, coroutine, weigh, checked, type = ...
-        pcall = function(...)
+        local pcall, xpcall, resume, coroutine, weigh, checked, type = ...
+        _G.pcall = function(...)
             weigh()
-            return checked(raw_pcall(...))
+            return checked(pcall(...))
         end
-        xpcall = function(f, handler, ...)
+        _G.xpcall = function(f, handler, ...)
             weigh()
             local h = handler
             if type(handler) == 'function' then
                 h = function(...) weigh() return handler(...) end
             end
-            return checked(raw_xpcall(f, h, ...))
+            return checked(xpcall(f, h, ...))
         end
         coroutine.resume = function(...)
             weigh()
-            return checked(raw_resume(...))
+            return checked(resume(...))
         end
         "#,
     )
