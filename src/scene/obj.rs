@@ -150,29 +150,9 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
                 }
             }
             "f" => {
-                let mut corners = Vec::new();
-                for w in words {
-                    let (v, t, n) = corner(w, out.positions.len(), out.texcoords.len(), normals)
-                        .map_err(|m| err(lineno, m))?;
-                    if let Some(n) = n {
-                        if max_normal.is_none_or(|(m, _)| n > m) {
-                            max_normal = Some((n, lineno));
-                        }
-                    }
-                    corners.push((v, t));
-                }
-                // Kept until the end: no growth slack (see PARSE_BYTES_PER_BYTE).
-                corners.shrink_to_fit();
-                if corners.len() < 3 {
-                    return Err(err(
-                        lineno,
-                        format!(
-                            "face has {} corner{}; a face needs at least 3",
-                            corners.len(),
-                            if corners.len() == 1 { "" } else { "s" }
-                        ),
-                    ));
-                }
+                let counts = (out.positions.len(), out.texcoords.len(), normals);
+                let corners = face_corners(words, counts, lineno, &mut max_normal)
+                    .map_err(|m| err(lineno, m))?;
                 raw_faces.push(RawFace {
                     line: lineno,
                     corners,
@@ -206,6 +186,37 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
         });
     }
     Ok(out)
+}
+
+/// The corners of an `f` line (at least 3), the largest normal index seen so far kept
+/// in `max_normal` with its line. `counts`: positions, texture coordinates and normals
+/// defined so far (for relative indices).
+fn face_corners<'a>(
+    words: impl Iterator<Item = &'a str>,
+    (nv, nt, nn): (usize, usize, usize),
+    lineno: usize,
+    max_normal: &mut Option<(i64, usize)>,
+) -> Result<Vec<(i64, Option<i64>)>, String> {
+    let mut corners = Vec::new();
+    for w in words {
+        let (v, t, n) = corner(w, nv, nt, nn)?;
+        if let Some(n) = n {
+            if max_normal.is_none_or(|(m, _)| n > m) {
+                *max_normal = Some((n, lineno));
+            }
+        }
+        corners.push((v, t));
+    }
+    if corners.len() < 3 {
+        return Err(format!(
+            "face has {} corner{}; a face needs at least 3",
+            corners.len(),
+            if corners.len() == 1 { "" } else { "s" }
+        ));
+    }
+    // Kept until the end of the file: no growth slack (see PARSE_BYTES_PER_BYTE).
+    corners.shrink_to_fit();
+    Ok(corners)
 }
 
 fn number(word: &str) -> Result<f64, String> {

@@ -84,7 +84,7 @@ pub(super) const NANOS_PER_INSTRUCTION: u128 = 50;
 pub(super) const FREE_SCRIPT_TIME: std::time::Duration = std::time::Duration::from_secs(1);
 
 fn instruction_message(at: &str, limit: u64) -> String {
-    format!("{at}: instruction limit of {limit} exceeded — runaway loop? (--instruction-limit N raises it)")
+    format!("{at}: instruction limit of {limit} exceeded — runaway loop?")
 }
 
 /// The hook installed once a limit is reached: every instruction fails, so that no
