@@ -105,6 +105,12 @@ fn output_target(path: &Path) -> Result<(Format, PathBuf, OsString), ImageIoErro
             dir,
         });
     }
+    if !writable_dir(&dir) {
+        return Err(ImageIoError::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::from(std::io::ErrorKind::PermissionDenied),
+        });
+    }
     let max = name_max(&dir);
     if file_name.len() + TEMP_SUFFIX_MAX > max {
         return Err(ImageIoError::NameTooLong {
@@ -122,6 +128,17 @@ static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 /// Most bytes the temporary name adds to the output's: `.` before it and
 /// `.tmp-PID-COUNTER` after it (a u32 and a u64 in decimal).
 pub const TEMP_SUFFIX_MAX: usize = 1 + ".tmp-".len() + 10 + 1 + 20;
+
+/// Whether this process may create files in `dir` (checked before a render, so that a
+/// folder it cannot write fails at once, not after the render).
+fn writable_dir(dir: &Path) -> bool {
+    use std::os::unix::ffi::OsStrExt;
+    let Ok(c) = std::ffi::CString::new(dir.as_os_str().as_bytes()) else {
+        return false;
+    };
+    // SAFETY: a valid NUL-terminated path; access only reads it.
+    unsafe { libc::access(c.as_ptr(), libc::W_OK | libc::X_OK) == 0 }
+}
 
 /// The longest file name the file system holding `dir` takes (255 where it cannot tell).
 fn name_max(dir: &Path) -> usize {
@@ -229,12 +246,15 @@ static SIGNAL_TEMP: AtomicPtr<libc::c_char> = AtomicPtr::new(std::ptr::null_mut(
 
 /// Makes every signal that ends a process by default while an image is written (SIGINT,
 /// SIGTERM, SIGHUP, SIGQUIT, SIGABRT (also raised when an allocation fails), SIGUSR1,
-/// SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU, SIGXFSZ (a file-size limit) and
-/// SIGPIPE) remove the temporary image being written, if any, then end the process as the
+/// SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU, SIGXFSZ (a file-size limit), SIGTRAP,
+/// SIGSYS, SIGIO, SIGPWR, SIGSTKFLT, the real-time signals and SIGPIPE; not the faults
+/// SIGSEGV and SIGBUS, whose handlers Rust uses to report a stack overflow) remove the
+/// temporary image being written, if any, then end the process as the
 /// signal would have. Signals the caller ignored stay ignored. For the command line.
 /// (Rust ignores SIGPIPE in every program, so a report printed into a closed pipe, as in
 /// `glint diff a b | head -0`, would panic; a command-line tool ends quietly instead.)
 pub fn remove_temp_files_on_signals() {
+    let realtime = libc::SIGRTMIN()..=libc::SIGRTMAX();
     let signals = [
         libc::SIGINT,
         libc::SIGTERM,
@@ -248,9 +268,14 @@ pub fn remove_temp_files_on_signals() {
         libc::SIGPROF,
         libc::SIGXCPU,
         libc::SIGXFSZ,
+        libc::SIGTRAP,
+        libc::SIGSYS,
+        libc::SIGIO,
+        libc::SIGPWR,
+        libc::SIGSTKFLT,
         libc::SIGPIPE,
     ];
-    for sig in signals {
+    for sig in signals.into_iter().chain(realtime) {
         // SAFETY: installs an async-signal-safe handler (atomic load, unlink, signal,
         // raise); `signal` is called before any thread writes an image.
         unsafe {

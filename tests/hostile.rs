@@ -1424,6 +1424,8 @@ fn every_signal_that_ends_glint_during_a_write_removes_the_temporary_file() {
         libc::SIGALRM,
         libc::SIGXCPU,
         libc::SIGXFSZ,
+        libc::SIGPWR,
+        libc::SIGRTMIN() + 1,
     ] {
         let (dir, logs, _root) = case_dir(&format!("signal-more-{sig}"));
         let scene = "root = gr.node('root')\ngr.render(root, 'out.png', 3000, 3000, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {}, {aa='none'})\n";
@@ -1563,4 +1565,38 @@ fn exit_codes_and_messages_say_what_and_where() {
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//5 2//1 3//1\n",
         ),
     );
+}
+
+#[test]
+fn huge_names_are_counted_and_never_copied_whole_into_messages() {
+    // Two 128 MiB names in a cycle error and a too-deep path: the message quotes each
+    // name short, so nothing the budget did not see is allocated for it.
+    for (tag, scene, needle) in [
+        (
+            "name-cycle",
+            "local big = string.rep('n', 2^27)\nlocal a = gr.node(big)\nlocal b = gr.node(big)\na:add_child(b)\nb:add_child(a)\n",
+            "scene.lua:5: node:add_child:",
+        ),
+        (
+            "name-csg",
+            "local big = string.rep('n', 2^27)\ngr.csg('c', 'u', gr.node(big), gr.sphere('s'))\n",
+            "scene.lua:2: gr.csg:",
+        ),
+        (
+            "name-material",
+            "local big = string.rep('n', 2^27)\nlocal m = gr.material(big)\ngr.sphere('s'):set_material(m)\nlocal n = gr.node(big)\nn:set_material(m)\n",
+            "scene.lua:5: node:set_material:",
+        ),
+    ] {
+        let (dir, logs, _root) = case_dir(tag);
+        std::fs::write(dir.join("scene.lua"), scene).unwrap();
+        let args = ["render", "scene.lua", "--backend", "cpu", "--memory-limit", "1024"]
+            .map(String::from)
+            .to_vec();
+        let ended = run_glint(&args, &dir, &logs, Duration::from_secs(20), &mut |_| false);
+        let case = Case::new(tag, scene, 3, &[needle]).within(20, 1024 + OVERHEAD_MIB);
+        check_ended(&case, &ended);
+        assert!(ended.stderr.len() < 2000, "{tag}: {} bytes", ended.stderr.len());
+        assert_eq!(listing(&dir), vec!["scene.lua"]);
+    }
 }

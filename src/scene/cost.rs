@@ -75,7 +75,7 @@ fn count(
     let too_deep = || FlattenError::TooDeep {
         path: path
             .iter()
-            .map(|&n| graph.nodes[n].name.as_str())
+            .map(|&n| super::short_name(&graph.nodes[n].name))
             .collect::<Vec<_>>()
             .join("/"),
     };

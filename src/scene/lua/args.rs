@@ -7,7 +7,7 @@
 
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
 use super::with_state;
-use crate::scene::{Bounded, MaterialId, NodeId};
+use crate::scene::{short_name, Bounded, MaterialId, NodeId};
 use glam::DVec3;
 use mlua::{Lua, MultiValue, Table, Value};
 
@@ -56,11 +56,13 @@ pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
         Value::UserData(ud) => {
             if let Ok(n) = ud.borrow::<NodeHandle>() {
                 let id = n.0;
-                with_state(lua, |s| format!("node '{}'", s.graph.nodes[id].name))
+                with_state(lua, |s| {
+                    format!("node '{}'", short_name(&s.graph.nodes[id].name))
+                })
             } else if let Ok(m) = ud.borrow::<MaterialHandle>() {
                 let id = m.0;
                 with_state(lua, |s| {
-                    format!("material '{}'", s.graph.materials[id].name)
+                    format!("material '{}'", short_name(&s.graph.materials[id].name))
                 })
             } else if ud.is::<LightHandle>() {
                 "a light".into()

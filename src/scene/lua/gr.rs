@@ -9,7 +9,7 @@ use super::{charge, check_file_cost, grown, memory_left, options, with_state, On
 use crate::constants::DEFAULT_SHADOW_SAMPLES;
 use crate::scene::flatten::{parallel_or_zero, CAMERA_PARALLEL_SIN2, MAX_PIXELS};
 use crate::scene::obj::PARSE_BYTES_PER_BYTE;
-use crate::scene::ShadowSamples;
+use crate::scene::{short_name, ShadowSamples};
 use crate::scene::{
     AreaLight, Camera, CsgOp, Light, Material, Mesh, Node, NodeId, NodeKind, Primitive,
     RenderRequest, TransformOrder,
@@ -194,10 +194,13 @@ fn csg(a: &Args) -> mlua::Result<NodeHandle> {
                 NodeKind::Geometry {
                     primitive: Primitive::Mesh(_),
                     ..
-                } => Some(format!("mesh node '{}' (meshes cannot be CSG operands)", node.name)),
+                } => Some(format!(
+                    "mesh node '{}' (meshes cannot be CSG operands)",
+                    short_name(&node.name)
+                )),
                 NodeKind::Transform => Some(format!(
                     "transform node '{}' (a transform node is a group, not a solid: use the primitive itself, with its own transforms)",
-                    node.name
+                    short_name(&node.name)
                 )),
                 _ => None,
             }

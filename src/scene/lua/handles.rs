@@ -9,7 +9,7 @@
 
 use super::args::Args;
 use super::with_state;
-use crate::scene::{Light, Material, NodeId, NodeKind};
+use crate::scene::{short_name, Light, Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
 use mlua::{MetaMethod, MultiValue, UserData, UserDataMethods};
 
@@ -75,7 +75,7 @@ impl UserData for NodeHandle {
         methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
             let id = this.borrow::<NodeHandle>()?.0;
             Ok(with_state(lua, |s| {
-                format!("node '{}'", s.graph.nodes[id].name)
+                format!("node '{}'", short_name(&s.graph.nodes[id].name))
             }))
         });
     }
@@ -110,8 +110,8 @@ fn add_child(a: &Args) -> mlua::Result<()> {
         s.cycle_check_visits += visits;
         let names = || {
             (
-                s.graph.nodes[child].name.clone(),
-                s.graph.nodes[parent].name.clone(),
+                short_name(&s.graph.nodes[child].name).into_owned(),
+                short_name(&s.graph.nodes[parent].name).into_owned(),
             )
         };
         match cycle {
@@ -254,7 +254,7 @@ fn set_material(a: &Args) -> mlua::Result<()> {
                 node.material = Some(m);
                 None
             }
-            NodeKind::Transform => Some(node.name.clone()),
+            NodeKind::Transform => Some(short_name(&node.name).into_owned()),
         }
     });
     match err {
@@ -304,7 +304,7 @@ impl UserData for MaterialHandle {
         methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
             let id = this.borrow::<MaterialHandle>()?.0;
             Ok(with_state(lua, |s| {
-                format!("material '{}'", s.graph.materials[id].name)
+                format!("material '{}'", short_name(&s.graph.materials[id].name))
             }))
         });
     }
