@@ -41,7 +41,8 @@ pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
         Value::Integer(i) => i.to_string(),
         Value::Number(x) => format_number(*x),
         Value::String(s) => {
-            let s = s.to_string_lossy();
+            // Only the start is copied out of Lua: the string may be hundreds of MiB.
+            let s = lossy_prefix(s, 160);
             if s.chars().count() > 40 {
                 format!("'{}…'", s.chars().take(40).collect::<String>())
             } else {
@@ -72,6 +73,16 @@ pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
         }
         other => other.type_name().to_string(),
     }
+}
+
+/// Longest string accepted where a short one is meant (file names, axes, operators,
+/// orders): longer ones are refused before they are copied out of Lua.
+pub const MAX_TEXT_ARG: usize = 4096;
+
+/// At most the first `max` bytes of a Lua string, as text (for messages and keywords).
+pub(crate) fn lossy_prefix(s: &mlua::LuaString, max: usize) -> String {
+    let bytes = s.as_bytes();
+    String::from_utf8_lossy(&bytes[..bytes.len().min(max)]).into_owned()
 }
 
 /// Numbers as Lua users write them: `-1`, `0.5`, `nan`, `inf`.
@@ -154,6 +165,22 @@ impl<'a> Args<'a> {
             Value::Number(x) if x.is_finite() => Ok(format_number(*x)),
             _ => Err(self.bad(n, name, "a string")),
         }
+    }
+
+    /// A short string argument (at most [`MAX_TEXT_ARG`] bytes, refused before it is
+    /// copied): file names, axes, orders.
+    pub fn text(&self, n: usize, name: &str) -> mlua::Result<String> {
+        if let Value::String(s) = self.get(n) {
+            let len = s.as_bytes().len();
+            if len > MAX_TEXT_ARG {
+                return Err(self.bad_in(
+                    n,
+                    name,
+                    format!("a string of {len} bytes; at most {MAX_TEXT_ARG} here"),
+                ));
+            }
+        }
+        self.string(n, name)
     }
 
     pub fn number(&self, n: usize, name: &str) -> mlua::Result<f64> {

@@ -170,7 +170,10 @@ fn torus(a: &Args) -> mlua::Result<NodeHandle> {
 fn csg(a: &Args) -> mlua::Result<NodeHandle> {
     let name = node_name(a)?;
     let op = match a.get(2) {
-        Value::String(s) => match s.to_string_lossy().to_ascii_lowercase().as_str() {
+        Value::String(s) => match super::args::lossy_prefix(s, 8)
+            .to_ascii_lowercase()
+            .as_str()
+        {
             "u" => Some(CsgOp::Union),
             "i" => Some(CsgOp::Intersection),
             "d" => Some(CsgOp::Difference),
@@ -225,8 +228,8 @@ fn csg(a: &Args) -> mlua::Result<NodeHandle> {
 fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
     let name = node_name(a)?;
     let id = match a.get(2) {
-        Value::String(s) => {
-            let file = s.to_string_lossy();
+        Value::String(_) => {
+            let file = a.text(2, "file")?;
             let (path, checked) = with_state(a.lua, |s| {
                 let path = s.base_dir.join(&file);
                 let checked = s.read_policy.check(&path, "mesh file");
@@ -520,7 +523,7 @@ fn area_light(a: &Args) -> mlua::Result<LightHandle> {
 }
 
 fn transform_order(a: &Args) -> mlua::Result<()> {
-    let s = a.string(1, "order")?;
+    let s = a.text(1, "order")?;
     let order = match s.to_ascii_lowercase().as_str() {
         "pre" => TransformOrder::Pre,
         "post" => TransformOrder::Post,
@@ -609,7 +612,7 @@ fn output_name(a: &Args) -> mlua::Result<PathBuf> {
             return Err(a.bad(2, "file", "a file name in UTF-8, without NUL bytes"));
         }
     }
-    Ok(PathBuf::from(a.string(2, "file")?))
+    Ok(PathBuf::from(a.text(2, "file")?))
 }
 
 /// Counts one render of `pixels` against the script's bounds (a reached bound is final).

@@ -61,7 +61,7 @@ impl UserData for NodeHandle {
             compose(a, DMat4::from_translation(t))
         });
         method!("rotate", |a: &Args| {
-            let axis = a.string(1, "axis")?;
+            let axis = a.text(1, "axis")?;
             let deg = a.number(2, "angle")?;
             let r = deg.to_radians();
             let op = match axis.to_ascii_lowercase().as_str() {

@@ -65,7 +65,7 @@ pub(super) fn set_bump(a: &Args) -> mlua::Result<Edit> {
 /// file is one texture under any spelling of its path). Its texels are counted against
 /// the memory budget from the image's header, before it is decoded.
 fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
-    let file = a.string(n, name)?;
+    let file = a.text(n, name)?;
     let (path, checked) = with_state(a.lua, |s| {
         let path = s.base_dir.join(&file);
         let checked = s.read_policy.check(&path, "texture");

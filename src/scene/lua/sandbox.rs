@@ -269,7 +269,7 @@ fn stub_table(lua: &Lua, lib: &str) -> mlua::Result<Table> {
         "__index",
         lua.create_function(move |lua, (_, key): (Value, Value)| -> mlua::Result<()> {
             let key = match key {
-                Value::String(s) => s.to_string_lossy(),
+                Value::String(s) => super::args::lossy_prefix(&s, 64),
                 other => format!("[{}]", other.type_name()),
             };
             Err(mlua::Error::RuntimeError(format!(
@@ -287,7 +287,7 @@ fn stub_table(lua: &Lua, lib: &str) -> mlua::Result<Table> {
 fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     ensure_live(lua)?;
     let a = Args::new(lua, "require", args);
-    let name = a.string(1, "module")?;
+    let name = a.text(1, "module")?;
     with_state(lua, |s| s.report.looks_pre2015 = true);
     if name == "readobj" {
         return Ok(Value::Boolean(true));
@@ -329,7 +329,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
 fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     ensure_live(lua)?;
     let a = Args::new(lua, "readobj", args);
-    let file = a.string(1, "path")?;
+    let file = a.text(1, "path")?;
     let (path, checked) = with_state(lua, |s| {
         s.report.looks_pre2015 = true;
         let path = s.base_dir.join(&file);
