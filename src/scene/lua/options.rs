@@ -52,7 +52,7 @@ fn sorted_entries(a: &Args, n: usize, t: &Table) -> mlua::Result<Vec<(String, Va
                 ),
             ));
         };
-        entries.push((super::args::lossy_prefix(&k, 64), v));
+        entries.push((super::args::lossy_prefix(k, 64), v));
     }
     entries.sort_by(|x, y| x.0.cmp(&y.0));
     Ok(entries)
