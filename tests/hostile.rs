@@ -1517,6 +1517,14 @@ fn exit_codes_and_messages_say_what_and_where() {
                 .within(20, 256 + OVERHEAD_MIB),
         );
     }
+    // The script runs as a coroutine (so a memory error keeps its line): a yield from
+    // its main chunk is still the error it is in plain Lua.
+    check(Case::new(
+        "top-yield",
+        "x = 1\ncoroutine.yield(1)\n",
+        3,
+        &["scene.lua:2:", "yield from outside a coroutine"],
+    ));
     // A binary chunk as the scene names the file.
     check(Case::new(
         "binary-scene",

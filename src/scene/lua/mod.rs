@@ -314,9 +314,10 @@ fn run_main(lua: &Lua, main: mlua::Function, memory_at: &mut Option<String>) -> 
     }
     result?;
     if thread.status() == mlua::thread::ThreadStatus::Resumable {
-        return Err(mlua::Error::RuntimeError(
-            "attempt to yield from outside a coroutine".into(),
-        ));
+        let at = innermost_line(&thread).unwrap_or_else(|| "?".into());
+        return Err(mlua::Error::RuntimeError(format!(
+            "{at}: attempt to yield from outside a coroutine"
+        )));
     }
     Ok(())
 }
