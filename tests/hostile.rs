@@ -1090,6 +1090,35 @@ fn a_reached_limit_is_final_even_when_caught() {
                 .within(15, BUDGET_MIB + OVERHEAD_MIB),
         );
     }
+    // The budget's refusals before reading or decoding are reached limits too.
+    let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    obj.push_str(&"f 1 2 3\n".repeat(200_000));
+    for (tag, body, file, bytes) in [
+        (
+            "final-texture",
+            "gr.material('m'):set_diffuse('huge.png')",
+            "huge.png",
+            png_header(16000, 16000),
+        ),
+        (
+            "final-obj",
+            "gr.mesh('m', 'big.obj')",
+            "big.obj",
+            obj.into_bytes(),
+        ),
+    ] {
+        check(
+            Case::new(
+                tag,
+                &caught_then_render(body),
+                3,
+                &["scene.lua:2:", file, "memory limit"],
+            )
+            .file(file, bytes)
+            .args(&["--memory-limit", "32"])
+            .within(15, 32 + OVERHEAD_MIB),
+        );
+    }
     // A loop that keeps catching: every instruction fails once the limit is reached,
     // so the loop cannot go on (the hook's step aligned with the loop once let it).
     for (tag, scene) in [

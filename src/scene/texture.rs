@@ -101,9 +101,13 @@ pub fn load_texture(path: &Path, max_bytes: u64) -> Result<Texture, String> {
     })
 }
 
+/// What every refusal of [`load_texture`] for the memory budget says (the caller makes
+/// such a refusal a reached limit).
+pub const OVER_BUDGET: &str = "left of the memory limit";
+
 fn over_budget(path: &Path, what: &str, max_bytes: u64) -> String {
     format!(
-        "texture '{}': {what} is over the {} MiB left of the memory limit (--memory-limit MIB)",
+        "texture '{}': {what} is over the {} MiB {OVER_BUDGET} (--memory-limit MIB)",
         path.display(),
         max_bytes >> 20
     )

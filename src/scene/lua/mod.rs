@@ -427,7 +427,7 @@ pub(crate) fn check_file_cost(
     };
     let left = memory_left(a.lua);
     if meta.is_file() && meta.len().saturating_mul(factor) > left {
-        return Err(a.error(format!(
+        return Err(reach_limit(a, format!(
             "{what} '{}' is {} MiB; reading it may take up to {factor}× that, over the {} MiB left of the memory limit; --memory-limit MIB raises it",
             path.display(),
             meta.len().div_ceil(1 << 20),
