@@ -1390,10 +1390,10 @@ fn images_are_decoded_by_content_within_the_budget() {
 fn work_the_hook_cannot_see_is_bounded() {
     // Default limits: each must end within the case's 30 s with the line.
     let cases = [
-        // A shared CSG tree under 40 000 distinct roots: counted from the DAG.
+        // A shared CSG tree under 100 000 distinct roots: counted from the DAG.
         (
             "work-csg",
-            "local c = gr.sphere('s')\nfor k = 1, 16 do c = gr.csg('c', 'u', c, c) end\nroot = gr.node('root')\nfor i = 1, 40000 do root:add_child(gr.csg('r', 'u', c, c)) end\ngr.render(root, 'out.png', 8, 8, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, {})\n",
+            "local c = gr.sphere('s')\nfor k = 1, 16 do c = gr.csg('c', 'u', c, c) end\nroot = gr.node('root')\nfor i = 1, 100000 do root:add_child(gr.csg('r', 'u', c, c)) end\ngr.render(root, 'out.png', 8, 8, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, {})\n",
             "scene.lua:5: gr.render:",
         ),
         ("work-move", "local t = {}\ntable.move(t, 1, 1e12, 2)\n", "scene.lua:2:"),
