@@ -12,7 +12,7 @@ use std::sync::atomic::{AtomicPtr, AtomicU64, Ordering};
 
 use image::codecs::openexr::OpenExrEncoder;
 use image::codecs::png::PngEncoder;
-use image::{DynamicImage, ExtendedColorType, ImageEncoder, ImageReader};
+use image::{DynamicImage, ExtendedColorType, ImageEncoder};
 use thiserror::Error;
 
 use crate::film::Film;
@@ -22,6 +22,12 @@ use crate::film::Film;
 pub enum ImageIoError {
     #[error("cannot write {path}: unsupported extension (supported: .png, .exr)")]
     UnsupportedExtension { path: PathBuf },
+    #[error("cannot write {path}: the name is {len} bytes; with the temporary file's suffix ({TEMP_SUFFIX_MAX} bytes) it passes the file system's limit of {max} bytes per name")]
+    NameTooLong {
+        path: PathBuf,
+        len: usize,
+        max: usize,
+    },
     #[error("cannot write {path}: directory {dir} does not exist")]
     MissingDirectory { path: PathBuf, dir: PathBuf },
     #[error("cannot write {path}: film is {width}x{height} but holds {len} pixels")]
@@ -49,6 +55,9 @@ pub enum ImageIoError {
         #[source]
         source: image::ImageError,
     },
+    /// `message` names the path.
+    #[error("{message}")]
+    Unreadable { path: PathBuf, message: String },
     #[error("cannot read image {path}: {source}")]
     Decode {
         path: PathBuf,
@@ -96,11 +105,55 @@ fn output_target(path: &Path) -> Result<(Format, PathBuf, OsString), ImageIoErro
             dir,
         });
     }
+    if !writable_dir(&dir) {
+        return Err(ImageIoError::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::from(std::io::ErrorKind::PermissionDenied),
+        });
+    }
+    let max = name_max(&dir);
+    if file_name.len() + TEMP_SUFFIX_MAX > max {
+        return Err(ImageIoError::NameTooLong {
+            path: path.to_path_buf(),
+            len: file_name.len(),
+            max,
+        });
+    }
     Ok((format, dir, file_name))
 }
 
 /// Distinguishes temp files of concurrent writers in one process (pid alone would not).
 static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Most bytes the temporary name adds to the output's: `.` before it and
+/// `.tmp-PID-COUNTER` after it (a u32 and a u64 in decimal).
+pub const TEMP_SUFFIX_MAX: usize = 1 + ".tmp-".len() + 10 + 1 + 20;
+
+/// Whether this process may create files in `dir` (checked before a render, so that a
+/// folder it cannot write fails at once, not after the render).
+fn writable_dir(dir: &Path) -> bool {
+    use std::os::unix::ffi::OsStrExt;
+    let Ok(c) = std::ffi::CString::new(dir.as_os_str().as_bytes()) else {
+        return false;
+    };
+    // SAFETY: a valid NUL-terminated path; access only reads it.
+    unsafe { libc::access(c.as_ptr(), libc::W_OK | libc::X_OK) == 0 }
+}
+
+/// The longest file name the file system holding `dir` takes (255 where it cannot tell).
+fn name_max(dir: &Path) -> usize {
+    use std::os::unix::ffi::OsStrExt;
+    let Ok(c) = std::ffi::CString::new(dir.as_os_str().as_bytes()) else {
+        return 255;
+    };
+    // SAFETY: a valid NUL-terminated path; pathconf only reads it.
+    let n = unsafe { libc::pathconf(c.as_ptr(), libc::_PC_NAME_MAX) };
+    if n > 0 {
+        n as usize
+    } else {
+        255
+    }
+}
 
 /// Writes `path` atomically with `write`, which creates and fills the file it is given:
 /// a hidden temp file beside `path` (same filesystem), renamed over `path` once `write`
@@ -191,20 +244,38 @@ enum Pixels<'a> {
 /// running on another thread can never read freed memory.
 static SIGNAL_TEMP: AtomicPtr<libc::c_char> = AtomicPtr::new(std::ptr::null_mut());
 
-/// Makes SIGINT, SIGTERM, SIGHUP, SIGABRT (also raised when an allocation fails) and
-/// SIGPIPE remove the temporary image being written, if any, then end the process as the
+/// Makes every signal that ends a process by default while an image is written (SIGINT,
+/// SIGTERM, SIGHUP, SIGQUIT, SIGABRT (also raised when an allocation fails), SIGUSR1,
+/// SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU, SIGXFSZ (a file-size limit), SIGTRAP,
+/// SIGSYS, SIGIO, SIGPWR, SIGSTKFLT, the real-time signals and SIGPIPE; not the faults
+/// SIGSEGV and SIGBUS, whose handlers Rust uses to report a stack overflow) remove the
+/// temporary image being written, if any, then end the process as the
 /// signal would have. Signals the caller ignored stay ignored. For the command line.
 /// (Rust ignores SIGPIPE in every program, so a report printed into a closed pipe, as in
 /// `glint diff a b | head -0`, would panic; a command-line tool ends quietly instead.)
 pub fn remove_temp_files_on_signals() {
+    let realtime = libc::SIGRTMIN()..=libc::SIGRTMAX();
     let signals = [
         libc::SIGINT,
         libc::SIGTERM,
         libc::SIGHUP,
+        libc::SIGQUIT,
         libc::SIGABRT,
+        libc::SIGUSR1,
+        libc::SIGUSR2,
+        libc::SIGALRM,
+        libc::SIGVTALRM,
+        libc::SIGPROF,
+        libc::SIGXCPU,
+        libc::SIGXFSZ,
+        libc::SIGTRAP,
+        libc::SIGSYS,
+        libc::SIGIO,
+        libc::SIGPWR,
+        libc::SIGSTKFLT,
         libc::SIGPIPE,
     ];
-    for sig in signals {
+    for sig in signals.into_iter().chain(realtime) {
         // SAFETY: installs an async-signal-safe handler (atomic load, unlink, signal,
         // raise); `signal` is called before any thread writes an image.
         unsafe {
@@ -289,26 +360,43 @@ fn write_to_temp(
     Ok(())
 }
 
-/// Reads a PNG, JPEG or EXR (format sniffed from the content, then the extension) into a
-/// linear film. 8-bit channels map by `/255` with no gamma, the inverse of `to_rgb8`;
-/// float images are taken as-is; alpha is dropped.
+/// Most pixels [`read_image`] decodes (glint's own largest image).
+pub const MAX_READ_PIXELS: u64 = 1 << 27;
+
+/// Bytes per pixel a decoder may allocate while reading (float RGBA, twice).
+const DECODE_BYTES_PER_PIXEL: u64 = 32;
+
+/// Reads a PNG, JPEG or EXR (format told by content; see [`crate::image_check`]) of at
+/// most [`MAX_READ_PIXELS`] into a linear film. 8-bit channels map by `/255` with no
+/// gamma, the inverse of `to_rgb8`; float images are taken as-is; alpha is dropped.
 pub fn read_image(path: &Path) -> Result<Film, ImageIoError> {
-    let decode_err = |source| ImageIoError::Decode {
+    read_image_within(path, MAX_READ_PIXELS, |_, _| Ok(()))
+}
+
+/// [`read_image`] of an image of at most `max_pixels`, whose size `check` may refuse
+/// (with a message) before it is decoded.
+pub fn read_image_within(
+    path: &Path,
+    max_pixels: u64,
+    check: impl FnOnce(u32, u32) -> Result<(), String>,
+) -> Result<Film, ImageIoError> {
+    let unreadable = |message: String| ImageIoError::Unreadable {
+        path: path.to_path_buf(),
+        message: format!("cannot read image {}: {message}", path.display()),
+    };
+    let bytes =
+        crate::image_check::read_image_file(path).map_err(|message| ImageIoError::Unreadable {
+            path: path.to_path_buf(),
+            message,
+        })?;
+    let max_alloc = max_pixels.saturating_mul(DECODE_BYTES_PER_PIXEL) + (64 << 20);
+    let (decoder, width, height) =
+        crate::image_check::checked_decoder(&bytes, max_pixels, max_alloc).map_err(unreadable)?;
+    check(width, height).map_err(unreadable)?;
+    let image = DynamicImage::from_decoder(decoder).map_err(|source| ImageIoError::Decode {
         path: path.to_path_buf(),
         source,
-    };
-    let reader = ImageReader::open(path)
-        .map_err(|source| ImageIoError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?
-        .with_guessed_format()
-        .map_err(|source| ImageIoError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-    let image = reader.decode().map_err(decode_err)?;
-    let (width, height) = (image.width(), image.height());
+    })?;
     let pixels = match image {
         DynamicImage::ImageRgb8(_)
         | DynamicImage::ImageRgba8(_)

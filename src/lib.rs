@@ -16,6 +16,7 @@ pub mod cpu;
 pub mod diff;
 pub mod film;
 pub mod gpu;
+pub mod image_check;
 pub mod image_io;
 pub mod mailboxes;
 pub mod pack;
@@ -26,3 +27,4 @@ pub mod script_driver;
 #[doc(hidden)]
 pub mod testing;
 pub mod tiling;
+pub mod write_policy;

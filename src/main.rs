@@ -88,6 +88,13 @@ struct RenderArgs {
     /// The sandbox's limits and readable folders (the same flags as `bench`).
     #[command(flatten)]
     script: glint::script_driver::ScriptArgs,
+    /// The folder the image names a script gives gr.render are taken from and confined
+    /// to (default: the current folder). -o is not confined.
+    #[arg(long, value_name = "DIR")]
+    output_dir: Option<PathBuf>,
+    /// A further folder a script-named image may be written under (repeatable).
+    #[arg(long, value_name = "DIR")]
+    allow_write: Vec<PathBuf>,
     /// Tracer: cpu (the reference), gpu (wgpu compute: Vulkan, Metal or DX12), auto (a
     /// hardware GPU when one exists, else the CPU, with a one-line notice), or both
     /// (render on each, write NAME-cpu and NAME-gpu, print the difference and both times;
@@ -128,8 +135,8 @@ struct RenderArgs {
     /// Deepest reflection/refraction chain.
     #[arg(long, value_parser = TraceDepth::parse)]
     max_depth: Option<TraceDepth>,
-    /// Drop secondary rays contributing less than this.
-    #[arg(long, value_parser = parse_non_negative)]
+    /// Drop secondary rays contributing less than this (0–1).
+    #[arg(long, value_parser = parse_weight)]
     min_weight: Option<f32>,
     /// Background: r,g,b (solid) or r,g,b/r,g,b (top/bottom gradient).
     #[arg(long, value_parser = parse_background)]
@@ -159,6 +166,13 @@ fn parse_non_negative(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
         Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
         _ => Err(format!("expected a non-negative number, got '{s}'")),
+    }
+}
+
+fn parse_weight(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("expected a weight from 0 to 1, got '{s}'")),
     }
 }
 
@@ -200,7 +214,8 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err((message, code)) => {
-            eprintln!("glint: error: {message}");
+            // A script can make its message any size: at most a few KiB reach the terminal.
+            eprintln!("glint: error: {}", glint::scene::lua::cap_message(&message));
             ExitCode::from(code)
         }
     }
@@ -233,6 +248,8 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         output: args.output,
         stats: args.stats,
         progress: true,
+        output_dir: args.output_dir.clone(),
+        allow_write: args.allow_write.clone(),
         backend: match args.backend {
             BackendArg::Cpu => glint::pipeline::Backend::Cpu,
             BackendArg::Gpu => glint::pipeline::Backend::Gpu,
@@ -293,6 +310,13 @@ fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
                 ),
                 2,
             ));
+        }
+    }
+    let folders = (args.allow_write.iter().map(|d| ("--allow-write", d)))
+        .chain(args.output_dir.iter().map(|d| ("--output-dir", d)));
+    for (flag, dir) in folders {
+        if !dir.is_dir() {
+            return Err((format!("{flag} {}: not a folder", dir.display()), 2));
         }
     }
     Ok(())

@@ -7,10 +7,14 @@
 use crate::diff::{diff_films, DiffReport};
 use crate::gpu::GpuContext;
 use crate::image_io::{check_output_path, write_image, ImageIoError};
-use crate::pipeline::{output_path, render_request, scene_error, RenderSettings, RunError, Tracer};
+use crate::pipeline::{
+    output_path, render_output, render_request, scene_error, write_policy, RenderSettings,
+    RunError, Tracer,
+};
 use crate::scene::lua::ScriptReport;
 use crate::scene::{RenderRequest, SceneGraph};
 use crate::script_driver::run_script;
+use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -67,10 +71,15 @@ fn render_both(
     settings: &RenderSettings,
     parity: &ParitySettings,
     ctx: &GpuContext,
+    policy: &WritePolicy,
     index: usize,
 ) -> anyhow::Result<ParityResult> {
-    let output = output_path(settings.output.as_deref(), &request.output, index);
-    let (cpu_output, gpu_output) = (tagged(&output, "cpu"), tagged(&output, "gpu"));
+    // Each tagged name is a name of the script's (when it is), under the write rule.
+    let [cpu_output, gpu_output] = ["cpu", "gpu"].map(|tag| match settings.output {
+        Some(_) => render_output(settings, policy, &request.output, index).map(|o| tagged(&o, tag)),
+        None => render_output(settings, policy, &tagged(&request.output, tag), index),
+    });
+    let (cpu_output, gpu_output) = (cpu_output?, gpu_output?);
     let heatmap = parity
         .heatmap
         .as_deref()
@@ -118,22 +127,22 @@ pub fn run_scene_both(
     parity: &ParitySettings,
     on_result: &mut dyn FnMut(&ParityResult),
 ) -> Result<(ScriptReport, bool), RunError> {
+    let policy = write_policy(settings)?;
     let ctx = GpuContext::new(settings.adapter.as_deref())?;
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
     let mut index = 0;
     let mut all_agree = true;
     let mut on_render = |graph: &SceneGraph, request: &RenderRequest| -> anyhow::Result<()> {
-        let result =
-            render_both(graph, request, settings, parity, &ctx, index).map_err(|e| {
-                match e.downcast::<ImageIoError>() {
-                    Ok(io) => {
-                        let message = io.to_string();
-                        *output_error.borrow_mut() = Some(io);
-                        anyhow::anyhow!(message)
-                    }
-                    Err(e) => e,
+        let result = render_both(graph, request, settings, parity, &ctx, &policy, index).map_err(
+            |e| match e.downcast::<ImageIoError>() {
+                Ok(io) => {
+                    let message = io.to_string();
+                    *output_error.borrow_mut() = Some(io);
+                    anyhow::anyhow!(message)
                 }
-            })?;
+                Err(e) => e,
+            },
+        )?;
         index += 1;
         all_agree &= result.agrees;
         on_result(&result);

@@ -13,6 +13,7 @@ use crate::scene::flatten::FlatScene;
 use crate::scene::lua::{SceneError, ScriptReport};
 use crate::scene::{AaMode, DebugView, OptionOverrides, RenderRequest, SceneGraph};
 use crate::script_driver::{run_script, ScriptSettings};
+use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -31,6 +32,11 @@ pub struct RenderSettings {
     pub stats: bool,
     /// Show a progress bar (only drawn on a terminal).
     pub progress: bool,
+    /// `--output-dir`: the folder the script's own output names are taken from and
+    /// confined to (None: the current folder; `-o` is not confined).
+    pub output_dir: Option<PathBuf>,
+    /// `--allow-write`: further folders a script-named output may lie under.
+    pub allow_write: Vec<PathBuf>,
     /// Which tracer renders.
     pub backend: Backend,
     /// `--adapter`: a substring of the GPU adapter's name.
@@ -122,6 +128,9 @@ pub enum RunError {
     /// The flags ask for something this render cannot give (exit code 2, as clap's).
     #[error("{0}")]
     Usage(#[from] AaMapError),
+    /// A flag names something unusable (a folder that does not exist; exit code 2).
+    #[error("{0}")]
+    Flag(String),
 }
 
 impl RunError {
@@ -130,7 +139,7 @@ impl RunError {
             RunError::Scene(_) => 3,
             RunError::Output(_) | RunError::OutputAt { .. } => 4,
             RunError::Gpu(_) => 5,
-            RunError::Usage(_) => 2,
+            RunError::Usage(_) | RunError::Flag(_) => 2,
         }
     }
 }
@@ -306,6 +315,26 @@ pub fn output_path(settings_output: Option<&Path>, script_output: &Path, index: 
     base.with_file_name(name)
 }
 
+/// The file the `index`-th render (0-based) writes: the user's `-o` (numbered after the
+/// first), else the script's own name, confined by `policy` (see [`WritePolicy`]); a
+/// refused name is the scene's error.
+pub fn render_output(
+    settings: &RenderSettings,
+    policy: &WritePolicy,
+    script_output: &Path,
+    index: usize,
+) -> anyhow::Result<PathBuf> {
+    match settings.output.as_deref() {
+        Some(base) => Ok(output_path(Some(base), script_output, index)),
+        None => policy.place(script_output).map_err(anyhow::Error::msg),
+    }
+}
+
+/// The write rule of `settings` (`--output-dir`, `--allow-write`).
+pub fn write_policy(settings: &RenderSettings) -> Result<WritePolicy, RunError> {
+    WritePolicy::new(settings.output_dir.as_deref(), &settings.allow_write).map_err(RunError::Flag)
+}
+
 /// Runs a scene file, rendering and writing each `gr.render`; `on_image` sees each image
 /// after it is written. Returns the script's report.
 pub fn run_scene(
@@ -313,12 +342,13 @@ pub fn run_scene(
     settings: &RenderSettings,
     on_image: &mut dyn FnMut(&RenderedImage),
 ) -> Result<ScriptReport, RunError> {
+    let policy = write_policy(settings)?;
     let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref())?;
     let tracer = gpu.as_ref().map_or(Tracer::Cpu, Tracer::Gpu);
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
     let mut index = 0;
     let mut on_render = |graph: &SceneGraph, request: &RenderRequest| -> anyhow::Result<()> {
-        let output = output_path(settings.output.as_deref(), &request.output, index);
+        let output = render_output(settings, &policy, &request.output, index)?;
         index += 1;
         let fail = |e: ImageIoError| {
             let message = e.to_string();

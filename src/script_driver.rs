@@ -34,6 +34,10 @@ pub struct ScriptSettings {
     /// `--ignore-extra-arguments`: no notes on arguments the scene passes that glint does
     /// not use.
     pub ignore_extra_arguments: bool,
+    /// `--max-renders`: most `gr.render` calls one script may make.
+    pub max_renders: Option<u64>,
+    /// `--max-render-pixels`: most pixels all of a script's renders may ask for.
+    pub max_render_pixels: Option<u64>,
 }
 
 impl ScriptSettings {
@@ -49,6 +53,8 @@ impl ScriptSettings {
             allow_read: self.allow_read.clone(),
             preludes: self.preludes.clone(),
             ignore_extra_arguments: self.ignore_extra_arguments,
+            max_renders: self.max_renders.unwrap_or(defaults.max_renders),
+            max_render_pixels: self.max_render_pixels.unwrap_or(defaults.max_render_pixels),
         }
     }
 }
@@ -90,6 +96,14 @@ pub struct ScriptArgs {
     /// the scene's own gr.ignore_extra_arguments()).
     #[arg(long)]
     pub ignore_extra_arguments: bool,
+    /// Most gr.render calls one script may make.
+    #[arg(long, value_name = "N", default_value_t = ScriptConfig::default().max_renders,
+          value_parser = clap::value_parser!(u64).range(1..=1 << 20))]
+    pub max_renders: u64,
+    /// Most pixels all of a script's gr.render calls may ask for together.
+    #[arg(long, value_name = "N", default_value_t = ScriptConfig::default().max_render_pixels,
+          value_parser = clap::value_parser!(u64).range(1..=1 << 40))]
+    pub max_render_pixels: u64,
 }
 
 impl ScriptArgs {
@@ -118,6 +132,8 @@ impl ScriptArgs {
             preludes: self.prelude.clone(),
             hard_time_limit: true,
             ignore_extra_arguments: self.ignore_extra_arguments,
+            max_renders: Some(self.max_renders),
+            max_render_pixels: Some(self.max_render_pixels),
         })
     }
 }
@@ -137,6 +153,8 @@ mod tests {
             preludes: vec![PathBuf::from("/d/a.lua"), PathBuf::from("b.lua")],
             hard_time_limit: true,
             ignore_extra_arguments: true,
+            max_renders: Some(5),
+            max_render_pixels: Some(1 << 20),
         };
         let c = settings.config();
         assert_eq!(c.transform_order, Some(TransformOrder::Post));
@@ -150,6 +168,8 @@ mod tests {
         );
         assert!(c.hard_time_limit);
         assert!(c.ignore_extra_arguments);
+        assert_eq!(c.max_renders, 5);
+        assert_eq!(c.max_render_pixels, 1 << 20);
     }
 
     #[test]

@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use crate::diff::{check_diff_size, diff_films, DiffError, DiffReport};
-use crate::image_io::{read_image, write_image, ImageIoError};
+use crate::image_io::{read_image_within, write_image, ImageIoError, MAX_READ_PIXELS};
 
 /// Why `glint diff` failed; each kind has its exit code.
 #[derive(Debug, thiserror::Error)]
@@ -33,13 +33,13 @@ impl DiffCmdError {
     }
 }
 
-/// Reads one input: its size is checked from the header before it is decoded.
+/// Reads one input: a regular file, decoded by its content, its size checked from the
+/// header before it is decoded.
 fn read_input(path: &Path) -> Result<crate::film::Film, DiffCmdError> {
-    let (width, height) = image::image_dimensions(path)
-        .map_err(|e| DiffCmdError::Input(format!("cannot read image {}: {e}", path.display())))?;
-    check_diff_size(width, height)
-        .map_err(|e| DiffCmdError::Input(format!("{}: {e}", path.display())))?;
-    read_image(path).map_err(|e| DiffCmdError::Input(e.to_string()))
+    read_image_within(path, MAX_READ_PIXELS, |w, h| {
+        check_diff_size(w, h).map_err(|e| e.to_string())
+    })
+    .map_err(|e| DiffCmdError::Input(e.to_string()))
 }
 
 /// Reads `a` (the reference) and `b`, prints the report to stdout and, if asked, writes
@@ -67,6 +67,7 @@ pub fn run_diff(a: &Path, b: &Path, heatmap: Option<&Path>) -> Result<DiffReport
 mod tests {
     use super::*;
     use crate::film::Film;
+    use crate::image_io::read_image;
 
     #[test]
     fn diffs_files_and_writes_heat_map() {

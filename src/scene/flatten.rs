@@ -73,7 +73,12 @@ fn visit(
             .join("/")
     };
     if path.len() > MAX_NODE_DEPTH {
-        return Err(FlattenError::TooDeep { path: path_name() });
+        let path = path
+            .iter()
+            .map(|&n| super::short_name(&graph.nodes[n].name));
+        return Err(FlattenError::TooDeep {
+            path: path.collect::<Vec<_>>().join("/"),
+        });
     }
     let node_to_world = parent_to_world * node.matrix;
     match &node.kind {

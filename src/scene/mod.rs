@@ -2,6 +2,22 @@
 //! requests that `gr.render` issues. Everything here lives above `pack`: the tracers
 //! never see these types, only the packed arrays made from them.
 
+/// At most [`SHORT_NAME_BYTES`] of a node or material name, for messages: a name may be
+/// hundreds of MiB (it is counted against the budget), its quotes in errors are not.
+pub fn short_name(name: &str) -> std::borrow::Cow<'_, str> {
+    if name.len() <= SHORT_NAME_BYTES {
+        return name.into();
+    }
+    let mut end = SHORT_NAME_BYTES;
+    while !name.is_char_boundary(end) {
+        end -= 1;
+    }
+    format!("{}…", &name[..end]).into()
+}
+
+/// Longest name quoted whole by [`short_name`].
+pub const SHORT_NAME_BYTES: usize = 64;
+
 pub mod bounded;
 pub mod cost;
 pub mod files;

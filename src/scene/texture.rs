@@ -28,57 +28,89 @@ pub fn texture_bytes(width: u32, height: u32) -> u64 {
     4 * u64::from(width) * u64::from(height)
 }
 
-/// Reads and decodes `path`, a regular file of at most [`MAX_FILE_BYTES`]. The size in the
-/// header is checked before decoding: each side at most [`MAX_TEXTURE_SIDE`], the decoded
-/// texels at most `max_bytes`, and a JPEG must be long enough to hold that many pixels
-/// (a 700-byte file claiming 8000×8000 is a truncated or forged one). Errors name the
-/// path that was tried and what went wrong.
+/// The texture formats glint reads, told by content (never by the file's name: a file
+/// named `t.png` that holds an OpenEXR is refused, not handed to another decoder).
+pub fn texture_format(bytes: &[u8]) -> Option<image::ImageFormat> {
+    if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+        Some(image::ImageFormat::Png)
+    } else if bytes.starts_with(&[0xFF, 0xD8, 0xFF]) {
+        Some(image::ImageFormat::Jpeg)
+    } else {
+        None
+    }
+}
+
+/// Reads and decodes `path`, a regular file of at most [`MAX_FILE_BYTES`] holding a PNG
+/// or a JPEG (by content). Everything is counted before it is decoded against
+/// `max_bytes`: the decoder's reading of the header (a PNG's ICC profile and text
+/// chunks), then, from the header's size and colour type, the decoded image, its RGBA
+/// copy and the texels kept. Each side is at most [`MAX_TEXTURE_SIDE`], and a JPEG must
+/// be long enough to hold the pixels its header claims (a 700-byte file claiming
+/// 8000×8000 is a truncated or forged one). Errors name the path and what went wrong.
 pub fn load_texture(path: &Path, max_bytes: u64) -> Result<Texture, String> {
     let bytes = read_regular(path, "texture", MAX_FILE_BYTES)?;
-    let reader = || {
-        image::ImageReader::new(Cursor::new(&bytes[..]))
-            .with_guessed_format()
-            .map_err(|e| format!("cannot read texture '{}': {e}", path.display()))
-    };
-    let format = reader()?.format();
-    let (width, height) = reader()?
-        .into_dimensions()
-        .map_err(|e| format!("cannot decode texture '{}': {e}", path.display()))?;
+    let format = texture_format(&bytes).ok_or_else(|| {
+        format!(
+            "cannot decode texture '{}': not a PNG or JPEG image (by its content); textures are PNG or JPEG",
+            path.display()
+        )
+    })?;
+    let cannot = |e: image::ImageError| format!("cannot decode texture '{}': {e}", path.display());
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_TEXTURE_SIDE);
+    limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+    limits.max_alloc = Some(max_bytes);
+    let mut reader = image::ImageReader::with_format(Cursor::new(&bytes[..]), format);
+    reader.limits(limits.clone());
+    let decoder = reader.into_decoder().map_err(|e| match e {
+        image::ImageError::Limits(_) => over_budget(path, "its header", max_bytes),
+        e => cannot(e),
+    })?;
+    let (width, height) = image::ImageDecoder::dimensions(&decoder);
     if width == 0 || height == 0 || width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
         return Err(format!(
             "texture '{}' is {width}×{height}; sides must be from 1 to {MAX_TEXTURE_SIDE}",
             path.display()
         ));
     }
-    if format == Some(image::ImageFormat::Jpeg) {
+    if format == image::ImageFormat::Jpeg {
         check_jpeg_length(path, bytes.len() as u64, width, height)?;
     }
-    let needed = texture_bytes(width, height);
+    let pixels = u64::from(width) * u64::from(height);
+    let stored = pixels * u64::from(image::ImageDecoder::color_type(&decoder).bytes_per_pixel());
+    // The decoded image, its RGBA copy, the texels kept.
+    let needed = stored + 2 * texture_bytes(width, height);
     if needed > max_bytes {
-        return Err(format!(
-            "texture '{}' is {width}×{height} ({} MiB decoded), over the {} MiB left of the memory limit (--memory-limit MIB)",
-            path.display(),
-            needed.div_ceil(1 << 20),
-            max_bytes >> 20
+        return Err(over_budget(
+            path,
+            &format!(
+                "{width}×{height} ({} MiB decoded)",
+                needed.div_ceil(1 << 20)
+            ),
+            max_bytes,
         ));
     }
-    let mut reader = reader()?;
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(width);
-    limits.max_image_height = Some(height);
-    // The decoder's own buffers: the image in its stored layout, then the RGBA copy.
-    limits.max_alloc = Some(2 * needed + (1 << 20));
-    reader.limits(limits);
-    let image = reader
-        .decode()
-        .map_err(|e| format!("cannot decode texture '{}': {e}", path.display()))?
-        .to_rgba8();
+    let image = image::DynamicImage::from_decoder(decoder)
+        .map_err(cannot)?
+        .into_rgba8();
     Ok(Texture {
         path: path.to_path_buf(),
         width,
         height,
         rgba: image.pixels().map(|p| p.0).collect(),
     })
+}
+
+/// What every refusal of [`load_texture`] for the memory budget says (the caller makes
+/// such a refusal a reached limit).
+pub const OVER_BUDGET: &str = "left of the memory limit";
+
+fn over_budget(path: &Path, what: &str, max_bytes: u64) -> String {
+    format!(
+        "texture '{}': {what} is over the {} MiB {OVER_BUDGET} (--memory-limit MIB)",
+        path.display(),
+        max_bytes >> 20
+    )
 }
 
 /// Fewest bytes a baseline JPEG of `width`×`height` can take: each 8×8 block of the

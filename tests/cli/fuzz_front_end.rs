@@ -1,8 +1,10 @@
 //! Bounded fuzzing of the front end on stable Rust: structured random OBJ files and Lua
 //! scenes from a seeded generator (splitmix64), a few thousand cases, fed in-process to
-//! the OBJ reader and to the Lua front end (with flattening at each `gr.render`). Each
-//! case must return, without a panic, either a result or an error whose message names
-//! the file. A failure prints the case's seed and text, so it can be replayed.
+//! the OBJ reader and to the Lua front end (with flattening at each `gr.render`: every
+//! `gr` call and method with random arguments, textures among them), and mutated PNG,
+//! JPEG and EXR files to the texture loader and `glint diff`. Each case must return,
+//! without a panic or an abort, either a result or an error whose message names the
+//! file. A failure prints the case's seed and text, so it can be replayed.
 
 use glint::scene::flatten::flatten;
 use glint::scene::lua::{run_scene_source, ScriptConfig};
@@ -192,6 +194,13 @@ fn lua_value(r: &mut Rng, depth: u32) -> String {
                 "'u'",
                 "'none'",
                 "string.rep('n', 300)",
+                "'fuzz.png'",
+                "'fuzz.jpg'",
+                "'fuzz.exr'",
+                "'tri.obj'",
+                "'../x.png'",
+                "'/tmp/x.png'",
+                "'o\\255.png'",
             ])
             .to_string(),
         5 => r.pick(&["true", "print", "gr", "{}"]).to_string(),
@@ -234,9 +243,12 @@ fn lua_statement(r: &mut Rng) -> String {
         "gr.light",
         "gr.area_light",
         "gr.transform_order",
+        "gr.render",
         "readobj",
         "require",
         "unpack",
+        "load",
+        "pcall",
     ];
     let methods = [
         "add_child",
@@ -301,6 +313,12 @@ fn lua_front_end_never_panics_and_names_the_file() {
     let dir = std::env::temp_dir().join(format!("glint-fuzz-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    for ((ext, bytes), name) in seed_images()
+        .into_iter()
+        .zip(["fuzz", "fuzz16", "fuzz", "fuzz"])
+    {
+        std::fs::write(dir.join(format!("{name}.{ext}")), bytes).unwrap();
+    }
     let config = ScriptConfig {
         instruction_limit: 1_000_000,
         memory_limit: 64 << 20,
@@ -333,6 +351,114 @@ fn lua_front_end_never_panics_and_names_the_file() {
     assert!(
         finished > CASES / 20 && failed > CASES / 20 && rendered > CASES / 100,
         "{finished} finished, {failed} failed, {rendered} flattened renders"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Small images of each format glint reads, encoded in memory: 8-bit RGB and 16-bit
+/// RGBA PNG, JPEG, float EXR.
+fn seed_images() -> Vec<(&'static str, Vec<u8>)> {
+    let encode = |image: image::DynamicImage, format| {
+        let mut bytes = Vec::new();
+        image
+            .write_to(&mut std::io::Cursor::new(&mut bytes), format)
+            .unwrap();
+        bytes
+    };
+    let rgb = image::RgbImage::from_fn(6, 5, |x, y| image::Rgb([x as u8 * 40, y as u8 * 50, 7]));
+    let rgba16: image::ImageBuffer<image::Rgba<u16>, Vec<u16>> =
+        image::ImageBuffer::from_pixel(5, 4, image::Rgba([9000, 2, 65535, 100]));
+    let float = image::Rgb32FImage::from_pixel(4, 3, image::Rgb([0.25, 2.0, -1.0]));
+    vec![
+        ("png", encode(rgb.clone().into(), image::ImageFormat::Png)),
+        ("png", encode(rgba16.into(), image::ImageFormat::Png)),
+        ("jpg", encode(rgb.into(), image::ImageFormat::Jpeg)),
+        ("exr", encode(float.into(), image::ImageFormat::OpenExr)),
+    ]
+}
+
+/// `bytes` mutated by the seeded generator: flipped bytes, 32-bit fields overwritten
+/// with extreme values (sizes, lengths, windows), truncation, inserted runs.
+fn mutate(r: &mut Rng, bytes: &[u8]) -> Vec<u8> {
+    let mut out = bytes.to_vec();
+    for _ in 0..1 + r.below(4) {
+        let at = r.below(out.len() as u64) as usize;
+        match r.below(5) {
+            0 => out[at] ^= 1 << r.below(8),
+            1 => out[at] = r.next() as u8,
+            2 if at + 4 <= out.len() => {
+                let random = r.next() as u32;
+                let v = *r.pick(&[u32::MAX, 0x7FFF_FFFF, 1 << 30, 0, 65_536, random]);
+                let v = if r.below(2) == 0 {
+                    v.to_le_bytes()
+                } else {
+                    v.to_be_bytes()
+                };
+                out[at..at + 4].copy_from_slice(&v);
+            }
+            3 => out.truncate(at.max(1)),
+            _ => {
+                let run = vec![r.next() as u8; 1 + r.below(64) as usize];
+                out.splice(at..at, run);
+            }
+        }
+    }
+    out
+}
+
+/// Mutated PNG, JPEG and EXR files through the texture loader (under a 64 MiB budget,
+/// named by every extension: content decides) and through `glint diff`'s reader and
+/// comparison: no panic, no abort (an allocation the header check missed would end
+/// this process), and every refusal names the file.
+#[test]
+fn mutated_images_never_panic_or_abort() {
+    use glint::image_io::{read_image_within, MAX_READ_PIXELS};
+    use glint::scene::texture::load_texture;
+    const CASES: u64 = 600;
+    let dir = std::env::temp_dir().join(format!("glint-fuzz-images-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let seeds = seed_images();
+    let reference = dir.join("reference.png");
+    std::fs::write(&reference, &seeds[0].1).unwrap();
+    let (mut decoded, mut refused) = (0, 0);
+    for seed in 0..CASES {
+        let mut r = Rng(seed ^ 0x1A6E);
+        let (ext, base) = r.pick(&seeds);
+        let bytes = mutate(&mut r, base);
+        // Named by its own extension or another: the content decides.
+        let ext = if r.below(3) == 0 {
+            *r.pick(&["png", "jpg", "exr"])
+        } else {
+            ext
+        };
+        let path = dir.join(format!("m{seed}.{ext}"));
+        std::fs::write(&path, &bytes).unwrap();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let outcome = catch_unwind(|| {
+            let texture = load_texture(&path, 64 << 20);
+            let film = read_image_within(&path, MAX_READ_PIXELS, |_, _| Ok(()));
+            let diff = glint::cli::diff_cmd::run_diff(&reference, &path, None);
+            (texture, film.map(|_| ()), diff.map(|_| ()))
+        })
+        .unwrap_or_else(|_| panic!("seed {seed}: panicked on {name}"));
+        match outcome.0 {
+            Ok(_) => decoded += 1,
+            Err(e) => {
+                assert!(e.contains(&name), "seed {seed}: {e}");
+                refused += 1;
+            }
+        }
+        if let Err(e) = outcome.1 {
+            assert!(e.to_string().contains(&name), "seed {seed}: {e}");
+        }
+        if let Err(e) = outcome.2 {
+            assert!(e.to_string().contains(&name), "seed {seed}: {e}");
+        }
+        let _ = std::fs::remove_file(&path);
+    }
+    assert!(
+        decoded > CASES / 20 && refused > CASES / 20,
+        "{decoded} decoded, {refused} refused"
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -15,6 +15,9 @@ const BUDGET_MIB: u64 = 256;
 /// What a child may hold beyond its budget: the binary, wgpu's and Mesa's libraries,
 /// thread stacks, allocator slack.
 const OVERHEAD_MIB: u64 = 160;
+/// The address space each child gets (`RLIMIT_AS`): an allocation the budget did not
+/// see fails there and aborts the child, which every case counts as a failure.
+const ADDRESS_SPACE_BYTES: u64 = 6 << 30;
 
 struct Case<'a> {
     tag: &'a str,
@@ -108,6 +111,11 @@ fn run_glint(
         command.pre_exec(|| {
             libc::signal(libc::SIGINT, libc::SIG_DFL);
             libc::signal(libc::SIGTERM, libc::SIG_DFL);
+            let cap = libc::rlimit {
+                rlim_cur: ADDRESS_SPACE_BYTES,
+                rlim_max: ADDRESS_SPACE_BYTES,
+            };
+            libc::setrlimit(libc::RLIMIT_AS, &cap);
             Ok(())
         });
     }
@@ -903,4 +911,747 @@ fn messages_name_the_scene_file_and_line() {
         "{}",
         ended.stderr
     );
+}
+
+/// `gr.render` with the output name `name` (Lua source text, quoted by the caller).
+fn render_named(name: &str) -> String {
+    with_render("").replace("'out.png'", name)
+}
+
+/// The scratch root of a case (its folder, its log folder, and whatever else the case
+/// put beside them) holds only `expected`.
+fn root_holds(dir: &Path, expected: &[&str]) {
+    let root = dir.parent().unwrap();
+    let mut expected: Vec<String> = expected.iter().map(|s| s.to_string()).collect();
+    expected.sort();
+    assert_eq!(
+        listing(root),
+        expected,
+        "files written outside the case's folder"
+    );
+}
+
+#[test]
+fn script_named_outputs_are_confined_like_reads() {
+    let refused = ["scene.lua:2: gr.render:", "cannot write"];
+    // Relative names that leave the folder, absolute names, and names through links.
+    for (i, name) in [
+        "'../up.png'",
+        "'sub/../../up.png'",
+        "'link/up.png'",
+        "'ABS/up.png'",
+        "'/dev/shm/glint-hostile-up.png'",
+    ]
+    .iter()
+    .enumerate()
+    {
+        let tag = format!("write-out-{i}");
+        let (dir, _, _root) = case_dir(&tag);
+        let outside = dir.parent().unwrap().join("outside");
+        std::fs::create_dir_all(&outside).unwrap();
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        std::os::unix::fs::symlink(&outside, dir.join("link")).unwrap();
+        let scene = render_named(&name.replace("ABS", outside.to_str().unwrap()));
+        check_in(Case::new(&tag, &scene, 3, &refused), &dir, &["link", "sub"]);
+        assert!(listing(&outside).is_empty(), "{name}: written outside");
+        assert!(!Path::new("/dev/shm/glint-hostile-up.png").exists());
+        root_holds(&dir, &[&tag, &format!("{tag}.logs"), "outside"]);
+    }
+    // Files that are not writable images are never replaced (nor followed).
+    let secret = b"not an image".to_vec();
+    for (i, (name, needle)) in [
+        ("'notes.png'", "not a PNG or EXR"),
+        ("'ro.png'", "read-only"),
+        ("'l.png'", "symbolic link"),
+        ("'d.png'", "not a regular file"),
+    ]
+    .iter()
+    .enumerate()
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let tag = format!("write-replace-{i}");
+        let (dir, _, _root) = case_dir(&tag);
+        std::fs::write(dir.join("notes.png"), &secret).unwrap();
+        std::fs::write(dir.join("ro.png"), png(2, 2)).unwrap();
+        std::fs::set_permissions(dir.join("ro.png"), std::fs::Permissions::from_mode(0o444))
+            .unwrap();
+        std::os::unix::fs::symlink("notes.png", dir.join("l.png")).unwrap();
+        std::fs::create_dir(dir.join("d.png")).unwrap();
+        let scene = render_named(name);
+        let case = Case::new(&tag, &scene, 3, &[refused[0], needle]);
+        check_in(case, &dir, &["notes.png", "ro.png", "l.png", "d.png"]);
+        assert_eq!(std::fs::read(dir.join("notes.png")).unwrap(), secret);
+        assert_eq!(std::fs::read(dir.join("ro.png")).unwrap(), png(2, 2));
+    }
+    // A name that is not UTF-8 is refused, not mangled into another.
+    check(Case::new(
+        "write-utf8",
+        &render_named("'o\\255.png'"),
+        3,
+        &["scene.lua:2: gr.render:", "argument 2 (file)", "UTF-8"],
+    ));
+    // A name the temporary suffix makes too long fails before the render, not after.
+    let long = format!("'{}.png'", "n".repeat(230));
+    let slow = render_named(&long).replace("8, 8,", "3000, 3000,");
+    check(
+        Case::new(
+            "write-long",
+            &slow,
+            4,
+            &["scene.lua:2: gr.render:", "bytes per name"],
+        )
+        .within(5, BUDGET_MIB + OVERHEAD_MIB),
+    );
+}
+
+#[test]
+fn output_folders_widen_the_write_rule_and_o_stays_the_users() {
+    let tag = "write-flags";
+    let (dir, _, _root) = case_dir(tag);
+    let root = dir.parent().unwrap().to_path_buf();
+    let (out, extra) = (root.join("out"), root.join("extra"));
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::create_dir_all(&extra).unwrap();
+    let (a_png, b_png, shm) = (
+        render_named("'a.png'"),
+        render_named("'../extra/b.png'"),
+        render_named("'/dev/shm/x.png'"),
+    );
+    // --output-dir: the script's names are taken from it and confined to it.
+    let case = Case::new(tag, &a_png, 0, &["wrote"]).args(&["--output-dir", out.to_str().unwrap()]);
+    check_in(case, &dir, &[]);
+    assert_eq!(listing(&out), vec!["a.png"]);
+    let case =
+        Case::new(tag, &b_png, 3, &["cannot write"]).args(&["--output-dir", out.to_str().unwrap()]);
+    check_in(case, &dir, &[]);
+    // --allow-write: a further folder.
+    let case = Case::new(tag, &b_png, 0, &["wrote"]).args(&[
+        "--output-dir",
+        out.to_str().unwrap(),
+        "--allow-write",
+        extra.to_str().unwrap(),
+    ]);
+    check_in(case, &dir, &[]);
+    assert_eq!(listing(&extra), vec!["b.png"]);
+    // -o is the user's own choice, wherever it points.
+    let chosen = extra.join("c.png");
+    let case = Case::new(tag, &shm, 0, &["wrote"]).args(&["-o", chosen.to_str().unwrap()]);
+    check_in(case, &dir, &[]);
+    assert_eq!(listing(&extra), vec!["b.png", "c.png"]);
+    for (flag, code) in [("--output-dir", 2), ("--allow-write", 2)] {
+        let case = Case::new(tag, &a_png, code, &[flag]).args(&[flag, "/nonexistent-glint-folder"]);
+        check_in(case, &dir, &[]);
+    }
+}
+
+#[test]
+fn a_reached_limit_is_final_even_when_caught() {
+    let caught_then_render = |body: &str| {
+        with_render(&format!(
+            "local ok = pcall(function() {body} end)\nassert(not ok)\n"
+        ))
+    };
+    // Instruction, time and memory limits, each caught by pcall: the render after it
+    // fails, nothing is written.
+    for (tag, body, args, needle) in [
+        (
+            "final-instructions",
+            "while true do end",
+            vec!["--instruction-limit", "1000000"],
+            "instruction limit",
+        ),
+        (
+            "final-time",
+            "while true do end",
+            vec![
+                "--script-timeout",
+                "1",
+                "--instruction-limit",
+                "100000000000",
+            ],
+            "script time limit",
+        ),
+        (
+            "final-memory",
+            "local t = {} for i = 1, 1e9 do t[i] = i end",
+            vec![],
+            "memory limit",
+        ),
+        (
+            "final-budget",
+            "local s = string.rep('x', 2^20) for i = 1, 1e6 do gr.node(s) end",
+            vec![],
+            "memory limit",
+        ),
+    ] {
+        check(
+            Case::new(tag, &caught_then_render(body), 3, &["scene.lua:", needle])
+                .args(&args)
+                .within(15, BUDGET_MIB + OVERHEAD_MIB),
+        );
+    }
+    // The budget's refusals before reading or decoding are reached limits too.
+    let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    obj.push_str(&"f 1 2 3\n".repeat(200_000));
+    for (tag, body, file, bytes) in [
+        (
+            "final-texture",
+            "gr.material('m'):set_diffuse('huge.png')",
+            "huge.png",
+            png_header(16000, 16000),
+        ),
+        (
+            "final-obj",
+            "gr.mesh('m', 'big.obj')",
+            "big.obj",
+            obj.into_bytes(),
+        ),
+    ] {
+        check(
+            Case::new(
+                tag,
+                &caught_then_render(body),
+                3,
+                &["scene.lua:2:", file, "memory limit"],
+            )
+            .file(file, bytes)
+            .args(&["--memory-limit", "32"])
+            .within(15, 32 + OVERHEAD_MIB),
+        );
+    }
+    // A loop that keeps catching: every instruction fails once the limit is reached,
+    // so the loop cannot go on (the hook's step aligned with the loop once let it).
+    for (tag, scene) in [
+        ("final-loop", "while true do pcall(function() end) end\n"),
+        (
+            "final-coroutine",
+            "while true do coroutine.resume(coroutine.create(function() while true do end end)) end\n",
+        ),
+        (
+            "final-render-loop",
+            "root = gr.node('root')\nwhile true do pcall(gr.render, root, 'out.png', 1, 1, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, {}) pcall(function() while true do end end) end\n",
+        ),
+    ] {
+        let ended_case = Case::new(tag, scene, 3, &["scene.lua:", "instruction limit"])
+            .args(&["--instruction-limit", "100000", "--script-timeout", "60"])
+            .within(10, BUDGET_MIB + OVERHEAD_MIB);
+        let ended_case = if tag == "final-render-loop" {
+            ended_case.writes("out.png")
+        } else {
+            ended_case
+        };
+        check(ended_case);
+    }
+}
+
+#[test]
+fn renders_per_script_are_bounded() {
+    let many = "root = gr.node('root')\nfor i = 1, 1e9 do\n  gr.render(root, 'out.png', 1, 1, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, {})\nend\n";
+    check(
+        Case::new(
+            "renders-default",
+            many,
+            3,
+            &["scene.lua:3: gr.render:", "1024 renders", "--max-renders"],
+        )
+        .writes("out.png")
+        .within(60, BUDGET_MIB + OVERHEAD_MIB),
+    );
+    check(
+        Case::new(
+            "renders-flag",
+            many,
+            3,
+            &["scene.lua:3:", "limit of 3 renders"],
+        )
+        .args(&["--max-renders", "3"])
+        .writes("out.png"),
+    );
+    let pcall_many = "root = gr.node('root')\nfor i = 1, 1e9 do\n  pcall(gr.render, root, 'out.png', 1, 1, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, {})\nend\n";
+    check(
+        Case::new(
+            "renders-pcall",
+            pcall_many,
+            3,
+            &["scene.lua:3:", "limit of 3 renders"],
+        )
+        .args(&["--max-renders", "3"])
+        .writes("out.png"),
+    );
+    check(
+        Case::new(
+            "renders-pixels",
+            &many.replace("1, 1, {0,0,5}", "100, 100, {0,0,5}"),
+            3,
+            &["scene.lua:3:", "30000 pixels", "--max-render-pixels"],
+        )
+        .args(&["--max-render-pixels", "25000"])
+        .writes("out.png"),
+    );
+    for args in [["--max-renders", "0"], ["--max-render-pixels", "0"]] {
+        check(Case::new("renders-zero", &with_render(""), 2, &[args[0]]).args(&args));
+    }
+}
+
+#[test]
+fn every_allocation_for_the_script_is_counted_first() {
+    let bound = 64 + OVERHEAD_MIB;
+    let cases: Vec<(&str, String, &str)> = vec![
+        // Material names and materials themselves.
+        (
+            "mem-material-names",
+            "local big = string.rep('x', 2^23)\nfor i = 1, 40 do gr.material(big) end\n".into(),
+            "scene.lua:2: gr.material:",
+        ),
+        (
+            "mem-materials",
+            "while true do gr.material('m') end\n".into(),
+            "scene.lua:1: gr.material:",
+        ),
+        // One face of 10⁵ corners listed 4 096 times: 4 × 10⁸ triangles from 1.6 MB.
+        (
+            "mem-faces",
+            "local f = {}\nfor i = 1, 100000 do f[i] = i % 3 end\nlocal F = {}\nfor i = 1, 4096 do F[i] = f end\ngr.mesh('m', {{0,0,0}, {1,0,0}, {0,1,0}}, F)\n".into(),
+            "scene.lua:5: gr.mesh:",
+        ),
+    ];
+    for (tag, scene, needle) in cases {
+        check(
+            Case::new(tag, &scene, 3, &[needle, "memory limit of 64 MiB"])
+                .args(&["--memory-limit", "64"])
+                .within(30, bound),
+        );
+    }
+    // Other budgets: one light listed 2^21 times (the copies are counted before they
+    // are made); add_child links to one child (16 MiB: each call costs microseconds).
+    for (tag, scene, needle, mib) in [
+        (
+            "mem-lights",
+            "local l = gr.light({0,0,0}, {1,1,1}, {1,0,0})\nlocal t = {}\nfor i = 1, 2^21 do t[i] = l end\nroot = gr.node('r')\ngr.render(root, 'o.png', 4, 4, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, t)\n",
+            "scene.lua:5: gr.render:",
+            256,
+        ),
+        // add_child links to one child.
+        (
+            "mem-links",
+            "local p, c = gr.node('p'), gr.sphere('c')\nfor i = 1, 1e9 do p:add_child(c) end\n",
+            "scene.lua:2: node:add_child:",
+            16,
+        ),
+    ] {
+        let limit = format!("memory limit of {mib} MiB");
+        check(
+            Case::new(tag, scene, 3, &[needle, &limit])
+                .args(&["--memory-limit", &mib.to_string()])
+                .within(30, mib + OVERHEAD_MIB),
+        );
+    }
+    // Small Lua objects: the C allocator's headers and rounding are counted with the
+    // heap (Lua counts 40 bytes for `{i}` where malloc takes 64 and more). The margin
+    // is tighter here (64 MiB: the CPU backend's binary and stacks take about 12).
+    check(
+        Case::new(
+            "mem-small-objects",
+            "local t = {}\nfor i = 1, 1e9 do t[i] = {i} end\n",
+            3,
+            &["scene.lua:2:", "memory limit of 512 MiB"],
+        )
+        .args(&[
+            "--memory-limit",
+            "512",
+            "--instruction-limit",
+            "100000000000",
+        ])
+        .within(30, 512 + 64),
+    );
+    // A module and the scene text itself are counted before they are read.
+    let big_text = format!("-- {}\n", "x".repeat(40 << 20));
+    check(
+        Case::new(
+            "mem-module",
+            "require('big')\n",
+            3,
+            &["scene.lua:1: require:", "big.lua", "memory limit"],
+        )
+        .file("big.lua", big_text.clone())
+        .args(&["--memory-limit", "64"])
+        .within(20, bound),
+    );
+    let (dir, logs, _root) = case_dir("mem-scene");
+    std::fs::write(dir.join("scene.lua"), &big_text).unwrap();
+    let args: Vec<String> = [
+        "render",
+        "scene.lua",
+        "--backend",
+        "cpu",
+        "--memory-limit",
+        "64",
+    ]
+    .map(String::from)
+    .to_vec();
+    let ended = run_glint(&args, &dir, &logs, Duration::from_secs(20), &mut |_| false);
+    check_ended(
+        &Case::new("mem-scene", "", 3, &["scene.lua", "memory limit of 64 MiB"]).within(20, bound),
+        &ended,
+    );
+    // A PNG whose ICC profile inflates to 400 MiB: the decoder's reading of the header
+    // is held to the budget too (the profile, which glint does not use, is dropped).
+    check(
+        Case::new(
+            "mem-iccp",
+            "gr.material('m'):set_diffuse('icc.png')\n",
+            0,
+            &["never called gr.render"],
+        )
+        .file("icc.png", png_with_icc(400 << 20))
+        .args(&["--memory-limit", "64"])
+        .within(30, bound),
+    );
+}
+
+/// A 2×2 PNG carrying an ICC profile of `len` zero bytes (compressed to a few hundred
+/// KB in its iCCP chunk).
+fn png_with_icc(len: usize) -> Vec<u8> {
+    use image::ImageEncoder;
+    let mut bytes = Vec::new();
+    let mut encoder = image::codecs::png::PngEncoder::new(&mut bytes);
+    encoder.set_icc_profile(vec![0; len]).unwrap();
+    encoder
+        .write_image(&[9; 12], 2, 2, image::ExtendedColorType::Rgb8)
+        .unwrap();
+    bytes
+}
+
+/// A small OpenEXR whose data window is rewritten to claim `side`×`side` pixels.
+fn forged_exr(side: i32) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    image::Rgb32FImage::from_pixel(4, 4, image::Rgb([0.5, 0.5, 0.5]))
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::OpenExr,
+        )
+        .unwrap();
+    let key = b"dataWindow\0box2i\0";
+    let at = bytes
+        .windows(key.len())
+        .position(|w| w == key)
+        .expect("a data window")
+        + key.len()
+        + 4;
+    bytes[at + 8..at + 12].copy_from_slice(&(side - 1).to_le_bytes());
+    bytes[at + 12..at + 16].copy_from_slice(&(side - 1).to_le_bytes());
+    bytes
+}
+
+#[test]
+fn images_are_decoded_by_content_within_the_budget() {
+    let forged = forged_exr(1 << 30);
+    // An EXR (forged or not) named like a PNG is no texture: textures are PNG or JPEG.
+    for (tag, bytes) in [
+        ("tex-exr-forged", forged.clone()),
+        ("tex-exr", forged_exr(4)),
+    ] {
+        check(
+            Case::new(
+                tag,
+                "gr.material('m'):set_diffuse('t.png')\n",
+                3,
+                &["scene.lua:1:", "t.png", "not a PNG or JPEG"],
+            )
+            .file("t.png", bytes)
+            .args(&["--memory-limit", "64"])
+            .within(20, 64 + OVERHEAD_MIB),
+        );
+    }
+    // glint diff: the forged EXR, whatever its name, is refused from its header.
+    let (dir, logs, _root) = case_dir("diff-forged");
+    std::fs::write(dir.join("t.png"), &forged).unwrap();
+    std::fs::write(dir.join("t.exr"), &forged).unwrap();
+    std::fs::write(dir.join("small.png"), png(4, 4)).unwrap();
+    let fifo = dir.join("fifo.png");
+    let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    // SAFETY: a valid NUL-terminated path.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+    for (a, b, needle) in [
+        ("t.png", "small.png", "t.png"),
+        ("small.png", "t.exr", "t.exr"),
+        ("fifo.png", "small.png", "not a regular file"),
+        ("small.png", "fifo.png", "not a regular file"),
+        ("scene.lua", "small.png", "not a PNG, JPEG or OpenEXR"),
+    ] {
+        std::fs::write(dir.join("scene.lua"), "x = 1\n").unwrap();
+        let args = ["diff", a, b].map(String::from).to_vec();
+        let ended = run_glint(&args, &dir, &logs, Duration::from_secs(10), &mut |_| false);
+        check_ended(&Case::new("diff-forged", "", 2, &[needle]), &ended);
+    }
+}
+
+#[test]
+fn work_the_hook_cannot_see_is_bounded() {
+    // Default limits: each must end within the case's 30 s with the line.
+    let cases = [
+        // A shared CSG tree under 100 000 distinct roots: counted from the DAG.
+        (
+            "work-csg",
+            "local c = gr.sphere('s')\nfor k = 1, 16 do c = gr.csg('c', 'u', c, c) end\nroot = gr.node('root')\nfor i = 1, 100000 do root:add_child(gr.csg('r', 'u', c, c)) end\ngr.render(root, 'out.png', 8, 8, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0,0,0}, {})\n",
+            "scene.lua:5: gr.render:",
+        ),
+        ("work-move", "local t = {}\ntable.move(t, 1, 1e12, 2)\n", "scene.lua:2:"),
+        (
+            "work-format",
+            "local s = string.rep('\"', 2^25)\nfor i = 1, 1e9 do local q = string.format('%q', s) end\n",
+            "scene.lua:2:",
+        ),
+        (
+            "work-gc",
+            "local t = {}\nfor i = 1, 2e6 do t[i] = {} end\nfor i = 1, 1e9 do collectgarbage() end\n",
+            "scene.lua:3:",
+        ),
+        (
+            "work-pcall",
+            "for i = 1, 1e12 do pcall(string.rep) end\n",
+            "scene.lua:1:",
+        ),
+        (
+            "work-xpcall",
+            "local function h(e) error(e) end\nfor i = 1, 1e12 do xpcall(error, h, 'x') end\n",
+            "scene.lua:",
+        ),
+    ];
+    for (tag, scene, needle) in cases {
+        check(
+            Case::new(tag, scene, 3, &[needle])
+                .args(&["--memory-limit", "1024"])
+                .within(30, 1024 + OVERHEAD_MIB),
+        );
+    }
+    // A 64 MiB chunk name given to load is cut to a line and not copied at each step.
+    let (dir, logs, _root) = case_dir("work-chunk-name");
+    std::fs::write(
+        dir.join("scene.lua"),
+        "local n = string.rep('n', 2^26)\nlocal f = load('for i = 1, 1e12 do end', n)\nf()\n",
+    )
+    .unwrap();
+    let args = [
+        "render",
+        "scene.lua",
+        "--backend",
+        "cpu",
+        "--instruction-limit",
+        "50000000",
+    ]
+    .map(String::from)
+    .to_vec();
+    let ended = run_glint(&args, &dir, &logs, Duration::from_secs(20), &mut |_| false);
+    check_ended(
+        &Case::new(
+            "work-chunk-name",
+            "",
+            3,
+            &["[string \"nnn", "instruction limit"],
+        )
+        .within(20, 1024),
+        &ended,
+    );
+    assert!(ended.stderr.len() < 1000, "{} bytes", ended.stderr.len());
+    assert!(
+        ended.elapsed < Duration::from_secs(10),
+        "{:?}",
+        ended.elapsed
+    );
+}
+
+#[test]
+fn every_signal_that_ends_glint_during_a_write_removes_the_temporary_file() {
+    // The signals glint did not clean up after before (SIGINT and SIGTERM are tested
+    // above), sent while the temporary file exists.
+    for sig in [
+        libc::SIGQUIT,
+        libc::SIGUSR1,
+        libc::SIGALRM,
+        libc::SIGXCPU,
+        libc::SIGXFSZ,
+        libc::SIGPWR,
+        libc::SIGRTMIN() + 1,
+    ] {
+        let (dir, logs, _root) = case_dir(&format!("signal-more-{sig}"));
+        let scene = "root = gr.node('root')\ngr.render(root, 'out.png', 3000, 3000, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {}, {aa='none'})\n";
+        std::fs::write(dir.join("scene.lua"), scene).unwrap();
+        let args: Vec<String> = ["render", "scene.lua", "--backend", "cpu"]
+            .map(String::from)
+            .to_vec();
+        let ended = run_glint(&args, &dir, &logs, Duration::from_secs(120), &mut |pid| {
+            let temp = listing(&dir).iter().any(|n| n.contains(".tmp-"));
+            if temp {
+                // SAFETY: signalling our own child.
+                unsafe { libc::kill(pid, sig) };
+            }
+            !temp
+        });
+        let names = listing(&dir);
+        assert!(
+            !names.iter().any(|n| n.contains(".tmp-")),
+            "signal {sig}: temporary file left behind: {names:?}; stderr:\n{}",
+            ended.stderr
+        );
+    }
+    // A real file-size limit: the write passes it, SIGXFSZ ends glint, nothing is left.
+    let (dir, _logs, _root) = case_dir("fsize");
+    let scene = "root = gr.sphere('s')\ngr.render(root, 'out.exr', 200, 200, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {gr.light({5,5,5}, {1,1,1}, {1,0,0})})\n";
+    std::fs::write(dir.join("scene.lua"), scene).unwrap();
+    let mut command = Command::new(env!("CARGO_BIN_EXE_glint"));
+    command
+        .args(["render", "scene.lua", "--backend", "cpu"])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null());
+    // SAFETY: setrlimit and signal are async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(|| {
+            libc::signal(libc::SIGXFSZ, libc::SIG_DFL);
+            let cap = libc::rlimit {
+                rlim_cur: 64 << 10,
+                rlim_max: 64 << 10,
+            };
+            libc::setrlimit(libc::RLIMIT_FSIZE, &cap);
+            Ok(())
+        });
+    }
+    let status = command.status().unwrap();
+    assert!(
+        !status.success(),
+        "a 480 KB EXR under a 64 KB file-size limit"
+    );
+    assert_eq!(listing(&dir), vec!["scene.lua"], "{status:?}");
+}
+
+#[test]
+fn exit_codes_and_messages_say_what_and_where() {
+    let scene = with_render("");
+    for (tag, args, needle) in [
+        (
+            "instructions-0",
+            vec!["--instruction-limit", "0"],
+            "--instruction-limit",
+        ),
+        ("min-weight-2", vec!["--min-weight", "2"], "--min-weight"),
+        (
+            "min-weight-huge",
+            vec!["--min-weight", "1e30"],
+            "--min-weight",
+        ),
+    ] {
+        check(Case::new(tag, &scene, 2, &[needle]).args(&args));
+    }
+    // Memory errors inside `..`, string.rep and table.concat name their line.
+    for (tag, body, line) in [
+        (
+            "mem-concat",
+            "local s = string.rep('x', 2^25)\nlocal u = s .. s .. s .. s .. s .. s .. s .. s\n",
+            "scene.lua:2:",
+        ),
+        ("mem-rep", "local x = 1\nlocal s = string.rep('x', 2^30)\n", "scene.lua:2:"),
+        (
+            "mem-table-concat",
+            "local t = {}\nfor i = 1, 100 do t[i] = string.rep('y', 2^20) end\nlocal s = table.concat(t)\n",
+            "scene.lua:3:",
+        ),
+    ] {
+        check(
+            Case::new(tag, body, 3, &[line, "memory limit of 256 MiB"])
+                .args(&["--memory-limit", "256"])
+                .within(20, 256 + OVERHEAD_MIB),
+        );
+    }
+    // The script runs as a coroutine (so a memory error keeps its line): a yield from
+    // its main chunk is still the error it is in plain Lua.
+    check(Case::new(
+        "top-yield",
+        "x = 1\ncoroutine.yield(1)\n",
+        3,
+        &["scene.lua:2:", "yield from outside a coroutine"],
+    ));
+    // A binary chunk as the scene names the file.
+    check(Case::new(
+        "binary-scene",
+        "\x1bLuaT\0\x19\u{93}\r\n\x1a\n",
+        3,
+        &["scene.lua:1:", "binary"],
+    ));
+    // Error messages are capped.
+    let (dir, logs, _root) = case_dir("long-message");
+    std::fs::write(dir.join("scene.lua"), "error(string.rep('x', 2^24))\n").unwrap();
+    let args: Vec<String> = ["render", "scene.lua", "--backend", "cpu"]
+        .map(String::from)
+        .to_vec();
+    let ended = run_glint(&args, &dir, &logs, Duration::from_secs(20), &mut |_| false);
+    check_ended(&Case::new("long-message", "", 3, &["scene.lua:1:"]), &ended);
+    assert!(ended.stderr.len() < 8192, "{} bytes", ended.stderr.len());
+    // A chunk name cannot make an error blame another file.
+    for name in ["'@/etc/passwd'", "'=/etc/passwd'"] {
+        let scene = format!("load('error(\"x\")', {name})()\n");
+        let (dir, logs, _root) = case_dir("chunk-name");
+        std::fs::write(dir.join("scene.lua"), &scene).unwrap();
+        let ended = run_glint(&args, &dir, &logs, Duration::from_secs(20), &mut |_| false);
+        check_ended(&Case::new("chunk-name", "", 3, &["[string"]), &ended);
+        assert!(!ended.stderr.contains("/etc/passwd:1"), "{}", ended.stderr);
+    }
+    // A UTF-8 byte-order mark, in a scene and in an OBJ file, is no statement.
+    let bom = format!(
+        "\u{feff}{}",
+        with_render("root:add_child(gr.mesh('m', 'm.obj'))\n")
+    );
+    check(
+        Case::new("bom", &bom, 0, &["wrote out.png"])
+            .file("m.obj", "\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+            .writes("out.png"),
+    );
+    // Normal indices are checked as the others are.
+    check(
+        Case::new(
+            "vn-range",
+            "gr.mesh('m', 'm.obj')\n",
+            3,
+            &["m.obj:5:", "normal index 5 out of range"],
+        )
+        .file(
+            "m.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//5 2//1 3//1\n",
+        ),
+    );
+}
+
+#[test]
+fn huge_names_are_counted_and_never_copied_whole_into_messages() {
+    // Two 128 MiB names in a cycle error and a too-deep path: the message quotes each
+    // name short, so nothing the budget did not see is allocated for it.
+    for (tag, scene, needle) in [
+        (
+            "name-cycle",
+            "local big = string.rep('n', 2^27)\nlocal a = gr.node(big)\nlocal b = gr.node(big)\na:add_child(b)\nb:add_child(a)\n",
+            "scene.lua:5: node:add_child:",
+        ),
+        (
+            "name-csg",
+            "local big = string.rep('n', 2^27)\ngr.csg('c', 'u', gr.node(big), gr.sphere('s'))\n",
+            "scene.lua:2: gr.csg:",
+        ),
+        (
+            "name-material",
+            "local big = string.rep('n', 2^27)\nlocal m = gr.material(big)\ngr.sphere('s'):set_material(m)\nlocal n = gr.node(big)\nn:set_material(m)\n",
+            "scene.lua:5: node:set_material:",
+        ),
+    ] {
+        let (dir, logs, _root) = case_dir(tag);
+        std::fs::write(dir.join("scene.lua"), scene).unwrap();
+        let args = ["render", "scene.lua", "--backend", "cpu", "--memory-limit", "1024"]
+            .map(String::from)
+            .to_vec();
+        let ended = run_glint(&args, &dir, &logs, Duration::from_secs(20), &mut |_| false);
+        let case = Case::new(tag, scene, 3, &[needle]).within(20, 1024 + OVERHEAD_MIB);
+        check_ended(&case, &ended);
+        assert!(ended.stderr.len() < 2000, "{tag}: {} bytes", ended.stderr.len());
+        assert_eq!(listing(&dir), vec!["scene.lua"]);
+    }
 }

@@ -7,14 +7,15 @@
 
 use super::handle_types::{LightHandle, MaterialHandle, NodeHandle};
 use super::with_state;
-use crate::scene::{Bounded, MaterialId, NodeId};
+use crate::scene::{short_name, Bounded, MaterialId, NodeId};
 use glam::DVec3;
 use mlua::{Lua, MultiValue, Table, Value};
 use std::cell::Cell;
 
-/// `file:line` of the innermost Lua code running (skipping Rust and C frames). Code of a
-/// prelude (`--prelude`) is skipped too when scene code called it: an error in a call the
-/// prelude makes on the scene's behalf names the scene's line (and [`Args::error`] names the prelude's line as well).
+/// `file:line` of the innermost Lua code running (skipping Rust and C frames, and
+/// glint's own Lua wrappers, chunk `=glint`). Code of a prelude (`--prelude`) is skipped
+/// too when scene code called it: an error in a call the prelude makes on the scene's
+/// behalf names the scene's line (and [`Args::error`] names the prelude's line as well).
 pub(crate) fn location(lua: &Lua) -> String {
     let (at, _) = locations(lua);
     at
@@ -28,8 +29,9 @@ fn locations(lua: &Lua) -> (String, Option<String>) {
             let src = d.source();
             let chunk = src.source.as_deref().map(str::to_string);
             let name = match src.source.as_deref() {
-                Some(s) if s.starts_with('@') || s.starts_with('=') => s[1..].to_string(),
-                _ => src.short_src.as_deref().unwrap_or("?").to_string(),
+                Some("=glint") => None,
+                Some(s) if s.starts_with('@') || s.starts_with('=') => Some(s[1..].to_string()),
+                _ => Some(src.short_src.as_deref().unwrap_or("?").to_string()),
             };
             (chunk, name, d.current_line())
         });
@@ -37,8 +39,9 @@ fn locations(lua: &Lua) -> (String, Option<String>) {
             None => break,
             // mlua's and glint's own Lua helpers (the `__index` that looks up methods,
             // `methods::INDEX_CHUNK`) are not the scene's code.
-            Some((_, name, _)) if name.starts_with("__mlua") || name.starts_with("__glint") => {}
-            Some((chunk, name, Some(line))) => {
+            Some((_, Some(name), _))
+                if name.starts_with("__mlua") || name.starts_with("__glint") => {}
+            Some((chunk, Some(name), Some(line))) => {
                 let here = format!("{name}:{line}");
                 if is_prelude_chunk(lua, chunk.as_deref()) {
                     skipped.get_or_insert(here);
@@ -77,7 +80,8 @@ pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
         Value::Integer(i) => i.to_string(),
         Value::Number(x) => format_number(*x),
         Value::String(s) => {
-            let s = s.to_string_lossy();
+            // Only the start is copied out of Lua: the string may be hundreds of MiB.
+            let s = lossy_prefix(s, 160);
             if s.chars().count() > 40 {
                 format!("'{}…'", s.chars().take(40).collect::<String>())
             } else {
@@ -92,11 +96,13 @@ pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
         Value::UserData(ud) => {
             if let Ok(n) = ud.borrow::<NodeHandle>() {
                 let id = n.0;
-                with_state(lua, |s| format!("node '{}'", s.graph.nodes[id].name))
+                with_state(lua, |s| {
+                    format!("node '{}'", short_name(&s.graph.nodes[id].name))
+                })
             } else if let Ok(m) = ud.borrow::<MaterialHandle>() {
                 let id = m.0;
                 with_state(lua, |s| {
-                    format!("material '{}'", s.graph.materials[id].name)
+                    format!("material '{}'", short_name(&s.graph.materials[id].name))
                 })
             } else if ud.is::<LightHandle>() {
                 "a light".into()
@@ -123,6 +129,16 @@ fn short_numbers(t: &Table, n: usize) -> Option<String> {
         }
     }
     Some(format!("{{{}}}", parts.join(", ")))
+}
+
+/// Longest string accepted where a short one is meant (file names, axes, operators,
+/// orders): longer ones are refused before they are copied out of Lua.
+pub const MAX_TEXT_ARG: usize = 4096;
+
+/// At most the first `max` bytes of a Lua string, as text (for messages and keywords).
+pub(crate) fn lossy_prefix(s: &mlua::LuaString, max: usize) -> String {
+    let bytes = s.as_bytes();
+    String::from_utf8_lossy(&bytes[..bytes.len().min(max)]).into_owned()
 }
 
 /// Numbers as Lua users write them: `-1`, `0.5`, `nan`, `inf`.
@@ -227,6 +243,22 @@ impl<'a> Args<'a> {
             Value::Number(x) if x.is_finite() => Ok(format_number(*x)),
             _ => Err(self.bad(n, name, "a string")),
         }
+    }
+
+    /// A short string argument (at most [`MAX_TEXT_ARG`] bytes, refused before it is
+    /// copied): file names, axes, orders.
+    pub fn text(&self, n: usize, name: &str) -> mlua::Result<String> {
+        if let Value::String(s) = self.get(n) {
+            let len = s.as_bytes().len();
+            if len > MAX_TEXT_ARG {
+                return Err(self.bad_in(
+                    n,
+                    name,
+                    format!("a string of {len} bytes; at most {MAX_TEXT_ARG} here"),
+                ));
+            }
+        }
+        self.string(n, name)
     }
 
     pub fn number(&self, n: usize, name: &str) -> mlua::Result<f64> {

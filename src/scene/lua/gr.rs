@@ -5,14 +5,14 @@
 
 use super::args::{int_value, location, Args};
 use super::handles::{LightHandle, MaterialHandle, NodeHandle};
-use super::{charge, check_file_cost, memory_left, notes, options, with_state, OnRender};
+use super::{charge, check_file_cost, grown, memory_left, notes, options, with_state, OnRender};
 use crate::constants::DEFAULT_SHADOW_SAMPLES;
 use crate::scene::flatten::{parallel_or_zero, CAMERA_PARALLEL_SIN2, MAX_PIXELS};
 use crate::scene::obj::PARSE_BYTES_PER_BYTE;
-use crate::scene::ShadowSamples;
+use crate::scene::{short_name, ShadowSamples};
 use crate::scene::{
-    AreaLight, Camera, CsgOp, Light, Material, Mesh, Node, NodeKind, Primitive, RenderRequest,
-    TransformOrder,
+    AreaLight, Camera, CsgOp, Light, Material, Mesh, Node, NodeId, NodeKind, Primitive,
+    RenderRequest, TransformOrder,
 };
 use glam::{DMat4, DVec3};
 use mlua::{Lua, MultiValue, Value};
@@ -30,6 +30,7 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
             gr.set(
                 $name,
                 lua.create_function(|lua, args: MultiValue| {
+                    super::ensure_live(lua)?;
                     let a = Args::new(lua, concat!("gr.", $name), args);
                     let out = $f(&a)?;
                     notes::check_extra_arguments(&a);
@@ -64,12 +65,31 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     lua.globals().set("gr", gr)
 }
 
-/// Bytes a node holds in Rust besides its name (its slot, a child link, a parent flag).
-const NODE_BYTES: u64 = std::mem::size_of::<Node>() as u64 + 16;
+/// Bytes a node holds in Rust besides its name: its slot in the node vector and in the
+/// parents' vector, with their growth, and the allocator's block for its parent list.
+const NODE_BYTES: u64 =
+    grown(std::mem::size_of::<Node>()) + grown(std::mem::size_of::<Vec<NodeId>>()) + 64;
 
-/// Adds a node, its name counted against the memory budget.
+/// Bytes a material holds besides its name.
+const MATERIAL_BYTES: u64 = grown(std::mem::size_of::<Material>());
+
+/// Bytes one entry of `gr.render`'s light list takes while the render runs: the list
+/// and the copies of it that flattening and packing make.
+const LIGHT_BYTES: u64 = 4 * grown(std::mem::size_of::<Light>());
+
+/// Argument 1, a node's name, with the node it names counted against the memory budget
+/// before the name is copied out of Lua.
+fn node_name(a: &Args) -> mlua::Result<String> {
+    let len = match a.get(1) {
+        Value::String(s) => s.as_bytes().len(),
+        _ => 32,
+    };
+    charge(a, NODE_BYTES + len as u64, "the node and its name")?;
+    a.string(1, "name")
+}
+
+/// Adds a node (counted by [`node_name`]).
 fn new_node(a: &Args, name: String, kind: NodeKind) -> mlua::Result<NodeHandle> {
-    charge(a, NODE_BYTES + name.len() as u64, "the node's name")?;
     Ok(with_state(a.lua, |s| {
         s.graph.nodes.push(Node {
             name,
@@ -90,19 +110,19 @@ fn geometry(primitive: Primitive, placement: DMat4) -> NodeKind {
 }
 
 fn transform_node(a: &Args) -> mlua::Result<NodeHandle> {
-    let name = a.string(1, "name")?;
+    let name = node_name(a)?;
     new_node(a, name, NodeKind::Transform)
 }
 
 fn primitive(a: &Args, p: Primitive) -> mlua::Result<NodeHandle> {
-    let name = a.string(1, "name")?;
+    let name = node_name(a)?;
     new_node(a, name, geometry(p, DMat4::IDENTITY))
 }
 
 /// `gr.cone(name, zmin, zmax)`: the solid cone x² + y² ≤ z² between z = zmin and z = zmax.
 /// The bounds must stay distinct (and finite) in f32, which the tracers use.
 fn cone(a: &Args) -> mlua::Result<NodeHandle> {
-    let name = a.string(1, "name")?;
+    let name = node_name(a)?;
     let zmin = a.number(2, "zmin")?;
     if !(zmin as f32).is_finite() {
         return Err(a.bad(2, "zmin", "a finite number (within f32 range)"));
@@ -122,7 +142,7 @@ fn cone(a: &Args) -> mlua::Result<NodeHandle> {
 }
 
 fn nh_sphere(a: &Args) -> mlua::Result<NodeHandle> {
-    let name = a.string(1, "name")?;
+    let name = node_name(a)?;
     let centre = a.vec3(2, "centre")?;
     let radius = a.positive(3, "radius")?;
     let placement = DMat4::from_translation(centre) * DMat4::from_scale(DVec3::splat(radius));
@@ -130,7 +150,7 @@ fn nh_sphere(a: &Args) -> mlua::Result<NodeHandle> {
 }
 
 fn nh_box(a: &Args) -> mlua::Result<NodeHandle> {
-    let name = a.string(1, "name")?;
+    let name = node_name(a)?;
     let corner = a.vec3(2, "corner")?;
     let size = a.positive(3, "size")?;
     let placement = DMat4::from_translation(corner) * DMat4::from_scale(DVec3::splat(size));
@@ -141,7 +161,7 @@ fn nh_box(a: &Args) -> mlua::Result<NodeHandle> {
 /// and gives a self-intersecting "spindle" torus (an apple with a lemon inside, both
 /// sheets drawn; `rout == rin` is the horn torus).
 fn torus(a: &Args) -> mlua::Result<NodeHandle> {
-    let name = a.string(1, "name")?;
+    let name = node_name(a)?;
     let rin = a.positive(2, "rin")?;
     let rout = a.positive(3, "rout")?;
     new_node(
@@ -158,9 +178,12 @@ fn torus(a: &Args) -> mlua::Result<NodeHandle> {
 /// classify a ray against, and a transform node's children are a group, not one solid
 /// (the operand's own transforms place it inside the CSG node).
 fn csg(a: &Args) -> mlua::Result<NodeHandle> {
-    let name = a.string(1, "name")?;
+    let name = node_name(a)?;
     let op = match a.get(2) {
-        Value::String(s) => match s.to_string_lossy().to_ascii_lowercase().as_str() {
+        Value::String(s) => match super::args::lossy_prefix(s, 8)
+            .to_ascii_lowercase()
+            .as_str()
+        {
             "u" => Some(CsgOp::Union),
             "i" => Some(CsgOp::Intersection),
             "d" => Some(CsgOp::Difference),
@@ -184,10 +207,13 @@ fn csg(a: &Args) -> mlua::Result<NodeHandle> {
                 NodeKind::Geometry {
                     primitive: Primitive::Mesh(_),
                     ..
-                } => Some(format!("mesh node '{}' (meshes cannot be CSG operands)", node.name)),
+                } => Some(format!(
+                    "mesh node '{}' (meshes cannot be CSG operands)",
+                    short_name(&node.name)
+                )),
                 NodeKind::Transform => Some(format!(
                     "transform node '{}' (a transform node is a group, not a solid: use the primitive itself, with its own transforms)",
-                    node.name
+                    short_name(&node.name)
                 )),
                 _ => None,
             }
@@ -210,10 +236,10 @@ fn csg(a: &Args) -> mlua::Result<NodeHandle> {
 
 /// `gr.mesh(name, 'file.obj')` or `gr.mesh(name, verts, faces[, uvs[, normals]])`.
 fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
-    let name = a.string(1, "name")?;
+    let name = node_name(a)?;
     let id = match a.get(2) {
-        Value::String(s) => {
-            let file = s.to_string_lossy();
+        Value::String(_) => {
+            let file = a.text(2, "file")?;
             let found = with_state(a.lua, |s| {
                 s.folders.find(&s.read_policy, &file, "mesh file")
             });
@@ -234,8 +260,8 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
             }
         }
         Value::Table(_) => {
+            // Counted (by inline_mesh) before its vectors are built.
             let mesh = inline_mesh(a, &name)?;
-            charge(a, mesh_bytes(&mesh), "the inline mesh")?;
             // A prelude's quads are no sign of a pre-2015 scene.
             let from_scene = super::preludes::caller_module_dir(a.lua).is_none();
             with_state(a.lua, |s| {
@@ -271,7 +297,15 @@ fn mesh_bytes(mesh: &Mesh) -> u64 {
 fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
     let verts = a.table(2, "vertices", "a table of vertices {{x,y,z}, …}")?;
     let faces = a.table(3, "faces", "a table of faces {{i,j,k,…}, …}")?;
-    let mut positions = Vec::new();
+    let triangle_count = inline_triangle_count(&faces)?;
+    let vertex_count = verts.raw_len() as u64;
+    let vertex_bytes = std::mem::size_of::<DVec3>() as u64 + if a.is_nil(4) { 0 } else { 8 };
+    let bytes = vertex_count
+        .saturating_mul(vertex_bytes)
+        .saturating_add(triangle_count.saturating_mul(12))
+        .saturating_add(name.len() as u64);
+    charge(a, bytes, "the inline mesh")?;
+    let mut positions = Vec::with_capacity(vertex_count as usize);
     for (i, v) in verts.sequence_values::<Value>().enumerate() {
         let v = v?;
         let Value::Table(t) = &v else {
@@ -295,7 +329,7 @@ fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
         positions.push(DVec3::from_array(p));
     }
     let n = positions.len();
-    let mut triangles = Vec::new();
+    let mut triangles = Vec::with_capacity(triangle_count as usize);
     for (f, face) in faces.sequence_values::<Value>().enumerate() {
         let face = face?;
         let Value::Table(t) = &face else {
@@ -402,6 +436,19 @@ fn inline_normals(a: &Args, n: usize) -> mlua::Result<Option<Vec<DVec3>>> {
     Ok(Some(normals))
 }
 
+/// Triangles the fan triangulation of `faces` makes at most (from the tables' lengths,
+/// before anything is built: a face of 786 432 corners listed 2 048 times is 1.6 × 10⁹
+/// triangles from 16 MiB of Lua).
+fn inline_triangle_count(faces: &mlua::Table) -> mlua::Result<u64> {
+    let mut total = 0u64;
+    for face in faces.sequence_values::<Value>() {
+        if let Value::Table(t) = face? {
+            total = total.saturating_add((t.raw_len() as u64).saturating_sub(2));
+        }
+    }
+    Ok(total)
+}
+
 /// Argument 4 of the inline form: one `{u, v}` per vertex (`n` of them), if given.
 fn inline_uvs(a: &Args, n: usize) -> mlua::Result<Option<Vec<[f32; 2]>>> {
     if a.is_nil(4) {
@@ -445,6 +492,12 @@ fn inline_uvs(a: &Args, n: usize) -> mlua::Result<Option<Vec<[f32; 2]>>> {
 
 /// `gr.material(kd, ks, shininess)` or `gr.material(name)`.
 fn material(a: &Args) -> mlua::Result<MaterialHandle> {
+    // The name's length is known before it is copied out of Lua.
+    let name_len = match a.get(1) {
+        Value::String(s) => s.as_bytes().len(),
+        _ => 64,
+    };
+    charge(a, MATERIAL_BYTES + name_len as u64, "the material")?;
     let m = match a.get(1) {
         Value::String(_) => Material {
             name: a.string(1, "name")?,
@@ -527,7 +580,7 @@ fn area_light(a: &Args) -> mlua::Result<LightHandle> {
 }
 
 fn transform_order(a: &Args) -> mlua::Result<()> {
-    let s = a.string(1, "order")?;
+    let s = a.text(1, "order")?;
     let order = match s.to_ascii_lowercase().as_str() {
         "pre" => TransformOrder::Pre,
         "post" => TransformOrder::Post,
@@ -618,12 +671,13 @@ pub(super) fn render(
     args: MultiValue,
     on_render: &mut OnRender<'_>,
 ) -> mlua::Result<()> {
+    super::ensure_live(lua)?;
     let a = Args::new(lua, "gr.render", args);
     if with_state(lua, |s| s.render_error.is_some()) {
         return Err(a.error("an earlier gr.render failed; no more renders"));
     }
     let root = a.node(1, "root")?;
-    let output = PathBuf::from(a.string(2, "file")?);
+    let output = output_name(&a)?;
     let width = a.positive_int(3, "width", MAX_IMAGE_SIDE)?;
     let height = a.positive_int(4, "height", MAX_IMAGE_SIDE)?;
     if u64::from(width) * u64::from(height) > MAX_PIXELS {
@@ -633,10 +687,81 @@ pub(super) fn render(
             format!("a {width}×{height} image has more than glint's limit of {MAX_PIXELS} pixels"),
         ));
     }
+    count_render(&a, u64::from(width) * u64::from(height))?;
     let camera = camera(&a)?;
     let ambient = a.colour(9, "ambient")?;
     let list = a.table(10, "lights", "a table of lights made by gr.light")?;
-    let mut lights = Vec::new();
+    let options = render_options(&a)?;
+    with_state(lua, notes::flush);
+    // The list is counted before it is copied (2²⁶ entries naming one light are 2²⁶
+    // copies), and given back after the render.
+    let light_bytes = (list.raw_len() as u64).saturating_mul(LIGHT_BYTES);
+    charge(&a, light_bytes, "the light list")?;
+    let result = render_with_lights(&a, list, output, on_render, |lights| {
+        Ok(RenderRequest {
+            root,
+            output: PathBuf::new(),
+            width,
+            height,
+            camera,
+            ambient,
+            lights,
+            options,
+            location: location(lua),
+            memory_left: memory_left(lua),
+        })
+    });
+    super::release(lua, light_bytes);
+    result
+}
+
+/// Argument 2 of `gr.render`, the output's name: UTF-8 (a name is never mangled into
+/// another), without NUL bytes.
+fn output_name(a: &Args) -> mlua::Result<PathBuf> {
+    if let Value::String(s) = a.get(2) {
+        let bytes = s.as_bytes();
+        if std::str::from_utf8(&bytes).is_err() || bytes.contains(&0) {
+            return Err(a.bad(2, "file", "a file name in UTF-8, without NUL bytes"));
+        }
+    }
+    Ok(PathBuf::from(a.text(2, "file")?))
+}
+
+/// Counts one render of `pixels` against the script's bounds (a reached bound is final).
+fn count_render(a: &Args, pixels: u64) -> mlua::Result<()> {
+    let over = with_state(a.lua, |s| {
+        s.renders_requested += 1;
+        s.pixels_requested = s.pixels_requested.saturating_add(pixels);
+        if s.renders_requested > s.max_renders {
+            Some(format!(
+                "this is render {} of the script, over the limit of {} renders; --max-renders N raises it",
+                s.renders_requested, s.max_renders
+            ))
+        } else if s.pixels_requested > s.max_render_pixels {
+            Some(format!(
+                "the script's renders ask for {} pixels in all, over the limit of {}; --max-render-pixels N raises it",
+                s.pixels_requested, s.max_render_pixels
+            ))
+        } else {
+            None
+        }
+    });
+    match over {
+        Some(message) => Err(super::reach_limit(a, message)),
+        None => Ok(()),
+    }
+}
+
+/// Reads the light list, builds the request with `request` and renders it.
+fn render_with_lights(
+    a: &Args,
+    list: mlua::Table,
+    output: PathBuf,
+    on_render: &mut OnRender<'_>,
+    request: impl FnOnce(Vec<Light>) -> mlua::Result<RenderRequest>,
+) -> mlua::Result<()> {
+    let lua = a.lua;
+    let mut lights = Vec::with_capacity(list.raw_len());
     for (i, v) in list.sequence_values::<Value>().enumerate() {
         let v = v?;
         let light = match &v {
@@ -655,19 +780,9 @@ pub(super) fn render(
             )
         })?);
     }
-    let options = render_options(&a)?;
-    with_state(lua, notes::flush);
     let request = RenderRequest {
-        root,
         output,
-        width,
-        height,
-        camera,
-        ambient,
-        lights,
-        options,
-        location: location(lua),
-        memory_left: memory_left(lua),
+        ..request(lights)?
     };
     let state = lua
         .app_data_ref::<super::State>()

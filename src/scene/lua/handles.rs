@@ -13,7 +13,7 @@ pub(crate) use super::handle_types::{LightHandle, MaterialHandle, NodeHandle};
 use super::methods::Method;
 use super::unknown::unknown_method;
 use super::with_state;
-use crate::scene::{Material, NodeId, NodeKind};
+use crate::scene::{short_name, Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
 use mlua::{Lua, MetaMethod, MultiValue, UserData, UserDataFields, UserDataMethods, Value};
 
@@ -29,7 +29,7 @@ impl UserData for NodeHandle {
         methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
             let id = this.borrow::<NodeHandle>()?.0;
             Ok(with_state(lua, |s| {
-                format!("node '{}'", s.graph.nodes[id].name)
+                format!("node '{}'", short_name(&s.graph.nodes[id].name))
             }))
         });
     }
@@ -42,6 +42,7 @@ pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
             (
                 $name,
                 (|lua: &Lua, args: MultiValue| {
+                    super::ensure_live(lua)?;
                     let a = Args::method(lua, concat!("node:", $name), args);
                     a.receiver::<NodeHandle>("node")?;
                     $f(&a)?;
@@ -75,7 +76,7 @@ pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
             compose(a, DMat4::from_translation(t))
         }),
         method!("rotate", |a: &Args| {
-            let axis = a.string(1, "axis")?;
+            let axis = a.text(1, "axis")?;
             let deg = a.number(2, "angle")?;
             let r = deg.to_radians();
             let op = match axis.to_ascii_lowercase().as_str() {
@@ -158,6 +159,10 @@ fn compose(a: &Args, op: DMat4) -> mlua::Result<()> {
 /// reach it.
 pub const MAX_CYCLE_CHECK_VISITS: u64 = 1 << 26;
 
+/// Bytes one `add_child` link holds: the child in the parent's list and the parent in
+/// the child's, with vector growth.
+const LINK_BYTES: u64 = super::grown(2 * std::mem::size_of::<NodeId>());
+
 fn add_child(a: &Args) -> mlua::Result<()> {
     let parent = a.receiver::<NodeHandle>("node")?.0;
     let child = a.node(1, "child")?;
@@ -167,8 +172,8 @@ fn add_child(a: &Args) -> mlua::Result<()> {
         s.cycle_check_visits += visits;
         let names = || {
             (
-                s.graph.nodes[child].name.clone(),
-                s.graph.nodes[parent].name.clone(),
+                short_name(&s.graph.nodes[child].name).into_owned(),
+                short_name(&s.graph.nodes[parent].name).into_owned(),
             )
         };
         match cycle {
@@ -178,7 +183,7 @@ fn add_child(a: &Args) -> mlua::Result<()> {
         }
     });
     match check {
-        Ok(()) => {}
+        Ok(()) => super::charge(a, LINK_BYTES, "the child link")?,
         Err(Some((c, p))) => {
             return Err(a.bad_in(
                 1,
@@ -311,7 +316,7 @@ fn set_material(a: &Args) -> mlua::Result<()> {
                 node.material = Some(m);
                 None
             }
-            NodeKind::Transform => Some(node.name.clone()),
+            NodeKind::Transform => Some(short_name(&node.name).into_owned()),
         }
     });
     match err {
@@ -334,7 +339,7 @@ impl UserData for MaterialHandle {
         methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
             let id = this.borrow::<MaterialHandle>()?.0;
             Ok(with_state(lua, |s| {
-                format!("material '{}'", s.graph.materials[id].name)
+                format!("material '{}'", short_name(&s.graph.materials[id].name))
             }))
         });
     }
@@ -347,6 +352,7 @@ pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
             (
                 $name,
                 (|lua: &Lua, args: MultiValue| {
+                    super::ensure_live(lua)?;
                     let a = Args::method(lua, concat!("material:", $name), args);
                     let id = a.receiver::<MaterialHandle>("material")?.0;
                     let edit = $f(&a)?;
@@ -388,6 +394,7 @@ pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
 /// textures, bump map, reflection, refraction), so that one node's variant of a shared
 /// material (a dialect's per-node texture) leaves the others alone.
 fn copy_material(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
+    super::ensure_live(lua)?;
     let a = Args::method(lua, "material:copy", args);
     let id = a.receiver::<MaterialHandle>("material")?.0;
     let at = super::args::location(lua);

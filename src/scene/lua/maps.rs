@@ -5,7 +5,7 @@
 
 use super::args::Args;
 use super::{charge, memory_left, with_state};
-use crate::scene::texture::{load_texture, texture_bytes};
+use crate::scene::texture::{load_texture, texture_bytes, OVER_BUDGET};
 use crate::scene::{Material, TextureId};
 use mlua::Value;
 use std::sync::Arc;
@@ -65,7 +65,7 @@ pub(super) fn set_bump(a: &Args) -> mlua::Result<Edit> {
 /// file is one texture under any spelling of its path). Its texels are counted against
 /// the memory budget from the image's header, before it is decoded.
 fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
-    let file = a.string(n, name)?;
+    let file = a.text(n, name)?;
     let found = with_state(a.lua, |s| s.folders.find(&s.read_policy, &file, "texture"));
     let (path, canonical) = found.map_err(|e| a.bad_in(n, name, e))?;
     if let Some(id) = with_state(a.lua, |s| s.texture_cache.get(&canonical).copied()) {
@@ -73,9 +73,16 @@ fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
     }
     // The file is held while it is decoded.
     super::check_file_cost(a, &path, 1, "texture")?;
-    // Room for the texels and the decoder's transient copy of them.
-    let left = memory_left(a.lua) / 3;
-    let texture = load_texture(&path, left).map_err(|e| a.bad_in(n, name, e))?;
+    // The file is held while it is decoded; the decoder counts the rest itself.
+    let left = memory_left(a.lua).saturating_sub(std::fs::metadata(&path).map_or(0, |m| m.len()));
+    let texture = load_texture(&path, left).map_err(|e| {
+        if e.contains(OVER_BUDGET) {
+            // The memory budget refused it: a reached limit, final as the others are.
+            super::reach_limit(a, format!("argument {n} ({name}): {e}"))
+        } else {
+            a.bad_in(n, name, e)
+        }
+    })?;
     charge(
         a,
         texture_bytes(texture.width, texture.height),

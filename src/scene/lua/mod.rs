@@ -23,10 +23,11 @@ mod preludes;
 mod sandbox;
 mod unknown;
 mod watchdog;
+mod wrappers;
 
 pub use gr::MAX_IMAGE_SIDE;
 
-use super::files::{read_regular, ReadPolicy, MAX_FILE_BYTES};
+use super::files::{open_regular, read_regular, ReadPolicy, MAX_FILE_BYTES};
 use super::paths::SceneFolders;
 use super::{MeshId, NodeId, RenderRequest, SceneGraph, TransformOrder};
 use mlua::chunk::ChunkMode;
@@ -61,6 +62,48 @@ pub struct ScriptConfig {
     /// No notes about arguments glint does not use (`--ignore-extra-arguments`; a scene
     /// can say the same with `gr.ignore_extra_arguments()`).
     pub ignore_extra_arguments: bool,
+    /// Most `gr.render` calls the script may make (`--max-renders`).
+    pub max_renders: u64,
+    /// Most pixels all of the script's `gr.render` calls may ask for together
+    /// (`--max-render-pixels`).
+    pub max_render_pixels: u64,
+}
+
+/// Default bound on the renders of one script.
+pub const DEFAULT_MAX_RENDERS: u64 = 1024;
+/// Default bound on the pixels of all the renders of one script (2³²: 32 images of the
+/// largest size, 2 000 frames of 1920×1080).
+pub const DEFAULT_MAX_RENDER_PIXELS: u64 = 1 << 32;
+
+/// How much of the budget one byte of the Lua heap takes: Lua counts the bytes it asks
+/// for, the C allocator adds a header and rounds each block up (a short string of 25
+/// bytes takes a 48-byte block), which for Lua's many small objects nearly doubles it.
+pub const LUA_HEAP_FACTOR: u64 = 2;
+
+/// Bytes of the budget one element of a growing vector takes: the vector's capacity may
+/// be twice its length, and while it grows the old and the new buffer exist together.
+pub(crate) const fn grown(bytes: usize) -> u64 {
+    3 * bytes as u64
+}
+
+/// The Lua heap's own limit when `left` bytes of the budget are free for it.
+pub(crate) fn lua_share(left: u64) -> u64 {
+    left / LUA_HEAP_FACTOR
+}
+
+/// Longest error message kept (the rest is cut, saying how much).
+pub const MAX_MESSAGE_BYTES: usize = 4096;
+
+/// `message` cut to [`MAX_MESSAGE_BYTES`] (at a character boundary).
+pub fn cap_message(message: &str) -> String {
+    if message.len() <= MAX_MESSAGE_BYTES {
+        return message.to_string();
+    }
+    let mut end = MAX_MESSAGE_BYTES;
+    while !message.is_char_boundary(end) {
+        end -= 1;
+    }
+    format!("{}… ({} more bytes)", &message[..end], message.len() - end)
 }
 
 /// Registry key of the `require` cache (also visible as `package.loaded`), which also
@@ -85,6 +128,8 @@ impl Default for ScriptConfig {
             allow_read: Vec::new(),
             preludes: Vec::new(),
             ignore_extra_arguments: false,
+            max_renders: DEFAULT_MAX_RENDERS,
+            max_render_pixels: DEFAULT_MAX_RENDER_PIXELS,
         }
     }
 }
@@ -141,11 +186,21 @@ pub fn run_scene_file(
     config: &ScriptConfig,
     on_render: &mut OnRender<'_>,
 ) -> Result<ScriptReport, SceneError> {
-    let bytes =
-        read_regular(path, "scene file", MAX_FILE_BYTES).map_err(|message| SceneError::Read {
-            path: path.to_path_buf(),
-            message,
-        })?;
+    let read_error = |message| SceneError::Read {
+        path: path.to_path_buf(),
+        message,
+    };
+    // Held while the script runs, with Lua's compiled copy: counted before it is read.
+    let (_, len) = open_regular(path, "scene file", MAX_FILE_BYTES).map_err(read_error)?;
+    if len.saturating_mul(SOURCE_BYTES_PER_BYTE) > config.memory_limit as u64 {
+        return Err(read_error(format!(
+            "{}: the scene file is {} MiB; running it may take {SOURCE_BYTES_PER_BYTE}× that, over the memory limit of {} MiB; --memory-limit MIB raises it",
+            path.display(),
+            len.div_ceil(1 << 20),
+            config.memory_limit >> 20
+        )));
+    }
+    let bytes = read_regular(path, "scene file", MAX_FILE_BYTES).map_err(read_error)?;
     let source = String::from_utf8_lossy(&bytes);
     let base_dir = path.parent().unwrap_or(Path::new(""));
     run_scene_source(
@@ -155,6 +210,21 @@ pub fn run_scene_file(
         config,
         on_render,
     )
+}
+
+/// Bytes of the budget one byte of scene or module text may take while it runs: the
+/// text, the Lua heap's copy while it is parsed, the compiled chunk.
+pub const SOURCE_BYTES_PER_BYTE: u64 = 4;
+
+/// Scene or module text as Lua should see it: a UTF-8 byte-order mark removed, and a
+/// precompiled (binary) chunk refused, naming the file.
+pub(crate) fn source_text<'s>(chunk_name: &str, source: &'s str) -> Result<&'s str, String> {
+    if source.starts_with('\x1b') {
+        return Err(format!(
+            "{chunk_name}:1: a precompiled (binary) Lua chunk; glint runs Lua source text only"
+        ));
+    }
+    Ok(source.strip_prefix('\u{feff}').unwrap_or(source))
 }
 
 /// Runs scene source text named `chunk_name` (used in messages as `chunk_name:line:`),
@@ -167,8 +237,13 @@ pub fn run_scene_source(
     on_render: &mut OnRender<'_>,
 ) -> Result<ScriptReport, SceneError> {
     let preludes = preludes::read_all(&config.preludes)?;
+    let source =
+        source_text(chunk_name, source).map_err(|message| SceneError::Syntax { message })?;
     let watchdog = watchdog::Watchdog::start(config.time_limit, config.hard_time_limit, chunk_name);
-    let limits = sandbox::Limits::default();
+    let limits = sandbox::Limits {
+        instruction_limit: config.instruction_limit,
+        ..sandbox::Limits::default()
+    };
     let lua =
         sandbox::new_lua(config, &limits, watchdog.clock()).map_err(|e| SceneError::Runtime {
             message: format!("{chunk_name}: cannot set up Lua: {e}"),
@@ -189,17 +264,28 @@ pub fn run_scene_source(
         texture_cache: HashMap::new(),
         render_error: None,
         memory_limit: config.memory_limit as u64,
-        charged: 0,
+        // The text is held while the script runs.
+        charged: source.len() as u64,
         parents: Vec::new(),
         cycle_search: handles::CycleSearch::default(),
         cycle_check_visits: 0,
         clock: watchdog.clock(),
         module_dirs: HashMap::new(),
         notes: notes::Notes::new(config.ignore_extra_arguments),
+        limits: limits.clone(),
+        renders_requested: 0,
+        pixels_requested: 0,
+        max_renders: config.max_renders,
+        max_render_pixels: config.max_render_pixels,
     });
     let setup = gr::install(&lua)
         .and_then(|()| methods::install(&lua, handles::node_methods(), handles::material_methods()))
-        .and_then(|()| sandbox::install(&lua));
+        .and_then(|()| sandbox::install(&lua))
+        .and_then(|()| wrappers::install(&lua))
+        .and_then(|()| {
+            let left = config.memory_limit.saturating_sub(source.len()) as u64;
+            lua.set_memory_limit(lua_share(left) as usize).map(|_| ())
+        });
     if let Err(e) = setup {
         return Err(SceneError::Runtime {
             message: format!("{chunk_name}: cannot set up the gr module: {e}"),
@@ -207,6 +293,7 @@ pub fn run_scene_source(
         });
     }
 
+    let mut memory_at = None;
     let result = lua.scope(|scope| {
         let render = scope.create_function_mut(|lua, args: mlua::MultiValue| {
             gr::render(lua, args, &mut *on_render)
@@ -215,10 +302,12 @@ pub fn run_scene_source(
             .get::<mlua::Table>("gr")?
             .set("render", render)?;
         preludes::run_all(&lua, &preludes)?;
-        lua.load(source)
+        let main = lua
+            .load(source)
             .set_name(format!("@{chunk_name}"))
             .set_mode(ChunkMode::Text)
-            .exec()
+            .into_function()?;
+        run_main(&lua, main, &mut memory_at)
     });
 
     // The state stays installed until the Lua state is dropped, so nothing Lua might
@@ -233,12 +322,68 @@ pub fn run_scene_source(
         return Err(SceneError::Render { location, error });
     }
     if let Some(message) = limits.exceeded.take() {
-        return Err(SceneError::Limit { message });
+        return Err(SceneError::Limit {
+            message: cap_message(&message),
+        });
+    }
+    if let Some(at) = memory_at {
+        limits.last_location.set(Some(at));
     }
     match result {
         Ok(()) => Ok(report),
         Err(e) => Err(convert_error(&e, chunk_name, config, &limits)),
     }
+}
+
+/// Runs the script's main chunk as a coroutine: when it fails for memory, the dead
+/// coroutine keeps its stack, so the line where the allocation failed (in `..`,
+/// `string.rep`, `table.concat`, any call) can still be read into `memory_at`. A yield
+/// from the main chunk is an error, as it is in plain Lua.
+fn run_main(lua: &Lua, main: mlua::Function, memory_at: &mut Option<String>) -> mlua::Result<()> {
+    let thread = lua.create_thread(main)?;
+    let result = thread.resume::<mlua::MultiValue>(());
+    if let Err(e) = &result {
+        if matches!(e, mlua::Error::MemoryError(_)) {
+            *memory_at = innermost_line(&thread);
+        }
+    }
+    result?;
+    if thread.status() == mlua::thread::ThreadStatus::Resumable {
+        let at = innermost_line(&thread).unwrap_or_else(|| "?".into());
+        return Err(mlua::Error::RuntimeError(format!(
+            "{at}: attempt to yield from outside a coroutine"
+        )));
+    }
+    Ok(())
+}
+
+/// `file:line` of the innermost Lua frame of a dead coroutine.
+fn innermost_line(thread: &mlua::Thread) -> Option<String> {
+    use mlua::ffi;
+    let state = thread.state();
+    for level in 0..64 {
+        // SAFETY: `state` is the thread's, alive while `thread` is; lua_getstack and
+        // lua_getinfo only read it (a zeroed lua_Debug is how the C API starts one).
+        unsafe {
+            let mut ar: ffi::lua_Debug = std::mem::zeroed();
+            if ffi::lua_getstack(state, level, &mut ar) == 0 {
+                return None;
+            }
+            if ffi::lua_getinfo(state, c"Sl".as_ptr(), &mut ar) == 0 || ar.currentline <= 0 {
+                continue;
+            }
+            let src = std::ffi::CStr::from_ptr(ar.short_src.as_ptr()).to_string_lossy();
+            let full = std::ffi::CStr::from_ptr(ar.source).to_bytes();
+            let name = match full.strip_prefix(b"@") {
+                Some(path) if path.len() < 4096 => String::from_utf8_lossy(path).into_owned(),
+                _ => src.into_owned(),
+            };
+            if name != "glint" {
+                return Some(format!("{name}:{}", ar.currentline));
+            }
+        }
+    }
+    None
 }
 
 /// Everything the callbacks share while a script runs (kept in Lua's app data).
@@ -278,6 +423,14 @@ pub(crate) struct State {
     pub module_dirs: HashMap<String, PathBuf>,
     /// Notes on arguments glint does not use, printed at each render and at the end.
     pub notes: notes::Notes,
+    /// The limits' shared record: once one is reached, every `gr` call fails.
+    pub limits: sandbox::Limits,
+    /// `gr.render` calls so far, and the pixels they asked for.
+    pub renders_requested: u64,
+    pub pixels_requested: u64,
+    /// [`ScriptConfig::max_renders`], [`ScriptConfig::max_render_pixels`].
+    pub max_renders: u64,
+    pub max_render_pixels: u64,
 }
 
 impl State {
@@ -293,7 +446,7 @@ impl State {
 
 /// Bytes of the budget left for a render: the limit less the scene and the Lua heap.
 pub(crate) fn memory_left(lua: &Lua) -> u64 {
-    let used = lua.used_memory() as u64;
+    let used = lua_heap(lua);
     with_state(lua, |s| {
         s.memory_limit
             .saturating_sub(s.charged)
@@ -315,7 +468,7 @@ pub(crate) fn check_file_cost(
     };
     let left = memory_left(a.lua);
     if meta.is_file() && meta.len().saturating_mul(factor) > left {
-        return Err(a.error(format!(
+        return Err(reach_limit(a, format!(
             "{what} '{}' is {} MiB; reading it may take up to {factor}× that, over the {} MiB left of the memory limit; --memory-limit MIB raises it",
             path.display(),
             meta.len().div_ceil(1 << 20),
@@ -329,7 +482,7 @@ pub(crate) fn check_file_cost(
 /// what the Lua heap holds now), or fails with a message naming the call's line. The Lua
 /// heap's own limit shrinks by the same amount, so both draw on one budget.
 pub(crate) fn charge(a: &args::Args, bytes: u64, what: &str) -> mlua::Result<()> {
-    let used = a.lua.used_memory() as u64;
+    let used = lua_heap(a.lua);
     let outcome = with_state(a.lua, |s| {
         let total = s.charged.saturating_add(bytes).saturating_add(used);
         if total > s.memory_limit {
@@ -340,18 +493,50 @@ pub(crate) fn charge(a: &args::Args, bytes: u64, what: &str) -> mlua::Result<()>
         }
     });
     match outcome {
-        Ok(lua_limit) => {
+        Ok(left) => {
             a.lua
-                .set_memory_limit(lua_limit.try_into().unwrap_or(usize::MAX))?;
+                .set_memory_limit(lua_share(left).try_into().unwrap_or(usize::MAX))?;
             Ok(())
         }
-        Err((charged, limit)) => Err(a.error(format!(
+        Err((charged, limit)) => Err(reach_limit(a, format!(
             "{what} ({} MiB) would go over the memory limit of {} MiB (the scene holds {} MiB, Lua {} MiB); --memory-limit MIB raises it",
             bytes.div_ceil(1 << 20),
             limit >> 20,
             charged >> 20,
             used >> 20
         ))),
+    }
+}
+
+/// Returns bytes charged for something the scene no longer holds (a render's lights).
+pub(crate) fn release(lua: &Lua, bytes: u64) {
+    let left = with_state(lua, |s| {
+        s.charged = s.charged.saturating_sub(bytes);
+        s.memory_limit.saturating_sub(s.charged)
+    });
+    let _ = lua.set_memory_limit(lua_share(left).try_into().unwrap_or(usize::MAX));
+}
+
+/// What the Lua heap takes of the budget ([`LUA_HEAP_FACTOR`] per byte Lua counts).
+fn lua_heap(lua: &Lua) -> u64 {
+    (lua.used_memory() as u64).saturating_mul(LUA_HEAP_FACTOR)
+}
+
+/// A limit reached at the call `a` (memory, renders): final, as the hook's limits are.
+pub(crate) fn reach_limit(a: &args::Args, message: String) -> mlua::Error {
+    let message = match a.error(message) {
+        mlua::Error::RuntimeError(m) => m,
+        other => other.to_string(),
+    };
+    sandbox::end_thread(a.lua);
+    with_state(a.lua, |s| s.limits.clone()).reach(message)
+}
+
+/// Fails once a limit has been reached: every `gr` call checks it first.
+pub(crate) fn ensure_live(lua: &Lua) -> mlua::Result<()> {
+    match with_state(lua, |s| s.limits.reached()) {
+        Some(message) => Err(mlua::Error::RuntimeError(message)),
+        None => Ok(()),
     }
 }
 
@@ -430,6 +615,14 @@ fn convert_error(
 /// prepended to its own (`a.lua:2: a.lua:1: boom`): only the innermost, where it arose,
 /// is kept.
 fn with_location(message: &str, traceback: Option<&str>) -> String {
+    // A position inside glint's own Lua wrappers says nothing to the user: the script's
+    // frame in the traceback does.
+    let message = match message.strip_prefix("glint:") {
+        Some(rest) if leading_location(message).is_some() => {
+            rest.split_once(": ").map_or(message, |(_, m)| m)
+        }
+        _ => message,
+    };
     if let Some(mut n) = leading_location(message) {
         let mut message = message;
         while let Some(inner) = leading_location(&message[n..]) {
@@ -456,7 +649,8 @@ fn traceback_frame(tb: &str) -> Option<String> {
     tb.lines().map(str::trim).find_map(|l| {
         let (file, rest) = l.split_once(':')?;
         let (line, _) = rest.split_once(':')?;
-        (!file.starts_with('[') && line.bytes().all(|b| b.is_ascii_digit()))
+        // glint's own Lua wrappers (chunk `=glint`) are not the script's place.
+        (!file.starts_with('[') && file != "glint" && line.bytes().all(|b| b.is_ascii_digit()))
             .then(|| format!("{file}:{line}"))
     })
 }

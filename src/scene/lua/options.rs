@@ -24,12 +24,24 @@ pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
     Ok(o)
 }
 
+/// Most keys an options table may have (each option once, with room to spare).
+const MAX_OPTION_KEYS: usize = 32;
+
 /// The table's entries sorted by key, so that a table with several mistakes always
 /// reports the same one first; a key that is not a string is an error.
 fn sorted_entries(a: &Args, n: usize, t: &Table) -> mlua::Result<Vec<(String, Value)>> {
     let mut entries: Vec<(String, Value)> = Vec::new();
     for pair in t.pairs::<Value, Value>() {
         let (k, v) = pair?;
+        // There are only a few options: a table with more keys has a wrong one, and is
+        // not copied whole (it may hold millions).
+        if entries.len() >= MAX_OPTION_KEYS {
+            return Err(a.bad_in(
+                n,
+                "options",
+                format!("more than {MAX_OPTION_KEYS} keys; options are {KEYS}"),
+            ));
+        }
         let Value::String(k) = &k else {
             return Err(a.bad_in(
                 n,
@@ -40,7 +52,7 @@ fn sorted_entries(a: &Args, n: usize, t: &Table) -> mlua::Result<Vec<(String, Va
                 ),
             ));
         };
-        entries.push((k.to_string_lossy(), v));
+        entries.push((super::args::lossy_prefix(k, 64), v));
     }
     entries.sort_by(|x, y| x.0.cmp(&y.0));
     Ok(entries)
@@ -66,7 +78,7 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
     match key {
         "aa" => {
             o.aa = match v {
-                Value::String(s) => AaMode::parse(&s.to_string_lossy()),
+                Value::String(s) => AaMode::parse(&super::args::lossy_prefix(s, 64)),
                 _ => None,
             }
             .ok_or_else(|| bad(AaMode::CHOICES))?;
@@ -90,7 +102,7 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
         "background" => o.background = background(a, n, v)?,
         "debug" => {
             o.debug = match v {
-                Value::String(s) => DebugView::parse(&s.to_string_lossy()),
+                Value::String(s) => DebugView::parse(&super::args::lossy_prefix(s, 64)),
                 _ => None,
             }
             .ok_or_else(|| bad(DebugView::CHOICES))?;
@@ -122,8 +134,8 @@ fn grid(
     bad: &dyn Fn(&str) -> mlua::Error,
 ) -> mlua::Result<GridMode> {
     match v {
-        Value::String(s) if &*s.to_string_lossy() == "auto" => Ok(GridMode::Auto),
-        Value::String(s) if &*s.to_string_lossy() == "off" => Ok(GridMode::Off),
+        Value::String(s) if s.as_bytes().as_ref() == b"auto" => Ok(GridMode::Auto),
+        Value::String(s) if s.as_bytes().as_ref() == b"off" => Ok(GridMode::Off),
         Value::Table(t) => {
             let d: Value = t.raw_get("density")?;
             match finite(&d) {

@@ -14,7 +14,9 @@
 
 use super::args::{location, Args};
 use super::watchdog::ScriptClock;
-use super::{charge, with_state, ScriptConfig, LOADED_KEY};
+use super::{
+    charge, ensure_live, source_text, with_state, ScriptConfig, LOADED_KEY, SOURCE_BYTES_PER_BYTE,
+};
 use crate::scene::files::{read_regular, MAX_FILE_BYTES};
 use crate::scene::obj::PARSE_BYTES_PER_BYTE;
 use mlua::chunk::ChunkMode;
@@ -23,13 +25,99 @@ use std::cell::Cell;
 use std::rc::Rc;
 
 /// What the hooks report, so the error can be classified after Lua unwinds (and cannot
-/// be hidden by a `pcall` in the script).
-#[derive(Default)]
-pub(super) struct Limits {
-    /// The instruction- or time-limit message, once a limit is passed.
+/// be hidden by a `pcall` in the script). Cheap to clone: the State holds a copy.
+#[derive(Clone, Default)]
+pub(crate) struct Limits {
+    /// The instruction-, time-, memory- or render-limit message, once a limit is
+    /// reached: from then on every `gr` call and every Lua instruction fails.
     pub exceeded: Rc<Cell<Option<String>>>,
     /// `file:line` where the hook last ran (memory errors carry no position).
     pub last_location: Rc<Cell<Option<String>>>,
+    /// Instructions counted so far (the hook's steps, the weights of costly library
+    /// calls, and at least one per [`NANOS_PER_INSTRUCTION`] of script time).
+    pub count: Rc<Cell<u64>>,
+    /// The instruction limit.
+    pub instruction_limit: u64,
+}
+
+impl Limits {
+    /// The message of the limit reached, if one was.
+    pub fn reached(&self) -> Option<String> {
+        let m = self.exceeded.take();
+        self.exceeded.set(m.clone());
+        m
+    }
+
+    /// Records that a limit was reached (the first message is kept) and returns the
+    /// error to raise: the kept message.
+    pub fn reach(&self, message: String) -> mlua::Error {
+        let first = self.exceeded.take().unwrap_or(message);
+        self.exceeded.set(Some(first.clone()));
+        mlua::Error::RuntimeError(first)
+    }
+
+    /// Adds `weight` instructions for work done outside the VM (a library call that
+    /// loops in C); past the limit, the limit is reached at `at`.
+    pub fn tick(&self, weight: u64, at: impl FnOnce() -> String) -> mlua::Result<()> {
+        if let Some(m) = self.reached() {
+            return Err(mlua::Error::RuntimeError(m));
+        }
+        let count = self.count.get().saturating_add(weight);
+        self.count.set(count);
+        if count > self.instruction_limit {
+            return Err(self.reach(instruction_message(&at(), self.instruction_limit)));
+        }
+        Ok(())
+    }
+}
+
+/// Script time that counts as at least one instruction, beyond the first
+/// [`FREE_SCRIPT_TIME`]: steps of the hook that took longer (time spent in C library
+/// calls the hook cannot see) count as their time's worth, so that no script runs for
+/// long on the instruction limit's allowance (200 million instructions: at most 11 s of
+/// script time).
+pub(super) const NANOS_PER_INSTRUCTION: u128 = 50;
+
+/// Script time that is not turned into instructions (setting up, small scripts on a
+/// busy machine).
+pub(super) const FREE_SCRIPT_TIME: std::time::Duration = std::time::Duration::from_secs(1);
+
+fn instruction_message(at: &str, limit: u64) -> String {
+    format!("{at}: instruction limit of {limit} exceeded — runaway loop?")
+}
+
+/// The hook installed once a limit is reached: every instruction fails, so that no
+/// `pcall`, `xpcall` handler or coroutine can carry on (the first instruction outside
+/// a protected call ends the script). It raises a fixed message; the limit's own
+/// message is in [`Limits::exceeded`].
+unsafe extern "C-unwind" fn final_hook(
+    state: *mut mlua::ffi::lua_State,
+    _: *mut mlua::ffi::lua_Debug,
+) {
+    // SAFETY: called by Lua on a running state; lua_error does not return (it unwinds
+    // to the innermost protected call) and no Rust value with a destructor is live.
+    unsafe {
+        mlua::ffi::lua_pushstring(
+            state,
+            c"glint: a limit was reached; the script ends".as_ptr(),
+        );
+        mlua::ffi::lua_error(state);
+    }
+}
+
+/// Makes every instruction of the running Lua thread fail ([`final_hook`]).
+pub(super) fn end_thread(lua: &Lua) {
+    let thread = lua.current_thread();
+    // SAFETY: the running thread's state, valid while `thread` lives; lua_sethook may be
+    // called from inside a hook.
+    unsafe {
+        mlua::ffi::lua_sethook(
+            thread.state(),
+            Some(final_hook),
+            mlua::ffi::LUA_MASKCOUNT,
+            1,
+        );
+    }
 }
 
 /// Creates the Lua state with the safe libraries and the limits of `config`; `clock`
@@ -46,51 +134,48 @@ pub(super) fn new_lua(
         | StdLib::COROUTINE
         | StdLib::OS;
     let lua = Lua::new_with(libs, LuaOptions::default())?;
-    lua.set_memory_limit(config.memory_limit)?;
+    lua.set_memory_limit(super::lua_share(config.memory_limit as u64) as usize)?;
 
     // The hook runs every `step` instructions; a step of ~1/1000 of the limit keeps the
     // overshoot small and the hook cost negligible.
     let limit = config.instruction_limit;
     let step = (limit / 1000).clamp(1, 100_000);
-    let count = Cell::new(0u64);
-    let exceeded = limits.exceeded.clone();
-    let last_location = limits.last_location.clone();
+    let limits = limits.clone();
     let seconds = config.time_limit.as_secs_f64();
     // A global hook covers coroutines too.
     lua.set_global_hook(
         HookTriggers::new().every_nth_instruction(step as u32),
-        move |_lua, debug| {
-            count.set(count.get() + step);
-            let src = debug.source();
-            let name = match src.source.as_deref() {
-                Some(s) if s.starts_with('@') => s[1..].to_string(),
-                _ => src.short_src.as_deref().unwrap_or("?").to_string(),
-            };
-            let line = debug
-                .current_line()
-                .map_or(String::new(), |l| format!(":{l}"));
+        move |lua, _debug| {
+            let by_time = clock.used().saturating_sub(FREE_SCRIPT_TIME).as_nanos()
+                / NANOS_PER_INSTRUCTION;
+            let by_time = u64::try_from(by_time).unwrap_or(u64::MAX);
+            let count = limits.count.get().saturating_add(step).max(by_time);
+            limits.count.set(count);
             let timed_out = clock.expired();
-            if count.get() <= limit && !timed_out {
-                last_location.set(Some(format!("{name}{line}")));
+            let reached = limits.reached();
+            if count <= limit && !timed_out && reached.is_none() {
+                // Cheap on most steps: the place is only needed for a memory error.
+                limits.last_location.set(Some(location(lua)));
                 return Ok(VmState::Continue);
             }
-            let message = if timed_out {
-                let m = format!("{name}{line}: script time limit of {seconds} s exceeded (renders not counted); --script-timeout SECONDS raises it");
-                clock.note(&m);
-                m
-            } else {
-                format!("{name}{line}: instruction limit of {limit} exceeded — runaway loop?")
+            let at = location(lua);
+            let message = match reached {
+                Some(m) => m,
+                None if timed_out => {
+                    let m = format!("{at}: script time limit of {seconds} s exceeded (renders not counted); --script-timeout SECONDS raises it");
+                    clock.note(&m);
+                    m
+                }
+                None => instruction_message(&at, limit),
             };
-            // Keep the first place it was noticed; later hook calls only re-raise.
-            let first = exceeded.take().unwrap_or(message);
-            exceeded.set(Some(first.clone()));
-            Err(mlua::Error::RuntimeError(first))
+            end_thread(lua);
+            Err(limits.reach(message))
         },
     )?;
     Ok(lua)
 }
 
-/// Installs the stubs, the text-only `load`, `require`, `unpack` and `readobj`.
+/// Installs the stubs, `require`, `unpack` and `readobj`.
 pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     let g = lua.globals();
 
@@ -113,20 +198,7 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     g.set("io", stub_table(lua, "io")?)?;
     g.set("debug", stub_table(lua, "debug")?)?;
 
-    // Text chunks only: binary chunks can crash the VM. Keep `load`'s arity exact,
-    // since an explicit nil `env` differs from none.
-    lua.load(
-        r#"
-        local raw_load = ...
-        load = function(...)
-            local chunk, name, _, env = ...
-            if select('#', ...) >= 4 then return raw_load(chunk, name, 't', env) end
-            return raw_load(chunk, name, 't')
-        end
-        "#,
-    )
-    .set_name("=glint")
-    .call::<()>(g.get::<Value>("load")?)?;
+    // `load` (text only, short chunk names) is installed by `wrappers`.
 
     // No finalizers: Lua runs `__gc` with hooks off (no limit can stop it) and at the
     // end, when the Lua state closes after the script's state was taken; an error in one
@@ -165,6 +237,7 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     g.set(
         "unpack",
         lua.create_function(move |lua, args: MultiValue| {
+            ensure_live(lua)?;
             with_state(lua, |s| s.report.looks_pre2015 = true);
             table_unpack.call::<MultiValue>(args)
         })?,
@@ -195,7 +268,7 @@ fn stub_table(lua: &Lua, lib: &str) -> mlua::Result<Table> {
         "__index",
         lua.create_function(move |lua, (_, key): (Value, Value)| -> mlua::Result<()> {
             let key = match key {
-                Value::String(s) => s.to_string_lossy(),
+                Value::String(s) => super::args::lossy_prefix(&s, 64),
                 other => format!("[{}]", other.type_name()),
             };
             Err(mlua::Error::RuntimeError(format!(
@@ -213,8 +286,9 @@ fn stub_table(lua: &Lua, lib: &str) -> mlua::Result<Table> {
 /// from a prelude (or a module of one), it looks beside the prelude instead, and caches
 /// by canonical path (see `preludes`).
 fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
+    ensure_live(lua)?;
     let a = Args::new(lua, "require", args);
-    let name = a.string(1, "module")?;
+    let name = a.text(1, "module")?;
     let prelude_dir = super::preludes::caller_module_dir(lua);
     if prelude_dir.is_none() {
         with_state(lua, |s| s.report.looks_pre2015 = true);
@@ -251,16 +325,20 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
             return Ok(cached);
         }
     }
-    let source = found
-        .and_then(|(path, _)| read_regular(&path, "module", MAX_FILE_BYTES).map(|b| (path, b)));
-    let (path, source) = source.map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
-    charge(&a, source.len() as u64, &format!("module '{name}'"))?;
+    let (path, _) = found.map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
+    // Counted before it is read: the text, Lua's copy while parsing, the chunk.
+    super::check_file_cost(&a, &path, SOURCE_BYTES_PER_BYTE, "module")?;
+    let bytes = read_regular(&path, "module", MAX_FILE_BYTES)
+        .map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
+    charge(&a, bytes.len() as u64, &format!("module '{name}'"))?;
+    let text = String::from_utf8_lossy(&bytes);
+    let source = source_text(&path.display().to_string(), &text).map_err(|e| a.error(e))?;
     let chunk = format!("@{}", path.display());
     if let Some(dir) = &prelude_dir {
         super::preludes::adopt_module(lua, &chunk, dir);
     }
     let value: Value = lua
-        .load(&source[..])
+        .load(source)
         .set_name(chunk)
         .set_mode(ChunkMode::Text)
         .call((name.as_str(), path.display().to_string()))?;
@@ -277,8 +355,9 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
 /// `readobj(path)`: an OBJ file as the `verts, faces` tables of the inline `gr.mesh`
 /// form (0-based indices), as the course's old `readobj.lua` returned them.
 fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
+    ensure_live(lua)?;
     let a = Args::new(lua, "readobj", args);
-    let file = a.string(1, "path")?;
+    let file = a.text(1, "path")?;
     let found = with_state(lua, |s| {
         s.report.looks_pre2015 = true;
         s.folders.find(&s.read_policy, &file, "mesh file")

@@ -47,6 +47,12 @@ impl ScriptClock {
         self.0.expired.load(Ordering::Relaxed)
     }
 
+    /// Script time used so far (renders not counted).
+    pub fn used(&self) -> Duration {
+        let c = lock(&self.0.clock);
+        c.spent + c.running_since.map_or(Duration::ZERO, |t| t.elapsed())
+    }
+
     /// Records the hook's time-limit message (the first one is kept).
     pub fn note(&self, message: &str) {
         let mut m = self.0.message.lock().unwrap_or_else(|p| p.into_inner());
@@ -153,7 +159,7 @@ fn watch(shared: &Shared, limit: Duration, hard_exit: bool, name: &str) {
                 .clone();
             match noted {
                 // The hook raised it, but the script keeps catching it.
-                Some(message) => eprintln!("glint: error: {message}"),
+                Some(message) => eprintln!("glint: error: {}", super::cap_message(&message)),
                 None => eprintln!(
                     "glint: error: {name}: script time limit of {} s exceeded (the script is stuck where it cannot be interrupted, e.g. in a string pattern or a load reader); --script-timeout SECONDS raises the limit",
                     limit.as_secs_f64()

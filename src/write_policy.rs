@@ -1,0 +1,180 @@
+//! Where a scene may write: the rule for the image names a script gives `gr.render`.
+//!
+//! Reads are confined to the scene's folder (`scene::files`); writes are confined the
+//! same way. A script-named output must be a relative path that stays, after `..` and
+//! symbolic links are resolved, under the output folder (the current folder, or
+//! `--output-dir DIR`) or a folder given by `--allow-write DIR`; and it may replace only
+//! a regular, writable image file (PNG or EXR by content), never a link, a device, a
+//! read-only file or a file of another kind. An output given on the command line (`-o`)
+//! is the user's choice and is not checked here.
+
+use std::io::Read;
+use std::path::{Component, Path, PathBuf};
+
+/// The first bytes of the image files glint writes (PNG, OpenEXR): only such a file may
+/// be replaced by a script-named output.
+const IMAGE_MAGICS: [&[u8]; 2] = [b"\x89PNG\r\n\x1a\n", b"\x76\x2f\x31\x01"];
+
+/// The folders script-named outputs may go to, as canonical paths.
+#[derive(Clone, Debug)]
+pub struct WritePolicy {
+    /// The folder relative names are taken from (`--output-dir`, else the current one),
+    /// as the user gave it (for the names printed).
+    base: PathBuf,
+    /// Canonical folders an output may lie under: the base, then `--allow-write`'s.
+    roots: Vec<PathBuf>,
+}
+
+impl WritePolicy {
+    /// The rule for `output_dir` (None: the current folder) and the `allow_write`
+    /// folders; a folder that cannot be resolved is an error naming it.
+    pub fn new(output_dir: Option<&Path>, allow_write: &[PathBuf]) -> Result<WritePolicy, String> {
+        let base = output_dir.map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+        let mut roots = Vec::new();
+        for dir in std::iter::once(&base).chain(allow_write) {
+            let real = dir
+                .canonicalize()
+                .map_err(|e| format!("cannot write under '{}': {e}", dir.display()))?;
+            if !real.is_dir() {
+                return Err(format!(
+                    "cannot write under '{}': not a folder",
+                    dir.display()
+                ));
+            }
+            roots.push(real);
+        }
+        Ok(WritePolicy { base, roots })
+    }
+
+    /// The path to write for the script-named output `name`, or why the script may not
+    /// write it (the message names `name` and the flags that widen the rule).
+    pub fn place(&self, name: &Path) -> Result<PathBuf, String> {
+        let refuse = |why: &str| format!("cannot write '{}': {why}", name.display());
+        if name.as_os_str().is_empty() || name.file_name().is_none() {
+            return Err(refuse("not a file name"));
+        }
+        if name
+            .components()
+            .any(|c| matches!(c, Component::RootDir | Component::Prefix(_)))
+        {
+            return Err(refuse(
+                "a scene's output name must be relative (to the current folder, or --output-dir DIR); -o FILE on the command line writes anywhere",
+            ));
+        }
+        let shown = if self.base == Path::new(".") {
+            name.to_path_buf()
+        } else {
+            self.base.join(name)
+        };
+        let resolved = resolve(&self.roots[0], name);
+        let dir = resolved.parent().unwrap_or(Path::new("/"));
+        if !self.roots.iter().any(|root| dir.starts_with(root)) {
+            let roots: Vec<String> = self.roots.iter().map(|r| r.display().to_string()).collect();
+            return Err(refuse(&format!(
+                "it is outside the folders this scene may write ({}); --output-dir DIR or --allow-write DIR allows another folder, -o FILE names the output",
+                roots.join(", ")
+            )));
+        }
+        check_replaceable(&resolved).map_err(|why| refuse(&why))?;
+        Ok(shown)
+    }
+}
+
+/// `name` under `base` with `..` and symbolic links resolved as far as the path exists
+/// (the last component is kept as written: a link there is refused, not followed).
+fn resolve(base: &Path, name: &Path) -> PathBuf {
+    let mut out = base.to_path_buf();
+    let parts: Vec<Component> = name.components().collect();
+    for (i, component) in parts.iter().enumerate() {
+        match component {
+            Component::ParentDir => {
+                out.pop();
+            }
+            Component::Normal(part) => {
+                out.push(part);
+                if i + 1 < parts.len() {
+                    if let Ok(real) = out.canonicalize() {
+                        out = real;
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// Whether an existing file at `path` may be replaced: a regular file (not a link),
+/// writable by its mode and by this process, that holds a PNG or EXR image.
+fn check_replaceable(path: &Path) -> Result<(), String> {
+    use std::os::unix::ffi::OsStrExt;
+    use std::os::unix::fs::PermissionsExt;
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return Ok(());
+    };
+    if meta.file_type().is_symlink() {
+        return Err("it is a symbolic link; a scene replaces only image files".into());
+    }
+    if !meta.is_file() {
+        return Err("it exists and is not a regular file".into());
+    }
+    let writable_mode = meta.permissions().mode() & 0o222 != 0;
+    let c = std::ffi::CString::new(path.as_os_str().as_bytes()).map_err(|e| e.to_string())?;
+    // SAFETY: a valid NUL-terminated path; access only reads it.
+    let writable = writable_mode && unsafe { libc::access(c.as_ptr(), libc::W_OK) } == 0;
+    if !writable {
+        return Err("it exists and is read-only".into());
+    }
+    let mut head = [0u8; 8];
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .map_err(|e| format!("it exists and cannot be examined: {e}"))?;
+    if !IMAGE_MAGICS.iter().any(|m| head[..n].starts_with(m)) {
+        return Err(
+            "it exists and is not a PNG or EXR image; a scene replaces only image files".into(),
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_must_stay_under_the_roots() {
+        let dir = crate::testing::scratch::temp_dir("write-policy");
+        std::fs::create_dir_all(dir.join("out/sub")).unwrap();
+        std::fs::create_dir_all(dir.join("other")).unwrap();
+        let policy = WritePolicy::new(Some(&dir.join("out")), &[]).unwrap();
+        assert!(policy.place(Path::new("a.png")).is_ok());
+        assert!(policy.place(Path::new("sub/../a.png")).is_ok());
+        for bad in ["../a.png", "/tmp/a.png", "sub/../../other/a.png", ""] {
+            assert!(policy.place(Path::new(bad)).is_err(), "{bad}");
+        }
+        std::os::unix::fs::symlink(dir.join("other"), dir.join("out/link")).unwrap();
+        let e = policy.place(Path::new("link/a.png")).unwrap_err();
+        assert!(e.contains("--allow-write"), "{e}");
+        let wide = WritePolicy::new(Some(&dir.join("out")), &[dir.join("other")]).unwrap();
+        assert!(wide.place(Path::new("link/a.png")).is_ok());
+        assert!(wide.place(Path::new("../other/a.png")).is_ok());
+    }
+
+    #[test]
+    fn only_writable_image_files_are_replaced() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = crate::testing::scratch::temp_dir("write-policy-replace");
+        let policy = WritePolicy::new(Some(&dir), &[]).unwrap();
+        std::fs::write(dir.join("text.png"), b"not an image").unwrap();
+        std::fs::write(dir.join("old.png"), IMAGE_MAGICS[0]).unwrap();
+        std::fs::write(dir.join("ro.png"), IMAGE_MAGICS[0]).unwrap();
+        std::fs::set_permissions(dir.join("ro.png"), std::fs::Permissions::from_mode(0o444))
+            .unwrap();
+        std::os::unix::fs::symlink(dir.join("old.png"), dir.join("link.png")).unwrap();
+        std::fs::create_dir(dir.join("dir.png")).unwrap();
+        assert!(policy.place(Path::new("old.png")).is_ok());
+        for bad in ["text.png", "ro.png", "link.png", "dir.png"] {
+            assert!(policy.place(Path::new(bad)).is_err(), "{bad}");
+        }
+    }
+}
