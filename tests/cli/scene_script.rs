@@ -728,16 +728,15 @@ fn render_ignores_a_non_table_after_the_lights() {
 /// ranges are not extra; the flag and the scene's own call silence the notes.
 #[test]
 fn extra_arguments_get_one_note_per_call_site() {
-    let src = format!(
-        "for i = 1, 3 do m = gr.material({{1,0,0}}, {{1,1,1}}, 25, 0.5, 1.5) end
-g = gr.material({{0,0,0}}, {{1,1,1}}, 100) g:set_refraction(0.8, 1.5)
-root = gr.node('root') s = gr.sphere('s', {{0,0,0}}, 2) root:add_child(s)
+    let src = "for i = 1, 3 do m = gr.material({1,0,0}, {1,1,1}, 25, 0.5, 1.5) end
+g = gr.material({0,0,0}, {1,1,1}, 100) g:set_refraction(0.8, 1.5)
+root = gr.node('root') s = gr.sphere('s', {0,0,0}, 2) root:add_child(s)
 s:scale(1, 2, 3, 4) s:set_material(g)
-q = gr.material({{1,0,0}}, {{0,0,0}}, 10, nil) j = gr.joint('j', {{0,0,0}}, {{0,0,0}})
-l = gr.light({{1,2,3}}, {{1,1,1}}, {{1,0,0}}, {{2,0,0}})
-gr.render(root, 'out.png', 64, 48, {{0,0,10}}, {{0,0,-1}}, {{0,1,0}}, 50, {{0.1,0.1,0.1}}, {{l}})
+q = gr.material({1,0,0}, {0,0,0}, 10, nil) j = gr.joint('j', {0,0,0}, {0,0,0})
+l = gr.light({1,2,3}, {1,1,1}, {1,0,0}, {2,0,0})
+gr.render(root, 'out.png', 64, 48, {0,0,10}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {l})
 "
-    );
+    .to_string();
     let (report, _) = run_src(&src, &ScriptConfig::default());
     let notes = &report.notes;
     assert_eq!(notes.len(), 5, "{notes:#?}");
