@@ -149,30 +149,8 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
                 }
             }
             "f" => {
-                let mut corners = Vec::new();
-                for w in words {
-                    corners.push(
-                        corner(
-                            w,
-                            out.positions.len(),
-                            out.texcoords.len(),
-                            out.normals.len(),
-                        )
-                        .map_err(|m| err(lineno, m))?,
-                    );
-                }
-                if corners.len() < 3 {
-                    return Err(err(
-                        lineno,
-                        format!(
-                            "face has {} corner{}; a face needs at least 3",
-                            corners.len(),
-                            if corners.len() == 1 { "" } else { "s" }
-                        ),
-                    ));
-                }
-                // Kept until the end of the file: no growth slack (see PARSE_BYTES_PER_BYTE).
-                corners.shrink_to_fit();
+                let counts = (out.positions.len(), out.texcoords.len(), out.normals.len());
+                let corners = face_corners(words, counts).map_err(|m| err(lineno, m))?;
                 raw_faces.push(RawFace {
                     line: lineno,
                     corners,
@@ -208,6 +186,28 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
         });
     }
     Ok(out)
+}
+
+/// The corners of an `f` line (at least 3), each index resolved against `counts`: the
+/// positions, texture coordinates and normals defined so far (for relative indices).
+fn face_corners<'a>(
+    words: impl Iterator<Item = &'a str>,
+    (nv, nt, nn): (usize, usize, usize),
+) -> Result<Vec<(i64, Option<i64>, Option<i64>)>, String> {
+    let mut corners = Vec::new();
+    for w in words {
+        corners.push(corner(w, nv, nt, nn)?);
+    }
+    if corners.len() < 3 {
+        return Err(format!(
+            "face has {} corner{}; a face needs at least 3",
+            corners.len(),
+            if corners.len() == 1 { "" } else { "s" }
+        ));
+    }
+    // Kept until the end of the file: no growth slack (see PARSE_BYTES_PER_BYTE).
+    corners.shrink_to_fit();
+    Ok(corners)
 }
 
 fn number(word: &str) -> Result<f64, String> {

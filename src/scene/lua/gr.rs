@@ -299,35 +299,20 @@ fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
     let faces = a.table(3, "faces", "a table of faces {{i,j,k,…}, …}")?;
     let triangle_count = inline_triangle_count(&faces)?;
     let vertex_count = verts.raw_len() as u64;
-    let vertex_bytes = std::mem::size_of::<DVec3>() as u64 + if a.is_nil(4) { 0 } else { 8 };
+    // Each vertex's position, and its {u, v} and normal when given (arguments 4 and 5).
+    let vertex_bytes = std::mem::size_of::<DVec3>() as u64
+        + if a.is_nil(4) { 0 } else { 8 }
+        + if a.is_nil(5) {
+            0
+        } else {
+            std::mem::size_of::<DVec3>() as u64
+        };
     let bytes = vertex_count
         .saturating_mul(vertex_bytes)
         .saturating_add(triangle_count.saturating_mul(12))
         .saturating_add(name.len() as u64);
     charge(a, bytes, "the inline mesh")?;
-    let mut positions = Vec::with_capacity(vertex_count as usize);
-    for (i, v) in verts.sequence_values::<Value>().enumerate() {
-        let v = v?;
-        let Value::Table(t) = &v else {
-            return Err(a.bad_in(
-                2,
-                "vertices",
-                format!(
-                    "element {} must be a table of 3 numbers {{x, y, z}}, got {}",
-                    i + 1,
-                    super::args::describe(a.lua, &v)
-                ),
-            ));
-        };
-        let p = a.vec3_from(t, 2, "vertices").map_err(|_| {
-            a.bad_in(
-                2,
-                "vertices",
-                format!("element {} must hold 3 finite numbers {{x, y, z}}", i + 1),
-            )
-        })?;
-        positions.push(DVec3::from_array(p));
-    }
+    let positions = inline_positions(a, &verts, vertex_count as usize)?;
     let n = positions.len();
     let mut triangles = Vec::with_capacity(triangle_count as usize);
     for (f, face) in faces.sequence_values::<Value>().enumerate() {
@@ -395,6 +380,34 @@ fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
         uvs,
         normals,
     })
+}
+
+/// Argument 2 of the inline form: `count` vertices `{x, y, z}`.
+fn inline_positions(a: &Args, verts: &mlua::Table, count: usize) -> mlua::Result<Vec<DVec3>> {
+    let mut positions = Vec::with_capacity(count);
+    for (i, v) in verts.sequence_values::<Value>().enumerate() {
+        let v = v?;
+        let Value::Table(t) = &v else {
+            return Err(a.bad_in(
+                2,
+                "vertices",
+                format!(
+                    "element {} must be a table of 3 numbers {{x, y, z}}, got {}",
+                    i + 1,
+                    super::args::describe(a.lua, &v)
+                ),
+            ));
+        };
+        let p = a.vec3_from(t, 2, "vertices").map_err(|_| {
+            a.bad_in(
+                2,
+                "vertices",
+                format!("element {} must hold 3 finite numbers {{x, y, z}}", i + 1),
+            )
+        })?;
+        positions.push(DVec3::from_array(p));
+    }
+    Ok(positions)
 }
 
 /// Argument 5 of the inline form: one non-zero normal `{x, y, z}` per vertex (`n` of

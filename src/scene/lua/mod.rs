@@ -249,35 +249,16 @@ pub fn run_scene_source(
             message: format!("{chunk_name}: cannot set up Lua: {e}"),
             traceback: None,
         })?;
-    let folders = SceneFolders::new(base_dir);
-    lua.set_app_data(State {
-        graph: SceneGraph::default(),
-        order: config.transform_order.unwrap_or_default(),
-        order_fixed: config.transform_order.is_some(),
-        read_policy: ReadPolicy::new(
-            base_dir,
-            &[preludes::readable(config, &preludes), folders.readable()].concat(),
-        ),
-        folders,
-        report: ScriptReport::default(),
-        mesh_cache: HashMap::new(),
-        texture_cache: HashMap::new(),
-        render_error: None,
-        memory_limit: config.memory_limit as u64,
-        // The text is held while the script runs.
-        charged: source.len() as u64,
-        parents: Vec::new(),
-        cycle_search: handles::CycleSearch::default(),
-        cycle_check_visits: 0,
-        clock: watchdog.clock(),
-        module_dirs: HashMap::new(),
-        notes: notes::Notes::new(config.ignore_extra_arguments),
-        limits: limits.clone(),
-        renders_requested: 0,
-        pixels_requested: 0,
-        max_renders: config.max_renders,
-        max_render_pixels: config.max_render_pixels,
-    });
+    let readable_preludes = preludes::readable(config, &preludes);
+    let state = initial_state(
+        config,
+        base_dir,
+        readable_preludes,
+        source.len() as u64,
+        &limits,
+        watchdog.clock(),
+    );
+    lua.set_app_data(state);
     let setup = gr::install(&lua)
         .and_then(|()| methods::install(&lua, handles::node_methods(), handles::material_methods()))
         .and_then(|()| sandbox::install(&lua))
@@ -332,6 +313,45 @@ pub fn run_scene_source(
     match result {
         Ok(()) => Ok(report),
         Err(e) => Err(convert_error(&e, chunk_name, config, &limits)),
+    }
+}
+
+/// The script's state before it runs: an empty graph, the read policy (the scene's
+/// folders, the preludes' and `--allow-read`'s), `charged` bytes already held (the
+/// script's text) and the limits' shared record.
+fn initial_state(
+    config: &ScriptConfig,
+    base_dir: &Path,
+    prelude_dirs: Vec<PathBuf>,
+    charged: u64,
+    limits: &sandbox::Limits,
+    clock: watchdog::ScriptClock,
+) -> State {
+    let folders = SceneFolders::new(base_dir);
+    State {
+        graph: SceneGraph::default(),
+        order: config.transform_order.unwrap_or_default(),
+        order_fixed: config.transform_order.is_some(),
+        read_policy: ReadPolicy::new(base_dir, &[prelude_dirs, folders.readable()].concat()),
+        folders,
+        report: ScriptReport::default(),
+        mesh_cache: HashMap::new(),
+        texture_cache: HashMap::new(),
+        render_error: None,
+        memory_limit: config.memory_limit as u64,
+        // The text is held while the script runs.
+        charged,
+        parents: Vec::new(),
+        cycle_search: handles::CycleSearch::default(),
+        cycle_check_visits: 0,
+        clock,
+        module_dirs: HashMap::new(),
+        notes: notes::Notes::new(config.ignore_extra_arguments),
+        limits: limits.clone(),
+        renders_requested: 0,
+        pixels_requested: 0,
+        max_renders: config.max_renders,
+        max_render_pixels: config.max_render_pixels,
     }
 }
 
