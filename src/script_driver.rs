@@ -5,8 +5,8 @@
 //! weaker limits than another.
 
 use crate::scene::lua::{
-    run_scene_file, OnRender, SceneError, ScriptConfig, ScriptReport, DEFAULT_MEMORY_LIMIT,
-    DEFAULT_TIME_LIMIT,
+    run_scene_file, FrameGlobals, OnRender, SceneError, ScriptConfig, ScriptReport,
+    DEFAULT_MEMORY_LIMIT, DEFAULT_TIME_LIMIT,
 };
 use crate::scene::TransformOrder;
 use std::path::{Path, PathBuf};
@@ -29,6 +29,8 @@ pub struct ScriptSettings {
     /// End the process (exit code 3) when the script overruns its time where it cannot
     /// be interrupted (the command line sets it; a library caller gets an error instead).
     pub hard_time_limit: bool,
+    /// An animation's frame: the script's globals `frame` and `clock` (`--frames`).
+    pub frame: Option<FrameGlobals>,
 }
 
 impl ScriptSettings {
@@ -42,6 +44,7 @@ impl ScriptSettings {
             time_limit: self.script_timeout.unwrap_or(defaults.time_limit),
             hard_time_limit: self.hard_time_limit,
             allow_read: self.allow_read.clone(),
+            frame: self.frame,
         }
     }
 }
@@ -95,6 +98,7 @@ impl ScriptArgs {
             memory_limit: Some((self.memory_limit << 20) as usize),
             allow_read: self.allow_read.clone(),
             hard_time_limit: true,
+            frame: None,
         })
     }
 }
@@ -112,6 +116,10 @@ mod tests {
             memory_limit: Some(1 << 24),
             allow_read: vec![PathBuf::from("/x")],
             hard_time_limit: true,
+            frame: Some(FrameGlobals {
+                frame: 12,
+                clock: 0.5,
+            }),
         };
         let c = settings.config();
         assert_eq!(c.transform_order, Some(TransformOrder::Post));
@@ -120,6 +128,13 @@ mod tests {
         assert_eq!(c.memory_limit, 1 << 24);
         assert_eq!(c.allow_read, vec![PathBuf::from("/x")]);
         assert!(c.hard_time_limit);
+        assert_eq!(
+            c.frame,
+            Some(FrameGlobals {
+                frame: 12,
+                clock: 0.5
+            })
+        );
     }
 
     #[test]

@@ -48,6 +48,18 @@ pub struct ScriptConfig {
     pub hard_time_limit: bool,
     /// Folders the scene may read besides its own (`--allow-read`).
     pub allow_read: Vec<PathBuf>,
+    /// An animation's frame (`--frames`, `--frame`): the globals `frame` and `clock` the
+    /// script sees; `None` leaves them unset.
+    pub frame: Option<FrameGlobals>,
+}
+
+/// The globals of one frame of an animation (POV-Ray's `frame_number` and `clock`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameGlobals {
+    /// The frame number (a Lua integer).
+    pub frame: i64,
+    /// 0 at the range's first frame, 1 at its last (0 for a single frame).
+    pub clock: f64,
 }
 
 /// Default memory budget (2 GiB).
@@ -66,6 +78,7 @@ impl Default for ScriptConfig {
             time_limit: DEFAULT_TIME_LIMIT,
             hard_time_limit: false,
             allow_read: Vec::new(),
+            frame: None,
         }
     }
 }
@@ -135,6 +148,15 @@ pub fn run_scene_file(
     )
 }
 
+/// Sets `frame` and `clock` for an animation's frame.
+fn set_frame_globals(lua: &Lua, frame: Option<FrameGlobals>) -> mlua::Result<()> {
+    if let Some(f) = frame {
+        lua.globals().set("frame", f.frame)?;
+        lua.globals().set("clock", f.clock)?;
+    }
+    Ok(())
+}
+
 /// Runs scene source text named `chunk_name` (used in messages as `chunk_name:line:`),
 /// resolving meshes and modules against `base_dir`.
 pub fn run_scene_source(
@@ -168,7 +190,9 @@ pub fn run_scene_source(
         cycle_check_visits: 0,
         clock: watchdog.clock(),
     });
-    let setup = gr::install(&lua).and_then(|()| sandbox::install(&lua));
+    let setup = gr::install(&lua)
+        .and_then(|()| sandbox::install(&lua))
+        .and_then(|()| set_frame_globals(&lua, config.frame));
     if let Err(e) = setup {
         return Err(SceneError::Runtime {
             message: format!("{chunk_name}: cannot set up the gr module: {e}"),
