@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod probes;
+pub mod tilings;
 
 use glint::film::Film;
 use glint::pack::PackedScene;
