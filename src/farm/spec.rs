@@ -94,7 +94,7 @@ impl FrameRange {
         f64::from(frame - self.first) / f64::from(self.last - self.first)
     }
     pub fn contains(&self, frame: u32) -> bool {
-        (self.first..=self.last).contains(&frame) && (frame - self.first) % self.step == 0
+        (self.first..=self.last).contains(&frame) && (frame - self.first).is_multiple_of(self.step)
     }
     /// Digits of the numbered outputs: at least 4, as many as B has.
     pub fn digits(&self) -> usize {

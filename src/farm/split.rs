@@ -20,7 +20,7 @@ pub enum SplitError {
 pub fn tile_grid(width: u32, height: u32, count: u32) -> Result<(u32, u32), SplitError> {
     let mut best: Option<(f64, u32)> = None;
     for cols in 1..=count {
-        if count % cols != 0 {
+        if !count.is_multiple_of(cols) {
             continue;
         }
         let rows = count / cols;
