@@ -63,6 +63,10 @@ pub enum FarmError {
     Tile(#[from] TileFileError),
     #[error("{0}")]
     Run(#[from] RunError),
+    /// The render itself failed (the scene's build, or the GPU): handed back to the
+    /// script's `gr.render`, so the error carries its line (exit code 3, or 5 for the GPU).
+    #[error("{0:#}")]
+    Render(anyhow::Error),
 }
 
 impl FarmError {
@@ -71,6 +75,7 @@ impl FarmError {
             FarmError::Usage(_) => 2,
             FarmError::Tile(_) => 4,
             FarmError::Run(e) => e.exit_code() as u8,
+            FarmError::Render(_) => 3,
         }
     }
 }
@@ -259,8 +264,9 @@ fn run_frame(
                 on_image(&image);
                 Ok(())
             }
+            // The pipeline's way: the script's gr.render fails with it (scene_error).
+            Err(FarmError::Render(e)) => Err(e),
             // Kept whole for the caller; the script sees a message (and stops).
-            Err(FarmError::Run(RunError::Scene(e))) => Err(anyhow::anyhow!(e.to_string())),
             Err(e) => {
                 let message = e.to_string();
                 *failure.borrow_mut() = Some(e);
@@ -303,7 +309,7 @@ fn render_one(
         crate::image_io::check_output_path(&output).map_err(RunError::Output)?;
     }
     let (request, packed) =
-        prepare_request(graph, request, &c.settings.overrides).map_err(render_error)?;
+        prepare_request(graph, request, &c.settings.overrides).map_err(FarmError::Render)?;
     let (w, h) = (request.width, request.height);
     let bounds = match (c.tile, c.farm.crop) {
         (Some((i, n)), _) => tile_rect(w, h, i, n).map_err(|e| FarmError::Usage(e.to_string()))?,
@@ -357,14 +363,6 @@ fn render_one(
     Ok(image)
 }
 
-/// A render failure as the pipeline reports it (GPU failures exit 5).
-fn render_error(error: anyhow::Error) -> FarmError {
-    match error.downcast::<crate::gpu::GpuError>() {
-        Ok(gpu) => FarmError::Run(RunError::Gpu(gpu)),
-        Err(e) => FarmError::Usage(format!("{e:#}")),
-    }
-}
-
 /// The pixels of `bounds` on `tracer`.
 fn render_bounds(
     packed: &crate::pack::PackedScene,
@@ -379,7 +377,7 @@ fn render_bounds(
                 window: Some(bounds),
                 ..GpuRenderOptions::default()
             };
-            let r = render_gpu(ctx, packed, &options).map_err(RunError::Gpu)?;
+            let r = render_gpu(ctx, packed, &options).map_err(|e| FarmError::Render(e.into()))?;
             if r.info.cpu_fallback_pixels > 0 {
                 eprintln!(
                     "glint: note: {} pixels of {} re-rendered on the CPU: they passed the software adapter's loop limit",

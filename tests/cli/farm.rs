@@ -262,3 +262,21 @@ fn farm_flags_give_usage_errors_and_write_nothing() {
         assert_eq!(names.len(), 1, "{extra:?} wrote {names:?}");
     }
 }
+
+#[test]
+fn a_scene_error_under_farm_flags_is_the_scenes_with_its_line() {
+    let dir = temp_dir("farm-scene-error");
+    // A zero scale factor: the script fails at that call (exit code 3, as without them).
+    let bad = SCENE.replace("s:translate(-1.5 + 3 * t, 0, 0)", "s:scale(0, 1, 1)");
+    std::fs::write(dir.join("bad.lua"), bad).unwrap();
+    for extra in [&["--tile", "0/2"][..], &["--frames", "1-2"][..]] {
+        let mut args = vec!["render", "bad.lua", "--backend", "cpu"];
+        args.extend(extra);
+        let o = glint(&args, &dir);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(3), "{extra:?}: {err}");
+        assert!(err.contains("bad.lua:"), "{extra:?}: no line in: {err}");
+        let names: Vec<_> = std::fs::read_dir(&*dir).unwrap().collect();
+        assert_eq!(names.len(), 1, "{extra:?} wrote a file");
+    }
+}
