@@ -49,7 +49,7 @@ pub struct AssembleArgs {
     /// The tiles (from `glint render --tile` or `--crop`).
     #[arg(required = true)]
     pub tiles: Vec<PathBuf>,
-    /// The image to write (.png).
+    /// The image to write (.png from PNG tiles, .exr from EXR tiles).
     #[arg(short, long)]
     pub output: PathBuf,
 }

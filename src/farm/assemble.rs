@@ -1,10 +1,11 @@
 //! `glint assemble TILE... -o OUT`: the tiles of one render back into its image. The
 //! tiles must share one digest and full size and cover the image exactly once; each
-//! refusal names the tiles at fault. The image is written with
+//! refusal names the tiles at fault. PNG tiles make a PNG, EXR tiles an EXR; the image is
+//! written with
 //! [`crate::image_io::write_image`] (atomic), so it is byte for byte the file the full
 //! render writes.
 
-use super::tile_file::{read_tile, TileFileError, TileMeta};
+use super::tile_file::{read_tile, TileFileError, TileFormat, TileMeta};
 use crate::film::Film;
 use crate::image_io::{write_image, ImageIoError};
 use crate::tiling::PixelRect;
@@ -15,8 +16,21 @@ use std::path::{Path, PathBuf};
 pub enum AssembleError {
     #[error("no tiles given")]
     NoTiles,
-    #[error("{path}: assemble writes PNG (tiles hold 8-bit pixels); give a .png output")]
-    NotPng { path: PathBuf },
+    #[error("{output}: the tiles are {tiles}; give an output of that format (.{ext})")]
+    FormatMismatch {
+        output: PathBuf,
+        tiles: &'static str,
+        ext: &'static str,
+    },
+    #[error(
+        "{tile} is {tile_format}, {first} {first_format}: the tiles of one image share a format"
+    )]
+    MixedFormats {
+        tile: PathBuf,
+        first: PathBuf,
+        tile_format: &'static str,
+        first_format: &'static str,
+    },
     #[error("{0}")]
     Tile(#[from] TileFileError),
     #[error("{tile} is from another render than {first}: digest {tile_digest:.12}… against {first_digest:.12}… (scene, options, tracer or glint version differ)")]
@@ -62,19 +76,41 @@ impl AssembleError {
     }
 }
 
-/// Reads, checks and joins `tiles`, writing the image to `output`.
+/// Reads, checks and joins `tiles` (all PNG or all EXR), writing the image to `output`
+/// (of the tiles' format: PNG tiles hold 8-bit pixels, EXR tiles the floats).
 pub fn assemble(tiles: &[PathBuf], output: &Path) -> Result<(), AssembleError> {
-    let png = output
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if !png {
-        return Err(AssembleError::NotPng {
-            path: output.to_path_buf(),
+    let Some(first) = tiles.first() else {
+        return Err(AssembleError::NoTiles);
+    };
+    let name = |f: Option<TileFormat>| match f {
+        Some(TileFormat::Png) => "PNG",
+        Some(TileFormat::Exr) => "EXR",
+        None => "neither PNG nor EXR",
+    };
+    let format = TileFormat::of(first);
+    for t in tiles {
+        if TileFormat::of(t) != format {
+            return Err(AssembleError::MixedFormats {
+                tile: t.clone(),
+                first: first.clone(),
+                tile_format: name(TileFormat::of(t)),
+                first_format: name(format),
+            });
+        }
+    }
+    if format.is_some() && TileFormat::of(output) != format {
+        return Err(AssembleError::FormatMismatch {
+            output: output.to_path_buf(),
+            tiles: name(format),
+            ext: if format == Some(TileFormat::Png) {
+                "png"
+            } else {
+                "exr"
+            },
         });
     }
     crate::image_io::check_output_path(output)?;
-    let read: Vec<(TileMeta, Vec<u8>)> = tiles
+    let read: Vec<(TileMeta, Film)> = tiles
         .iter()
         .map(|t| read_tile(t))
         .collect::<Result<_, _>>()?;
@@ -84,7 +120,7 @@ pub fn assemble(tiles: &[PathBuf], output: &Path) -> Result<(), AssembleError> {
 }
 
 /// The checks and the join, on tiles read already.
-pub fn join(paths: &[PathBuf], tiles: &[(TileMeta, Vec<u8>)]) -> Result<Film, AssembleError> {
+pub fn join(paths: &[PathBuf], tiles: &[(TileMeta, Film)]) -> Result<Film, AssembleError> {
     let Some((first, _)) = tiles.first() else {
         return Err(AssembleError::NoTiles);
     };
@@ -113,7 +149,7 @@ pub fn join(paths: &[PathBuf], tiles: &[(TileMeta, Vec<u8>)]) -> Result<Film, As
     // Which tile holds each pixel (u32::MAX: none yet).
     let mut owner = vec![u32::MAX; w as usize * h as usize];
     let mut film = Film::new(w, h);
-    for (k, (meta, rgb)) in tiles.iter().enumerate() {
+    for (k, (meta, pixels)) in tiles.iter().enumerate() {
         let b = meta.bounds;
         for y in b.y0..b.y1 {
             for x in b.x0..b.x1 {
@@ -131,9 +167,7 @@ pub fn join(paths: &[PathBuf], tiles: &[(TileMeta, Vec<u8>)]) -> Result<Film, As
                     });
                 }
                 *slot = k as u32;
-                let i = (((y - b.y0) * b.width() + (x - b.x0)) * 3) as usize;
-                // c/255 quantises back to c (Film::to_rgb8), so the PNG's bytes are the tile's.
-                film.set(x, y, [0, 1, 2].map(|c| f32::from(rgb[i + c]) / 255.0));
+                film.set(x, y, pixels.get(x - b.x0, y - b.y0));
             }
         }
     }
@@ -141,7 +175,7 @@ pub fn join(paths: &[PathBuf], tiles: &[(TileMeta, Vec<u8>)]) -> Result<Film, As
     Ok(film)
 }
 
-fn check_no_gap(owner: &[u32], w: u32, tiles: &[(TileMeta, Vec<u8>)]) -> Result<(), AssembleError> {
+fn check_no_gap(owner: &[u32], w: u32, tiles: &[(TileMeta, Film)]) -> Result<(), AssembleError> {
     let mut missing = 0u64;
     let mut bounds: Option<PixelRect> = None;
     for (p, &o) in owner.iter().enumerate() {
@@ -174,7 +208,7 @@ fn check_no_gap(owner: &[u32], w: u32, tiles: &[(TileMeta, Vec<u8>)]) -> Result<
 }
 
 /// `, missing: tile 1/4 (x0,x1,y0,y1), …` when every tile names the same split.
-fn missing_tiles(tiles: &[(TileMeta, Vec<u8>)]) -> String {
+fn missing_tiles(tiles: &[(TileMeta, Film)]) -> String {
     let Some((_, n)) = tiles[0].0.tile else {
         return String::new();
     };

@@ -6,8 +6,9 @@
 //! for bit the full render. See docs/farm.md.
 //!
 //! Layout: [`spec`] parses the flags, [`split`] cuts an image into tiles, [`digest`]
-//! fingerprints a render, [`tile_file`] writes and reads tile images, [`assemble`] checks
-//! and joins them, [`run`] drives a script through frames and tiles.
+//! fingerprints a render, [`tile_file`] writes and reads tile images (EXR ones with
+//! [`tile_exr`]), [`assemble`] checks and joins them, [`run`] drives a script through
+//! frames and tiles.
 
 pub mod args;
 pub mod assemble;
@@ -15,4 +16,5 @@ pub mod digest;
 pub mod run;
 pub mod spec;
 pub mod split;
+pub mod tile_exr;
 pub mod tile_file;

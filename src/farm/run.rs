@@ -47,7 +47,7 @@ impl FarmSettings {
             || self.frame.is_some()
             || self.skip_existing
     }
-    /// Whether images are written as tiles with their record (always PNG).
+    /// Whether images are written as tiles with their record (PNG or EXR).
     fn writes_tiles(&self) -> bool {
         self.tile.is_some() || self.crop.is_some() || self.skip_existing
     }

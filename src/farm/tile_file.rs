@@ -1,8 +1,9 @@
-//! Tile images: a PNG of the tile's pixels (8-bit RGB, the bytes the full render would
-//! hold there) whose tEXt chunks record where it belongs — the full image's size, the
-//! tile's pixel bounds, the render's digest ([`super::digest`]) and glint's version.
-//! Written atomically through [`crate::image_io::write_via_temp`]; the chunks come before
-//! the pixels, so [`read_tile_meta`] reads them without decoding the image.
+//! Tile images: a PNG (8-bit RGB, the bytes the full render's PNG holds there) or an EXR
+//! (linear f32 RGB, the full render's floats; [`super::tile_exr`]) of the tile's pixels,
+//! whose text chunks (PNG tEXt, EXR text attributes) record where it belongs — the full
+//! image's size, the tile's pixel bounds, the render's digest ([`super::digest`]) and
+//! glint's version. Written atomically through [`crate::image_io::write_via_temp`]; the
+//! record comes before the pixels, so [`read_tile_meta`] reads it alone.
 
 use crate::film::Film;
 use crate::image_io::write_via_temp;
@@ -11,7 +12,7 @@ use std::fs::File;
 use std::io::{BufReader, BufWriter};
 use std::path::{Path, PathBuf};
 
-/// tEXt keywords of a tile's record.
+/// Text keys of a tile's record.
 const KEY_FULL_SIZE: &str = "glint:full-size";
 const KEY_BOUNDS: &str = "glint:bounds";
 const KEY_DIGEST: &str = "glint:digest";
@@ -33,11 +34,29 @@ pub struct TileMeta {
     pub tile: Option<(u32, u32)>,
 }
 
+/// A tile file's format, from its extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TileFormat {
+    Png,
+    Exr,
+}
+
+impl TileFormat {
+    pub fn of(path: &Path) -> Option<TileFormat> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "png" => Some(TileFormat::Png),
+            "exr" => Some(TileFormat::Exr),
+            _ => None,
+        }
+    }
+}
+
 /// Why a tile file cannot be written or read; each names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum TileFileError {
-    #[error("{path}: tiles are written as PNG; give a .png output")]
-    NotPng { path: PathBuf },
+    #[error("{path}: tiles are written as PNG or EXR; give a .png or .exr output")]
+    NotTileFormat { path: PathBuf },
     #[error("cannot write {path}: {source}")]
     Write {
         path: PathBuf,
@@ -50,60 +69,69 @@ pub enum TileFileError {
     NotATile { path: PathBuf, message: String },
 }
 
-fn is_png(path: &Path) -> bool {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+fn format_of(path: &Path) -> Result<TileFormat, TileFileError> {
+    TileFormat::of(path).ok_or_else(|| TileFileError::NotTileFormat {
+        path: path.to_path_buf(),
+    })
 }
 
-/// Checks that `path` can take a tile (a .png in an existing folder), before rendering.
+/// Checks that `path` can take a tile (a .png or .exr in an existing folder), before
+/// rendering.
 pub fn check_tile_path(path: &Path) -> Result<(), String> {
-    if !is_png(path) {
-        return Err(TileFileError::NotPng {
-            path: path.to_path_buf(),
-        }
-        .to_string());
-    }
+    format_of(path).map_err(|e| e.to_string())?;
     crate::image_io::check_output_path(path).map_err(|e| e.to_string())
+}
+
+/// The record as text pairs, in the order written.
+fn record(meta: &TileMeta) -> Vec<(&'static str, String)> {
+    let (w, h) = meta.full_size;
+    let mut pairs = vec![
+        (KEY_FULL_SIZE, format!("{w}x{h}")),
+        (KEY_BOUNDS, meta.bounds.to_string()),
+        (KEY_DIGEST, meta.digest.clone()),
+        (KEY_VERSION, meta.version.clone()),
+    ];
+    if let Some((i, n)) = meta.tile {
+        pairs.push((KEY_TILE, format!("{i}/{n}")));
+    }
+    pairs
 }
 
 /// Writes `film` (the tile's pixels) to `path` with `meta`, atomically.
 pub fn write_tile(film: &Film, meta: &TileMeta, path: &Path) -> Result<(), TileFileError> {
-    if !is_png(path) {
-        return Err(TileFileError::NotPng {
-            path: path.to_path_buf(),
-        });
-    }
-    let rgb = film.to_rgb8();
-    let io = |e: std::io::Error| TileFileError::Write {
-        path: path.to_path_buf(),
-        source: e,
-    };
-    let encode = |e: png::EncodingError| std::io::Error::other(e.to_string());
-    write_via_temp(path, |temp| -> Result<(), std::io::Error> {
-        let file = File::create(temp)?;
-        let mut encoder = png::Encoder::new(BufWriter::new(file), film.width, film.height);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        let (w, h) = meta.full_size;
-        for (key, text) in [
-            (KEY_FULL_SIZE, format!("{w}x{h}")),
-            (KEY_BOUNDS, meta.bounds.to_string()),
-            (KEY_DIGEST, meta.digest.clone()),
-            (KEY_VERSION, meta.version.clone()),
-        ]
-        .into_iter()
-        .chain(meta.tile.map(|(i, n)| (KEY_TILE, format!("{i}/{n}"))))
-        {
-            encoder.add_text_chunk(key.into(), text).map_err(encode)?;
+    let format = format_of(path)?;
+    let pairs = record(meta);
+    let result = write_via_temp(path, |temp| -> Result<(), std::io::Error> {
+        match format {
+            TileFormat::Png => write_png(film, &pairs, temp),
+            TileFormat::Exr => {
+                super::tile_exr::write_exr(film, &pairs, temp).map_err(std::io::Error::other)
+            }
         }
-        let mut writer = encoder.write_header().map_err(encode)?;
-        writer.write_image_data(&rgb).map_err(encode)?;
-        writer.finish().map_err(encode)?;
-        // finish() flushed the BufWriter; sync by reopening, as File is inside it.
-        File::open(temp)?.sync_all()
+    });
+    result.map_err(|source| TileFileError::Write {
+        path: path.to_path_buf(),
+        source,
     })
-    .map_err(io)
+}
+
+fn write_png(film: &Film, pairs: &[(&str, String)], temp: &Path) -> Result<(), std::io::Error> {
+    let encode = |e: png::EncodingError| std::io::Error::other(e.to_string());
+    let rgb = film.to_rgb8();
+    let file = File::create(temp)?;
+    let mut encoder = png::Encoder::new(BufWriter::new(file), film.width, film.height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    for (key, text) in pairs {
+        encoder
+            .add_text_chunk(key.to_string(), text.clone())
+            .map_err(encode)?;
+    }
+    let mut writer = encoder.write_header().map_err(encode)?;
+    writer.write_image_data(&rgb).map_err(encode)?;
+    writer.finish().map_err(encode)?;
+    // finish() flushed the BufWriter; sync by reopening, as the File is inside it.
+    File::open(temp)?.sync_all()
 }
 
 fn open(path: &Path) -> Result<png::Reader<BufReader<File>>, TileFileError> {
@@ -119,74 +147,109 @@ fn open(path: &Path) -> Result<png::Reader<BufReader<File>>, TileFileError> {
 
 /// The record of the tile at `path`.
 pub fn read_tile_meta(path: &Path) -> Result<TileMeta, TileFileError> {
-    meta_of(path, &open(path)?)
-}
-
-fn meta_of(path: &Path, reader: &png::Reader<BufReader<File>>) -> Result<TileMeta, TileFileError> {
-    let not_tile = |message: String| TileFileError::NotATile {
-        path: path.to_path_buf(),
-        message,
-    };
-    let info = reader.info();
-    let text = |key: &str| {
-        info.uncompressed_latin1_text
-            .iter()
-            .find(|c| c.keyword == key)
-            .map(|c| c.text.clone())
-            .ok_or_else(|| not_tile(format!("it has no {key} text chunk")))
-    };
-    let size = text(KEY_FULL_SIZE)?;
-    let full_size = size
-        .split_once('x')
-        .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
-        .ok_or_else(|| not_tile(format!("{KEY_FULL_SIZE} '{size}' is not WxH")))?;
-    let bounds_text = text(KEY_BOUNDS)?;
-    let bounds = super::spec::parse_crop(&bounds_text)
-        .map_err(|e| not_tile(format!("{KEY_BOUNDS}: {e}")))?;
-    let (w, h) = full_size;
-    if !bounds.fits(w, h) || (bounds.width(), bounds.height()) != (info.width, info.height) {
-        return Err(not_tile(format!(
-            "its bounds {bounds_text} do not match its {}×{} pixels inside a {w}×{h} image",
-            info.width, info.height
-        )));
-    }
-    if (info.color_type, info.bit_depth) != (png::ColorType::Rgb, png::BitDepth::Eight) {
-        return Err(not_tile("its pixels are not 8-bit RGB".into()));
-    }
-    let tile = match text(KEY_TILE) {
-        Ok(t) => Some(
-            t.split_once('/')
-                .and_then(|(i, n)| Some((i.parse().ok()?, n.parse().ok()?)))
-                .ok_or_else(|| not_tile(format!("{KEY_TILE} '{t}' is not I/N")))?,
-        ),
-        Err(_) => None,
-    };
-    Ok(TileMeta {
-        full_size,
-        bounds,
-        digest: text(KEY_DIGEST)?,
-        version: text(KEY_VERSION)?,
-        tile,
-    })
-}
-
-/// The record and the 8-bit RGB pixels (row-major) of the tile at `path`.
-pub fn read_tile(path: &Path) -> Result<(TileMeta, Vec<u8>), TileFileError> {
-    let mut reader = open(path)?;
-    let meta = meta_of(path, &reader)?;
     let read_err = |message: String| TileFileError::Read {
         path: path.to_path_buf(),
         message,
     };
-    let len = reader
-        .output_buffer_size()
-        .ok_or_else(|| read_err("the image is too large".into()))?;
-    let mut pixels = vec![0; len];
-    let frame = reader
-        .next_frame(&mut pixels)
-        .map_err(|e| read_err(e.to_string()))?;
-    pixels.truncate(frame.buffer_size());
-    Ok((meta, pixels))
+    match format_of(path)? {
+        TileFormat::Png => {
+            let reader = open(path)?;
+            let info = reader.info();
+            if (info.color_type, info.bit_depth) != (png::ColorType::Rgb, png::BitDepth::Eight) {
+                return Err(TileFileError::NotATile {
+                    path: path.to_path_buf(),
+                    message: "its pixels are not 8-bit RGB".into(),
+                });
+            }
+            let text = |key: &str| {
+                info.uncompressed_latin1_text
+                    .iter()
+                    .find(|c| c.keyword == key)
+                    .map(|c| c.text.clone())
+            };
+            meta_from(path, text, (info.width, info.height))
+        }
+        TileFormat::Exr => {
+            let (texts, size) = super::tile_exr::read_exr_record(path).map_err(read_err)?;
+            meta_from(path, |key| texts.get(key).cloned(), size)
+        }
+    }
+}
+
+/// The record from its texts, checked against the image's `pixels` (width, height).
+fn meta_from(
+    path: &Path,
+    text: impl Fn(&str) -> Option<String>,
+    pixels: (u32, u32),
+) -> Result<TileMeta, TileFileError> {
+    let not_tile = |message: String| TileFileError::NotATile {
+        path: path.to_path_buf(),
+        message,
+    };
+    let need = |key: &str| text(key).ok_or_else(|| not_tile(format!("it has no {key} text")));
+    let size = need(KEY_FULL_SIZE)?;
+    let full_size = size
+        .split_once('x')
+        .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+        .ok_or_else(|| not_tile(format!("{KEY_FULL_SIZE} '{size}' is not WxH")))?;
+    let bounds_text = need(KEY_BOUNDS)?;
+    let bounds = super::spec::parse_crop(&bounds_text)
+        .map_err(|e| not_tile(format!("{KEY_BOUNDS}: {e}")))?;
+    let (w, h) = full_size;
+    if !bounds.fits(w, h) || (bounds.width(), bounds.height()) != pixels {
+        return Err(not_tile(format!(
+            "its bounds {bounds_text} do not match its {}×{} pixels inside a {w}×{h} image",
+            pixels.0, pixels.1
+        )));
+    }
+    let tile = match text(KEY_TILE) {
+        Some(t) => Some(
+            t.split_once('/')
+                .and_then(|(i, n)| Some((i.parse().ok()?, n.parse().ok()?)))
+                .ok_or_else(|| not_tile(format!("{KEY_TILE} '{t}' is not I/N")))?,
+        ),
+        None => None,
+    };
+    Ok(TileMeta {
+        full_size,
+        bounds,
+        digest: need(KEY_DIGEST)?,
+        version: need(KEY_VERSION)?,
+        tile,
+    })
+}
+
+/// The record and the pixels of the tile at `path`: a PNG's bytes c as c/255 (which
+/// [`Film::to_rgb8`] quantises back to c), an EXR's floats as they are.
+pub fn read_tile(path: &Path) -> Result<(TileMeta, Film), TileFileError> {
+    let meta = read_tile_meta(path)?;
+    let read_err = |message: String| TileFileError::Read {
+        path: path.to_path_buf(),
+        message,
+    };
+    let film = match format_of(path)? {
+        TileFormat::Png => {
+            let mut reader = open(path)?;
+            let len = reader
+                .output_buffer_size()
+                .ok_or_else(|| read_err("the image is too large".into()))?;
+            let mut rgb = vec![0; len];
+            let frame = reader
+                .next_frame(&mut rgb)
+                .map_err(|e| read_err(e.to_string()))?;
+            rgb.truncate(frame.buffer_size());
+            Film {
+                width: meta.bounds.width(),
+                height: meta.bounds.height(),
+                pixels: rgb
+                    .chunks_exact(3)
+                    .map(|p| [0, 1, 2].map(|c| f32::from(p[c]) / 255.0))
+                    .collect(),
+            }
+        }
+        TileFormat::Exr => super::tile_exr::read_exr_film(path).map_err(read_err)?,
+    };
+    Ok((meta, film))
 }
 
 #[cfg(test)]
@@ -213,24 +276,41 @@ mod tests {
         };
         write_tile(&film, &meta, &path).unwrap();
         assert_eq!(read_tile_meta(&path).unwrap(), meta);
-        let (read_meta, rgb) = read_tile(&path).unwrap();
+        let (read_meta, read) = read_tile(&path).unwrap();
         assert_eq!(read_meta, meta);
-        assert_eq!(rgb, film.to_rgb8());
+        assert_eq!(read.to_rgb8(), film.to_rgb8());
+        // EXR: the floats themselves.
+        let exr = dir.join("t.exr");
+        film.set(0, 0, [0.123_456_7, 2.5, -0.0]);
+        write_tile(&film, &meta, &exr).unwrap();
+        assert_eq!(read_tile_meta(&exr).unwrap(), meta);
+        let (_, read) = read_tile(&exr).unwrap();
+        let bits = |f: &Film| {
+            f.pixels
+                .iter()
+                .flat_map(|p| p.map(f32::to_bits))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&read), bits(&film));
     }
 
     #[test]
-    fn a_plain_png_is_not_a_tile_and_exr_is_refused() {
+    fn a_plain_image_is_not_a_tile_and_jpeg_is_refused() {
         let dir = crate::testing::scratch::temp_dir("farm-tile-plain");
         let path = dir.join("plain.png");
         crate::image_io::write_image(&Film::new(2, 2), &path).unwrap();
         let e = read_tile_meta(&path).unwrap_err().to_string();
         assert!(e.contains("plain.png is not a glint tile"), "{e}");
-        let exr = dir.join("t.exr");
+        let plain_exr = dir.join("plain.exr");
+        crate::image_io::write_image(&Film::new(2, 2), &plain_exr).unwrap();
+        let e = read_tile_meta(&plain_exr).unwrap_err().to_string();
+        assert!(e.contains("plain.exr is not a glint tile"), "{e}");
+        let jpg = dir.join("t.jpg");
         assert!(matches!(
-            write_tile(&Film::new(1, 1), &read_meta_stub(), &exr),
-            Err(TileFileError::NotPng { .. })
+            write_tile(&Film::new(1, 1), &read_meta_stub(), &jpg),
+            Err(TileFileError::NotTileFormat { .. })
         ));
-        assert!(!exr.exists());
+        assert!(!jpg.exists());
     }
 
     fn read_meta_stub() -> TileMeta {

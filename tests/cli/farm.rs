@@ -106,6 +106,35 @@ fn tiles_assemble_to_the_full_render_byte_for_byte() {
     assert!(read(&dir, "full.png") == read(&dir, "two.png"));
 }
 
+#[test]
+fn exr_tiles_assemble_to_the_full_exr_byte_for_byte() {
+    let dir = scene_dir("farm-exr");
+    render(&dir, &["-o", "full.exr"]);
+    for i in 0..3 {
+        render(&dir, &["--tile", &format!("{i}/3"), "-o", "t.exr"]);
+    }
+    let tiles: Vec<String> = (0..3).map(|i| format!("t-tile-{i}-of-3.exr")).collect();
+    let mut args = vec!["assemble", "-o", "joined.exr"];
+    args.extend(tiles.iter().map(String::as_str));
+    ok(&glint(&args, &dir));
+    assert!(
+        read(&dir, "full.exr") == read(&dir, "joined.exr"),
+        "the assembled EXR differs from the full render"
+    );
+    // EXR tiles make an EXR; PNG and EXR tiles do not mix.
+    render(&dir, &["--tile", "0/3", "-o", "p.png"]);
+    assemble_fails(
+        &dir,
+        &[&tiles[0], &tiles[1], &tiles[2]],
+        &["the tiles are EXR", ".exr"],
+    );
+    assemble_fails(
+        &dir,
+        &["p-tile-0-of-3.png", &tiles[1], &tiles[2]],
+        &["t-tile-1-of-3.exr is EXR", "share a format"],
+    );
+}
+
 fn assemble_fails(dir: &Path, tiles: &[&str], needles: &[&str]) {
     let mut args = vec!["assemble", "-o", "bad.png"];
     args.extend(tiles);
@@ -230,8 +259,8 @@ fn farm_flags_give_usage_errors_and_write_nothing() {
         (&["--crop", "3,3,0,1"], "half-open"),
         (&["--crop", "1,2,3"], "expected x0,x1,y0,y1"),
         (
-            &["--tile", "0/2", "-o", "t.exr"],
-            "tiles are written as PNG",
+            &["--tile", "0/2", "-o", "t.jpg"],
+            "tiles are written as PNG or EXR",
         ),
         (&["--tile", "0/997"], "no grid of 997 tiles"),
         (&["--frames", "5-1"], "after the last"),
