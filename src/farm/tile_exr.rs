@@ -1,6 +1,6 @@
 //! EXR tiles: the tile's linear f32 RGB pixels, exactly the full render's floats there,
-//! with the tile's record ([`super::tile_file`]) as text attributes of its layer. The
-//! PNG tiles' twin for `.exr` outputs.
+//! with the tile's record (the text pairs the tile writer gives) as text attributes of
+//! its layer. The PNG tiles' twin for `.exr` outputs.
 
 use crate::film::Film;
 use exr::meta::attribute::{AttributeValue, Text};
