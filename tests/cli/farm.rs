@@ -309,3 +309,24 @@ fn a_scene_error_under_farm_flags_is_the_scenes_with_its_line() {
         assert_eq!(names.len(), 1, "{extra:?} wrote a file");
     }
 }
+
+#[test]
+fn the_shipped_animation_moves_its_camera() {
+    let dir = temp_dir("farm-orbit");
+    let scene = common::root().join("scenes/scrabble-orbit.lua");
+    let scene = scene.to_str().unwrap();
+    let args = [
+        "render",
+        scene,
+        "--backend",
+        "cpu",
+        "--aa",
+        "none",
+        "--frames",
+        "1-2",
+    ];
+    let mut args = args.to_vec();
+    args.extend(["--width", "16", "--height", "9", "-o", "orbit.png"]);
+    ok(&glint(&args, &dir));
+    assert!(read(&dir, "orbit-0001.png") != read(&dir, "orbit-0002.png"));
+}
