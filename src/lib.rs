@@ -14,6 +14,7 @@ pub mod cli;
 pub mod constants;
 pub mod cpu;
 pub mod diff;
+pub mod farm;
 pub mod film;
 pub mod gpu;
 pub mod image_check;

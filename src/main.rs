@@ -43,6 +43,9 @@ enum Command {
     /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles;
     /// --trace SCENE: traversal alone in rays/s (beside Embree: benches/).
     Bench(glint::bench::common::BenchArgs),
+    /// Join tiles of one render (`render --tile`/`--crop`) into its image, bit for bit the
+    /// full render; refuses tiles of other renders, gaps and overlaps.
+    Assemble(glint::farm::args::AssembleArgs),
     /// List the GPU adapters (Vulkan, Metal, DX12, or the backends WGPU_BACKEND names)
     /// and their limits.
     Info,
@@ -156,6 +159,9 @@ struct RenderArgs {
     /// every triangle with its own plane's normal.
     #[arg(long, value_parser = parse_shading)]
     shading: Option<Shading>,
+    /// Tiles and frames for render farms (docs/farm.md).
+    #[command(flatten)]
+    farm: glint::farm::args::FarmArgs,
 }
 
 fn parse_aa(s: &str) -> Result<AaMode, String> {
@@ -206,6 +212,9 @@ fn main() -> ExitCode {
         Command::Bench(args) => {
             glint::bench::cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1))
         }
+        Command::Assemble(args) => glint::farm::assemble::assemble(&args.tiles, &args.output)
+            .map(|()| eprintln!("glint: wrote {}", args.output.display()))
+            .map_err(|e| (e.to_string(), e.exit_code())),
         Command::Info => {
             info();
             Ok(())
@@ -245,7 +254,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             width: args.width.filter(|&w| w > 0),
             height: args.height.filter(|&h| h > 0),
         },
-        output: args.output,
+        output: args.output.clone(),
         stats: args.stats,
         progress: true,
         output_dir: args.output_dir.clone(),
@@ -255,7 +264,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             BackendArg::Gpu => glint::pipeline::Backend::Gpu,
             BackendArg::Auto | BackendArg::Both => glint::pipeline::Backend::Auto,
         },
-        adapter: args.adapter,
+        adapter: args.adapter.clone(),
     };
     if args.heatmap.is_some() && args.backend != BackendArg::Both {
         return Err(("--heatmap needs --backend both".into(), 2));
@@ -264,6 +273,9 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         .num_threads(args.threads.unwrap_or(0) as usize)
         .build()
         .map_err(|e| (format!("cannot start {:?} threads: {e}", args.threads), 1))?;
+    if args.farm.settings().any() {
+        return pool.install(|| render_farm(&args, &settings));
+    }
     if args.backend == BackendArg::Both {
         let parity = glint::parity::ParitySettings {
             tolerance: args.tolerance / 255.0,
@@ -297,6 +309,61 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         }
         Err(e) => Err((e.to_string(), e.exit_code() as u8)),
     }
+}
+
+/// `render` with tiles or frames ([`glint::farm::run`]).
+fn render_farm(
+    args: &RenderArgs,
+    settings: &glint::pipeline::RenderSettings,
+) -> Result<(), (String, u8)> {
+    let refuse = |flag: &str| {
+        Err((
+            format!(
+                "{flag} does not combine with --tile, --crop, --frames, --frame or --skip-existing"
+            ),
+            2,
+        ))
+    };
+    if args.backend == BackendArg::Both {
+        return refuse("--backend both");
+    }
+    if args.stats {
+        return refuse("--stats");
+    }
+    if args.debug == Some(DebugView::AaSamples) {
+        return refuse("--debug aa-samples");
+    }
+    let farm = args.farm.settings();
+    let renders = glint::farm::run::run_farm(&args.scene, settings, &farm, &mut |image| {
+        let b = image.bounds;
+        let (w, h) = image.full_size;
+        let part = if b == glint::tiling::PixelRect::full(w, h) {
+            format!("{w}×{h}")
+        } else {
+            format!("pixels {b} of {w}×{h}")
+        };
+        if image.skipped {
+            eprintln!(
+                "glint: kept {} ({part}: written already with this digest)",
+                image.output.display()
+            );
+        } else {
+            eprintln!(
+                "glint: wrote {} ({part}, {:.2} s on the {})",
+                image.output.display(),
+                image.render_time.as_secs_f64(),
+                image.tracer
+            );
+        }
+    })
+    .map_err(|e| (e.to_string(), e.exit_code()))?;
+    if renders == 0 {
+        eprintln!(
+            "glint: note: {} never called gr.render; nothing written",
+            args.scene.display()
+        );
+    }
+    Ok(())
 }
 
 /// Checks of `render`'s flags that clap's value parsers cannot make alone (exit code 2).

@@ -156,7 +156,7 @@ pub fn pack_scene(scene: &FlatScene) -> Result<PackedScene, PackError> {
 }
 
 /// The request with `overrides` applied, flattened and packed.
-fn prepare_request(
+pub fn prepare_request(
     graph: &SceneGraph,
     request: &RenderRequest,
     overrides: &OptionOverrides,

@@ -5,8 +5,8 @@
 //! weaker limits than another.
 
 use crate::scene::lua::{
-    run_scene_file, OnRender, SceneError, ScriptConfig, ScriptReport, DEFAULT_MEMORY_LIMIT,
-    DEFAULT_TIME_LIMIT,
+    run_scene_file, FrameGlobals, OnRender, SceneError, ScriptConfig, ScriptReport,
+    DEFAULT_MEMORY_LIMIT, DEFAULT_TIME_LIMIT,
 };
 use crate::scene::TransformOrder;
 use std::path::{Path, PathBuf};
@@ -38,6 +38,8 @@ pub struct ScriptSettings {
     pub max_renders: Option<u64>,
     /// `--max-render-pixels`: most pixels all of a script's renders may ask for.
     pub max_render_pixels: Option<u64>,
+    /// An animation's frame: the script's globals `frame` and `clock` (`--frames`).
+    pub frame: Option<FrameGlobals>,
 }
 
 impl ScriptSettings {
@@ -55,6 +57,7 @@ impl ScriptSettings {
             ignore_extra_arguments: self.ignore_extra_arguments,
             max_renders: self.max_renders.unwrap_or(defaults.max_renders),
             max_render_pixels: self.max_render_pixels.unwrap_or(defaults.max_render_pixels),
+            frame: self.frame,
         }
     }
 }
@@ -134,6 +137,7 @@ impl ScriptArgs {
             ignore_extra_arguments: self.ignore_extra_arguments,
             max_renders: Some(self.max_renders),
             max_render_pixels: Some(self.max_render_pixels),
+            frame: None,
         })
     }
 }
@@ -155,6 +159,10 @@ mod tests {
             ignore_extra_arguments: true,
             max_renders: Some(5),
             max_render_pixels: Some(1 << 20),
+            frame: Some(FrameGlobals {
+                frame: 12,
+                clock: 0.5,
+            }),
         };
         let c = settings.config();
         assert_eq!(c.transform_order, Some(TransformOrder::Post));
@@ -170,6 +178,13 @@ mod tests {
         assert!(c.ignore_extra_arguments);
         assert_eq!(c.max_renders, 5);
         assert_eq!(c.max_render_pixels, 1 << 20);
+        assert_eq!(
+            c.frame,
+            Some(FrameGlobals {
+                frame: 12,
+                clock: 0.5
+            })
+        );
     }
 
     #[test]

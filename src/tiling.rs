@@ -58,3 +58,61 @@ impl AdaptiveTile {
 pub fn split_offset(side: u32, level: u32) -> u32 {
     side * side * (((1u32 << (2 * level)) - 1) / 3)
 }
+
+/// A rectangle of film pixels, half-open: columns `x0..x1`, rows `y0..y1` (a farm's tile
+/// or `--crop` window). Both tracers render a window with the full image's pixel
+/// coordinates, so each pixel comes out as in the full render.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PixelRect {
+    pub x0: u32,
+    pub x1: u32,
+    pub y0: u32,
+    pub y1: u32,
+}
+
+impl PixelRect {
+    /// The whole `width × height` image.
+    pub fn full(width: u32, height: u32) -> PixelRect {
+        PixelRect {
+            x0: 0,
+            x1: width,
+            y0: 0,
+            y1: height,
+        }
+    }
+    pub fn width(&self) -> u32 {
+        self.x1 - self.x0
+    }
+    pub fn height(&self) -> u32 {
+        self.y1 - self.y0
+    }
+    /// Pixels inside.
+    pub fn area(&self) -> u64 {
+        u64::from(self.width()) * u64::from(self.height())
+    }
+    /// Whether it holds no pixel.
+    pub fn is_empty(&self) -> bool {
+        self.x0 >= self.x1 || self.y0 >= self.y1
+    }
+    /// Whether it lies inside a `width × height` image.
+    pub fn fits(&self, width: u32, height: u32) -> bool {
+        self.x1 <= width && self.y1 <= height
+    }
+    /// The pixels both hold, if any.
+    pub fn intersection(&self, other: &PixelRect) -> Option<PixelRect> {
+        let r = PixelRect {
+            x0: self.x0.max(other.x0),
+            x1: self.x1.min(other.x1),
+            y0: self.y0.max(other.y0),
+            y1: self.y1.min(other.y1),
+        };
+        (!r.is_empty()).then_some(r)
+    }
+}
+
+impl std::fmt::Display for PixelRect {
+    /// As `--crop` takes it: `x0,x1,y0,y1`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{},{},{},{}", self.x0, self.x1, self.y0, self.y1)
+    }
+}

@@ -15,8 +15,8 @@ use crate::constants::{
 };
 use crate::film::Film;
 use crate::pack::PackedScene;
-use crate::tiling::AdaptiveTile;
 pub use crate::tiling::RenderProgress;
+use crate::tiling::{AdaptiveTile, PixelRect};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -235,7 +235,15 @@ pub struct RenderCounters {
 
 /// Renders the whole image on the current rayon pool.
 pub fn render(scene: &PackedScene, progress: RenderProgress) -> Film {
-    render_tiles(scene, progress, |x0, y0, w, h| {
+    let g = &scene.globals;
+    render_window(scene, PixelRect::full(g.width, g.height), progress)
+}
+
+/// Renders the pixels of `window` (inside the image) into a film of the window's size:
+/// each pixel as in the full render, since no sample depends on the tiles around it
+/// (a farm's tiles, `--crop`).
+pub fn render_window(scene: &PackedScene, window: PixelRect, progress: RenderProgress) -> Film {
+    render_tiles(scene, window, progress, |x0, y0, w, h| {
         render_tile(scene, x0, y0, w, h, &mut NoCounters)
     })
 }
@@ -248,7 +256,9 @@ pub fn render_with_counters(
     let cells = AtomicU64::new(0);
     let items = AtomicU64::new(0);
     let rays = AtomicU64::new(0);
-    let film = render_tiles(scene, progress, |x0, y0, w, h| {
+    let g = &scene.globals;
+    let window = PixelRect::full(g.width, g.height);
+    let film = render_tiles(scene, window, progress, |x0, y0, w, h| {
         let mut c = CountingRays::default();
         let pixels = render_tile(scene, x0, y0, w, h, &mut c);
         cells.fetch_add(c.inner.cells_visited, Ordering::Relaxed);
@@ -362,23 +372,28 @@ impl TraversalCounters for CountingRays {
     }
 }
 
+/// The film of `window`, its tiles (squares of [`tile_side`] from the window's corner,
+/// in image coordinates) rendered in parallel by `tile_pixels(x0, y0, w, h)`.
 fn render_tiles(
     scene: &PackedScene,
+    window: PixelRect,
     progress: RenderProgress,
     tile_pixels: impl Fn(u32, u32, u32, u32) -> Vec<[f32; 3]> + Sync,
 ) -> Film {
-    let (w, h) = (scene.globals.width, scene.globals.height);
+    let (w, h) = (window.width(), window.height());
     let side = tile_side(scene);
     let tiles_x = w.div_ceil(side);
     let tiles_y = h.div_ceil(side);
     let total = (tiles_x * tiles_y) as u64;
     let done = AtomicU64::new(0);
+    // Tile origin within the window.
     let origin = |tile: u32| ((tile % tiles_x) * side, (tile / tiles_x) * side);
     let tiles: Vec<(u32, Vec<[f32; 3]>)> = (0..tiles_x * tiles_y)
         .into_par_iter()
         .map(|tile| {
             let (x0, y0) = origin(tile);
-            let pixels = tile_pixels(x0, y0, side.min(w - x0), side.min(h - y0));
+            let (tw, th) = (side.min(w - x0), side.min(h - y0));
+            let pixels = tile_pixels(window.x0 + x0, window.y0 + y0, tw, th);
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
             (tile, pixels)
         })

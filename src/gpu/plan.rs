@@ -13,7 +13,7 @@ use super::buffers::GpuTile;
 use super::shader::Entry;
 use crate::constants::{AA_ADAPTIVE, AA_UNIFORM, GPU_FRAME_PARTS};
 use crate::pack::PackedGlobals;
-use crate::tiling::{split_offset, AdaptiveTile};
+use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
 
 /// The AA mode's passes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -132,26 +132,28 @@ pub fn lattice_side(max_binding: u64) -> u32 {
     side
 }
 
-/// Full-width bands of at most `rows` rows, at least `min_bands` of them.
-fn bands(w: u32, h: u32, rows: u32, min_bands: u32) -> Vec<Chunk> {
+/// Bands of `window`'s full width of at most `rows` rows, at least `min_bands` of them.
+fn bands(window: PixelRect, rows: u32, min_bands: u32) -> Vec<Chunk> {
+    let (w, h) = (window.width(), window.height());
     let rows = rows.min(h.div_ceil(min_bands.max(1))).max(1);
     (0..h.div_ceil(rows))
         .map(|k| Chunk {
-            origin: [0, k * rows],
+            origin: [window.x0, window.y0 + k * rows],
             size: [w, rows.min(h - k * rows)],
             side: w,
         })
         .collect()
 }
 
-/// Square tiles of side `side`, row-major.
-fn squares(w: u32, h: u32, side: u32) -> Vec<Chunk> {
+/// Square tiles of side `side` from `window`'s top-left corner, row-major.
+fn squares(window: PixelRect, side: u32) -> Vec<Chunk> {
+    let (w, h) = (window.width(), window.height());
     let (nx, ny) = (w.div_ceil(side), h.div_ceil(side));
     (0..nx * ny)
         .map(|t| {
             let (x0, y0) = ((t % nx) * side, (t / nx) * side);
             Chunk {
-                origin: [x0, y0],
+                origin: [window.x0 + x0, window.y0 + y0],
                 size: [side.min(w - x0), side.min(h - y0)],
                 side,
             }
@@ -167,7 +169,14 @@ fn split_even(len: usize, n: usize) -> Vec<std::ops::Range<usize>> {
 impl FramePlan {
     /// The plan for a `g.width` × `g.height` frame under `g`'s AA mode.
     pub fn new(g: &PackedGlobals, bounds: AdapterBounds) -> FramePlan {
-        let (w, h) = (g.width, g.height);
+        FramePlan::for_window(g, bounds, PixelRect::full(g.width, g.height))
+    }
+
+    /// The plan for the pixels of `window` (inside the frame) alone: chunks as for a
+    /// frame of the window's size, placed at its pixels (the kernels take every pixel's
+    /// position from its chunk's origin, so each comes out as in the full frame).
+    pub fn for_window(g: &PackedGlobals, bounds: AdapterBounds, window: PixelRect) -> FramePlan {
+        let (w, h) = (window.width(), window.height());
         let mode = Mode::of(g);
         // Rows a band may have: its pixels must fit a 2-D dispatch and its output block
         // (16 B a pixel) one binding.
@@ -176,7 +185,7 @@ impl FramePlan {
         let parts = GPU_FRAME_PARTS.min(h) as usize;
         let (chunks, samples_len, split_len) = match mode {
             Mode::None => (
-                bands(w, h, dispatch_rows.min(block_rows), parts as u32),
+                bands(window, dispatch_rows.min(block_rows), parts as u32),
                 1,
                 1,
             ),
@@ -184,7 +193,7 @@ impl FramePlan {
                 let per_row = w as u64 * (n * n) as u64;
                 let sample_rows = bounds.max_binding / (16 * per_row);
                 let rows = (sample_rows.min(u32::MAX as u64) as u32).min(block_rows);
-                let chunks = bands(w, h, rows.min(dispatch_rows), parts as u32);
+                let chunks = bands(window, rows.min(dispatch_rows), parts as u32);
                 let rows = chunks.iter().map(|c| c.size[1]).max().unwrap_or(1);
                 (chunks, per_row * rows as u64, 1)
             }
@@ -194,7 +203,7 @@ impl FramePlan {
                 // spread over its parts (and a small frame gets a small lattice).
                 let side = side.min(w.max(h).div_ceil(2).next_power_of_two());
                 let lattice = (side as u64 * (1 << depth) as u64 + 1).pow(2);
-                let chunks = squares(w, h, side);
+                let chunks = squares(window, side);
                 (chunks, lattice, split_offset(side, depth).max(1) as u64)
             }
         };

@@ -29,7 +29,7 @@ use crate::cpu::render::render_pixel;
 use crate::cpu::traverse::NoCounters;
 use crate::film::Film;
 use crate::pack::{PackedScene, SceneFeatures};
-use crate::tiling::RenderProgress;
+use crate::tiling::{PixelRect, RenderProgress};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -73,6 +73,9 @@ pub struct GpuRenderOptions<'a> {
     /// cannot overlap, so the frame may take a little longer (`glint bench --gpu
     /// --passes`).
     pub pass_times: bool,
+    /// Render only these pixels (a farm's tile, `--crop`), into a film of the window's
+    /// size; `None`: the whole frame.
+    pub window: Option<PixelRect>,
 }
 
 impl Default for GpuRenderOptions<'_> {
@@ -81,6 +84,7 @@ impl Default for GpuRenderOptions<'_> {
             progress: &|_, _| {},
             limiter_sentinel: LIMITER_SENTINEL,
             pass_times: false,
+            window: None,
         }
     }
 }
@@ -136,7 +140,9 @@ pub fn render_gpu(
         max_workgroups: ctx.limits.max_compute_workgroups_per_dimension,
         workgroup_side: ctx.kernel.workgroup_side,
     };
-    let plan = FramePlan::new(&scene.globals, bounds);
+    let g = &scene.globals;
+    let window = options.window.unwrap_or(PixelRect::full(g.width, g.height));
+    let plan = FramePlan::for_window(g, bounds, window);
     let pipelines = plan
         .mode
         .entries()
@@ -176,7 +182,7 @@ pub fn render_gpu(
     })?;
     let submits = submissions.len() as u32;
     let read = wait_and_read(ctx, &frame, submissions, progress)?;
-    let (film, alpha, fallback) = scatter(scene, &plan, &frame, &read.bytes);
+    let (film, alpha, fallback) = scatter(scene, window, &plan, &frame, &read.bytes);
     let info = GpuRenderInfo {
         features: scene.features,
         compile_time: pipelines.iter().map(|p| p.compile_time).sum(),
@@ -275,15 +281,16 @@ fn wait_and_read(
     })
 }
 
-/// The read-back blocks into a film, the alpha channel and the count of pixels the loop
-/// limiter spoiled (re-rendered here with the CPU tracer).
+/// The read-back blocks into a film of `window`, the alpha channel and the count of
+/// pixels the loop limiter spoiled (re-rendered here with the CPU tracer).
 fn scatter(
     scene: &PackedScene,
+    window: PixelRect,
     plan: &FramePlan,
     frame: &Frame,
     bytes: &[u8],
 ) -> (Film, Vec<u32>, u64) {
-    let (w, h) = (scene.globals.width, scene.globals.height);
+    let (w, h) = (window.width(), window.height());
     let mut film = Film::new(w, h);
     let mut alpha = vec![0u32; (w * h) as usize];
     let mut fallback = 0;
@@ -299,15 +306,17 @@ fn scatter(
         for ty in 0..chunk.size[1] {
             for tx in 0..chunk.size[0] {
                 let k = (ty * chunk.side + tx) as usize;
+                // Image pixel (x, y); (fx, fy) in the window's film.
                 let (x, y) = (x0 + tx, y0 + ty);
+                let (fx, fy) = (x - window.x0, y - window.y0);
                 let p = colours[k];
-                alpha[(y * w + x) as usize] = p[3] as u32;
+                alpha[(fy * w + fx) as usize] = p[3] as u32;
                 if flags[k] != 0 {
                     let c = render_pixel(scene, x, y, &mut NoCounters);
-                    film.set(x, y, c.to_array());
+                    film.set(fx, fy, c.to_array());
                     fallback += 1;
                 } else {
-                    film.set(x, y, [p[0], p[1], p[2]]);
+                    film.set(fx, fy, [p[0], p[1], p[2]]);
                 }
             }
         }

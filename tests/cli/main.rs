@@ -7,6 +7,7 @@ mod common;
 
 mod cli;
 mod doc_links;
+mod farm;
 mod fuzz_front_end;
 mod hostile;
 mod house;

@@ -3,6 +3,7 @@
 
 pub mod light_on_surface;
 pub mod probes;
+pub mod tilings;
 
 use glint::film::Film;
 use glint::pack::PackedScene;

@@ -67,6 +67,18 @@ pub struct ScriptConfig {
     /// Most pixels all of the script's `gr.render` calls may ask for together
     /// (`--max-render-pixels`).
     pub max_render_pixels: u64,
+    /// An animation's frame (`--frames`, `--frame`): the globals `frame` and `clock` the
+    /// script sees; `None` leaves them unset.
+    pub frame: Option<FrameGlobals>,
+}
+
+/// The globals of one frame of an animation (POV-Ray's `frame_number` and `clock`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameGlobals {
+    /// The frame number (a Lua integer).
+    pub frame: i64,
+    /// 0 at the range's first frame, 1 at its last (0 for a single frame).
+    pub clock: f64,
 }
 
 /// Default bound on the renders of one script.
@@ -130,6 +142,7 @@ impl Default for ScriptConfig {
             ignore_extra_arguments: false,
             max_renders: DEFAULT_MAX_RENDERS,
             max_render_pixels: DEFAULT_MAX_RENDER_PIXELS,
+            frame: None,
         }
     }
 }
@@ -227,6 +240,15 @@ pub(crate) fn source_text<'s>(chunk_name: &str, source: &'s str) -> Result<&'s s
     Ok(source.strip_prefix('\u{feff}').unwrap_or(source))
 }
 
+/// Sets `frame` and `clock` for an animation's frame.
+fn set_frame_globals(lua: &Lua, frame: Option<FrameGlobals>) -> mlua::Result<()> {
+    if let Some(f) = frame {
+        lua.globals().set("frame", f.frame)?;
+        lua.globals().set("clock", f.clock)?;
+    }
+    Ok(())
+}
+
 /// Runs scene source text named `chunk_name` (used in messages as `chunk_name:line:`),
 /// resolving meshes and modules against `base_dir`.
 pub fn run_scene_source(
@@ -266,7 +288,8 @@ pub fn run_scene_source(
         .and_then(|()| {
             let left = config.memory_limit.saturating_sub(source.len()) as u64;
             lua.set_memory_limit(lua_share(left) as usize).map(|_| ())
-        });
+        })
+        .and_then(|()| set_frame_globals(&lua, config.frame));
     if let Err(e) = setup {
         return Err(SceneError::Runtime {
             message: format!("{chunk_name}: cannot set up the gr module: {e}"),

@@ -1,0 +1,62 @@
+//! The farm's promise on the CPU tracer: a tile rendered alone (`render_window`) holds,
+//! bit for bit, the pixels of the full render, for every tiling, AA mode and thread count
+//! (so `glint assemble` of any tiling is the full image).
+
+use crate::common;
+
+use common::tilings::{first_difference, join, tilings};
+use glint::cpu::render::render_window;
+use glint::film::Film;
+use glint::pack::PackedScene;
+use glint::scene::{AaDepth, AaMode, AaSamples, OptionOverrides};
+
+/// Odd sizes, so no tiling lines up with the CPU's own 16- or 8-pixel tiles.
+const W: u32 = 37;
+const H: u32 = 23;
+
+fn packed(aa: AaMode) -> PackedScene {
+    let overrides = OptionOverrides {
+        aa: Some(aa),
+        samples: Some(AaSamples::constant(3)),
+        aa_depth: Some(AaDepth::constant(3)),
+        width: Some(W),
+        height: Some(H),
+        ..OptionOverrides::default()
+    };
+    // Textures, an area light's penumbrae, mirrors and many edges for adaptive AA.
+    common::load_packed(&common::root().join("scenes/demo.lua"), &overrides)
+}
+
+fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+fn assert_tilings_match(scene: &PackedScene, full: &Film, threads: usize, label: &str) {
+    for (name, rects) in tilings(W, H, &[2, 3, 4, 7, 16]) {
+        let tiles: Vec<_> = in_pool(threads, || {
+            rects
+                .iter()
+                .map(|&r| (r, render_window(scene, r, &|_, _| {})))
+                .collect()
+        });
+        let joined = join(W, H, &tiles);
+        if let Some((x, y, a, b)) = first_difference(full, &joined) {
+            panic!("{label}, {name}, {threads} threads: pixel ({x}, {y}) is {b:?} in the tiles, {a:?} in the full render");
+        }
+    }
+}
+
+#[test]
+fn cpu_tiles_are_the_full_render_bit_for_bit() {
+    for aa in [AaMode::None, AaMode::Uniform, AaMode::Adaptive] {
+        let scene = packed(aa);
+        let full = in_pool(2, || common::render_cpu(&scene));
+        for threads in [1, 3] {
+            assert_tilings_match(&scene, &full, threads, &format!("{aa:?}"));
+        }
+    }
+}
