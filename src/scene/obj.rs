@@ -102,8 +102,11 @@ fn read(path: &Path) -> Result<String, ObjError> {
 /// most loaders); negative ones are resolved against the counts at that line.
 struct RawFace {
     line: usize,
-    corners: Vec<(i64, Option<i64>, Option<i64>)>,
+    corners: Vec<RawCorner>,
 }
+
+/// One face corner's position, texture and normal indices, 1-based, not yet range-checked.
+type RawCorner = (i64, Option<i64>, Option<i64>);
 
 fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
     let err = |line: usize, message: String| ObjError::Parse {
@@ -193,7 +196,7 @@ fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
 fn face_corners<'a>(
     words: impl Iterator<Item = &'a str>,
     (nv, nt, nn): (usize, usize, usize),
-) -> Result<Vec<(i64, Option<i64>, Option<i64>)>, String> {
+) -> Result<Vec<RawCorner>, String> {
     let mut corners = Vec::new();
     for w in words {
         corners.push(corner(w, nv, nt, nn)?);
