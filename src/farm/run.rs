@@ -13,12 +13,14 @@ use crate::cpu::render::render_window;
 use crate::film::Film;
 use crate::gpu::{render_gpu, GpuRenderOptions};
 use crate::pipeline::{
-    acquire_gpu, output_path, prepare_request, scene_error, RenderSettings, RunError, Tracer,
+    acquire_gpu, output_path, prepare_request, scene_error, write_policy, RenderSettings, RunError,
+    Tracer,
 };
 use crate::scene::lua::FrameGlobals;
 use crate::scene::{RenderRequest, SceneGraph};
 use crate::script_driver::run_script;
 use crate::tiling::PixelRect;
+use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -220,12 +222,15 @@ pub fn run_farm(
             message: e.to_string(),
         })
     })?;
+    // Script-named outputs are confined as in every other mode (docs/limits.md, Writes).
+    let policy = write_policy(settings).map_err(FarmError::Run)?;
     let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref()).map_err(RunError::Gpu)?;
     let tracer = gpu.as_ref().map_or(Tracer::Cpu, Tracer::Gpu);
     let mut renders = 0;
     for job in jobs {
         let context = JobContext {
             settings,
+            policy: &policy,
             farm,
             tile,
             tracer,
@@ -240,6 +245,8 @@ pub fn run_farm(
 /// What every `gr.render` of one frame shares.
 struct JobContext<'a> {
     settings: &'a RenderSettings,
+    /// Where the script's own output names may be written.
+    policy: &'a WritePolicy,
     farm: &'a FarmSettings,
     tile: Option<(u32, u32)>,
     tracer: Tracer<'a>,
@@ -282,16 +289,25 @@ fn run_frame(
     Ok(index)
 }
 
-/// The output path of render `index` of the frame.
-fn farm_output(c: &JobContext, request: &RenderRequest, index: usize) -> PathBuf {
-    let mut out = output_path(c.settings.output.as_deref(), &request.output, index);
+/// The output path of render `index` of the frame: `-o`'s (the user's choice), or the
+/// script's own name with its frame and tile suffixes, confined by the write policy (a
+/// refused name is the script's error at its `gr.render`).
+fn farm_output(c: &JobContext, request: &RenderRequest, index: usize) -> anyhow::Result<PathBuf> {
+    let base = match &c.settings.output {
+        Some(o) => output_path(Some(o), &request.output, index),
+        None => request.output.clone(),
+    };
+    let mut out = base;
     if let Some((n, digits)) = c.job.frame {
         out = with_suffix(&out, &format!("-{n:0digits$}"));
     }
     if let Some((i, n)) = c.tile {
         out = with_suffix(&out, &tile_suffix(i, n));
     }
-    out
+    match c.settings.output {
+        Some(_) => Ok(out),
+        None => c.policy.place(&out).map_err(anyhow::Error::msg),
+    }
 }
 
 /// Prepares, checks, renders (unless found written) and writes one `gr.render`.
@@ -301,7 +317,7 @@ fn render_one(
     index: usize,
     c: &JobContext,
 ) -> Result<FarmImage, FarmError> {
-    let output = farm_output(c, request, index);
+    let output = farm_output(c, request, index).map_err(FarmError::Render)?;
     let tiles = c.farm.writes_tiles();
     if tiles {
         check_tile_path(&output).map_err(FarmError::Usage)?;

@@ -330,3 +330,49 @@ fn the_shipped_animation_moves_its_camera() {
     ok(&glint(&args, &dir));
     assert!(read(&dir, "orbit-0001.png") != read(&dir, "orbit-0002.png"));
 }
+
+/// The farm flags confine a script's own output names as every mode does: a name that
+/// leaves the current folder (`..`, an absolute path) is refused at its `gr.render`
+/// (exit code 3, naming the line), under `--tile`, `--crop` and `--frames` alike, and
+/// nothing is written outside; `-o`, the user's choice, is not confined.
+#[test]
+fn farm_flags_confine_the_scripts_output_names() {
+    let outer = temp_dir("farm-confined");
+    let dir = outer.join("case");
+    std::fs::create_dir(&dir).unwrap();
+    let escape = outer.join("escape.png").display().to_string();
+    for name in ["../escape.png", escape.as_str()] {
+        std::fs::write(
+            dir.join("scene.lua"),
+            SCENE.replace("'out.png'", &format!("'{name}'")),
+        )
+        .unwrap();
+        for flags in [
+            &["--tile", "0/2"][..],
+            &["--crop", "0,5,0,5"],
+            &["--frames", "1-2"],
+        ] {
+            let mut args = vec!["render", "scene.lua", "--aa", "none"];
+            args.extend_from_slice(flags);
+            let out = glint(&args, &dir);
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(3), "{name} {flags:?}: {err}");
+            assert!(err.contains("scene.lua:17:"), "{name} {flags:?}: {err}");
+            let left: Vec<_> = std::fs::read_dir(&outer)
+                .unwrap()
+                .map(|e| e.unwrap().file_name())
+                .filter(|n| n != "case")
+                .collect();
+            assert!(
+                left.is_empty(),
+                "{name} {flags:?}: written outside: {left:?}"
+            );
+        }
+    }
+    let out = glint(
+        &["render", "scene.lua", "--tile", "0/2", "-o", "../ok.png"],
+        &dir,
+    );
+    ok(&out);
+    assert!(outer.join("ok-tile-0-of-2.png").exists());
+}
