@@ -627,6 +627,33 @@ fn sizes_and_counts_are_bounded() {
     }
 }
 
+/// Renders a `side`×`side` empty image in a fresh case folder `tag` and sends `sig` as
+/// soon as the temporary image file exists; returns how glint ended, the folder, what it
+/// holds afterwards and the folder's guard, having checked that no temporary file is left.
+fn signal_during_write(tag: &str, side: u32, sig: i32) -> (Ended, PathBuf, Vec<String>, TempDir) {
+    let (dir, logs, root) = case_dir(tag);
+    let scene = format!("root = gr.node('root')\ngr.render(root, 'out.png', {side}, {side}, {{0,0,5}}, {{0,0,-1}}, {{0,1,0}}, 50, {{0.1,0.1,0.1}}, {{}}, {{aa='none'}})\n");
+    std::fs::write(dir.join("scene.lua"), scene).unwrap();
+    let args: Vec<String> = ["render", "scene.lua", "--backend", "cpu"]
+        .map(String::from)
+        .to_vec();
+    let ended = run_glint(&args, &dir, &logs, Duration::from_secs(120), &mut |pid| {
+        let temp = listing(&dir).iter().any(|n| n.contains(".tmp-"));
+        if temp {
+            // SAFETY: signalling our own child.
+            unsafe { libc::kill(pid, sig) };
+        }
+        !temp
+    });
+    let names = listing(&dir);
+    assert!(
+        !names.iter().any(|n| n.contains(".tmp-")),
+        "signal {sig}: temporary file left behind: {names:?}; stderr:\n{}",
+        ended.stderr
+    );
+    (ended, dir, names, root)
+}
+
 #[test]
 fn an_interrupted_write_leaves_nothing_behind() {
     // A big empty render: the PNG takes long enough to encode that the signal usually
@@ -637,26 +664,8 @@ fn an_interrupted_write_leaves_nothing_behind() {
     for sig in [libc::SIGINT, libc::SIGTERM] {
         let mut interrupted = false;
         for attempt in 0..ATTEMPTS {
-            let (dir, logs, _root) = case_dir(&format!("signal-{sig}-{attempt}"));
-            let scene = "root = gr.node('root')\ngr.render(root, 'out.png', 4000, 4000, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {}, {aa='none'})\n";
-            std::fs::write(dir.join("scene.lua"), scene).unwrap();
-            let args: Vec<String> = ["render", "scene.lua", "--backend", "cpu"]
-                .map(String::from)
-                .to_vec();
-            let ended = run_glint(&args, &dir, &logs, Duration::from_secs(120), &mut |pid| {
-                let temp = listing(&dir).iter().any(|n| n.contains(".tmp-"));
-                if temp {
-                    // SAFETY: signalling our own child.
-                    unsafe { libc::kill(pid, sig) };
-                }
-                !temp
-            });
-            let names = listing(&dir);
-            assert!(
-                !names.iter().any(|n| n.contains(".tmp-")),
-                "temporary file left behind: {names:?}; stderr:\n{}",
-                ended.stderr
-            );
+            let (ended, dir, names, _root) =
+                signal_during_write(&format!("signal-{sig}-{attempt}"), 4000, sig);
             if ended.signal != Some(sig) {
                 // Finished before the signal landed (or before a temp file was seen).
                 assert_eq!(ended.code, Some(0), "stderr:\n{}", ended.stderr);
@@ -1474,26 +1483,7 @@ fn every_signal_that_ends_glint_during_a_write_removes_the_temporary_file() {
         libc::SIGPWR,
         libc::SIGRTMIN() + 1,
     ] {
-        let (dir, logs, _root) = case_dir(&format!("signal-more-{sig}"));
-        let scene = "root = gr.node('root')\ngr.render(root, 'out.png', 3000, 3000, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {}, {aa='none'})\n";
-        std::fs::write(dir.join("scene.lua"), scene).unwrap();
-        let args: Vec<String> = ["render", "scene.lua", "--backend", "cpu"]
-            .map(String::from)
-            .to_vec();
-        let ended = run_glint(&args, &dir, &logs, Duration::from_secs(120), &mut |pid| {
-            let temp = listing(&dir).iter().any(|n| n.contains(".tmp-"));
-            if temp {
-                // SAFETY: signalling our own child.
-                unsafe { libc::kill(pid, sig) };
-            }
-            !temp
-        });
-        let names = listing(&dir);
-        assert!(
-            !names.iter().any(|n| n.contains(".tmp-")),
-            "signal {sig}: temporary file left behind: {names:?}; stderr:\n{}",
-            ended.stderr
-        );
+        signal_during_write(&format!("signal-more-{sig}"), 3000, sig);
     }
     // A real file-size limit: the write passes it, SIGXFSZ ends glint, nothing is left.
     let (dir, _logs, _root) = case_dir("fsize");
