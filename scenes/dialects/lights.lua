@@ -23,26 +23,9 @@
 local builtin_render = gr.render
 local SQRT_PI = math.sqrt(math.pi)
 
-local function fail(call, n, name, what, got)
-  local shown = type(got) == 'string' and ("'" .. got .. "'") or type(got)
-  error(string.format('%s: argument %d (%s) must be %s, got %s', call, n, name, what, shown),
-    3)
-end
-
-local function want_positive(call, n, name, v)
-  if type(v) ~= 'number' or not (v > 0) then fail(call, n, name, 'a positive number', v) end
-end
-
-local function want_vec3(call, n, name, v)
-  if type(v) ~= 'table' or type(v[1]) ~= 'number' or type(v[2]) ~= 'number'
-      or type(v[3]) ~= 'number' then
-    fail(call, n, name, 'a table of 3 numbers {x, y, z}', v)
-  end
-end
-
-local function cross(a, b)
-  return {a[2] * b[3] - a[3] * b[2], a[3] * b[1] - a[1] * b[3], a[1] * b[2] - a[2] * b[1]}
-end
+local checks = require('checks')
+local fail, want_positive, want_vec3, cross =
+  checks.fail, checks.want_positive, checks.want_vec3, checks.cross
 
 local function scaled(v, s)
   local len = math.sqrt(v[1] * v[1] + v[2] * v[2] + v[3] * v[3])

@@ -37,31 +37,12 @@
 -- them; discs' are planar, (x/r + 1)/2 and (y/r + 1)/2, like glint's cylinder caps. A disc is a 128-sided polygon (its rim
 -- within 0.03% of the radius of the circle).
 
-local function is_vec3(v)
-  return type(v) == 'table' and type(v[1]) == 'number' and type(v[2]) == 'number'
-    and type(v[3]) == 'number'
-end
-
-local function fail(call, n, name, what, got)
-  local shown = type(got) == 'string' and ("'" .. got .. "'") or type(got)
-  error(string.format('%s: argument %d (%s) must be %s, got %s', call, n, name, what, shown),
-    3)
-end
-
-local function want_vec3(call, n, name, v)
-  if not is_vec3(v) then fail(call, n, name, 'a table of 3 numbers {x, y, z}', v) end
-end
-
-local function want_positive(call, n, name, v)
-  if type(v) ~= 'number' or not (v > 0) then fail(call, n, name, 'a positive number', v) end
-end
+local checks = require('checks')
+local fail, want_vec3, want_positive, cross =
+  checks.fail, checks.want_vec3, checks.want_positive, checks.cross
 
 local function want_name(call, name)
   if type(name) ~= 'string' then fail(call, 1, 'name', 'a string', name) end
-end
-
-local function cross(a, b)
-  return {a[2] * b[3] - a[3] * b[2], a[3] * b[1] - a[1] * b[3], a[1] * b[2] - a[2] * b[1]}
 end
 
 local function normalise(call, n, v)
