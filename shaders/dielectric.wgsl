@@ -12,13 +12,6 @@ struct MediumStack {
     count: u32,
 }
 
-// The medium stack primary rays start with (the host found the media around the eye).
-// Mirror of src/cpu/trace.rs::camera_media_of — change both.
-fn camera_medium_stack() -> MediumStack {
-    let c = globals.camera_media;
-    return MediumStack(array<f32, MEDIUM_STACK_SIZE>(c.x, c.y, c.z, c.w), globals.camera_media_count);
-}
-
 // Index of the medium a ray travels in: the deepest recorded level, or air.
 // Mirror of src/cpu/dielectric.rs::medium_ior — change both.
 fn medium_ior(media: MediumStack) -> f32 {

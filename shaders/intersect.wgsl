@@ -2,22 +2,6 @@
 // (slabs), triangle (watertight). Analytic primitives are intersected in object space
 // with an unnormalised direction, so t is the world-space t.
 
-// (Always compiled: enter_scene clips every ray to the scene bounds with it.)
-// 1/x, or ±SAFE_RCP_LIMIT when |x| is too small to invert without overflow.
-// Mirror of src/cpu/math.rs::safe_rcp — change both.
-fn safe_rcp(x: f32) -> f32 {
-    if abs(x) > 1.0 / SAFE_RCP_LIMIT {
-        return 1.0 / x;
-    }
-    return copysign(SAFE_RCP_LIMIT, x);
-}
-
-// safe_rcp of each component.
-// Mirror of src/cpu/math.rs::safe_rcp3 — change both.
-fn safe_rcp3(v: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z));
-}
-
 // #if SPHERE
 // The t-interval [t0, t1] where o + t·d is inside the unit sphere at the origin, as
 // (t0, t1); empty (t0 > t1) when the line misses it. Haines et al., Ray Tracing Gems

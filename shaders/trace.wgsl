@@ -4,11 +4,11 @@
 // refraction) the media it travels in (see dielectric.wgsl).
 
 // The item the camera ray of the last sample hit first (NO_ITEM: none; the CPU's
-// TraversalCounters::camera_hit); render.wgsl's hinted_sample reads it after a sample.
+// TraversalCounters::camera_hit); pixel_sample.wgsl's hinted_sample reads it after a sample.
 var<private> camera_item: u32;
 // The item the ray reflected by the camera ray's first surface hit first, where that
 // surface is a mirror (is_mirror), else NO_ITEM (the CPU's TraversalCounters::mirror_hit);
-// render.wgsl's hinted_sample reads it too.
+// pixel_sample.wgsl's hinted_sample reads it too.
 var<private> mirrored_item: u32;
 
 // Mirror of src/cpu/trace.rs::StackEntry — change both.
@@ -129,7 +129,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
 }
 
 // #if REFLECTION|REFRACTION
-// Whether material `material` is a mirror to adaptive AA's item keys (render.wgsl's
+// Whether material `material` is a mirror to adaptive AA's item keys (pixel_sample.wgsl's
 // sample_item_key): reflective and not a dielectric, so its camera hit spawns one ray.
 // Mirror of src/cpu/trace.rs::is_mirror — change both.
 fn is_mirror(material: u32) -> bool {
@@ -282,3 +282,12 @@ fn facing_normal(normal: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
     }
     return normal;
 }
+
+// #if REFRACTION
+// The medium stack primary rays start with (the host found the media around the eye).
+// Mirror of src/cpu/trace.rs::camera_media_of — change both.
+fn camera_medium_stack() -> MediumStack {
+    let c = globals.camera_media;
+    return MediumStack(array<f32, MEDIUM_STACK_SIZE>(c.x, c.y, c.z, c.w), globals.camera_media_count);
+}
+// #endif

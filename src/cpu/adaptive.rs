@@ -74,7 +74,7 @@ fn unpack_square(entry: u32) -> (u32, u32) {
 }
 
 /// A tile's lattice colours and hints ([`lattice_sample`]; the GPU keeps the hint in the
-/// sample's fourth component, see shaders/render.wgsl::encode_hint), split flags and, per
+/// sample's fourth component, see shaders/pixel_sample.wgsl::encode_hint), split flags and, per
 /// level, the list of split squares (at the level's split-flag offset, [`split_offset`])
 /// and its length.
 pub struct Lattice {

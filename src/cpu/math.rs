@@ -5,7 +5,7 @@ use crate::constants::SAFE_RCP_LIMIT;
 use glam::Vec3;
 
 /// 1/x, or ±[`SAFE_RCP_LIMIT`] when |x| is too small to invert without overflow.
-// Mirror of shaders/intersect.wgsl::safe_rcp — change both.
+// Mirror of shaders/math.wgsl::safe_rcp — change both.
 pub fn safe_rcp(x: f32) -> f32 {
     if x.abs() > 1.0 / SAFE_RCP_LIMIT {
         1.0 / x
@@ -15,7 +15,7 @@ pub fn safe_rcp(x: f32) -> f32 {
 }
 
 /// `safe_rcp` of each component.
-// Mirror of shaders/intersect.wgsl::safe_rcp3 — change both.
+// Mirror of shaders/math.wgsl::safe_rcp3 — change both.
 pub fn safe_rcp3(v: Vec3) -> Vec3 {
     Vec3::new(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z))
 }

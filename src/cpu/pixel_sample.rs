@@ -11,7 +11,7 @@ use crate::pack::PackedScene;
 use glam::Vec3;
 
 /// Colour at film position (fx, fy) in pixels; `seed` names the camera sample.
-// Mirror of shaders/render.wgsl::sample — change both.
+// Mirror of shaders/pixel_sample.wgsl::sample — change both.
 pub(crate) fn sample(
     scene: &PackedScene,
     fx: f32,
@@ -28,7 +28,7 @@ pub(crate) fn sample(
 /// [`TraversalCounters::partial_light`]: soft-shadow noise; or a texture's detail at the
 /// pixel's scale, [`TraversalCounters::texture_detail`]), and the item its camera ray hit
 /// first, as [`sample_item_key`] (with the item seen in it, where that is a mirror).
-// Mirror of shaders/render.wgsl::SampleHint — change both.
+// Mirror of shaders/pixel_sample.wgsl::SampleHint — change both.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SampleHint {
     pub fine_detail: bool,
@@ -37,14 +37,14 @@ pub struct SampleHint {
 
 /// The part of item number `item` (`NO_ITEM`: none) that a [`SampleHint`] keeps: its
 /// low AA_ITEM_KEY_MASK bits (what the GPU's float can hold exactly).
-// Mirror of shaders/render.wgsl::item_key — change both.
+// Mirror of shaders/pixel_sample.wgsl::item_key — change both.
 pub(crate) fn item_key(item: u32) -> u32 {
     item & AA_ITEM_KEY_MASK
 }
 
 /// What the split decision of a square reads beside its samples' contrast: whether one of
 /// its samples saw fine detail, and whether they hit different items.
-// Mirror of shaders/render.wgsl::SquareHints — change both.
+// Mirror of shaders/pixel_sample.wgsl::SquareHints — change both.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct SquareHints {
     pub fine_detail: bool,
@@ -52,7 +52,7 @@ pub(crate) struct SquareHints {
 }
 
 /// `hints` with sample hint `h` added (`first`: the square's first sample's hint).
-// Mirror of shaders/render.wgsl::add_sample_hint — change both.
+// Mirror of shaders/pixel_sample.wgsl::add_sample_hint — change both.
 pub(crate) fn add_sample_hint(hints: SquareHints, first: SampleHint, h: SampleHint) -> SquareHints {
     SquareHints {
         fine_detail: hints.fine_detail || h.fine_detail,
@@ -78,7 +78,7 @@ pub(crate) fn square_hints_of(hints: &[SampleHint]) -> SquareHints {
 /// reflected ray hit nothing): the camera item's key mixed with a hash of the mirrored
 /// one, so two samples of one mirror that show different items differ. Two keys may
 /// collide (24 bits); that can only cost a split that the contrast may still make.
-// Mirror of shaders/render.wgsl::sample_item_key — change both.
+// Mirror of shaders/pixel_sample.wgsl::sample_item_key — change both.
 pub(crate) fn sample_item_key(camera: u32, mirrored: u32) -> u32 {
     if mirrored == NO_ITEM {
         return item_key(camera);
@@ -124,7 +124,7 @@ impl<C: TraversalCounters> TraversalCounters for HintWatch<'_, C> {
 }
 
 /// [`sample`], and its [`SampleHint`]. Adaptive AA's lattice samples.
-// Mirror of shaders/render.wgsl::hinted_sample — change both.
+// Mirror of shaders/pixel_sample.wgsl::hinted_sample — change both.
 pub(crate) fn hinted_sample(
     scene: &PackedScene,
     fx: f32,
@@ -151,7 +151,7 @@ pub(crate) fn hinted_sample(
 /// finest lattice (2^aa_depth per pixel) wide around it, then [`hinted_sample`] there
 /// with the point's own seed. The jitter depends only on the point, so a point shared by
 /// neighbouring squares, pixels or chunks is the same sample whichever pass traces it.
-// Mirror of shaders/render.wgsl::lattice_sample — change both.
+// Mirror of shaders/pixel_sample.wgsl::lattice_sample — change both.
 pub(crate) fn lattice_sample(
     scene: &PackedScene,
     fx: f32,
@@ -170,7 +170,7 @@ pub(crate) fn lattice_sample(
 /// Largest per-channel spread of a square's four corner samples and its centre sample:
 /// what the split decision of adaptive AA weighs, which so sees detail between the
 /// corners too.
-// Mirror of shaders/render.wgsl::square_contrast_of — change both.
+// Mirror of shaders/pixel_sample.wgsl::square_contrast_of — change both.
 pub(crate) fn square_contrast_of(corners: &[Vec3; 4], centre: Vec3) -> f32 {
     let c = corners;
     let lo = c[0].min(c[1]).min(c[2]).min(c[3]).min(centre);
@@ -180,7 +180,7 @@ pub(crate) fn square_contrast_of(corners: &[Vec3; 4], centre: Vec3) -> f32 {
 
 /// Colour of a square that adaptive AA did not split, from its corner samples and its
 /// centre sample: the centre weighs AA_CENTRE_WEIGHT, the corners share the rest.
-// Mirror of shaders/render.wgsl::quincunx_mean — change both.
+// Mirror of shaders/pixel_sample.wgsl::quincunx_mean — change both.
 pub(crate) fn quincunx_mean(corners: &[Vec3; 4], centre: Vec3) -> Vec3 {
     let corner_weight = 0.25 * (1.0 - AA_CENTRE_WEIGHT);
     (corners[0] + corners[1] + corners[2] + corners[3]) * corner_weight + centre * AA_CENTRE_WEIGHT

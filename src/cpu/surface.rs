@@ -16,7 +16,7 @@ use crate::pack::{PackedInstance, PackedScene};
 use glam::{Vec2, Vec3};
 
 /// What shading needs to know about a hit point.
-// Mirror of shaders/shade.wgsl::Surface — change both.
+// Mirror of shaders/surface.wgsl::Surface — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surface {
     /// World-space point, reprojected onto the surface.
@@ -40,7 +40,7 @@ pub struct Surface {
 }
 
 /// The Phong colours at a shading point (the material's, or its textures' at the UV).
-// Mirror of shaders/shade.wgsl::Phong — change both.
+// Mirror of shaders/surface.wgsl::Phong — change both.
 #[derive(Clone, Copy, Debug)]
 pub struct Phong {
     pub kd: Vec3,
@@ -49,7 +49,7 @@ pub struct Phong {
 
 /// Largest |entry| sum over the rows of an affine 3×4 matrix: bounds the magnitude of
 /// the world coordinates it produces from a point in the unit box.
-// Mirror of shaders/shade.wgsl::affine_magnitude — change both.
+// Mirror of shaders/surface.wgsl::affine_magnitude — change both.
 fn affine_magnitude(rows: &[[f32; 4]; 3]) -> f32 {
     rows.iter()
         .map(|r| r[0].abs() + r[1].abs() + r[2].abs() + r[3].abs())
@@ -58,7 +58,7 @@ fn affine_magnitude(rows: &[[f32; 4]; 3]) -> f32 {
 
 /// Point, normal and magnitude of an instance hit, computed in object space (where the
 /// point is snapped onto the exact surface) and mapped to world space.
-// Mirror of shaders/shade.wgsl::instance_surface — change both.
+// Mirror of shaders/surface.wgsl::instance_surface — change both.
 fn instance_surface(inst: &PackedInstance, ray: &Ray, t: f32) -> Surface {
     let (oo, od) = to_object_space(inst, ray.origin, ray.dir);
     let p_hit = oo + od * t;
@@ -109,7 +109,7 @@ fn instance_surface(inst: &PackedInstance, ray: &Ray, t: f32) -> Surface {
 }
 
 /// The surface at a hit: an analytic instance's, a CSG object's or a mesh triangle's.
-// Mirror of shaders/shade.wgsl::surface_at — change both.
+// Mirror of shaders/surface.wgsl::surface_at — change both.
 pub fn surface_at(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
     let inst = &scene.instances[hit.item as usize];
     if inst.kind == KIND_CSG {
@@ -124,7 +124,7 @@ pub fn surface_at(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
 /// Largest world coordinate magnitude an affine map (rows) gives a point whose
 /// coordinates are at most `magnitude`: max over rows of Σ|linear|·magnitude + |w|
 /// (exactly `magnitude` under the identity).
-// Mirror of shaders/shade.wgsl::mapped_magnitude — change both.
+// Mirror of shaders/surface.wgsl::mapped_magnitude — change both.
 fn mapped_magnitude(rows: &[[f32; 4]; 3], magnitude: f32) -> f32 {
     rows.iter()
         .map(|r| (r[0].abs() + r[1].abs() + r[2].abs()) * magnitude + r[3].abs())
@@ -134,7 +134,7 @@ fn mapped_magnitude(rows: &[[f32; 4]; 3], magnitude: f32) -> f32 {
 /// The surface of a mesh hit: triangle `hit.part` of the instance's mesh at the hit's
 /// barycentrics, computed in the mesh's space and mapped to world space (point and
 /// tangents through object→world, the normal through the transpose of world→object).
-// Mirror of shaders/shade.wgsl::mesh_surface — change both.
+// Mirror of shaders/surface.wgsl::mesh_surface — change both.
 fn mesh_surface(scene: &PackedScene, inst: &PackedInstance, hit: &Hit) -> Surface {
     let index = hit.part as usize;
     let [p0, p1, p2] = triangle_vertices(&scene.triangles[index]);
@@ -178,7 +178,7 @@ fn mesh_surface(scene: &PackedScene, inst: &PackedInstance, hit: &Hit) -> Surfac
 /// The surface of a CSG hit: that of the leaf it lies on (point, material — and, with
 /// them, the UV and tangent frame a texture or bump map will read), the normal negated
 /// on a subtracted operand's surface, which bounds the result from the other side.
-// Mirror of shaders/shade.wgsl::csg_surface — change both.
+// Mirror of shaders/surface.wgsl::csg_surface — change both.
 fn csg_surface(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
     let leaf = &scene.instances[(hit.part & CSG_INDEX_MASK) as usize];
     let mut s = instance_surface(leaf, ray, hit.t);

@@ -278,7 +278,7 @@ fn facing_normal(normal: Vec3, dir: Vec3) -> Vec3 {
 }
 
 /// The media primary rays start in, as packing found them (`dielectric::camera_media`).
-// Mirror of shaders/dielectric.wgsl::camera_medium_stack — change both.
+// Mirror of shaders/trace.wgsl::camera_medium_stack — change both.
 fn camera_media_of(g: &crate::pack::PackedGlobals) -> MediumStack {
     MediumStack {
         iors: g.camera_media,

@@ -77,6 +77,7 @@ const COMMON: &[(&str, &str)] = &[
     ("layout.wgsl", include_str!("../../shaders/layout.wgsl")),
     ("rng.wgsl", include_str!("../../shaders/rng.wgsl")),
     ("ray.wgsl", include_str!("../../shaders/ray.wgsl")),
+    ("math.wgsl", include_str!("../../shaders/math.wgsl")),
     (
         "intersect.wgsl",
         include_str!("../../shaders/intersect.wgsl"),
@@ -95,6 +96,7 @@ const COMMON: &[(&str, &str)] = &[
         include_str!("../../shaders/traverse_mesh.wgsl"),
     ),
     ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
+    ("surface.wgsl", include_str!("../../shaders/surface.wgsl")),
     ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
     ("smooth.wgsl", include_str!("../../shaders/smooth.wgsl")),
     (
@@ -105,6 +107,10 @@ const COMMON: &[(&str, &str)] = &[
 ];
 const RENDER: &[(&str, &str)] = &[
     ("trace.wgsl", include_str!("../../shaders/trace.wgsl")),
+    (
+        "pixel_sample.wgsl",
+        include_str!("../../shaders/pixel_sample.wgsl"),
+    ),
     ("render.wgsl", include_str!("../../shaders/render.wgsl")),
     ("adaptive.wgsl", include_str!("../../shaders/adaptive.wgsl")),
 ];

@@ -42,13 +42,13 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          value does not depend on it",
     ),
     (
-        "shaders/render.wgsl",
+        "shaders/pixel_sample.wgsl",
         "encode_hint",
         "stores a SampleHint in the float fourth component of a lattice sample; the CPU's \
          lattice keeps its hints in a Vec<SampleHint>",
     ),
     (
-        "shaders/render.wgsl",
+        "shaders/pixel_sample.wgsl",
         "decode_hint",
         "reads encode_hint's float back; the CPU's lattice keeps its hints in a \
          Vec<SampleHint>",
