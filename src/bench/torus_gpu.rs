@@ -48,7 +48,7 @@ pub const BENCH_SOLVER_FERRARI: u32 = 1;
 
 /// WGSL `const` declarations of the benchmark's own constants, in the form of the
 /// tracer's prelude (`constants::wgsl_prelude`), which does not carry them.
-fn bench_prelude() -> String {
+pub fn bench_prelude() -> String {
     format!(
         "// Generated from src/bench/ — do not edit.\n\
          const BENCH_SOLVER_GLINT: u32 = {BENCH_SOLVER_GLINT}u;\n\

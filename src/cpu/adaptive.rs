@@ -133,8 +133,8 @@ fn trace_lattice_point(
 ) {
     let t = lat.tile;
     let (fx, fy) = lattice_position(&t, i, j);
-    let (colour, hint) = lattice_sample(scene, fx, fy, counters);
     let k = lattice_index(&t, i, j);
+    let (colour, hint) = lattice_sample(scene, fx, fy, counters);
     lat.points[k] = colour;
     lat.hints[k] = hint;
 }

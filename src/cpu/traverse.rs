@@ -22,7 +22,7 @@ use super::traverse_mesh::{intersect_mesh, mesh_occludes};
 use crate::constants::{
     ITEM_MAILBOX_SIZE, KIND_CSG, KIND_MESH, KIND_TORUS, NO_ITEM, T_MISS, WALK_FULL,
 };
-use crate::pack::{PackedInstance, PackedScene};
+use crate::pack::{PackedInstance, PackedScene, SceneFeatures};
 
 /// The items a ray has tested, as a direct-mapped cache of `ITEM_MAILBOX_SIZE` slots
 /// (item number modulo the size: one compare). Only kinds for which a second test is
@@ -126,6 +126,14 @@ fn intersect_primitive_item(
     }
 }
 
+/// The items listed in scene cell `cell`.
+fn cell_items(scene: &PackedScene, cell: u32) -> impl Iterator<Item = u32> + '_ {
+    let range = scene.cell_start[cell as usize]..scene.cell_start[cell as usize + 1];
+    scene.cell_items[range.start as usize..range.end as usize]
+        .iter()
+        .copied()
+}
+
 /// Tests the items `items` and keeps the nearest hit below `best.t`.
 // Mirror of shaders/traverse.wgsl::test_items — change both.
 fn test_items(
@@ -195,22 +203,44 @@ fn closest_hit_inside(
     let Some(dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return Hit::MISS;
     };
-    let mut walk = scene_walk_start(scene, dda, counters);
-    let mut pending = PendingMeshes::new();
-    loop {
-        closest_walk(
-            scene,
-            &mut walk,
-            ray,
-            &mut best,
-            &mut mailbox,
-            &mut pending,
-            counters,
-        );
-        best = walk_pending_meshes(scene, &pending, ray, best, counters);
-        pending = PendingMeshes::new();
-        if walk.done {
-            break;
+    if scene.features.contains(SceneFeatures::MESH) {
+        let mut walk = scene_walk_start(scene, dda, counters);
+        let mut pending = PendingMeshes::new();
+        loop {
+            closest_walk(
+                scene,
+                &mut walk,
+                ray,
+                &mut best,
+                &mut mailbox,
+                &mut pending,
+                counters,
+            );
+            best = walk_pending_meshes(scene, &pending, ray, best, counters);
+            pending = PendingMeshes::new();
+            if walk.done {
+                break;
+            }
+        }
+    } else {
+        // Without mesh instances there is nothing to collect: the cells' items are tested
+        // as the DDA meets them (the specialisation the GPU compiles for such scenes).
+        let mut dda = dda;
+        loop {
+            counters.cell_visited();
+            test_items(
+                scene,
+                cell_items(scene, dda.cell),
+                ray,
+                &mut best,
+                &mut mailbox,
+                counters,
+            );
+            // A hit inside this cell is final; so is leaving the grid or passing t_max.
+            match dda_step(&mut dda) {
+                Some(t_cell_exit) if best.t > t_cell_exit => {}
+                _ => break,
+            }
         }
     }
     if best.is_hit() {
@@ -483,6 +513,21 @@ fn any_hit_inside(
     let Some(dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
         return false;
     };
+    if !scene.features.contains(SceneFeatures::MESH) {
+        // Without mesh instances: the cells' items as the DDA meets them (see
+        // closest_hit_inside).
+        let mut dda = dda;
+        loop {
+            counters.cell_visited();
+            let items = cell_items(scene, dda.cell);
+            if any_item_hit(scene, items, ray, t_max, &mut mailbox, counters) {
+                return true;
+            }
+            if dda_step(&mut dda).is_none() {
+                return false;
+            }
+        }
+    }
     let mut walk = scene_walk_start(scene, dda, counters);
     let mut pending = PendingMeshes::new();
     loop {

@@ -115,7 +115,7 @@ pub fn intersect_mesh(
             _ => break,
         }
     }
-    if best.local == NO_ITEM {
+    if !best.is_hit() {
         return Hit::MISS;
     }
     Hit {

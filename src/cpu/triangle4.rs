@@ -85,6 +85,7 @@ type Coordinates4 = [[Vec4; 3]; 3];
 /// Loads the four triangles' coordinates into lanes: each triangle as two four-float
 /// loads and one float, then a 4×4 transpose of each group of four (shuffles: cheaper than
 /// filling the 36 lanes one float at a time).
+// Mirror of shaders/intersect.wgsl::triangle_vertices for four triangles, in lanes — change both.
 #[inline(always)]
 fn load_coordinates4(tris: &[&PackedTriangle; LANES]) -> Coordinates4 {
     let floats = tris.map(bytemuck::cast_ref::<_, [f32; 9]>);
@@ -167,6 +168,7 @@ pub fn intersect_triangles4(
 }
 
 /// `intersect_triangles4` for the axis order `KX`, `KY`, `KZ` (the ray's).
+// Mirror of shaders/intersect.wgsl::intersect_triangle on four triangles, one per lane — change both.
 #[inline(always)]
 fn intersect_ordered4<const KX: usize, const KY: usize, const KZ: usize>(
     r: &TriangleRay4,
@@ -228,6 +230,12 @@ impl NearestTriangle {
             b1: 0.0,
             b2: 0.0,
         }
+    }
+
+    /// Whether the walk kept a triangle.
+    // Mirror of shaders/hit.wgsl::is_hit for a mesh walk's nearest triangle — change both.
+    pub fn is_hit(&self) -> bool {
+        self.local != NO_ITEM
     }
 }
 

@@ -22,3 +22,4 @@ mod gpu_refraction;
 mod gpu_scrabble;
 mod gpu_textures;
 mod twins;
+mod twins_broken;

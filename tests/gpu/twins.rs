@@ -1,21 +1,33 @@
 //! The CPU tracer and its WGSL mirror are tied function by function with comments
 //! (`// Mirror of shaders/uv.wgsl::triangle_frame — change both.`); this test reads both
-//! sides (no GPU) and checks that the ties hold:
+//! sides (no GPU: the comments as text, the WGSL through naga, the Rust through syn) and
+//! checks that the ties hold:
 //! - every twin comment names a file of the other side that exists, and a declaration in
 //!   it that exists (so renaming one twin without the other fails here);
 //! - pairing is symmetric: a one-to-one twin comment (`PATH::NAME` and nothing else) on
 //!   A naming B has a twin comment on B naming A (comments such as "the sample loop of
 //!   src/cpu/render.rs::render_pixel", for a part of a function, need only exist);
+//! - twins are paired file by file: a twin of `src/cpu/X.rs` is in `shaders/X.wgsl`;
+//! - the WGSL functions the line reader sees are those naga sees in the modules;
 //! - paired functions take the same number of arguments, once the Rust side's module
 //!   state is set aside ([`MODULE_SCOPE`]: what WGSL reads from bindings or private
 //!   variables instead of parameters);
+//! - paired functions call corresponding twins, in the same order where both call them
+//!   unconditionally (what is set aside, by rule, is in `twin_support::calls`);
 //! - every WGSL function has a twin, or is on [`WGSL_WITHOUT_TWIN`] with the reason.
 
 use crate::twin_support;
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
-use twin_support::{parse, Item, Sources, TwinRef};
+use twin_support::calls::{
+    first_calls, function_pairs, partial_function_twins, rust_twin_calls, wgsl_twin_calls,
+    RustIndex,
+};
+use twin_support::rust_calls::RustFile;
+use twin_support::wgsl_calls::{self, WgslModules};
+use twin_support::{parse, rust_calls, Item, Sources, TwinRef};
 
 /// WGSL functions with no Rust twin, and why.
 const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
@@ -174,28 +186,42 @@ const MODULE_SCOPE: &[(&str, &str)] = &[
 ];
 
 /// This repository's sources.
-fn source_texts() -> Vec<(String, String)> {
+pub(super) fn source_texts() -> Vec<(String, String)> {
     twin_support::source_texts(Path::new(env!("CARGO_MANIFEST_DIR")))
 }
 
 /// What the checks found.
 #[derive(Default)]
-struct Findings {
-    problems: Vec<String>,
+pub(super) struct Findings {
+    pub(super) problems: Vec<String>,
     /// One-to-one pairs (each counted once).
     pairs: usize,
     /// Of those, function pairs whose argument counts were compared.
     compared_functions: usize,
     /// Twin comments about part of a declaration, or a file.
     partial: usize,
+    /// Function pairs whose calls were compared, and of those, pairs whose calls were
+    /// also compared in order.
+    compared_calls: usize,
+    ordered_calls: usize,
+    /// Module configurations naga parsed.
+    configurations: usize,
 }
 
 fn is_wgsl(file: &str) -> bool {
     file.ends_with(".wgsl")
 }
 
-fn check(sources: &Sources) -> Findings {
-    let mut found = Findings::default();
+pub(super) fn check(texts: &[(String, String)]) -> Findings {
+    let sources = &parse(texts);
+    let wgsl = wgsl_calls::read(texts);
+    let (rust, rust_problems) = rust_calls::read(texts);
+    let mut found = Findings {
+        problems: [wgsl.problems.clone(), rust_problems].concat(),
+        configurations: wgsl.configurations,
+        ..Findings::default()
+    };
+    check_wgsl_functions(sources, &wgsl, &mut found.problems);
     found.problems.extend(
         sources
             .malformed
@@ -217,6 +243,7 @@ fn check(sources: &Sources) -> Findings {
         check_reference(file, twin, &files, &index, &mut found.problems);
         found.partial += usize::from(!twin.exact);
     }
+    let wgsl_fns = &wgsl;
     let mut seen = HashSet::new();
     for item in &sources.items {
         let Some(twin) = item.twin.as_ref().filter(|t| t.exact) else {
@@ -240,13 +267,37 @@ fn check(sources: &Sources) -> Findings {
         } else {
             (item, *other)
         };
-        if rust.is_fn && wgsl.is_fn && !wgsl.entry_point {
-            found.compared_functions += 1;
-            check_arguments(rust, wgsl, &mut found.problems);
+        check_file_pairing(rust, wgsl, &mut found.problems);
+        let naga_fn = wgsl_fns.functions.get(&wgsl.key);
+        if let (true, Some(f)) = (rust.is_fn && wgsl.is_fn, naga_fn) {
+            if !f.entry_point {
+                found.compared_functions += 1;
+                check_arguments(rust, wgsl, f.arity, &mut found.problems);
+            }
         }
     }
     check_untwinned(sources, &mut found.problems);
+    check_calls(sources, &rust, &wgsl, &mut found);
     found
+}
+
+/// A twin of `src/cpu/X.rs` is in `shaders/X.wgsl` (host-side data and helpers outside
+/// `src/cpu/` are mirrored in the shader file that reads them).
+fn check_file_pairing(rust: &Item, wgsl: &Item, problems: &mut Vec<String>) {
+    let Some(name) = rust
+        .file
+        .strip_prefix("src/cpu/")
+        .and_then(|f| f.strip_suffix(".rs"))
+    else {
+        return;
+    };
+    let expected = format!("shaders/{name}.wgsl");
+    if wgsl.file != expected {
+        problems.push(format!(
+            "{}:{} {} has its twin in {}, not in {expected}: twins are paired file by file",
+            rust.file, rust.line, rust.key, wgsl.file
+        ));
+    }
 }
 
 /// The named file is on the other side and exists, and so does the named declaration.
@@ -323,18 +374,6 @@ fn rust_argument_count(rust: &Item, wgsl: &Item) -> usize {
         .sum()
 }
 
-/// Arguments a WGSL function takes, an `array<T, N>` counted as N.
-fn wgsl_argument_count(wgsl: &Item) -> usize {
-    wgsl.params
-        .iter()
-        .map(|p| {
-            let ty = p.split_once(':').map_or("", |(_, t)| t.trim());
-            let inner = ty.strip_prefix("array<").and_then(|t| t.strip_suffix('>'));
-            inner.map_or(1, |t| array_length(&format!("[{t}]"), ','))
-        })
-        .sum()
-}
-
 /// N for an array type `[T<sep> N]` with a literal N, else 1.
 fn array_length(ty: &str, separator: char) -> usize {
     ty.strip_prefix('[')
@@ -344,8 +383,9 @@ fn array_length(ty: &str, separator: char) -> usize {
         .unwrap_or(1)
 }
 
-fn check_arguments(rust: &Item, wgsl: &Item, problems: &mut Vec<String>) {
-    let (r, w) = (rust_argument_count(rust, wgsl), wgsl_argument_count(wgsl));
+/// The Rust function passes as many arguments as naga says its WGSL twin takes (`w`).
+fn check_arguments(rust: &Item, wgsl: &Item, w: usize, problems: &mut Vec<String>) {
+    let r = rust_argument_count(rust, wgsl);
     if r != w {
         problems.push(format!(
             "{}:{} {} passes {r} arguments but its twin {}:{} {} takes {w}\n  Rust: ({})\n  WGSL: ({})",
@@ -381,16 +421,136 @@ fn check_untwinned(sources: &Sources, problems: &mut Vec<String>) {
     }
 }
 
+/// The functions the line reader found in `shaders/` are the functions naga found in the
+/// assembled modules, file for file (so neither reader misses one).
+fn check_wgsl_functions(sources: &Sources, wgsl: &WgslModules, problems: &mut Vec<String>) {
+    let by_text: BTreeSet<(&str, &str)> = sources
+        .items
+        .iter()
+        .filter(|i| is_wgsl(&i.file) && i.is_fn)
+        .map(|i| (i.file.as_str(), i.key.as_str()))
+        .collect();
+    let by_naga: BTreeSet<(&str, &str)> = wgsl
+        .functions
+        .iter()
+        .map(|(name, f)| (f.file.as_str(), name.as_str()))
+        .collect();
+    for (file, name) in by_text.difference(&by_naga) {
+        problems.push(format!(
+            "{file}: fn {name} is in no module naga parsed (is the file in src/gpu/shader.rs's lists?)"
+        ));
+    }
+    for (file, name) in by_naga.difference(&by_text) {
+        problems.push(format!(
+            "{file}: naga sees fn {name}, which the line reader does not"
+        ));
+    }
+}
+
+/// Each pair of function twins calls corresponding twins (see `twin_support::calls` for
+/// what is set aside, and why), and where both call them in an order, the same order.
+fn check_calls(
+    sources: &Sources,
+    rust: &BTreeMap<String, RustFile>,
+    wgsl: &WgslModules,
+    found: &mut Findings,
+) {
+    let pairs = function_pairs(&sources.items);
+    let twin_of: HashMap<(String, String), String> = pairs.iter().cloned().collect();
+    let rust_of: HashMap<&str, &(String, String)> =
+        pairs.iter().map(|(r, w)| (w.as_str(), r)).collect();
+    let twinned: HashSet<String> = pairs.iter().map(|(_, w)| w.clone()).collect();
+    // What a call of a Rust function stands for on the WGSL side.
+    let mut stands_for = twin_of.clone();
+    stands_for.extend(
+        partial_function_twins(&sources.items)
+            .into_iter()
+            .filter(|(_, w)| twinned.contains(w)),
+    );
+    let line_of = |file: &str, key: &str| {
+        sources
+            .items
+            .iter()
+            .find(|i| i.file == file && i.key == key)
+            .map_or(0, |i| i.line)
+    };
+    let index = RustIndex::new(rust);
+    for (r, w) in &pairs {
+        let Some(wf) = wgsl.functions.get(w) else {
+            continue; // reported by check_wgsl_functions
+        };
+        let (rust_calls, unresolved) = rust_twin_calls(&index, &stands_for, r);
+        let wgsl_calls = wgsl_twin_calls(wgsl, &twinned, w);
+        let at_rust = format!("{}:{} {}", r.0, line_of(&r.0, &r.1), r.1);
+        let at_wgsl = format!("{}:{} {w}", wf.file, line_of(&wf.file, w));
+        for u in unresolved {
+            found
+                .problems
+                .push(format!("{at_rust}: cannot tell which function {u} calls"));
+        }
+        found.compared_calls += 1;
+        let rust_set: BTreeSet<String> = first_calls(&rust_calls, false).into_iter().collect();
+        let wgsl_set: BTreeSet<String> = wgsl_calls
+            .iter()
+            .flat_map(|calls| first_calls(calls, false))
+            .collect();
+        let name = |w: &str| {
+            rust_of
+                .get(w)
+                .map_or(w.to_string(), |(f, k)| format!("{f}::{k}"))
+        };
+        for extra in wgsl_set.difference(&rust_set) {
+            found.problems.push(format!(
+                "{at_wgsl} calls {extra} (twin of {}), but its twin {at_rust} does not",
+                name(extra)
+            ));
+        }
+        for extra in rust_set.difference(&wgsl_set) {
+            found.problems.push(format!(
+                "{at_rust} calls {} (twin of shaders' {extra}), but its twin {at_wgsl} does not",
+                name(extra)
+            ));
+        }
+        let rust_fixed = first_calls(&rust_calls, true);
+        let wgsl_fixed: Vec<Vec<String>> =
+            wgsl_calls.iter().map(|c| first_calls(c, true)).collect();
+        if let Some(problem) = order_problem(&rust_fixed, &wgsl_fixed) {
+            found
+                .problems
+                .push(format!("{at_rust} and its twin {at_wgsl}: {problem}"));
+        }
+        found.ordered_calls += usize::from(
+            wgsl_fixed
+                .iter()
+                .any(|w| w.iter().filter(|c| rust_fixed.contains(c)).count() > 1),
+        );
+    }
+}
+
+/// Where the twins both sides call whenever they run come first in different orders, in
+/// some configuration: each side's fixed calls restricted to the other's.
+fn order_problem(rust: &[String], wgsl: &[Vec<String>]) -> Option<String> {
+    wgsl.iter().find_map(|calls| {
+        let w: Vec<&String> = calls.iter().filter(|c| rust.contains(c)).collect();
+        let r: Vec<&String> = rust.iter().filter(|c| calls.contains(c)).collect();
+        (w != r).then(|| format!("twins called in another order: Rust {r:?}, WGSL {w:?}"))
+    })
+}
+
 #[test]
 fn rust_and_wgsl_twins_name_each_other() {
-    let found = check(&parse(&source_texts()));
+    let found = check(&source_texts());
     println!(
-        "{} one-to-one twin pairs ({} function pairs with argument counts compared), {} partial \
-         twin comments, {} WGSL functions on the allow-list",
+        "{} one-to-one twin pairs ({} function pairs with argument counts compared, {} with \
+         their calls compared, {} of them in order), {} partial twin comments, {} WGSL \
+         functions on the allow-list; naga parsed {} module configurations",
         found.pairs,
         found.compared_functions,
+        found.compared_calls,
+        found.ordered_calls,
         found.partial,
-        WGSL_WITHOUT_TWIN.len()
+        WGSL_WITHOUT_TWIN.len(),
+        found.configurations
     );
     assert!(
         found.problems.is_empty(),
@@ -402,76 +562,5 @@ fn rust_and_wgsl_twins_name_each_other() {
     assert!(
         found.pairs >= 100 && found.compared_functions >= 80,
         "too few twins found"
-    );
-}
-
-/// `texts` with the first `from` in `file` replaced by `to`.
-fn edited(texts: &[(String, String)], file: &str, from: &str, to: &str) -> Vec<(String, String)> {
-    let mut out = texts.to_vec();
-    let (_, text) = out.iter_mut().find(|(f, _)| f == file).unwrap();
-    assert!(text.contains(from), "{file} has no {from}");
-    *text = text.replacen(from, to, 1);
-    out
-}
-
-/// Each kind of broken tie is reported (the checks can fail).
-#[test]
-fn broken_ties_are_reported() {
-    let texts = source_texts();
-    let renamed = check(&parse(&edited(
-        &texts,
-        "shaders/uv.wgsl",
-        "fn triangle_frame(",
-        "fn triangle_frame_renamed(",
-    )));
-    assert!(
-        renamed
-            .problems
-            .iter()
-            .any(|p| p.contains("shaders/uv.wgsl declares no triangle_frame")),
-        "renaming a WGSL twin is not caught: {:?}",
-        renamed.problems
-    );
-    let extra = check(&parse(&edited(
-        &texts,
-        "shaders/uv.wgsl",
-        "fn triangle_frame(p0",
-        "fn triangle_frame(extra: f32, p0",
-    )));
-    assert!(
-        extra
-            .problems
-            .iter()
-            .any(|p| p.contains("triangle_frame passes 7 arguments but its twin shaders/uv.wgsl:")),
-        "an extra WGSL parameter is not caught: {:?}",
-        extra.problems
-    );
-    let one_sided = check(&parse(&edited(
-        &texts,
-        "src/cpu/uv.rs",
-        "// Mirror of shaders/uv.wgsl::triangle_frame — change both.\n",
-        "",
-    )));
-    assert!(
-        one_sided
-            .problems
-            .iter()
-            .any(|p| p.contains("names src/cpu/uv.rs::triangle_frame as its twin")),
-        "a one-sided twin comment is not caught: {:?}",
-        one_sided.problems
-    );
-    let new_fn = check(&parse(&edited(
-        &texts,
-        "shaders/uv.wgsl",
-        "// #if SPHERE\n",
-        "fn untwinned() {}\n// #if SPHERE\n",
-    )));
-    assert!(
-        new_fn
-            .problems
-            .iter()
-            .any(|p| p.contains("fn untwinned has no twin comment")),
-        "a WGSL function without a twin is not caught: {:?}",
-        new_fn.problems
     );
 }

@@ -3,9 +3,14 @@
 //! `shaders/`, the "Mirror of … — change both." comment above it, and a function's
 //! parameters. Line-based, relying on rustfmt's layout (top-level items at column 0,
 //! members of an `impl` indented once), which `cargo fmt --check` enforces; WGSL has no
-//! nesting of declarations.
+//! nesting of declarations. What the functions do is read by parsers: the WGSL's by naga
+//! ([`wgsl_calls`]), the Rust's by syn ([`rust_calls`]), compared in [`calls`].
 
 use std::path::Path;
+
+pub mod calls;
+pub mod rust_calls;
+pub mod wgsl_calls;
 
 /// A "Mirror of … — change both." comment.
 #[derive(Clone, Debug)]
@@ -31,8 +36,6 @@ pub struct Item {
     /// `name`, or `Type::name` for a member of `impl Type`.
     pub key: String,
     pub is_fn: bool,
-    /// A WGSL `@compute` entry point (its parameters are builtins, not a call's).
-    pub entry_point: bool,
     /// Parameters as written (`name: Type`), receivers (`&self`) included.
     pub params: Vec<String>,
     pub twin: Option<TwinRef>,
@@ -139,7 +142,6 @@ pub fn read_file(file: &str, text: &str, sources: &mut Sources) {
     let lines: Vec<&str> = text.lines().collect();
     let mut scope = Scope::Top;
     let mut pending: Option<TwinRef> = None;
-    let mut entry_point = false;
     for (index, raw) in lines.iter().enumerate() {
         let line = raw.trim();
         let indent = raw.len() - raw.trim_start().len();
@@ -159,7 +161,7 @@ pub fn read_file(file: &str, text: &str, sources: &mut Sources) {
             continue;
         }
         let code = if wgsl {
-            strip_wgsl_attributes(line, &mut entry_point)
+            strip_wgsl_attributes(line)
         } else {
             line
         };
@@ -187,7 +189,6 @@ pub fn read_file(file: &str, text: &str, sources: &mut Sources) {
                     line: index + 1,
                     key,
                     is_fn,
-                    entry_point: std::mem::take(&mut entry_point),
                     params,
                     twin: pending.take(),
                 });
@@ -196,7 +197,6 @@ pub fn read_file(file: &str, text: &str, sources: &mut Sources) {
                 if let Some(old) = pending.take() {
                     sources.loose.push((file.to_string(), old));
                 }
-                entry_point = false;
             }
         }
     }
@@ -243,13 +243,12 @@ fn skip_generics(text: &str) -> &str {
 }
 
 /// `line` without its leading WGSL attributes (`@compute`, `@workgroup_size(…)`,
-/// `@group(0) @binding(1)`); notes whether `@compute` was among them.
-fn strip_wgsl_attributes<'a>(mut line: &'a str, entry_point: &mut bool) -> &'a str {
+/// `@group(0) @binding(1)`).
+fn strip_wgsl_attributes(mut line: &str) -> &str {
     while let Some(rest) = line.strip_prefix('@') {
         let name_end = rest
             .find(|c: char| !(c.is_alphanumeric() || c == '_'))
             .unwrap_or(rest.len());
-        *entry_point |= &rest[..name_end] == "compute";
         let mut after = &rest[name_end..];
         if after.starts_with('(') {
             let mut depth = 0;
