@@ -12,6 +12,7 @@
 //!   as a call of that WGSL function: the CPU-only form of a step is that step;
 //! - WGSL calls under `ITERATION_GUARD` (lavapipe's loop-limiter check) are not read
 //!   (`wgsl_calls`): the CPU has no loop limiter.
+//!
 //! A Rust method call `x.f()` is resolved by the receiver's type where the body says it
 //! (`self`, a typed parameter or `let`, a `let` of `Type::f(…)`, `Type { … }` or of a
 //! function of `src/` that returns a named type); else it is the method `T::f` of `src/`
