@@ -1,4 +1,4 @@
-//! The `glint` command line: `render`, `diff` and `bench`.
+//! The `glint` command line: `render`, `diff`, `bench`, `assemble`, `info` and `kernels`.
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::scene::flatten::MAX_PIXELS;
@@ -49,6 +49,9 @@ enum Command {
     /// List the GPU adapters (Vulkan, Metal, DX12, or the backends WGPU_BACKEND names)
     /// and their limits.
     Info,
+    /// The GPU kernels' registers, spills, scratch and waves per SIMD, compiled by a real
+    /// GPU compiler (RADV's null device with --family, else a hardware Vulkan device).
+    Kernels(glint::cli::kernels_cmd::KernelsArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -210,6 +213,13 @@ fn main() -> ExitCode {
     unsafe { glint::gpu::context::set_default_llvmpipe_threads() };
     glint::image_io::remove_temp_files_on_signals();
     let cli = Cli::parse();
+    if let Command::Kernels(args) = &cli.command {
+        // SAFETY: still single-threaded (signal handlers only), and no Vulkan loader yet.
+        if let Err(message) = unsafe { glint::cli::kernels_cmd::set_driver_env(args) } {
+            eprintln!("glint: error: {message}");
+            return ExitCode::from(5);
+        }
+    }
     let result = match cli.command {
         Command::Render(args) => render(args),
         Command::Diff { a, b, heatmap } => {
@@ -227,6 +237,7 @@ fn main() -> ExitCode {
             info();
             Ok(())
         }
+        Command::Kernels(args) => glint::cli::kernels_cmd::run_kernels(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -159,6 +159,17 @@ pub fn wgsl_to_spirv(
     kernel: KernelConfig,
     target: SpirvTarget,
 ) -> Result<Vec<u32>, String> {
+    entry_spirv(source, entry, kernel, target).map(|(words, _)| words)
+}
+
+/// [`wgsl_to_spirv`], with the names of the functions the entry point reaches (what
+/// survives compaction).
+pub fn entry_spirv(
+    source: &str,
+    entry: Entry,
+    kernel: KernelConfig,
+    target: SpirvTarget,
+) -> Result<(Vec<u32>, Vec<String>), String> {
     let module = naga::front::wgsl::parse_str(source).map_err(|e| e.emit_to_string(source))?;
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
@@ -184,7 +195,10 @@ pub fn wgsl_to_spirv(
         entry_point: entry.name().to_string(),
         shader_stage: stage,
     };
-    spv::write_vec(&module, &info, &options, Some(&pipeline)).map_err(|e| e.to_string())
+    let words =
+        spv::write_vec(&module, &info, &options, Some(&pipeline)).map_err(|e| e.to_string())?;
+    let functions = module.functions.iter().filter_map(|(_, f)| f.name.clone());
+    Ok((words, functions.collect()))
 }
 
 /// SPIR-V words as the little-endian bytes of a `.spv` file.
