@@ -20,8 +20,12 @@ pub enum KernelsFormat {
 #[derive(Args, Debug)]
 pub struct KernelsArgs {
     /// Scene scripts; a folder stands for every scene script under it.
-    #[arg(required = true)]
+    #[arg(required_unless_present = "wgsl")]
     pub scenes: Vec<PathBuf>,
+    /// A WGSL module of one's own (repeatable): its `main` (or --entry) entry points,
+    /// laid out as the render module's, beside the scenes' kernels.
+    #[arg(long, value_name = "FILE")]
+    pub wgsl: Vec<PathBuf>,
     /// Compile on RADV's null device for this AMD family (NAVI21, NAVI10, VEGA10, …);
     /// default: a hardware device that reports compiler statistics.
     #[arg(long, value_parser = Family::parse)]
@@ -93,7 +97,7 @@ pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
         args.waves.clone()
     };
     let entries = (!args.entries.is_empty()).then_some(args.entries.as_slice());
-    let m = measure(&scenes, args.family, &waves, entries, args.kernel_variant)
+    let m = measure(&scenes, &args.wgsl, args.family, &waves, entries, args.kernel_variant)
         .map_err(|e| (e, 5))?;
     if let Some(dir) = &args.spirv_dir {
         write_kernels(&m.set, dir).map_err(|e| (e, 4))?;

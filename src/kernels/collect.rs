@@ -96,6 +96,24 @@ impl KernelSet {
         Ok(())
     }
 
+    /// Adds a WGSL module of one's own (`--wgsl`): `entries` (None: `main`) of it, laid
+    /// out as the render module's entries are.
+    pub fn add_wgsl(
+        &mut self,
+        file: &Path,
+        entries: Option<&[Entry]>,
+        kernel: KernelConfig,
+        target: SpirvTarget,
+    ) -> Result<(), String> {
+        let wgsl =
+            std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
+        let name = scene_name(file);
+        for &entry in entries.unwrap_or(&[Entry::Render]) {
+            self.push(&name, &wgsl, SceneFeatures::empty(), entry, false, kernel, target)?;
+        }
+        Ok(())
+    }
+
     fn add(
         &mut self,
         scene: &str,
@@ -116,7 +134,22 @@ impl KernelSet {
             return Ok(());
         }
         let wgsl = assemble_with(features, entry, kernel);
-        let (spirv, functions) = entry_spirv(&wgsl, entry, kernel, target)
+        self.push(scene, &wgsl, features, entry, dispatched, kernel, target)
+    }
+
+    /// Compiles `entry` of `wgsl` to SPIR-V and keeps it.
+    #[allow(clippy::too_many_arguments)]
+    fn push(
+        &mut self,
+        scene: &str,
+        wgsl: &str,
+        features: SceneFeatures,
+        entry: Entry,
+        dispatched: bool,
+        kernel: KernelConfig,
+        target: SpirvTarget,
+    ) -> Result<(), String> {
+        let (spirv, functions) = entry_spirv(wgsl, entry, kernel, target)
             .map_err(|e| format!("{scene}: {}: {e}", entry.name()))?;
         let traversal = functions
             .iter()
@@ -126,7 +159,7 @@ impl KernelSet {
             features,
             kernel,
             digest: spirv_digest(&spirv),
-            wgsl,
+            wgsl: wgsl.to_string(),
             spirv,
             traversal,
             scenes: vec![(scene.to_string(), dispatched)],

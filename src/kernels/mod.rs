@@ -93,6 +93,7 @@ pub fn driver_env(family: Family) -> Result<Vec<(&'static str, String)>, String>
 /// environment already).
 pub fn measure(
     scenes: &[PathBuf],
+    wgsl: &[PathBuf],
     family: Option<Family>,
     waves: &[Wave],
     entries: Option<&[crate::gpu::shader::Entry]>,
@@ -104,6 +105,9 @@ pub fn measure(
     let mut set = KernelSet::default();
     for scene in scenes {
         set.add_scene(scene, entries, config, target)?;
+    }
+    for file in wgsl {
+        set.add_wgsl(file, entries, config, target)?;
     }
     let mut compiled = Vec::new();
     for (index, k) in set.kernels.iter().enumerate() {

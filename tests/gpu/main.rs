@@ -21,4 +21,5 @@ mod gpu_probes;
 mod gpu_refraction;
 mod gpu_scrabble;
 mod gpu_textures;
+mod kernel_instrument;
 mod twins;
