@@ -411,7 +411,9 @@ fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
         };
         if let Some(other) = refused {
             return Err((
-                format!("{flag} is about the GPU tracer's kernels; it does not combine with {other}"),
+                format!(
+                    "{flag} is about the GPU tracer's kernels; it does not combine with {other}"
+                ),
                 2,
             ));
         }

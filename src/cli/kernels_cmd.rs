@@ -56,7 +56,10 @@ fn parse_entry(name: &str) -> Result<Entry, String> {
     let render = Entry::ALL.into_iter().filter(|e| e.is_render());
     render.clone().find(|e| e.name() == name).ok_or_else(|| {
         let names: Vec<&str> = render.map(|e| e.name()).collect();
-        format!("unknown entry point '{name}' (entries: {})", names.join(", "))
+        format!(
+            "unknown entry point '{name}' (entries: {})",
+            names.join(", ")
+        )
     })
 }
 
@@ -97,8 +100,15 @@ pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
         args.waves.clone()
     };
     let entries = (!args.entries.is_empty()).then_some(args.entries.as_slice());
-    let m = measure(&scenes, &args.wgsl, args.family, &waves, entries, args.kernel_variant)
-        .map_err(|e| (e, 5))?;
+    let m = measure(
+        &scenes,
+        &args.wgsl,
+        args.family,
+        &waves,
+        entries,
+        args.kernel_variant,
+    )
+    .map_err(|e| (e, 5))?;
     if let Some(dir) = &args.spirv_dir {
         write_kernels(&m.set, dir).map_err(|e| (e, 4))?;
     }

@@ -5,8 +5,6 @@
 //! features) is written as `ENTRY-2.*`, `ENTRY-3.*`…; a pipeline already compiled on the
 //! context is not compiled, nor written, again.
 
-use super::context::GpuContext;
-use super::kernel::KernelConfig;
 use super::shader::Entry;
 use super::spirv::{spirv_bytes, wgsl_to_spirv, SpirvTarget};
 use super::GpuError;
@@ -67,31 +65,30 @@ pub fn write_kernel(
     stem: &str,
     source: &str,
     entry: Entry,
-    kernel: KernelConfig,
+    layout: &[wgpu::BindGroupLayoutEntry],
     target: SpirvTarget,
 ) -> Result<(), GpuError> {
-    let words = wgsl_to_spirv(source, entry, kernel, target).map_err(|message| {
-        GpuError::Shader {
+    let words =
+        wgsl_to_spirv(source, entry, layout, target).map_err(|message| GpuError::Shader {
             features: format!("{entry:?}"),
             message,
-        }
-    })?;
+        })?;
     write_whole(&dir.join(format!("{stem}.wgsl")), source.as_bytes())?;
     write_whole(&dir.join(format!("{stem}.spv")), &spirv_bytes(&words))
 }
 
-/// `get_pipeline`'s hook: writes the kernel about to be compiled when `ctx` dumps.
-pub fn dump_kernel(ctx: &GpuContext, entry: Entry, source: &str) -> Result<(), GpuError> {
-    let Some(dump) = &ctx.dump else {
+/// `get_pipeline`'s hook: writes the kernel about to be compiled (`entry` of `source`,
+/// bound as `layout`) when its context dumps (`dump` is set).
+pub fn dump_kernel(
+    dump: Option<&KernelDump>,
+    entry: Entry,
+    source: &str,
+    layout: &[wgpu::BindGroupLayoutEntry],
+) -> Result<(), GpuError> {
+    let Some(dump) = dump else {
         return Ok(());
     };
     let stem = dump.next_stem(entry);
-    write_kernel(
-        &dump.dir,
-        &stem,
-        source,
-        entry,
-        ctx.kernel,
-        SpirvTarget::vulkan_1_3(),
-    )
+    let target = SpirvTarget::vulkan_1_3();
+    write_kernel(&dump.dir, &stem, source, entry, layout, target)
 }

@@ -193,12 +193,20 @@ mod tests {
     fn forced_variants_are_the_adapter_kinds_choices() {
         let limits = wgpu::Limits::default();
         let hard = KernelConfig::for_variant(KernelVariant::Hardware, &limits);
-        assert_eq!(hard, KernelConfig::for_adapter(wgpu::DeviceType::IntegratedGpu, &limits));
+        assert_eq!(
+            hard,
+            KernelConfig::for_adapter(wgpu::DeviceType::IntegratedGpu, &limits)
+        );
         assert_eq!(hard, KernelConfig::default());
         let soft = KernelConfig::for_variant(KernelVariant::Software, &limits);
         assert!(soft.iteration_guard && soft.mailboxes == Mailboxes::LastItem);
-        assert_eq!(KernelVariant::parse("software"), Ok(KernelVariant::Software));
-        assert!(KernelVariant::parse("gpu").unwrap_err().contains("hardware or software"));
+        assert_eq!(
+            KernelVariant::parse("software"),
+            Ok(KernelVariant::Software)
+        );
+        assert!(KernelVariant::parse("gpu")
+            .unwrap_err()
+            .contains("hardware or software"));
     }
 
     #[test]

@@ -116,7 +116,8 @@ pub fn get_pipeline(
     let source = assemble_with(features, entry, kernel);
     // naga first: its messages point into the assembled source.
     validate(&source, features)?;
-    super::dump::dump_kernel(ctx, entry, &source)?;
+    let layout_of_entry = layout_entries(entry, kernel);
+    super::dump::dump_kernel(ctx.dump.as_ref(), entry, &source, &layout_of_entry)?;
     let device = &ctx.device;
     let (pipeline, layout) = ctx.scoped("shader compilation", || {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

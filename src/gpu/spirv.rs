@@ -12,8 +12,6 @@
 //! and robustImageAccess are enabled (else `Restrict`), loop bounding forced, integer
 //! division checked, workgroup memory zeroed natively where the device can.
 
-use super::kernel::KernelConfig;
-use super::pipeline::layout_entries;
 use super::shader::Entry;
 use naga::back::spv;
 use naga::proc::{BoundsCheckPolicies, BoundsCheckPolicy};
@@ -126,14 +124,12 @@ fn writer_options<'a>(
     }
 }
 
-/// wgpu-hal's binding map for `entry`'s one bind group: each binding number to its index
-/// among the layout's bindings in increasing order (wgpu-core keeps a layout's entries
-/// sorted by binding; wgpu-hal numbers the Vulkan bindings densely in that order).
-pub fn dense_binding_map(entry: Entry, kernel: KernelConfig) -> spv::BindingMap {
-    let mut numbers: Vec<u32> = layout_entries(entry, kernel)
-        .iter()
-        .map(|e| e.binding)
-        .collect();
+/// wgpu-hal's binding map for a pipeline of one bind group laid out as `layout`: each
+/// binding number to its index among the layout's bindings in increasing order
+/// (wgpu-core keeps a layout's entries sorted by binding; wgpu-hal numbers the Vulkan
+/// bindings densely in that order).
+pub fn dense_binding_map(layout: &[wgpu::BindGroupLayoutEntry]) -> spv::BindingMap {
+    let mut numbers: Vec<u32> = layout.iter().map(|e| e.binding).collect();
     numbers.sort_unstable();
     numbers
         .into_iter()
@@ -151,15 +147,16 @@ pub fn dense_binding_map(entry: Entry, kernel: KernelConfig) -> spv::BindingMap 
         .collect::<BTreeMap<_, _>>()
 }
 
-/// The SPIR-V words wgpu 30 would hand a `target` device for `entry` of `source` (the
-/// assembled WGSL of `kernel`'s variant). Errors are naga's messages.
+/// The SPIR-V words wgpu 30 would hand a `target` device for `entry` of `source` in a
+/// pipeline whose one bind group is laid out as `layout` (`pipeline::layout_entries`).
+/// Errors are naga's messages.
 pub fn wgsl_to_spirv(
     source: &str,
     entry: Entry,
-    kernel: KernelConfig,
+    layout: &[wgpu::BindGroupLayoutEntry],
     target: SpirvTarget,
 ) -> Result<Vec<u32>, String> {
-    entry_spirv(source, entry, kernel, target).map(|(words, _)| words)
+    entry_spirv(source, entry, layout, target).map(|(words, _)| words)
 }
 
 /// [`wgsl_to_spirv`], with the names of the functions the entry point reaches (what
@@ -167,7 +164,7 @@ pub fn wgsl_to_spirv(
 pub fn entry_spirv(
     source: &str,
     entry: Entry,
-    kernel: KernelConfig,
+    layout: &[wgpu::BindGroupLayoutEntry],
     target: SpirvTarget,
 ) -> Result<(Vec<u32>, Vec<String>), String> {
     let module = naga::front::wgsl::parse_str(source).map_err(|e| e.emit_to_string(source))?;
@@ -190,7 +187,7 @@ pub fn entry_spirv(
         file_name: MODULE_LABEL,
         language: spv::SourceLanguage::WGSL,
     });
-    let options = writer_options(target, dense_binding_map(entry, kernel), debug_info);
+    let options = writer_options(target, dense_binding_map(layout), debug_info);
     let pipeline = spv::PipelineOptions {
         entry_point: entry.name().to_string(),
         shader_stage: stage,
@@ -209,6 +206,8 @@ pub fn spirv_bytes(words: &[u32]) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::gpu::kernel::KernelConfig;
+    use crate::gpu::pipeline::layout_entries;
     use crate::gpu::shader::assemble_with;
     use crate::pack::SceneFeatures;
 
@@ -217,13 +216,13 @@ mod tests {
     #[test]
     fn bindings_are_renumbered_densely_in_binding_order() {
         for entry in [Entry::Render, Entry::Probe] {
-            let map = dense_binding_map(entry, KernelConfig::default());
+            let map = dense_binding_map(&layout_entries(entry, KernelConfig::default()));
             let dense: Vec<u32> = map.values().map(|b| b.binding).collect();
             assert_eq!(dense, (0..map.len() as u32).collect::<Vec<_>>());
             let first = map.keys().next().unwrap();
             assert_eq!(first.binding, 0, "globals stay at 0");
         }
-        let render = dense_binding_map(Entry::Render, KernelConfig::default());
+        let render = dense_binding_map(&layout_entries(Entry::Render, KernelConfig::default()));
         // Binding 14 (csg_program) follows 1–8 and 11–13: 11 bindings below it.
         let key = naga::ResourceBinding {
             group: 0,
@@ -239,12 +238,13 @@ mod tests {
         let source = assemble_with(SceneFeatures::empty(), Entry::Render, kernel);
         let mut target = SpirvTarget::vulkan_1_3();
         target.debug = false;
-        let a = wgsl_to_spirv(&source, Entry::Render, kernel, target).unwrap();
-        let b = wgsl_to_spirv(&source, Entry::Render, kernel, target).unwrap();
+        let layout = layout_entries(Entry::Render, kernel);
+        let a = wgsl_to_spirv(&source, Entry::Render, &layout, target).unwrap();
+        let b = wgsl_to_spirv(&source, Entry::Render, &layout, target).unwrap();
         assert_eq!(a, b);
         assert_eq!(a[0], 0x0723_0203, "SPIR-V magic");
         assert_eq!(a[1], 0x0001_0600, "SPIR-V 1.6");
-        let other = wgsl_to_spirv(&source, Entry::AdaptiveDecide, kernel, target).unwrap();
+        let other = wgsl_to_spirv(&source, Entry::AdaptiveDecide, &layout, target).unwrap();
         assert_ne!(a, other);
         assert!(other.len() < a.len(), "compacted to the entry's own code");
     }

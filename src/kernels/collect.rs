@@ -105,11 +105,18 @@ impl KernelSet {
         kernel: KernelConfig,
         target: SpirvTarget,
     ) -> Result<(), String> {
-        let wgsl =
-            std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
+        let wgsl = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
         let name = scene_name(file);
         for &entry in entries.unwrap_or(&[Entry::Render]) {
-            self.push(&name, &wgsl, SceneFeatures::empty(), entry, false, kernel, target)?;
+            self.push(
+                &name,
+                &wgsl,
+                SceneFeatures::empty(),
+                entry,
+                false,
+                kernel,
+                target,
+            )?;
         }
         Ok(())
     }
@@ -149,7 +156,8 @@ impl KernelSet {
         kernel: KernelConfig,
         target: SpirvTarget,
     ) -> Result<(), String> {
-        let (spirv, functions) = entry_spirv(wgsl, entry, kernel, target)
+        let layout = crate::gpu::pipeline::layout_entries(entry, kernel);
+        let (spirv, functions) = entry_spirv(wgsl, entry, &layout, target)
             .map_err(|e| format!("{scene}: {}: {e}", entry.name()))?;
         let traversal = functions
             .iter()

@@ -112,10 +112,19 @@ pub fn measure(
     let mut compiled = Vec::new();
     for (index, k) in set.kernels.iter().enumerate() {
         for &wave in waves {
+            // A device with one subgroup size (GCN: 64) lets none be required: its
+            // default is that size.
+            let only = device.subgroup_sizes.is_empty();
+            let wave = match wave {
+                Wave::Required(size) if only && size == device.default_subgroup_size => {
+                    Wave::Default
+                }
+                other => other,
+            };
             let stats = match wave {
                 Wave::Required(size) if !device.subgroup_sizes.contains(&size) => Err(format!(
-                    "the device cannot require wave{size} (sizes: {:?})",
-                    device.subgroup_sizes
+                    "the device cannot run wave{size} (sizes: {:?}, default {})",
+                    device.subgroup_sizes, device.default_subgroup_size
                 )),
                 Wave::Required(size) => device
                     .compile(&k.spirv, k.entry, k.kernel, Some(size))

@@ -102,9 +102,27 @@ impl Family {
     fn vgpr_file(self, wave: u32) -> (u32, u32) {
         let w32 = wave == 32;
         match self.gfx {
-            Gfx::Gfx11 => if w32 { (1536, 24) } else { (768, 12) },
-            Gfx::Gfx10_3 => if w32 { (1024, 16) } else { (512, 8) },
-            Gfx::Gfx10 => if w32 { (1024, 8) } else { (512, 4) },
+            Gfx::Gfx11 => {
+                if w32 {
+                    (1536, 24)
+                } else {
+                    (768, 12)
+                }
+            }
+            Gfx::Gfx10_3 => {
+                if w32 {
+                    (1024, 16)
+                } else {
+                    (512, 8)
+                }
+            }
+            Gfx::Gfx10 => {
+                if w32 {
+                    (1024, 8)
+                } else {
+                    (512, 4)
+                }
+            }
             _ => (256, 4),
         }
     }
@@ -115,7 +133,11 @@ impl Family {
         let (file, granule) = self.vgpr_file(wave);
         let mut waves = self.max_waves().min(file / align(vgprs, granule));
         if self.gfx < Gfx::Gfx10 && sgprs > 0 {
-            let (per_simd, granule) = if self.gfx >= Gfx::Gfx8 { (800, 16) } else { (512, 8) };
+            let (per_simd, granule) = if self.gfx >= Gfx::Gfx8 {
+                (800, 16)
+            } else {
+                (512, 8)
+            };
             waves = waves.min(per_simd / align(sgprs, granule));
         }
         waves.max(1)
@@ -176,6 +198,9 @@ mod tests {
     #[test]
     fn unknown_family_is_named_with_the_known_ones() {
         let e = Family::parse("navi99").unwrap_err();
-        assert!(e.contains("unknown GPU family 'navi99'") && e.contains("NAVI21"), "{e}");
+        assert!(
+            e.contains("unknown GPU family 'navi99'") && e.contains("NAVI21"),
+            "{e}"
+        );
     }
 }

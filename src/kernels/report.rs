@@ -83,7 +83,9 @@ fn wave_label(c: &Compiled) -> String {
 /// The markdown table, after a line naming the device and the kernel variant.
 pub fn table(m: &Measurement) -> String {
     let mut out = String::new();
-    let family = m.family.map_or("its own chip".to_string(), |f| f.name.to_string());
+    let family = m
+        .family
+        .map_or("its own chip".to_string(), |f| f.name.to_string());
     let variant = m.set.kernels.first().map(|k| k.kernel.to_string());
     let _ = writeln!(
         out,
@@ -97,18 +99,32 @@ pub fn table(m: &Measurement) -> String {
         let entry = format!(
             "{}{}",
             row.kernel.entry.name(),
-            if row.kernel.traversal { " (traversal)" } else { "" }
+            if row.kernel.traversal {
+                " (traversal)"
+            } else {
+                ""
+            }
         );
         let used = if row.dispatched { "yes" } else { "" };
         let wave = wave_label(row.compiled);
         match &row.compiled.stats {
             Err(e) => {
-                let _ = writeln!(out, "| {} | {entry} | {used} | {wave} | {e} |||||||", row.scene);
+                let _ = writeln!(
+                    out,
+                    "| {} | {entry} | {used} | {wave} | {e} |||||||",
+                    row.scene
+                );
             }
             Ok(s) => {
-                let waves = row.waves(m).map_or("—".into(), |(w, max)| format!("{w} of {max}"));
+                let waves = row
+                    .waves(m)
+                    .map_or("—".into(), |(w, max)| format!("{w} of {max}"));
                 let breaks = row.breaks();
-                let budget = if breaks.is_empty() { "ok".into() } else { breaks.join("; ") };
+                let budget = if breaks.is_empty() {
+                    "ok".into()
+                } else {
+                    breaks.join("; ")
+                };
                 let _ = writeln!(
                     out,
                     "| {} | {entry} | {used} | {wave} | {} | {} | {} / {} | {} | {} | {} | {waves} | {budget} |",
@@ -169,7 +185,9 @@ pub fn json(m: &Measurement) -> String {
         match &row.compiled.stats {
             Err(e) => o += &format!(", \"error\": {}}}", json_str(e)),
             Ok(s) => {
-                let (waves, max) = row.waves(m).map_or((None, None), |(w, m)| (Some(w), Some(m)));
+                let (waves, max) = row
+                    .waves(m)
+                    .map_or((None, None), |(w, m)| (Some(w), Some(m)));
                 let breaks: Vec<String> = row.breaks().iter().map(|b| json_str(b)).collect();
                 o += &format!(
                     ", \"wave\": {}, \"vgprs\": {}, \"sgprs\": {}, \"spilled_vgprs\": {}, \"spilled_sgprs\": {}, \"scratch_bytes\": {}, \"code_bytes\": {}, \"lds_bytes\": {}, \"instructions\": {}, \"waves_per_simd\": {}, \"max_waves_per_simd\": {}, \"budget_breaks\": [{}]}}",

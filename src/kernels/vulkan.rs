@@ -23,6 +23,8 @@ pub struct StatsDevice {
     pub name: String,
     /// Subgroup sizes a compute kernel may require (empty: none can be required).
     pub subgroup_sizes: Vec<u32>,
+    /// The device's default subgroup size (on GCN the only one: 64).
+    pub default_subgroup_size: u32,
 }
 
 /// Why the instrument could not start or compile.
@@ -64,10 +66,7 @@ fn has_extension(instance: &ash::Instance, physical: vk::PhysicalDevice, name: &
 /// The physical device to use: RADV's (the only one the loader sees under
 /// `super::driver_env`) when `radv` is set, else the first non-CPU device with
 /// `VK_KHR_pipeline_executable_properties`.
-fn pick_device(
-    instance: &ash::Instance,
-    radv: bool,
-) -> Result<vk::PhysicalDevice, StatsError> {
+fn pick_device(instance: &ash::Instance, radv: bool) -> Result<vk::PhysicalDevice, StatsError> {
     let devices = check("vkEnumeratePhysicalDevices", unsafe {
         instance.enumerate_physical_devices()
     })?;
@@ -83,7 +82,11 @@ fn pick_device(
         seen.push(format!(
             "{name} ({}{})",
             if cpu { "CPU, " } else { "" },
-            if stats { "has statistics" } else { "no VK_KHR_pipeline_executable_properties" }
+            if stats {
+                "has statistics"
+            } else {
+                "no VK_KHR_pipeline_executable_properties"
+            }
         ));
     }
     let listed = if seen.is_empty() {
@@ -101,17 +104,24 @@ fn pick_device(
 impl StatsDevice {
     /// Loads Vulkan and opens the device ([`pick_device`]).
     pub fn open(radv: bool) -> Result<StatsDevice, StatsError> {
-        let entry = unsafe { ash::Entry::load() }.map_err(|e| StatsError::NoLoader(e.to_string()))?;
+        let entry =
+            unsafe { ash::Entry::load() }.map_err(|e| StatsError::NoLoader(e.to_string()))?;
         let app = vk::ApplicationInfo::default()
             .application_name(c"glint kernels")
             .api_version(vk::API_VERSION_1_3);
         let instance = check("vkCreateInstance", unsafe {
-            entry.create_instance(&vk::InstanceCreateInfo::default().application_info(&app), None)
+            entry.create_instance(
+                &vk::InstanceCreateInfo::default().application_info(&app),
+                None,
+            )
         })?;
         let physical = pick_device(&instance, radv)?;
         let name = device_name(&instance, physical);
         let mut size_control = vk::PhysicalDeviceSubgroupSizeControlProperties::default();
-        let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut size_control);
+        let mut subgroup = vk::PhysicalDeviceSubgroupProperties::default();
+        let mut props2 = vk::PhysicalDeviceProperties2::default()
+            .push_next(&mut size_control)
+            .push_next(&mut subgroup);
         unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
         let api = props2.properties.api_version;
         let mut subgroup_sizes = Vec::new();
@@ -135,6 +145,7 @@ impl StatsDevice {
             executables,
             name,
             subgroup_sizes,
+            default_subgroup_size: subgroup.subgroup_size,
         })
     }
 

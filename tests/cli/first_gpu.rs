@@ -17,7 +17,10 @@ fn the_first_gpu_script_runs_end_to_end() {
         .output()
         .expect("bash runs");
     let stdout = String::from_utf8_lossy(&out.stdout);
-    let all = format!("{stdout}\nstderr:\n{}", String::from_utf8_lossy(&out.stderr));
+    let all = format!(
+        "{stdout}\nstderr:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(out.status.success(), "{all}");
     let row = stdout
         .lines()
@@ -28,7 +31,10 @@ fn the_first_gpu_script_runs_end_to_end() {
     assert!(!row.contains("failed"), "{row}");
     // rays counted by the CPU tracer: 8×8 pixels, at least one ray each.
     assert!(cells[8].parse::<u64>().is_ok_and(|r| r >= 64), "{row}");
-    assert!(stdout.contains("## Kernel registers on this device"), "{all}");
+    assert!(
+        stdout.contains("## Kernel registers on this device"),
+        "{all}"
+    );
     // Either the device reports registers (a table) or the script says it cannot.
     assert!(
         stdout.contains("| VGPRs |") || stdout.contains("not exposed:"),

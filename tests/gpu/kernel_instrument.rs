@@ -39,7 +39,10 @@ fn text(out: &Output) -> String {
 /// The value of `"key": N` in one JSON line.
 fn number(line: &str, key: &str) -> Option<u64> {
     let at = line.find(&format!("\"{key}\": "))? + key.len() + 4;
-    let digits: String = line[at..].chars().take_while(char::is_ascii_digit).collect();
+    let digits: String = line[at..]
+        .chars()
+        .take_while(char::is_ascii_digit)
+        .collect();
     digits.parse().ok()
 }
 
@@ -76,7 +79,9 @@ fn a_kernel_with_a_private_array_reports_scratch_and_breaks_the_budget() {
     let file = dir.join("spill.wgsl");
     std::fs::write(&file, SPILLING_KERNEL).unwrap();
     let file = file.to_str().unwrap();
-    let out = glint(&["kernels", "--wgsl", file, "--family", "NAVI21", "--format", "json"]);
+    let out = glint(&[
+        "kernels", "--wgsl", file, "--family", "NAVI21", "--format", "json",
+    ]);
     assert!(out.status.success(), "{}", text(&out));
     let stdout = String::from_utf8_lossy(&out.stdout);
     let rows: Vec<&str> = stdout.lines().filter(|l| l.contains("\"entry\"")).collect();
@@ -86,7 +91,14 @@ fn a_kernel_with_a_private_array_reports_scratch_and_breaks_the_budget() {
         assert!(scratch >= 2048, "2 KiB a lane in scratch: {row}");
         assert!(number(row, "vgprs").is_some_and(|v| v > 0), "{row}");
     }
-    let checked = glint(&["kernels", "--wgsl", file, "--family", "NAVI21", "--check-budget"]);
+    let checked = glint(&[
+        "kernels",
+        "--wgsl",
+        file,
+        "--family",
+        "NAVI21",
+        "--check-budget",
+    ]);
     assert_eq!(checked.status.code(), Some(7), "{}", text(&checked));
     assert!(String::from_utf8_lossy(&checked.stderr).contains("B scratch"));
 }
@@ -97,7 +109,10 @@ fn an_unknown_family_is_a_clear_error() {
     let out = glint(&["kernels", "scenes/csg.lua", "--family", "NAVI99"]);
     assert_eq!(out.status.code(), Some(2), "{}", text(&out));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("unknown GPU family 'NAVI99'") && stderr.contains("NAVI21"), "{stderr}");
+    assert!(
+        stderr.contains("unknown GPU family 'NAVI99'") && stderr.contains("NAVI21"),
+        "{stderr}"
+    );
 }
 
 /// What `render --dump-kernels` writes is, byte for byte, what `glint kernels` compiles
@@ -110,9 +125,22 @@ fn dumped_kernels_are_the_kernels_the_instrument_compiles() {
     let image = dir.join("simple.png");
     let scene = "scenes/cs488/a4-2021plus/simple.lua";
     let out = glint(&[
-        "render", scene, "--backend", "gpu", "--kernel-variant", "hardware", "--aa", "none",
-        "--width", "8", "--height", "8", "-o", image.to_str().unwrap(),
-        "--dump-kernels", dump.to_str().unwrap(),
+        "render",
+        scene,
+        "--backend",
+        "gpu",
+        "--kernel-variant",
+        "hardware",
+        "--aa",
+        "none",
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "-o",
+        image.to_str().unwrap(),
+        "--dump-kernels",
+        dump.to_str().unwrap(),
     ]);
     assert!(out.status.success(), "{}", text(&out));
     let mut names: Vec<String> = std::fs::read_dir(&dump)
@@ -120,20 +148,33 @@ fn dumped_kernels_are_the_kernels_the_instrument_compiles() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(names, ["main.spv", "main.wgsl"], "AA none compiles main alone");
+    assert_eq!(
+        names,
+        ["main.spv", "main.wgsl"],
+        "AA none compiles main alone"
+    );
     let wgsl = std::fs::read_to_string(dump.join("main.wgsl")).unwrap();
-    assert!(wgsl.contains("kernel: workgroup 8×8/64, mailboxes"), "the hardware variant");
+    assert!(
+        wgsl.contains("kernel: workgroup 8×8/64, mailboxes"),
+        "the hardware variant"
+    );
     let spv = std::fs::read(dump.join("main.spv")).unwrap();
     assert_eq!(&spv[..4], &[0x03, 0x02, 0x23, 0x07], "SPIR-V magic");
-    let digest: String = Sha256::digest(&spv).iter().map(|b| format!("{b:02x}")).collect();
+    let digest: String = Sha256::digest(&spv)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
 
     let out = glint(&[
-        "kernels", scene, "--family", "NAVI21", "--entry", "main", "--wave", "64",
-        "--format", "json",
+        "kernels", scene, "--family", "NAVI21", "--entry", "main", "--wave", "64", "--format",
+        "json",
     ]);
     assert!(out.status.success(), "{}", text(&out));
     let stdout = String::from_utf8_lossy(&out.stdout);
-    let row = stdout.lines().find(|l| l.contains("\"entry\": \"main\"")).unwrap();
+    let row = stdout
+        .lines()
+        .find(|l| l.contains("\"entry\": \"main\""))
+        .unwrap();
     assert_eq!(string(row, "spirv_sha256"), Some(digest.as_str()), "{row}");
 }
 
@@ -155,10 +196,22 @@ fn every_kernel_of_every_scene_meets_the_navi21_budgets() {
     for dir in ["scenes/meshes", "scenes/cs488"] {
         args.push(dir.to_string());
     }
-    for flag in ["--family", "NAVI21", "--wave", "64", "--wave", "32", "--check-budget"] {
+    for flag in [
+        "--family",
+        "NAVI21",
+        "--wave",
+        "64",
+        "--wave",
+        "32",
+        "--check-budget",
+    ] {
         args.push(flag.to_string());
     }
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let out = glint(&args);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
