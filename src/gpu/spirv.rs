@@ -223,12 +223,12 @@ mod tests {
             assert_eq!(first.binding, 0, "globals stay at 0");
         }
         let render = dense_binding_map(&layout_entries(Entry::Render, KernelConfig::default()));
-        // Binding 14 (csg_program) follows 1–8 and 11–13: 11 bindings below it.
+        // Binding 14 (csg_program) follows 0–8 and 11–13: 12 bindings below it.
         let key = naga::ResourceBinding {
             group: 0,
             binding: 14,
         };
-        assert_eq!(render[&key].binding, 11);
+        assert_eq!(render[&key].binding, 12);
     }
 
     /// One SPIR-V module per entry, a valid header, and the same words every time.
