@@ -61,8 +61,10 @@ pub fn scene_renders(scene: &Path) -> Result<Vec<(SceneFeatures, Mode)>, String>
 /// software adapter (software: as on lavapipe, which binds every table as a storage
 /// texture).
 pub fn variant_config(variant: KernelVariant) -> KernelConfig {
-    let mut limits = wgpu::Limits::default();
-    limits.max_storage_textures_per_shader_stage = u32::MAX;
+    let limits = wgpu::Limits {
+        max_storage_textures_per_shader_stage: u32::MAX,
+        ..Default::default()
+    };
     KernelConfig::for_variant(variant, &limits)
 }
 
