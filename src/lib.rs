@@ -19,6 +19,7 @@ pub mod film;
 pub mod gpu;
 pub mod image_check;
 pub mod image_io;
+pub mod kernels;
 pub mod mailboxes;
 pub mod pack;
 pub mod parity;

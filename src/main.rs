@@ -1,4 +1,4 @@
-//! The `glint` command line: `render`, `diff` and `bench`.
+//! The `glint` command line: `render`, `diff`, `bench`, `assemble`, `info` and `kernels`.
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::scene::flatten::MAX_PIXELS;
@@ -49,6 +49,9 @@ enum Command {
     /// List the GPU adapters (Vulkan, Metal, DX12, or the backends WGPU_BACKEND names)
     /// and their limits.
     Info,
+    /// The GPU kernels' registers, spills, scratch and waves per SIMD, compiled by a real
+    /// GPU compiler (RADV's null device with --family, else a hardware Vulkan device).
+    Kernels(glint::cli::kernels_cmd::KernelsArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -117,6 +120,14 @@ struct RenderArgs {
     /// GPU adapter to use: a substring of its name (see `glint info`).
     #[arg(long)]
     adapter: Option<String>,
+    /// GPU kernel variant: hardware or software, instead of the one chosen by adapter
+    /// (renders on the GPU tracer).
+    #[arg(long, value_parser = glint::gpu::KernelVariant::parse)]
+    kernel_variant: Option<glint::gpu::KernelVariant>,
+    /// Write every GPU pipeline the render creates into DIR as ENTRY.wgsl and ENTRY.spv
+    /// (the SPIR-V wgpu hands a Vulkan driver); renders on the GPU tracer.
+    #[arg(long, value_name = "DIR")]
+    dump_kernels: Option<PathBuf>,
     /// Anti-aliasing: none, uniform or adaptive.
     #[arg(long, value_parser = parse_aa)]
     aa: Option<AaMode>,
@@ -202,6 +213,13 @@ fn main() -> ExitCode {
     unsafe { glint::gpu::context::set_default_llvmpipe_threads() };
     glint::image_io::remove_temp_files_on_signals();
     let cli = Cli::parse();
+    if let Command::Kernels(args) = &cli.command {
+        // SAFETY: still single-threaded (signal handlers only), and no Vulkan loader yet.
+        if let Err(message) = unsafe { glint::cli::kernels_cmd::set_driver_env(args) } {
+            eprintln!("glint: error: {message}");
+            return ExitCode::from(5);
+        }
+    }
     let result = match cli.command {
         Command::Render(args) => render(args),
         Command::Diff { a, b, heatmap } => {
@@ -219,6 +237,7 @@ fn main() -> ExitCode {
             info();
             Ok(())
         }
+        Command::Kernels(args) => glint::cli::kernels_cmd::run_kernels(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -262,9 +281,13 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         backend: match args.backend {
             BackendArg::Cpu => glint::pipeline::Backend::Cpu,
             BackendArg::Gpu => glint::pipeline::Backend::Gpu,
+            // The kernel flags are about the GPU tracer: no quiet fallback to the CPU.
+            BackendArg::Auto if kernel_flag(&args).is_some() => glint::pipeline::Backend::Gpu,
             BackendArg::Auto | BackendArg::Both => glint::pipeline::Backend::Auto,
         },
         adapter: args.adapter.clone(),
+        kernel_variant: args.kernel_variant,
+        dump_kernels: args.dump_kernels.clone(),
     };
     if args.heatmap.is_some() && args.backend != BackendArg::Both {
         return Err(("--heatmap needs --backend both".into(), 2));
@@ -366,8 +389,35 @@ fn render_farm(
     Ok(())
 }
 
+/// The first GPU kernel flag given (`--kernel-variant`, `--dump-kernels`), if any.
+fn kernel_flag(args: &RenderArgs) -> Option<&'static str> {
+    if args.kernel_variant.is_some() {
+        Some("--kernel-variant")
+    } else if args.dump_kernels.is_some() {
+        Some("--dump-kernels")
+    } else {
+        None
+    }
+}
+
 /// Checks of `render`'s flags that clap's value parsers cannot make alone (exit code 2).
 fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
+    if let Some(flag) = kernel_flag(args) {
+        let refused = match args.backend {
+            BackendArg::Cpu => Some("--backend cpu"),
+            BackendArg::Both => Some("--backend both"),
+            _ if args.farm.settings().any() => Some("--tile, --crop, --frames or --frame"),
+            _ => None,
+        };
+        if let Some(other) = refused {
+            return Err((
+                format!(
+                    "{flag} is about the GPU tracer's kernels; it does not combine with {other}"
+                ),
+                2,
+            ));
+        }
+    }
     if let (Some(w), Some(h)) = (args.width, args.height) {
         if u64::from(w) * u64::from(h) > MAX_PIXELS {
             return Err((

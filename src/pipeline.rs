@@ -41,6 +41,10 @@ pub struct RenderSettings {
     pub backend: Backend,
     /// `--adapter`: a substring of the GPU adapter's name.
     pub adapter: Option<String>,
+    /// `--kernel-variant`: the GPU kernel variant, instead of the adapter's choice.
+    pub kernel_variant: Option<crate::gpu::KernelVariant>,
+    /// `--dump-kernels`: the folder each compiled GPU pipeline is written to.
+    pub dump_kernels: Option<PathBuf>,
 }
 
 /// `--backend`: which tracer renders.
@@ -343,7 +347,10 @@ pub fn run_scene(
     on_image: &mut dyn FnMut(&RenderedImage),
 ) -> Result<ScriptReport, RunError> {
     let policy = write_policy(settings)?;
-    let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref())?;
+    let mut gpu = acquire_gpu(settings.backend, settings.adapter.as_deref())?;
+    if let Some(ctx) = gpu.as_mut() {
+        apply_kernel_settings(ctx, settings)?;
+    }
     let tracer = gpu.as_ref().map_or(Tracer::Cpu, Tracer::Gpu);
     let output_error: RefCell<Option<ImageIoError>> = RefCell::new(None);
     let mut index = 0;
@@ -380,6 +387,20 @@ pub fn run_scene(
         Ok(report) => Ok(report),
         Err(e) => Err(scene_error(e, output_error.into_inner())),
     }
+}
+
+/// `--kernel-variant` and `--dump-kernels` on a GPU context, before its first pipeline.
+pub fn apply_kernel_settings(
+    ctx: &mut GpuContext,
+    settings: &RenderSettings,
+) -> Result<(), crate::gpu::GpuError> {
+    if let Some(variant) = settings.kernel_variant {
+        ctx.kernel = crate::gpu::KernelConfig::for_variant(variant, &ctx.limits);
+    }
+    if let Some(dir) = &settings.dump_kernels {
+        ctx.dump = Some(crate::gpu::dump::KernelDump::new(dir)?);
+    }
+    Ok(())
 }
 
 /// What a failed script run was: an output error recorded while writing an image (at the

@@ -67,6 +67,8 @@ pub struct GpuContext {
     pub(crate) pipelines: PipelineCache,
     /// Frame buffers kept between frames (`super::scratch`).
     pub(crate) scratch: super::scratch::ScratchPool,
+    /// `--dump-kernels`: where each pipeline compiled on it is written (`super::dump`).
+    pub dump: Option<super::dump::KernelDump>,
 }
 
 /// One adapter, as `glint info` lists it.
@@ -195,6 +197,7 @@ impl GpuContext {
             lost,
             pipelines: PipelineCache::default(),
             scratch: Default::default(),
+            dump: None,
         })
     }
 

@@ -41,4 +41,7 @@ pub enum GpuError {
     /// wgpu reported a validation or out-of-memory error.
     #[error("GPU {what} failed: {message}; use --backend cpu")]
     Wgpu { what: &'static str, message: String },
+    /// `--dump-kernels`: a kernel file could not be written.
+    #[error("cannot write the kernel dump {path}: {message}")]
+    Dump { path: String, message: String },
 }

@@ -73,9 +73,41 @@ impl KernelConfig {
         }
     }
 
+    /// The variant `--kernel-variant` forces: what [`KernelConfig::for_adapter`] would
+    /// choose for a hardware or a software adapter with `limits` (so that the hardware
+    /// kernels can be compiled, dumped and rendered on lavapipe, and the reverse).
+    pub fn for_variant(variant: KernelVariant, limits: &wgpu::Limits) -> KernelConfig {
+        let device_type = match variant {
+            KernelVariant::Hardware => wgpu::DeviceType::DiscreteGpu,
+            KernelVariant::Software => wgpu::DeviceType::Cpu,
+        };
+        KernelConfig::for_adapter(device_type, limits)
+    }
+
     /// Lanes of a 1-D kernel's workgroup.
     pub fn linear_workgroup_size(&self) -> u32 {
         self.workgroup_side * self.workgroup_side
+    }
+}
+
+/// `--kernel-variant`: the kernel variant glint would choose for a hardware or a software
+/// adapter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum KernelVariant {
+    Hardware,
+    Software,
+}
+
+impl KernelVariant {
+    /// The variant named `hardware` or `software`.
+    pub fn parse(name: &str) -> Result<KernelVariant, String> {
+        match name {
+            "hardware" => Ok(KernelVariant::Hardware),
+            "software" => Ok(KernelVariant::Software),
+            _ => Err(format!(
+                "kernel variant must be hardware or software, got '{name}'"
+            )),
+        }
     }
 }
 
@@ -154,6 +186,27 @@ mod tests {
         );
         let hard = KernelConfig::for_adapter(wgpu::DeviceType::DiscreteGpu, &limits);
         assert!(!hard.storage_tables);
+    }
+
+    /// `--kernel-variant` gives each adapter kind's choice on any adapter.
+    #[test]
+    fn forced_variants_are_the_adapter_kinds_choices() {
+        let limits = wgpu::Limits::default();
+        let hard = KernelConfig::for_variant(KernelVariant::Hardware, &limits);
+        assert_eq!(
+            hard,
+            KernelConfig::for_adapter(wgpu::DeviceType::IntegratedGpu, &limits)
+        );
+        assert_eq!(hard, KernelConfig::default());
+        let soft = KernelConfig::for_variant(KernelVariant::Software, &limits);
+        assert!(soft.iteration_guard && soft.mailboxes == Mailboxes::LastItem);
+        assert_eq!(
+            KernelVariant::parse("software"),
+            Ok(KernelVariant::Software)
+        );
+        assert!(KernelVariant::parse("gpu")
+            .unwrap_err()
+            .contains("hardware or software"));
     }
 
     #[test]

@@ -5,6 +5,7 @@
 pub mod bindings;
 pub mod buffers;
 pub mod context;
+pub mod dump;
 pub mod error;
 pub mod frame;
 pub mod kernel;
@@ -14,9 +15,10 @@ pub mod plan;
 pub mod render;
 pub mod scratch;
 pub mod shader;
+pub mod spirv;
 pub mod tables;
 
 pub use context::{list_adapters, AdapterSummary, GpuContext};
 pub use error::GpuError;
-pub use kernel::KernelConfig;
+pub use kernel::{KernelConfig, KernelVariant};
 pub use render::{render_gpu, GpuRender, GpuRenderInfo, GpuRenderOptions, PassTime};

@@ -57,12 +57,9 @@ fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// The bind group layout of `entry`: globals, the scene's tables, then the entry's own.
-fn bind_group_layout(
-    device: &wgpu::Device,
-    entry: Entry,
-    kernel: KernelConfig,
-) -> wgpu::BindGroupLayout {
+/// The bind group layout entries of `entry`: globals, the scene's tables, then the
+/// entry's own (also what `spirv` renumbers and `glint kernels` lays out in Vulkan).
+pub fn layout_entries(entry: Entry, kernel: KernelConfig) -> Vec<wgpu::BindGroupLayoutEntry> {
     let mut entries = vec![uniform(0)];
     let tables = SCENE_TABLE_BINDINGS.iter().zip(SCENE_TABLE_FORMATS);
     entries.extend(tables.map(|(&b, f)| table_layout_entry(b, f, kernel.storage_tables)));
@@ -83,9 +80,18 @@ fn bind_group_layout(
         entries.push(storage(PROBE_RAYS_BINDING, true));
         entries.push(storage(PROBE_RESULTS_BINDING, false));
     }
+    entries
+}
+
+/// The bind group layout of `entry` ([`layout_entries`]).
+fn bind_group_layout(
+    device: &wgpu::Device,
+    entry: Entry,
+    kernel: KernelConfig,
+) -> wgpu::BindGroupLayout {
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("glint scene"),
-        entries: &entries,
+        entries: &layout_entries(entry, kernel),
     })
 }
 
@@ -110,6 +116,8 @@ pub fn get_pipeline(
     let source = assemble_with(features, entry, kernel);
     // naga first: its messages point into the assembled source.
     validate(&source, features)?;
+    let layout_of_entry = layout_entries(entry, kernel);
+    super::dump::dump_kernel(ctx.dump.as_ref(), entry, &source, &layout_of_entry)?;
     let device = &ctx.device;
     let (pipeline, layout) = ctx.scoped("shader compilation", || {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

@@ -8,6 +8,7 @@ mod common;
 mod cli;
 mod doc_links;
 mod farm;
+mod first_gpu;
 mod fuzz_front_end;
 mod hostile;
 mod house;

@@ -21,5 +21,6 @@ mod gpu_probes;
 mod gpu_refraction;
 mod gpu_scrabble;
 mod gpu_textures;
+mod kernel_instrument;
 mod twins;
 mod twins_broken;

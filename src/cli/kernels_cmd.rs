@@ -1,0 +1,143 @@
+//! `glint kernels SCENE...`: the kernel instrument's command line ([`crate::kernels`]).
+//! With `--family` the Vulkan loader is pointed at RADV's null device of that family
+//! before anything loads a driver ([`set_driver_env`]); without it, a hardware device
+//! that reports compiler statistics is used.
+
+use crate::gpu::shader::Entry;
+use crate::gpu::KernelVariant;
+use crate::kernels::occupancy::Family;
+use crate::kernels::{collect, measure, report, write_kernels, Wave};
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum KernelsFormat {
+    Table,
+    Json,
+}
+
+/// `glint kernels`' arguments.
+#[derive(Args, Debug)]
+pub struct KernelsArgs {
+    /// Scene scripts; a folder stands for every scene script under it.
+    #[arg(required_unless_present = "wgsl")]
+    pub scenes: Vec<PathBuf>,
+    /// A WGSL module of one's own (repeatable): its `main` (or --entry) entry points,
+    /// laid out as the render module's, beside the scenes' kernels.
+    #[arg(long, value_name = "FILE")]
+    pub wgsl: Vec<PathBuf>,
+    /// Compile on RADV's null device for this AMD family (NAVI21, NAVI10, VEGA10, …);
+    /// default: a hardware device that reports compiler statistics.
+    #[arg(long, value_parser = Family::parse)]
+    pub family: Option<Family>,
+    /// Wave size: 64, 32 (a required subgroup size) or default (the driver's choice,
+    /// as wgpu leaves it); repeatable. Default: 64 and 32.
+    #[arg(long = "wave", value_parser = Wave::parse)]
+    pub waves: Vec<Wave>,
+    /// Only this entry point (repeatable); default: every entry of the render module.
+    #[arg(long = "entry", value_parser = parse_entry)]
+    pub entries: Vec<Entry>,
+    /// table (markdown) or json.
+    #[arg(long, value_enum, default_value = "table")]
+    pub format: KernelsFormat,
+    /// The kernel variant: hardware (default) or software, as glint chooses by adapter.
+    #[arg(long, value_parser = KernelVariant::parse, default_value = "hardware")]
+    pub kernel_variant: KernelVariant,
+    /// Also write each distinct kernel as ENTRY-HASH.spv and .wgsl into DIR.
+    #[arg(long, value_name = "DIR")]
+    pub spirv_dir: Option<PathBuf>,
+    /// Exit with code 7 and a table of what breaks which budget when a kernel spills,
+    /// uses scratch or has too many wave32 VGPRs (docs/gpu.md, "Register budgets").
+    #[arg(long)]
+    pub check_budget: bool,
+}
+
+fn parse_entry(name: &str) -> Result<Entry, String> {
+    let render = Entry::ALL.into_iter().filter(|e| e.is_render());
+    render.clone().find(|e| e.name() == name).ok_or_else(|| {
+        let names: Vec<&str> = render.map(|e| e.name()).collect();
+        format!(
+            "unknown entry point '{name}' (entries: {})",
+            names.join(", ")
+        )
+    })
+}
+
+/// Points the Vulkan loader at RADV's null device of `args.family`, if given.
+///
+/// # Safety
+/// Changes the process environment: call it while no other thread runs and before any
+/// Vulkan loader is loaded (the `glint` binary calls it right after parsing).
+pub unsafe fn set_driver_env(args: &KernelsArgs) -> Result<(), String> {
+    if let Some(family) = args.family {
+        for (name, value) in crate::kernels::driver_env(family)? {
+            // SAFETY: the caller's contract above.
+            unsafe { std::env::set_var(name, value) };
+        }
+    }
+    Ok(())
+}
+
+/// Runs the instrument and prints its table or JSON on stdout. Exit codes: 2 bad
+/// arguments (a scene folder without scenes), 5 no Vulkan, RADV or device, 7 a
+/// budget broken with `--check-budget`.
+pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
+    let mut scenes = Vec::new();
+    for s in &args.scenes {
+        if s.is_dir() {
+            let found = collect::scenes_under(s);
+            if found.is_empty() {
+                return Err((format!("{}: no scene scripts under it", s.display()), 2));
+            }
+            scenes.extend(found);
+        } else {
+            scenes.push(s.clone());
+        }
+    }
+    let waves = if args.waves.is_empty() {
+        vec![Wave::Required(64), Wave::Required(32)]
+    } else {
+        args.waves.clone()
+    };
+    let entries = (!args.entries.is_empty()).then_some(args.entries.as_slice());
+    let m = measure(
+        &scenes,
+        &args.wgsl,
+        args.family,
+        &waves,
+        entries,
+        args.kernel_variant,
+    )
+    .map_err(|e| (e, 5))?;
+    if let Some(dir) = &args.spirv_dir {
+        write_kernels(&m.set, dir).map_err(|e| (e, 4))?;
+    }
+    match args.format {
+        KernelsFormat::Table => print!("{}", report::table(&m)),
+        KernelsFormat::Json => print!("{}", report::json(&m)),
+    }
+    let failed: Vec<String> = m
+        .compiled
+        .iter()
+        .filter_map(|c| c.stats.as_ref().err().cloned())
+        .collect();
+    if args.check_budget {
+        let breaks = report::budget_report(&m);
+        if !breaks.is_empty() || !failed.is_empty() {
+            // The whole table on stderr: the error line itself is capped at a few KiB.
+            eprint!("{breaks}");
+            for f in &failed {
+                eprintln!("not compiled: {f}");
+            }
+            let rows = breaks.lines().count().saturating_sub(2);
+            return Err((
+                format!(
+                    "{rows} kernel rows break the register budgets and {} did not compile (the table above; docs/gpu.md, \"Register budgets\")",
+                    failed.len()
+                ),
+                7,
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,208 @@
+//! The kernels a scene's renders would compile: each `gr.render` of the script flattened
+//! and packed as `glint render` does, its feature set specialising every render-module
+//! entry point in the chosen kernel variant, and each entry's SPIR-V built as wgpu 30
+//! hands it to Vulkan ([`crate::gpu::spirv`]). Identical SPIR-V (the same entry of
+//! scenes with the same features) is kept once, with every scene that uses it.
+
+use crate::gpu::kernel::{KernelConfig, KernelVariant};
+use crate::gpu::plan::Mode;
+use crate::gpu::shader::{assemble_with, Entry};
+use crate::gpu::spirv::{entry_spirv, spirv_bytes, SpirvTarget};
+use crate::pack::SceneFeatures;
+use crate::pipeline::prepare_request;
+use crate::scene::OptionOverrides;
+use crate::script_driver::{run_script, ScriptSettings};
+use sha2::{Digest, Sha256};
+use std::path::{Path, PathBuf};
+
+/// Functions whose presence makes a kernel a traversal kernel (it walks the scene's
+/// grids for closest or any hits), held to the tighter register budget.
+const TRAVERSAL_FUNCTIONS: &[&str] = &["closest_hit", "any_hit"];
+
+/// One distinct kernel: an entry point's SPIR-V.
+#[derive(Clone, Debug)]
+pub struct Kernel {
+    pub entry: Entry,
+    pub features: SceneFeatures,
+    pub kernel: KernelConfig,
+    pub wgsl: String,
+    pub spirv: Vec<u32>,
+    /// SHA-256 of the `.spv` file's bytes, hex.
+    pub digest: String,
+    /// It walks the scene for hits (reaches [`TRAVERSAL_FUNCTIONS`]).
+    pub traversal: bool,
+    /// (scene, whether the scene's own AA mode dispatches this entry) for every scene
+    /// that compiles it.
+    pub scenes: Vec<(String, bool)>,
+}
+
+/// The kernels of some scenes.
+#[derive(Debug, Default)]
+pub struct KernelSet {
+    pub kernels: Vec<Kernel>,
+}
+
+/// The (features, AA mode) of each `gr.render` of `scene`.
+pub fn scene_renders(scene: &Path) -> Result<Vec<(SceneFeatures, Mode)>, String> {
+    let mut renders = Vec::new();
+    let mut on_render = |graph: &crate::scene::SceneGraph,
+                         request: &crate::scene::RenderRequest|
+     -> anyhow::Result<()> {
+        let (_, packed) = prepare_request(graph, request, &OptionOverrides::default())?;
+        renders.push((packed.features, Mode::of(&packed.globals)));
+        Ok(())
+    };
+    run_script(scene, &ScriptSettings::default(), &mut on_render)
+        .map_err(|e| format!("{}: {e}", scene.display()))?;
+    Ok(renders)
+}
+
+/// The kernel variant the instrument compiles: as glint chooses it for a hardware or a
+/// software adapter (software: as on lavapipe, which binds every table as a storage
+/// texture).
+pub fn variant_config(variant: KernelVariant) -> KernelConfig {
+    let limits = wgpu::Limits {
+        max_storage_textures_per_shader_stage: u32::MAX,
+        ..Default::default()
+    };
+    KernelConfig::for_variant(variant, &limits)
+}
+
+/// The SHA-256 of SPIR-V words as a `.spv` file, hex.
+pub fn spirv_digest(words: &[u32]) -> String {
+    Sha256::digest(spirv_bytes(words))
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+impl KernelSet {
+    /// Adds `scene`'s kernels: `entries` (None: every render-module entry) of each of its
+    /// renders' feature sets.
+    pub fn add_scene(
+        &mut self,
+        scene: &Path,
+        entries: Option<&[Entry]>,
+        kernel: KernelConfig,
+        target: SpirvTarget,
+    ) -> Result<(), String> {
+        let name = scene_name(scene);
+        let all: Vec<Entry> = Entry::ALL.into_iter().filter(|e| e.is_render()).collect();
+        let wanted = entries.unwrap_or(&all);
+        for (features, mode) in scene_renders(scene)? {
+            for &entry in wanted {
+                let dispatched = mode.entries().contains(&entry);
+                self.add(&name, features, entry, dispatched, kernel, target)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds a WGSL module of one's own (`--wgsl`): `entries` (None: `main`) of it, laid
+    /// out as the render module's entries are.
+    pub fn add_wgsl(
+        &mut self,
+        file: &Path,
+        entries: Option<&[Entry]>,
+        kernel: KernelConfig,
+        target: SpirvTarget,
+    ) -> Result<(), String> {
+        let wgsl = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
+        let name = scene_name(file);
+        for &entry in entries.unwrap_or(&[Entry::Render]) {
+            self.push(
+                &name,
+                &wgsl,
+                SceneFeatures::empty(),
+                entry,
+                false,
+                kernel,
+                target,
+            )?;
+        }
+        Ok(())
+    }
+
+    fn add(
+        &mut self,
+        scene: &str,
+        features: SceneFeatures,
+        entry: Entry,
+        dispatched: bool,
+        kernel: KernelConfig,
+        target: SpirvTarget,
+    ) -> Result<(), String> {
+        let known = self
+            .kernels
+            .iter_mut()
+            .find(|k| k.entry == entry && k.features == features && k.kernel == kernel);
+        if let Some(k) = known {
+            if !k.scenes.iter().any(|(s, _)| s == scene) {
+                k.scenes.push((scene.to_string(), dispatched));
+            }
+            return Ok(());
+        }
+        let wgsl = assemble_with(features, entry, kernel);
+        self.push(scene, &wgsl, features, entry, dispatched, kernel, target)
+    }
+
+    /// Compiles `entry` of `wgsl` to SPIR-V and keeps it.
+    #[allow(clippy::too_many_arguments)]
+    fn push(
+        &mut self,
+        scene: &str,
+        wgsl: &str,
+        features: SceneFeatures,
+        entry: Entry,
+        dispatched: bool,
+        kernel: KernelConfig,
+        target: SpirvTarget,
+    ) -> Result<(), String> {
+        let layout = crate::gpu::pipeline::layout_entries(entry, kernel);
+        let (spirv, functions) = entry_spirv(wgsl, entry, &layout, target)
+            .map_err(|e| format!("{scene}: {}: {e}", entry.name()))?;
+        let traversal = functions
+            .iter()
+            .any(|f| TRAVERSAL_FUNCTIONS.contains(&f.as_str()));
+        self.kernels.push(Kernel {
+            entry,
+            features,
+            kernel,
+            digest: spirv_digest(&spirv),
+            wgsl: wgsl.to_string(),
+            spirv,
+            traversal,
+            scenes: vec![(scene.to_string(), dispatched)],
+        });
+        Ok(())
+    }
+}
+
+/// A scene as the tables name it: its path as given.
+fn scene_name(scene: &Path) -> String {
+    scene.display().to_string()
+}
+
+/// Every scene script under `dir` (recursively, `.lua` files that call `gr.render`
+/// somewhere in their text), sorted.
+pub fn scenes_under(dir: &Path) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let Ok(read) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for e in read.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "lua")
+                && std::fs::read_to_string(&p).is_ok_and(|t| t.contains("gr.render"))
+            {
+                found.push(p);
+            }
+        }
+    }
+    found.sort();
+    found
+}
