@@ -13,7 +13,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 pub use super::bindings::SCENE_TABLE_BINDINGS;
-pub use super::pipeline_cache::{CompiledPipeline, PipelineCache};
+use super::pipeline_cache::Lap;
+pub use super::pipeline_cache::{CompileSteps, CompileSummary, CompiledPipeline, PipelineCache};
 use super::tables::{table_layout_entry, SCENE_TABLE_FORMATS};
 /// Render entry: tile uniform and output buffer.
 pub const TILE_BINDING: u32 = 7;
@@ -107,15 +108,24 @@ pub fn get_pipeline(
         return Ok(p);
     }
     let start = Instant::now();
+    let mut steps = CompileSteps::default();
+    let mut lap = Lap::start();
     let source = assemble_with(features, entry, kernel);
+    steps.assemble = lap.next();
     // naga first: its messages point into the assembled source.
     validate(&source, features)?;
+    steps.validate = lap.next();
     let device = &ctx.device;
+    let stored = ctx
+        .disk_cache
+        .open(device, &ctx.info, &source, kernel, entry);
+    steps.cache_load = lap.next();
     let (pipeline, layout) = ctx.scoped("shader compilation", || {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("glint tracer"),
             source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
         });
+        steps.shader_module = lap.next();
         let layout = bind_group_layout(device, entry, kernel);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("glint"),
@@ -128,14 +138,20 @@ pub fn get_pipeline(
             module: &module,
             entry_point: Some(entry.name()),
             compilation_options: Default::default(),
-            cache: None,
+            cache: stored.cache(),
         });
+        steps.pipeline = lap.next();
         (pipeline, layout)
     })?;
+    // The error scope's wait belongs to the compile.
+    steps.pipeline += lap.next();
+    steps.disk = ctx.disk_cache.keep(&stored);
+    steps.cache_store = lap.next();
     let compiled = Arc::new(CompiledPipeline {
         pipeline,
         layout,
         compile_time: start.elapsed(),
+        steps,
         features,
         kernel,
     });
