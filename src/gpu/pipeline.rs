@@ -90,6 +90,37 @@ fn bind_group_layout(
     })
 }
 
+/// The shader module of `source`, validated and created once per context: the entries of
+/// one module (every entry of the render module) share it, so naga parses and validates it
+/// once, not once per entry. Records the two steps' times in `steps` when it does.
+fn shader_module(
+    ctx: &GpuContext,
+    source: &str,
+    features: SceneFeatures,
+    steps: &mut CompileSteps,
+) -> Result<wgpu::ShaderModule, GpuError> {
+    let known = |m: &std::collections::HashMap<String, wgpu::ShaderModule>| m.get(source).cloned();
+    if let Some(module) = ctx.pipelines.modules.lock().ok().and_then(|m| known(&m)) {
+        return Ok(module);
+    }
+    let mut lap = Lap::start();
+    // naga first: its messages point into the assembled source.
+    validate(source, features)?;
+    steps.validate = lap.next();
+    let module = ctx.scoped("shader compilation", || {
+        ctx.device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("glint tracer"),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            })
+    })?;
+    steps.shader_module = lap.next();
+    if let Ok(mut map) = ctx.pipelines.modules.lock() {
+        map.insert(source.to_string(), module.clone());
+    }
+    Ok(module)
+}
+
 /// The pipeline for (features, entry) in `ctx`'s kernel variant, compiled on first use.
 pub fn get_pipeline(
     ctx: &GpuContext,
@@ -112,20 +143,14 @@ pub fn get_pipeline(
     let mut lap = Lap::start();
     let source = assemble_with(features, entry, kernel);
     steps.assemble = lap.next();
-    // naga first: its messages point into the assembled source.
-    validate(&source, features)?;
-    steps.validate = lap.next();
+    let module = shader_module(ctx, &source, features, &mut steps)?;
+    lap.next();
     let device = &ctx.device;
     let stored = ctx
         .disk_cache
         .open(device, &ctx.info, &source, kernel, entry);
     steps.cache_load = lap.next();
     let (pipeline, layout) = ctx.scoped("shader compilation", || {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("glint tracer"),
-            source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
-        });
-        steps.shader_module = lap.next();
         let layout = bind_group_layout(device, entry, kernel);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("glint"),

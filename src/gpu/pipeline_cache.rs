@@ -119,10 +119,12 @@ pub enum DiskOutcome {
     WriteFailed,
 }
 
-/// Pipelines compiled on one device, by (features, kernel variant, entry).
+/// Pipelines compiled on one device, by (features, kernel variant, entry), and their
+/// shader modules by WGSL source (several entries share one module).
 #[derive(Default)]
 pub struct PipelineCache {
     pub(super) map: Mutex<HashMap<PipelineKey, Arc<CompiledPipeline>>>,
+    pub(super) modules: Mutex<HashMap<String, wgpu::ShaderModule>>,
 }
 
 /// What a compiled pipeline is specialised for.
