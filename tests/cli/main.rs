@@ -11,4 +11,5 @@ mod farm;
 mod fuzz_front_end;
 mod hostile;
 mod house;
+mod pipeline_cache;
 mod scene_script;
