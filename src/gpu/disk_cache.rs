@@ -2,7 +2,7 @@
 //! `PipelineCache::get_data` (on Vulkan, the `VkPipelineCache` blob) after a pipeline is
 //! compiled, kept in one file per kernel and handed back to the driver on the next run,
 //! so that it can skip its own compile. Not to be confused with
-//! [`super::pipeline_cache::PipelineCache`], the in-memory map of one context.
+//! `PipelineCache` in `pipeline_cache.rs`, the in-memory map of one context.
 //!
 //! A file is named by a hash of its key and starts with glint's own header (magic,
 //! format version, key, payload length, SHA-256 of all that and the payload); the key is
@@ -20,7 +20,6 @@
 //! the folder clears it.
 
 use super::kernel::KernelConfig;
-use super::pipeline_cache::DiskOutcome;
 use super::shader::Entry;
 use super::GpuError;
 use sha2::{Digest, Sha256};
@@ -64,6 +63,26 @@ impl std::fmt::Display for Rejection {
             Rejection::Unreadable => "unreadable",
         })
     }
+}
+
+/// What the on-disk pipeline cache did for one pipeline.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DiskOutcome {
+    /// Off (`GLINT_PIPELINE_CACHE=off`, or no cache folder).
+    #[default]
+    Off,
+    /// The device has no `PIPELINE_CACHE` feature (not Vulkan): nothing read or written.
+    Unsupported,
+    /// No file yet: compiled, and the driver's data written.
+    Written,
+    /// A valid file for this adapter, driver and kernel was handed to the driver; nothing
+    /// written.
+    Reused,
+    /// A file was there but failed a check; ignored (never handed to the driver) and
+    /// rewritten.
+    Rejected(Rejection),
+    /// The file could not be written (the note on stderr says why).
+    WriteFailed,
 }
 
 /// One context's on-disk cache: its folder (None: off) and its adapter's part of the key.

@@ -1,6 +1,7 @@
 //! The per-context cache of compiled pipelines (`PipelineCache`, held by `GpuContext`)
 //! and what it stores (`CompiledPipeline`); `pipeline` compiles and fills it.
 
+pub use super::disk_cache::DiskOutcome;
 use super::kernel::KernelConfig;
 use super::shader::Entry;
 use crate::pack::SceneFeatures;
@@ -97,26 +98,6 @@ impl Lap {
         let now = Instant::now();
         std::mem::replace(&mut self.0, now).elapsed()
     }
-}
-
-/// What the on-disk pipeline cache did for one pipeline.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum DiskOutcome {
-    /// Off (`GLINT_PIPELINE_CACHE=off`, or no cache folder).
-    #[default]
-    Off,
-    /// The device has no `PIPELINE_CACHE` feature (not Vulkan): nothing read or written.
-    Unsupported,
-    /// No file yet: compiled, and the driver's data written.
-    Written,
-    /// A valid file for this adapter, driver and kernel was handed to the driver; nothing
-    /// written.
-    Reused,
-    /// A file was there but failed a check; ignored (never handed to the driver) and
-    /// rewritten.
-    Rejected(super::disk_cache::Rejection),
-    /// The file could not be written (the note on stderr says why).
-    WriteFailed,
 }
 
 /// Pipelines compiled on one device, by (features, kernel variant, entry), and their
