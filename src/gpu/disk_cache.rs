@@ -421,8 +421,10 @@ mod tests {
         assert!(a.contains(env!("CARGO_PKG_VERSION")) && a.contains("kernel: main"));
         let b = cache.key("fn b() {}", KernelConfig::default(), Entry::Render);
         let c = cache.key("fn a() {}", KernelConfig::default(), Entry::Probe);
-        let mut other = KernelConfig::default();
-        other.workgroup_side = 4;
+        let other = KernelConfig {
+            workgroup_side: 4,
+            ..KernelConfig::default()
+        };
         let d = cache.key("fn a() {}", other, Entry::Render);
         assert!(a != b && a != c && a != d && b != c);
     }

@@ -71,7 +71,7 @@ fn the_cache_goes_where_the_environment_says_and_off_writes_nothing() {
     let log = stderr(&out);
     assert!(log.contains("1 uncached"), "{log}");
     // Mesa's own shader cache may go under $HOME or $XDG_CACHE_HOME; glint's does not.
-    let glint_files: Vec<String> = cache_files(&off)
+    let glint_files: Vec<String> = cache_files(off)
         .into_iter()
         .chain(cache_files(&off.join("glint")))
         .filter(|n| n.ends_with(".bin") || n == "glint")
