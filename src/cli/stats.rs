@@ -33,6 +33,7 @@ fn write_gpu(out: &mut String, image: &RenderedImage) {
                 format!("{:.1} ms (timestamp queries)", t.as_secs_f64() * 1e3)
             })
         );
+        write_compile(out, &gpu.compile);
         if gpu.kernel.iteration_guard {
             let _ = writeln!(
                 out,
@@ -41,6 +42,24 @@ fn write_gpu(out: &mut String, image: &RenderedImage) {
             );
         }
     }
+}
+
+/// Where the pipelines' compile time went, and what the on-disk pipeline cache did.
+fn write_compile(out: &mut String, c: &crate::gpu::pipeline::CompileSummary) {
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    let _ = writeln!(
+        out,
+        "  gpu compile: WGSL assembly {:.1} ms, naga validation {:.1} ms, shader modules {:.1} ms, pipelines {:.1} ms, cache files {:.1} ms; pipeline cache: {} reused, {} written, {} rejected, {} uncached",
+        ms(c.assemble),
+        ms(c.validate),
+        ms(c.shader_module),
+        ms(c.pipeline),
+        ms(c.cache_load + c.cache_store),
+        c.reused,
+        c.written,
+        c.rejected,
+        c.uncached
+    );
 }
 
 /// What the scene grid holds: analytic objects, CSG objects, mesh instances and lights.

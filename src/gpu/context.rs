@@ -4,6 +4,7 @@
 //! platform has it) — unless `WGPU_BACKEND` names others; never GL by default: with no
 //! Vulkan driver wgpu would silently pick GL llvmpipe, whose output differs.
 
+use super::disk_cache::DiskCache;
 use super::kernel::KernelConfig;
 use super::pipeline_cache::PipelineCache;
 use super::GpuError;
@@ -65,6 +66,8 @@ pub struct GpuContext {
     /// Set by the device-lost callback; checked after every wait.
     pub(crate) lost: Arc<Mutex<Option<String>>>,
     pub(crate) pipelines: PipelineCache,
+    /// Compiled pipelines kept across runs (`super::disk_cache`).
+    pub(crate) disk_cache: DiskCache,
     /// Frame buffers kept between frames (`super::scratch`).
     pub(crate) scratch: super::scratch::ScratchPool,
     /// `--dump-kernels`: where each pipeline compiled on it is written (`super::dump`).
@@ -162,12 +165,25 @@ impl GpuContext {
         Self::from_adapter(adapter)
     }
 
+    /// The on-disk pipeline cache this context reads and writes.
+    pub fn disk_cache(&self) -> &DiskCache {
+        &self.disk_cache
+    }
+
+    /// Replaces the on-disk pipeline cache (the environment's by default); pipelines
+    /// already compiled on this context are not compiled again.
+    pub fn set_disk_cache(&mut self, cache: DiskCache) {
+        self.disk_cache = cache;
+    }
+
     /// A device on `adapter`, with timestamp queries where the adapter has them (for the
-    /// frame's GPU time).
+    /// frame's GPU time) and pipeline caches where it has them (`super::disk_cache`).
     pub fn from_adapter(adapter: wgpu::Adapter) -> Result<GpuContext, GpuError> {
         let info = adapter.get_info();
         let limits = adapter.limits();
-        let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+        let disk_cache = DiskCache::from_env(&info)?;
+        let features =
+            adapter.features() & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::PIPELINE_CACHE);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("glint"),
             required_features: features,
@@ -196,6 +212,7 @@ impl GpuContext {
             limits,
             lost,
             pipelines: PipelineCache::default(),
+            disk_cache,
             scratch: Default::default(),
             dump: None,
         })

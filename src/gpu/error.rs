@@ -38,6 +38,13 @@ pub enum GpuError {
     /// The assembled shader failed to parse or validate (a bug in glint).
     #[error("the GPU shader for features [{features}] does not compile (a glint bug; use --backend cpu):\n{message}")]
     Shader { features: String, message: String },
+    /// An environment setting of the GPU tracer has a value it does not take.
+    #[error("{var}={value:?}: expected {expected}")]
+    Setting {
+        var: &'static str,
+        value: String,
+        expected: &'static str,
+    },
     /// wgpu reported a validation or out-of-memory error.
     #[error("GPU {what} failed: {message}; use --backend cpu")]
     Wgpu { what: &'static str, message: String },

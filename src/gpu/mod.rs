@@ -5,6 +5,7 @@
 pub mod bindings;
 pub mod buffers;
 pub mod context;
+pub mod disk_cache;
 pub mod dump;
 pub mod error;
 pub mod frame;

@@ -13,7 +13,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 pub use super::bindings::SCENE_TABLE_BINDINGS;
-pub use super::pipeline_cache::{CompiledPipeline, PipelineCache};
+use super::pipeline_cache::Lap;
+pub use super::pipeline_cache::{CompileSteps, CompileSummary, CompiledPipeline, PipelineCache};
 use super::tables::{table_layout_entry, SCENE_TABLE_FORMATS};
 /// Render entry: tile uniform and output buffer.
 pub const TILE_BINDING: u32 = 7;
@@ -95,6 +96,37 @@ fn bind_group_layout(
     })
 }
 
+/// The shader module of `source`, validated and created once per context: the entries of
+/// one module (every entry of the render module) share it, so naga parses and validates it
+/// once, not once per entry. Records the two steps' times in `steps` when it does.
+fn shader_module(
+    ctx: &GpuContext,
+    source: &str,
+    features: SceneFeatures,
+    steps: &mut CompileSteps,
+) -> Result<wgpu::ShaderModule, GpuError> {
+    let known = |m: &std::collections::HashMap<String, wgpu::ShaderModule>| m.get(source).cloned();
+    if let Some(module) = ctx.pipelines.modules.lock().ok().and_then(|m| known(&m)) {
+        return Ok(module);
+    }
+    let mut lap = Lap::start();
+    // naga first: its messages point into the assembled source.
+    validate(source, features)?;
+    steps.validate = lap.next();
+    let module = ctx.scoped("shader compilation", || {
+        ctx.device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("glint tracer"),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            })
+    })?;
+    steps.shader_module = lap.next();
+    if let Ok(mut map) = ctx.pipelines.modules.lock() {
+        map.insert(source.to_string(), module.clone());
+    }
+    Ok(module)
+}
+
 /// The pipeline for (features, entry) in `ctx`'s kernel variant, compiled on first use.
 pub fn get_pipeline(
     ctx: &GpuContext,
@@ -113,17 +145,20 @@ pub fn get_pipeline(
         return Ok(p);
     }
     let start = Instant::now();
+    let mut steps = CompileSteps::default();
+    let mut lap = Lap::start();
     let source = assemble_with(features, entry, kernel);
-    // naga first: its messages point into the assembled source.
-    validate(&source, features)?;
+    steps.assemble = lap.next();
+    let module = shader_module(ctx, &source, features, &mut steps)?;
     let layout_of_entry = layout_entries(entry, kernel);
     super::dump::dump_kernel(ctx.dump.as_ref(), entry, &source, &layout_of_entry)?;
+    lap.next();
     let device = &ctx.device;
+    let stored = ctx
+        .disk_cache
+        .open(device, &ctx.info, &source, kernel, entry);
+    steps.cache_load = lap.next();
     let (pipeline, layout) = ctx.scoped("shader compilation", || {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("glint tracer"),
-            source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
-        });
         let layout = bind_group_layout(device, entry, kernel);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("glint"),
@@ -136,14 +171,20 @@ pub fn get_pipeline(
             module: &module,
             entry_point: Some(entry.name()),
             compilation_options: Default::default(),
-            cache: None,
+            cache: stored.cache(),
         });
+        steps.pipeline = lap.next();
         (pipeline, layout)
     })?;
+    // The error scope's wait belongs to the compile.
+    steps.pipeline += lap.next();
+    steps.disk = ctx.disk_cache.keep(&stored);
+    steps.cache_store = lap.next();
     let compiled = Arc::new(CompiledPipeline {
         pipeline,
         layout,
         compile_time: start.elapsed(),
+        steps,
         features,
         kernel,
     });

@@ -22,6 +22,7 @@ use super::buffers::{take_mapped, upload_scene, LIMITER_SENTINEL};
 use super::context::GpuContext;
 use super::frame::Frame;
 use super::pipeline::{get_pipeline, CompiledPipeline};
+use super::pipeline_cache::CompileSummary;
 use super::plan::{AdapterBounds, Dispatch, FramePlan};
 use super::shader::Entry;
 use super::GpuError;
@@ -40,6 +41,8 @@ pub struct GpuRenderInfo {
     pub features: SceneFeatures,
     /// Time to build the pipelines (when first compiled on this context).
     pub compile_time: Duration,
+    /// `compile_time` step by step, and what the on-disk pipeline cache did.
+    pub compile: CompileSummary,
     /// Chunks of the frame (see [`super::plan`]).
     pub tiles: u64,
     /// Row stride of the widest chunk, in pixels (the image width for AA none and
@@ -186,6 +189,7 @@ pub fn render_gpu(
     let info = GpuRenderInfo {
         features: scene.features,
         compile_time: pipelines.iter().map(|p| p.compile_time).sum(),
+        compile: CompileSummary::of(pipelines.iter().map(|p| &p.steps)),
         tiles: plan.chunks.len() as u64,
         tile_side: plan.chunks.iter().map(|c| c.side).max().unwrap_or(0),
         dispatches: dispatches.len() as u32,

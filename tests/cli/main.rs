@@ -12,4 +12,5 @@ mod first_gpu;
 mod fuzz_front_end;
 mod hostile;
 mod house;
+mod pipeline_cache;
 mod scene_script;
