@@ -12,3 +12,4 @@ mod fuzz_front_end;
 mod hostile;
 mod house;
 mod scene_script;
+mod view_cli;

@@ -22,3 +22,5 @@ mod gpu_refraction;
 mod gpu_scrabble;
 mod gpu_textures;
 mod twins;
+mod view;
+mod view_window;
