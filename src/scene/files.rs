@@ -188,6 +188,24 @@ pub fn excerpt(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn record_reads_lists_each_file_tried_once_found_or_not() {
+        let dir = std::env::temp_dir().join(format!("glint-reads-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (a, missing) = (dir.join("a.lua"), dir.join("missing.obj"));
+        std::fs::write(&a, "x").unwrap();
+        let ((), reads) = record_reads(|| {
+            read_regular(&a, "module", 10).unwrap();
+            read_regular(&a, "module", 10).unwrap();
+            assert!(read_regular(&missing, "mesh file", 10).is_err());
+        });
+        assert_eq!(reads, vec![a.canonicalize().unwrap(), missing.clone()]);
+        // Nothing is recorded outside a recording.
+        let ((), none) = record_reads(|| ());
+        assert!(none.is_empty());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     use super::*;
 
     fn scratch(name: &str) -> PathBuf {

@@ -226,7 +226,9 @@ mod tests {
             let (mut c, bounds) = camera(scale);
             let eye = c.camera.eye;
             c.pan(10.0, 0.0, 400.0);
-            assert!(((c.camera.eye - eye).length() / scale - 0.233) < 0.01);
+            // 10 of 400 pixels at distance 10·scale and fov 50°: 10 · 2 · 10 · tan 25° / 400.
+            let expected = 10.0 * 2.0 * 10.0 * 25f64.to_radians().tan() / 400.0;
+            assert!(((c.camera.eye - eye).length() / scale - expected).abs() < 1e-9);
             c.dolly(1.0);
             assert!((c.distance() / (10.0 * scale) - 0.9).abs() < 1e-9);
             let before = c.camera.eye;

@@ -19,6 +19,8 @@ pub struct Status {
     /// The move in progress: preview frames, their time, since when.
     move_frames: u32,
     move_since: Option<Instant>,
+    /// When the move's last preview frame was done.
+    move_last: Option<Instant>,
     move_stride: u32,
     /// Camera rays per second of the last frame.
     pub rate: f64,
@@ -35,6 +37,7 @@ impl Default for Status {
             last_full_frame: None,
             move_frames: 0,
             move_since: None,
+            move_last: None,
             move_stride: 1,
             rate: 0.0,
         }
@@ -72,6 +75,7 @@ impl Status {
         }
         if stride > 1 {
             self.move_frames += 1;
+            self.move_last = Some(Instant::now());
             return;
         }
         self.last_full_frame = Some(time);
@@ -89,10 +93,13 @@ impl Status {
         }
     }
 
-    /// The move ended: its preview frame rate.
+    /// The move ended: its preview frame rate (frames over the time from the move's
+    /// start to its last frame).
     pub fn report_moving(&mut self) {
-        if let Some(since) = self.move_since.take() {
-            let secs = since.elapsed().as_secs_f64();
+        // From the move's first restart to its last preview frame (the settling wait
+        // after it is not the preview's).
+        if let (Some(since), Some(last)) = (self.move_since.take(), self.move_last.take()) {
+            let secs = last.duration_since(since).as_secs_f64();
             eprintln!(
                 "glint view: moving: {} preview frames in {:.3} s ({:.1} frames/s, stride up to {})",
                 self.move_frames,
