@@ -34,7 +34,7 @@ pub enum Entry {
     AdaptiveIntegrate,
     AdaptiveWorkArgs,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
-    /// (`shaders/view.wgsl`, dispatched by [`super::progressive`]).
+    /// (`shaders/view.wgsl`, dispatched by `gpu/progressive.rs`).
     ViewSample,
     /// `probe`: test-only, traces rays from a buffer and reports hits.
     Probe,

@@ -3,13 +3,14 @@
 //! (`ControlFlow::Wait`) whenever the image is complete and nothing moves; it wakes for
 //! input, for the file watcher, and (while the camera moves) when the move settles.
 
+use super::args::ViewBackend;
+use super::config::{no_display_message, ViewConfig, NO_DISPLAY_EXIT};
 use super::input::{drag_kind, key_action, Action, DragKind, Mouse, KEYS_HELP};
 use super::load::{load_scene, LoadedScene};
 use super::present::Presenter;
 use super::session::{Session, TracerKind};
 use super::status::title;
 use super::watch::WatchList;
-use super::{no_display_message, ViewBackend, ViewConfig, NO_DISPLAY_EXIT};
 use crate::gpu::GpuContext;
 use std::sync::Arc;
 use winit::application::ApplicationHandler;

@@ -2,7 +2,7 @@
 //! script's later images), else the script's own image name numbered `-view-0001`,
 //! `-view-0002`… under the same write rule as `render` ([`WritePolicy`]).
 
-use super::ViewConfig;
+use super::config::ViewConfig;
 use crate::pipeline::output_path;
 use crate::write_policy::WritePolicy;
 use std::path::{Path, PathBuf};

@@ -1,12 +1,12 @@
 //! One open view: the scene, the camera, the tracer refining it and the sums it adds
 //! to, and what each frame, move, reload and save does. The window and its events are
-//! [`super::app`]'s; this holds the state they change.
+//! `view/app.rs`'s; this holds the state they change.
 
 use super::camera::{Bounds, ViewCamera};
+use super::config::ViewConfig;
 use super::load::{frames_to_converge, load_scene, LoadedScene};
 use super::present::{Presented, Presenter};
 use super::status::Status;
-use super::ViewConfig;
 use crate::cpu::camera_media::fill_camera_media;
 use crate::cpu::progressive::{accumulate_sample, film_of_sums};
 use crate::film::Film;

@@ -62,3 +62,17 @@ fn a_screenshot_needs_a_frame_count() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--frames"));
 }
+
+#[test]
+fn an_unreachable_display_is_exit_code_2_too() {
+    let out = Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(["view", "scenes/demo.lua"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("DISPLAY", ":65000")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("glint runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
+    assert!(stderr.contains("glint render"), "{stderr}");
+}
