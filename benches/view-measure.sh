@@ -4,7 +4,8 @@
 # per second while the image refines, at 640×400. Runs on the display in $DISPLAY (a
 # hardware GPU's desktop: `benches/view-measure.sh`), or, with none, on a private Xvfb
 # (lavapipe presents there). Needs xdotool (and Xvfb without a display).
-#   usage: benches/view-measure.sh [GLINT_BINARY] [--adapter NAME]
+#   usage: [VIEW_SCENES="a.lua b.lua"] benches/view-measure.sh [GLINT_BINARY] [VIEW FLAGS…]
+#   (view flags such as --adapter NAME, or --samples 2 to bound a slow adapter's run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 glint="${1:-target/release/glint}"
@@ -22,7 +23,8 @@ fi
 log="$(mktemp -d)"
 echo "| scene | tracer | adapter | first image | moving (preview) | refining |"
 echo "|---|---|---|---|---|---|"
-for scene in scenes/demo.lua scenes/scrabble.lua scenes/cs488/a4-2021plus/macho-cows.lua; do
+scenes="${VIEW_SCENES:-scenes/demo.lua scenes/scrabble.lua scenes/cs488/a4-2021plus/macho-cows.lua}"
+for scene in $scenes; do
   for backend in gpu cpu; do
     err="$log/$(basename "$scene" .lua)-$backend.txt"
     timeout 600 "$glint" view "$scene" --width 640 --height 400 --backend "$backend" "${extra[@]}" \

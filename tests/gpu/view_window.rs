@@ -158,7 +158,6 @@ impl Xvfb {
     /// What a window manager sends when its close button is pressed: a WM_PROTOCOLS
     /// client message with WM_DELETE_WINDOW.
     pub fn close_as_window_manager(&self, window: &str) {
-        use x11rb::connection::Connection;
         use x11rb::protocol::xproto::{ClientMessageEvent, ConnectionExt, EventMask};
         let id: u32 = window.parse().expect("a window id");
         let (conn, _) = x11rb::connect(Some(&self.display)).expect("connect to Xvfb");
