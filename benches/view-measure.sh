@@ -4,7 +4,7 @@
 # per second while the image refines, at 640×400. Runs on the display in $DISPLAY (a
 # hardware GPU's desktop: `benches/view-measure.sh`), or, with none, on a private Xvfb
 # (lavapipe presents there). Needs xdotool (and Xvfb without a display).
-#   usage: [VIEW_SCENES="a.lua b.lua"] benches/view-measure.sh [GLINT_BINARY] [VIEW FLAGS…]
+#   usage: [VIEW_SCENES="a.lua b.lua"] [VIEW_BACKENDS="gpu cpu"] benches/view-measure.sh [GLINT_BINARY] [VIEW FLAGS…]
 #   (view flags such as --adapter NAME, or --samples 2 to bound a slow adapter's run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,7 +25,7 @@ echo "| scene | tracer | adapter | first image | moving (preview) | refining |"
 echo "|---|---|---|---|---|---|"
 scenes="${VIEW_SCENES:-scenes/demo.lua scenes/scrabble.lua scenes/cs488/a4-2021plus/macho-cows.lua}"
 for scene in $scenes; do
-  for backend in gpu cpu; do
+  for backend in ${VIEW_BACKENDS:-gpu cpu}; do
     err="$log/$(basename "$scene" .lua)-$backend.txt"
     timeout 600 "$glint" view "$scene" --width 640 --height 400 --backend "$backend" "${extra[@]}" \
       >/dev/null 2>"$err" &
