@@ -29,4 +29,5 @@ pub mod script_driver;
 #[doc(hidden)]
 pub mod testing;
 pub mod tiling;
+pub mod view;
 pub mod write_policy;

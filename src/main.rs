@@ -46,6 +46,10 @@ enum Command {
     /// Join tiles of one render (`render --tile`/`--crop`) into its image, bit for bit the
     /// full render; refuses tiles of other renders, gaps and overlaps.
     Assemble(glint::farm::args::AssembleArgs),
+    /// Open a window showing the scene traced progressively (GPU or CPU tracer), with a
+    /// camera to move and live reload of the script and every file it reads
+    /// (docs/view.md).
+    View(glint::view::ViewArgs),
     /// List the GPU adapters (Vulkan, Metal, DX12, or the backends WGPU_BACKEND names)
     /// and their limits.
     Info,
@@ -233,6 +237,7 @@ fn main() -> ExitCode {
         Command::Assemble(args) => glint::farm::assemble::assemble(&args.tiles, &args.output)
             .map(|()| eprintln!("glint: wrote {}", args.output.display()))
             .map_err(|e| (e.to_string(), e.exit_code())),
+        Command::View(args) => glint::view::run(&args),
         Command::Info => {
             info();
             Ok(())

@@ -12,6 +12,7 @@ pub mod hit;
 pub mod intersect;
 pub mod math;
 pub mod pixel_sample;
+pub mod progressive;
 pub mod ray;
 pub mod render;
 pub mod rng;

@@ -198,7 +198,7 @@ pub fn render_pixel(
 /// Sample `s` of pixel (x, y) under n×n stratification: stratum (s mod n, s div n),
 /// jittered when `uniform`, else its centre.
 // Mirror of shaders/render.wgsl::uniform_sample — change both.
-fn uniform_sample(
+pub fn uniform_sample(
     scene: &PackedScene,
     x: u32,
     y: u32,

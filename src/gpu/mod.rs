@@ -13,6 +13,7 @@ pub mod kernel;
 pub mod pipeline;
 pub mod pipeline_cache;
 pub mod plan;
+pub mod progressive;
 pub mod render;
 pub mod scratch;
 pub mod shader;

@@ -33,13 +33,16 @@ pub enum Entry {
     AdaptiveMidpoints,
     AdaptiveIntegrate,
     AdaptiveWorkArgs,
+    /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
+    /// (`shaders/view.wgsl`, dispatched by `gpu/progressive.rs`).
+    ViewSample,
     /// `probe`: test-only, traces rays from a buffer and reports hits.
     Probe,
 }
 
 impl Entry {
     /// Every entry point.
-    pub const ALL: [Entry; 9] = [
+    pub const ALL: [Entry; 10] = [
         Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
@@ -48,6 +51,7 @@ impl Entry {
         Entry::AdaptiveMidpoints,
         Entry::AdaptiveIntegrate,
         Entry::AdaptiveWorkArgs,
+        Entry::ViewSample,
         Entry::Probe,
     ];
 
@@ -62,6 +66,7 @@ impl Entry {
             Entry::AdaptiveMidpoints => "adaptive_midpoints",
             Entry::AdaptiveIntegrate => "adaptive_integrate",
             Entry::AdaptiveWorkArgs => "adaptive_work_args",
+            Entry::ViewSample => "view_sample",
             Entry::Probe => "probe",
         }
     }
@@ -113,6 +118,7 @@ const RENDER: &[(&str, &str)] = &[
     ),
     ("render.wgsl", include_str!("../../shaders/render.wgsl")),
     ("adaptive.wgsl", include_str!("../../shaders/adaptive.wgsl")),
+    ("view.wgsl", include_str!("../../shaders/view.wgsl")),
 ];
 const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
 

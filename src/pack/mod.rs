@@ -15,7 +15,7 @@ use crate::accel::grid::{Grid, GridBuildStats};
 use crate::constants::*;
 pub use crate::mailboxes::Mailboxes;
 use crate::scene::flatten::{CsgStep, FlatScene, Object, ObjectKind};
-use crate::scene::{AaMode, Background, CsgOp, DebugView, GridMode};
+use crate::scene::{AaMode, Background, Camera, CsgOp, DebugView, GridMode};
 use bounds::{csg_bounds, instance_bounds};
 pub use features::SceneFeatures;
 use glam::{DMat4, DVec3};
@@ -317,6 +317,31 @@ fn all_cells(grid: &Grid, meshes: &mut meshes::PackedMeshes) -> (Vec<u32>, Vec<u
     (cell_start, cell_items)
 }
 
+/// The camera's part of the globals: eye, unit forward, right and true up, tan(fov/2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraFrame {
+    pub eye: [f32; 3],
+    pub forward: [f32; 3],
+    pub right: [f32; 3],
+    pub up: [f32; 3],
+    pub tan_half_fov: f32,
+}
+
+/// The camera frame primary rays are made from, computed in f64 and rounded once (the
+/// one place it is computed: `glint view` moves the camera through it too).
+pub fn camera_frame(camera: &Camera) -> CameraFrame {
+    let forward = camera.view.normalize();
+    let right = forward.cross(camera.up).normalize();
+    let up = right.cross(forward);
+    CameraFrame {
+        eye: camera.eye.as_vec3().to_array(),
+        forward: forward.as_vec3().to_array(),
+        right: right.as_vec3().to_array(),
+        up: up.as_vec3().to_array(),
+        tan_half_fov: (camera.fov_deg.to_radians() * 0.5).tan() as f32,
+    }
+}
+
 /// The globals uniform: camera frame, image size, background, counts, grid and options.
 fn make_globals(
     scene: &FlatScene,
@@ -325,23 +350,20 @@ fn make_globals(
     lights: &[PackedLight],
     grid: &Grid,
 ) -> PackedGlobals {
-    let camera = &scene.camera;
-    let forward = camera.view.normalize();
-    let right = forward.cross(camera.up).normalize();
-    let up = right.cross(forward);
+    let frame = camera_frame(&scene.camera);
     let (top, bottom) = match scene.options.background {
         Background::Solid(c) => (c, c),
         Background::Gradient { top, bottom } => (top, bottom),
     };
     let options = &scene.options;
     PackedGlobals {
-        eye: camera.eye.as_vec3().to_array(),
-        tan_half_fov: (camera.fov_deg.to_radians() * 0.5).tan() as f32,
-        forward: forward.as_vec3().to_array(),
+        eye: frame.eye,
+        tan_half_fov: frame.tan_half_fov,
+        forward: frame.forward,
         aspect: scene.width as f32 / scene.height as f32,
-        right: right.as_vec3().to_array(),
+        right: frame.right,
         width: scene.width,
-        up: up.as_vec3().to_array(),
+        up: frame.up,
         height: scene.height,
         ambient: scene.ambient,
         num_lights: lights.len() as u32,

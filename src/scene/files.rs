@@ -102,6 +102,7 @@ fn resolve(path: &Path) -> PathBuf {
 /// Opens `path` for reading without blocking on a FIFO, and checks that it is a regular
 /// file of at most `cap` bytes. Returns the file and its size.
 pub fn open_regular(path: &Path, what: &str, cap: u64) -> Result<(File, u64), String> {
+    note_read(path);
     let cannot = |e: std::io::Error| format!("cannot read {what} '{}': {e}", path.display());
     // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer forever.
     let file = OpenOptions::new()
@@ -124,6 +125,36 @@ pub fn open_regular(path: &Path, what: &str, cap: u64) -> Result<(File, u64), St
         ));
     }
     Ok((file, meta.len()))
+}
+
+thread_local! {
+    /// The files opened on this thread while [`record_reads`] runs (None: not recording).
+    static READ_LOG: std::cell::RefCell<Option<Vec<PathBuf>>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Adds `path` to the read log when one is recording (every file a scene reads, found
+/// or not, goes through [`open_regular`]).
+fn note_read(path: &Path) {
+    READ_LOG.with(|log| {
+        if let Some(paths) = log.borrow_mut().as_mut() {
+            let path = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
+            if !paths.contains(&path) {
+                paths.push(path);
+            }
+        }
+    });
+}
+
+/// Runs `f` and returns its value with every file it tried to read through
+/// [`open_regular`] on this thread (the script, preludes, modules, meshes, textures;
+/// missing ones too, so that creating one can be noticed), in first-read order: what
+/// `glint view` watches for live reload. The scene's reads all happen on the thread that
+/// runs its script.
+pub fn record_reads<T>(f: impl FnOnce() -> T) -> (T, Vec<PathBuf>) {
+    let outer = READ_LOG.with(|log| log.replace(Some(Vec::new())));
+    let value = f();
+    let paths = READ_LOG.with(|log| log.replace(outer)).unwrap_or_default();
+    (value, paths)
 }
 
 /// Reads a whole regular file of at most `cap` bytes (see [`open_regular`]). A file that
@@ -157,6 +188,24 @@ pub fn excerpt(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn record_reads_lists_each_file_tried_once_found_or_not() {
+        let dir = std::env::temp_dir().join(format!("glint-reads-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (a, missing) = (dir.join("a.lua"), dir.join("missing.obj"));
+        std::fs::write(&a, "x").unwrap();
+        let ((), reads) = record_reads(|| {
+            read_regular(&a, "module", 10).unwrap();
+            read_regular(&a, "module", 10).unwrap();
+            assert!(read_regular(&missing, "mesh file", 10).is_err());
+        });
+        assert_eq!(reads, vec![a.canonicalize().unwrap(), missing.clone()]);
+        // Nothing is recorded outside a recording.
+        let ((), none) = record_reads(|| ());
+        assert!(none.is_empty());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     use super::*;
 
     fn scratch(name: &str) -> PathBuf {

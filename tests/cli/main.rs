@@ -14,3 +14,4 @@ mod hostile;
 mod house;
 mod pipeline_cache;
 mod scene_script;
+mod view_cli;

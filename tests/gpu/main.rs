@@ -25,3 +25,5 @@ mod gpu_textures;
 mod kernel_instrument;
 mod twins;
 mod twins_broken;
+mod view;
+mod view_window;

@@ -32,6 +32,18 @@ use twin_support::{parse, rust_calls, Item, Sources, TwinRef};
 /// WGSL functions with no Rust twin, and why.
 const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     (
+        "shaders/view_present.wgsl",
+        "present_vertex",
+        "glint view's present pass: one triangle over the window; the CPU tracer has no window",
+    ),
+    (
+        "shaders/view_present.wgsl",
+        "present_fragment",
+        "glint view's present pass: shows the progressive sums (sum / count, clamped) in the \
+         window; the CPU's image of the same sums is cpu::progressive::film_of_sums, which \
+         tests/gpu/view.rs compares with the window",
+    ),
+    (
         "shaders/ray.wgsl",
         "max_element",
         "glam's Vec3::max_element on the CPU",

@@ -1,0 +1,419 @@
+//! `glint view` in a real window: each test starts its own Xvfb (lavapipe presents to
+//! it), runs `glint view` there and checks what the window shows or prints:
+//! (a) after n² frames the presented image is `glint render --aa uniform --samples n`;
+//! (b) a mouse drag moves the printed camera as an orbit does;
+//! (c) saving a file the script read changes the window within a bounded time;
+//! (d) a broken edit keeps the last image and shows the error, a fix brings it back;
+//! (e) Esc and the window manager's close end the process cleanly.
+//! Plus the device-side sums against the tracers' own renders, without a window.
+
+use super::view_window::{View, Xvfb, WAIT};
+use crate::common::{gpu_context, load_packed, root};
+use glint::cpu::progressive::{accumulate_sample, film_of_sums};
+use glint::gpu::progressive::{Progressive, SumBuffer};
+use glint::scene::{AaMode, AaSamples, OptionOverrides};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("glint-view-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn glint(dir: &Path, args: &[&str]) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("glint runs");
+    assert!(
+        out.status.success(),
+        "glint {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+fn load_rgb(path: &Path) -> image::RgbImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgb8()
+}
+
+/// Largest per-channel difference of two images of one size, in 1/255.
+fn max_difference(a: &image::RgbImage, b: &image::RgbImage) -> u8 {
+    assert_eq!(a.dimensions(), b.dimensions());
+    a.as_raw()
+        .iter()
+        .zip(b.as_raw())
+        .map(|(x, y)| x.abs_diff(*y))
+        .max()
+        .unwrap_or(0)
+}
+
+/// (a) on one tracer: `glint view --frames n² --screenshot` against `glint render`.
+fn screenshot_equals_render(backend: &str) {
+    let x = Xvfb::start();
+    let dir = temp_dir(&format!("shot-{backend}"));
+    let demo = root().join("scenes/demo.lua");
+    let demo = demo.to_str().unwrap();
+    let size = ["--width", "96", "--height", "60"];
+    let mut view = View::start(
+        &x,
+        &dir,
+        &[
+            &[
+                demo,
+                "--backend",
+                backend,
+                "--samples",
+                "3",
+                "--frames",
+                "9",
+                "--screenshot",
+                "shot.png",
+            ][..],
+            &size,
+        ]
+        .concat(),
+    );
+    let status = view
+        .wait_exit(WAIT)
+        .expect("glint view ends after its frames");
+    assert!(
+        status.success(),
+        "glint view failed: {}",
+        view.stderr.lock().unwrap().join("\n")
+    );
+    glint(
+        &dir,
+        &[
+            &[
+                "render",
+                demo,
+                "-o",
+                "render.png",
+                "--aa",
+                "uniform",
+                "--samples",
+                "3",
+                "--backend",
+                backend,
+            ][..],
+            &size,
+        ]
+        .concat(),
+    );
+    let (shot, render) = (
+        load_rgb(&dir.join("shot.png")),
+        load_rgb(&dir.join("render.png")),
+    );
+    let diff = max_difference(&shot, &render);
+    eprintln!("{backend} tracer: the window after 9 frames differs from glint render by at most {diff}/255");
+    assert!(
+        diff <= 2,
+        "{backend}: the window shows {diff}/255 away from glint render"
+    );
+    // Not a blank window that happens to match a blank render.
+    let lit = render
+        .pixels()
+        .filter(|p| p.0.iter().any(|&c| c > 40))
+        .count();
+    assert!(
+        lit > 96 * 60 / 2,
+        "the render is mostly dark: {lit} lit pixels"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn a_gpu_window_after_n_squared_frames_is_the_render() {
+    screenshot_equals_render("gpu");
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn a_cpu_window_after_n_squared_frames_is_the_render() {
+    screenshot_equals_render("cpu");
+}
+
+/// The eye of a camera line the view printed (C).
+fn eye_of(line: &str) -> [f64; 3] {
+    let inside = line
+        .split('{')
+        .nth(1)
+        .and_then(|s| s.split('}').next())
+        .expect("an eye");
+    let v: Vec<f64> = inside
+        .split(", ")
+        .map(|c| c.parse().expect("a number"))
+        .collect();
+    [v[0], v[1], v[2]]
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn a_mouse_drag_orbits_the_printed_camera() {
+    let x = Xvfb::start();
+    let dir = temp_dir("orbit");
+    let demo = root().join("scenes/demo.lua");
+    let view = View::start(
+        &x,
+        &dir,
+        &[
+            demo.to_str().unwrap(),
+            "--width",
+            "96",
+            "--height",
+            "60",
+            "--aa",
+            "none",
+        ],
+    );
+    let window = x.window("glint view");
+    view.wait_line(&view.stderr, 0, "image complete", WAIT);
+    x.key(&window, "c");
+    let (_, before) = view.wait_line(&view.stdout, 0, "eye, view, up, fov", WAIT);
+    let next = view.stdout_len();
+    let w = window.as_str();
+    // A drag to the right, with the left button: orbit about the vertical axis.
+    x.tool(
+        "xdotool",
+        &["mousemove", "--window", w, "30", "30", "mousedown", "1"],
+    );
+    x.tool(
+        "xdotool",
+        &[
+            "mousemove",
+            "--window",
+            w,
+            "50",
+            "30",
+            "mousemove",
+            "--window",
+            w,
+            "70",
+            "30",
+            "mouseup",
+            "1",
+        ],
+    );
+    view.wait_line(&view.stderr, 0, "moving:", WAIT);
+    x.key(w, "c");
+    let (_, after) = view.wait_line(&view.stdout, next, "eye, view, up, fov", WAIT);
+    let (e0, e1) = (eye_of(&before), eye_of(&after));
+    assert_eq!(e0, [0.0, 3.2, 8.5], "the script's camera first: {before}");
+    // Orbiting about the up axis keeps the height and turns the eye to one side.
+    assert!((e1[1] - e0[1]).abs() < 1e-9, "the height changed: {after}");
+    assert!(
+        e1[0] < -0.5,
+        "dragging right should swing the eye to -x: {after}"
+    );
+    // The distance from the axis through the pivot stays (the pivot is on x = 0).
+    let r0 = e0[0].hypot(e0[2]);
+    assert!(e1[0].hypot(e1[2]) < r0 + 1e-6, "{before} → {after}");
+}
+
+/// A scene whose sphere's colour comes from a required module (colour.lua), so that
+/// live reload must watch a file besides the script.
+fn write_module_scene(dir: &Path, colour: &str) {
+    std::fs::write(
+        dir.join("scene.lua"),
+        "local colour = require 'colour'\n\
+         local root = gr.node('root')\n\
+         local ball = gr.sphere('ball')\n\
+         ball:scale(3, 3, 3)\n\
+         ball:set_material(gr.material(colour.kd, {0, 0, 0}, 10))\n\
+         root:add_child(ball)\n\
+         gr.render(root, 'scene.png', 64, 48, {0, 0, 10}, {0, 0, -1}, {0, 1, 0}, 50,\n\
+           {1, 1, 1}, {gr.light({0, 0, 10}, {0, 0, 0}, {1, 0, 0})})\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("colour.lua"),
+        format!("return {{ kd = {colour} }}\n"),
+    )
+    .unwrap();
+}
+
+/// The window's centre pixel.
+fn centre(x: &Xvfb, window: &str) -> [u8; 3] {
+    let img = x.capture(window);
+    img.get_pixel(img.width() / 2, img.height() / 2).0
+}
+
+/// Waits until the window's centre pixel satisfies `ok`, returning how long it took.
+fn wait_for_centre(
+    x: &Xvfb,
+    window: &str,
+    ok: impl Fn([u8; 3]) -> bool,
+    limit: Duration,
+) -> Duration {
+    let start = Instant::now();
+    loop {
+        let c = centre(x, window);
+        if ok(c) {
+            return start.elapsed();
+        }
+        assert!(
+            start.elapsed() < limit,
+            "the window's centre is still {c:?} after {limit:?}"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+const RELOAD_LIMIT: Duration = Duration::from_secs(10);
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn saving_a_module_the_script_required_shows_the_change() {
+    let x = Xvfb::start();
+    let dir = temp_dir("reload");
+    write_module_scene(&dir, "{0.9, 0.1, 0.1}");
+    let view = View::start(&x, &dir, &["scene.lua", "--backend", "gpu", "--aa", "none"]);
+    let window = x.window("glint view");
+    view.wait_line(&view.stderr, 0, "image complete", WAIT);
+    wait_for_centre(&x, &window, |c| c[0] > 150 && c[1] < 60, RELOAD_LIMIT);
+    // Rewrite the module (not the script): the ball turns green.
+    std::fs::write(dir.join("colour.lua"), "return { kd = {0.1, 0.9, 0.1} }\n").unwrap();
+    let took = wait_for_centre(&x, &window, |c| c[1] > 150 && c[0] < 60, RELOAD_LIMIT);
+    eprintln!(
+        "the edit showed in the window after {} ms",
+        took.as_millis()
+    );
+    view.wait_line(&view.stderr, 0, "reloaded scene.lua", WAIT);
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn a_broken_edit_keeps_the_image_and_shows_the_error() {
+    let x = Xvfb::start();
+    let dir = temp_dir("broken");
+    write_module_scene(&dir, "{0.9, 0.1, 0.1}");
+    let view = View::start(&x, &dir, &["scene.lua", "--backend", "gpu", "--aa", "none"]);
+    let window = x.window("glint view");
+    view.wait_line(&view.stderr, 0, "image complete", WAIT);
+    wait_for_centre(&x, &window, |c| c[0] > 150, RELOAD_LIMIT);
+    let before = x.capture(&window);
+    let good = std::fs::read_to_string(dir.join("scene.lua")).unwrap();
+    std::fs::write(
+        dir.join("scene.lua"),
+        good.replace("ball:scale(3, 3, 3)", "ball:scale(3, 3)"),
+    )
+    .unwrap();
+    let (_, error) = view.wait_line(&view.stderr, 0, "glint view: error:", RELOAD_LIMIT);
+    assert!(
+        error.contains("scene.lua:4:"),
+        "the error names file and line: {error}"
+    );
+    let title = x.window_name(&window);
+    assert!(
+        title.contains("ERROR") && title.contains("scene.lua:4:"),
+        "title: {title}"
+    );
+    assert_eq!(
+        max_difference(&before, &x.capture(&window)),
+        0,
+        "the last good image stays"
+    );
+    // Fixing the file brings the view back.
+    std::fs::write(
+        dir.join("scene.lua"),
+        good.replace("{0, 0, 10}, {0, 0, -1}", "{0, 0, 12}, {0, 0, -1}"),
+    )
+    .unwrap();
+    view.wait_line(&view.stderr, 0, "reloaded scene.lua", RELOAD_LIMIT);
+    let deadline = Instant::now() + RELOAD_LIMIT;
+    while x.window_name(&window).contains("ERROR") {
+        assert!(
+            Instant::now() < deadline,
+            "the error stays in the title after the fix"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn escape_and_the_window_managers_close_end_the_view() {
+    let dir = temp_dir("close");
+    write_module_scene(&dir, "{0.5, 0.5, 0.5}");
+    for how in ["Escape", "close"] {
+        // A server each: an X server resets when its last client leaves.
+        let x = Xvfb::start();
+        let mut view = View::start(&x, &dir, &["scene.lua", "--aa", "none"]);
+        let window = x.window("glint view");
+        view.wait_line(&view.stderr, 0, "image complete", WAIT);
+        match how {
+            "Escape" => x.key(&window, "Escape"),
+            _ => x.close_as_window_manager(&window),
+        }
+        let status = view
+            .wait_exit(Duration::from_secs(20))
+            .unwrap_or_else(|| panic!("{how}: still running after 20 s"));
+        assert!(status.success(), "{how}: exit status {status}");
+        let deadline = Instant::now() + Duration::from_secs(10);
+        while x.has_window("glint view") {
+            assert!(
+                Instant::now() < deadline,
+                "{how}: the window outlived the process"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+}
+
+/// The device's progressive sums after n² frames against the GPU tracer's uniform
+/// render of the same scene, and the CPU's against the CPU tracer's (no window).
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn progressive_sums_converge_to_the_tracers_renders() {
+    let Some(ctx) = gpu_context() else { return };
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Uniform),
+        samples: AaSamples::parse("3").ok(),
+        width: Some(48),
+        height: Some(30),
+        ..OptionOverrides::default()
+    };
+    let packed = load_packed(&root().join("scenes/demo.lua"), &overrides);
+    let g = packed.globals;
+    let pixels = u64::from(g.width * g.height);
+    let sums = SumBuffer::new(&ctx, pixels).unwrap();
+    let mut progressive = Progressive::new(&ctx, &packed, &sums).unwrap();
+    progressive.set_globals(&ctx, &g);
+    for s in 0..9 {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        progressive.encode_sample(&ctx, &mut encoder, s);
+        ctx.queue.submit([encoder.finish()]);
+    }
+    let gpu = film_of_sums(&sums.read(&ctx, pixels).unwrap(), g.width, g.height);
+    let reference = glint::gpu::render_gpu(&ctx, &packed, &Default::default())
+        .unwrap()
+        .film;
+    let worst = gpu
+        .pixels
+        .iter()
+        .zip(&reference.pixels)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / b[c].abs().max(1e-30)))
+        .fold(0.0f32, f32::max);
+    // The same samples summed in the same order: only the division (host here, device
+    // there) may round differently, by an ulp.
+    assert!(
+        worst <= 2.0 * f32::EPSILON,
+        "GPU sums: largest relative difference {worst:e}"
+    );
+    let mut cpu_sums = vec![[0.0f32; 4]; pixels as usize];
+    for s in 0..9 {
+        accumulate_sample(&packed, s, &mut cpu_sums);
+    }
+    let cpu = film_of_sums(&cpu_sums, g.width, g.height);
+    assert_eq!(
+        cpu.pixels,
+        crate::common::render_cpu(&packed).pixels,
+        "CPU sums: bit for bit"
+    );
+}
