@@ -28,7 +28,7 @@ pub fn accumulate_sample(scene: &PackedScene, s: u32, sums: &mut [[f32; 4]]) {
 }
 
 /// `sum` with sample `s` of pixel (x, y) added, as `render_pixel`'s loop adds it.
-// Mirror of shaders/view.wgsl::view_sample — change both.
+// Mirror of shaders/progressive.wgsl::view_sample — change both.
 pub fn view_sample(scene: &PackedScene, x: u32, y: u32, s: u32, sum: [f32; 4]) -> [f32; 4] {
     let g = &scene.globals;
     let uniform = g.aa_mode == AA_UNIFORM;

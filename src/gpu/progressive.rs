@@ -1,6 +1,6 @@
 //! `glint view`'s device side: progressive uniform anti-aliasing on the device that also
 //! presents the window. The per-pixel sums live in one storage buffer ([`SumBuffer`])
-//! for the whole session: `view_sample` (shaders/view.wgsl) adds sample k of every pixel
+//! for the whole session: `view_sample` (shaders/progressive.wgsl) adds sample k of every pixel
 //! to it in frame k, the window's present pass reads it, and the CPU tracer's sums are
 //! uploaded into it when that tracer refines instead. Nothing is read back except for S
 //! (save), so a refining frame costs one dispatch and one present.

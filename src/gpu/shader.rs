@@ -34,7 +34,7 @@ pub enum Entry {
     AdaptiveIntegrate,
     AdaptiveWorkArgs,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
-    /// (`shaders/view.wgsl`, dispatched by `gpu/progressive.rs`).
+    /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`).
     ViewSample,
     /// `probe`: test-only, traces rays from a buffer and reports hits.
     Probe,
@@ -118,7 +118,10 @@ const RENDER: &[(&str, &str)] = &[
     ),
     ("render.wgsl", include_str!("../../shaders/render.wgsl")),
     ("adaptive.wgsl", include_str!("../../shaders/adaptive.wgsl")),
-    ("view.wgsl", include_str!("../../shaders/view.wgsl")),
+    (
+        "progressive.wgsl",
+        include_str!("../../shaders/progressive.wgsl"),
+    ),
 ];
 const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
 

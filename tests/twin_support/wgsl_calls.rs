@@ -51,9 +51,13 @@ enum ModuleKind {
     Render,
     Probe,
     Bench,
+    /// `glint view`'s present pass: one file, no prelude, no specialisation
+    /// (src/view/present.rs builds it as it is).
+    Present,
 }
 
 const BENCH_FILE: &str = "bench/torus.wgsl";
+const PRESENT_FILE: &str = "view_present.wgsl";
 
 /// Every scene feature.
 fn all_features() -> SceneFeatures {
@@ -97,6 +101,7 @@ fn layout(
         ModuleKind::Render => assemble_with(features, Entry::Render, kernel),
         ModuleKind::Probe => assemble_with(features, Entry::Probe, kernel),
         ModuleKind::Bench => assemble_common_with(features, (BENCH_FILE, "")),
+        ModuleKind::Present => return (String::new(), vec![PRESENT_FILE.to_string()]),
     };
     let mut parts = source.split("\n// ---- shaders/");
     let prelude = parts.next().unwrap_or_default().to_string();
@@ -366,10 +371,17 @@ fn read_modules(texts: &[(String, String)]) -> WgslModules {
         .map(|(f, t)| (f.as_str(), t.as_str()))
         .collect();
     let mut out = WgslModules::default();
-    for kind in [ModuleKind::Render, ModuleKind::Probe, ModuleKind::Bench] {
+    let kinds = [
+        ModuleKind::Render,
+        ModuleKind::Probe,
+        ModuleKind::Bench,
+        ModuleKind::Present,
+    ];
+    for kind in kinds {
         let mut configurations = match kind {
             // The benchmark's kernel is built for tori alone, in the default variant.
             ModuleKind::Bench => vec![(SceneFeatures::TORUS, KernelConfig::default())],
+            ModuleKind::Present => vec![(SceneFeatures::empty(), KernelConfig::default())],
             _ => covering(kind, &texts),
         };
         if let ModuleKind::Render = kind {
