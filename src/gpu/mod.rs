@@ -8,6 +8,7 @@ pub mod context;
 pub mod error;
 pub mod frame;
 pub mod kernel;
+pub mod lists;
 pub mod pipeline;
 pub mod pipeline_cache;
 pub mod plan;
