@@ -5,9 +5,10 @@
 //! in upper case (`-` as `_`: `AREA_LIGHT`), or several joined by `|` (any of them),
 //! optionally negated by a leading `!`.
 //! Besides the scene's features, the adapter's [`KernelConfig`]: the workgroup size (the
-//! `WORKGROUP_SIZE` and `LINEAR_WORKGROUP_SIZE` constants, emitted after the prelude) and
-//! three flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
-//! check, see `shaders/render.wgsl`), and `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
+//! `WORKGROUP_SIZE` and `LINEAR_WORKGROUP_SIZE` constants, emitted after the prelude with
+//! the per-ray lists' layout, `src/gpu/lists.rs`) and
+//! its flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
+//! check, see `shaders/render.wgsl`), `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
 //! traversal's per-ray mailboxes, all of them or one item slot: see
 //! `shaders/traverse.wgsl`), `STORAGE_TABLES` (the scene's tables bound as read-only
 //! storage textures: see `shaders/layout.wgsl`) and `LISTS_IN_STORAGE` (per-ray lists in
