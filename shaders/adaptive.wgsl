@@ -201,6 +201,7 @@ fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     }
     let s = adaptive_scale();
     let corners = (tile.size.x + 1u) * (tile.size.y + 1u);
+    begin_lane(idx);
     var point: vec2<u32>;
     if idx < corners {
         point = vec2<u32>((idx % (tile.size.x + 1u)) * s, (idx / (tile.size.x + 1u)) * s);
@@ -301,6 +302,7 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     let k = m - 4u;
     let ox = select(select(select(h, l, m == 2u), 0u, m == 1u), q + h * (k & 1u), m >= 4u);
     let oy = select(select(select(h, l, m == 3u), 0u, m == 0u), q + h * (k >> 1u), m >= 4u);
+    begin_lane(idx);
     trace_lattice_point(a * l + ox, b * l + oy);
 }
 

@@ -17,13 +17,88 @@ struct CsgHit {
     part: u32,
 }
 
-// One ray's evaluation state, per invocation.
+// One ray's evaluation state, per invocation: in the hardware variant
+// (LISTS_IN_STORAGE) the ends and lists are in this invocation's slot of ray_lists
+// (lists.wgsl: t from word CSG_STATE_AT, tags from CSG_TAGS_AT, list starts from
+// CSG_STARTS_AT, list counts from CSG_COUNTS_AT), since as
+// private arrays (1.2 KiB) they would be scratch memory; the accessors below read and
+// write either place.
 // Mirror of src/cpu/csg.rs::CsgStack — change both.
+// #if !LISTS_IN_STORAGE
 var<private> csg_t: array<f32, CSG_EVENT_CAPACITY>;
 var<private> csg_tag: array<u32, CSG_EVENT_CAPACITY>;
 var<private> csg_list_start: array<u32, CSG_LIST_CAPACITY>;
 var<private> csg_list_count: array<u32, CSG_LIST_CAPACITY>;
+// #endif
 var<private> csg_lists: u32;
+
+// t of interval end k.
+fn csg_t_at(k: u32) -> f32 {
+// #if LISTS_IN_STORAGE
+    return lane_f32(CSG_STATE_AT + k);
+// #else
+    return csg_t[k];
+// #endif
+}
+
+fn set_csg_t(k: u32, t: f32) {
+// #if LISTS_IN_STORAGE
+    set_lane_f32(CSG_STATE_AT + k, t);
+// #else
+    csg_t[k] = t;
+// #endif
+}
+
+// Tag of interval end k.
+fn csg_tag_at(k: u32) -> u32 {
+// #if LISTS_IN_STORAGE
+    return ray_lists[lane_word(CSG_TAGS_AT + k)];
+// #else
+    return csg_tag[k];
+// #endif
+}
+
+fn set_csg_tag(k: u32, tag: u32) {
+// #if LISTS_IN_STORAGE
+    ray_lists[lane_word(CSG_TAGS_AT + k)] = tag;
+// #else
+    csg_tag[k] = tag;
+// #endif
+}
+
+// First end of live list l.
+fn csg_start_at(l: u32) -> u32 {
+// #if LISTS_IN_STORAGE
+    return ray_lists[lane_word(CSG_STARTS_AT + l)];
+// #else
+    return csg_list_start[l];
+// #endif
+}
+
+fn set_csg_start(l: u32, start: u32) {
+// #if LISTS_IN_STORAGE
+    ray_lists[lane_word(CSG_STARTS_AT + l)] = start;
+// #else
+    csg_list_start[l] = start;
+// #endif
+}
+
+// Ends of live list l.
+fn csg_count_at(l: u32) -> u32 {
+// #if LISTS_IN_STORAGE
+    return ray_lists[lane_word(CSG_COUNTS_AT + l)];
+// #else
+    return csg_list_count[l];
+// #endif
+}
+
+fn set_csg_count(l: u32, count: u32) {
+// #if LISTS_IN_STORAGE
+    ray_lists[lane_word(CSG_COUNTS_AT + l)] = count;
+// #else
+    csg_list_count[l] = count;
+// #endif
+}
 
 // The inside intervals of o + t·d (world space) through a leaf instance, in world t:
 // [x, y] and [z, w], each empty when its lo > hi, the second after the first.
@@ -80,7 +155,7 @@ fn csg_push_leaf(index: u32, o: vec3<f32>, d: vec3<f32>) {
     var start = 0u;
     if csg_lists > 0u {
         let top = csg_lists - 1u;
-        start = csg_list_start[top] + csg_list_count[top];
+        start = csg_start_at(top) + csg_count_at(top);
     }
     var count = 0u;
     for (var k = 0u; k < 2u; k++) {
@@ -88,15 +163,15 @@ fn csg_push_leaf(index: u32, o: vec3<f32>, d: vec3<f32>) {
         let hi = intervals[2u * k + 1u];
         if lo <= hi {
             let at = start + count;
-            csg_t[at] = clamp(lo, -CSG_T_LIMIT, CSG_T_LIMIT);
-            csg_tag[at] = index;
-            csg_t[at + 1u] = clamp(hi, -CSG_T_LIMIT, CSG_T_LIMIT);
-            csg_tag[at + 1u] = index;
+            set_csg_t(at, clamp(lo, -CSG_T_LIMIT, CSG_T_LIMIT));
+            set_csg_tag(at, index);
+            set_csg_t(at + 1u, clamp(hi, -CSG_T_LIMIT, CSG_T_LIMIT));
+            set_csg_tag(at + 1u, index);
             count += 2u;
         }
     }
-    csg_list_start[csg_lists] = start;
-    csg_list_count[csg_lists] = count;
+    set_csg_start(csg_lists, start);
+    set_csg_count(csg_lists, count);
     csg_lists += 1u;
 }
 
@@ -118,10 +193,10 @@ fn csg_inside(op: u32, in_a: bool, in_b: bool) -> bool {
 fn csg_combine(op: u32, magnitude: f32) {
     let a_list = csg_lists - 2u;
     let b_list = csg_lists - 1u;
-    let a_start = csg_list_start[a_list];
-    let a_count = csg_list_count[a_list];
-    let b_start = csg_list_start[b_list];
-    let b_count = csg_list_count[b_list];
+    let a_start = csg_start_at(a_list);
+    let a_count = csg_count_at(a_list);
+    let b_start = csg_start_at(b_list);
+    let b_count = csg_count_at(b_list);
     // The result is built after b, then moved down to where a starts.
     let out = b_start + b_count;
     var b_flip = 0u;
@@ -144,10 +219,10 @@ fn csg_combine(op: u32, magnitude: f32) {
         var ta = T_MISS;
         var tb = T_MISS;
         if take_a {
-            ta = csg_t[a_start + ia];
+            ta = csg_t_at(a_start + ia);
         }
         if take_b {
-            tb = csg_t[b_start + ib];
+            tb = csg_t_at(b_start + ib);
         }
         if take_a && take_b {
             let tolerance = CSG_COINCIDENT_RELATIVE * (magnitude + max(abs(ta), abs(tb)));
@@ -160,31 +235,31 @@ fn csg_combine(op: u32, magnitude: f32) {
         var t = ta;
         var tag = 0u;
         if take_a {
-            tag = csg_tag[a_start + ia];
+            tag = csg_tag_at(a_start + ia);
             in_a = !in_a;
             ia += 1u;
         }
         if take_b {
             if !take_a || tb < ta {
                 t = tb;
-                tag = csg_tag[b_start + ib] ^ b_flip;
+                tag = csg_tag_at(b_start + ib) ^ b_flip;
             }
             in_b = !in_b;
             ib += 1u;
         }
         let now = csg_inside(op, in_a, in_b);
         if now != inside {
-            csg_t[out + n] = t;
-            csg_tag[out + n] = tag;
+            set_csg_t(out + n, t);
+            set_csg_tag(out + n, tag);
             n += 1u;
             inside = now;
         }
     }
     for (var k = 0u; k < n; k++) {
-        csg_t[a_start + k] = csg_t[out + k];
-        csg_tag[a_start + k] = csg_tag[out + k];
+        set_csg_t(a_start + k, csg_t_at(out + k));
+        set_csg_tag(a_start + k, csg_tag_at(out + k));
     }
-    csg_list_count[a_list] = n;
+    set_csg_count(a_list, n);
     csg_lists -= 1u;
 }
 
@@ -212,12 +287,12 @@ fn csg_evaluate(inst: PackedInstance, o: vec3<f32>, d: vec3<f32>) {
 // Mirror of src/cpu/csg.rs::intersect_csg — change both.
 fn intersect_csg(inst: PackedInstance, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> CsgHit {
     csg_evaluate(inst, o, d);
-    let count = csg_list_count[0];
+    let count = csg_count_at(0u);
     for (var k = 0u; k < count; k++) {
-        let t = csg_t[k];
+        let t = csg_t_at(k);
         if t > 0.0 {
             if t < t_max {
-                return CsgHit(t, csg_tag[k]);
+                return CsgHit(t, csg_tag_at(k));
             }
             break;
         }

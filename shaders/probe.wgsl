@@ -39,6 +39,7 @@ fn probe(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let pr = probe_rays[index];
+    begin_lane(index);
     let ray = Ray(pr.origin, pr.dir);
     if pr.mode == PROBE_SHADOW_RAY {
         // dir holds the light's position, t_max the shaded surface's magnitude.

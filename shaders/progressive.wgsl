@@ -15,6 +15,7 @@ fn view_sample(@builtin(global_invocation_id) id: vec3<u32>) {
     let n = select(1u, globals.aa_samples, uniform);
     let s = tile.level;
     let p = id.y * tile.side + id.x;
+    begin_lane(p);
     var before = vec3<f32>(0.0);
     if s != 0u {
         before = output[p].xyz;

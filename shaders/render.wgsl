@@ -91,6 +91,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let p = id.y * tile.side + id.x;
+    begin_lane(p);
     output[p] = vec4<f32>(uniform_sample(tile.origin.x + id.x, tile.origin.y + id.y, 0u, 1u, false), 1.0);
 // #if ITERATION_GUARD
     if loop_limiter_tripped() {
@@ -116,6 +117,7 @@ fn uniform_samples(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     let tx = p % tile.size.x;
     let ty = p / tile.size.x;
     let q = ty * tile.side + tx;
+    begin_lane(idx);
     samples[q * nn + s] = vec4<f32>(uniform_sample(tile.origin.x + tx, tile.origin.y + ty, s, n, true), 1.0);
 // #if ITERATION_GUARD
     if loop_limiter_tripped() {

@@ -31,11 +31,69 @@ struct StackEntry {
 // popped (the CPU's has RAY_STACK_SIZE entries and uses the first). A private array sized
 // for rays the scene cannot spawn costs a software adapter memory traffic on every access
 // (llvmpipe keeps a dynamically indexed array in memory, per lane).
+// With dielectrics the stack is RAY_STACK_SIZE entries of 68 bytes: in the hardware
+// variant (LISTS_IN_STORAGE) they are in this invocation's slot of ray_lists
+// (lists.wgsl), since as a private array they would be scratch memory, and the variable
+// is a placeholder that keeps one shape for both variants (store_pending, load_pending).
 // #if REFRACTION
+// #if LISTS_IN_STORAGE
+alias RayStack = u32;
+// #else
 alias RayStack = array<StackEntry, RAY_STACK_SIZE>;
+// #endif
 // #else
 alias RayStack = array<StackEntry, PRIMARY_RAY_STACK_SIZE>;
 // #endif
+
+// Stores entry as the stack's entry k.
+fn store_pending(stack: ptr<function, RayStack>, k: u32, entry: StackEntry) {
+// #if REFRACTION
+// #if LISTS_IN_STORAGE
+    let at = k * STACK_ENTRY_WORDS;
+    set_lane_vec3(at, entry.ray.origin);
+    set_lane_vec3(at + 3u, entry.ray.dir);
+    set_lane_vec3(at + 6u, entry.weight);
+    ray_lists[lane_word(at + 9u)] = entry.depth;
+// #if TEXTURE|BUMP
+    set_lane_f32(at + 10u, entry.cone.x);
+    set_lane_f32(at + 11u, entry.cone.y);
+// #endif
+    for (var m = 0u; m < MEDIUM_STACK_SIZE; m++) {
+        set_lane_f32(at + 12u + m, entry.media.iors[m]);
+    }
+    ray_lists[lane_word(at + 12u + MEDIUM_STACK_SIZE)] = entry.media.count;
+// #else
+    (*stack)[k] = entry;
+// #endif
+// #else
+    (*stack)[k] = entry;
+// #endif
+}
+
+// The stack's entry k, as store_pending stored it.
+fn load_pending(stack: ptr<function, RayStack>, k: u32) -> StackEntry {
+// #if REFRACTION
+// #if LISTS_IN_STORAGE
+    let at = k * STACK_ENTRY_WORDS;
+    var entry: StackEntry;
+    entry.ray = Ray(lane_vec3(at), lane_vec3(at + 3u));
+    entry.weight = lane_vec3(at + 6u);
+    entry.depth = ray_lists[lane_word(at + 9u)];
+// #if TEXTURE|BUMP
+    entry.cone = vec2<f32>(lane_f32(at + 10u), lane_f32(at + 11u));
+// #endif
+    for (var m = 0u; m < MEDIUM_STACK_SIZE; m++) {
+        entry.media.iors[m] = lane_f32(at + 12u + m);
+    }
+    entry.media.count = ray_lists[lane_word(at + 12u + MEDIUM_STACK_SIZE)];
+    return entry;
+// #else
+    return (*stack)[k];
+// #endif
+// #else
+    return (*stack)[k];
+// #endif
+}
 // #endif
 
 // Colour seen along a primary ray, mirrors and dielectrics included (down to max_depth
@@ -66,7 +124,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     // llvmpipe more than the loop around it saves (scrabble +15%, the every-feature
     // kernel 2.6×: docs/journal/2026-11-30-one-hit-no-loop.md), so the camera ray is the loop's first entry.
     var stack: RayStack;
-    stack[0] = first;
+    store_pending(&stack, 0u, first);
     var size = 1u;
     var colour = vec3<f32>(0.0);
     var camera_mirror = false;
@@ -95,7 +153,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
 // #if REFLECTION|REFRACTION
     while size > 0u {
         size -= 1u;
-        let entry = stack[size];
+        let entry = load_pending(&stack, size);
         let hit = closest_hit(entry.ray, T_MISS);
 // #if REFRACTION
         if entry.depth == 0u {
@@ -191,7 +249,7 @@ fn push_secondary_rays(stack: ptr<function, RayStack>, size: ptr<function, u32>,
             transmitted.cone = cone;
 // #endif
             transmitted.media = crossing.media;
-            (*stack)[*size] = transmitted;
+            store_pending(stack, *size, transmitted);
             *size += 1u;
         }
     }
@@ -208,7 +266,7 @@ fn push_secondary_rays(stack: ptr<function, RayStack>, size: ptr<function, u32>,
 // #if TEXTURE|BUMP
             next.cone = cone;
 // #endif
-            (*stack)[*size] = next;
+            store_pending(stack, *size, next);
             *size += 1u;
         }
     }

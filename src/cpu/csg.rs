@@ -45,7 +45,9 @@ pub struct CsgHit {
     pub part: u32,
 }
 
-/// One ray's evaluation state: the interval ends of every live list, stacked.
+/// One ray's evaluation state: the interval ends of every live list, stacked. (The GPU's
+/// hardware variant keeps the same arrays in a storage slot per ray, `src/gpu/lists.rs`;
+/// where they live changes no step.)
 #[derive(Clone, Debug)]
 // Mirror of the csg_* private variables of shaders/csg.wgsl — change both.
 pub struct CsgStack {

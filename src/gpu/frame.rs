@@ -11,8 +11,8 @@
 use super::buffers::{scene_entries, GpuTile, SceneBuffers};
 use super::context::GpuContext;
 use super::pipeline::{
-    CompiledPipeline, GUARD_BINDING, OUTPUT_BINDING, SAMPLES_BINDING, SPLIT_BINDING, TILE_BINDING,
-    WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
+    CompiledPipeline, GUARD_BINDING, LISTS_BINDING, OUTPUT_BINDING, SAMPLES_BINDING, SPLIT_BINDING,
+    TILE_BINDING, WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
 };
 use super::plan::{Dispatch, FramePlan, Workgroups};
 use std::num::NonZeroU64;
@@ -49,6 +49,8 @@ pub struct Frame<'a> {
     work_args: wgpu::Buffer,
     samples: wgpu::Buffer,
     work_list: wgpu::Buffer,
+    /// The per-ray lists' slots (`super::lists`), bound where the kernel has them.
+    lists: wgpu::Buffer,
     pub blocks: Vec<Block>,
     /// Bytes of output, then of guard flags, then 8 per timestamp in `staging`.
     pub output_bytes: u64,
@@ -182,6 +184,7 @@ impl<'a> Frame<'a> {
         let split = scratch(plan.split_len * 4, storage);
         let work_counts = buffer(ctx, "work counts", plan.work_levels * 4, storage);
         let work_list = scratch(plan.split_len * 4, storage);
+        let lists = scratch(plan.lists_len * 4, U::STORAGE);
         let work_args = buffer(
             ctx,
             "work args",
@@ -216,6 +219,13 @@ impl<'a> Frame<'a> {
                 entries.extend(
                     own.map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
                 );
+                if ctx.kernel.lists_in_storage {
+                    // Exactly the plan's slots: the kernel counts them by the binding's length.
+                    entries.push(wgpu::BindGroupEntry {
+                        binding: LISTS_BINDING,
+                        resource: binding(&lists, 0, plan.lists_len.max(1) * 4),
+                    });
+                }
                 ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("glint dispatch"),
                     layout,
@@ -236,6 +246,7 @@ impl<'a> Frame<'a> {
             work_args,
             samples,
             work_list,
+            lists,
             blocks,
             output_bytes,
             guard_bytes,
@@ -364,6 +375,7 @@ impl Drop for Frame<'_> {
             &self.samples,
             &self.split,
             &self.work_list,
+            &self.lists,
             &self.staging,
         ];
         self.ctx.scratch.give_back(buffers.map(|b| b.clone()));

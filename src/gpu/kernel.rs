@@ -23,6 +23,11 @@ pub struct KernelConfig {
     /// Whether the scene's tables are bound as read-only storage textures
     /// (`STORAGE_TABLES`) rather than sampled ones: the same texels, read by another path.
     pub storage_tables: bool,
+    /// Whether the per-ray lists that do not fit registers (the dielectric ray stack, the
+    /// CSG interval lists) live in a storage buffer, one slot per invocation
+    /// (`LISTS_IN_STORAGE`, `src/gpu/lists.rs`), rather than in private arrays, which a
+    /// GPU compiler puts in scratch memory.
+    pub lists_in_storage: bool,
 }
 
 impl Default for KernelConfig {
@@ -33,6 +38,7 @@ impl Default for KernelConfig {
             mailboxes: Mailboxes::Full,
             iteration_guard: false,
             storage_tables: false,
+            lists_in_storage: true,
         }
     }
 }
@@ -53,6 +59,11 @@ impl KernelConfig {
     ///   docs/journal/2026-11-29-gpu-kernel-variant-measured.md); the full caches elsewhere (not yet measured on hardware).
     /// - iteration guard: on software adapters, whose gallivm caps the loop iterations of
     ///   one invocation.
+    /// - lists in storage: on hardware adapters, where RADV puts a private array over
+    ///   256 bytes in scratch memory (glass.lua 60 KiB a wave for NAVI21, issue 38); on
+    ///   software adapters private arrays stay, since llvmpipe runs a storage-buffer access
+    ///   at lane-varying addresses as a loop over the lanes (docs/gpu.md) and keeps a
+    ///   private array in memory anyway.
     /// - storage tables: on software adapters that bind as many storage textures as the
     ///   scene has tables. llvmpipe's image load skips the sampler's paths (a random read
     ///   measured 22–30% faster), and fetches are most of a frame there: a macho-cows
@@ -70,6 +81,7 @@ impl KernelConfig {
             },
             iteration_guard: software,
             storage_tables: software && limits.max_storage_textures_per_shader_stage >= tables,
+            lists_in_storage: !software,
         }
     }
 
@@ -128,6 +140,9 @@ impl fmt::Display for KernelConfig {
         if self.storage_tables {
             write!(f, ", storage-texture tables")?;
         }
+        if self.lists_in_storage {
+            write!(f, ", ray lists in storage")?;
+        }
         Ok(())
     }
 }
@@ -164,6 +179,7 @@ mod tests {
         );
         let hard = KernelConfig::for_adapter(wgpu::DeviceType::DiscreteGpu, &limits);
         assert!(hard.mailboxes == Mailboxes::Full && !hard.iteration_guard);
+        assert!(hard.lists_in_storage && !soft.lists_in_storage);
         assert_eq!(hard.workgroup_side, 8);
     }
 

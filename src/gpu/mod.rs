@@ -10,6 +10,7 @@ pub mod dump;
 pub mod error;
 pub mod frame;
 pub mod kernel;
+pub mod lists;
 pub mod pipeline;
 pub mod pipeline_cache;
 pub mod plan;

@@ -31,6 +31,9 @@ pub const GUARD_BINDING: u32 = 13;
 pub const WORK_COUNTS_BINDING: u32 = 17;
 pub const WORK_LIST_BINDING: u32 = 18;
 pub const WORK_ARGS_BINDING: u32 = 19;
+/// Both modules, in kernels with `lists_in_storage`: the per-ray lists' slots
+/// (`src/gpu/lists.rs`).
+pub const LISTS_BINDING: u32 = 25;
 
 fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
@@ -80,6 +83,9 @@ pub fn layout_entries(entry: Entry, kernel: KernelConfig) -> Vec<wgpu::BindGroup
     } else {
         entries.push(storage(PROBE_RAYS_BINDING, true));
         entries.push(storage(PROBE_RESULTS_BINDING, false));
+    }
+    if kernel.lists_in_storage {
+        entries.push(storage(LISTS_BINDING, false));
     }
     entries
 }

@@ -10,8 +10,9 @@
 //! submits and host waits per frame does not grow with the image.
 
 use super::buffers::GpuTile;
+use super::lists::LIST_BUDGET_BYTES;
 use super::shader::Entry;
-use crate::constants::{AA_ADAPTIVE, AA_UNIFORM, GPU_FRAME_PARTS};
+use crate::constants::{AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, GPU_FRAME_PARTS};
 use crate::pack::PackedGlobals;
 use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
 
@@ -105,6 +106,11 @@ pub struct AdapterBounds {
     /// Side of the 2-D kernels' square workgroup (the 1-D kernels run its square):
     /// the context's `KernelConfig::workgroup_side`.
     pub workgroup_side: u32,
+    /// Words of per-ray lists each tracing invocation keeps in a storage slot
+    /// (`super::lists::LaneLists::words`; 0: none): chunks are then also bounded so that
+    /// no tracing dispatch has more invocations than `LIST_BUDGET_BYTES` (or one
+    /// binding) holds slots.
+    pub lane_list_words: u32,
 }
 
 /// The frame's chunks, their grouping into submits and the scratch arrays' lengths.
@@ -121,6 +127,9 @@ pub struct FramePlan {
     pub split_len: u64,
     /// Levels of adaptive AA's work counts (6 u32 of indirect arguments each).
     pub work_levels: u64,
+    /// u32 words of the per-ray lists' slots: `lane_list_words` times the most tracing
+    /// invocations of any dispatch (0 without lists in storage).
+    pub lists_len: u64,
 }
 
 /// Largest power of two L with (L + 1)² vec4 lattice points in `max_binding` bytes.
@@ -130,6 +139,27 @@ pub fn lattice_side(max_binding: u64) -> u32 {
         side *= 2;
     }
     side
+}
+
+/// Most tracing invocations (list slots) one dispatch may have under `bounds`.
+fn slot_budget(bounds: AdapterBounds) -> u64 {
+    match bounds.lane_list_words as u64 {
+        0 => u64::MAX,
+        words => (bounds.max_binding.min(LIST_BUDGET_BYTES) / (4 * words)).max(1),
+    }
+}
+
+/// Tracing invocations of adaptive AA's busiest pass over a tile of `w` × `h` pixels
+/// laid out `side` wide, at depth `depth`: the corner pass, or the deepest midpoint
+/// pass (AA_SPLIT_POINTS per square of level depth − 1, of which the tile has at most
+/// side²·4^(depth − 1)).
+fn adaptive_slots(w: u32, h: u32, side: u32, depth: u32) -> u64 {
+    let (w, h) = (w as u64, h as u64);
+    let corners = (w + 1) * (h + 1) + w * h;
+    match depth {
+        0 => corners,
+        d => corners.max(AA_SPLIT_POINTS as u64 * (side as u64).pow(2) * 4u64.pow(d - 1)),
+    }
 }
 
 /// Bands of `window`'s full width of at most `rows` rows, at least `min_bands` of them.
@@ -182,10 +212,18 @@ impl FramePlan {
         // (16 B a pixel) one binding.
         let dispatch_rows = bounds.max_workgroups.saturating_mul(bounds.workgroup_side);
         let block_rows = (bounds.max_binding / (16 * w as u64)).min(u32::MAX as u64) as u32;
+        // Rows whose tracing invocations have a list slot each (per pixel, or per sample).
+        let slots = slot_budget(bounds);
+        let slot_rows =
+            |per_pixel: u64| (slots / (per_pixel * w as u64)).clamp(1, u32::MAX as u64) as u32;
         let parts = GPU_FRAME_PARTS.min(h) as usize;
         let (chunks, samples_len, split_len) = match mode {
             Mode::None => (
-                bands(window, dispatch_rows.min(block_rows), parts as u32),
+                bands(
+                    window,
+                    dispatch_rows.min(block_rows).min(slot_rows(1)),
+                    parts as u32,
+                ),
                 1,
                 1,
             ),
@@ -193,6 +231,7 @@ impl FramePlan {
                 let per_row = w as u64 * (n * n) as u64;
                 let sample_rows = bounds.max_binding / (16 * per_row);
                 let rows = (sample_rows.min(u32::MAX as u64) as u32).min(block_rows);
+                let rows = rows.min(slot_rows((n * n) as u64));
                 let chunks = bands(window, rows.min(dispatch_rows), parts as u32);
                 let rows = chunks.iter().map(|c| c.size[1]).max().unwrap_or(1);
                 (chunks, per_row * rows as u64, 1)
@@ -201,7 +240,10 @@ impl FramePlan {
                 let side = (lattice_side(bounds.max_binding) >> depth).max(1);
                 // At most half the image's longer side, so a frame has a few chunks to
                 // spread over its parts (and a small frame gets a small lattice).
-                let side = side.min(w.max(h).div_ceil(2).next_power_of_two());
+                let mut side = side.min(w.max(h).div_ceil(2).next_power_of_two());
+                while side > 1 && adaptive_slots(side, side, side, depth) > slots {
+                    side /= 2;
+                }
                 let lattice = (side as u64 * (1 << depth) as u64 + 1).pow(2);
                 let chunks = squares(window, side);
                 (chunks, lattice, split_offset(side, depth).max(1) as u64)
@@ -212,6 +254,15 @@ impl FramePlan {
             Mode::Adaptive { depth } => depth.max(1) as u64,
             _ => 1,
         };
+        let chunk_slots = |c: &Chunk| match mode {
+            Mode::None => c.block_pixels(),
+            Mode::Uniform { n } => c.size[0] as u64 * c.size[1] as u64 * (n * n) as u64,
+            Mode::Adaptive { depth } => adaptive_slots(c.size[0], c.size[1], c.side, depth),
+        };
+        let lists_len = match bounds.lane_list_words {
+            0 => 0,
+            words => words as u64 * chunks.iter().map(chunk_slots).max().unwrap_or(0),
+        };
         FramePlan {
             mode,
             chunks,
@@ -219,6 +270,7 @@ impl FramePlan {
             samples_len,
             split_len,
             work_levels,
+            lists_len,
         }
     }
 }
@@ -325,6 +377,7 @@ mod tests {
         max_binding: 128 << 20,
         max_workgroups: 65_535,
         workgroup_side: 8,
+        lane_list_words: 0,
     };
 
     /// Every pixel in exactly one chunk, every chunk in exactly one part.
@@ -375,6 +428,54 @@ mod tests {
             }
         }
         assert_eq!(lattice_side(128 << 20), 2048);
+    }
+
+    /// With per-ray lists in storage (scrabble's 562 words a slot), every tracing
+    /// invocation of every dispatch has a slot of its own (main: a chunk pixel; uniform
+    /// AA: a sample; adaptive AA: a corner-pass point or AA_SPLIT_POINTS per square of a
+    /// level), and the slots fit one binding; without lists the plan is as before.
+    #[test]
+    fn every_tracing_invocation_has_a_list_slot() {
+        let words = 562u64;
+        let bounds = AdapterBounds {
+            lane_list_words: words as u32,
+            ..LAVAPIPE
+        };
+        for mode in [0, AA_UNIFORM, AA_ADAPTIVE] {
+            for (w, h) in [(512, 512), (2048, 2048), (37, 5)] {
+                let g = globals(w, h, mode);
+                let plan = FramePlan::new(&g, bounds);
+                assert_covers(&plan, w, h);
+                assert!(
+                    plan.lists_len * 4 <= LAVAPIPE.max_binding,
+                    "{:?}",
+                    plan.mode
+                );
+                let slots = plan.lists_len / words;
+                for (k, c) in plan.chunks.iter().enumerate() {
+                    for d in plan.dispatches(k, 2, bounds) {
+                        let traced = match (plan.mode, plan.mode.entries()[d.entry]) {
+                            (_, Entry::Render) => c.block_pixels(),
+                            (_, Entry::UniformSamples | Entry::AdaptiveCorners) => {
+                                d.params.items as u64
+                            }
+                            (_, Entry::AdaptiveMidpoints) => {
+                                8 * (c.side as u64 * (1 << d.params.level)).pow(2)
+                            }
+                            _ => 0,
+                        };
+                        assert!(
+                            traced <= slots,
+                            "{w}×{h} {:?} {d:?}: {traced} > {slots}",
+                            plan.mode
+                        );
+                    }
+                }
+                let unbounded = FramePlan::new(&g, LAVAPIPE);
+                assert_eq!(unbounded.lists_len, 0);
+                assert!(unbounded.chunks.len() <= plan.chunks.len());
+            }
+        }
     }
 
     #[test]

@@ -21,6 +21,7 @@
 use super::buffers::{take_mapped, upload_scene, LIMITER_SENTINEL};
 use super::context::GpuContext;
 use super::frame::Frame;
+use super::lists::LaneLists;
 use super::pipeline::{get_pipeline, CompiledPipeline};
 use super::pipeline_cache::CompileSummary;
 use super::plan::{AdapterBounds, Dispatch, FramePlan};
@@ -142,6 +143,7 @@ pub fn render_gpu(
             .min(ctx.limits.max_buffer_size),
         max_workgroups: ctx.limits.max_compute_workgroups_per_dimension,
         workgroup_side: ctx.kernel.workgroup_side,
+        lane_list_words: LaneLists::of(scene.features, ctx.kernel).words(),
     };
     let g = &scene.globals;
     let window = options.window.unwrap_or(PixelRect::full(g.width, g.height));

@@ -5,14 +5,17 @@
 //! in upper case (`-` as `_`: `AREA_LIGHT`), or several joined by `|` (any of them),
 //! optionally negated by a leading `!`.
 //! Besides the scene's features, the adapter's [`KernelConfig`]: the workgroup size (the
-//! `WORKGROUP_SIZE` and `LINEAR_WORKGROUP_SIZE` constants, emitted after the prelude) and
-//! three flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
-//! check, see `shaders/render.wgsl`), and `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
+//! `WORKGROUP_SIZE` and `LINEAR_WORKGROUP_SIZE` constants, emitted after the prelude with
+//! the per-ray lists' layout, `src/gpu/lists.rs`) and
+//! its flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
+//! check, see `shaders/render.wgsl`), `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
 //! traversal's per-ray mailboxes, all of them or one item slot: see
-//! `shaders/traverse.wgsl`) and `STORAGE_TABLES` (the scene's tables bound as read-only
-//! storage textures: see `shaders/layout.wgsl`).
+//! `shaders/traverse.wgsl`), `STORAGE_TABLES` (the scene's tables bound as read-only
+//! storage textures: see `shaders/layout.wgsl`) and `LISTS_IN_STORAGE` (per-ray lists in
+//! a storage buffer: see `shaders/lists.wgsl`).
 
 use super::kernel::KernelConfig;
+use super::lists::LaneLists;
 use crate::constants::wgsl_prelude;
 use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
@@ -80,6 +83,7 @@ impl Entry {
 /// The shader files, in module order (WGSL does not care about order; readers do).
 const COMMON: &[(&str, &str)] = &[
     ("layout.wgsl", include_str!("../../shaders/layout.wgsl")),
+    ("lists.wgsl", include_str!("../../shaders/lists.wgsl")),
     ("rng.wgsl", include_str!("../../shaders/rng.wgsl")),
     ("ray.wgsl", include_str!("../../shaders/ray.wgsl")),
     ("math.wgsl", include_str!("../../shaders/math.wgsl")),
@@ -157,6 +161,7 @@ fn kernel_prelude(kernel: KernelConfig) -> String {
 /// The full WGSL source for `entry` specialised to `features` and `kernel`.
 pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig) -> String {
     let mut out = wgsl_prelude() + &kernel_prelude(kernel);
+    out += &LaneLists::of(features, kernel).wgsl_prelude();
     out += &format!("// Specialised for features: {features}; kernel: {kernel}\n");
     let files = COMMON
         .iter()
@@ -227,11 +232,12 @@ pub fn preprocess_with(
 type KernelFlag = fn(KernelConfig) -> bool;
 
 /// The kernel variant's flags a shader may test with `#if`, and whether `kernel` sets each.
-const KERNEL_FLAGS: [(&str, KernelFlag); 4] = [
+const KERNEL_FLAGS: [(&str, KernelFlag); 5] = [
     ("ITERATION_GUARD", |k| k.iteration_guard),
     ("MAILBOXES", |k| k.mailboxes == Mailboxes::Full),
     ("LAST_ITEM_MAILBOX", |k| k.mailboxes == Mailboxes::LastItem),
     ("STORAGE_TABLES", |k| k.storage_tables),
+    ("LISTS_IN_STORAGE", |k| k.lists_in_storage),
 ];
 
 /// Evaluates `NAME`, `A|B` or `!A|B` against `features` and `kernel`'s flags.

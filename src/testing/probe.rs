@@ -13,7 +13,10 @@ use crate::cpu::smooth::smooth_normal;
 use crate::cpu::surface::surface_at;
 use crate::cpu::traverse::{any_hit, closest_hit, NoCounters};
 use crate::gpu::buffers::{read_back, scene_entries, upload_scene};
-use crate::gpu::pipeline::{get_pipeline, PROBE_RAYS_BINDING, PROBE_RESULTS_BINDING};
+use crate::gpu::lists::LaneLists;
+use crate::gpu::pipeline::{
+    get_pipeline, LISTS_BINDING, PROBE_RAYS_BINDING, PROBE_RESULTS_BINDING,
+};
 use crate::gpu::shader::Entry;
 use crate::gpu::{GpuContext, GpuError};
 use crate::pack::{PackedScene, SceneFeatures};
@@ -140,6 +143,20 @@ pub fn gpu_probe(
             binding: PROBE_RESULTS_BINDING,
             resource: results.as_entire_binding(),
         });
+        // One list slot per ray (src/gpu/lists.rs), where the kernel keeps lists in storage.
+        let words = LaneLists::of(scene.features, ctx.kernel).words().max(1) as u64;
+        let lists = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("probe ray lists"),
+            size: rays.len() as u64 * words * 4,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        if ctx.kernel.lists_in_storage {
+            entries.push(wgpu::BindGroupEntry {
+                binding: LISTS_BINDING,
+                resource: lists.as_entire_binding(),
+            });
+        }
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("glint probe"),
             layout: &compiled.layout,

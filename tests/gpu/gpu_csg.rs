@@ -179,14 +179,20 @@ fn probes_union_intersection_difference() {
 #[test]
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn probes_nested() {
-    let Some(ctx) = gpu_context() else { return };
-    check_all(&ctx, "nested", &scene(120, None, 3, GridMode::Off), 220);
-    check_all(
-        &ctx,
-        "nested, grid",
-        &scene(121, None, 3, GridMode::Auto),
-        221,
-    );
+    let Some(mut ctx) = gpu_context() else { return };
+    // The CSG lists as private arrays and in storage slots (src/gpu/lists.rs), whichever
+    // the adapter chose.
+    let chosen = ctx.kernel;
+    for lists_in_storage in [chosen.lists_in_storage, !chosen.lists_in_storage] {
+        ctx.kernel.lists_in_storage = lists_in_storage;
+        check_all(&ctx, "nested", &scene(120, None, 3, GridMode::Off), 220);
+        check_all(
+            &ctx,
+            "nested, grid",
+            &scene(121, None, 3, GridMode::Auto),
+            221,
+        );
+    }
 }
 
 /// A row of CSG objects of one operation — sphere ○ cube, cylinder ○ cone, torus ○

@@ -186,7 +186,8 @@ fn every_specialisation_validates() {
     let mut failures = Vec::new();
     for features in sets {
         // Every render kernel is in one module, so Render covers them all; each kernel
-        // variant an adapter may choose (hardware: mailboxes, no guard, sampled tables;
+        // variant an adapter may choose (hardware: mailboxes, no guard, sampled tables,
+        // per-ray lists in storage;
         // software: one mailbox slot, the guard and storage-texture tables; a smaller
         // workgroup where the adapter's limits ask
         // for it), and the variant without mailboxes the tests compare them with. The
@@ -196,6 +197,7 @@ fn every_specialisation_validates() {
             mailboxes: Mailboxes::LastItem,
             iteration_guard: true,
             storage_tables: true,
+            lists_in_storage: false,
             ..hardware
         };
         let small = KernelConfig {
@@ -234,6 +236,13 @@ fn every_specialisation_validates() {
                 failures.push(format!(
                     "[{features}] {entry:?}: {} not resolved",
                     kernel.mailboxes
+                ));
+            } else if kernel.lists_in_storage
+                != source.contains("var<storage, read_write> ray_lists")
+            {
+                failures.push(format!(
+                    "[{features}] {entry:?}: lists in storage {} not resolved",
+                    kernel.lists_in_storage
                 ));
             } else if !source.contains(&side) {
                 failures.push(format!("[{features}] {entry:?}: no `{side}`"));
@@ -566,7 +575,7 @@ fn csg_code_only_with_csg() {
         "fn csg_push_leaf(",
         "fn leaf_intervals(",
         "fn csg_surface(",
-        "var<private> csg_t:",
+        "fn csg_t_at(",
         "== KIND_CSG {",
     ];
     for features in sets {

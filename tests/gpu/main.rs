@@ -18,6 +18,7 @@ mod gpu_farm_tiles;
 mod gpu_frame;
 mod gpu_images;
 mod gpu_layout;
+mod gpu_lists;
 mod gpu_probes;
 mod gpu_refraction;
 mod gpu_scrabble;

@@ -176,6 +176,86 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "the torus benchmark's kernel; on the CPU, src/bench/torus.rs loops over the \
          rays calling the same solvers",
     ),
+    (
+        "shaders/lists.wgsl",
+        "begin_lane",
+        "claims the invocation's slot of the per-ray lists' storage buffer (src/gpu/lists.rs); the CPU's lists are arrays of its own",
+    ),
+    (
+        "shaders/lists.wgsl",
+        "lane_word",
+        "where a word of the invocation's list slot lies in the storage buffer (src/gpu/lists.rs); the CPU indexes its arrays",
+    ),
+    (
+        "shaders/lists.wgsl",
+        "lane_f32",
+        "reads a float of the invocation's list slot; the CPU indexes its arrays",
+    ),
+    (
+        "shaders/lists.wgsl",
+        "set_lane_f32",
+        "writes a float of the invocation's list slot; the CPU indexes its arrays",
+    ),
+    (
+        "shaders/lists.wgsl",
+        "lane_vec3",
+        "reads three floats of the invocation's list slot; the CPU indexes its arrays",
+    ),
+    (
+        "shaders/lists.wgsl",
+        "set_lane_vec3",
+        "writes three floats of the invocation's list slot; the CPU indexes its arrays",
+    ),
+    (
+        "shaders/trace.wgsl",
+        "store_pending",
+        "stores a ray stack entry in a private array or the list slot (src/gpu/lists.rs); the CPU writes `stack[size]`",
+    ),
+    (
+        "shaders/trace.wgsl",
+        "load_pending",
+        "reads a ray stack entry from a private array or the list slot (src/gpu/lists.rs); the CPU reads `stack[size]`",
+    ),
+    (
+        "shaders/csg.wgsl",
+        "csg_t_at",
+        "reads CsgStack::t[k] from a private array or the list slot (src/gpu/lists.rs); the CPU indexes the array",
+    ),
+    (
+        "shaders/csg.wgsl",
+        "set_csg_t",
+        "writes CsgStack::t[k] (see csg_t_at)",
+    ),
+    (
+        "shaders/csg.wgsl",
+        "csg_tag_at",
+        "reads CsgStack::tag[k] from a private array or the list slot; the CPU indexes the array",
+    ),
+    (
+        "shaders/csg.wgsl",
+        "set_csg_tag",
+        "writes CsgStack::tag[k] (see csg_tag_at)",
+    ),
+    (
+        "shaders/csg.wgsl",
+        "csg_start_at",
+        "reads CsgStack::list_start[l] from a private array or the list slot; the CPU indexes the array",
+    ),
+    (
+        "shaders/csg.wgsl",
+        "set_csg_start",
+        "writes CsgStack::list_start[l] (see csg_start_at)",
+    ),
+    (
+        "shaders/csg.wgsl",
+        "csg_count_at",
+        "reads CsgStack::list_count[l] from a private array or the list slot; the CPU indexes the array",
+    ),
+    (
+        "shaders/csg.wgsl",
+        "set_csg_count",
+        "writes CsgStack::list_count[l] (see csg_count_at)",
+    ),
 ];
 
 /// Types of Rust parameters that a WGSL twin reads from module scope instead (unless the
@@ -188,7 +268,10 @@ const MODULE_SCOPE: &[(&str, &str)] = &[
     ("PackedGlobals", "the `globals` uniform"),
     ("AdaptiveTile", "the `tile` uniform"),
     ("Lattice", "the `samples` and `split` storage buffers"),
-    ("CsgStack", "the csg_* private variables"),
+    (
+        "CsgStack",
+        "the csg_* private variables or the list slot (src/gpu/lists.rs)",
+    ),
     ("MediumStack", "the `shading_media` private variable"),
     ("[u32]", "the `texel_table` texture"),
     (
