@@ -179,7 +179,8 @@ impl Session {
         } else {
             frames_to_converge(&self.scene.packed)
         };
-        self.status.restarted(self.stride);
+        self.status
+            .restarted(self.stride, self.moving_until.is_some());
         self.window.request_redraw();
     }
 

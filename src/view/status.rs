@@ -54,11 +54,14 @@ impl Status {
         self.last_full_frame
     }
 
-    pub fn restarted(&mut self, stride: u32) {
+    /// The image restarted at `stride`; `moving`: because the camera is moving (a move
+    /// is reported when it ends even where its frames needed no preview stride: a small
+    /// or fast image moves at full resolution).
+    pub fn restarted(&mut self, stride: u32, moving: bool) {
         self.refine_frames = 0;
         self.refine_time = Duration::ZERO;
         self.refine_rays = 0;
-        if stride > 1 && self.move_since.is_none() {
+        if moving && self.move_since.is_none() {
             self.move_since = Some(Instant::now());
             self.move_frames = 0;
         }
@@ -73,9 +76,11 @@ impl Status {
             self.first_image = Some(t);
             eprintln!("glint view: first image after {} ms", t.as_millis());
         }
-        if stride > 1 {
+        if self.move_since.is_some() {
             self.move_frames += 1;
             self.move_last = Some(Instant::now());
+        }
+        if stride > 1 {
             return;
         }
         self.last_full_frame = Some(time);
