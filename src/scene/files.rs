@@ -190,8 +190,7 @@ pub fn excerpt(text: &str) -> String {
 mod tests {
     #[test]
     fn record_reads_lists_each_file_tried_once_found_or_not() {
-        let dir = std::env::temp_dir().join(format!("glint-reads-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::testing::scratch::temp_dir("reads");
         let (a, missing) = (dir.join("a.lua"), dir.join("missing.obj"));
         std::fs::write(&a, "x").unwrap();
         let ((), reads) = record_reads(|| {
@@ -203,7 +202,6 @@ mod tests {
         // Nothing is recorded outside a recording.
         let ((), none) = record_reads(|| ());
         assert!(none.is_empty());
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     use super::*;

@@ -96,8 +96,7 @@ mod tests {
 
     #[test]
     fn a_rewrite_a_new_file_and_a_removal_are_changes() {
-        let dir = std::env::temp_dir().join(format!("glint-watch-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::testing::scratch::temp_dir("watch");
         let (a, b) = (dir.join("a.lua"), dir.join("b.obj"));
         std::fs::write(&a, "x").unwrap();
         let list = WatchList::default();
@@ -110,6 +109,5 @@ mod tests {
         assert!(list.changed(), "a file the run looked for appeared");
         std::fs::remove_file(&a).unwrap();
         assert!(list.changed());
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
