@@ -343,7 +343,7 @@ fn escape_and_the_window_managers_close_end_the_view() {
     let dir = temp_dir("close");
     write_module_scene(&dir, "{0.5, 0.5, 0.5}");
     for how in ["Escape", "close"] {
-        // A server each: an X server resets when its last client leaves.
+        // A server each: the second view starts on a display the first left nothing on.
         let x = Xvfb::start();
         let mut view = View::start(&x, &dir, &["scene.lua", "--aa", "none"]);
         let window = view.window(&x, "glint view");

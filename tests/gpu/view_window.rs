@@ -1,9 +1,9 @@
 //! The harness of `glint view`'s window tests: a private Xvfb server per test (a free
-//! display number chosen by Xvfb itself, `-displayfd`), a `glint view` process on it
-//! whose stdout and stderr lines are collected as they come, input through xdotool, the
-//! window's pixels through xwd and ImageMagick, and the window manager's close
-//! (WM_DELETE_WINDOW) sent as a client message with x11rb, since Xvfb runs no window
-//! manager. Every wait is bounded, and dropping a handle kills its process (no orphans).
+//! display number chosen by Xvfb itself, `-displayfd`; never reset, `-noreset`), a `glint
+//! view` process on it whose stdout and stderr lines are collected as they come, input
+//! through xdotool, the window's pixels through xwd and ImageMagick, and the window
+//! manager's close (WM_DELETE_WINDOW) sent as a client message with x11rb, since Xvfb
+//! runs no window manager. Every wait is bounded, and dropping a handle kills its process (no orphans).
 //! A wait for the view's window ends as soon as the view has ended, and its failure says
 //! how the view ended (or that it still runs), what it printed, and which windows the
 //! display has.
@@ -42,6 +42,12 @@ impl Xvfb {
                 "800x600x24",
                 "-nolisten",
                 "tcp",
+                // By default an X server resets when its last client leaves, and refuses a
+                // client that connects during the reset. The harness's own short-lived
+                // clients (each `xdotool search` while it waits for the window) were often
+                // the last to leave just before `glint view` connected, which then failed
+                // with "Failed to open connection to X server" (docs/testing.md).
+                "-noreset",
             ])
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
@@ -311,6 +317,8 @@ impl View {
         let started = Instant::now();
         loop {
             if let Some(id) = x.windows(name).into_iter().next() {
+                // The view's start-up as the tests see it (shown with `--nocapture` or
+                // beside a failure): the journal's measure of the window's delay.
                 eprintln!(
                     "view_window: window '{name}' after {} ms",
                     started.elapsed().as_millis()
