@@ -5,7 +5,8 @@
 //! (c) saving a file the script read changes the window within a bounded time;
 //! (d) a broken edit keeps the last image and shows the error, a fix brings it back;
 //! (e) Esc and the window manager's close end the process cleanly.
-//! Plus the device-side sums against the tracers' own renders, without a window.
+//! Plus the device-side sums against the tracers' own renders, without a window, and the
+//! harness's own failure when a view ends before its window opens.
 
 use super::view_window::{View, Xvfb, WAIT};
 use crate::common::{gpu_context, load_packed, root};
@@ -159,7 +160,7 @@ fn a_mouse_drag_orbits_the_printed_camera() {
     let x = Xvfb::start();
     let dir = temp_dir("orbit");
     let demo = root().join("scenes/demo.lua");
-    let view = View::start(
+    let mut view = View::start(
         &x,
         &dir,
         &[
@@ -172,7 +173,7 @@ fn a_mouse_drag_orbits_the_printed_camera() {
             "none",
         ],
     );
-    let window = x.window("glint view");
+    let window = view.window(&x, "glint view");
     view.wait_line(&view.stderr, 0, "image complete", WAIT);
     x.key(&window, "c");
     let (_, before) = view.wait_line(&view.stdout, 0, "eye, view, up, fov", WAIT);
@@ -273,8 +274,8 @@ fn saving_a_module_the_script_required_shows_the_change() {
     let x = Xvfb::start();
     let dir = temp_dir("reload");
     write_module_scene(&dir, "{0.9, 0.1, 0.1}");
-    let view = View::start(&x, &dir, &["scene.lua", "--backend", "gpu", "--aa", "none"]);
-    let window = x.window("glint view");
+    let mut view = View::start(&x, &dir, &["scene.lua", "--backend", "gpu", "--aa", "none"]);
+    let window = view.window(&x, "glint view");
     view.wait_line(&view.stderr, 0, "image complete", WAIT);
     wait_for_centre(&x, &window, |c| c[0] > 150 && c[1] < 60, RELOAD_LIMIT);
     // Rewrite the module (not the script): the ball turns green.
@@ -293,8 +294,8 @@ fn a_broken_edit_keeps_the_image_and_shows_the_error() {
     let x = Xvfb::start();
     let dir = temp_dir("broken");
     write_module_scene(&dir, "{0.9, 0.1, 0.1}");
-    let view = View::start(&x, &dir, &["scene.lua", "--backend", "gpu", "--aa", "none"]);
-    let window = x.window("glint view");
+    let mut view = View::start(&x, &dir, &["scene.lua", "--backend", "gpu", "--aa", "none"]);
+    let window = view.window(&x, "glint view");
     view.wait_line(&view.stderr, 0, "image complete", WAIT);
     wait_for_centre(&x, &window, |c| c[0] > 150, RELOAD_LIMIT);
     let before = x.capture(&window);
@@ -342,10 +343,10 @@ fn escape_and_the_window_managers_close_end_the_view() {
     let dir = temp_dir("close");
     write_module_scene(&dir, "{0.5, 0.5, 0.5}");
     for how in ["Escape", "close"] {
-        // A server each: an X server resets when its last client leaves.
+        // A server each: the second view starts on a display the first left nothing on.
         let x = Xvfb::start();
         let mut view = View::start(&x, &dir, &["scene.lua", "--aa", "none"]);
-        let window = x.window("glint view");
+        let window = view.window(&x, "glint view");
         view.wait_line(&view.stderr, 0, "image complete", WAIT);
         match how {
             "Escape" => x.key(&window, "Escape"),
@@ -364,6 +365,35 @@ fn escape_and_the_window_managers_close_end_the_view() {
             std::thread::sleep(Duration::from_millis(100));
         }
     }
+}
+
+/// The harness itself: a view that ends before its window opens fails the wait for the
+/// window at once, not after [`WAIT`], saying how it ended and what it printed.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn a_view_that_ends_early_fails_the_window_wait_with_its_status_and_output() {
+    let x = Xvfb::start();
+    let dir = temp_dir("ends");
+    std::fs::write(dir.join("bad.lua"), "error('no scene in here')\n").unwrap();
+    let mut view = View::start(&x, &dir, &["bad.lua"]);
+    let started = Instant::now();
+    let failure = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        view.window(&x, "glint view")
+    }))
+    .expect_err("a view whose script fails opens no window");
+    let message = failure
+        .downcast_ref::<String>()
+        .expect("a formatted message");
+    assert!(
+        message.contains("glint view ended (exit status: 3)")
+            && message.contains("no scene in here"),
+        "{message}"
+    );
+    assert!(
+        started.elapsed() < WAIT / 4,
+        "the wait went on after the view ended: {:?}",
+        started.elapsed()
+    );
 }
 
 /// The device's progressive sums after n² frames against the GPU tracer's uniform

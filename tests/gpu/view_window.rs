@@ -1,14 +1,18 @@
 //! The harness of `glint view`'s window tests: a private Xvfb server per test (a free
-//! display number chosen by Xvfb itself, `-displayfd`), a `glint view` process on it
-//! whose stdout and stderr lines are collected as they come, input through xdotool,
-//! the window's pixels through xwd and ImageMagick, and the window manager's close
-//! (WM_DELETE_WINDOW) sent as a client message with x11rb, since Xvfb runs no window
-//! manager. Every wait is bounded, and dropping a handle kills its process (no orphans).
+//! display number chosen by Xvfb itself, `-displayfd`; never reset, `-noreset`), a `glint
+//! view` process on it whose stdout and stderr lines are collected as they come, input
+//! through xdotool, the window's pixels through xwd and ImageMagick, and the window
+//! manager's close (WM_DELETE_WINDOW) sent as a client message with x11rb, since Xvfb
+//! runs no window manager. Every wait is bounded, and dropping a handle kills its process (no orphans).
+//! A wait for the view's window ends as soon as the view has ended, and its failure says
+//! how the view ended (or that it still runs), what it printed, and which windows the
+//! display has.
 
 use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 /// What the window tests need installed (Debian/Ubuntu), named in their failures.
@@ -38,6 +42,12 @@ impl Xvfb {
                 "800x600x24",
                 "-nolisten",
                 "tcp",
+                // By default an X server resets when its last client leaves, and refuses a
+                // client that connects during the reset. The harness's own short-lived
+                // clients (each `xdotool search` while it waits for the window) were often
+                // the last to leave just before `glint view` connected, which then failed
+                // with "Failed to open connection to X server" (docs/testing.md).
+                "-noreset",
             ])
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
@@ -102,23 +112,47 @@ impl Xvfb {
             .collect()
     }
 
-    pub fn has_window(&self, name: &str) -> bool {
-        !self.windows(name).is_empty()
+    /// The top-level windows on the display, each with its name and whether it is
+    /// mapped, or why they cannot be listed: what a failure to find one shows. (x11rb,
+    /// not a tool, so that it works wherever the tests' X connection does.)
+    pub fn window_list(&self) -> String {
+        use x11rb::connection::Connection;
+        use x11rb::protocol::xproto::{AtomEnum, ConnectionExt};
+        let Ok((conn, screen)) = x11rb::connect(Some(&self.display)) else {
+            return format!("(cannot connect to {} to list them)", self.display);
+        };
+        let root = conn.setup().roots[screen].root;
+        let Some(tree) = conn.query_tree(root).ok().and_then(|c| c.reply().ok()) else {
+            return "(cannot query the window tree)".to_string();
+        };
+        let windows: Vec<String> = tree
+            .children
+            .iter()
+            .map(|&w| {
+                let name = conn
+                    .get_property(false, w, AtomEnum::WM_NAME, AtomEnum::ANY, 0, 256)
+                    .ok()
+                    .and_then(|c| c.reply().ok())
+                    .map(|r| String::from_utf8_lossy(&r.value).into_owned())
+                    .unwrap_or_default();
+                let state = conn
+                    .get_window_attributes(w)
+                    .ok()
+                    .and_then(|c| c.reply().ok())
+                    .map(|a| format!("{:?}", a.map_state))
+                    .unwrap_or_default();
+                format!("{w} '{name}' {state}")
+            })
+            .collect();
+        if windows.is_empty() {
+            "none".to_string()
+        } else {
+            windows.join(", ")
+        }
     }
 
-    /// The id of the (only) window whose name contains `name`, waiting for it.
-    pub fn window(&self, name: &str) -> String {
-        let deadline = Instant::now() + WAIT;
-        loop {
-            if let Some(id) = self.windows(name).into_iter().next() {
-                return id;
-            }
-            assert!(
-                Instant::now() < deadline,
-                "no window named like '{name}' within {WAIT:?}"
-            );
-            std::thread::sleep(Duration::from_millis(100));
-        }
+    pub fn has_window(&self, name: &str) -> bool {
+        !self.windows(name).is_empty()
     }
 
     /// Presses `key` in `window`: focuses it, then types through XTEST (winit reads the
@@ -200,17 +234,21 @@ pub struct View {
     child: Child,
     pub stdout: Arc<Mutex<Vec<String>>>,
     pub stderr: Arc<Mutex<Vec<String>>>,
+    /// The threads collecting stdout and stderr.
+    readers: [JoinHandle<()>; 2],
 }
 
-fn collect(stream: impl Read + Send + 'static) -> Arc<Mutex<Vec<String>>> {
+/// The lines `stream` gives, collected by a thread as they come, and that thread (done
+/// once the stream has ended).
+fn collect(stream: impl Read + Send + 'static) -> (Arc<Mutex<Vec<String>>>, JoinHandle<()>) {
     let lines = Arc::new(Mutex::new(Vec::new()));
     let sink = Arc::clone(&lines);
-    std::thread::spawn(move || {
+    let reader = std::thread::spawn(move || {
         for line in BufReader::new(stream).lines().map_while(Result::ok) {
             sink.lock().unwrap().push(line);
         }
     });
-    lines
+    (lines, reader)
 }
 
 impl View {
@@ -226,12 +264,13 @@ impl View {
             .stderr(Stdio::piped())
             .spawn()
             .expect("glint runs");
-        let stdout = collect(child.stdout.take().expect("piped"));
-        let stderr = collect(child.stderr.take().expect("piped"));
+        let (stdout, out_reader) = collect(child.stdout.take().expect("piped"));
+        let (stderr, err_reader) = collect(child.stderr.take().expect("piped"));
         View {
             child,
             stdout,
             stderr,
+            readers: [out_reader, err_reader],
         }
     }
 
@@ -268,6 +307,56 @@ impl View {
 
     pub fn stdout_len(&self) -> usize {
         self.stdout.lock().unwrap().len()
+    }
+
+    /// Waits for this view's window, named like `name`, on `x` and returns its id. Fails
+    /// as soon as the process has ended (a view that exits never opens its window) and
+    /// when [`WAIT`] passes; either way the failure says whether the process still runs
+    /// or how it ended, what it printed, and which windows the display has.
+    pub fn window(&mut self, x: &Xvfb, name: &str) -> String {
+        let started = Instant::now();
+        loop {
+            if let Some(id) = x.windows(name).into_iter().next() {
+                // The view's start-up as the tests see it (shown with `--nocapture` or
+                // beside a failure): the journal's measure of the window's delay.
+                eprintln!(
+                    "view_window: window '{name}' after {} ms",
+                    started.elapsed().as_millis()
+                );
+                return id;
+            }
+            let ended = self.child.try_wait().ok().flatten();
+            if ended.is_some() || started.elapsed() >= WAIT {
+                let state = match ended {
+                    Some(status) => format!("glint view ended ({status})"),
+                    None => "glint view is still running".to_string(),
+                };
+                panic!(
+                    "no window named like '{name}' after {:?}: {state}; the display's windows: {}\n{}",
+                    started.elapsed(),
+                    x.window_list(),
+                    self.output()
+                );
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+
+    /// What the process printed so far, for a failure's message.
+    pub fn output(&mut self) -> String {
+        // An ended process's last lines may still be in the pipes: waits (bounded: a
+        // child it left running may hold them open) until the readers reach their end.
+        if let Ok(Some(_)) = self.child.try_wait() {
+            let deadline = Instant::now() + Duration::from_secs(5);
+            while !self.readers.iter().all(JoinHandle::is_finished) && Instant::now() < deadline {
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        }
+        format!(
+            "--- glint view's stdout:\n{}\n--- its stderr:\n{}\n---",
+            self.stdout.lock().unwrap().join("\n"),
+            self.stderr.lock().unwrap().join("\n")
+        )
     }
 
     /// Waits for the process to end (bounded), returning its status.
