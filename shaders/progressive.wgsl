@@ -4,7 +4,10 @@
 // the one uniform_resolve forms (same samples, same order) and the view shows
 // `glint render --aa uniform --samples n`. AA none: one frame of pixel centres.
 // The sums stay on the device between frames; the window presents them
-// (shaders/view_present.wgsl) from the same buffer.
+// (shaders/view_present.wgsl) from the same buffer. The window is dispatched in
+// full-width bands (the tile: origin, size, row stride), each pixel of a band with a
+// per-ray list slot of its own (lists.wgsl); the sums and the loop-limiter flags are the
+// image's, row-major at the globals' width.
 // Mirror of src/cpu/progressive.rs::view_sample — change both.
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
 fn view_sample(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -14,17 +17,22 @@ fn view_sample(@builtin(global_invocation_id) id: vec3<u32>) {
     let uniform = globals.aa_mode == AA_UNIFORM;
     let n = select(1u, globals.aa_samples, uniform);
     let s = tile.level;
-    let p = id.y * tile.side + id.x;
-    begin_lane(p);
+    let x = tile.origin.x + id.x;
+    let y = tile.origin.y + id.y;
+    begin_lane(id.y * tile.side + id.x);
+    let p = y * globals.width + x;
     var before = vec3<f32>(0.0);
     if s != 0u {
         before = output[p].xyz;
     }
-    let total = before + uniform_sample(tile.origin.x + id.x, tile.origin.y + id.y, s, n, uniform);
-    output[p] = vec4<f32>(total, f32(s + 1u));
+    let total = before + uniform_sample(x, y, s, n, uniform);
 // #if ITERATION_GUARD
+    // A sample the limiter cut short is not added: the sum stays as it was, and the host
+    // re-traces this sample on the CPU tracer into it (Progressive::trace_sample).
     if loop_limiter_tripped() {
         guard[p] = 1u;
+        return;
     }
 // #endif
+    output[p] = vec4<f32>(total, f32(s + 1u));
 }

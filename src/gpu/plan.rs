@@ -141,8 +141,9 @@ pub fn lattice_side(max_binding: u64) -> u32 {
     side
 }
 
-/// Most tracing invocations (list slots) one dispatch may have under `bounds`.
-fn slot_budget(bounds: AdapterBounds) -> u64 {
+/// Most tracing invocations (list slots) one dispatch may have under `bounds` (also the
+/// rule `glint view` bands its window by).
+pub fn slot_budget(bounds: AdapterBounds) -> u64 {
     match bounds.lane_list_words as u64 {
         0 => u64::MAX,
         words => (bounds.max_binding.min(LIST_BUDGET_BYTES) / (4 * words)).max(1),

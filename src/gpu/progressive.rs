@@ -3,7 +3,22 @@
 //! for the whole session: `view_sample` (shaders/progressive.wgsl) adds sample k of every pixel
 //! to it in frame k, the window's present pass reads it, and the CPU tracer's sums are
 //! uploaded into it when that tracer refines instead. Nothing is read back except for S
-//! (save), so a refining frame costs one dispatch and one present.
+//! (save) and, on software adapters, the loop limiter's flags, so a refining frame on a
+//! hardware GPU costs its dispatches and one present.
+//!
+//! The window is dispatched in full-width bands ([`view_bands`]), as many as the per-ray
+//! lists' slots need (`super::plan::slot_budget`, the rule `glint render`'s chunks
+//! follow): a kernel that keeps its lists in storage (`super::lists`, the hardware
+//! variant) has a slot for each pixel of a band, so the view runs the same kernel variant
+//! as `glint render`, with no private arrays for a GPU compiler to put in scratch memory.
+//! Without lists in storage the window is one band, one dispatch.
+//!
+//! On software adapters the kernel checks Mesa's loop limiter (`ITERATION_GUARD`): a
+//! pixel whose sample tripped it keeps its sum and is flagged, and
+//! [`Progressive::trace_sample`] re-traces that sample on the CPU tracer
+//! (`crate::cpu::progressive::view_sample`, the kernel's twin) into the sum, as `glint
+//! render` re-renders its flagged pixels (`super::render`); so the view converges to the
+//! render's image there too.
 //!
 //! The view's own copy of the globals (camera moved, preview size) is a uniform written
 //! before each restart; the scene's tables are uploaded once per scene load.
@@ -12,13 +27,18 @@ use super::buffers::{
     read_back, scene_entries, upload_scene, GpuTile, SceneBuffers, LIMITER_SENTINEL,
 };
 use super::context::GpuContext;
+use super::lists::LaneLists;
 use super::pipeline::{
-    get_pipeline, CompiledPipeline, GUARD_BINDING, OUTPUT_BINDING, SAMPLES_BINDING, SPLIT_BINDING,
-    TILE_BINDING, WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
+    get_pipeline, CompiledPipeline, GUARD_BINDING, LISTS_BINDING, OUTPUT_BINDING, SAMPLES_BINDING,
+    SPLIT_BINDING, TILE_BINDING, WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
 };
+use super::plan::{slot_budget, AdapterBounds, Chunk};
 use super::shader::Entry;
 use super::GpuError;
+use crate::cpu::progressive::view_sample;
 use crate::pack::{PackedGlobals, PackedScene};
+use rayon::prelude::*;
+use std::num::NonZeroU64;
 use std::sync::Arc;
 use wgpu::util::DeviceExt;
 
@@ -71,20 +91,81 @@ impl SumBuffer {
     }
 }
 
-/// A scene on the device, ready to add one sample per pixel per [`Self::encode_sample`].
+/// The full-width bands a `width` × `height` window is dispatched in: as many rows each
+/// as give every pixel of a band a list slot under `bounds` (one band when the kernel
+/// keeps no lists in storage) and fit one 2-D dispatch. A band is laid out `width`
+/// pixels a row, so its pixel (x, y) has slot y·width + x.
+pub fn view_bands(width: u32, height: u32, bounds: AdapterBounds) -> Vec<Chunk> {
+    let (w, h) = (width.max(1), height.max(1));
+    let dispatch_rows = bounds.max_workgroups.saturating_mul(bounds.workgroup_side);
+    let rows = (slot_budget(bounds) / u64::from(w)).clamp(1, u64::from(h)) as u32;
+    let rows = rows.min(dispatch_rows).max(1);
+    (0..h.div_ceil(rows))
+        .map(|k| Chunk {
+            origin: [0, k * rows],
+            size: [w, rows.min(h - k * rows)],
+            side: w,
+        })
+        .collect()
+}
+
+/// What the loop-limiter fallback did since the last restart ([`Progressive::set_globals`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Retraced {
+    /// Samples re-traced on the CPU tracer.
+    pub samples: u64,
+    /// The distinct pixels they were of.
+    pub pixels: u64,
+}
+
+/// A scene on the device, ready to add one sample per pixel per [`Self::encode_sample`]
+/// (or [`Self::trace_sample`], which also re-traces what the loop limiter cut short).
 pub struct Progressive {
     pipeline: Arc<CompiledPipeline>,
     globals: wgpu::Buffer,
-    tile: wgpu::Buffer,
     guard: wgpu::Buffer,
-    bind_group: wgpu::BindGroup,
-    /// The size the globals say (the full image or a preview), for the dispatch.
+    /// The sums the samples are added to (a handle on the session's [`SumBuffer`]).
+    sums: wgpu::Buffer,
+    /// The per-ray lists' slots (`super::lists`), as many as the full image's widest
+    /// band has pixels (a preview's bands have no more); unbound where the kernel keeps
+    /// its lists in private arrays.
+    lists: wgpu::Buffer,
+    lane_words: u32,
+    bounds: AdapterBounds,
+    /// The bands of the current size, each band's tile record (`record_stride` bytes
+    /// apart in `tiles`) and bind group.
+    bands: Vec<Chunk>,
+    tiles: wgpu::Buffer,
+    record_stride: u64,
+    bind_groups: Vec<wgpu::BindGroup>,
+    /// The size the globals say (the full image or a preview).
     size: [u32; 2],
-    /// Pixels the guard buffer holds.
+    /// Pixels the guard buffer holds (the full image).
     guard_pixels: u64,
-    /// Kept alive for the bind group.
-    _scene: SceneBuffers,
-    _unused: Vec<wgpu::Buffer>,
+    /// The limiter check's loop length ([`GpuTile::sentinel`]; a test hook).
+    sentinel: u32,
+    /// The loop-limiter fallback since the last restart, and the pixels it re-traced.
+    retraced: Retraced,
+    retraced_pixels: Vec<bool>,
+    /// Kept alive for the bind groups.
+    scene: SceneBuffers,
+    unused: Vec<wgpu::Buffer>,
+}
+
+/// Bytes of one band's tile record in `Progressive::tiles`: a `GpuTile`, at the
+/// adapter's uniform-offset alignment.
+fn record_stride(ctx: &GpuContext) -> u64 {
+    let size = std::mem::size_of::<GpuTile>() as u64;
+    let align = u64::from(ctx.limits.min_uniform_buffer_offset_alignment).max(1);
+    size.div_ceil(align) * align
+}
+
+fn binding(buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindingResource<'_> {
+    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+        buffer,
+        offset,
+        size: NonZeroU64::new(size),
+    })
 }
 
 impl Progressive {
@@ -98,6 +179,25 @@ impl Progressive {
         let buffers = upload_scene(ctx, scene)?;
         let g = &scene.globals;
         let guard_pixels = u64::from(g.width) * u64::from(g.height);
+        let lane_words = LaneLists::of(scene.features, pipeline.kernel).words();
+        let bounds = AdapterBounds {
+            max_binding: ctx
+                .limits
+                .max_storage_buffer_binding_size
+                .min(ctx.limits.max_buffer_size),
+            max_workgroups: ctx.limits.max_compute_workgroups_per_dimension,
+            workgroup_side: pipeline.kernel.workgroup_side,
+            lane_list_words: lane_words,
+        };
+        let slots = view_bands(g.width, g.height, bounds)
+            .iter()
+            .map(Chunk::block_pixels)
+            .max()
+            .unwrap_or(1);
+        let lists_bytes = slots * 4 * u64::from(lane_words);
+        if lane_words > 0 {
+            super::buffers::check_size(ctx, "view per-ray lists", lists_bytes)?;
+        }
         use wgpu::BufferUsages as U;
         ctx.scoped("view setup", || {
             let device = &ctx.device;
@@ -105,12 +205,6 @@ impl Progressive {
                 label: Some("view globals"),
                 contents: bytemuck::bytes_of(g),
                 usage: U::UNIFORM | U::COPY_DST,
-            });
-            let tile = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("view tile"),
-                size: std::mem::size_of::<GpuTile>() as u64,
-                usage: U::UNIFORM | U::COPY_DST,
-                mapped_at_creation: false,
             });
             let storage = |label, size: u64| {
                 device.create_buffer(&wgpu::BufferDescriptor {
@@ -126,82 +220,227 @@ impl Progressive {
                 usage: U::STORAGE | U::COPY_DST | U::COPY_SRC,
                 mapped_at_creation: false,
             });
+            let lists = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("view per-ray lists"),
+                size: lists_bytes.max(4),
+                usage: U::STORAGE,
+                mapped_at_creation: false,
+            });
             // view_sample reads none of the other AA passes' buffers; the layout (one for
             // every render entry) still has them.
             let unused: Vec<wgpu::Buffer> = (0..5).map(|_| storage("unused", 256)).collect();
-            let mut entries = scene_entries(&buffers);
-            entries[0].resource = globals.as_entire_binding();
-            let own = [
-                (TILE_BINDING, tile.as_entire_binding()),
-                (OUTPUT_BINDING, sums.buffer.as_entire_binding()),
-                (GUARD_BINDING, guard.as_entire_binding()),
-                (SAMPLES_BINDING, unused[0].as_entire_binding()),
-                (SPLIT_BINDING, unused[1].as_entire_binding()),
-                (WORK_COUNTS_BINDING, unused[2].as_entire_binding()),
-                (WORK_LIST_BINDING, unused[3].as_entire_binding()),
-                (WORK_ARGS_BINDING, unused[4].as_entire_binding()),
-            ];
-            entries
-                .extend(own.map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }));
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("glint view"),
-                layout: &pipeline.layout,
-                entries: &entries,
+            let tiles = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("view tiles"),
+                size: record_stride(ctx),
+                usage: U::UNIFORM | U::COPY_DST,
+                mapped_at_creation: false,
             });
-            Progressive {
+            let mut progressive = Progressive {
                 pipeline: Arc::clone(&pipeline),
                 globals,
-                tile,
                 guard,
-                bind_group,
+                sums: sums.buffer.clone(),
+                lists,
+                lane_words,
+                bounds,
+                bands: Vec::new(),
+                tiles,
+                record_stride: record_stride(ctx),
+                bind_groups: Vec::new(),
                 size: [g.width, g.height],
                 guard_pixels,
-                _scene: buffers,
-                _unused: unused,
-            }
+                sentinel: LIMITER_SENTINEL,
+                retraced: Retraced::default(),
+                retraced_pixels: vec![false; guard_pixels as usize],
+                scene: buffers,
+                unused,
+            };
+            progressive.bind(ctx, g.width, g.height);
+            progressive
         })
     }
 
+    /// Plans the bands of a `width` × `height` image and makes their bind groups.
+    fn bind(&mut self, ctx: &GpuContext, width: u32, height: u32) {
+        let bands = view_bands(width, height, self.bounds);
+        let device = &ctx.device;
+        let records = self.record_stride * bands.len() as u64;
+        if self.tiles.size() < records {
+            self.tiles = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("view tiles"),
+                size: records,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+        }
+        let slots = bands.iter().map(Chunk::block_pixels).max().unwrap_or(1);
+        // The kernel learns its slots from the binding's length (lists.wgsl::begin_lane).
+        let lists_size = slots * 4 * u64::from(self.lane_words);
+        debug_assert!(lists_size <= self.lists.size());
+        let tile_size = std::mem::size_of::<GpuTile>() as u64;
+        self.bind_groups = (0..bands.len() as u64)
+            .map(|k| {
+                let mut entries = scene_entries(&self.scene);
+                entries[0].resource = self.globals.as_entire_binding();
+                let own = [
+                    (
+                        TILE_BINDING,
+                        binding(&self.tiles, k * self.record_stride, tile_size),
+                    ),
+                    (OUTPUT_BINDING, self.sums.as_entire_binding()),
+                    (GUARD_BINDING, self.guard.as_entire_binding()),
+                    (SAMPLES_BINDING, self.unused[0].as_entire_binding()),
+                    (SPLIT_BINDING, self.unused[1].as_entire_binding()),
+                    (WORK_COUNTS_BINDING, self.unused[2].as_entire_binding()),
+                    (WORK_LIST_BINDING, self.unused[3].as_entire_binding()),
+                    (WORK_ARGS_BINDING, self.unused[4].as_entire_binding()),
+                ];
+                entries.extend(
+                    own.map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
+                );
+                if self.pipeline.kernel.lists_in_storage {
+                    entries.push(wgpu::BindGroupEntry {
+                        binding: LISTS_BINDING,
+                        resource: binding(&self.lists, 0, lists_size.max(4)),
+                    });
+                }
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("glint view"),
+                    layout: &self.pipeline.layout,
+                    entries: &entries,
+                })
+            })
+            .collect();
+        self.bands = bands;
+    }
+
     /// The globals the next samples use (a moved camera, a preview size); the size must
-    /// not exceed the scene's. Clears the loop-limiter flags.
+    /// not exceed the scene's. Restarts the loop-limiter fallback's counts.
     pub fn set_globals(&mut self, ctx: &GpuContext, globals: &PackedGlobals) {
         debug_assert!(u64::from(globals.width) * u64::from(globals.height) <= self.guard_pixels);
         ctx.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(globals));
+        if [globals.width, globals.height] != self.size {
+            self.bind(ctx, globals.width, globals.height);
+        }
         self.size = [globals.width, globals.height];
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        encoder.clear_buffer(&self.guard, 0, None);
-        ctx.queue.submit([encoder.finish()]);
+        self.retraced = Retraced::default();
+        self.retraced_pixels.fill(false);
     }
 
-    /// Encodes sample `s` of every pixel, added to the sums (`s` = 0 starts them).
+    /// The bands the window is dispatched in, at the current size.
+    pub fn bands(&self) -> &[Chunk] {
+        &self.bands
+    }
+
+    /// Whether the kernel checks the software adapter's loop limiter: then frames go
+    /// through [`Self::trace_sample`], which re-traces what it cut short.
+    pub fn checks_limiter(&self) -> bool {
+        self.pipeline.kernel.iteration_guard
+    }
+
+    /// Encodes sample `s` of every pixel, added to the sums (`s` = 0 starts them); on a
+    /// kernel that [checks the limiter](Self::checks_limiter), the pixels it cut short
+    /// keep their sums and are flagged for [`Self::trace_sample`]'s fallback.
     pub fn encode_sample(&self, ctx: &GpuContext, encoder: &mut wgpu::CommandEncoder, s: u32) {
-        let [w, h] = self.size;
-        let tile = GpuTile {
-            origin: [0, 0],
-            size: [w, h],
-            side: w,
-            level: s,
-            items: 0,
-            sentinel: LIMITER_SENTINEL,
-        };
+        let mut records = vec![0u8; (self.record_stride * self.bands.len() as u64) as usize];
+        for (k, band) in self.bands.iter().enumerate() {
+            let tile = GpuTile {
+                origin: band.origin,
+                size: band.size,
+                side: band.side,
+                level: s,
+                items: 0,
+                sentinel: self.sentinel,
+            };
+            let at = k * self.record_stride as usize;
+            records[at..at + std::mem::size_of::<GpuTile>()]
+                .copy_from_slice(bytemuck::bytes_of(&tile));
+        }
         // Written before the submit that carries this pass (queue writes come first).
-        ctx.queue
-            .write_buffer(&self.tile, 0, bytemuck::bytes_of(&tile));
+        ctx.queue.write_buffer(&self.tiles, 0, &records);
+        if self.checks_limiter() {
+            encoder.clear_buffer(&self.guard, 0, None);
+        }
         let side = self.pipeline.kernel.workgroup_side;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("view_sample"),
             timestamp_writes: None,
         });
         pass.set_pipeline(&self.pipeline.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.dispatch_workgroups(w.div_ceil(side), h.div_ceil(side), 1);
+        for (band, group) in self.bands.iter().zip(&self.bind_groups) {
+            pass.set_bind_group(0, group, &[]);
+            let [w, h] = band.size;
+            pass.dispatch_workgroups(w.div_ceil(side), h.div_ceil(side), 1);
+        }
     }
 
-    /// How many pixels tripped the software adapter's loop limiter since the last
-    /// [`Self::set_globals`] (their samples are short; waits for the device).
-    pub fn limited_pixels(&self, ctx: &GpuContext) -> Result<u64, GpuError> {
-        let size = self.guard_pixels * 4;
+    /// Adds sample `s` of every pixel of `scene` (whose globals [`Self::set_globals`]
+    /// gave) to `sums`, waits for it and, where the loop limiter cut a pixel's sample
+    /// short, re-traces that sample on the CPU tracer into the pixel's sum: the sum is
+    /// then what `view_sample` on the CPU would have added to it. Returns how many
+    /// samples were re-traced.
+    pub fn trace_sample(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &PackedScene,
+        sums: &SumBuffer,
+        s: u32,
+    ) -> Result<u64, GpuError> {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        self.encode_sample(ctx, &mut encoder, s);
+        ctx.queue.submit([encoder.finish()]);
+        if !self.checks_limiter() {
+            return Ok(0);
+        }
+        let [w, h] = self.size;
+        debug_assert_eq!([scene.globals.width, scene.globals.height], self.size);
+        let pixels = u64::from(w) * u64::from(h);
+        let flagged: Vec<usize> = self
+            .limited_flags(ctx, pixels)?
+            .iter()
+            .enumerate()
+            .filter(|(_, &f)| f != 0)
+            .map(|(p, _)| p)
+            .collect();
+        if flagged.is_empty() {
+            return Ok(0);
+        }
+        let mut all = sums.read(ctx, pixels)?;
+        let fixed: Vec<[f32; 4]> = flagged
+            .par_iter()
+            .map(|&p| {
+                let (x, y) = ((p % w as usize) as u32, (p / w as usize) as u32);
+                view_sample(scene, x, y, s, all[p])
+            })
+            .collect();
+        for (&p, sum) in flagged.iter().zip(fixed) {
+            all[p] = sum;
+            if !self.retraced_pixels[p] {
+                self.retraced_pixels[p] = true;
+                self.retraced.pixels += 1;
+            }
+        }
+        self.retraced.samples += flagged.len() as u64;
+        sums.upload(ctx, &all);
+        Ok(flagged.len() as u64)
+    }
+
+    /// What the loop-limiter fallback re-traced since the last restart.
+    pub fn retraced(&self) -> Retraced {
+        self.retraced
+    }
+
+    /// The loop-limiter check's sentinel, for tests: more iterations than the limiter
+    /// allows (65 535) trip it in every invocation of a kernel that checks it.
+    #[doc(hidden)]
+    pub fn set_limiter_sentinel(&mut self, sentinel: u32) {
+        self.sentinel = sentinel;
+    }
+
+    /// The first `pixels` loop-limiter flags of the last frame (waits for the device).
+    fn limited_flags(&self, ctx: &GpuContext, pixels: u64) -> Result<Vec<u32>, GpuError> {
+        let size = pixels * 4;
         let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("view guard read-back"),
             size: size.max(4),
@@ -211,7 +450,48 @@ impl Progressive {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(&self.guard, 0, &staging, 0, size);
         ctx.queue.submit([encoder.finish()]);
-        let flags: Vec<u32> = bytemuck::pod_collect_to_vec(&read_back(ctx, &staging, size)?);
-        Ok(flags.iter().filter(|&&f| f != 0).count() as u64)
+        Ok(bytemuck::pod_collect_to_vec(&read_back(
+            ctx, &staging, size,
+        )?))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bounds(words: u32, max_binding: u64) -> AdapterBounds {
+        AdapterBounds {
+            max_binding,
+            max_workgroups: 65_535,
+            workgroup_side: 8,
+            lane_list_words: words,
+        }
+    }
+
+    /// Every row in exactly one band, every band full width and within the slots.
+    #[test]
+    fn bands_cover_the_window_once_within_the_slots() {
+        for (w, h) in [(640, 400), (80, 50), (1, 1), (37, 5), (4096, 3000)] {
+            for b in [
+                bounds(0, 128 << 20),
+                bounds(562, 128 << 20),
+                bounds(272, 4 << 20),
+            ] {
+                let bands = view_bands(w, h, b);
+                let mut next = 0;
+                for band in &bands {
+                    assert_eq!((band.origin, band.size[0], band.side), ([0, next], w, w));
+                    assert!(band.block_pixels() <= slot_budget(b).max(u64::from(w)));
+                    next += band.size[1];
+                }
+                assert_eq!(next, h, "{w}×{h} {b:?}");
+                if b.lane_list_words == 0 {
+                    assert_eq!(bands.len(), 1, "no lists: the window in one dispatch");
+                }
+            }
+        }
+        // scrabble.lua's 562 words a slot at 4096 × 3000: 256 MiB of slots, several bands.
+        assert!(view_bands(4096, 3000, bounds(562, 1 << 30)).len() > 1);
     }
 }

@@ -364,10 +364,6 @@ fn device_for_window(
             if names.is_empty() { "none".into() } else { names.join(", ") }
         )
     })?;
-    let mut ctx = GpuContext::from_adapter(adapter).map_err(|e| e.to_string())?;
-    // The view traces the whole window in one dispatch, more invocations than the per-ray
-    // lists' slots a frame plans (`gpu::lists::LIST_BUDGET_BYTES`, by chunks), so its
-    // kernel keeps those lists in private arrays, as the software variant does.
-    ctx.kernel.lists_in_storage = false;
+    let ctx = GpuContext::from_adapter(adapter).map_err(|e| e.to_string())?;
     Ok((ctx, surface))
 }

@@ -211,10 +211,21 @@ impl Session {
             let pixels = (g.width * g.height) as usize;
             self.sums.upload(&self.ctx, &self.cpu_sums[..pixels]);
         }
-        let gpu = self
+        let mut gpu = self
             .gpu
-            .as_ref()
+            .as_mut()
             .filter(|_| refine && self.tracer == TracerKind::Gpu);
+        // A kernel that checks the software adapter's loop limiter traces apart from the
+        // present and waits, so that the samples it cut short are re-traced on the CPU
+        // before the sums are shown; elsewhere the tracing and the present are one submit.
+        let apart = gpu.as_ref().is_some_and(|p| p.checks_limiter());
+        if let Some(p) = gpu.as_mut().filter(|_| apart) {
+            p.trace_sample(&self.ctx, &self.scene.packed, &self.sums, s)?;
+        }
+        // Whether sample s is in the sums before the present (then a present that must
+        // be redone does not trace it again: it would be added twice).
+        let added = refine && (apart || self.tracer == TracerKind::Cpu);
+        let gpu = gpu.filter(|_| !apart).map(|p| &*p);
         let ctx = &self.ctx;
         let encode = |encoder: &mut wgpu::CommandEncoder| {
             if let Some(gpu) = gpu {
@@ -239,7 +250,9 @@ impl Session {
         }
         if let Presented::Reconfigured = presented {
             self.window.request_redraw();
-            return Ok(None);
+            if !added {
+                return Ok(None);
+            }
         }
         if refine {
             self.next_sample += 1;
@@ -259,15 +272,16 @@ impl Session {
     }
 
     /// After a GPU image completes: a note when the software adapter's loop limiter cut
-    /// some pixels' samples short (`glint render` re-renders those on the CPU).
+    /// some samples short (they were re-traced on the CPU tracer, as `glint render`
+    /// re-renders such pixels).
     fn report_limited(&self) {
         if let (TracerKind::Gpu, Some(gpu)) = (self.tracer, self.gpu.as_ref()) {
-            if let Ok(n) = gpu.limited_pixels(&self.ctx) {
-                if n > 0 {
-                    eprintln!(
-                        "glint view: note: {n} pixels passed the software adapter's loop limit; their samples are short (glint render re-renders them on the CPU; G switches to the CPU tracer)"
-                    );
-                }
+            let r = gpu.retraced();
+            if r.samples > 0 {
+                eprintln!(
+                    "glint view: note: {} samples of {} pixels passed the software adapter's loop limit and were re-traced on the CPU tracer",
+                    r.samples, r.pixels
+                );
             }
         }
     }

@@ -447,3 +447,151 @@ fn progressive_sums_converge_to_the_tracers_renders() {
         "CPU sums: bit for bit"
     );
 }
+
+/// `frames` samples of every pixel of `packed` added on the device the way the view adds
+/// them on a software adapter (`trace_sample`: the limiter's fallback included); the sums
+/// read back, and how many samples each frame re-traced on the CPU.
+fn progressive_sums(
+    ctx: &glint::gpu::GpuContext,
+    packed: &glint::pack::PackedScene,
+    frames: u32,
+    sentinel: Option<u32>,
+) -> (Progressive, Vec<[f32; 4]>, Vec<u64>) {
+    let g = packed.globals;
+    let pixels = u64::from(g.width * g.height);
+    let sums = SumBuffer::new(ctx, pixels).unwrap();
+    let mut progressive = Progressive::new(ctx, packed, &sums).unwrap();
+    if let Some(sentinel) = sentinel {
+        progressive.set_limiter_sentinel(sentinel);
+    }
+    progressive.set_globals(ctx, &g);
+    let retraced = (0..frames)
+        .map(|s| progressive.trace_sample(ctx, packed, &sums, s).unwrap())
+        .collect();
+    let read = sums.read(ctx, pixels).unwrap();
+    // Every pixel has every sample, whether the GPU or the CPU fallback traced it.
+    let short = read.iter().filter(|s| s[3] != frames as f32).count();
+    assert_eq!(short, 0, "{short} pixels' sums lack samples");
+    (progressive, read, retraced)
+}
+
+/// The loop limiter's fallback in the view: with the limiter check asked for more
+/// iterations than lavapipe's limit (the render's test hook, `tile.sentinel`), every
+/// sample trips it, so every sample is re-traced on the CPU tracer into the sums — which
+/// must then be the CPU tracer's sums bit for bit, and the image `glint render`'s with
+/// its own fallback (every pixel re-rendered on the CPU). Without the fallback the sums
+/// would keep the short samples (or, as the kernel leaves a cut-short sum alone, no
+/// samples at all). On a hardware adapter nothing trips and nothing is re-traced.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn limited_samples_are_re_traced_on_the_cpu() {
+    let Some(ctx) = gpu_context() else { return };
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Uniform),
+        samples: AaSamples::parse("3").ok(),
+        width: Some(40),
+        height: Some(24),
+        ..OptionOverrides::default()
+    };
+    let packed = load_packed(&root().join("scenes/demo.lua"), &overrides);
+    let g = packed.globals;
+    let pixels = u64::from(g.width * g.height);
+    let (progressive, sums, retraced) = progressive_sums(&ctx, &packed, 9, Some(70_000));
+    let guarded = ctx.kernel.iteration_guard;
+    eprintln!("guard {guarded}: samples re-traced per frame {retraced:?}");
+    let expected = if guarded { pixels } else { 0 };
+    assert!(retraced.iter().all(|&n| n == expected), "{retraced:?}");
+    let r = progressive.retraced();
+    assert_eq!((r.samples, r.pixels), (9 * expected, expected));
+    let view = film_of_sums(&sums, g.width, g.height);
+    let tripping = glint::gpu::GpuRenderOptions {
+        limiter_sentinel: 70_000,
+        ..Default::default()
+    };
+    let render = glint::gpu::render_gpu(&ctx, &packed, &tripping).unwrap();
+    assert_eq!(render.info.cpu_fallback_pixels, expected);
+    if guarded {
+        let mut cpu_sums = vec![[0.0f32; 4]; pixels as usize];
+        for s in 0..9 {
+            accumulate_sample(&packed, s, &mut cpu_sums);
+        }
+        assert!(sums == cpu_sums, "the sums are not the CPU tracer's");
+        assert_eq!(view.pixels, render.film.pixels, "not glint render's image");
+    }
+}
+
+/// The view's kernel with the per-ray lists in storage (the hardware variant, compiled
+/// here on whatever adapter there is) on scenes that use them (glass.lua: the
+/// dielectric ray stack; csg.lua: the CSG interval lists), with the adapter's binding
+/// limit lowered so that the window takes several bands of list slots: the same sums as
+/// the private-array kernel, bit for bit, and the same image as `glint render` of that
+/// variant (within the 2 ulp of the division). Where lavapipe's loop limiter cut samples
+/// short (csg.lua at this size, 48–80 samples a frame), they were re-traced on the CPU
+/// (the view) and their pixels re-rendered on the CPU (the render), so there the image
+/// is held to the CPU tracer's render as the GPU tracer is (tier 4).
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn lists_in_storage_give_the_same_sums_in_bands() {
+    let Some(mut ctx) = gpu_context() else { return };
+    let chosen = (ctx.kernel, ctx.limits.clone());
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Uniform),
+        samples: AaSamples::parse("2").ok(),
+        width: Some(48),
+        height: Some(40),
+        ..OptionOverrides::default()
+    };
+    for file in ["scenes/glass.lua", "scenes/csg.lua"] {
+        let packed = load_packed(&root().join(file), &overrides);
+        let g = packed.globals;
+        let mut results = Vec::new();
+        for lists_in_storage in [false, true] {
+            ctx.kernel = glint::gpu::KernelConfig {
+                lists_in_storage,
+                ..chosen.0
+            };
+            let words = glint::gpu::lists::LaneLists::of(packed.features, ctx.kernel).words();
+            assert_eq!(words > 0, lists_in_storage, "{file}: {}", ctx.kernel);
+            // Slots for 10 rows of the window: 4 bands.
+            ctx.limits.max_storage_buffer_binding_size = match words {
+                0 => chosen.1.max_storage_buffer_binding_size,
+                w => u64::from(g.width * 10 * 4 * w),
+            };
+            let (progressive, sums, retraced) = progressive_sums(&ctx, &packed, 4, None);
+            let bands = progressive.bands().len();
+            eprintln!(
+                "{file}, {}: {bands} bands, re-traced {retraced:?}",
+                ctx.kernel
+            );
+            assert_eq!(bands, if lists_in_storage { 4 } else { 1 }, "{file}");
+            let view = film_of_sums(&sums, g.width, g.height);
+            let render = glint::gpu::render_gpu(&ctx, &packed, &Default::default()).unwrap();
+            let name = format!("view {file}, {}", ctx.kernel);
+            if retraced.iter().sum::<u64>() > 0 {
+                let cpu = crate::common::render_cpu(&packed);
+                let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("view");
+                glint::diff::assert_images_match(&name, &view, &cpu, 0.01, 0.999, &out)
+                    .unwrap_or_else(|message| panic!("{message}"));
+            } else if render.info.cpu_fallback_pixels == 0 {
+                let worst = view
+                    .pixels
+                    .iter()
+                    .zip(&render.film.pixels)
+                    .flat_map(|(a, b)| {
+                        (0..3).map(move |c| (a[c] - b[c]).abs() / b[c].abs().max(1e-30))
+                    })
+                    .fold(0.0f32, f32::max);
+                assert!(
+                    worst <= 2.0 * f32::EPSILON,
+                    "{name}: {worst:e} from glint render"
+                );
+            }
+            results.push((sums, retraced));
+        }
+        assert!(
+            results[0] == results[1],
+            "{file}: the sums differ with the lists in storage"
+        );
+    }
+    (ctx.kernel, ctx.limits) = chosen;
+}
