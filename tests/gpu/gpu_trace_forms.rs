@@ -205,3 +205,42 @@ fn mirrored_item_hint_is_the_same_in_both_forms() {
     let scene = common::packed_from_source(&common::mirrored_walls_source(), &overrides).remove(0);
     same_in_both_forms(&mut ctx, "mirrored-walls", &scene);
 }
+
+/// A striped, textured quad that is also a mirror, under adaptive AA: its stripes at the
+/// pixel's scale split squares (fine_detail_seen, noted at the camera ray's hit, depth 0,
+/// which the loop form notes inside the loop) and it spawns a reflected ray: both forms
+/// split as the CPU does, and render the same bits.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn texture_detail_hint_is_the_same_in_both_forms() {
+    let Some(mut ctx) = gpu_context() else { return };
+    let dir = common::temp_dir("gpu-trace-forms-stripes");
+    let texture = image::RgbImage::from_fn(64, 64, |x, _| {
+        let grey = if x % 8 == 0 { 77 } else { 179 };
+        image::Rgb([grey, grey, grey])
+    });
+    texture.save(dir.join("stripes.png")).unwrap();
+    let source = "m = gr.material('m') m:set_diffuse('stripes.png') \
+        m:set_reflection(0.3, 0.3, 0.3) \
+        q = gr.mesh('q', {{0,0,0},{1,0,0},{1,1,0},{0,1,0}}, {{0,1,2,3}}, \
+                         {{0,0},{1,0},{1,1},{0,1}}) \
+        q:set_material(m) \
+        gr.render(q, 'o.png', 32, 32, {0.5,0.5,2.6}, {0,0,-1}, {0,1,0}, 20, {1,1,1}, {})";
+    let path = dir.join("mirror-stripes.lua");
+    std::fs::write(&path, source).unwrap();
+    let overrides = OptionOverrides {
+        aa: Some(AaMode::Adaptive),
+        aa_threshold: Some(0.15),
+        aa_depth: Some(AaDepth::constant(3)),
+        ..OptionOverrides::default()
+    };
+    let scene = packed_from_file(&path, &overrides).remove(0);
+    let features = scene.features;
+    assert!(
+        features.contains(SceneFeatures::TEXTURE)
+            && features.contains(SceneFeatures::REFLECTION)
+            && !features.contains(SceneFeatures::REFRACTION),
+        "[{features}]"
+    );
+    same_in_both_forms(&mut ctx, "mirror-stripes", &scene);
+}
