@@ -106,6 +106,15 @@ fn load_pending(stack: ptr<function, RayStack>, k: u32) -> StackEntry {
 // have: on llvmpipe a loop around the first hit costs 20–25% of the render even when it
 // runs once (docs/journal/2026-11-30-one-hit-no-loop.md). With dielectrics the camera ray is the loop's first entry
 // (below); either way the steps are the CPU twin's, in its order.
+// #if CAMERA_RAY_IN_LOOP
+// #if !REFRACTION
+// In the hardware variant scenes with mirrors take the loop form too (CAMERA_RAY_IN_LOOP,
+// src/gpu/shader.rs): a hit before the loop inlines closest_hit and shade_hit a second
+// time, which RADV compiled to twice the code and more spilled SGPRs (demo's main, wave64:
+// 39 KiB and 105, against 20 KiB and 50; docs/journal/2026-12-02-one-traversal-in-mirror-scenes.md). The loop's first turn takes
+// the steps the hit before the loop would, in the same order: 0 + 1 × colour is colour.
+// #endif
+// #endif
 // Mirror of src/cpu/trace.rs::trace_ray — change both.
 fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
     var first: StackEntry;
@@ -118,11 +127,16 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
 // #if REFRACTION
     first.media = camera_medium_stack();
 // #endif
+// #if CAMERA_RAY_IN_LOOP
 // #if REFRACTION
     // With dielectrics the kernel is large (and scenes with them tend to have many other
     // features): a second inlined copy of the first hit's traversal and shading costs
     // llvmpipe more than the loop around it saves (scrabble +15%, the every-feature
     // kernel 2.6×: docs/journal/2026-11-30-one-hit-no-loop.md), so the camera ray is the loop's first entry.
+// #else
+    // With mirrors in the hardware variant: one inlined copy of the traversal and
+    // shading, not two (see above).
+// #endif
     var stack: RayStack;
     store_pending(&stack, 0u, first);
     var size = 1u;
@@ -155,7 +169,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
         size -= 1u;
         let entry = load_pending(&stack, size);
         let hit = closest_hit(entry.ray, T_MISS);
-// #if REFRACTION
+// #if CAMERA_RAY_IN_LOOP
         if entry.depth == 0u {
             camera_item = hit.item;
         }
@@ -169,7 +183,7 @@ fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
             continue;
         }
         let shaded = shade_hit(entry, hit, seed);
-// #if REFRACTION
+// #if CAMERA_RAY_IN_LOOP
         if entry.depth == 0u {
 // #if TEXTURE
             note_texture_detail(shaded.s);

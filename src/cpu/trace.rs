@@ -41,9 +41,14 @@ struct StackEntry {
 /// `seed` names the camera sample (its `depth` is ignored: each shading point gets its
 /// own ray's depth). The camera ray's hit is traced and shaded before the loop over
 /// secondary rays, which only rays it spawns enter: the GPU twin has that shape without
-/// dielectrics (on llvmpipe a loop around the first hit costs 20–25% of the render even
-/// when it runs once; with dielectrics the camera ray is its loop's first entry,
-/// docs/journal/2026-11-30-one-hit-no-loop.md), and both tracers take the same steps in the same order.
+/// dielectrics in its software variant (on llvmpipe a loop around the first hit costs
+/// 20–25% of the render even when it runs once, docs/journal/2026-11-30-one-hit-no-loop.md).
+/// With dielectrics, and with mirrors in its hardware variant (`CAMERA_RAY_IN_LOOP`: one
+/// inlined traversal instead of two, docs/journal/2026-12-02-one-traversal-in-mirror-scenes.md),
+/// the camera ray is the twin's loop's first entry, whose first turn takes these steps in
+/// this order (its depth-0 checks standing for the hints set here, and 0 + 1 × colour
+/// being colour); so there is one CPU form, and both tracers take the same steps in the
+/// same order (the twins test compares the CPU with both GPU forms).
 // Mirror of shaders/trace.wgsl::trace_ray — change both.
 pub fn trace_ray(
     scene: &PackedScene,

@@ -1,5 +1,6 @@
 //! The kernel variant a GPU context compiles, chosen from its adapter: the workgroup size,
-//! whether traversal keeps per-ray mailboxes, and whether loops check Mesa's limiter.
+//! whether traversal keeps per-ray mailboxes, whether loops check Mesa's limiter, where
+//! per-ray lists live and whether the camera ray enters the secondary-ray loop.
 //! None of them changes an answer (the tests render and probe every variant against the
 //! CPU tracer); they change what the kernel costs on a given kind of device.
 
@@ -28,6 +29,13 @@ pub struct KernelConfig {
     /// (`LISTS_IN_STORAGE`, `src/gpu/lists.rs`), rather than in private arrays, which a
     /// GPU compiler puts in scratch memory.
     pub lists_in_storage: bool,
+    /// Whether `trace_ray` takes the camera ray as the first entry of its loop over rays in
+    /// scenes with mirrors but no dielectrics too (`CAMERA_RAY_IN_LOOP`, which
+    /// `src/gpu/shader.rs` sets for those and for every scene with dielectrics), rather
+    /// than tracing and shading its hit before the loop. Either way the same steps run in
+    /// the same order on the same values (the CPU twin's); the loop form inlines the
+    /// traversal and shading once instead of twice.
+    pub camera_ray_in_loop: bool,
 }
 
 impl Default for KernelConfig {
@@ -39,6 +47,7 @@ impl Default for KernelConfig {
             iteration_guard: false,
             storage_tables: false,
             lists_in_storage: true,
+            camera_ray_in_loop: true,
         }
     }
 }
@@ -69,6 +78,12 @@ impl KernelConfig {
     ///   measured 22–30% faster), and fetches are most of a frame there: a macho-cows
     ///   frame took 694M instructions instead of 1 294M (docs/journal/2026-12-01-storage-texture-tables.md); hardware keeps
     ///   sampled textures (unmeasured).
+    /// - camera ray in the loop (with mirrors): on hardware adapters, where the camera
+    ///   ray's hit traced and shaded before the loop inlines `closest_hit` and `shade_hit`
+    ///   twice (RADV NAVI21: demo's kernels twice the code and spilled SGPRs,
+    ///   docs/journal/2026-12-02-one-traversal-in-mirror-scenes.md); software adapters keep
+    ///   the hit before the loop, since on llvmpipe a loop around the first hit cost
+    ///   20–25% of the render (docs/journal/2026-11-30-one-hit-no-loop.md).
     pub fn for_adapter(device_type: wgpu::DeviceType, limits: &wgpu::Limits) -> KernelConfig {
         let software = device_type == wgpu::DeviceType::Cpu;
         let tables = SCENE_TABLE_BINDINGS.len() as u32;
@@ -82,6 +97,7 @@ impl KernelConfig {
             iteration_guard: software,
             storage_tables: software && limits.max_storage_textures_per_shader_stage >= tables,
             lists_in_storage: !software,
+            camera_ray_in_loop: !software,
         }
     }
 
@@ -143,6 +159,9 @@ impl fmt::Display for KernelConfig {
         if self.lists_in_storage {
             write!(f, ", ray lists in storage")?;
         }
+        if self.camera_ray_in_loop {
+            write!(f, ", camera ray in loop")?;
+        }
         Ok(())
     }
 }
@@ -180,6 +199,7 @@ mod tests {
         let hard = KernelConfig::for_adapter(wgpu::DeviceType::DiscreteGpu, &limits);
         assert!(hard.mailboxes == Mailboxes::Full && !hard.iteration_guard);
         assert!(hard.lists_in_storage && !soft.lists_in_storage);
+        assert!(hard.camera_ray_in_loop && !soft.camera_ray_in_loop);
         assert_eq!(hard.workgroup_side, 8);
     }
 

@@ -11,8 +11,11 @@
 //! check, see `shaders/render.wgsl`), `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
 //! traversal's per-ray mailboxes, all of them or one item slot: see
 //! `shaders/traverse.wgsl`), `STORAGE_TABLES` (the scene's tables bound as read-only
-//! storage textures: see `shaders/layout.wgsl`) and `LISTS_IN_STORAGE` (per-ray lists in
-//! a storage buffer: see `shaders/lists.wgsl`).
+//! storage textures: see `shaders/layout.wgsl`), `LISTS_IN_STORAGE` (per-ray lists in
+//! a storage buffer: see `shaders/lists.wgsl`) and `CAMERA_RAY_IN_LOOP` (`trace_ray`'s
+//! camera ray is the first entry of its loop over rays: see `shaders/trace.wgsl`), the one
+//! flag that also depends on the features, since which form traces the camera ray once
+//! depends on whether the scene has secondary rays at all.
 
 use super::kernel::KernelConfig;
 use super::lists::LaneLists;
@@ -228,16 +231,26 @@ pub fn preprocess_with(
     Ok(out)
 }
 
-/// Whether a kernel variant sets one of its flags.
-type KernelFlag = fn(KernelConfig) -> bool;
+/// Whether a kernel variant sets one of its flags for a scene with these features.
+type KernelFlag = fn(KernelConfig, SceneFeatures) -> bool;
 
 /// The kernel variant's flags a shader may test with `#if`, and whether `kernel` sets each.
-const KERNEL_FLAGS: [(&str, KernelFlag); 5] = [
-    ("ITERATION_GUARD", |k| k.iteration_guard),
-    ("MAILBOXES", |k| k.mailboxes == Mailboxes::Full),
-    ("LAST_ITEM_MAILBOX", |k| k.mailboxes == Mailboxes::LastItem),
-    ("STORAGE_TABLES", |k| k.storage_tables),
-    ("LISTS_IN_STORAGE", |k| k.lists_in_storage),
+const KERNEL_FLAGS: [(&str, KernelFlag); 6] = [
+    ("ITERATION_GUARD", |k, _| k.iteration_guard),
+    ("MAILBOXES", |k, _| k.mailboxes == Mailboxes::Full),
+    ("LAST_ITEM_MAILBOX", |k, _| {
+        k.mailboxes == Mailboxes::LastItem
+    }),
+    ("STORAGE_TABLES", |k, _| k.storage_tables),
+    ("LISTS_IN_STORAGE", |k, _| k.lists_in_storage),
+    // With dielectrics in every variant (a second inlined copy of the first hit cost
+    // llvmpipe more than the loop saves); with mirrors only where the variant asks
+    // (`KernelConfig::camera_ray_in_loop`); never without secondary rays, which need
+    // no loop at all. `#if` has no "and", hence the features here.
+    ("CAMERA_RAY_IN_LOOP", |k, f| {
+        f.contains(SceneFeatures::REFRACTION)
+            || (k.camera_ray_in_loop && f.contains(SceneFeatures::REFLECTION))
+    }),
 ];
 
 /// Evaluates `NAME`, `A|B` or `!A|B` against `features` and `kernel`'s flags.
@@ -249,7 +262,7 @@ fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Resul
     let mut any = false;
     for name in names.split('|').map(str::trim) {
         if let Some((_, set)) = KERNEL_FLAGS.iter().find(|(flag, _)| *flag == name) {
-            any |= set(kernel);
+            any |= set(kernel, features);
             continue;
         }
         let flag = SceneFeatures::ALL

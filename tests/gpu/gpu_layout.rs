@@ -187,7 +187,7 @@ fn every_specialisation_validates() {
     for features in sets {
         // Every render kernel is in one module, so Render covers them all; each kernel
         // variant an adapter may choose (hardware: mailboxes, no guard, sampled tables,
-        // per-ray lists in storage;
+        // per-ray lists in storage, the camera ray in the loop;
         // software: one mailbox slot, the guard and storage-texture tables; a smaller
         // workgroup where the adapter's limits ask
         // for it), and the variant without mailboxes the tests compare them with. The
@@ -198,6 +198,7 @@ fn every_specialisation_validates() {
             iteration_guard: true,
             storage_tables: true,
             lists_in_storage: false,
+            camera_ray_in_loop: false,
             ..hardware
         };
         let small = KernelConfig {

@@ -23,6 +23,7 @@ mod gpu_probes;
 mod gpu_refraction;
 mod gpu_scrabble;
 mod gpu_textures;
+mod gpu_trace_forms;
 mod kernel_instrument;
 mod twins;
 mod twins_broken;

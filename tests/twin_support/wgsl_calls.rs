@@ -65,7 +65,10 @@ fn all_features() -> SceneFeatures {
 }
 
 /// The candidate configurations: feature sets (none, all, each alone, all but each) ×
-/// every kernel variant's flags but `ITERATION_GUARD`.
+/// the kernel variant's flags that select calls: the mailboxes, the tables' binding and
+/// `CAMERA_RAY_IN_LOOP` (trace_ray's two forms, each compared with the one CPU form).
+/// Not `ITERATION_GUARD` (see [`WgslFunction::calls`]) nor `LISTS_IN_STORAGE`, whose
+/// branches call no twin.
 fn candidates() -> Vec<(SceneFeatures, KernelConfig)> {
     let flags: Vec<SceneFeatures> = SceneFeatures::ALL.iter().map(|(f, _)| *f).collect();
     let all = all_features();
@@ -78,12 +81,15 @@ fn candidates() -> Vec<(SceneFeatures, KernelConfig)> {
     for features in sets {
         for mailboxes in Mailboxes::ALL {
             for storage_tables in [false, true] {
-                let kernel = KernelConfig {
-                    mailboxes,
-                    storage_tables,
-                    ..KernelConfig::default()
-                };
-                out.push((features, kernel));
+                for camera_ray_in_loop in [true, false] {
+                    let kernel = KernelConfig {
+                        mailboxes,
+                        storage_tables,
+                        camera_ray_in_loop,
+                        ..KernelConfig::default()
+                    };
+                    out.push((features, kernel));
+                }
             }
         }
     }
