@@ -9,8 +9,8 @@
 //! array indexed at run time becomes per-lane scatters and gathers, which cost more than
 //! the tests they save; one slot is a plain scalar there, and on balance it pays
 //! (docs/journal/2026-11-29-gpu-kernel-variant-measured.md measures both, scene by scene).
-//! On a hardware GPU the full caches live in registers, 16–48 VGPRs of a kernel that must
-//! fit 128 (RADV, NAVI21), and in storage they cost more memory operations than the tests
+//! On a hardware GPU the full caches live in registers, up to 48 VGPRs of a kernel that
+//! must fit 128 (RADV, NAVI21), and in storage they cost more memory operations than the tests
 //! they save; every adapter keeps the one slot
 //! (docs/journal/2026-12-02-mailboxes-out-of-registers.md).
 

@@ -40,7 +40,7 @@ pub struct BenchArgs {
     pub workgroup_side: Option<String>,
     /// --gpu: keep the traversal's per-ray mailboxes (on), only one item slot (last) or
     /// none (off), instead of the adapter's choice (last: the full caches cost a hardware
-    /// kernel 16–48 VGPRs). To measure a GPU.
+    /// kernel up to 48 VGPRs). To measure a GPU.
     #[arg(long, value_parser = ["on", "last", "off"])]
     pub mailboxes: Option<String>,
     /// --gpu: also time each pass of the frame with the scene's own AA (timestamp queries

@@ -57,7 +57,7 @@ impl KernelConfig {
     ///   docs/journal/2026-11-29-gpu-kernel-variant-measured.md), while one slot is a
     ///   scalar and saves walking a mesh instance again in the next scene cell (3–17% less
     ///   GPU time where meshes span several cells, 5–8% more on demo without AA: the same
-    ///   journal). On hardware the full caches lived in registers: 16–48 VGPRs of RADV's
+    ///   journal). On hardware the full caches lived in registers: up to 48 VGPRs of RADV's
     ///   NAVI21 kernels (nonhier.lua 160 → 112 in wave32), more than the budget's margin;
     ///   kept in the per-ray storage slots instead they cost the same registers as one slot
     ///   plus a load per lookup, a store per test and 8 + 32 stores to empty them per walk,
@@ -180,7 +180,7 @@ mod tests {
             "workgroup 8×8/64, last-item mailbox, iteration guard"
         );
         let hard = KernelConfig::for_adapter(wgpu::DeviceType::DiscreteGpu, &limits);
-        // The full caches cost a hardware kernel 16–48 VGPRs (issue 38): one slot there too.
+        // The full caches cost a hardware kernel up to 48 VGPRs (issue 38): one slot there too.
         assert!(hard.mailboxes == Mailboxes::LastItem && !hard.iteration_guard);
         assert!(hard.lists_in_storage && !soft.lists_in_storage);
         assert_eq!(hard.workgroup_side, 8);
