@@ -16,9 +16,9 @@
 
 // The items a ray has tested, as a direct-mapped cache of ITEM_MAILBOX_SIZE slots (item
 // number modulo the size). Only kinds for which a second test is sure to change nothing
-// go in (mailboxed). The MAILBOXES variant (hardware adapters) keeps every slot; the
-// LAST_ITEM_MAILBOX variant (software adapters) only the last item tested, a scalar
-// where llvmpipe would scatter and gather an array indexed at run time; with neither,
+// go in (mailboxed). The MAILBOXES variant keeps every slot (in registers on a GPU: no
+// adapter's choice, docs/gpu.md); LAST_ITEM_MAILBOX (every adapter's) only the last item
+// tested, a scalar where llvmpipe would scatter and gather an array; with neither,
 // every item is tested in every cell that lists it. The answers are the same.
 // Mirror of src/cpu/traverse.rs::Mailbox — change both.
 struct Mailbox {

@@ -8,8 +8,8 @@
 // The triangles a ray has tested in one mesh, as a direct-mapped cache of
 // TRIANGLE_MAILBOX_SIZE slots (triangle number modulo the size): testing one again would
 // give the same answer, so a triangle listed in several cells is tested once unless
-// another took its slot in between. Kept only in the MAILBOXES variant (hardware
-// adapters): without it a triangle is tested in every cell that lists it, with the same
+// another took its slot in between. Kept only in the MAILBOXES variant (no adapter's
+// choice: docs/gpu.md): without it a triangle is tested in every cell that lists it, with the same
 // answers (and the struct holds no array, so there is none to zero per mesh walk).
 // Mirror of src/cpu/traverse_mesh.rs::TriangleMailbox — change both.
 struct TriangleMailbox {

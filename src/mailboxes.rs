@@ -5,10 +5,14 @@
 //! A mailbox remembers items (or a mesh's triangles) a ray has already tested, so that one
 //! listed in several grid cells is not tested again. Skipping a second test changes no
 //! answer (see `cpu::traverse::mailboxed`), only the work; which kind pays depends on the
-//! device. On the CPU and on hardware GPUs the full caches pay. On a software adapter
-//! (llvmpipe) a private array indexed at run time becomes per-lane scatters and gathers,
-//! which cost more than the tests they save; one slot is a plain scalar there, and on
-//! balance it pays (docs/journal/2026-11-29-gpu-kernel-variant-measured.md measures both, scene by scene).
+//! device. On the CPU the full caches pay. On a software adapter (llvmpipe) a private
+//! array indexed at run time becomes per-lane scatters and gathers, which cost more than
+//! the tests they save; one slot is a plain scalar there, and on balance it pays
+//! (docs/journal/2026-11-29-gpu-kernel-variant-measured.md measures both, scene by scene).
+//! On a hardware GPU the full caches live in registers, up to 48 VGPRs of a kernel that
+//! must fit 128 (RADV, NAVI21), and in storage they cost more memory operations than the tests
+//! they save; every adapter keeps the one slot
+//! (docs/journal/2026-12-02-mailboxes-out-of-registers.md).
 
 use crate::constants::{ITEM_MAILBOX_SIZE, TRIANGLE_MAILBOX_SIZE};
 use std::fmt;
@@ -16,11 +20,12 @@ use std::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Mailboxes {
     /// `ITEM_MAILBOX_SIZE` item slots and `TRIANGLE_MAILBOX_SIZE` triangle slots per mesh
-    /// walk, direct-mapped (the CPU tracer; the GPU kernel on hardware adapters).
+    /// walk, direct-mapped (the CPU tracer; the GPU kernel only under `bench --gpu
+    /// --mailboxes on`).
     Full,
     /// One item slot (the last mailboxed item tested) and no triangle slots: a mesh
     /// instance met again in the next scene cell is not walked again (the GPU kernel on
-    /// software adapters).
+    /// every adapter).
     LastItem,
     /// None: every item and triangle is tested in every cell that lists it (tests use it
     /// to show the answers do not depend on the mailboxes).

@@ -43,7 +43,7 @@ impl Default for KernelConfig {
     fn default() -> KernelConfig {
         KernelConfig {
             workgroup_side: WORKGROUP_SIZE,
-            mailboxes: Mailboxes::Full,
+            mailboxes: Mailboxes::LastItem,
             iteration_guard: false,
             storage_tables: false,
             lists_in_storage: true,
@@ -59,13 +59,19 @@ impl KernelConfig {
     ///   8–32 on Intel, 8 on llvmpipe's AVX2) that the adapter's invocation and size
     ///   limits allow. On lavapipe 4×4 measured slower on mesh scenes and 16×16 gave no
     ///   consistent gain (docs/journal/2026-11-29-gpu-kernel-variant-measured.md).
-    /// - mailboxes: one slot (the last item tested) on software adapters (device type Cpu:
-    ///   lavapipe, SwiftShader, WARP), where llvmpipe turns a private array indexed at
-    ///   run time into per-lane scatters and gathers that cost more than the tests they
-    ///   save (17–38% of the render time on mesh scenes, docs/journal/2026-11-29-gpu-kernel-variant-measured.md), while one slot is
-    ///   a scalar and saves walking a mesh instance again in the next scene cell (3–17%
-    ///   less GPU time where meshes span several cells, 5–8% more on demo without AA:
-    ///   docs/journal/2026-11-29-gpu-kernel-variant-measured.md); the full caches elsewhere (not yet measured on hardware).
+    /// - mailboxes: one slot (the last item tested) on every adapter. On software adapters
+    ///   (device type Cpu: lavapipe, SwiftShader, WARP) llvmpipe turns a private array
+    ///   indexed at run time into per-lane scatters and gathers that cost more than the
+    ///   tests they save (17–38% of the render time on mesh scenes,
+    ///   docs/journal/2026-11-29-gpu-kernel-variant-measured.md), while one slot is a
+    ///   scalar and saves walking a mesh instance again in the next scene cell (3–17% less
+    ///   GPU time where meshes span several cells, 5–8% more on demo without AA: the same
+    ///   journal). On hardware the full caches lived in registers: up to 48 VGPRs of RADV's
+    ///   NAVI21 kernels (nonhier.lua 160 → 112 in wave32), more than the budget's margin;
+    ///   kept in the per-ray storage slots instead they cost the same registers as one slot
+    ///   plus a load per lookup, a store per test and 8 + 32 stores to empty them per walk,
+    ///   for 5–54% fewer primitive tests
+    ///   (docs/journal/2026-12-02-mailboxes-out-of-registers.md; unmeasured on a GPU).
     /// - iteration guard: on software adapters, whose gallivm caps the loop iterations of
     ///   one invocation.
     /// - lists in storage: on hardware adapters, where RADV puts a private array over
@@ -89,11 +95,7 @@ impl KernelConfig {
         let tables = SCENE_TABLE_BINDINGS.len() as u32;
         KernelConfig {
             workgroup_side: workgroup_side_within(limits),
-            mailboxes: if software {
-                Mailboxes::LastItem
-            } else {
-                Mailboxes::Full
-            },
+            mailboxes: Mailboxes::LastItem,
             iteration_guard: software,
             storage_tables: software && limits.max_storage_textures_per_shader_stage >= tables,
             lists_in_storage: !software,
@@ -188,7 +190,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn software_adapters_keep_one_mailbox_slot_and_guard_loops() {
+    fn every_adapter_keeps_one_mailbox_slot_and_software_ones_guard_loops() {
         let limits = wgpu::Limits::default();
         let soft = KernelConfig::for_adapter(wgpu::DeviceType::Cpu, &limits);
         assert!(soft.mailboxes == Mailboxes::LastItem && soft.iteration_guard);
@@ -197,7 +199,8 @@ mod tests {
             "workgroup 8×8/64, last-item mailbox, iteration guard"
         );
         let hard = KernelConfig::for_adapter(wgpu::DeviceType::DiscreteGpu, &limits);
-        assert!(hard.mailboxes == Mailboxes::Full && !hard.iteration_guard);
+        // The full caches cost a hardware kernel up to 48 VGPRs (issue 38): one slot there too.
+        assert!(hard.mailboxes == Mailboxes::LastItem && !hard.iteration_guard);
         assert!(hard.lists_in_storage && !soft.lists_in_storage);
         assert!(hard.camera_ray_in_loop && !soft.camera_ray_in_loop);
         assert_eq!(hard.workgroup_side, 8);

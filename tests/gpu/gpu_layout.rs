@@ -186,13 +186,18 @@ fn every_specialisation_validates() {
     let mut failures = Vec::new();
     for features in sets {
         // Every render kernel is in one module, so Render covers them all; each kernel
-        // variant an adapter may choose (hardware: mailboxes, no guard, sampled tables,
-        // per-ray lists in storage, the camera ray in the loop;
+        // variant an adapter may choose (hardware: one mailbox slot, no guard, sampled
+        // tables, per-ray lists in storage, the camera ray in the loop;
         // software: one mailbox slot, the guard and storage-texture tables; a smaller
         // workgroup where the adapter's limits ask
-        // for it), and the variant without mailboxes the tests compare them with. The
-        // guard is in the render module only.
+        // for it), and the variants with full mailboxes (`bench --gpu --mailboxes on`)
+        // and without mailboxes the tests compare them with. The guard is in the render
+        // module only.
         let hardware = KernelConfig::default();
+        let full = KernelConfig {
+            mailboxes: Mailboxes::Full,
+            ..hardware
+        };
         let software = KernelConfig {
             mailboxes: Mailboxes::LastItem,
             iteration_guard: true,
@@ -211,10 +216,12 @@ fn every_specialisation_validates() {
         };
         for (entry, kernel) in [
             (Entry::Render, hardware),
+            (Entry::Render, full),
             (Entry::Render, software),
             (Entry::Render, small),
             (Entry::Render, bare),
             (Entry::Probe, hardware),
+            (Entry::Probe, full),
             (Entry::Probe, software),
             (Entry::Probe, bare),
         ] {

@@ -177,15 +177,24 @@ fn instanced_scene(seed: u64, triangles: usize, instances: usize) -> String {
 
 /// Instanced meshes through both levels of grid (and by brute force): every ray agrees
 /// on hit or miss, instance and triangle; closest-hit and any-hit rays alike; with the
-/// traversal's mailboxes (hardware kernel variant), with one item slot (software variant)
-/// and without, on both tracers, and the CPU's answers are the same bit for bit each way.
+/// traversal's full mailboxes, with one item slot (every adapter's choice) and without,
+/// on both tracers, in the kernel variant this adapter chose and in the hardware variant
+/// (per-ray lists in storage, no loop guard: the kernels a GPU runs, here on lavapipe),
+/// and the CPU's answers are the same bit for bit each way.
 #[test]
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn probes_instanced_meshes() {
     use common::probes::{agree, random_rays};
     use glint::constants::{PROBE_ANY_HIT, T_MISS};
+    use glint::gpu::{KernelConfig, KernelVariant};
     use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
     let Some(mut ctx) = gpu_context() else { return };
+    let chosen = ctx.kernel;
+    let mut kernels = vec![chosen];
+    let hardware = KernelConfig::for_variant(KernelVariant::Hardware, &ctx.limits);
+    if hardware != chosen {
+        kernels.push(hardware);
+    }
     for (mode, grid_name) in [(GridMode::Auto, "grid"), (GridMode::Off, "brute force")] {
         let mut s = packed_from_source(&instanced_scene(11, 400, 8), &grid(mode)).remove(0);
         assert_eq!(s.meshes.len(), 1, "the soup is stored once");
@@ -200,9 +209,12 @@ fn probes_instanced_meshes() {
         }
         s.mailboxes = Mailboxes::Full;
         let with_mailboxes: Vec<_> = rays.iter().map(|r| cpu_probe(&s, r)).collect();
-        for mailboxes in Mailboxes::ALL {
-            let name = format!("{grid_name}, {mailboxes}");
-            ctx.kernel.mailboxes = mailboxes;
+        for (kernel, mailboxes) in kernels.iter().flat_map(|k| Mailboxes::ALL.map(|m| (*k, m))) {
+            ctx.kernel = KernelConfig {
+                mailboxes,
+                ..kernel
+            };
+            let name = format!("{grid_name}, {}", ctx.kernel);
             s.mailboxes = mailboxes;
             let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
             let (mut hits, mut worst_dt) = (0, 0.0f32);

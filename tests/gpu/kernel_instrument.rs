@@ -157,7 +157,7 @@ fn dumped_kernels_are_the_kernels_the_instrument_compiles() {
     );
     let wgsl = std::fs::read_to_string(dump.join("main.wgsl")).unwrap();
     assert!(
-        wgsl.contains("kernel: workgroup 8×8/64, mailboxes"),
+        wgsl.contains("kernel: workgroup 8×8/64, last-item mailbox, ray lists in storage"),
         "the hardware variant"
     );
     let spv = std::fs::read(dump.join("main.spv")).unwrap();

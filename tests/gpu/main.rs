@@ -19,6 +19,7 @@ mod gpu_frame;
 mod gpu_images;
 mod gpu_layout;
 mod gpu_lists;
+mod gpu_mailboxes;
 mod gpu_probes;
 mod gpu_refraction;
 mod gpu_scrabble;
