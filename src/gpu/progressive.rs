@@ -27,12 +27,12 @@ use super::buffers::{
     read_back, scene_entries, upload_scene, GpuTile, SceneBuffers, LIMITER_SENTINEL,
 };
 use super::context::GpuContext;
-use super::lists::LaneLists;
 use super::pipeline::{
     get_pipeline, CompiledPipeline, GUARD_BINDING, LISTS_BINDING, OUTPUT_BINDING, SAMPLES_BINDING,
     SPLIT_BINDING, TILE_BINDING, WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
 };
 use super::plan::{slot_budget, AdapterBounds, Chunk};
+use super::render::adapter_bounds;
 use super::shader::Entry;
 use super::GpuError;
 use crate::cpu::progressive::view_sample;
@@ -179,16 +179,8 @@ impl Progressive {
         let buffers = upload_scene(ctx, scene)?;
         let g = &scene.globals;
         let guard_pixels = u64::from(g.width) * u64::from(g.height);
-        let lane_words = LaneLists::of(scene.features, pipeline.kernel).words();
-        let bounds = AdapterBounds {
-            max_binding: ctx
-                .limits
-                .max_storage_buffer_binding_size
-                .min(ctx.limits.max_buffer_size),
-            max_workgroups: ctx.limits.max_compute_workgroups_per_dimension,
-            workgroup_side: pipeline.kernel.workgroup_side,
-            lane_list_words: lane_words,
-        };
+        let bounds = adapter_bounds(ctx, pipeline.kernel, scene.features);
+        let lane_words = bounds.lane_list_words;
         let slots = view_bands(g.width, g.height, bounds)
             .iter()
             .map(Chunk::block_pixels)

@@ -21,6 +21,7 @@
 use super::buffers::{take_mapped, upload_scene, LIMITER_SENTINEL};
 use super::context::GpuContext;
 use super::frame::Frame;
+use super::kernel::KernelConfig;
 use super::lists::LaneLists;
 use super::pipeline::{get_pipeline, CompiledPipeline};
 use super::pipeline_cache::CompileSummary;
@@ -129,6 +130,26 @@ struct ReadBack {
     host_waits: u32,
 }
 
+/// What the dispatch plan may use of `ctx`'s adapter for a kernel of variant `kernel`
+/// over a scene with `features`: the largest storage binding, the workgroups per
+/// dimension, the workgroup side and the words of a per-ray list slot (the render's and
+/// the view's plans alike).
+pub(super) fn adapter_bounds(
+    ctx: &GpuContext,
+    kernel: KernelConfig,
+    features: SceneFeatures,
+) -> AdapterBounds {
+    AdapterBounds {
+        max_binding: ctx
+            .limits
+            .max_storage_buffer_binding_size
+            .min(ctx.limits.max_buffer_size),
+        max_workgroups: ctx.limits.max_compute_workgroups_per_dimension,
+        workgroup_side: kernel.workgroup_side,
+        lane_list_words: LaneLists::of(features, kernel).words(),
+    }
+}
+
 /// Renders `scene` on `ctx`'s device: the one entry point of the GPU tracer.
 pub fn render_gpu(
     ctx: &GpuContext,
@@ -136,15 +157,7 @@ pub fn render_gpu(
     options: &GpuRenderOptions,
 ) -> Result<GpuRender, GpuError> {
     let (progress, sentinel) = (options.progress, options.limiter_sentinel);
-    let bounds = AdapterBounds {
-        max_binding: ctx
-            .limits
-            .max_storage_buffer_binding_size
-            .min(ctx.limits.max_buffer_size),
-        max_workgroups: ctx.limits.max_compute_workgroups_per_dimension,
-        workgroup_side: ctx.kernel.workgroup_side,
-        lane_list_words: LaneLists::of(scene.features, ctx.kernel).words(),
-    };
+    let bounds = adapter_bounds(ctx, ctx.kernel, scene.features);
     let g = &scene.globals;
     let window = options.window.unwrap_or(PixelRect::full(g.width, g.height));
     let plan = FramePlan::for_window(g, bounds, window);
