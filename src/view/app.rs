@@ -98,8 +98,11 @@ impl App {
                 NO_DISPLAY_EXIT,
             )
         })?);
-        let (ctx, surface) =
+        let (mut ctx, surface) =
             device_for_window(&window, self.config.adapter.as_deref()).map_err(|e| (e, 5))?;
+        if let Some(variant) = self.config.kernel_variant {
+            ctx.kernel = crate::gpu::KernelConfig::for_variant(variant, &ctx.limits);
+        }
         let tracer = choose_tracer(self.config.backend, &ctx);
         let presenter = Presenter::new(&ctx, surface, &window).map_err(|e| (e, 5))?;
         Session::new(window, ctx, presenter, self.config.clone(), scene, tracer)
@@ -245,10 +248,11 @@ impl ApplicationHandler<ViewEvent> for App {
         match self.open(event_loop) {
             Ok(session) => {
                 eprintln!(
-                    "glint view: {} tracer on {} ({:?}); H prints the keys",
+                    "glint view: {} tracer on {} ({:?}; GPU kernel: {}); H prints the keys",
                     session.tracer.name(),
                     session.ctx.info.name,
-                    session.ctx.info.backend
+                    session.ctx.info.backend,
+                    session.ctx.kernel
                 );
                 self.session = Some(session);
                 self.update_title();

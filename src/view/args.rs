@@ -55,6 +55,10 @@ pub struct ViewArgs {
     /// GPU adapter to use: a substring of its name (see `glint info`).
     #[arg(long)]
     pub adapter: Option<String>,
+    /// GPU kernel variant: hardware or software, instead of the one chosen by adapter
+    /// (as `render`'s; the hardware one on lavapipe shows what a hardware GPU would run).
+    #[arg(long, value_parser = crate::gpu::KernelVariant::parse)]
+    pub kernel_variant: Option<crate::gpu::KernelVariant>,
     /// What the view converges to: uniform (n×n jittered samples a pixel, one a frame)
     /// or none (pixel centres, one frame). Default: the scene's own `aa` when it is none
     /// or uniform, else uniform.

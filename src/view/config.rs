@@ -22,6 +22,7 @@ pub struct ViewConfig {
     pub allow_write: Vec<PathBuf>,
     pub backend: ViewBackend,
     pub adapter: Option<String>,
+    pub kernel_variant: Option<crate::gpu::KernelVariant>,
     pub frames: Option<u64>,
     pub screenshot: Option<PathBuf>,
 }
@@ -42,6 +43,7 @@ impl ViewConfig {
             allow_write: args.allow_write.clone(),
             backend: args.backend,
             adapter: args.adapter.clone(),
+            kernel_variant: args.kernel_variant,
             frames: args.frames,
             screenshot: args.screenshot.clone(),
         })

@@ -16,11 +16,10 @@ use glint::scene::{AaMode, AaSamples, OptionOverrides};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("glint-view-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A scratch folder of its own for each test (two tests with one tag ran in parallel
+/// used to share a folder and overwrite each other's screenshot).
+fn temp_dir(name: &str) -> glint::testing::scratch::TempDir {
+    glint::testing::scratch::temp_dir(&format!("view-{name}"))
 }
 
 fn glint(dir: &Path, args: &[&str]) {
@@ -55,11 +54,22 @@ fn max_difference(a: &image::RgbImage, b: &image::RgbImage) -> u8 {
 
 /// (a) on one tracer: `glint view --frames n² --screenshot` against `glint render`.
 fn screenshot_equals_render(backend: &str) {
+    screenshot_equals_render_of("demo.lua", backend, &[], None);
+}
+
+/// (a) for `scene` (in `scenes/`) on one tracer, with `flags` given to both the view and
+/// the render; with `expect_kernel`, the GPU kernel variant the view must report it ran.
+fn screenshot_equals_render_of(
+    scene: &str,
+    backend: &str,
+    flags: &[&str],
+    expect_kernel: Option<&str>,
+) {
     let x = Xvfb::start();
     let dir = temp_dir(&format!("shot-{backend}"));
-    let demo = root().join("scenes/demo.lua");
+    let demo = root().join("scenes").join(scene);
     let demo = demo.to_str().unwrap();
-    let size = ["--width", "96", "--height", "60"];
+    let size = [&["--width", "96", "--height", "60"][..], flags].concat();
     let mut view = View::start(
         &x,
         &dir,
@@ -87,6 +97,13 @@ fn screenshot_equals_render(backend: &str) {
         "glint view failed: {}",
         view.stderr.lock().unwrap().join("\n")
     );
+    if let Some(kernel) = expect_kernel {
+        let stderr = view.stderr.lock().unwrap().join("\n");
+        assert!(
+            stderr.contains(&format!("GPU kernel: {kernel}")),
+            "the view did not run the kernel variant asked for ({kernel}): {stderr}"
+        );
+    }
     glint(
         &dir,
         &[
@@ -111,10 +128,10 @@ fn screenshot_equals_render(backend: &str) {
         load_rgb(&dir.join("render.png")),
     );
     let diff = max_difference(&shot, &render);
-    eprintln!("{backend} tracer: the window after 9 frames differs from glint render by at most {diff}/255");
+    eprintln!("{scene}, {backend} tracer {flags:?}: the window after 9 frames differs from glint render by at most {diff}/255");
     assert!(
         diff <= 2,
-        "{backend}: the window shows {diff}/255 away from glint render"
+        "{scene}, {backend} {flags:?}: the window shows {diff}/255 away from glint render"
     );
     // Not a blank window that happens to match a blank render.
     let lit = render
@@ -138,6 +155,20 @@ fn a_gpu_window_after_n_squared_frames_is_the_render() {
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn a_cpu_window_after_n_squared_frames_is_the_render() {
     screenshot_equals_render("cpu");
+}
+
+/// The hardware kernel variant (`--kernel-variant hardware`: per-ray lists in storage,
+/// dispatched in bands; the camera ray in the loop) in the window, on a scene whose
+/// dielectric ray stack lives in those lists: what a hardware GPU's view would run.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn a_hardware_kernel_window_on_glass_is_the_render() {
+    screenshot_equals_render_of(
+        "glass.lua",
+        "gpu",
+        &["--kernel-variant", "hardware"],
+        Some("workgroup 8×8/64, last-item mailbox, ray lists in storage, camera ray in loop"),
+    );
 }
 
 /// The eye of a camera line the view printed (C).
