@@ -99,7 +99,8 @@ fn blocks(ctx: &GpuContext, plan: &FramePlan) -> (Vec<Block>, u64, u64) {
     (blocks, output, guard)
 }
 
-fn binding(buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindingResource<'_> {
+/// `size` bytes of `buffer` from `offset`, as a binding.
+pub(super) fn binding(buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindingResource<'_> {
     wgpu::BindingResource::Buffer(wgpu::BufferBinding {
         buffer,
         offset,
@@ -107,13 +108,29 @@ fn binding(buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindingResour
     })
 }
 
+/// Bytes from one dispatch's uniform record (a `GpuTile`) to the next: the adapter's
+/// `min_uniform_buffer_offset_alignment`, so each can be bound at its own offset.
+pub(super) fn record_stride(ctx: &GpuContext) -> u64 {
+    align(
+        std::mem::size_of::<GpuTile>() as u64,
+        u64::from(ctx.limits.min_uniform_buffer_offset_alignment).max(1),
+    )
+}
+
+/// `tiles` laid out as uniform records `stride` bytes apart (record k at k · stride).
+pub(super) fn record_bytes(stride: u64, tiles: impl ExactSizeIterator<Item = GpuTile>) -> Vec<u8> {
+    let mut bytes = vec![0u8; (stride * tiles.len() as u64) as usize];
+    for (k, tile) in tiles.enumerate() {
+        let at = k * stride as usize;
+        bytes[at..at + std::mem::size_of::<GpuTile>()].copy_from_slice(bytemuck::bytes_of(&tile));
+    }
+    bytes
+}
+
 /// Every dispatch's uniform record, one per `min_uniform_buffer_offset_alignment`
 /// bytes (the stride returned), written once before the frame's first submit.
 fn records(ctx: &GpuContext, dispatches: &[Dispatch]) -> (wgpu::Buffer, u64) {
-    let stride = align(
-        std::mem::size_of::<GpuTile>() as u64,
-        ctx.limits.min_uniform_buffer_offset_alignment as u64,
-    );
+    let stride = record_stride(ctx);
     let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
     let records = buffer(
         ctx,
@@ -121,12 +138,7 @@ fn records(ctx: &GpuContext, dispatches: &[Dispatch]) -> (wgpu::Buffer, u64) {
         stride * dispatches.len() as u64,
         usage,
     );
-    let mut bytes = vec![0u8; (stride * dispatches.len() as u64) as usize];
-    for (k, d) in dispatches.iter().enumerate() {
-        let at = k * stride as usize;
-        bytes[at..at + std::mem::size_of::<GpuTile>()]
-            .copy_from_slice(bytemuck::bytes_of(&d.params));
-    }
+    let bytes = record_bytes(stride, dispatches.iter().map(|d| d.params));
     ctx.queue.write_buffer(&records, 0, &bytes);
     (records, stride)
 }

@@ -163,8 +163,9 @@ fn adaptive_slots(w: u32, h: u32, side: u32, depth: u32) -> u64 {
     }
 }
 
-/// Bands of `window`'s full width of at most `rows` rows, at least `min_bands` of them.
-fn bands(window: PixelRect, rows: u32, min_bands: u32) -> Vec<Chunk> {
+/// Bands of `window`'s full width of at most `rows` rows, at least `min_bands` of them
+/// (the render's chunks, and the view's bands).
+pub(super) fn bands(window: PixelRect, rows: u32, min_bands: u32) -> Vec<Chunk> {
     let (w, h) = (window.width(), window.height());
     let rows = rows.min(h.div_ceil(min_bands.max(1))).max(1);
     (0..h.div_ceil(rows))

@@ -27,18 +27,19 @@ use super::buffers::{
     read_back, scene_entries, upload_scene, GpuTile, SceneBuffers, LIMITER_SENTINEL,
 };
 use super::context::GpuContext;
+use super::frame::{binding, record_bytes, record_stride};
 use super::pipeline::{
     get_pipeline, CompiledPipeline, GUARD_BINDING, LISTS_BINDING, OUTPUT_BINDING, SAMPLES_BINDING,
     SPLIT_BINDING, TILE_BINDING, WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
 };
-use super::plan::{slot_budget, AdapterBounds, Chunk};
+use super::plan::{bands, slot_budget, AdapterBounds, Chunk};
 use super::render::adapter_bounds;
 use super::shader::Entry;
 use super::GpuError;
 use crate::cpu::progressive::view_sample;
 use crate::pack::{PackedGlobals, PackedScene};
+use crate::tiling::PixelRect;
 use rayon::prelude::*;
-use std::num::NonZeroU64;
 use std::sync::Arc;
 use wgpu::util::DeviceExt;
 
@@ -99,14 +100,7 @@ pub fn view_bands(width: u32, height: u32, bounds: AdapterBounds) -> Vec<Chunk> 
     let (w, h) = (width.max(1), height.max(1));
     let dispatch_rows = bounds.max_workgroups.saturating_mul(bounds.workgroup_side);
     let rows = (slot_budget(bounds) / u64::from(w)).clamp(1, u64::from(h)) as u32;
-    let rows = rows.min(dispatch_rows).max(1);
-    (0..h.div_ceil(rows))
-        .map(|k| Chunk {
-            origin: [0, k * rows],
-            size: [w, rows.min(h - k * rows)],
-            side: w,
-        })
-        .collect()
+    bands(PixelRect::full(w, h), rows.min(dispatch_rows), 1)
 }
 
 /// What the loop-limiter fallback did since the last restart ([`Progressive::set_globals`]).
@@ -152,20 +146,12 @@ pub struct Progressive {
     unused: Vec<wgpu::Buffer>,
 }
 
-/// Bytes of one band's tile record in `Progressive::tiles`: a `GpuTile`, at the
-/// adapter's uniform-offset alignment.
-fn record_stride(ctx: &GpuContext) -> u64 {
-    let size = std::mem::size_of::<GpuTile>() as u64;
-    let align = u64::from(ctx.limits.min_uniform_buffer_offset_alignment).max(1);
-    size.div_ceil(align) * align
-}
-
-fn binding(buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindingResource<'_> {
-    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-        buffer,
-        offset,
-        size: NonZeroU64::new(size),
-    })
+/// Bytes of the per-ray lists that `bands` need: a slot of `lane_words` words for each
+/// pixel of the largest band (the kernel learns its slots from the binding's length,
+/// lists.wgsl::begin_lane).
+fn lists_bytes(bands: &[Chunk], lane_words: u32) -> u64 {
+    let slots = bands.iter().map(Chunk::block_pixels).max().unwrap_or(1);
+    slots * 4 * u64::from(lane_words)
 }
 
 impl Progressive {
@@ -181,12 +167,7 @@ impl Progressive {
         let guard_pixels = u64::from(g.width) * u64::from(g.height);
         let bounds = adapter_bounds(ctx, pipeline.kernel, scene.features);
         let lane_words = bounds.lane_list_words;
-        let slots = view_bands(g.width, g.height, bounds)
-            .iter()
-            .map(Chunk::block_pixels)
-            .max()
-            .unwrap_or(1);
-        let lists_bytes = slots * 4 * u64::from(lane_words);
+        let lists_bytes = lists_bytes(&view_bands(g.width, g.height, bounds), lane_words);
         if lane_words > 0 {
             super::buffers::check_size(ctx, "view per-ray lists", lists_bytes)?;
         }
@@ -265,9 +246,7 @@ impl Progressive {
                 mapped_at_creation: false,
             });
         }
-        let slots = bands.iter().map(Chunk::block_pixels).max().unwrap_or(1);
-        // The kernel learns its slots from the binding's length (lists.wgsl::begin_lane).
-        let lists_size = slots * 4 * u64::from(self.lane_words);
+        let lists_size = lists_bytes(&bands, self.lane_words);
         debug_assert!(lists_size <= self.lists.size());
         let tile_size = std::mem::size_of::<GpuTile>() as u64;
         self.bind_groups = (0..bands.len() as u64)
@@ -335,20 +314,17 @@ impl Progressive {
     /// kernel that [checks the limiter](Self::checks_limiter), the pixels it cut short
     /// keep their sums and are flagged for [`Self::trace_sample`]'s fallback.
     pub fn encode_sample(&self, ctx: &GpuContext, encoder: &mut wgpu::CommandEncoder, s: u32) {
-        let mut records = vec![0u8; (self.record_stride * self.bands.len() as u64) as usize];
-        for (k, band) in self.bands.iter().enumerate() {
-            let tile = GpuTile {
+        let records = record_bytes(
+            self.record_stride,
+            self.bands.iter().map(|band| GpuTile {
                 origin: band.origin,
                 size: band.size,
                 side: band.side,
                 level: s,
                 items: 0,
                 sentinel: self.sentinel,
-            };
-            let at = k * self.record_stride as usize;
-            records[at..at + std::mem::size_of::<GpuTile>()]
-                .copy_from_slice(bytemuck::bytes_of(&tile));
-        }
+            }),
+        );
         // Written before the submit that carries this pass (queue writes come first).
         ctx.queue.write_buffer(&self.tiles, 0, &records);
         if self.checks_limiter() {
