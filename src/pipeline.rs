@@ -395,7 +395,7 @@ pub fn apply_kernel_settings(
     settings: &RenderSettings,
 ) -> Result<(), crate::gpu::GpuError> {
     if let Some(variant) = settings.kernel_variant {
-        ctx.kernel = crate::gpu::KernelConfig::for_variant(variant, &ctx.limits);
+        ctx.force_kernel_variant(variant);
     }
     if let Some(dir) = &settings.dump_kernels {
         ctx.dump = Some(crate::gpu::dump::KernelDump::new(dir)?);

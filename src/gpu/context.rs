@@ -5,7 +5,7 @@
 //! Vulkan driver wgpu would silently pick GL llvmpipe, whose output differs.
 
 use super::disk_cache::DiskCache;
-use super::kernel::KernelConfig;
+use super::kernel::{KernelConfig, KernelVariant};
 use super::pipeline_cache::PipelineCache;
 use super::GpuError;
 use std::sync::{Arc, Mutex};
@@ -134,6 +134,12 @@ pub fn list_adapters() -> Vec<AdapterSummary> {
 }
 
 impl GpuContext {
+    /// Compiles `variant`'s kernels from now on instead of the adapter's choice
+    /// (`--kernel-variant`, for `render` and `view` alike), with this adapter's limits.
+    pub fn force_kernel_variant(&mut self, variant: KernelVariant) {
+        self.kernel = KernelConfig::for_variant(variant, &self.limits);
+    }
+
     /// Bytes of frame buffers kept for the next frame (`super::scratch`).
     pub fn kept_frame_bytes(&self) -> u64 {
         self.scratch.kept_bytes()

@@ -101,7 +101,7 @@ impl App {
         let (mut ctx, surface) =
             device_for_window(&window, self.config.adapter.as_deref()).map_err(|e| (e, 5))?;
         if let Some(variant) = self.config.kernel_variant {
-            ctx.kernel = crate::gpu::KernelConfig::for_variant(variant, &ctx.limits);
+            ctx.force_kernel_variant(variant);
         }
         let tracer = choose_tracer(self.config.backend, &ctx);
         let presenter = Presenter::new(&ctx, surface, &window).map_err(|e| (e, 5))?;
