@@ -247,16 +247,24 @@ pub fn mirrored_walls_source() -> String {
 /// 0.4 of contrast (no two samples differ by 0.3), and twice the footprint about half of
 /// that. Packed with `overrides`.
 pub fn striped_quad(dir: &Path, overrides: &OptionOverrides) -> PackedScene {
+    striped_quad_with(dir, overrides, "")
+}
+
+/// [`striped_quad`] with `material` (Lua calls on the quad's material `m`, e.g.
+/// `m:set_reflection(0.3, 0.3, 0.3)`) after its texture.
+pub fn striped_quad_with(dir: &Path, overrides: &OptionOverrides, material: &str) -> PackedScene {
     let texture = image::RgbImage::from_fn(64, 64, |x, _| {
         let grey = if x % 8 == 0 { 77 } else { 179 };
         image::Rgb([grey, grey, grey])
     });
     texture.save(dir.join("stripes.png")).unwrap();
-    let source = "m = gr.material('m') m:set_diffuse('stripes.png') \
-        q = gr.mesh('q', {{0,0,0},{1,0,0},{1,1,0},{0,1,0}}, {{0,1,2,3}}, \
-                         {{0,0},{1,0},{1,1},{0,1}}) \
+    let source = format!(
+        "m = gr.material('m') m:set_diffuse('stripes.png') {material} \
+        q = gr.mesh('q', {{{{0,0,0}},{{1,0,0}},{{1,1,0}},{{0,1,0}}}}, {{{{0,1,2,3}}}}, \
+                         {{{{0,0}},{{1,0}},{{1,1}},{{0,1}}}}) \
         q:set_material(m) \
-        gr.render(q, 'o.png', 32, 32, {0.5,0.5,2.6}, {0,0,-1}, {0,1,0}, 20, {1,1,1}, {})";
+        gr.render(q, 'o.png', 32, 32, {{0.5,0.5,2.6}}, {{0,0,-1}}, {{0,1,0}}, 20, {{1,1,1}}, {{}})"
+    );
     let path = dir.join("stripes.lua");
     std::fs::write(&path, source).unwrap();
     packed_from_file(&path, overrides).remove(0)

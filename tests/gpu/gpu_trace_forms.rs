@@ -215,26 +215,13 @@ fn mirrored_item_hint_is_the_same_in_both_forms() {
 fn texture_detail_hint_is_the_same_in_both_forms() {
     let Some(mut ctx) = gpu_context() else { return };
     let dir = common::temp_dir("gpu-trace-forms-stripes");
-    let texture = image::RgbImage::from_fn(64, 64, |x, _| {
-        let grey = if x % 8 == 0 { 77 } else { 179 };
-        image::Rgb([grey, grey, grey])
-    });
-    texture.save(dir.join("stripes.png")).unwrap();
-    let source = "m = gr.material('m') m:set_diffuse('stripes.png') \
-        m:set_reflection(0.3, 0.3, 0.3) \
-        q = gr.mesh('q', {{0,0,0},{1,0,0},{1,1,0},{0,1,0}}, {{0,1,2,3}}, \
-                         {{0,0},{1,0},{1,1},{0,1}}) \
-        q:set_material(m) \
-        gr.render(q, 'o.png', 32, 32, {0.5,0.5,2.6}, {0,0,-1}, {0,1,0}, 20, {1,1,1}, {})";
-    let path = dir.join("mirror-stripes.lua");
-    std::fs::write(&path, source).unwrap();
     let overrides = OptionOverrides {
         aa: Some(AaMode::Adaptive),
         aa_threshold: Some(0.15),
         aa_depth: Some(AaDepth::constant(3)),
         ..OptionOverrides::default()
     };
-    let scene = packed_from_file(&path, &overrides).remove(0);
+    let scene = common::striped_quad_with(&dir, &overrides, "m:set_reflection(0.3, 0.3, 0.3)");
     let features = scene.features;
     assert!(
         features.contains(SceneFeatures::TEXTURE)

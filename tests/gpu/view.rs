@@ -455,28 +455,38 @@ fn progressive_sums_converge_to_the_tracers_renders() {
     let reference = glint::gpu::render_gpu(&ctx, &packed, &Default::default())
         .unwrap()
         .film;
-    let worst = gpu
-        .pixels
-        .iter()
-        .zip(&reference.pixels)
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / b[c].abs().max(1e-30)))
-        .fold(0.0f32, f32::max);
+    let worst = worst_relative_difference(&gpu, &reference);
     // The same samples summed in the same order: only the division (host here, device
     // there) may round differently, by an ulp.
     assert!(
         worst <= 2.0 * f32::EPSILON,
         "GPU sums: largest relative difference {worst:e}"
     );
-    let mut cpu_sums = vec![[0.0f32; 4]; pixels as usize];
-    for s in 0..9 {
-        accumulate_sample(&packed, s, &mut cpu_sums);
-    }
-    let cpu = film_of_sums(&cpu_sums, g.width, g.height);
+    let cpu = film_of_sums(&cpu_sums(&packed, 9), g.width, g.height);
     assert_eq!(
         cpu.pixels,
         crate::common::render_cpu(&packed).pixels,
         "CPU sums: bit for bit"
     );
+}
+
+/// The largest per-channel difference between two films, relative to `reference`'s.
+fn worst_relative_difference(film: &glint::film::Film, reference: &glint::film::Film) -> f32 {
+    film.pixels
+        .iter()
+        .zip(&reference.pixels)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / b[c].abs().max(1e-30)))
+        .fold(0.0f32, f32::max)
+}
+
+/// The CPU tracer's progressive sums of `packed` after `frames` samples a pixel.
+fn cpu_sums(packed: &glint::pack::PackedScene, frames: u32) -> Vec<[f32; 4]> {
+    let g = packed.globals;
+    let mut sums = vec![[0.0f32; 4]; (g.width * g.height) as usize];
+    for s in 0..frames {
+        accumulate_sample(packed, s, &mut sums);
+    }
+    sums
 }
 
 /// `frames` samples of every pixel of `packed` added on the device the way the view adds
@@ -542,11 +552,10 @@ fn limited_samples_are_re_traced_on_the_cpu() {
     let render = glint::gpu::render_gpu(&ctx, &packed, &tripping).unwrap();
     assert_eq!(render.info.cpu_fallback_pixels, expected);
     if guarded {
-        let mut cpu_sums = vec![[0.0f32; 4]; pixels as usize];
-        for s in 0..9 {
-            accumulate_sample(&packed, s, &mut cpu_sums);
-        }
-        assert!(sums == cpu_sums, "the sums are not the CPU tracer's");
+        assert!(
+            sums == cpu_sums(&packed, 9),
+            "the sums are not the CPU tracer's"
+        );
         assert_eq!(view.pixels, render.film.pixels, "not glint render's image");
     }
 }
@@ -604,14 +613,7 @@ fn lists_in_storage_give_the_same_sums_in_bands() {
                 glint::diff::assert_images_match(&name, &view, &cpu, 0.01, 0.999, &out)
                     .unwrap_or_else(|message| panic!("{message}"));
             } else if render.info.cpu_fallback_pixels == 0 {
-                let worst = view
-                    .pixels
-                    .iter()
-                    .zip(&render.film.pixels)
-                    .flat_map(|(a, b)| {
-                        (0..3).map(move |c| (a[c] - b[c]).abs() / b[c].abs().max(1e-30))
-                    })
-                    .fold(0.0f32, f32::max);
+                let worst = worst_relative_difference(&view, &render.film);
                 assert!(
                     worst <= 2.0 * f32::EPSILON,
                     "{name}: {worst:e} from glint render"
