@@ -38,12 +38,16 @@ fn mesh_grid(mesh: PackedMesh) -> GridView {
 // what a step adds to that index, the steps left before the grid ends, the next
 // boundary's t and t per cell; `valid` is false when the ray misses the grid bounds
 // (Rust's None). (The index moves by a stride per step rather than being recomputed from
-// coordinates, as on the CPU.)
+// coordinates, as on the CPU.) The steps left are one word, DDA_STEPS_BITS per axis from x
+// in the lowest bits: a walk's state stays live across every test it makes, and the two
+// registers spared per walk (scene and mesh level) took RADV's NAVI21 closest-hit kernels
+// of textures.lua and scrabble.lua from 112 VGPRs to 96
+// (docs/journal/2026-12-02-traversal-registers.md).
 // Mirror of src/cpu/dda.rs::Dda — change both.
 struct Dda {
     cell: u32,
     cell_step: vec3<i32>,
-    steps_left: vec3<u32>,
+    steps_left: u32,
     t_next: vec3<f32>,
     t_delta: vec3<f32>,
     t_exit: f32,
@@ -70,20 +74,20 @@ fn dda_setup(grid: GridView, ray: Ray, inv: vec3<f32>, t_max: f32) -> Dda {
     let cell = clamp(vec3<i32>((p - grid.min) / grid.cell_size), vec3<i32>(0), grid.dims - 1);
     let strides = vec3<i32>(1, grid.dims.x, grid.dims.x * grid.dims.y);
     var cell_step = vec3<i32>(0);
-    var steps_left = vec3<u32>(0u);
+    var steps_left = 0u;
     var t_next = vec3<f32>(0.0);
     var t_delta = vec3<f32>(0.0);
     for (var axis = 0u; axis < 3u; axis++) {
         if ray.dir[axis] == 0.0 {
             // Parallel to this axis's planes: never step along it.
             cell_step[axis] = 0;
-            steps_left[axis] = 0u;
             t_next[axis] = T_MISS;
             t_delta[axis] = T_MISS;
         } else {
             let forward = ray.dir[axis] > 0.0;
             cell_step[axis] = select(-strides[axis], strides[axis], forward);
-            steps_left[axis] = u32(select(cell[axis], grid.dims[axis] - 1 - cell[axis], forward));
+            let axis_steps = u32(select(cell[axis], grid.dims[axis] - 1 - cell[axis], forward));
+            steps_left |= axis_steps << (DDA_STEPS_BITS * axis);
             let boundary_cell = cell[axis] + select(0, 1, forward);
             let boundary = grid.min[axis] + f32(boundary_cell) * grid.cell_size[axis];
             t_next[axis] = (boundary - ray.origin[axis]) * inv[axis];
@@ -124,10 +128,11 @@ struct DdaStep {
 fn dda_step(dda: ptr<function, Dda>) -> DdaStep {
     let axis = min_axis((*dda).t_next);
     let t_cell_exit = (*dda).t_next[axis];
-    if t_cell_exit >= (*dda).t_exit || (*dda).steps_left[axis] == 0u {
+    let shift = DDA_STEPS_BITS * axis;
+    if t_cell_exit >= (*dda).t_exit || (((*dda).steps_left >> shift) & DDA_STEPS_MASK) == 0u {
         return DdaStep(t_cell_exit, false);
     }
-    (*dda).steps_left[axis] -= 1u;
+    (*dda).steps_left -= 1u << shift;
     // (u32 arithmetic wraps, as the CPU's wrapping_add_signed: a negative stride subtracts.)
     (*dda).cell += bitcast<u32>((*dda).cell_step[axis]);
     (*dda).t_next[axis] += (*dda).t_delta[axis];

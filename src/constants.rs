@@ -26,6 +26,14 @@ pub const ITEM_MAILBOX_SIZE: u32 = 8;
 /// cow.obj's) is tested once along a ray, unless another took its slot in between. A
 /// power of two, so the slot is a mask of the triangle number.
 pub const TRIANGLE_MAILBOX_SIZE: u32 = 32;
+/// Bits of each axis's steps-left counter in a DDA's packed `steps_left` word (x in the
+/// lowest bits): a grid has at most `accel::grid::MAX_AXIS_CELLS` = 2¹⁰ cells an axis, so
+/// at most 2¹⁰ − 1 steps are left along one, and three counters share one u32 — one
+/// register where three were held live across every cell of both levels' walks
+/// (docs/journal/2026-12-02-traversal-registers.md).
+pub const DDA_STEPS_BITS: u32 = 10;
+/// The mask of one axis's counter in the packed `steps_left` word.
+pub const DDA_STEPS_MASK: u32 = (1 << DDA_STEPS_BITS) - 1;
 /// The smallest normal f32 (a floor for divisors that must not be zero).
 pub const F32_MIN_POSITIVE: f32 = f32::MIN_POSITIVE;
 
@@ -222,6 +230,8 @@ const WGSL_U32S: &[(&str, u32)] = &[
     ("KIND_MESH", KIND_MESH),
     ("ITEM_MAILBOX_SIZE", ITEM_MAILBOX_SIZE),
     ("TRIANGLE_MAILBOX_SIZE", TRIANGLE_MAILBOX_SIZE),
+    ("DDA_STEPS_BITS", DDA_STEPS_BITS),
+    ("DDA_STEPS_MASK", DDA_STEPS_MASK),
     ("CSG_OP_SHIFT", CSG_OP_SHIFT),
     ("CSG_INDEX_MASK", CSG_INDEX_MASK),
     ("CSG_LEAF", CSG_LEAF),

@@ -19,6 +19,8 @@ pub const DEFAULT_DENSITY: f32 = 8.0;
 pub const MESH_DEFAULT_DENSITY: f32 = 2.0;
 /// Most cells along one axis.
 pub const MAX_AXIS_CELLS: u32 = 1024;
+// A DDA packs its three steps-left counters (at most MAX_AXIS_CELLS − 1 each) into one u32.
+const _: () = assert!(MAX_AXIS_CELLS - 1 <= crate::constants::DDA_STEPS_MASK);
 /// Most cells in all (bounds memory: 4 bytes per cell).
 pub const MAX_CELLS: u64 = 1 << 24;
 

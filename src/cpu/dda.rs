@@ -4,7 +4,9 @@
 
 use super::math::{safe_rcp3, Axis};
 use super::ray::Ray;
-use crate::constants::{ENTER_MARGIN_RELATIVE, F32_MIN_POSITIVE, T_MISS};
+use crate::constants::{
+    DDA_STEPS_BITS, DDA_STEPS_MASK, ENTER_MARGIN_RELATIVE, F32_MIN_POSITIVE, T_MISS,
+};
 use crate::pack::{PackedGlobals, PackedMesh};
 use glam::{IVec3, Vec3};
 
@@ -56,13 +58,17 @@ pub fn mesh_grid(mesh: &PackedMesh) -> GridView {
 /// axis what a step adds to that index, the steps left before the grid ends, the next
 /// boundary's t and t per cell. (The index moves by a stride per step rather than being
 /// recomputed from coordinates: two dependent multiplies fewer before each cell's load.
-/// Arrays rather than glam vectors: `dda_setup` fills them by a runtime axis.)
+/// Arrays rather than glam vectors: `dda_setup` fills them by a runtime axis.) The steps
+/// left are one word, [`DDA_STEPS_BITS`] per axis from x in the lowest bits: on the GPU a
+/// walk's state is live across every test it makes, and the two registers this spares
+/// per walk (scene and mesh level) took RADV's closest-hit kernels of textures.lua and
+/// scrabble.lua from 112 VGPRs to 96 (docs/journal/2026-12-02-traversal-registers.md).
 // Mirror of shaders/dda.wgsl::Dda — change both.
 #[derive(Clone, Copy, Debug)]
 pub struct Dda {
     pub cell: u32,
     pub cell_step: [i32; 3],
-    pub steps_left: [u32; 3],
+    pub steps_left: u32,
     pub t_next: [f32; 3],
     pub t_delta: [f32; 3],
     pub t_exit: f32,
@@ -95,7 +101,7 @@ pub fn dda_setup(grid: &GridView, ray: &Ray, inv: Vec3, t_max: f32) -> Option<Dd
     let mut dda = Dda {
         cell: cell_index(grid, IVec3::from(cell)) as u32,
         cell_step: [0; 3],
-        steps_left: [0; 3],
+        steps_left: 0,
         t_next: [0.0; 3],
         t_delta: [0.0; 3],
         t_exit,
@@ -104,7 +110,6 @@ pub fn dda_setup(grid: &GridView, ray: &Ray, inv: Vec3, t_max: f32) -> Option<Dd
         if dir[axis] == 0.0 {
             // Parallel to this axis's planes: never step along it.
             dda.cell_step[axis] = 0;
-            dda.steps_left[axis] = 0;
             dda.t_next[axis] = T_MISS;
             dda.t_delta[axis] = T_MISS;
         } else {
@@ -114,11 +119,12 @@ pub fn dda_setup(grid: &GridView, ray: &Ray, inv: Vec3, t_max: f32) -> Option<Dd
             } else {
                 -strides[axis]
             };
-            dda.steps_left[axis] = if forward {
+            let steps_left = if forward {
                 dims[axis] - 1 - cell[axis]
             } else {
                 cell[axis]
             } as u32;
+            dda.steps_left |= steps_left << (DDA_STEPS_BITS * axis as u32);
             let boundary_cell = cell[axis] + if forward { 1 } else { 0 };
             let boundary = min[axis] + boundary_cell as f32 * cell_size[axis];
             dda.t_next[axis] = (boundary - origin[axis]) * inv[axis];
@@ -165,10 +171,11 @@ pub fn dda_step(dda: &mut Dda) -> Option<f32> {
 #[inline(always)]
 fn step_axis<const AXIS: usize>(dda: &mut Dda) -> Option<f32> {
     let t_cell_exit = dda.t_next[AXIS];
-    if t_cell_exit >= dda.t_exit || dda.steps_left[AXIS] == 0 {
+    let shift = DDA_STEPS_BITS * AXIS as u32;
+    if t_cell_exit >= dda.t_exit || (dda.steps_left >> shift) & DDA_STEPS_MASK == 0 {
         return None;
     }
-    dda.steps_left[AXIS] -= 1;
+    dda.steps_left -= 1 << shift;
     dda.cell = dda.cell.wrapping_add_signed(dda.cell_step[AXIS]);
     dda.t_next[AXIS] += dda.t_delta[AXIS];
     Some(t_cell_exit)
@@ -262,4 +269,89 @@ pub fn enter_mesh(mesh: &PackedMesh, ray: &Ray, t_max: f32) -> Option<EnteredRay
         t_max,
         margin,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cells a walk visits from its first: their (x, y, z) recovered from the index.
+    fn walk(grid: &GridView, ray: &Ray) -> Vec<IVec3> {
+        let mut dda = dda_setup(grid, ray, safe_rcp3(ray.dir), T_MISS).expect("enters the grid");
+        let mut cells = Vec::new();
+        loop {
+            let i = dda.cell as i32 - grid.first_cell as i32;
+            let (dx, dxy) = (grid.dims.x, grid.dims.x * grid.dims.y);
+            cells.push(IVec3::new(i % dx, (i % dxy) / dx, i / dxy));
+            if dda_step(&mut dda).is_none() {
+                return cells;
+            }
+        }
+    }
+
+    /// Walks through grids of the most cells an axis allows (`MAX_AXIS_CELLS`), along each
+    /// axis both ways and across all three, so that each packed steps-left counter runs from
+    /// its largest value to zero beside the others: every walk visits one neighbouring cell
+    /// after another, from the entry cell to the cell opposite. (With a counter a bit too
+    /// narrow a 1024-cell walk stops half-way or steps another axis; with a wrong shift the
+    /// walk along y or z stops at once or runs off the grid.)
+    #[test]
+    fn packed_step_counters_walk_every_cell_of_the_largest_grids() {
+        use crate::accel::grid::MAX_AXIS_CELLS;
+        let n = MAX_AXIS_CELLS as i32;
+        for dims in [
+            IVec3::new(n, 2, 3),
+            IVec3::new(3, n, 2),
+            IVec3::new(2, 3, n),
+        ] {
+            let grid = GridView {
+                min: Vec3::ZERO,
+                max: dims.as_vec3(),
+                cell_size: Vec3::ONE,
+                dims,
+                first_cell: 7,
+            };
+            let centre = dims.as_vec3() * 0.5 + Vec3::new(0.25, 0.125, 0.0625);
+            for axis in 0..3 {
+                for sign in [1.0, -1.0] {
+                    let mut dir = Vec3::ZERO;
+                    dir[axis] = sign;
+                    let origin = centre - dir * (dims[axis] as f32 + 1.0) * 0.5 - dir;
+                    let cells = walk(&grid, &Ray { origin, dir });
+                    assert_eq!(
+                        cells.len() as i32,
+                        dims[axis],
+                        "{dims} axis {axis} sign {sign}"
+                    );
+                    let mut expected = centre.as_ivec3();
+                    expected[axis] = if sign > 0.0 { 0 } else { dims[axis] - 1 };
+                    for cell in cells {
+                        assert_eq!(cell, expected, "{dims} axis {axis} sign {sign}");
+                        expected[axis] += sign as i32;
+                    }
+                }
+            }
+            // Corner to corner: every step moves one axis by one, and the walk ends in the
+            // far corner's cell having stepped each axis all the way.
+            let dir = dims.as_vec3().normalize();
+            let origin = Vec3::splat(1e-3) - dir;
+            let cells = walk(&grid, &Ray { origin, dir });
+            assert_eq!(
+                cells.len() as i32,
+                dims.x + dims.y + dims.z - 2,
+                "{dims} diagonal"
+            );
+            for pair in cells.windows(2) {
+                let d = (pair[1] - pair[0]).abs();
+                assert_eq!(
+                    d.x + d.y + d.z,
+                    1,
+                    "{dims} diagonal: {} → {}",
+                    pair[0],
+                    pair[1]
+                );
+            }
+            assert_eq!(*cells.last().unwrap(), dims - 1, "{dims} diagonal");
+        }
+    }
 }
