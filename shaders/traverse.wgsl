@@ -247,6 +247,27 @@ fn any_hit_inside(entered: EnteredRay) -> bool {
     var walk = scene_walk_start(dda);
     var pending = pending_meshes_new();
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
+// #if ANY_HIT_ONE_LOOP
+    // One loop (the hardware variant's): each turn is one step of the CPU's occlusion_walk
+    // loop, then, where that loop returns false, the same pending walk. One loop level
+    // fewer around the analytic tests: RADV's NAVI21 any-hit kernel of scrabble.lua spilled
+    // 6 SGPRs in wave64 with the loop inside a loop (docs/journal/2026-12-02-traversal-registers.md);
+    // on llvmpipe, which runs every branch of a loop body, the mesh walks would run masked
+    // beside every item test (docs/journal/2026-11-30-mesh-walks-out-of-item-loop.md).
+    loop {
+        let step = occlusion_walk(&walk, ray, t_max, &mailbox, &pending);
+        if step == NO_ITEM {
+            continue;
+        }
+        if step != WALK_FULL || pending_meshes_occlude(pending, ray, t_max) {
+            return true;
+        }
+        pending = pending_meshes_new();
+        if walk.done {
+            break;
+        }
+    }
+// #else
     loop {
         let occluded = occlusion_walk(&walk, ray, t_max, &mailbox, &pending);
         if occluded || pending_meshes_occlude(pending, ray, t_max) {
@@ -257,6 +278,7 @@ fn any_hit_inside(entered: EnteredRay) -> bool {
             break;
         }
     }
+// #endif
     return false;
 // #else
     // (naga wants a return after the loop, so the loop breaks where Rust returns false.)
@@ -425,6 +447,46 @@ fn walk_pending_meshes(pending: PendingMeshes, ray: Ray, best_in: Hit) -> Hit {
     return best;
 }
 
+// #if ANY_HIT_ONE_LOOP
+// One turn of the CPU twin's loop, for any_hit_inside's one loop (ANY_HIT_ONE_LOOP): the
+// item an analytic test found hit in (0, t_max) where the CPU returns true; NO_ITEM where
+// its loop goes on (an item passed over, or tested and missed, or the next cell entered);
+// WALK_FULL where it returns false: a third mesh instance waits (walk then stands on it),
+// the cell is done with instances pending, or the walk has left the grid (walk.done).
+// Mirror of src/cpu/traverse.rs::occlusion_walk — change both.
+fn occlusion_walk(
+    walk: ptr<function, SceneWalk>,
+    ray: Ray,
+    t_max: f32,
+    mailbox: ptr<function, Mailbox>,
+    pending: ptr<function, PendingMeshes>,
+) -> u32 {
+    if (*walk).next < (*walk).end {
+        let item = scene_walk_take(walk, mailbox, pending);
+        if item == WALK_FULL || item == NO_ITEM {
+            return item;
+        }
+        let inst = load_instance(item);
+        if intersect_primitive_item(inst, item, ray, t_max).t < t_max {
+            return item;
+        }
+        return NO_ITEM;
+    }
+    // The cell's pending instances are walked before the walk leaves it.
+    if (*pending).count > 0u {
+        return WALK_FULL;
+    }
+    var dda = (*walk).dda;
+    let step = dda_step(&dda);
+    (*walk).dda = dda;
+    if !step.valid {
+        (*walk).done = true;
+        return WALK_FULL;
+    }
+    scene_walk_enter_cell(walk);
+    return NO_ITEM;
+}
+// #else
 // Walks the scene grid on from where walk stands until an analytic item it meets is hit in
 // (0, t_max) (true), the walk leaves the grid (walk.done), a third mesh instance waits
 // (walk then stands on it) or the cell is done with instances pending, collecting the
@@ -467,6 +529,7 @@ fn occlusion_walk(
     }
     return false;
 }
+// #endif
 
 // Whether one of the pending mesh instances is hit in (0, t_max).
 // Mirror of src/cpu/traverse.rs::pending_meshes_occlude — change both.

@@ -89,6 +89,11 @@ def names_of(header):
         flags.add("STORAGE_TABLES")
     if "iteration guard" in kernel:
         flags.add("ITERATION_GUARD")
+    # (CAMERA_RAY_IN_LOOP as glint sets it: src/gpu/shader.rs::KERNEL_FLAGS.)
+    if "REFRACTION" in features or ("camera ray in loop" in kernel and "REFLECTION" in features):
+        flags.add("CAMERA_RAY_IN_LOOP")
+    if "any hit in one loop" in kernel:
+        flags.add("ANY_HIT_ONE_LOOP")
     if "last-item mailbox" in kernel:
         flags.add("LAST_ITEM_MAILBOX")
     elif "mailboxes" in kernel:

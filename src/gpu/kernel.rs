@@ -36,6 +36,14 @@ pub struct KernelConfig {
     /// the same order on the same values (the CPU twin's); the loop form inlines the
     /// traversal and shading once instead of twice.
     pub camera_ray_in_loop: bool,
+    /// Whether `any_hit_inside` walks the scene grid and the pending mesh instances in one
+    /// loop (`ANY_HIT_ONE_LOOP`: `occlusion_walk` takes one step a call) rather than a
+    /// walk loop inside a loop over the pending batches. The same steps in the same
+    /// order; one loop level fewer around the analytic tests spares a GPU the loop's
+    /// masks and counters (RADV's scrabble.lua any-hit kernel spilled 6 SGPRs in wave64
+    /// without it), while llvmpipe, which runs every branch of a loop body, would run the
+    /// mesh walks masked beside every item test.
+    pub any_hit_one_loop: bool,
 }
 
 impl Default for KernelConfig {
@@ -48,6 +56,7 @@ impl Default for KernelConfig {
             storage_tables: false,
             lists_in_storage: true,
             camera_ray_in_loop: true,
+            any_hit_one_loop: true,
         }
     }
 }
@@ -100,6 +109,7 @@ impl KernelConfig {
             storage_tables: software && limits.max_storage_textures_per_shader_stage >= tables,
             lists_in_storage: !software,
             camera_ray_in_loop: !software,
+            any_hit_one_loop: !software,
         }
     }
 
@@ -164,6 +174,9 @@ impl fmt::Display for KernelConfig {
         if self.camera_ray_in_loop {
             write!(f, ", camera ray in loop")?;
         }
+        if self.any_hit_one_loop {
+            write!(f, ", any hit in one loop")?;
+        }
         Ok(())
     }
 }
@@ -203,6 +216,7 @@ mod tests {
         assert!(hard.mailboxes == Mailboxes::LastItem && !hard.iteration_guard);
         assert!(hard.lists_in_storage && !soft.lists_in_storage);
         assert!(hard.camera_ray_in_loop && !soft.camera_ray_in_loop);
+        assert!(hard.any_hit_one_loop && !soft.any_hit_one_loop);
         assert_eq!(hard.workgroup_side, 8);
     }
 

@@ -235,7 +235,7 @@ pub fn preprocess_with(
 type KernelFlag = fn(KernelConfig, SceneFeatures) -> bool;
 
 /// The kernel variant's flags a shader may test with `#if`, and whether `kernel` sets each.
-const KERNEL_FLAGS: [(&str, KernelFlag); 6] = [
+const KERNEL_FLAGS: [(&str, KernelFlag); 7] = [
     ("ITERATION_GUARD", |k, _| k.iteration_guard),
     ("MAILBOXES", |k, _| k.mailboxes == Mailboxes::Full),
     ("LAST_ITEM_MAILBOX", |k, _| {
@@ -251,6 +251,7 @@ const KERNEL_FLAGS: [(&str, KernelFlag); 6] = [
         f.contains(SceneFeatures::REFRACTION)
             || (k.camera_ray_in_loop && f.contains(SceneFeatures::REFLECTION))
     }),
+    ("ANY_HIT_ONE_LOOP", |k, _| k.any_hit_one_loop),
 ];
 
 /// Evaluates `NAME`, `A|B` or `!A|B` against `features` and `kernel`'s flags.

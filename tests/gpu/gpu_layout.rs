@@ -204,6 +204,7 @@ fn every_specialisation_validates() {
             storage_tables: true,
             lists_in_storage: false,
             camera_ray_in_loop: false,
+            any_hit_one_loop: false,
             ..hardware
         };
         let small = KernelConfig {

@@ -392,25 +392,36 @@ fn probes_rays_past_many_mesh_instances() {
             });
         }
     }
-    for mailboxes in Mailboxes::ALL {
+    // Both forms of the any-hit walk (ANY_HIT_ONE_LOOP: the hardware variant's one loop).
+    for (mailboxes, any_hit_one_loop) in Mailboxes::ALL
+        .into_iter()
+        .flat_map(|m| [(m, false), (m, true)])
+    {
         ctx.kernel.mailboxes = mailboxes;
+        ctx.kernel.any_hit_one_loop = any_hit_one_loop;
         s.mailboxes = mailboxes;
-        let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{mailboxes}: {e}"));
+        let form = format!("{mailboxes}, any hit in one loop {any_hit_one_loop}");
+        let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{form}: {e}"));
         let mut items = std::collections::BTreeSet::new();
+        let (mut blocked, mut hits) = (0, 0);
         for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
             let c = cpu_probe(&s, ray);
             if ray.mode == PROBE_ANY_HIT {
-                assert_eq!(g.hit, c.hit, "{mailboxes}: any-hit ray {i} {ray:?}");
+                assert_eq!(g.hit, c.hit, "{form}: any-hit ray {i} {ray:?}");
+                blocked += c.hit;
                 continue;
             }
             assert_eq!(
                 (g.hit, g.item, g.part),
                 (c.hit, c.item, c.part),
-                "{mailboxes}: ray {i} {ray:?}: gpu {g:?} cpu {c:?}"
+                "{form}: ray {i} {ray:?}: gpu {g:?} cpu {c:?}"
             );
             items.insert(c.item);
+            hits += c.hit;
         }
-        assert_eq!(items.len(), 7, "{mailboxes}: items hit {items:?}");
+        assert_eq!(items.len(), 7, "{form}: items hit {items:?}");
+        // Of each hit's two any-hit rays, the one that ends just past it is blocked.
+        assert_eq!(blocked, hits, "{form}");
     }
 }
 
@@ -465,5 +476,137 @@ fn probes_shadow_rays_to_a_light_in_a_face() {
             blocked, 0,
             "scale {s}: the ceiling through the light blocks shadow rays"
         );
+    }
+}
+
+/// Lua for a row of `count` small things one unit apart along `axis` from the origin —
+/// spheres of radius 0.3, or (`mesh`) triangles within 0.3 of it in one mesh — and beyond
+/// both ends a target across the row (a sphere of radius 1.5, or a triangle) that rays
+/// along the row, passing 0.6 off it, reach only by walking the whole row. Coordinates
+/// are (along, off, across), permuted so that `along` is `axis`.
+fn row_scene(axis: usize, count: usize, mesh: bool) -> String {
+    let at = |along: f64, off: f64, across: f64| {
+        let mut p = [0.0; 3];
+        p[axis] = along;
+        p[(axis + 1) % 3] = off;
+        p[(axis + 2) % 3] = across;
+        format!("{{{}, {}, {}}}", p[0], p[1], p[2])
+    };
+    let ends = [-20.0, count as f64 + 20.0];
+    let mut lua = String::from(
+        "m = gr.material({0.5, 0.5, 0.5}, {0.5, 0.5, 0.5}, 25)\nroot = gr.node('root')\n",
+    );
+    if mesh {
+        let mut vertices = Vec::new();
+        for i in 0..count {
+            let x = i as f64;
+            vertices.extend([at(x, -0.3, 0.0), at(x + 0.3, 0.3, 0.0), at(x, 0.0, 0.3)]);
+        }
+        for along in ends {
+            vertices.extend([
+                at(along, -1.0, -1.0),
+                at(along, 2.0, -1.0),
+                at(along, -1.0, 2.0),
+            ]);
+        }
+        let faces: Vec<String> = (0..count + 2)
+            .map(|f| format!("{{{}, {}, {}}}", 3 * f, 3 * f + 1, 3 * f + 2))
+            .collect();
+        let _ = writeln!(
+            lua,
+            "t = gr.mesh('row', {{{}}}, {{{}}}) t:set_material(m) root:add_child(t)",
+            vertices.join(", "),
+            faces.join(", ")
+        );
+    } else {
+        for i in 0..count {
+            let centre = at(i as f64, 0.0, 0.0);
+            let _ = writeln!(
+                lua,
+                "n = gr.nh_sphere('s{i}', {centre}, 0.3) n:set_material(m) root:add_child(n)"
+            );
+        }
+        for (k, along) in ends.into_iter().enumerate() {
+            let centre = at(along, 0.0, 0.0);
+            let _ = writeln!(
+                lua,
+                "n = gr.nh_sphere('end{k}', {centre}, 1.5) n:set_material(m) root:add_child(n)"
+            );
+        }
+    }
+    lua + "gr.render(root, 'probe.png', 64, 64, {0, 0, 30}, {0, 0, -1}, {0, 1, 0}, 50, {0.1, 0.1, 0.1}, {})\n"
+}
+
+/// The DDA's packed steps-left counters (`DDA_STEPS_BITS` an axis) at their largest: a
+/// row of 2000 spheres along x, y or z gives the scene grid `MAX_AXIS_CELLS` cells along
+/// it, a row of 2000 triangles the mesh's grid; rays along each row both ways (closest
+/// and any hit, under each mailbox setting, with the any-hit walk in each form) pass over
+/// it to the target beyond its far end:
+/// GPU and CPU hit the same item and triangle, beyond the row. (With a counter a bit too
+/// narrow the walk stops half-way and misses the target; with a wrong shift it stops at
+/// once or runs off the grid.)
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn probes_walks_across_the_largest_grids() {
+    use glint::accel::grid::MAX_AXIS_CELLS;
+    use glint::constants::{PROBE_ANY_HIT, T_MISS};
+    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
+    let Some(mut ctx) = gpu_context() else { return };
+    let count = 2000;
+    for axis in 0..3 {
+        for mesh in [false, true] {
+            let mut s =
+                packed_from_source(&row_scene(axis, count, mesh), &grid(GridMode::Auto)).remove(0);
+            let dims = if mesh {
+                s.meshes[0].grid_dims
+            } else {
+                s.globals.grid_dims
+            };
+            let name = format!("axis {axis}, mesh {mesh}");
+            assert_eq!(dims[axis], MAX_AXIS_CELLS, "{name}: grid {dims:?}");
+            let mut rays = Vec::new();
+            for (sign, start) in [(1.0f32, -5.0f32), (-1.0, count as f32 + 5.0)] {
+                let (mut origin, mut dir) = ([0.0; 3], [0.0; 3]);
+                origin[axis] = start;
+                origin[(axis + 1) % 3] = 0.6;
+                dir[axis] = sign;
+                let ray = ProbeRay {
+                    origin,
+                    t_max: T_MISS,
+                    dir,
+                    mode: 0,
+                };
+                rays.extend([
+                    ray,
+                    ProbeRay {
+                        mode: PROBE_ANY_HIT,
+                        ..ray
+                    },
+                ]);
+            }
+            // Both forms of the any-hit walk (ANY_HIT_ONE_LOOP: the hardware variant's).
+            for (mailboxes, any_hit_one_loop) in Mailboxes::ALL
+                .into_iter()
+                .flat_map(|m| [(m, false), (m, true)])
+            {
+                ctx.kernel.mailboxes = mailboxes;
+                ctx.kernel.any_hit_one_loop = any_hit_one_loop;
+                s.mailboxes = mailboxes;
+                let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
+                for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
+                    let c = cpu_probe(&s, ray);
+                    let what = format!(
+                        "{name}, {mailboxes}, any hit in one loop {any_hit_one_loop}, ray {i} \
+                         {ray:?}: gpu {g:?} cpu {c:?}"
+                    );
+                    assert_eq!((g.hit, c.hit), (1, 1), "{what}");
+                    if ray.mode == PROBE_ANY_HIT {
+                        continue;
+                    }
+                    assert_eq!((g.item, g.part), (c.item, c.part), "{what}");
+                    assert!(c.t > count as f32 && g.t > count as f32, "{what}");
+                }
+            }
+        }
     }
 }

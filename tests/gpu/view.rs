@@ -167,7 +167,10 @@ fn a_hardware_kernel_window_on_glass_is_the_render() {
         "glass.lua",
         "gpu",
         &["--kernel-variant", "hardware"],
-        Some("workgroup 8×8/64, last-item mailbox, ray lists in storage, camera ray in loop"),
+        Some(
+            "workgroup 8×8/64, last-item mailbox, ray lists in storage, camera ray in loop, \
+             any hit in one loop",
+        ),
     );
 }
 

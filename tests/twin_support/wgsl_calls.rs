@@ -66,7 +66,8 @@ fn all_features() -> SceneFeatures {
 
 /// The candidate configurations: feature sets (none, all, each alone, all but each) ×
 /// the kernel variant's flags that select calls: the mailboxes, the tables' binding and
-/// `CAMERA_RAY_IN_LOOP` (trace_ray's two forms, each compared with the one CPU form).
+/// `CAMERA_RAY_IN_LOOP` with `ANY_HIT_ONE_LOOP` (trace_ray's and occlusion_walk's two
+/// forms, each compared with the one CPU form).
 /// Not `ITERATION_GUARD` (see [`WgslFunction::calls`]) nor `LISTS_IN_STORAGE`, whose
 /// branches call no twin.
 fn candidates() -> Vec<(SceneFeatures, KernelConfig)> {
@@ -86,6 +87,9 @@ fn candidates() -> Vec<(SceneFeatures, KernelConfig)> {
                         mailboxes,
                         storage_tables,
                         camera_ray_in_loop,
+                        // Tied to the other loop form (each form of each function
+                        // against the one CPU form): the two are the hardware variant's.
+                        any_hit_one_loop: camera_ray_in_loop,
                         ..KernelConfig::default()
                     };
                     out.push((features, kernel));
