@@ -22,6 +22,7 @@
 //! strata (whole films: [`render_film`]), adaptive AA's lattice points (a sample's colour
 //! and [`SampleHint`]: [`trace_batch`]).
 
+use super::dielectric::MediumStack;
 use super::hit::{Hit, TraversalCounters};
 use super::pixel_sample::{lattice_position, sample_item_key, SampleHint};
 use super::ray::{camera_ray, offset_ray, Ray};
@@ -33,11 +34,12 @@ use super::shade::{
 };
 use super::texture::camera_cone;
 use super::trace::{
-    camera_media_of, is_mirror, note_texture_detail, push_secondary_rays, shading_point, ShadedHit,
-    StackEntry,
+    is_mirror, note_texture_detail, push_secondary_rays, shading_point, ShadedHit, StackEntry,
 };
 use super::traverse::closest_hit;
-use crate::constants::{AA_ADAPTIVE, AA_UNIFORM, LIGHT_AREA, NO_ITEM, RAY_STACK_SIZE, T_MISS};
+use crate::constants::{
+    AA_ADAPTIVE, AA_UNIFORM, LIGHT_AREA, MEDIUM_STACK_SIZE, NO_ITEM, RAY_STACK_SIZE, T_MISS,
+};
 use crate::film::Film;
 use crate::pack::{PackedScene, SceneFeatures};
 use glam::{Vec2, Vec3};
@@ -133,19 +135,35 @@ impl PathQueue {
 
     /// Appends `entry` of sample `sample`; its index (the GPU's `atomicAdd` on the
     /// queue's counter).
-    fn append(&mut self, entry: &StackEntry, sample: u32) -> usize {
-        self.origin.push(entry.ray.origin);
-        self.dir.push(entry.ray.dir);
-        self.weight.push(entry.weight);
-        self.depth.push(entry.depth);
-        self.cone.push(entry.cone);
-        self.sample.push(sample);
-        self.len() - 1
+    fn append_path(&mut self, entry: &StackEntry, sample: u32) -> usize {
+        let i = self.len();
+        self.resize(i + 1);
+        self.store_path(i, entry, sample);
+        i
     }
 
-    /// Entry `i` as `trace_ray`'s stack holds it (without refraction every ray travels in
-    /// the camera's media).
-    fn entry(&self, scene: &PackedScene, i: usize) -> StackEntry {
+    /// Room for `len` entries.
+    fn resize(&mut self, len: usize) {
+        self.origin.resize(len, Vec3::ZERO);
+        self.dir.resize(len, Vec3::ZERO);
+        self.weight.resize(len, Vec3::ZERO);
+        self.depth.resize(len, 0);
+        self.cone.resize(len, Vec2::ZERO);
+        self.sample.resize(len, 0);
+    }
+
+    /// Writes `entry` of sample `sample` as entry `i`.
+    fn store_path(&mut self, i: usize, entry: &StackEntry, sample: u32) {
+        self.origin[i] = entry.ray.origin;
+        self.dir[i] = entry.ray.dir;
+        self.weight[i] = entry.weight;
+        self.depth[i] = entry.depth;
+        self.cone[i] = entry.cone;
+        self.sample[i] = sample;
+    }
+
+    /// Entry `i` as `trace_ray`'s stack holds it.
+    fn load_path(&self, i: usize) -> StackEntry {
         StackEntry {
             ray: Ray {
                 origin: self.origin[i],
@@ -154,7 +172,7 @@ impl PathQueue {
             weight: self.weight[i],
             depth: self.depth[i],
             cone: self.cone[i],
-            media: camera_media_of(&scene.globals),
+            media: chain_media(),
         }
     }
 
@@ -186,7 +204,7 @@ impl HitQueue {
         }
     }
 
-    fn set(&mut self, i: usize, hit: &Hit) {
+    fn store_hit(&mut self, i: usize, hit: &Hit) {
         (
             self.t[i],
             self.item[i],
@@ -196,7 +214,7 @@ impl HitQueue {
         ) = (hit.t, hit.item, hit.b1, hit.b2, hit.part);
     }
 
-    fn get(&self, i: usize) -> Hit {
+    fn load_hit(&self, i: usize) -> Hit {
         Hit {
             t: self.t[i],
             item: self.item[i],
@@ -262,16 +280,19 @@ impl ShadowQueue {
     }
 
     /// Appends a request; its index (the GPU's `atomicAdd`).
-    fn append(&mut self, vertex: u32, slot: u32, position: Vec3) -> usize {
-        self.vertex.push(vertex);
-        self.slot.push(slot);
-        self.position.push(position);
-        self.len() - 1
+    fn append_request(&mut self, vertex: u32, slot: u32, position: Vec3) -> usize {
+        let r = self.len();
+        self.vertex.resize(r + 1, 0);
+        self.slot.resize(r + 1, 0);
+        self.position.resize(r + 1, Vec3::ZERO);
+        (self.vertex[r], self.slot[r], self.position[r]) = (vertex, slot, position);
+        r
     }
 }
 
 /// The light points of a scene: one per point light, n² per n×n area light; slot j of a
 /// vertex is light point j, lights in order, an area light's strata in stratum order.
+// Mirror of shaders/wavefront.wgsl::light_points — change both.
 pub fn light_points(scene: &PackedScene) -> u32 {
     scene.lights[..scene.globals.num_lights as usize]
         .iter()
@@ -302,37 +323,59 @@ pub struct Batch {
     pub generations: u32,
 }
 
-/// The camera pass: sample k of `source` initialises its record and appends its camera
-/// ray to generation 0's path queue, at index k.
-// GPU twin (stage 2 of the wavefront split, not yet written): shaders/wavefront.wgsl's
-// wavefront_camera.
+/// The camera pass: every sample of `source` through [`camera_entry`] (the GPU's
+/// `wavefront_camera`), into a batch sized for them.
 pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch) {
-    let g = &scene.globals;
     let count = source.len();
     *batch = Batch {
         light_points: light_points(scene),
         ..Batch::default()
     };
     let s = &mut batch.samples;
+    let unseeded = SampleSeed {
+        pixel: 0,
+        sample: 0,
+        depth: 0,
+        mirrors_corners: false,
+    };
+    s.seed = vec![unseeded; count];
     s.colour = vec![Vec3::ZERO; count];
     s.camera_item = vec![NO_ITEM; count];
     s.camera_mirror = vec![false; count];
     s.mirrored_item = vec![NO_ITEM; count];
     s.fine_detail = vec![false; count];
+    batch.paths.resize(count);
     for k in 0..count {
-        let (fx, fy, seed) = source.camera_sample(scene, k);
-        s.seed.push(seed);
-        let ray = camera_ray(g, fx, fy);
-        let entry = StackEntry {
-            ray,
-            weight: Vec3::ONE,
-            depth: 0,
-            cone: camera_cone(g, &ray),
-            media: camera_media_of(g),
-        };
-        batch.paths.append(&entry, k as u32);
+        camera_entry(scene, source, batch, k);
     }
     start_generation(batch);
+}
+
+/// The camera pass's invocation for sample `k` of `source`: its seed, and its camera ray
+/// as generation 0's path k.
+// Mirror of shaders/wavefront.wgsl::wavefront_camera, which takes AA none's source only so far — change both.
+fn camera_entry(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k: usize) {
+    let g = &scene.globals;
+    let (fx, fy, seed) = source.camera_sample(scene, k);
+    batch.samples.seed[k] = seed;
+    let ray = camera_ray(g, fx, fy);
+    let entry = StackEntry {
+        ray,
+        weight: Vec3::ONE,
+        depth: 0,
+        cone: camera_cone(g, &ray),
+        media: chain_media(),
+    };
+    batch.paths.store_path(k, &entry, k as u32);
+}
+
+/// The media every ray of a chain travels in: a placeholder (without refraction no
+/// shading step reads them; the WGSL StackEntry has no field for them then).
+fn chain_media() -> MediumStack {
+    MediumStack {
+        iors: [1.0; MEDIUM_STACK_SIZE as usize],
+        count: 0,
+    }
 }
 
 /// Sizes the per-path queues of the generation in `batch.paths` (the GPU sizes them for
@@ -351,7 +394,6 @@ fn start_generation(batch: &mut Batch) {
 }
 
 /// The closest pass: each path's ray to its closest hit.
-// GPU twin (stage 2): shaders/wavefront.wgsl's wavefront_closest.
 pub fn closest_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for i in 0..batch.paths.len() {
         closest_entry(scene, batch, i, counters);
@@ -360,6 +402,7 @@ pub fn closest_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl 
 
 /// The closest pass's invocation for path `i`: its hit, and the items a sample's hint
 /// keeps (the camera ray's; at depth 1, the item seen in a camera-hit mirror).
+// Mirror of shaders/wavefront.wgsl::wavefront_closest — change both.
 fn closest_entry(
     scene: &PackedScene,
     batch: &mut Batch,
@@ -383,11 +426,10 @@ fn closest_entry(
         samples.mirrored_item[k] = hit.item;
         counters.mirror_hit(hit.item);
     }
-    batch.hits.set(i, &hit);
+    batch.hits.store_hit(i, &hit);
 }
 
 /// The shade pass: each hit shaded without tracing.
-// GPU twin (stage 2): shaders/wavefront.wgsl's wavefront_shade.
 pub fn shade_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for i in 0..batch.paths.len() {
         shade_entry(scene, batch, i, counters);
@@ -398,6 +440,7 @@ pub fn shade_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl Tr
 /// each light point facing it its unshadowed term in its slot and a shadow request, the
 /// reflected ray in the next generation's queue, and at depth 0 the sample's hints (the
 /// texture detail, whether the camera's surface is a mirror).
+// Mirror of shaders/wavefront.wgsl::wavefront_shade — change both.
 fn shade_entry(
     scene: &PackedScene,
     batch: &mut Batch,
@@ -405,10 +448,10 @@ fn shade_entry(
     counters: &mut impl TraversalCounters,
 ) {
     let g = &scene.globals;
-    let entry = batch.paths.entry(scene, i);
-    let hit = batch.hits.get(i);
+    let entry = batch.paths.load_path(i);
+    let hit = batch.hits.load_hit(i);
     let k = batch.paths.sample[i] as usize;
-    if !hit.is_hit() {
+    if !Hit::is_hit(&hit) {
         batch.vertices.kind[i] = VertexKind::Miss;
         batch.vertices.own[i] = background(g, entry.ray.dir);
         return;
@@ -440,12 +483,12 @@ fn shade_entry(
         depth: entry.depth,
         ..batch.samples.seed[k]
     };
-    let first_slot = i * batch.light_points as usize;
+    let first_slot = i * light_points(scene) as usize;
     let mut slot = 0;
     let ask = |position: Vec3, light: &crate::pack::PackedLight, slot: u32, batch: &mut Batch| {
         if let Some(term) = unshadowed_term(scene, &s, phong, n, v, position, light) {
             batch.slots[first_slot + slot as usize] = term;
-            batch.shadows.append(i as u32, slot, position);
+            batch.shadows.append_request(i as u32, slot, position);
         }
     };
     for (index, light) in scene.lights[..g.num_lights as usize].iter().enumerate() {
@@ -474,7 +517,7 @@ fn shade_entry(
     let mut size = 0;
     push_secondary_rays(scene, &mut stack, &mut size, &entry, &shaded, &hit);
     for child in &stack[..size] {
-        batch.next.append(child, k as u32);
+        batch.next.append_path(child, k as u32);
     }
 }
 
@@ -492,7 +535,6 @@ impl<C: TraversalCounters> TraversalCounters for DetailWatch<'_, C> {
 }
 
 /// The shadow pass: each request's shadow ray (any hit).
-// GPU twin (stage 2): shaders/wavefront.wgsl's wavefront_shadow.
 pub fn shadow_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for r in 0..batch.shadows.len() {
         shadow_entry(scene, batch, r, counters);
@@ -501,6 +543,7 @@ pub fn shadow_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl T
 
 /// The shadow pass's invocation for request `r`: its slot's term × the transmittance
 /// (`shade::point_light`'s last product: 1 or, where the ray is blocked, zero).
+// Mirror of shaders/wavefront.wgsl::wavefront_shadow — change both.
 fn shadow_entry(
     scene: &PackedScene,
     batch: &mut Batch,
@@ -516,12 +559,11 @@ fn shadow_entry(
     } else {
         1.0
     };
-    let slot = i * batch.light_points as usize + batch.shadows.slot[r] as usize;
+    let slot = i * light_points(scene) as usize + batch.shadows.slot[r] as usize;
     batch.slots[slot] = shadowed_term(batch.slots[slot], transmittance);
 }
 
 /// The gather pass: each vertex's colour into its sample's.
-// GPU twin (stage 2): shaders/wavefront.wgsl's wavefront_gather.
 pub fn gather_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for i in 0..batch.paths.len() {
         gather_entry(scene, batch, i, counters);
@@ -533,6 +575,7 @@ pub fn gather_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl T
 /// summed in stratum order and averaged, a penumbra at depth 0 noted in the sample's
 /// hint), then into the sample's colour: the camera vertex's is the colour, a deeper
 /// one's adds weight × colour (`trace_ray`'s order: generation order is its pop order).
+// Mirror of shaders/wavefront.wgsl::wavefront_gather — change both.
 fn gather_entry(
     scene: &PackedScene,
     batch: &mut Batch,
@@ -543,7 +586,7 @@ fn gather_entry(
     let k = batch.paths.sample[i] as usize;
     let mut colour = batch.vertices.own[i];
     if batch.vertices.kind[i] == VertexKind::Lit {
-        let slots = &batch.slots[i * batch.light_points as usize..];
+        let slots = &batch.slots[i * light_points(scene) as usize..];
         let mut slot = 0;
         for light in &scene.lights[..scene.globals.num_lights as usize] {
             if light.kind == LIGHT_AREA {
@@ -575,7 +618,7 @@ fn gather_entry(
 
 /// Ends a generation (the args kernel's job on the GPU): the next generation's paths
 /// become the current ones; false when there are none.
-// GPU twin (stage 2): shaders/wavefront.wgsl's wavefront_args.
+// Mirror of shaders/wavefront.wgsl::wavefront_args — change both.
 pub fn next_generation(batch: &mut Batch) -> bool {
     std::mem::swap(&mut batch.paths, &mut batch.next);
     if batch.paths.is_empty() {
@@ -673,15 +716,15 @@ mod tests {
     #[test]
     fn appends_take_consecutive_slots() {
         let mut q = PathQueue::default();
-        assert_eq!(q.append(&entry(0), 7), 0);
-        assert_eq!(q.append(&entry(3), 2), 1);
+        assert_eq!(q.append_path(&entry(0), 7), 0);
+        assert_eq!(q.append_path(&entry(3), 2), 1);
         assert_eq!(q.len(), 2);
         assert_eq!((q.depth[1], q.sample[1]), (3, 2));
         assert_eq!((q.depth[0], q.sample[0]), (0, 7));
         assert_eq!(q.cone[1], Vec2::new(0.25, 0.125));
         let mut s = ShadowQueue::default();
-        assert_eq!(s.append(4, 1, Vec3::X), 0);
-        assert_eq!(s.append(9, 0, Vec3::Y), 1);
+        assert_eq!(s.append_request(4, 1, Vec3::X), 0);
+        assert_eq!(s.append_request(9, 0, Vec3::Y), 1);
         assert_eq!((s.vertex[1], s.slot[1], s.position[1]), (9, 0, Vec3::Y));
     }
 
@@ -694,12 +737,12 @@ mod tests {
             light_points: 3,
             ..Batch::default()
         };
-        batch.paths.append(&entry(0), 0);
+        batch.paths.append_path(&entry(0), 0);
         start_generation(&mut batch);
         batch.slots[2] = Vec3::ONE;
-        batch.shadows.append(0, 2, Vec3::X);
-        batch.next.append(&entry(1), 0);
-        batch.next.append(&entry(1), 5);
+        batch.shadows.append_request(0, 2, Vec3::X);
+        batch.next.append_path(&entry(1), 0);
+        batch.next.append_path(&entry(1), 5);
         assert!(next_generation(&mut batch));
         assert_eq!(batch.generations, 2);
         assert_eq!(batch.paths.sample, vec![0, 5]);

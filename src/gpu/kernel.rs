@@ -36,6 +36,12 @@ pub struct KernelConfig {
     /// the same order on the same values (the CPU twin's); the loop form inlines the
     /// traversal and shading once instead of twice.
     pub camera_ray_in_loop: bool,
+    /// Whether AA none traces scenes without refraction through the wavefront kernels
+    /// (`WAVEFRONT`, `shaders/wavefront.wgsl`: camera, closest hit, shading, shadow rays
+    /// and gathering as kernels of their own joined by queues) rather than the megakernel
+    /// `main`. The images are the same bit for bit (the CPU twin is
+    /// `cpu::wavefront`).
+    pub wavefront: bool,
 }
 
 impl Default for KernelConfig {
@@ -48,6 +54,7 @@ impl Default for KernelConfig {
             storage_tables: false,
             lists_in_storage: true,
             camera_ray_in_loop: true,
+            wavefront: true,
         }
     }
 }
@@ -90,6 +97,11 @@ impl KernelConfig {
     ///   docs/journal/2026-12-02-one-traversal-in-mirror-scenes.md); software adapters keep
     ///   the hit before the loop, since on llvmpipe a loop around the first hit cost
     ///   20–25% of the render (docs/journal/2026-11-30-one-hit-no-loop.md).
+    /// - wavefront (AA none, no refraction): on hardware adapters, where a megakernel's
+    ///   registers are the traversal's plus everything live across it (RADV NAVI21:
+    ///   112–176 VGPRs, docs/journal/2026-12-02-wavefront-split-measured.md); software
+    ///   adapters keep the megakernel (unmeasured there: llvmpipe pays per dispatch and
+    ///   for every queue's memory traffic).
     pub fn for_adapter(device_type: wgpu::DeviceType, limits: &wgpu::Limits) -> KernelConfig {
         let software = device_type == wgpu::DeviceType::Cpu;
         let tables = SCENE_TABLE_BINDINGS.len() as u32;
@@ -100,6 +112,7 @@ impl KernelConfig {
             storage_tables: software && limits.max_storage_textures_per_shader_stage >= tables,
             lists_in_storage: !software,
             camera_ray_in_loop: !software,
+            wavefront: !software,
         }
     }
 
@@ -164,6 +177,9 @@ impl fmt::Display for KernelConfig {
         if self.camera_ray_in_loop {
             write!(f, ", camera ray in loop")?;
         }
+        if self.wavefront {
+            write!(f, ", wavefront")?;
+        }
         Ok(())
     }
 }
@@ -203,6 +219,7 @@ mod tests {
         assert!(hard.mailboxes == Mailboxes::LastItem && !hard.iteration_guard);
         assert!(hard.lists_in_storage && !soft.lists_in_storage);
         assert!(hard.camera_ray_in_loop && !soft.camera_ray_in_loop);
+        assert!(hard.wavefront && !soft.wavefront);
         assert_eq!(hard.workgroup_side, 8);
     }
 
