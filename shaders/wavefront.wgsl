@@ -345,14 +345,19 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
 
 // After generation tile.level's shade pass (one invocation): the indirect workgroups of
 // the next generation's passes (work_args[6g ..]) and of this generation's shadow pass
-// (work_args[6g + 3 ..]: at most N invocations, each a grid-stride loop, so that each
-// has a list slot), and the counters of generation g − 1 cleared for generation g + 1.
+// (work_args[6g + 3 ..]: with CSG at most N invocations, see wavefront_shadow), and the
+// counters of generation g − 1 cleared for generation g + 1.
 // Mirror of src/cpu/wavefront.rs::next_generation — change both.
 @compute @workgroup_size(1)
 fn wavefront_args() {
     let g = tile.level;
     let next = indirect_workgroups(atomicLoad(&work_counts[path_counter(g + 1u)]));
-    let shadows = indirect_workgroups(min(atomicLoad(&work_counts[shadow_counter(g)]), tile.items));
+    var shadow_requests = atomicLoad(&work_counts[shadow_counter(g)]);
+// #if CSG
+    // At most one invocation per list slot (see wavefront_shadow).
+    shadow_requests = min(shadow_requests, tile.items);
+// #endif
+    let shadows = indirect_workgroups(shadow_requests);
     let at = 6u * g;
     work_args[at] = next.x;
     work_args[at + 1u] = next.y;
@@ -364,33 +369,49 @@ fn wavefront_args() {
     atomicStore(&work_counts[shadow_counter(g + 1u)], 0u);
 }
 
-// The shadow pass's invocation idx < N: requests idx, idx + N, … of generation
-// tile.level, each its slot's term × the transmittance (1, or 0 where blocked).
-// Mirror of src/cpu/wavefront.rs::shadow_entry — change both.
+// The shadow pass: each shadow request of generation tile.level through shadow_request.
+// With CSG, whose interval lists take a slot of ray_lists per invocation (one per
+// sample of the chunk: N), at most N invocations, each a grid-stride loop over requests
+// idx, idx + N, …; without, one request per invocation (a loop around the traversal
+// cost RADV 13 spilled SGPRs in wave64).
+// Mirror of the loop of src/cpu/wavefront.rs::shadow_pass — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_shadow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
     let count = atomicLoad(&work_counts[shadow_counter(tile.level)]);
+// #if CSG
     if idx >= tile.items {
         return;
     }
     begin_lane(idx);
-    let points = light_points();
     for (var r = idx; r < count; r += tile.items) {
-        let request = samples[wavefront_shadows(points) + r];
-        let slot = bitcast<u32>(request.w);
-        let vertex = samples[wavefront_vertices() + 2u * (slot / points) + 1u];
-        var transmittance = 1.0;
-        if shadow_blocked(vertex.xyz, request.xyz, vertex.w) {
-            transmittance = 0.0;
-        }
-        // shade.wgsl's point_light's last product (the CPU's shadowed_term).
-        var term = vec3<f32>(0.0);
-        if !(transmittance <= 0.0) {
-            term = samples[wavefront_slots() + slot].xyz * transmittance;
-        }
-        samples[wavefront_slots() + slot] = vec4<f32>(term, 0.0);
+        shadow_request(r);
     }
+// #else
+    if idx >= count {
+        return;
+    }
+    shadow_request(idx);
+// #endif
+}
+
+// Shadow request r: its slot's term × the transmittance (1, or 0 where blocked).
+// Mirror of src/cpu/wavefront.rs::shadow_entry — change both.
+fn shadow_request(r: u32) {
+    let points = light_points();
+    let request = samples[wavefront_shadows(points) + r];
+    let slot = bitcast<u32>(request.w);
+    let vertex = samples[wavefront_vertices() + 2u * (slot / points) + 1u];
+    var transmittance = 1.0;
+    if shadow_blocked(vertex.xyz, request.xyz, vertex.w) {
+        transmittance = 0.0;
+    }
+    // shade.wgsl's point_light's last product (the CPU's shadowed_term).
+    var term = vec3<f32>(0.0);
+    if !(transmittance <= 0.0) {
+        term = samples[wavefront_slots() + slot].xyz * transmittance;
+    }
+    samples[wavefront_slots() + slot] = vec4<f32>(term, 0.0);
 }
 
 // The gather pass's invocation for path idx: its vertex's colour in shade_phong's order,

@@ -535,6 +535,7 @@ impl<C: TraversalCounters> TraversalCounters for DetailWatch<'_, C> {
 }
 
 /// The shadow pass: each request's shadow ray (any hit).
+// Mirror of the loop of shaders/wavefront.wgsl::wavefront_shadow (one request an invocation, or with CSG every N-th) — change both.
 pub fn shadow_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for r in 0..batch.shadows.len() {
         shadow_entry(scene, batch, r, counters);
@@ -543,13 +544,14 @@ pub fn shadow_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl T
 
 /// The shadow pass's invocation for request `r`: its slot's term × the transmittance
 /// (`shade::point_light`'s last product: 1 or, where the ray is blocked, zero).
-// Mirror of shaders/wavefront.wgsl::wavefront_shadow — change both.
+// Mirror of shaders/wavefront.wgsl::shadow_request — change both.
 fn shadow_entry(
     scene: &PackedScene,
     batch: &mut Batch,
     r: usize,
     counters: &mut impl TraversalCounters,
 ) {
+    let points = light_points(scene) as usize;
     let i = batch.shadows.vertex[r] as usize;
     let origin = batch.vertices.shadow_origin[i];
     let magnitude = batch.vertices.magnitude[i];
@@ -559,7 +561,7 @@ fn shadow_entry(
     } else {
         1.0
     };
-    let slot = i * light_points(scene) as usize + batch.shadows.slot[r] as usize;
+    let slot = i * points + batch.shadows.slot[r] as usize;
     batch.slots[slot] = shadowed_term(batch.slots[slot], transmittance);
 }
 
