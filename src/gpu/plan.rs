@@ -564,6 +564,72 @@ mod tests {
         }
     }
 
+    /// AA none through the wavefront kernels: bands cover the frame once, every band's
+    /// queues fit one binding, and each band runs the camera pass (clearing its counters)
+    /// then closest, shade, args, shadow and gather per generation — generation 0's over
+    /// the band's samples, the rest and every shadow pass at the args kernel's offsets,
+    /// inside the work-args buffer.
+    #[test]
+    fn wavefront_bands_fit_their_queues_and_run_every_generation() {
+        let shape = WavefrontShape {
+            light_points: 17,
+            generations: 6,
+        };
+        let bounds = AdapterBounds {
+            wavefront: Some(shape),
+            max_binding: 16 << 20,
+            ..LAVAPIPE
+        };
+        for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
+            let plan = FramePlan::new(&globals(w, h, 0), bounds);
+            assert_eq!(plan.mode, Mode::Wavefront(shape));
+            assert_covers(&plan, w, h);
+            assert!(plan.samples_len * 16 <= bounds.max_binding, "{w}×{h}");
+            for (k, c) in plan.chunks.iter().enumerate() {
+                assert!(shape.vec4s_per_sample() * c.block_pixels() <= plan.samples_len);
+                let d = plan.dispatches(k, 2, bounds);
+                assert_eq!(d.len(), 1 + 5 * shape.generations as usize);
+                assert!(d[0].clears_work && d[0].entry == 0);
+                for (g, pass) in d[1..].chunks(5).enumerate() {
+                    let entries: Vec<usize> = pass.iter().map(|d| d.entry).collect();
+                    assert_eq!(entries, [1, 2, 3, 4, 5]);
+                    assert!(pass.iter().all(|d| d.params.level == g as u32));
+                    assert!(pass[2].writes_args);
+                    let offsets = pass.iter().filter_map(|d| match d.workgroups {
+                        Workgroups::Indirect(at) => Some(at),
+                        Workgroups::Direct(..) => None,
+                    });
+                    for at in offsets {
+                        assert!(at + 12 <= plan.work_levels * 24, "{at}");
+                    }
+                    let expected = match g {
+                        0 => d[0].workgroups,
+                        _ => Workgroups::Indirect(24 * (g as u64 - 1)),
+                    };
+                    assert_eq!(pass[0].workgroups, expected);
+                    assert_eq!(pass[4].workgroups, expected);
+                    assert_eq!(pass[3].workgroups, Workgroups::Indirect(24 * g as u64 + 12));
+                }
+            }
+            // Uniform AA keeps its own passes.
+            let uniform = FramePlan::new(&globals(w, h, AA_UNIFORM), bounds);
+            assert!(matches!(uniform.mode, Mode::Uniform { .. }));
+        }
+        assert!(plan_counters_fit(shape));
+    }
+
+    /// The five counters (three path counters, two shadow counters) fit `work_counts`.
+    fn plan_counters_fit(shape: WavefrontShape) -> bool {
+        let bounds = AdapterBounds {
+            wavefront: Some(WavefrontShape {
+                generations: 1,
+                ..shape
+            }),
+            ..LAVAPIPE
+        };
+        FramePlan::new(&globals(8, 8, 0), bounds).work_levels >= 5
+    }
+
     #[test]
     fn linear_dispatches_stay_within_the_dimension_limit() {
         assert_eq!(linear_workgroups(64 * 10, 64, 65_535), (10, 1));
