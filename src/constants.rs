@@ -328,6 +328,38 @@ pub fn wgsl_prelude() -> String {
     out
 }
 
+/// The wavefront kernels' vertex kinds (`cpu::wavefront::VertexKind`): what the gather
+/// pass does with a vertex — a miss's background, a lit point's ambient term and light
+/// slots, the UV debug view's colour.
+pub const VERTEX_MISS: u32 = 0;
+pub const VERTEX_LIT: u32 = 1;
+pub const VERTEX_UNLIT: u32 = 2;
+/// The wavefront kernels' sample-record flag bits (`cpu::wavefront::SampleRecords`'s
+/// `camera_mirror`, `fine_detail` and the seed's `mirrors_corners`).
+pub const SAMPLE_CAMERA_MIRROR: u32 = 1;
+pub const SAMPLE_FINE_DETAIL: u32 = 2;
+pub const SAMPLE_MIRRORS_CORNERS: u32 = 4;
+
+/// The wavefront kernels' constants, emitted after the prelude only in modules that have
+/// those kernels (`gpu::shader::wavefront_kernels`), so the others stay as they were.
+const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = &[
+    ("VERTEX_MISS", VERTEX_MISS),
+    ("VERTEX_LIT", VERTEX_LIT),
+    ("VERTEX_UNLIT", VERTEX_UNLIT),
+    ("SAMPLE_CAMERA_MIRROR", SAMPLE_CAMERA_MIRROR),
+    ("SAMPLE_FINE_DETAIL", SAMPLE_FINE_DETAIL),
+    ("SAMPLE_MIRRORS_CORNERS", SAMPLE_MIRRORS_CORNERS),
+];
+
+/// The WGSL constants of the wavefront kernels.
+pub fn wavefront_wgsl_prelude() -> String {
+    let mut out = String::new();
+    for (name, value) in WAVEFRONT_WGSL_U32S {
+        out += &format!("const {name}: u32 = {value}u;\n");
+    }
+    out
+}
+
 /// Deepest adaptive anti-aliasing split accepted (`aa_depth`).
 pub const MAX_AA_DEPTH: u32 = 6;
 /// Adaptive anti-aliasing splits a square with a sample (corner or centre) that saw fine

@@ -26,5 +26,6 @@ pub mod traverse;
 pub mod traverse_mesh;
 pub mod triangle4;
 pub mod uv;
+pub mod wavefront;
 
 pub use render::{render, RenderProgress};

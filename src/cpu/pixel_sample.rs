@@ -152,19 +152,27 @@ pub(crate) fn hinted_sample(
 /// with the point's own seed. The jitter depends only on the point, so a point shared by
 /// neighbouring squares, pixels or chunks is the same sample whichever pass traces it.
 // Mirror of shaders/pixel_sample.wgsl::lattice_sample — change both.
-pub(crate) fn lattice_sample(
+pub fn lattice_sample(
     scene: &PackedScene,
     fx: f32,
     fy: f32,
     counters: &mut impl TraversalCounters,
 ) -> (Vec3, SampleHint) {
+    let (jx, jy, seed) = lattice_position(scene, fx, fy);
+    hinted_sample(scene, jx, jy, seed, counters)
+}
+
+/// Where [`lattice_sample`] samples lattice point (fx, fy) (the point jittered), and its
+/// seed: the film position and seed the wavefront's camera pass takes too
+/// (`cpu::wavefront`).
+pub(crate) fn lattice_position(scene: &PackedScene, fx: f32, fy: f32) -> (f32, f32, SampleSeed) {
     let seed = adaptive_seed(fx, fy);
     // A power of two: the products below are exact, so a fused multiply-add on the GPU
     // rounds the sums as these do.
     let width = AA_LATTICE_JITTER / (1u32 << scene.globals.aa_depth) as f32;
     let jx = (random_unit(seed.pixel, seed.sample, 0) - 0.5) * width;
     let jy = (random_unit(seed.pixel, seed.sample, 1) - 0.5) * width;
-    hinted_sample(scene, fx + jx, fy + jy, seed, counters)
+    (fx + jx, fy + jy, seed)
 }
 
 /// Largest per-channel spread of a square's four corner samples and its centre sample:

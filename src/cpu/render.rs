@@ -207,6 +207,20 @@ pub fn uniform_sample(
     uniform: bool,
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
+    let (fx, fy, seed) = stratum_position(scene, x, y, s, n, uniform);
+    sample(scene, fx, fy, seed, counters)
+}
+
+/// Where [`uniform_sample`] samples pixel (x, y)'s stratum `s` of n×n, and its seed: the
+/// film position and seed the wavefront's camera pass takes too (`cpu::wavefront`).
+pub(crate) fn stratum_position(
+    scene: &PackedScene,
+    x: u32,
+    y: u32,
+    s: u32,
+    n: u32,
+    uniform: bool,
+) -> (f32, f32, SampleSeed) {
     let pixel = y * scene.globals.width + x;
     let (i, j) = (s % n, s / n);
     let (jx, jy) = if uniform {
@@ -222,7 +236,7 @@ pub fn uniform_sample(
         depth: 0,
         mirrors_corners: false,
     };
-    sample(scene, fx, fy, seed, counters)
+    (fx, fy, seed)
 }
 
 /// Per-render counters (only gathered when asked, see [`render_with_counters`]).

@@ -21,17 +21,17 @@ use glam::{Vec2, Vec3};
 
 // Mirror of shaders/trace.wgsl::StackEntry — change both.
 #[derive(Clone, Copy, Debug)]
-struct StackEntry {
-    ray: Ray,
-    weight: Vec3,
-    depth: u32,
+pub(crate) struct StackEntry {
+    pub(crate) ray: Ray,
+    pub(crate) weight: Vec3,
+    pub(crate) depth: u32,
     /// The ray's cone for texture filtering: width at its origin, spread per unit length
     /// (`texture::camera_cone`; the WGSL twin has the field only with textures or bump
     /// maps).
-    cone: Vec2,
+    pub(crate) cone: Vec2,
     /// The media the ray travels in (only scenes with refraction change it; the WGSL
     /// twin has the field only then).
-    media: MediumStack,
+    pub(crate) media: MediumStack,
 }
 
 /// Colour seen along a primary ray, mirrors and dielectrics included (down to
@@ -123,7 +123,11 @@ pub(crate) fn is_mirror(scene: &PackedScene, material: u32) -> bool {
 /// texture detail at the pixel's scale: [`texture_detail`] above AA_TEXTURE_DETAIL_SHARE
 /// of `aa_threshold`. Only adaptive AA reads the hint, so only it pays the lookups.
 // Mirror of shaders/trace.wgsl::note_texture_detail — change both.
-fn note_texture_detail(scene: &PackedScene, s: &Surface, counters: &mut impl TraversalCounters) {
+pub(crate) fn note_texture_detail(
+    scene: &PackedScene,
+    s: &Surface,
+    counters: &mut impl TraversalCounters,
+) {
     let g = &scene.globals;
     if g.aa_mode != AA_ADAPTIVE || !scene.features.contains(SceneFeatures::TEXTURE) {
         return;
@@ -137,7 +141,7 @@ fn note_texture_detail(scene: &PackedScene, s: &Surface, counters: &mut impl Tra
 /// `size` entries): with refraction the transmitted ray, then the reflected ray, each
 /// while the depth, its weight and the stack allow.
 // Mirror of shaders/trace.wgsl::push_secondary_rays — change both.
-fn push_secondary_rays(
+pub(crate) fn push_secondary_rays(
     scene: &PackedScene,
     stack: &mut [StackEntry; RAY_STACK_SIZE as usize],
     size: &mut usize,
@@ -207,12 +211,12 @@ fn push_secondary_rays(
 /// meshes, bumped, kept visible: `smooth`), and the colour
 /// the point gives by itself — Phong shading, or the UV debug view, which `ends` the ray.
 // Mirror of shaders/trace.wgsl::ShadedHit — change both.
-struct ShadedHit {
-    s: Surface,
-    facing: Vec3,
-    n: Vec3,
-    colour: Vec3,
-    ends: bool,
+pub(crate) struct ShadedHit {
+    pub(crate) s: Surface,
+    pub(crate) facing: Vec3,
+    pub(crate) n: Vec3,
+    pub(crate) colour: Vec3,
+    pub(crate) ends: bool,
 }
 
 /// The hit of the ray of `entry`, shaded (see [`ShadedHit`]).
@@ -224,6 +228,54 @@ fn shade_hit(
     seed: SampleSeed,
     counters: &mut impl TraversalCounters,
 ) -> ShadedHit {
+    let point = shading_point(scene, entry, hit);
+    if let Some(colour) = point.uv_colour {
+        let ShadingPoint { s, facing, n, .. } = point;
+        return ShadedHit {
+            s,
+            facing,
+            n,
+            colour,
+            ends: true,
+        };
+    }
+    let ShadingPoint { s, facing, n, .. } = point;
+    let shade_seed = SampleSeed {
+        depth: entry.depth,
+        ..seed
+    };
+    let colour = shade_phong(
+        scene,
+        &s,
+        n,
+        -entry.ray.dir,
+        &entry.media,
+        shade_seed,
+        counters,
+    );
+    ShadedHit {
+        s,
+        facing,
+        n,
+        colour,
+        ends: false,
+    }
+}
+
+/// A hit as shading sees it before any light: the surface (with its texture footprint),
+/// the normal facing the ray, the shading normal, and in the UV debug view the colour
+/// that ends the ray. [`shade_hit`] and the wavefront's shading pass (`cpu::wavefront`)
+/// both start here.
+pub(crate) struct ShadingPoint {
+    pub(crate) s: Surface,
+    pub(crate) facing: Vec3,
+    pub(crate) n: Vec3,
+    /// The UV debug view's colour (u mod 1, v mod 1, 0); None when shading lights it.
+    pub(crate) uv_colour: Option<Vec3>,
+}
+
+/// The [`ShadingPoint`] of the hit of `entry`'s ray.
+pub(crate) fn shading_point(scene: &PackedScene, entry: &StackEntry, hit: &Hit) -> ShadingPoint {
     let ray = entry.ray;
     let s = surface_at(scene, &ray, hit);
     let s = with_footprint(scene, s, ray.dir, entry.cone, hit.t);
@@ -231,13 +283,11 @@ fn shade_hit(
     if scene.globals.debug_view == DEBUG_VIEW_UV {
         let uv = s.uv - s.uv.floor();
         let colour = Vec3::new(uv.x, uv.y, 0.0);
-        let (facing, n, ends) = (s.normal, s.normal, true);
-        return ShadedHit {
+        return ShadingPoint {
             s,
-            facing,
-            n,
-            colour,
-            ends,
+            facing: s.normal,
+            n: s.normal,
+            uv_colour: Some(colour),
         };
     }
     let facing = facing_normal(s.normal, ray.dir);
@@ -259,17 +309,11 @@ fn shade_hit(
     if smooth && shading.normal != s.normal {
         n = visible_normal(n, facing, -ray.dir);
     }
-    let shade_seed = SampleSeed {
-        depth: entry.depth,
-        ..seed
-    };
-    let colour = shade_phong(scene, &s, n, -ray.dir, &entry.media, shade_seed, counters);
-    ShadedHit {
+    ShadingPoint {
         s,
         facing,
         n,
-        colour,
-        ends: false,
+        uv_colour: None,
     }
 }
 
@@ -287,7 +331,7 @@ fn facing_normal(normal: Vec3, dir: Vec3) -> Vec3 {
 
 /// The media primary rays start in, as packing found them (`dielectric::camera_media`).
 // Mirror of shaders/trace.wgsl::camera_medium_stack — change both.
-fn camera_media_of(g: &crate::pack::PackedGlobals) -> MediumStack {
+pub(crate) fn camera_media_of(g: &crate::pack::PackedGlobals) -> MediumStack {
     MediumStack {
         iors: g.camera_media,
         count: g.camera_media_count,

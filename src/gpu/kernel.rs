@@ -44,6 +44,12 @@ pub struct KernelConfig {
     /// without it), while llvmpipe, which runs every branch of a loop body, would run the
     /// mesh walks masked beside every item test.
     pub any_hit_one_loop: bool,
+    /// Whether AA none traces scenes without refraction through the wavefront kernels
+    /// (`WAVEFRONT`, `shaders/wavefront.wgsl`: camera, closest hit, shading, shadow rays
+    /// and gathering as kernels of their own joined by queues) rather than the megakernel
+    /// `main`. The images are the same bit for bit (the CPU twin is
+    /// `cpu::wavefront`).
+    pub wavefront: bool,
 }
 
 impl Default for KernelConfig {
@@ -57,6 +63,7 @@ impl Default for KernelConfig {
             lists_in_storage: true,
             camera_ray_in_loop: true,
             any_hit_one_loop: true,
+            wavefront: true,
         }
     }
 }
@@ -99,6 +106,11 @@ impl KernelConfig {
     ///   docs/journal/2026-12-02-one-traversal-in-mirror-scenes.md); software adapters keep
     ///   the hit before the loop, since on llvmpipe a loop around the first hit cost
     ///   20–25% of the render (docs/journal/2026-11-30-one-hit-no-loop.md).
+    /// - wavefront (AA none, no refraction): on hardware adapters, where a megakernel's
+    ///   registers are the traversal's plus everything live across it (RADV NAVI21:
+    ///   112–176 VGPRs, docs/journal/2026-12-02-wavefront-split-measured.md); software
+    ///   adapters keep the megakernel (unmeasured there: llvmpipe pays per dispatch and
+    ///   for every queue's memory traffic).
     pub fn for_adapter(device_type: wgpu::DeviceType, limits: &wgpu::Limits) -> KernelConfig {
         let software = device_type == wgpu::DeviceType::Cpu;
         let tables = SCENE_TABLE_BINDINGS.len() as u32;
@@ -110,6 +122,7 @@ impl KernelConfig {
             lists_in_storage: !software,
             camera_ray_in_loop: !software,
             any_hit_one_loop: !software,
+            wavefront: !software,
         }
     }
 
@@ -177,6 +190,9 @@ impl fmt::Display for KernelConfig {
         if self.any_hit_one_loop {
             write!(f, ", any hit in one loop")?;
         }
+        if self.wavefront {
+            write!(f, ", wavefront")?;
+        }
         Ok(())
     }
 }
@@ -217,6 +233,7 @@ mod tests {
         assert!(hard.lists_in_storage && !soft.lists_in_storage);
         assert!(hard.camera_ray_in_loop && !soft.camera_ray_in_loop);
         assert!(hard.any_hit_one_loop && !soft.any_hit_one_loop);
+        assert!(hard.wavefront && !soft.wavefront);
         assert_eq!(hard.workgroup_side, 8);
     }
 

@@ -20,8 +20,32 @@ use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Mode {
     None,
-    Uniform { n: u32 },
-    Adaptive { depth: u32 },
+    Uniform {
+        n: u32,
+    },
+    Adaptive {
+        depth: u32,
+    },
+    /// AA none through the wavefront kernels (`shaders/wavefront.wgsl`).
+    Wavefront(WavefrontShape),
+}
+
+/// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
+/// vertex's light slots: `cpu::wavefront::light_points`) and the generations a path may
+/// have (max_depth + 1 with mirrors, else 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WavefrontShape {
+    pub light_points: u32,
+    pub generations: u32,
+}
+
+impl WavefrontShape {
+    /// vec4 entries of the queues a sample of a chunk takes (`shaders/wavefront.wgsl`'s
+    /// regions): its record (2), two path queues (4 each), a hit (2), a vertex (2), its
+    /// light slots and shadow requests (L each).
+    pub fn vec4s_per_sample(self) -> u64 {
+        14 + 2 * self.light_points as u64
+    }
 }
 
 impl Mode {
@@ -46,6 +70,14 @@ impl Mode {
                 Entry::AdaptiveMidpoints,
                 Entry::AdaptiveIntegrate,
                 Entry::AdaptiveWorkArgs,
+            ],
+            Mode::Wavefront(_) => &[
+                Entry::WavefrontCamera,
+                Entry::WavefrontClosest,
+                Entry::WavefrontShade,
+                Entry::WavefrontArgs,
+                Entry::WavefrontShadow,
+                Entry::WavefrontGather,
             ],
         }
     }
@@ -111,6 +143,9 @@ pub struct AdapterBounds {
     /// no tracing dispatch has more invocations than `LIST_BUDGET_BYTES` (or one
     /// binding) holds slots.
     pub lane_list_words: u32,
+    /// AA none's wavefront kernels, where the kernel has them for the scene (None: the
+    /// megakernel `main`).
+    pub wavefront: Option<WavefrontShape>,
 }
 
 /// The frame's chunks, their grouping into submits and the scratch arrays' lengths.
@@ -209,7 +244,10 @@ impl FramePlan {
     /// position from its chunk's origin, so each comes out as in the full frame).
     pub fn for_window(g: &PackedGlobals, bounds: AdapterBounds, window: PixelRect) -> FramePlan {
         let (w, h) = (window.width(), window.height());
-        let mode = Mode::of(g);
+        let mode = match (Mode::of(g), bounds.wavefront) {
+            (Mode::None, Some(shape)) => Mode::Wavefront(shape),
+            (mode, _) => mode,
+        };
         // Rows a band may have: its pixels must fit a 2-D dispatch and its output block
         // (16 B a pixel) one binding.
         let dispatch_rows = bounds.max_workgroups.saturating_mul(bounds.workgroup_side);
@@ -229,6 +267,18 @@ impl FramePlan {
                 1,
                 1,
             ),
+            Mode::Wavefront(shape) => {
+                // Rows whose queues fit one binding.
+                let per_row = w as u64 * shape.vec4s_per_sample() * 16;
+                let queue_rows = (bounds.max_binding / per_row).clamp(1, u32::MAX as u64) as u32;
+                let rows = dispatch_rows
+                    .min(block_rows)
+                    .min(slot_rows(1))
+                    .min(queue_rows);
+                let chunks = bands(window, rows, parts as u32);
+                let pixels = chunks.iter().map(|c| c.block_pixels()).max().unwrap_or(1);
+                (chunks, shape.vec4s_per_sample() * pixels, 1)
+            }
             Mode::Uniform { n } => {
                 let per_row = w as u64 * (n * n) as u64;
                 let sample_rows = bounds.max_binding / (16 * per_row);
@@ -254,10 +304,12 @@ impl FramePlan {
         let parts = split_even(chunks.len(), parts.min(chunks.len()));
         let work_levels = match mode {
             Mode::Adaptive { depth } => depth.max(1) as u64,
+            // A generation's 6 words of indirect arguments; the 5 counters.
+            Mode::Wavefront(shape) => shape.generations.max(5) as u64,
             _ => 1,
         };
         let chunk_slots = |c: &Chunk| match mode {
-            Mode::None => c.block_pixels(),
+            Mode::None | Mode::Wavefront(_) => c.block_pixels(),
             Mode::Uniform { n } => c.size[0] as u64 * c.size[1] as u64 * (n * n) as u64,
             Mode::Adaptive { depth } => adaptive_slots(c.size[0], c.size[1], c.side, depth),
         };
@@ -307,6 +359,37 @@ impl FramePlan {
         };
         match self.mode {
             Mode::None => vec![run(0, params(0, 0), square)],
+            Mode::Wavefront(shape) => {
+                // The camera pass starts the chunk (its counters cleared); per
+                // generation g closest, shade, args, shadow, gather — generation 0's over
+                // the chunk's samples, later ones' and every shadow pass's as the args
+                // kernel wrote them (24 bytes a generation: the next generation's, then
+                // this one's shadow pass).
+                let n = w * h;
+                let mut out = vec![Dispatch {
+                    clears_work: true,
+                    ..run(0, params(0, n), linear(n))
+                }];
+                for g in 0..shape.generations {
+                    let paths = match g {
+                        0 => linear(n),
+                        _ => Workgroups::Indirect(24 * (g as u64 - 1)),
+                    };
+                    out.push(run(1, params(g, n), paths));
+                    out.push(run(2, params(g, n), paths));
+                    out.push(Dispatch {
+                        writes_args: true,
+                        ..run(3, params(g, n), Workgroups::Direct(1, 1))
+                    });
+                    out.push(run(
+                        4,
+                        params(g, n),
+                        Workgroups::Indirect(24 * g as u64 + 12),
+                    ));
+                    out.push(run(5, params(g, n), paths));
+                }
+                out
+            }
             Mode::Uniform { n } => {
                 let items = w * h * n * n;
                 vec![
@@ -380,6 +463,7 @@ mod tests {
         max_workgroups: 65_535,
         workgroup_side: 8,
         lane_list_words: 0,
+        wavefront: None,
     };
 
     /// Every pixel in exactly one chunk, every chunk in exactly one part.
@@ -478,6 +562,72 @@ mod tests {
                 assert!(unbounded.chunks.len() <= plan.chunks.len());
             }
         }
+    }
+
+    /// AA none through the wavefront kernels: bands cover the frame once, every band's
+    /// queues fit one binding, and each band runs the camera pass (clearing its counters)
+    /// then closest, shade, args, shadow and gather per generation — generation 0's over
+    /// the band's samples, the rest and every shadow pass at the args kernel's offsets,
+    /// inside the work-args buffer.
+    #[test]
+    fn wavefront_bands_fit_their_queues_and_run_every_generation() {
+        let shape = WavefrontShape {
+            light_points: 17,
+            generations: 6,
+        };
+        let bounds = AdapterBounds {
+            wavefront: Some(shape),
+            max_binding: 16 << 20,
+            ..LAVAPIPE
+        };
+        for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
+            let plan = FramePlan::new(&globals(w, h, 0), bounds);
+            assert_eq!(plan.mode, Mode::Wavefront(shape));
+            assert_covers(&plan, w, h);
+            assert!(plan.samples_len * 16 <= bounds.max_binding, "{w}×{h}");
+            for (k, c) in plan.chunks.iter().enumerate() {
+                assert!(shape.vec4s_per_sample() * c.block_pixels() <= plan.samples_len);
+                let d = plan.dispatches(k, 2, bounds);
+                assert_eq!(d.len(), 1 + 5 * shape.generations as usize);
+                assert!(d[0].clears_work && d[0].entry == 0);
+                for (g, pass) in d[1..].chunks(5).enumerate() {
+                    let entries: Vec<usize> = pass.iter().map(|d| d.entry).collect();
+                    assert_eq!(entries, [1, 2, 3, 4, 5]);
+                    assert!(pass.iter().all(|d| d.params.level == g as u32));
+                    assert!(pass[2].writes_args);
+                    let offsets = pass.iter().filter_map(|d| match d.workgroups {
+                        Workgroups::Indirect(at) => Some(at),
+                        Workgroups::Direct(..) => None,
+                    });
+                    for at in offsets {
+                        assert!(at + 12 <= plan.work_levels * 24, "{at}");
+                    }
+                    let expected = match g {
+                        0 => d[0].workgroups,
+                        _ => Workgroups::Indirect(24 * (g as u64 - 1)),
+                    };
+                    assert_eq!(pass[0].workgroups, expected);
+                    assert_eq!(pass[4].workgroups, expected);
+                    assert_eq!(pass[3].workgroups, Workgroups::Indirect(24 * g as u64 + 12));
+                }
+            }
+            // Uniform AA keeps its own passes.
+            let uniform = FramePlan::new(&globals(w, h, AA_UNIFORM), bounds);
+            assert!(matches!(uniform.mode, Mode::Uniform { .. }));
+        }
+        assert!(plan_counters_fit(shape));
+    }
+
+    /// The five counters (three path counters, two shadow counters) fit `work_counts`.
+    fn plan_counters_fit(shape: WavefrontShape) -> bool {
+        let bounds = AdapterBounds {
+            wavefront: Some(WavefrontShape {
+                generations: 1,
+                ..shape
+            }),
+            ..LAVAPIPE
+        };
+        FramePlan::new(&globals(8, 8, 0), bounds).work_levels >= 5
     }
 
     #[test]

@@ -434,6 +434,7 @@ mod tests {
             max_workgroups: 65_535,
             workgroup_side: 8,
             lane_list_words: words,
+            wavefront: None,
         }
     }
 

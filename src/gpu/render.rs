@@ -27,6 +27,7 @@ use super::pipeline::{get_pipeline, CompiledPipeline};
 use super::pipeline_cache::CompileSummary;
 use super::plan::{AdapterBounds, Dispatch, FramePlan};
 use super::shader::Entry;
+use super::wavefront::wavefront_shape;
 use super::GpuError;
 use crate::cpu::render::render_pixel;
 use crate::cpu::traverse::NoCounters;
@@ -147,6 +148,7 @@ pub(super) fn adapter_bounds(
         max_workgroups: ctx.limits.max_compute_workgroups_per_dimension,
         workgroup_side: kernel.workgroup_side,
         lane_list_words: LaneLists::of(features, kernel).words(),
+        wavefront: None,
     }
 }
 
@@ -157,7 +159,10 @@ pub fn render_gpu(
     options: &GpuRenderOptions,
 ) -> Result<GpuRender, GpuError> {
     let (progress, sentinel) = (options.progress, options.limiter_sentinel);
-    let bounds = adapter_bounds(ctx, ctx.kernel, scene.features);
+    let bounds = AdapterBounds {
+        wavefront: wavefront_shape(ctx.kernel, scene),
+        ..adapter_bounds(ctx, ctx.kernel, scene.features)
+    };
     let g = &scene.globals;
     let window = options.window.unwrap_or(PixelRect::full(g.width, g.height));
     let plan = FramePlan::for_window(g, bounds, window);

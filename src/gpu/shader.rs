@@ -19,7 +19,7 @@
 
 use super::kernel::KernelConfig;
 use super::lists::LaneLists;
-use crate::constants::wgsl_prelude;
+use crate::constants::{wavefront_wgsl_prelude, wgsl_prelude};
 use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
 
@@ -39,6 +39,15 @@ pub enum Entry {
     AdaptiveMidpoints,
     AdaptiveIntegrate,
     AdaptiveWorkArgs,
+    /// `wavefront_camera`, `wavefront_closest`, `wavefront_shade`, `wavefront_args`,
+    /// `wavefront_shadow`, `wavefront_gather`: AA none's kernels in the wavefront form
+    /// (`shaders/wavefront.wgsl`; only in modules with [`wavefront_kernels`]).
+    WavefrontCamera,
+    WavefrontClosest,
+    WavefrontShade,
+    WavefrontArgs,
+    WavefrontShadow,
+    WavefrontGather,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
     /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`).
     ViewSample,
@@ -48,7 +57,7 @@ pub enum Entry {
 
 impl Entry {
     /// Every entry point.
-    pub const ALL: [Entry; 10] = [
+    pub const ALL: [Entry; 16] = [
         Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
@@ -57,6 +66,12 @@ impl Entry {
         Entry::AdaptiveMidpoints,
         Entry::AdaptiveIntegrate,
         Entry::AdaptiveWorkArgs,
+        Entry::WavefrontCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontGather,
         Entry::ViewSample,
         Entry::Probe,
     ];
@@ -72,6 +87,12 @@ impl Entry {
             Entry::AdaptiveMidpoints => "adaptive_midpoints",
             Entry::AdaptiveIntegrate => "adaptive_integrate",
             Entry::AdaptiveWorkArgs => "adaptive_work_args",
+            Entry::WavefrontCamera => "wavefront_camera",
+            Entry::WavefrontClosest => "wavefront_closest",
+            Entry::WavefrontShade => "wavefront_shade",
+            Entry::WavefrontArgs => "wavefront_args",
+            Entry::WavefrontShadow => "wavefront_shadow",
+            Entry::WavefrontGather => "wavefront_gather",
             Entry::ViewSample => "view_sample",
             Entry::Probe => "probe",
         }
@@ -80,6 +101,25 @@ impl Entry {
     /// Whether the entry is in the render module.
     pub fn is_render(self) -> bool {
         self != Entry::Probe
+    }
+
+    /// Whether the entry is one of the wavefront kernels (in the render module only with
+    /// [`wavefront_kernels`]).
+    pub fn is_wavefront(self) -> bool {
+        matches!(
+            self,
+            Entry::WavefrontCamera
+                | Entry::WavefrontClosest
+                | Entry::WavefrontShade
+                | Entry::WavefrontArgs
+                | Entry::WavefrontShadow
+                | Entry::WavefrontGather
+        )
+    }
+
+    /// Whether the render module of `kernel` for `features` has this entry.
+    pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
+        !self.is_wavefront() || wavefront_kernels(kernel, features)
     }
 }
 
@@ -130,6 +170,12 @@ const RENDER: &[(&str, &str)] = &[
         include_str!("../../shaders/progressive.wgsl"),
     ),
 ];
+/// Appended to the render module only where the kernel runs the wavefront kernels (so
+/// that the other modules are byte for byte what they were without them).
+const WAVEFRONT: &[(&str, &str)] = &[(
+    "wavefront.wgsl",
+    include_str!("../../shaders/wavefront.wgsl"),
+)];
 const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
 
 /// The common modules (scene layout, intersection, traversal, shading) specialised to
@@ -165,10 +211,15 @@ fn kernel_prelude(kernel: KernelConfig) -> String {
 pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig) -> String {
     let mut out = wgsl_prelude() + &kernel_prelude(kernel);
     out += &LaneLists::of(features, kernel).wgsl_prelude();
+    let wavefront = entry.is_render() && wavefront_kernels(kernel, features);
+    if wavefront {
+        out += &wavefront_wgsl_prelude();
+    }
     out += &format!("// Specialised for features: {features}; kernel: {kernel}\n");
     let files = COMMON
         .iter()
-        .chain(if entry.is_render() { RENDER } else { PROBE });
+        .chain(if entry.is_render() { RENDER } else { PROBE })
+        .chain(if wavefront { WAVEFRONT } else { &[] });
     for (name, text) in files {
         out += &format!("\n// ---- shaders/{name} ----\n");
         out += &preprocess_with(name, text, features, kernel)
@@ -231,11 +282,18 @@ pub fn preprocess_with(
     Ok(out)
 }
 
+/// Whether the render module of `kernel` for a scene with `features` has the wavefront
+/// kernels (`WAVEFRONT`): where the variant asks for them and the scene's paths are chains
+/// (no refraction: `cpu::wavefront` traces nothing else yet).
+pub fn wavefront_kernels(kernel: KernelConfig, features: SceneFeatures) -> bool {
+    kernel.wavefront && !features.contains(SceneFeatures::REFRACTION)
+}
+
 /// Whether a kernel variant sets one of its flags for a scene with these features.
 type KernelFlag = fn(KernelConfig, SceneFeatures) -> bool;
 
 /// The kernel variant's flags a shader may test with `#if`, and whether `kernel` sets each.
-const KERNEL_FLAGS: [(&str, KernelFlag); 7] = [
+const KERNEL_FLAGS: [(&str, KernelFlag); 8] = [
     ("ITERATION_GUARD", |k, _| k.iteration_guard),
     ("MAILBOXES", |k, _| k.mailboxes == Mailboxes::Full),
     ("LAST_ITEM_MAILBOX", |k, _| {
@@ -252,6 +310,7 @@ const KERNEL_FLAGS: [(&str, KernelFlag); 7] = [
             || (k.camera_ray_in_loop && f.contains(SceneFeatures::REFLECTION))
     }),
     ("ANY_HIT_ONE_LOOP", |k, _| k.any_hit_one_loop),
+    ("WAVEFRONT", wavefront_kernels),
 ];
 
 /// Evaluates `NAME`, `A|B` or `!A|B` against `features` and `kernel`'s flags.

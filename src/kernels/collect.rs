@@ -6,7 +6,7 @@
 
 use crate::gpu::kernel::{KernelConfig, KernelVariant};
 use crate::gpu::plan::Mode;
-use crate::gpu::shader::{assemble_with, Entry};
+use crate::gpu::shader::{assemble_with, wavefront_kernels, Entry};
 use crate::gpu::spirv::{entry_spirv, spirv_bytes, SpirvTarget};
 use crate::pack::SceneFeatures;
 use crate::pipeline::prepare_request;
@@ -91,7 +91,15 @@ impl KernelSet {
         let wanted = entries.unwrap_or(&all);
         for (features, mode) in scene_renders(scene)? {
             for &entry in wanted {
-                let dispatched = mode.entries().contains(&entry);
+                if !entry.exists_in(kernel, features) {
+                    continue;
+                }
+                // AA none runs the wavefront kernels instead of `main` where they exist.
+                let dispatched = if mode == Mode::None && wavefront_kernels(kernel, features) {
+                    entry.is_wavefront()
+                } else {
+                    mode.entries().contains(&entry)
+                };
                 self.add(&name, features, entry, dispatched, kernel, target)?;
             }
         }

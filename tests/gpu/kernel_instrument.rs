@@ -150,17 +150,22 @@ fn dumped_kernels_are_the_kernels_the_instrument_compiles() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
+    // The hardware variant traces AA none through the wavefront kernels, not `main`.
+    let kernels = ["args", "camera", "closest", "gather", "shade", "shadow"];
+    let expected: Vec<String> = kernels
+        .iter()
+        .flat_map(|k| [format!("wavefront_{k}.spv"), format!("wavefront_{k}.wgsl")])
+        .collect();
     assert_eq!(
-        names,
-        ["main.spv", "main.wgsl"],
-        "AA none compiles main alone"
+        names, expected,
+        "AA none compiles the wavefront kernels alone"
     );
-    let wgsl = std::fs::read_to_string(dump.join("main.wgsl")).unwrap();
+    let wgsl = std::fs::read_to_string(dump.join("wavefront_closest.wgsl")).unwrap();
     assert!(
         wgsl.contains("kernel: workgroup 8×8/64, last-item mailbox, ray lists in storage"),
         "the hardware variant"
     );
-    let spv = std::fs::read(dump.join("main.spv")).unwrap();
+    let spv = std::fs::read(dump.join("wavefront_closest.spv")).unwrap();
     assert_eq!(&spv[..4], &[0x03, 0x02, 0x23, 0x07], "SPIR-V magic");
     let digest: String = Sha256::digest(&spv)
         .iter()
@@ -168,14 +173,22 @@ fn dumped_kernels_are_the_kernels_the_instrument_compiles() {
         .collect();
 
     let out = glint(&[
-        "kernels", scene, "--family", "NAVI21", "--entry", "main", "--wave", "64", "--format",
+        "kernels",
+        scene,
+        "--family",
+        "NAVI21",
+        "--entry",
+        "wavefront_closest",
+        "--wave",
+        "64",
+        "--format",
         "json",
     ]);
     assert!(out.status.success(), "{}", text(&out));
     let stdout = String::from_utf8_lossy(&out.stdout);
     let row = stdout
         .lines()
-        .find(|l| l.contains("\"entry\": \"main\""))
+        .find(|l| l.contains("\"entry\": \"wavefront_closest\""))
         .unwrap();
     assert_eq!(string(row, "spirv_sha256"), Some(digest.as_str()), "{row}");
 }

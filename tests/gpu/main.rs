@@ -25,6 +25,7 @@ mod gpu_refraction;
 mod gpu_scrabble;
 mod gpu_textures;
 mod gpu_trace_forms;
+mod gpu_wavefront;
 mod kernel_instrument;
 mod twins;
 mod twins_broken;

@@ -255,6 +255,75 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "shaders/csg.wgsl",
         "set_csg_count",
         "writes CsgStack::list_count[l] (see csg_count_at)",
+    ),    (
+        "shaders/wavefront.wgsl",
+        "load_path",
+        "reads path entry i of a queue from the `samples` buffer's region; the CPU's PathQueue::entry reads its Vecs",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "store_path",
+        "writes path entry i of a queue into the `samples` buffer's region; the CPU's PathQueue::append pushes onto its Vecs",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "path_sample",
+        "reads a path entry's sample index (the CPU's PathQueue::sample[i])",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "sample_flags",
+        "reads a sample record's flag bits; the CPU's SampleRecords keeps one Vec a flag",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "set_sample_flags",
+        "writes a sample record's flag bits (see sample_flags)",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "path_counter",
+        "which work_counts word counts a generation's paths; the CPU's queues are Vecs that know their length",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "shadow_counter",
+        "which work_counts word counts a generation's shadow requests (see path_counter)",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "wavefront_paths",
+        "where a path queue's region of `samples` starts; the CPU's queues are Vecs of their own",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "wavefront_hits",
+        "where the hit queue's region of `samples` starts (see wavefront_paths)",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "wavefront_vertices",
+        "where the vertex queue's region of `samples` starts (see wavefront_paths)",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "wavefront_slots",
+        "where the light slots' region of `samples` starts (see wavefront_paths)",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "wavefront_shadows",
+        "where the shadow requests' region of `samples` starts (see wavefront_paths)",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "ask_shadow",
+        "one light point's step of wavefront_shade's light loop: the CPU's is the closure `ask` in src/cpu/wavefront.rs::shade_entry",
+    ),
+    (
+        "shaders/wavefront.wgsl",
+        "wavefront_unshadowed_term",
+        "the CPU's src/cpu/shade.rs::unshadowed_term, which the CPU's point_light shares; the WGSL point_light keeps its own copy of these lines so that the software variant's module (no wavefront) stays byte for byte what it was",
     ),
 ];
 
@@ -268,6 +337,11 @@ const MODULE_SCOPE: &[(&str, &str)] = &[
     ("PackedGlobals", "the `globals` uniform"),
     ("AdaptiveTile", "the `tile` uniform"),
     ("Lattice", "the `samples` and `split` storage buffers"),
+    (
+        "Batch",
+        "the wavefront queues in the `samples` storage buffer and their `work_counts`",
+    ),
+    ("SampleSource", "the `tile` uniform (a chunk's pixels)"),
     (
         "CsgStack",
         "the csg_* private variables or the list slot (src/gpu/lists.rs)",

@@ -18,3 +18,4 @@ mod golden;
 mod scrabble;
 mod texture_assets;
 mod textures;
+mod wavefront;
