@@ -92,6 +92,10 @@ fn path_sample(parity: u32, i: u32) -> u32 {
     return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i].w);
 }
 
+fn path_depth(parity: u32, i: u32) -> u32 {
+    return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i + 1u].w);
+}
+
 fn store_path(parity: u32, i: u32, entry: StackEntry, sample: u32) {
     let at = wavefront_paths(parity) + 4u * i;
     samples[at] = vec4<f32>(entry.ray.origin, bitcast<f32>(sample));
@@ -153,7 +157,12 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
 }
 
 // The closest pass's invocation for path idx of generation tile.level: its hit, and the
-// items a sample's hint keeps.
+// items a sample's hint keeps. Only the ray is live across closest_hit: the path's depth
+// and sample are read after the hit record is stored (a store the compiler cannot tell
+// apart from them, so it reloads them rather than keeping the first load's registers),
+// which keeps textures.lua's kernel within the traversal budget of 96 VGPRs on NAVI21
+// (112 in wave32, 104 in wave64 with the depth held through the traversal;
+// docs/journal/2026-12-02-textures-closest-kernel.md).
 // Mirror of src/cpu/wavefront.rs::closest_entry — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_closest(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -164,19 +173,19 @@ fn wavefront_closest(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_
     }
     begin_lane(i);
     let parity = g % 2u;
-    let entry = load_path(parity, i);
-    let hit = closest_hit(entry.ray, T_MISS);
-    let k = path_sample(parity, i);
-    if entry.depth == 0u {
-        samples[2u * k].w = bitcast<f32>(hit.item);
-    }
-    if (sample_flags(k) & SAMPLE_CAMERA_MIRROR) != 0u && entry.depth == 1u {
-        // The one ray a mirror spawns: what the camera sees in it.
-        samples[2u * k + 1u].x = bitcast<f32>(hit.item);
-    }
+    let hit = closest_hit(load_path(parity, i).ray, T_MISS);
     let at = wavefront_hits() + 2u * i;
     samples[at] = vec4<f32>(hit.t, bitcast<f32>(hit.item), hit.b1, hit.b2);
     samples[at + 1u] = vec4<f32>(bitcast<f32>(hit.part), 0.0, 0.0, 0.0);
+    let depth = path_depth(parity, i);
+    let k = path_sample(parity, i);
+    if depth == 0u {
+        samples[2u * k].w = bitcast<f32>(hit.item);
+    }
+    if (sample_flags(k) & SAMPLE_CAMERA_MIRROR) != 0u && depth == 1u {
+        // The one ray a mirror spawns: what the camera sees in it.
+        samples[2u * k + 1u].x = bitcast<f32>(hit.item);
+    }
 }
 
 // point_light's A4 term before its shadow ray, (kd·N·L + ks·spec)·I·attenuation, in w 1;

@@ -401,7 +401,9 @@ pub fn closest_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl 
 }
 
 /// The closest pass's invocation for path `i`: its hit, and the items a sample's hint
-/// keeps (the camera ray's; at depth 1, the item seen in a camera-hit mirror).
+/// keeps (the camera ray's; at depth 1, the item seen in a camera-hit mirror). The hit is
+/// stored before the hints, in the WGSL's order (which reads the depth after the store to
+/// keep it out of the traversal's registers).
 // Mirror of shaders/wavefront.wgsl::wavefront_closest — change both.
 fn closest_entry(
     scene: &PackedScene,
@@ -415,6 +417,8 @@ fn closest_entry(
         dir: paths.dir[i],
     };
     let hit = closest_hit(scene, &ray, T_MISS, counters);
+    batch.hits.store_hit(i, &hit);
+    let paths = &batch.paths;
     let k = paths.sample[i] as usize;
     let samples = &mut batch.samples;
     if paths.depth[i] == 0 {
@@ -426,7 +430,6 @@ fn closest_entry(
         samples.mirrored_item[k] = hit.item;
         counters.mirror_hit(hit.item);
     }
-    batch.hits.store_hit(i, &hit);
 }
 
 /// The shade pass: each hit shaded without tracing.

@@ -272,6 +272,11 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     ),
     (
         "shaders/wavefront.wgsl",
+        "path_depth",
+        "reads a path entry's depth (the CPU's PathQueue::depth[i])",
+    ),
+    (
+        "shaders/wavefront.wgsl",
         "sample_flags",
         "reads a sample record's flag bits; the CPU's SampleRecords keeps one Vec a flag",
     ),
