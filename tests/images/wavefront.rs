@@ -27,6 +27,11 @@ fn chain_scenes() -> Vec<PathBuf> {
 }
 
 fn packed(path: &Path, aa: AaMode, debug: DebugView) -> Vec<PackedScene> {
+    packed_where(path, aa, debug, false)
+}
+
+/// The renders of `path` whose refraction is `refraction`, at W×H.
+fn packed_where(path: &Path, aa: AaMode, debug: DebugView, refraction: bool) -> Vec<PackedScene> {
     let overrides = OptionOverrides {
         aa: Some(aa),
         samples: Some(AaSamples::constant(2)),
@@ -38,7 +43,7 @@ fn packed(path: &Path, aa: AaMode, debug: DebugView) -> Vec<PackedScene> {
     };
     common::packed_from_file(path, &overrides)
         .into_iter()
-        .filter(|s| !s.features.contains(SceneFeatures::REFRACTION))
+        .filter(|s| s.features.contains(SceneFeatures::REFRACTION) == refraction)
         .collect()
 }
 
@@ -174,18 +179,30 @@ fn passes_sample_every_lattice_point_as_lattice_sample_does() {
     for path in chain_scenes() {
         for scene in packed(&path, AaMode::Adaptive, DebugView::None) {
             let name = common::scene_name(&path);
+            assert_lattice_matches(&name, &scene);
+            checked.push(name);
+        }
+    }
+    assert_coverage(&checked, 29);
+}
+
+/// Every point of `scene`'s finest lattice through the passes in one batch: the colour
+/// and the hint of `lattice_sample` (trace_ray's), bit for bit.
+fn assert_lattice_matches(name: &str, scene: &PackedScene) {
+    {
+        {
             let steps = 1u32 << scene.globals.aa_depth;
             let points: Vec<[f32; 2]> = (0..=H * steps)
                 .flat_map(|y| (0..=W * steps).map(move |x| [x, y]))
                 .map(|[x, y]| [x as f32 / steps as f32, y as f32 / steps as f32])
                 .collect();
             let batch = trace_batch(
-                &scene,
+                scene,
                 &SampleSource::Lattice { points: &points },
                 &mut Counters::default(),
             );
             for (k, &[fx, fy]) in points.iter().enumerate() {
-                let (colour, hint) = lattice_sample(&scene, fx, fy, &mut Counters::default());
+                let (colour, hint) = lattice_sample(scene, fx, fy, &mut Counters::default());
                 let wave = batch.samples.colour[k];
                 assert_eq!(
                     wave.to_array().map(f32::to_bits),
@@ -198,8 +215,43 @@ fn passes_sample_every_lattice_point_as_lattice_sample_does() {
                     "{name}: lattice point ({fx}, {fy})'s hint"
                 );
             }
-            checked.push(name);
         }
     }
-    assert_coverage(&checked, 29);
+}
+
+/// The scene files whose renders have refraction (a sample's paths form a tree).
+const TREE_SCENES: &[&str] = &["scenes-glass", "scenes-csg", "scenes-scrabble"];
+
+/// Every render with refraction of scenes/ and the corpus, its name and the scene.
+fn tree_scenes(aa: AaMode) -> Vec<(String, PackedScene)> {
+    let mut scenes = Vec::new();
+    for path in chain_scenes() {
+        for scene in packed_where(&path, aa, DebugView::None, true) {
+            scenes.push((common::scene_name(&path), scene));
+        }
+    }
+    let names: Vec<&String> = scenes.iter().map(|(n, _)| n).collect();
+    for required in TREE_SCENES {
+        assert!(
+            names.iter().any(|n| n.starts_with(required)),
+            "{required} was not compared (compared: {names:?})"
+        );
+    }
+    scenes
+}
+
+#[test]
+fn passes_render_every_tree_scene_as_trace_ray_does() {
+    for aa in [AaMode::None, AaMode::Uniform] {
+        for (name, scene) in tree_scenes(aa) {
+            assert_films_match(&format!("{name} {aa:?}"), &scene, 37);
+        }
+    }
+}
+
+#[test]
+fn passes_sample_every_lattice_point_of_tree_scenes_as_lattice_sample_does() {
+    for (name, scene) in tree_scenes(AaMode::Adaptive) {
+        assert_lattice_matches(&name, &scene);
+    }
 }
