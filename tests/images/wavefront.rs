@@ -425,3 +425,36 @@ fn passes_trace_shadow_rays_through_every_crossing_trace_ray_allows() {
         assert_eq!(reach.rounds, MAX_SHADOW_CROSSINGS + 1, "{name}: rounds");
     }
 }
+
+/// The camera under water (a sphere of index 1.33 around the whole scene), looking at a
+/// glass ball over a floor, lit from outside the water: camera rays start in the media
+/// packing found around the camera, and every shadow ray leaves the water.
+const UNDERWATER_SCENE: &str = r#"
+white = gr.material({0.8, 0.8, 0.8}, {0.3, 0.3, 0.3}, 30)
+glass = gr.material({0, 0, 0}, {0.5, 0.5, 0.5}, 100)
+glass:set_refraction(1.5)
+water = gr.material({0, 0, 0}, {0.3, 0.3, 0.3}, 100)
+water:set_refraction(1.33)
+root = gr.node('root')
+sea = gr.nh_sphere('sea', {0, 0, 0}, 30)
+sea:set_material(water)
+root:add_child(sea)
+floor = gr.nh_box('floor', {-10, -11, -10}, 20)
+floor:set_material(white)
+root:add_child(floor)
+ball = gr.nh_sphere('ball', {0, 1.5, 0}, 1.5)
+ball:set_material(glass)
+root:add_child(ball)
+gr.render(root, 'underwater.png', 12, 8, {0, 3, 8}, {0, -0.3, -1}, {0, 1, 0}, 50,
+          {0.2, 0.2, 0.2}, {gr.light({10, 40, 10}, {0.9, 0.9, 0.9}, {1, 0, 0})})
+"#;
+
+#[test]
+fn passes_start_camera_rays_in_the_media_around_the_camera() {
+    let scene = common::packed_from_source(UNDERWATER_SCENE, &overrides_at(8, 12, 8)).remove(0);
+    assert_eq!(
+        scene.globals.camera_media_count, 1,
+        "the camera is under water"
+    );
+    assert_films_match("under water", &scene, 29);
+}
