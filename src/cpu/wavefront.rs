@@ -1,14 +1,19 @@
-//! The wavefront form of [`trace_ray`](super::trace::trace_ray) for scenes without
-//! refraction (every path a chain: at most one reflected ray a vertex): a batch of camera
+//! The wavefront form of [`trace_ray`](super::trace::trace_ray): a batch of camera
 //! samples goes through passes over queues instead of one sample at a time through a
-//! megakernel. Per batch the camera pass fills generation 0's path queue; per generation
-//! the closest pass traces each path's ray to its hit, the shade pass shades each hit
+//! megakernel. Without refraction every path is a chain (at most one reflected ray a
+//! vertex); with it a dielectric's hit spawns two rays and the paths form a tree, whose
+//! pieces (pending counts, the vertex tree and its fold, glass shadow rounds) are in
+//! [`wavefront_tree`](super::wavefront_tree).
+//!
+//! Per batch the camera pass fills generation 0's path queue; per generation the closest
+//! pass traces each path's ray to its hit, the shade pass shades each hit
 //! without tracing (the point's own term; per light point facing it, its unshadowed term
 //! in the vertex's slot and a shadow request; the reflected ray appended to the next
 //! generation's queue; adaptive AA's hints), the shadow pass traces each request (any
-//! hit) and zeroes the slot of a blocked one, and the gather pass sums each vertex's
-//! colour in `shade_phong`'s order (ambient, then each light's slot in light order, an
-//! area light's strata in stratum order × 1/n²) into its sample's colour.
+//! hit; through glass: rounds of legs) and zeroes the slot of a blocked one, and the
+//! gather pass sums each vertex's colour in `shade_phong`'s order (ambient, then each
+//! light's slot in light order, an area light's strata in stratum order × 1/n²) into its
+//! sample's colour (chains) or its vertex's value (trees, summed by the fold).
 //!
 //! These are the GPU's wavefront kernels' reference (docs/gpu.md), whose queues are
 //! filled by atomics in any order: so every entry carries its sample's index and every
@@ -38,7 +43,7 @@ use super::trace::{
     StackEntry,
 };
 use super::traverse::closest_hit;
-use super::wavefront_tree::{fold_pass, glass_shadow_pass, VertexTree};
+use super::wavefront_tree::{fold_samples, glass_shadow_rounds, ShadowRequests, VertexTree};
 use crate::constants::{
     AA_ADAPTIVE, AA_UNIFORM, LIGHT_AREA, MEDIUM_STACK_SIZE, NO_ITEM, RAY_STACK_SIZE, T_MISS,
 };
@@ -598,6 +603,31 @@ fn shadow_entry(
     };
     let slot = i * points + batch.shadows.slot[r] as usize;
     batch.slots[slot] = shadowed_term(batch.slots[slot], transmittance);
+}
+
+/// The shadow pass through glass (scenes with refraction): rounds of legs
+/// ([`glass_shadow_rounds`]) over the generation's requests; the number of rounds.
+pub fn glass_shadow_pass(
+    scene: &PackedScene,
+    batch: &mut Batch,
+    counters: &mut impl TraversalCounters,
+) -> u32 {
+    let requests = ShadowRequests {
+        vertex: &batch.shadows.vertex,
+        slot: &batch.shadows.slot,
+        position: &batch.shadows.position,
+        shadow_origin: &batch.vertices.shadow_origin,
+        magnitude: &batch.vertices.magnitude,
+        media: &batch.paths.media,
+        light_points: batch.light_points,
+    };
+    glass_shadow_rounds(scene, &requests, &mut batch.slots, counters)
+}
+
+/// The fold pass (scenes with refraction, after the last generation): each sample's
+/// colour from its vertex tree ([`fold_samples`]).
+pub fn fold_pass(batch: &mut Batch) {
+    fold_samples(&batch.tree, &mut batch.samples.colour);
 }
 
 /// The gather pass: each vertex's colour into its sample's.

@@ -25,15 +25,15 @@ use super::dielectric::{cross_shadow_surface, shadow_leg_ray, MediumStack, Shado
 use super::hit::{Hit, TraversalCounters};
 use super::shade::shadowed_term;
 use super::traverse::closest_hit;
-use super::wavefront::Batch;
 use crate::constants::{MAX_SHADOW_CROSSINGS, RAY_STACK_SIZE};
+use crate::pack::PackedScene;
 use glam::Vec3;
 
 /// A vertex without a child in that place.
 pub const NO_CHILD: u32 = u32::MAX;
 
 /// Every vertex of a batch, generation after generation (generation g's path i is
-/// vertex `Batch::vertex_base` + i): its value and its children in push order.
+/// vertex ``cpu::wavefront::Batch::vertex_base`` + i): its value and its children in push order.
 #[derive(Clone, Debug, Default)]
 pub struct VertexTree {
     pub value: Vec<Vec3>,
@@ -57,10 +57,11 @@ impl VertexTree {
     }
 }
 
-/// The fold pass: each sample's colour from its vertex tree.
-pub fn fold_pass(batch: &mut Batch) {
-    for k in 0..batch.samples.colour.len() {
-        batch.samples.colour[k] = fold_entry(&batch.tree, k as u32);
+/// The fold pass: each sample's colour (sample k's camera vertex is vertex k) from its
+/// vertex tree.
+pub fn fold_samples(tree: &VertexTree, colours: &mut [Vec3]) {
+    for (k, colour) in colours.iter_mut().enumerate() {
+        *colour = fold_entry(tree, k as u32);
     }
 }
 
@@ -136,26 +137,41 @@ impl LegQueue {
     }
 }
 
+/// What the glass shadow rounds read of a generation: per shadow request its vertex, its
+/// light slot and its light point; per vertex where its shadow rays start (origin, the
+/// surface's magnitude, the media around it). (`cpu::wavefront`'s queues, borrowed.)
+pub struct ShadowRequests<'a> {
+    pub vertex: &'a [u32],
+    pub slot: &'a [u32],
+    pub position: &'a [Vec3],
+    pub shadow_origin: &'a [Vec3],
+    pub magnitude: &'a [f32],
+    pub media: &'a [MediumStack],
+    /// Slots a vertex: vertex i's slot j is `slots[i·light_points + j]`.
+    pub light_points: u32,
+}
+
 /// The glass shadow pass: every shadow request's first leg from its vertex's shadow
 /// origin in the vertex's media, then rounds of [`leg_closest_entry`] and
 /// [`crossing_entry`] over the live legs until none is left (at most
 /// MAX_SHADOW_CROSSINGS + 1: the crossing step blocks a leg at crossing
 /// MAX_SHADOW_CROSSINGS), then each request's slot × its transmittance. Returns the
 /// number of rounds.
-pub fn glass_shadow_pass(
-    scene: &crate::pack::PackedScene,
-    batch: &mut Batch,
+pub fn glass_shadow_rounds(
+    scene: &PackedScene,
+    requests: &ShadowRequests,
+    slots: &mut [Vec3],
     counters: &mut impl TraversalCounters,
 ) -> u32 {
-    let requests = batch.shadows.len();
-    let mut transmittance = vec![0.0f32; requests];
+    let count = requests.vertex.len();
+    let mut transmittance = vec![0.0f32; count];
     let mut legs = LegQueue::default();
-    for r in 0..requests {
-        let i = batch.shadows.vertex[r] as usize;
+    for r in 0..count {
+        let i = requests.vertex[r] as usize;
         let first = ShadowLeg {
-            start: batch.vertices.shadow_origin[i],
+            start: requests.shadow_origin[i],
             transmittance: 1.0,
-            media: batch.paths.media[i],
+            media: requests.media[i],
         };
         legs.append_leg(r as u32, &first);
     }
@@ -166,13 +182,13 @@ pub fn glass_shadow_pass(
             "a leg past the last crossing"
         );
         let hits: Vec<Hit> = (0..legs.len())
-            .map(|l| leg_closest_entry(scene, batch, &legs, l, counters))
+            .map(|l| leg_closest_entry(scene, requests, &legs, l, counters))
             .collect();
         let mut next = LegQueue::default();
         for (l, hit) in hits.iter().enumerate() {
             crossing_entry(
                 scene,
-                batch,
+                requests,
                 &legs,
                 l,
                 hit,
@@ -184,10 +200,10 @@ pub fn glass_shadow_pass(
         legs = next;
         rounds += 1;
     }
-    let points = batch.light_points as usize;
+    let points = requests.light_points as usize;
     for (r, &t) in transmittance.iter().enumerate() {
-        let slot = batch.shadows.vertex[r] as usize * points + batch.shadows.slot[r] as usize;
-        batch.slots[slot] = shadowed_term(batch.slots[slot], t);
+        let slot = requests.vertex[r] as usize * points + requests.slot[r] as usize;
+        slots[slot] = shadowed_term(slots[slot], t);
     }
     rounds
 }
@@ -195,15 +211,15 @@ pub fn glass_shadow_pass(
 /// The round's closest pass for leg `l`: its ray toward the request's light point, to
 /// the first surface short of it.
 fn leg_closest_entry(
-    scene: &crate::pack::PackedScene,
-    batch: &Batch,
+    scene: &PackedScene,
+    requests: &ShadowRequests,
     legs: &LegQueue,
     l: usize,
     counters: &mut impl TraversalCounters,
 ) -> Hit {
     let r = legs.request[l] as usize;
-    let magnitude = batch.vertices.magnitude[batch.shadows.vertex[r] as usize];
-    let (ray, reach) = shadow_leg_ray(&legs.load_leg(l), batch.shadows.position[r], magnitude);
+    let magnitude = requests.magnitude[requests.vertex[r] as usize];
+    let (ray, reach) = shadow_leg_ray(&legs.load_leg(l), requests.position[r], magnitude);
     closest_hit(scene, &ray, reach, counters)
 }
 
@@ -212,8 +228,8 @@ fn leg_closest_entry(
 /// the crossing after the last) with 0; glass appends the next leg to `next`.
 #[allow(clippy::too_many_arguments)]
 fn crossing_entry(
-    scene: &crate::pack::PackedScene,
-    batch: &Batch,
+    scene: &PackedScene,
+    requests: &ShadowRequests,
     legs: &LegQueue,
     l: usize,
     hit: &Hit,
@@ -227,8 +243,8 @@ fn crossing_entry(
         transmittance[r as usize] = leg.transmittance;
         return;
     }
-    let magnitude = batch.vertices.magnitude[batch.shadows.vertex[r as usize] as usize];
-    let (ray, _) = shadow_leg_ray(&leg, batch.shadows.position[r as usize], magnitude);
+    let magnitude = requests.magnitude[requests.vertex[r as usize] as usize];
+    let (ray, _) = shadow_leg_ray(&leg, requests.position[r as usize], magnitude);
     match cross_shadow_surface(scene, &ray, hit, crossing, &leg) {
         Some(beyond) => {
             next.append_leg(r, &beyond);

@@ -14,10 +14,9 @@ use glint::cpu::pixel_sample::lattice_sample;
 use glint::cpu::render::render_pixel;
 use glint::cpu::traverse::Counters;
 use glint::cpu::wavefront::{
-    camera_pass, closest_pass, gather_pass, next_generation, render_film, shade_pass, trace_batch,
-    Batch, SampleSource,
+    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, next_generation,
+    render_film, shade_pass, trace_batch, Batch, SampleSource,
 };
-use glint::cpu::wavefront_tree::{fold_pass, glass_shadow_pass};
 use glint::film::Film;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaDepth, AaMode, AaSamples, DebugView, OptionOverrides, TraceDepth};
