@@ -252,3 +252,28 @@ fn crossing_entry(
         None => transmittance[r as usize] = 0.0,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fold sums in `trace_ray`'s pop order — vertex, its last-pushed child's subtree,
+    /// then its first-pushed child's — with values whose sum depends on the order
+    /// (1e8 + 1 rounds back to 1e8 in f32).
+    #[test]
+    fn fold_sums_in_pop_order() {
+        let mut tree = VertexTree::default();
+        tree.grow(4);
+        // Vertex 0 pushed 1 (transmitted) then 2 (reflected); 2 pushed 3.
+        tree.children[0] = [1, 2];
+        tree.children[2] = [3, NO_CHILD];
+        tree.value = [0.0, -1e8, 1e8, 1.0].map(Vec3::splat).to_vec();
+        let pop_order = ((0.0f32 + 1e8) + 1.0) + -1e8;
+        let push_order = ((0.0f32 + -1e8) + 1e8) + 1.0;
+        assert_ne!(pop_order, push_order);
+        assert_eq!(fold_entry(&tree, 0), Vec3::splat(pop_order));
+        let mut colours = [Vec3::NAN];
+        fold_samples(&tree, &mut colours);
+        assert_eq!(colours[0], Vec3::splat(pop_order));
+    }
+}
