@@ -15,6 +15,7 @@
 //!   transmission 1 − R0 with the indices on its two sides (tracked from the shaded
 //!   point's medium stack as for any ray); an opaque surface blocks.
 
+use super::hit::Hit;
 use super::ray::{offset_ray, shadow_reach, Ray};
 use super::surface::surface_at;
 use super::traverse::{closest_hit, TraversalCounters};
@@ -198,31 +199,69 @@ pub fn shadow_transmittance(
     media: &MediumStack,
     counters: &mut impl TraversalCounters,
 ) -> f32 {
-    let mut transmittance = 1.0;
-    let mut start = origin;
-    let mut current = *media;
+    let mut leg = ShadowLeg {
+        start: origin,
+        transmittance: 1.0,
+        media: *media,
+    };
     for crossing in 0..=MAX_SHADOW_CROSSINGS {
-        let to_light = position - start;
-        let distance = to_light.length();
-        let ray = Ray {
-            origin: start,
-            dir: to_light / distance,
-        };
-        let reach = shadow_reach(start, position, distance, magnitude);
+        let (ray, reach) = shadow_leg_ray(&leg, position, magnitude);
         let hit = closest_hit(scene, &ray, reach, counters);
         if !hit.is_hit() {
-            return transmittance;
+            return leg.transmittance;
         }
-        let s = surface_at(scene, &ray, &hit);
-        let m = &scene.materials[s.material as usize];
-        if m.flags & MATERIAL_REFRACTIVE == 0 || crossing == MAX_SHADOW_CROSSINGS {
-            return 0.0;
+        match cross_shadow_surface(scene, &ray, &hit, crossing, &leg) {
+            Some(next) => leg = next,
+            None => return 0.0,
         }
-        let sides = surface_sides(ray.dir, s.normal, m.ior, &current);
-        transmittance *= normal_transmission(sides.n1, sides.n2);
-        current = sides.beyond;
-        // Go on from just beyond the surface.
-        start = offset_ray(s.p, -sides.n, s.magnitude);
     }
     0.0
+}
+
+/// A shadow ray's state between the dielectric surfaces it crosses on its way to a light:
+/// where its next leg starts, the transmittance so far, the media it travels in. Shared
+/// by [`shadow_transmittance`] and the wavefront's glass shadow rounds
+/// (`cpu::wavefront_tree`), which keep one a request between rounds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ShadowLeg {
+    pub(crate) start: Vec3,
+    pub(crate) transmittance: f32,
+    pub(crate) media: MediumStack,
+}
+
+/// The ray of `leg` toward a light at `position` and how far it looks for a surface
+/// ([`shadow_reach`]; `magnitude`: the shaded surface's).
+pub(crate) fn shadow_leg_ray(leg: &ShadowLeg, position: Vec3, magnitude: f32) -> (Ray, f32) {
+    let to_light = position - leg.start;
+    let distance = to_light.length();
+    let ray = Ray {
+        origin: leg.start,
+        dir: to_light / distance,
+    };
+    (ray, shadow_reach(leg.start, position, distance, magnitude))
+}
+
+/// The shadow ray of `leg` (`ray`) meets a surface at `hit`, its crossing number
+/// `crossing` (0 for the first surface): the next leg, beyond the surface and dimmed by
+/// its [`normal_transmission`]; None where the surface blocks (opaque, or one crossing
+/// more than [`MAX_SHADOW_CROSSINGS`]).
+pub(crate) fn cross_shadow_surface(
+    scene: &PackedScene,
+    ray: &Ray,
+    hit: &Hit,
+    crossing: u32,
+    leg: &ShadowLeg,
+) -> Option<ShadowLeg> {
+    let s = surface_at(scene, ray, hit);
+    let m = &scene.materials[s.material as usize];
+    if m.flags & MATERIAL_REFRACTIVE == 0 || crossing == MAX_SHADOW_CROSSINGS {
+        return None;
+    }
+    let sides = surface_sides(ray.dir, s.normal, m.ior, &leg.media);
+    Some(ShadowLeg {
+        transmittance: leg.transmittance * normal_transmission(sides.n1, sides.n2),
+        media: sides.beyond,
+        // Go on from just beyond the surface.
+        start: offset_ray(s.p, -sides.n, s.magnitude),
+    })
 }

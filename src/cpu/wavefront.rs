@@ -1,14 +1,19 @@
-//! The wavefront form of [`trace_ray`](super::trace::trace_ray) for scenes without
-//! refraction (every path a chain: at most one reflected ray a vertex): a batch of camera
+//! The wavefront form of [`trace_ray`](super::trace::trace_ray): a batch of camera
 //! samples goes through passes over queues instead of one sample at a time through a
-//! megakernel. Per batch the camera pass fills generation 0's path queue; per generation
-//! the closest pass traces each path's ray to its hit, the shade pass shades each hit
+//! megakernel. Without refraction every path is a chain (at most one reflected ray a
+//! vertex); with it a dielectric's hit spawns two rays and the paths form a tree, whose
+//! pieces (pending counts, the vertex tree and its fold, glass shadow rounds) are in
+//! [`wavefront_tree`](super::wavefront_tree).
+//!
+//! Per batch the camera pass fills generation 0's path queue; per generation the closest
+//! pass traces each path's ray to its hit, the shade pass shades each hit
 //! without tracing (the point's own term; per light point facing it, its unshadowed term
 //! in the vertex's slot and a shadow request; the reflected ray appended to the next
 //! generation's queue; adaptive AA's hints), the shadow pass traces each request (any
-//! hit) and zeroes the slot of a blocked one, and the gather pass sums each vertex's
-//! colour in `shade_phong`'s order (ambient, then each light's slot in light order, an
-//! area light's strata in stratum order × 1/n²) into its sample's colour.
+//! hit; through glass: rounds of legs) and zeroes the slot of a blocked one, and the
+//! gather pass sums each vertex's colour in `shade_phong`'s order (ambient, then each
+//! light's slot in light order, an area light's strata in stratum order × 1/n²) into its
+//! sample's colour (chains) or its vertex's value (trees, summed by the fold).
 //!
 //! These are the GPU's wavefront kernels' reference (docs/gpu.md), whose queues are
 //! filled by atomics in any order: so every entry carries its sample's index and every
@@ -34,9 +39,11 @@ use super::shade::{
 };
 use super::texture::camera_cone;
 use super::trace::{
-    is_mirror, note_texture_detail, push_secondary_rays, shading_point, ShadedHit, StackEntry,
+    camera_media_of, is_mirror, note_texture_detail, push_secondary_rays, shading_point, ShadedHit,
+    StackEntry,
 };
 use super::traverse::closest_hit;
+use super::wavefront_tree::{fold_samples, glass_shadow_rounds, ShadowRequests, VertexTree};
 use crate::constants::{
     AA_ADAPTIVE, AA_UNIFORM, LIGHT_AREA, MEDIUM_STACK_SIZE, NO_ITEM, RAY_STACK_SIZE, T_MISS,
 };
@@ -121,6 +128,11 @@ pub struct PathQueue {
     pub weight: Vec<Vec3>,
     pub depth: Vec<u32>,
     pub cone: Vec<Vec2>,
+    /// The media the ray travels in (scenes with refraction; a placeholder otherwise).
+    pub media: Vec<MediumStack>,
+    /// The entries under this one on `trace_ray`'s stack when it would be popped (its
+    /// index in that stack: see `wavefront_tree`); always 0 in a chain.
+    pub pending: Vec<u32>,
     pub sample: Vec<u32>,
 }
 
@@ -135,10 +147,10 @@ impl PathQueue {
 
     /// Appends `entry` of sample `sample`; its index (the GPU's `atomicAdd` on the
     /// queue's counter).
-    fn append_path(&mut self, entry: &StackEntry, sample: u32) -> usize {
+    fn append_path(&mut self, entry: &StackEntry, pending: u32, sample: u32) -> usize {
         let i = self.len();
         self.resize(i + 1);
-        self.store_path(i, entry, sample);
+        self.store_path(i, entry, pending, sample);
         i
     }
 
@@ -149,16 +161,20 @@ impl PathQueue {
         self.weight.resize(len, Vec3::ZERO);
         self.depth.resize(len, 0);
         self.cone.resize(len, Vec2::ZERO);
+        self.media.resize(len, chain_media());
+        self.pending.resize(len, 0);
         self.sample.resize(len, 0);
     }
 
     /// Writes `entry` of sample `sample` as entry `i`.
-    fn store_path(&mut self, i: usize, entry: &StackEntry, sample: u32) {
+    fn store_path(&mut self, i: usize, entry: &StackEntry, pending: u32, sample: u32) {
         self.origin[i] = entry.ray.origin;
         self.dir[i] = entry.ray.dir;
         self.weight[i] = entry.weight;
         self.depth[i] = entry.depth;
         self.cone[i] = entry.cone;
+        self.media[i] = entry.media;
+        self.pending[i] = pending;
         self.sample[i] = sample;
     }
 
@@ -172,7 +188,7 @@ impl PathQueue {
             weight: self.weight[i],
             depth: self.depth[i],
             cone: self.cone[i],
-            media: chain_media(),
+            media: self.media[i],
         }
     }
 
@@ -321,6 +337,13 @@ pub struct Batch {
     pub next: PathQueue,
     /// Generations started so far (the camera rays' is 1).
     pub generations: u32,
+    /// Scenes with refraction: every vertex of every generation so far, kept for the
+    /// fold (path i of the current generation is vertex `vertex_base` + i).
+    pub tree: VertexTree,
+    pub vertex_base: u32,
+    /// Whether the batch keeps the tree (scenes with refraction) rather than adding
+    /// each vertex's colour straight into its sample's (chains).
+    pub keeps_tree: bool,
 }
 
 /// The camera pass: every sample of `source` through [`camera_entry`] (the GPU's
@@ -331,6 +354,7 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
         light_points: light_points(scene),
         ..Batch::default()
     };
+    batch.keeps_tree = scene.features.contains(SceneFeatures::REFRACTION);
     let s = &mut batch.samples;
     let unseeded = SampleSeed {
         pixel: 0,
@@ -347,6 +371,10 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
     batch.paths.resize(count);
     for k in 0..count {
         camera_entry(scene, source, batch, k);
+    }
+    if batch.keeps_tree {
+        // Camera rays start in the media around the camera (chains keep the placeholder).
+        batch.paths.media.fill(camera_media_of(&scene.globals));
     }
     start_generation(batch);
 }
@@ -366,7 +394,7 @@ fn camera_entry(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k
         cone: camera_cone(g, &ray),
         media: chain_media(),
     };
-    batch.paths.store_path(k, &entry, k as u32);
+    batch.paths.store_path(k, &entry, 0, k as u32);
 }
 
 /// The media every ray of a chain travels in: a placeholder (without refraction no
@@ -391,6 +419,10 @@ fn start_generation(batch: &mut Batch) {
     batch.shadows = ShadowQueue::default();
     batch.next.clear();
     batch.generations += 1;
+    if batch.keeps_tree {
+        batch.vertex_base = batch.tree.len() as u32;
+        batch.tree.grow(len);
+    }
 }
 
 /// The closest pass: each path's ray to its closest hit.
@@ -507,8 +539,10 @@ fn shade_entry(
             slot += 1;
         }
     }
-    // Without refraction a hit spawns at most its reflected ray, onto an empty stack as
-    // `trace_ray`'s chain has it (the ray popped before its hit was shaded).
+    // The rays the hit spawns, pushed as `trace_ray` pushes them onto its stack, which
+    // holds the path's pending entries then (none in a chain: the ray popped before its
+    // hit was shaded): so the same rays are dropped where the stack is full, and each
+    // child's pending count is its index in that stack.
     let shaded = ShadedHit {
         s,
         facing: point.facing,
@@ -516,11 +550,17 @@ fn shade_entry(
         colour: Vec3::ZERO,
         ends: false,
     };
+    let pending = batch.paths.pending[i] as usize;
     let mut stack = [entry; RAY_STACK_SIZE as usize];
-    let mut size = 0;
+    let mut size = pending;
     push_secondary_rays(scene, &mut stack, &mut size, &entry, &shaded, &hit);
-    for child in &stack[..size] {
-        batch.next.append_path(child, k as u32);
+    for (q, child) in stack.iter().enumerate().take(size).skip(pending) {
+        let j = batch.next.append_path(child, q as u32, k as u32);
+        if batch.keeps_tree {
+            let vertex = batch.vertex_base as usize + i;
+            let child_vertex = batch.vertex_base as usize + batch.paths.len() + j;
+            batch.tree.children[vertex][q - pending] = child_vertex as u32;
+        }
     }
 }
 
@@ -568,6 +608,31 @@ fn shadow_entry(
     batch.slots[slot] = shadowed_term(batch.slots[slot], transmittance);
 }
 
+/// The shadow pass through glass (scenes with refraction): rounds of legs
+/// ([`glass_shadow_rounds`]) over the generation's requests; the number of rounds.
+pub fn glass_shadow_pass(
+    scene: &PackedScene,
+    batch: &mut Batch,
+    counters: &mut impl TraversalCounters,
+) -> u32 {
+    let requests = ShadowRequests {
+        vertex: &batch.shadows.vertex,
+        slot: &batch.shadows.slot,
+        position: &batch.shadows.position,
+        shadow_origin: &batch.vertices.shadow_origin,
+        magnitude: &batch.vertices.magnitude,
+        media: &batch.paths.media,
+        light_points: batch.light_points,
+    };
+    glass_shadow_rounds(scene, &requests, &mut batch.slots, counters)
+}
+
+/// The fold pass (scenes with refraction, after the last generation): each sample's
+/// colour from its vertex tree ([`fold_samples`]).
+pub fn fold_pass(batch: &mut Batch) {
+    fold_samples(&batch.tree, &mut batch.samples.colour);
+}
+
 /// The gather pass: each vertex's colour into its sample's.
 pub fn gather_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for i in 0..batch.paths.len() {
@@ -613,11 +678,18 @@ fn gather_entry(
             }
         }
     }
-    let sample_colour = &mut batch.samples.colour[k];
-    if depth == 0 {
-        *sample_colour = colour;
+    let value = if depth == 0 {
+        colour
     } else {
-        *sample_colour += batch.paths.weight[i] * colour;
+        batch.paths.weight[i] * colour
+    };
+    if batch.keeps_tree {
+        // A tree's values are summed by the fold, in `trace_ray`'s pop order.
+        batch.tree.value[batch.vertex_base as usize + i] = value;
+    } else if depth == 0 {
+        batch.samples.colour[k] = value;
+    } else {
+        batch.samples.colour[k] += value;
     }
 }
 
@@ -634,25 +706,30 @@ pub fn next_generation(batch: &mut Batch) -> bool {
 }
 
 /// Every sample of `source` through the passes: its colour (`trace_ray`'s) and its
-/// hint (`pixel_sample::hinted_sample`'s), in source order. Scenes without refraction
-/// only (a dielectric's hit spawns two rays: a tree, not a chain).
+/// hint (`pixel_sample::hinted_sample`'s), in source order. With refraction (a
+/// dielectric's hit spawns two rays: a tree, not a chain) the fold pass sums each
+/// sample's vertex values once its last generation is done.
 pub fn trace_batch(
     scene: &PackedScene,
     source: &SampleSource,
     counters: &mut impl TraversalCounters,
 ) -> Batch {
-    assert!(
-        !scene.features.contains(SceneFeatures::REFRACTION),
-        "the wavefront passes trace chains: scenes without refraction only"
-    );
     let mut batch = Batch::default();
     camera_pass(scene, source, &mut batch);
     loop {
         closest_pass(scene, &mut batch, counters);
         shade_pass(scene, &mut batch, counters);
-        shadow_pass(scene, &mut batch, counters);
+        if batch.keeps_tree {
+            // Shadow rays pass through glass: rounds of legs (`wavefront_tree`).
+            glass_shadow_pass(scene, &mut batch, counters);
+        } else {
+            shadow_pass(scene, &mut batch, counters);
+        }
         gather_pass(scene, &mut batch, counters);
         if !next_generation(&mut batch) {
+            if batch.keeps_tree {
+                fold_pass(&mut batch);
+            }
             return batch;
         }
     }
@@ -721,8 +798,8 @@ mod tests {
     #[test]
     fn appends_take_consecutive_slots() {
         let mut q = PathQueue::default();
-        assert_eq!(q.append_path(&entry(0), 7), 0);
-        assert_eq!(q.append_path(&entry(3), 2), 1);
+        assert_eq!(q.append_path(&entry(0), 0, 7), 0);
+        assert_eq!(q.append_path(&entry(3), 0, 2), 1);
         assert_eq!(q.len(), 2);
         assert_eq!((q.depth[1], q.sample[1]), (3, 2));
         assert_eq!((q.depth[0], q.sample[0]), (0, 7));
@@ -742,12 +819,12 @@ mod tests {
             light_points: 3,
             ..Batch::default()
         };
-        batch.paths.append_path(&entry(0), 0);
+        batch.paths.append_path(&entry(0), 0, 0);
         start_generation(&mut batch);
         batch.slots[2] = Vec3::ONE;
         batch.shadows.append_request(0, 2, Vec3::X);
-        batch.next.append_path(&entry(1), 0);
-        batch.next.append_path(&entry(1), 5);
+        batch.next.append_path(&entry(1), 0, 0);
+        batch.next.append_path(&entry(1), 0, 5);
         assert!(next_generation(&mut batch));
         assert_eq!(batch.generations, 2);
         assert_eq!(batch.paths.sample, vec![0, 5]);

@@ -7,13 +7,19 @@
 
 use crate::common;
 
+use glam::Vec3;
+use glint::constants::{MAX_SHADOW_CROSSINGS, RAY_STACK_SIZE};
+use glint::cpu::dielectric::{shadow_transmittance, MediumStack};
 use glint::cpu::pixel_sample::lattice_sample;
 use glint::cpu::render::render_pixel;
 use glint::cpu::traverse::Counters;
-use glint::cpu::wavefront::{render_film, trace_batch, SampleSource};
+use glint::cpu::wavefront::{
+    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, next_generation,
+    render_film, shade_pass, trace_batch, Batch, SampleSource,
+};
 use glint::film::Film;
 use glint::pack::{PackedScene, SceneFeatures};
-use glint::scene::{AaDepth, AaMode, AaSamples, DebugView, OptionOverrides};
+use glint::scene::{AaDepth, AaMode, AaSamples, DebugView, OptionOverrides, TraceDepth};
 use std::path::{Path, PathBuf};
 
 const W: u32 = 20;
@@ -27,6 +33,11 @@ fn chain_scenes() -> Vec<PathBuf> {
 }
 
 fn packed(path: &Path, aa: AaMode, debug: DebugView) -> Vec<PackedScene> {
+    packed_where(path, aa, debug, false)
+}
+
+/// The renders of `path` whose refraction is `refraction`, at W×H.
+fn packed_where(path: &Path, aa: AaMode, debug: DebugView, refraction: bool) -> Vec<PackedScene> {
     let overrides = OptionOverrides {
         aa: Some(aa),
         samples: Some(AaSamples::constant(2)),
@@ -38,7 +49,7 @@ fn packed(path: &Path, aa: AaMode, debug: DebugView) -> Vec<PackedScene> {
     };
     common::packed_from_file(path, &overrides)
         .into_iter()
-        .filter(|s| !s.features.contains(SceneFeatures::REFRACTION))
+        .filter(|s| s.features.contains(SceneFeatures::REFRACTION) == refraction)
         .collect()
 }
 
@@ -67,8 +78,8 @@ fn assert_films_match(name: &str, scene: &PackedScene, batch_pixels: usize) {
     if let Some(p) = (0..e.len()).find(|&p| e[p] != a[p]) {
         panic!(
             "{name}: pixel ({}, {}) is {:?} through the passes, {:?} through trace_ray",
-            p as u32 % W,
-            p as u32 / W,
+            p as u32 % scene.globals.width,
+            p as u32 / scene.globals.width,
             actual.pixels[p],
             expected.pixels[p]
         );
@@ -174,18 +185,30 @@ fn passes_sample_every_lattice_point_as_lattice_sample_does() {
     for path in chain_scenes() {
         for scene in packed(&path, AaMode::Adaptive, DebugView::None) {
             let name = common::scene_name(&path);
+            assert_lattice_matches(&name, &scene);
+            checked.push(name);
+        }
+    }
+    assert_coverage(&checked, 29);
+}
+
+/// Every point of `scene`'s finest lattice through the passes in one batch: the colour
+/// and the hint of `lattice_sample` (trace_ray's), bit for bit.
+fn assert_lattice_matches(name: &str, scene: &PackedScene) {
+    {
+        {
             let steps = 1u32 << scene.globals.aa_depth;
             let points: Vec<[f32; 2]> = (0..=H * steps)
                 .flat_map(|y| (0..=W * steps).map(move |x| [x, y]))
                 .map(|[x, y]| [x as f32 / steps as f32, y as f32 / steps as f32])
                 .collect();
             let batch = trace_batch(
-                &scene,
+                scene,
                 &SampleSource::Lattice { points: &points },
                 &mut Counters::default(),
             );
             for (k, &[fx, fy]) in points.iter().enumerate() {
-                let (colour, hint) = lattice_sample(&scene, fx, fy, &mut Counters::default());
+                let (colour, hint) = lattice_sample(scene, fx, fy, &mut Counters::default());
                 let wave = batch.samples.colour[k];
                 assert_eq!(
                     wave.to_array().map(f32::to_bits),
@@ -198,8 +221,239 @@ fn passes_sample_every_lattice_point_as_lattice_sample_does() {
                     "{name}: lattice point ({fx}, {fy})'s hint"
                 );
             }
-            checked.push(name);
         }
     }
-    assert_coverage(&checked, 29);
+}
+
+/// The scene files whose renders have refraction (a sample's paths form a tree).
+const TREE_SCENES: &[&str] = &["scenes-glass", "scenes-csg", "scenes-scrabble"];
+
+/// Every render with refraction of scenes/ and the corpus, its name and the scene.
+fn tree_scenes(aa: AaMode) -> Vec<(String, PackedScene)> {
+    let mut scenes = Vec::new();
+    for path in chain_scenes() {
+        for scene in packed_where(&path, aa, DebugView::None, true) {
+            scenes.push((common::scene_name(&path), scene));
+        }
+    }
+    let names: Vec<&String> = scenes.iter().map(|(n, _)| n).collect();
+    for required in TREE_SCENES {
+        assert!(
+            names.iter().any(|n| n.starts_with(required)),
+            "{required} was not compared (compared: {names:?})"
+        );
+    }
+    scenes
+}
+
+#[test]
+fn passes_render_every_tree_scene_as_trace_ray_does() {
+    for aa in [AaMode::None, AaMode::Uniform] {
+        for (name, scene) in tree_scenes(aa) {
+            assert_films_match(&format!("{name} {aa:?}"), &scene, 37);
+        }
+    }
+}
+
+#[test]
+fn passes_sample_every_lattice_point_of_tree_scenes_as_lattice_sample_does() {
+    for (name, scene) in tree_scenes(AaMode::Adaptive) {
+        assert_lattice_matches(&name, &scene);
+    }
+}
+
+/// What a batch's run through the passes reached: the largest pending count of a path
+/// and the most glass shadow rounds of a generation.
+#[derive(Debug, Default)]
+struct Reach {
+    pending: u32,
+    rounds: u32,
+}
+
+/// `trace_batch`'s loop for a scene with refraction, pass by pass, noting its [`Reach`].
+fn trace_tree_batch(scene: &PackedScene, source: &SampleSource) -> (Batch, Reach) {
+    let mut counters = Counters::default();
+    let mut batch = Batch::default();
+    let mut reach = Reach::default();
+    camera_pass(scene, source, &mut batch);
+    loop {
+        reach.pending = reach
+            .pending
+            .max(batch.paths.pending.iter().copied().max().unwrap_or(0));
+        closest_pass(scene, &mut batch, &mut counters);
+        shade_pass(scene, &mut batch, &mut counters);
+        reach.rounds = reach
+            .rounds
+            .max(glass_shadow_pass(scene, &mut batch, &mut counters));
+        gather_pass(scene, &mut batch, &mut counters);
+        if !next_generation(&mut batch) {
+            fold_pass(&mut batch);
+            return (batch, reach);
+        }
+    }
+}
+
+fn overrides_at(max_depth: u32, w: u32, h: u32) -> OptionOverrides {
+    OptionOverrides {
+        aa: Some(AaMode::None),
+        max_depth: Some(TraceDepth::constant(max_depth)),
+        width: Some(w),
+        height: Some(h),
+        ..OptionOverrides::default()
+    }
+}
+
+/// The camera inside a closed sphere of half-mirror glass: index 1 (the air's: no
+/// interface, F = 0, so the transmitted ray leaves with the whole weight and misses) plus
+/// a 0.9 mirror. Each hit pushes its transmitted ray then its reflected ray, which hits
+/// the sphere again: the stack grows by one a bounce (every transmitted ray waits under
+/// the reflected chain) until it is full at RAY_STACK_SIZE and the reflected ray is
+/// dropped, long before max_depth.
+const FULL_STACK_SCENE: &str = r#"
+half = gr.material({0.3, 0.2, 0.1}, {0.2, 0.2, 0.2}, 20)
+half:set_reflection(0.9, 0.9, 0.9)
+half:set_refraction(1.0)
+root = gr.node('root')
+shell = gr.nh_sphere('shell', {0, 0, 0}, 5)
+shell:set_material(half)
+root:add_child(shell)
+gr.render(root, 'full.png', 8, 6, {1, 0.5, 2}, {0.3, -0.2, -1}, {0, 1, 0}, 60,
+          {0.3, 0.3, 0.3}, {gr.light({0, 20, 3}, {0.8, 0.8, 0.8}, {1, 0, 0})},
+          {background = {top = {0.5, 0.7, 0.9}, bottom = {0.9, 0.8, 0.6}}})
+"#;
+
+#[test]
+fn passes_drop_the_rays_trace_ray_drops_when_its_stack_is_full() {
+    let film_at = |max_depth: u32| {
+        let scene =
+            common::packed_from_source(FULL_STACK_SCENE, &overrides_at(max_depth, 8, 6)).remove(0);
+        assert!(scene.features.contains(SceneFeatures::REFRACTION));
+        let film = reference_film(&scene, &mut Counters::default());
+        (scene, film)
+    };
+    // trace_ray drops: the reflected ray of the vertex at stack index RAY_STACK_SIZE − 1
+    // (depth 15) is never traced, so depth 16 ends every path as deeper limits do — and
+    // the depth limit still matters below it.
+    let full = RAY_STACK_SIZE;
+    let (scene, deep) = film_at(40);
+    assert_eq!(
+        bits(&film_at(full).1),
+        bits(&deep),
+        "max_depth {full} vs 40"
+    );
+    assert_ne!(
+        bits(&film_at(full - 1).1),
+        bits(&deep),
+        "max_depth {}",
+        full - 1
+    );
+    assert_films_match("full stack", &scene, 13);
+    let pixels: Vec<[u32; 2]> = (0..6).flat_map(|y| (0..8).map(move |x| [x, y])).collect();
+    let source = SampleSource::Strata {
+        pixels: &pixels,
+        n: 1,
+        uniform: false,
+    };
+    let (_, reach) = trace_tree_batch(&scene, &source);
+    assert_eq!(
+        reach.pending,
+        RAY_STACK_SIZE - 1,
+        "the stack's last slot used"
+    );
+}
+
+/// A floor lit through `slabs` thin glass slabs (two surfaces each) over its left half,
+/// seen through them from above.
+fn slab_scene(slabs: u32) -> String {
+    let mut source = String::from(
+        r#"
+gr.transform_order('pre')
+white = gr.material({0.8, 0.8, 0.8}, {0.3, 0.3, 0.3}, 30)
+glass = gr.material({0, 0, 0}, {0.5, 0.5, 0.5}, 100)
+glass:set_refraction(1.5)
+root = gr.node('root')
+floor = gr.cube('floor')
+floor:set_material(white)
+floor:scale(20, 1, 20)
+floor:translate(-10, -1, -10)
+root:add_child(floor)
+"#,
+    );
+    for k in 0..slabs {
+        source += &format!(
+            "slab{k} = gr.cube('slab{k}')\nslab{k}:set_material(glass)\n\
+             slab{k}:scale(6, 0.2, 12)\nslab{k}:translate(-6, {}, -6)\nroot:add_child(slab{k})\n",
+            2 + k
+        );
+    }
+    source += r#"
+gr.render(root, 'slabs.png', 12, 8, {0, 14, 10}, {0, -14, -10}, {0, 1, 0}, 50,
+          {0.2, 0.2, 0.2}, {gr.light({0, 12, 0}, {0.9, 0.9, 0.9}, {1, 0, 0})})
+"#;
+    source
+}
+
+#[test]
+fn passes_trace_shadow_rays_through_every_crossing_trace_ray_allows() {
+    // Four slabs are MAX_SHADOW_CROSSINGS surfaces: the light gets through, after every
+    // round the pass allows; five are more, and block it.
+    assert_eq!(MAX_SHADOW_CROSSINGS, 8);
+    for (slabs, lit) in [(4, true), (5, false)] {
+        let scene =
+            common::packed_from_source(&slab_scene(slabs), &overrides_at(8, 12, 8)).remove(0);
+        let under = Vec3::new(-3.0, 0.001, 0.0);
+        let light = Vec3::new(0.0, 12.0, 0.0);
+        let t = shadow_transmittance(
+            &scene,
+            under,
+            light,
+            1.0,
+            &MediumStack::default(),
+            &mut Counters::default(),
+        );
+        assert_eq!(t > 0.0, lit, "{slabs} slabs: transmittance {t}");
+        let name = format!("{slabs} slabs");
+        assert_films_match(&name, &scene, 29);
+        let pixels: Vec<[u32; 2]> = (0..8).flat_map(|y| (0..12).map(move |x| [x, y])).collect();
+        let source = SampleSource::Strata {
+            pixels: &pixels,
+            n: 1,
+            uniform: false,
+        };
+        let (_, reach) = trace_tree_batch(&scene, &source);
+        assert_eq!(reach.rounds, MAX_SHADOW_CROSSINGS + 1, "{name}: rounds");
+    }
+}
+
+/// The camera under water (a sphere of index 1.33 around the whole scene), looking at a
+/// glass ball over a floor, lit from outside the water: camera rays start in the media
+/// packing found around the camera, and every shadow ray leaves the water.
+const UNDERWATER_SCENE: &str = r#"
+white = gr.material({0.8, 0.8, 0.8}, {0.3, 0.3, 0.3}, 30)
+glass = gr.material({0, 0, 0}, {0.5, 0.5, 0.5}, 100)
+glass:set_refraction(1.5)
+water = gr.material({0, 0, 0}, {0.3, 0.3, 0.3}, 100)
+water:set_refraction(1.33)
+root = gr.node('root')
+sea = gr.nh_sphere('sea', {0, 0, 0}, 30)
+sea:set_material(water)
+root:add_child(sea)
+floor = gr.nh_box('floor', {-10, -11, -10}, 20)
+floor:set_material(white)
+root:add_child(floor)
+ball = gr.nh_sphere('ball', {0, 1.5, 0}, 1.5)
+ball:set_material(glass)
+root:add_child(ball)
+gr.render(root, 'underwater.png', 12, 8, {0, 3, 8}, {0, -0.3, -1}, {0, 1, 0}, 50,
+          {0.2, 0.2, 0.2}, {gr.light({10, 40, 10}, {0.9, 0.9, 0.9}, {1, 0, 0})})
+"#;
+
+#[test]
+fn passes_start_camera_rays_in_the_media_around_the_camera() {
+    let scene = common::packed_from_source(UNDERWATER_SCENE, &overrides_at(8, 12, 8)).remove(0);
+    assert_eq!(
+        scene.globals.camera_media_count, 1,
+        "the camera is under water"
+    );
+    assert_films_match("under water", &scene, 29);
 }
