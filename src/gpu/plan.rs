@@ -71,14 +71,7 @@ impl Mode {
                 Entry::AdaptiveIntegrate,
                 Entry::AdaptiveWorkArgs,
             ],
-            Mode::Wavefront(_) => &[
-                Entry::WavefrontCamera,
-                Entry::WavefrontClosest,
-                Entry::WavefrontShade,
-                Entry::WavefrontArgs,
-                Entry::WavefrontShadow,
-                Entry::WavefrontGather,
-            ],
+            Mode::Wavefront(_) => &Entry::WAVEFRONT,
         }
     }
 }

@@ -56,6 +56,17 @@ pub enum Entry {
 }
 
 impl Entry {
+    /// The wavefront kernels of AA none, in the order a generation dispatches them (after
+    /// the camera pass): the plan's `Mode::Wavefront` pipelines.
+    pub const WAVEFRONT: [Entry; 6] = [
+        Entry::WavefrontCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontGather,
+    ];
+
     /// Every entry point.
     pub const ALL: [Entry; 16] = [
         Entry::Render,

@@ -14,15 +14,6 @@ use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelV
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaMode, OptionOverrides};
 
-const WAVEFRONT_ENTRIES: [Entry; 6] = [
-    Entry::WavefrontCamera,
-    Entry::WavefrontClosest,
-    Entry::WavefrontShade,
-    Entry::WavefrontArgs,
-    Entry::WavefrontShadow,
-    Entry::WavefrontGather,
-];
-
 /// Every feature set: the hardware variant's render module has the six wavefront entry
 /// points, valid under naga, exactly where the scene has no refraction; the software
 /// variant's never mentions them (its modules are what they were before the wavefront
@@ -53,7 +44,7 @@ fn wavefront_kernels_validate_where_they_exist() {
             continue;
         }
         let module = validate(&hard, features).unwrap_or_else(|e| panic!("{e}"));
-        for entry in WAVEFRONT_ENTRIES {
+        for entry in Entry::WAVEFRONT {
             assert!(
                 module.entry_points.iter().any(|e| e.name == entry.name()),
                 "[{features}] {entry:?}"
