@@ -253,6 +253,18 @@ fn indirect_workgroups(items: u32) -> vec3<u32> {
     return vec3<u32>(x, (groups + GPU_INDIRECT_MAX_WORKGROUPS - 1u) / GPU_INDIRECT_MAX_WORKGROUPS, 1u);
 }
 
+// Stores the workgroups of two indirect passes, first then second, as the six words at
+// work_args[at ..] that two dispatches read (a level's in adaptive_work_args, a
+// generation's in the split tracer's args kernel).
+fn store_indirect_pair(at: u32, first: vec3<u32>, second: vec3<u32>) {
+    work_args[at] = first.x;
+    work_args[at + 1u] = first.y;
+    work_args[at + 2u] = first.z;
+    work_args[at + 3u] = second.x;
+    work_args[at + 4u] = second.y;
+    work_args[at + 5u] = second.z;
+}
+
 // After the decide pass of tile.level (one invocation): the indirect arguments of the
 // midpoint pass over the level's list (AA_SPLIT_POINTS per square) and of the next
 // level's decide pass (4 children per square), at work_args[6·level ..].
@@ -261,13 +273,7 @@ fn adaptive_work_args() {
     let n = atomicLoad(&work_counts[tile.level]);
     let midpoints = indirect_workgroups(AA_SPLIT_POINTS * n);
     let children = indirect_workgroups(4u * n);
-    let at = 6u * tile.level;
-    work_args[at] = midpoints.x;
-    work_args[at + 1u] = midpoints.y;
-    work_args[at + 2u] = midpoints.z;
-    work_args[at + 3u] = children.x;
-    work_args[at + 4u] = children.y;
-    work_args[at + 5u] = children.z;
+    store_indirect_pair(6u * tile.level, midpoints, children);
 }
 
 // Midpoint pass of tile.level: point idx mod AA_SPLIT_POINTS of entry idx div

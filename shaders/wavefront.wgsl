@@ -367,13 +367,7 @@ fn wavefront_args() {
     shadow_requests = min(shadow_requests, tile.items);
 // #endif
     let shadows = indirect_workgroups(shadow_requests);
-    let at = 6u * g;
-    work_args[at] = next.x;
-    work_args[at + 1u] = next.y;
-    work_args[at + 2u] = next.z;
-    work_args[at + 3u] = shadows.x;
-    work_args[at + 4u] = shadows.y;
-    work_args[at + 5u] = shadows.z;
+    store_indirect_pair(6u * g, next, shadows);
     atomicStore(&work_counts[path_counter(g + 2u)], 0u);
     atomicStore(&work_counts[shadow_counter(g + 1u)], 0u);
 }

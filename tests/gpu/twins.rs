@@ -165,6 +165,12 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          dispatches",
     ),
     (
+        "shaders/adaptive.wgsl",
+        "store_indirect_pair",
+        "writes two indirect passes' workgroup counts (adaptive_work_args' and \
+         wavefront_args' helper); the CPU has no dispatches",
+    ),
+    (
         "shaders/render.wgsl",
         "linear_index",
         "an invocation's index in a dispatch continued in y past the adapter's per-dimension \
