@@ -189,6 +189,7 @@ fn trace_lattice_point(i: u32, j: u32) {
 // #endif
 }
 
+// #if !WAVEFRONT
 // Corner pass (tile.items = src/tiling.rs::AdaptiveTile::first_pass_len invocations):
 // invocation idx traces pixel corner (idx mod (w+1), idx div (w+1)) for idx < (w+1)(h+1),
 // after those the centre of pixel number idx − (w+1)(h+1).
@@ -211,6 +212,7 @@ fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     }
     trace_lattice_point(point.x, point.y);
 }
+// #endif
 
 // Decide pass of tile.level: square (idx mod w, idx div w) at level 0, else child idx mod 4
 // (top-left, top-right, bottom-left, bottom-right) of entry idx div 4 of level − 1's
@@ -276,6 +278,7 @@ fn adaptive_work_args() {
     store_indirect_pair(6u * tile.level, midpoints, children);
 }
 
+// #if !WAVEFRONT
 // Midpoint pass of tile.level: point idx mod AA_SPLIT_POINTS of entry idx div
 // AA_SPLIT_POINTS of the level's list — its top, left, right and bottom edge midpoints,
 // then the centres of its top-left, top-right, bottom-left and bottom-right children where
@@ -311,6 +314,7 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     begin_lane(idx);
     trace_lattice_point(a * l + ox, b * l + oy);
 }
+// #endif
 
 // Integrate pass: pixel (id.x, id.y)'s area-weighted mean over its quadtree, walked depth
 // first without a stack: a split square's children in the order bottom-right,

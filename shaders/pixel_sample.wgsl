@@ -90,6 +90,26 @@ fn lattice_sample(fx: f32, fy: f32) -> vec4<f32> {
     return hinted_sample(fx + jx, fy + jy, seed);
 }
 
+// #if WAVEFRONT
+// Where lattice_sample samples a lattice point, and the seed it samples it with.
+struct JitteredPoint {
+    position: vec2<f32>,
+    seed: SampleSeed,
+}
+
+// Where lattice_sample samples lattice point (fx, fy) (the point jittered, the same sums)
+// and its seed: what the wavefront's camera pass for adaptive AA takes
+// (wavefront_lattice.wgsl).
+// Mirror of the jittered point and seed of src/cpu/pixel_sample.rs::lattice_position — change both.
+fn lattice_jitter(fx: f32, fy: f32) -> JitteredPoint {
+    let seed = adaptive_seed(fx, fy);
+    let width = AA_LATTICE_JITTER * ldexp(1.0, -i32(globals.aa_depth));
+    let jx = (random_unit(seed.pixel, seed.sample, 0u) - 0.5) * width;
+    let jy = (random_unit(seed.pixel, seed.sample, 1u) - 0.5) * width;
+    return JitteredPoint(vec2<f32>(fx + jx, fy + jy), seed);
+}
+// #endif
+
 // Largest per-channel spread of a square's four corner samples and its centre sample:
 // what the split decision of adaptive AA weighs.
 // Mirror of src/cpu/pixel_sample.rs::square_contrast_of — change both.

@@ -467,6 +467,9 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     }
     samples[2u * k] = vec4<f32>(total, samples[2u * k].w);
     // AA none: sample k is chunk pixel k (row-major over size, rows at stride side).
-    output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(total, 1.0);
+    // (Adaptive AA's lattice passes store their samples' colours: wavefront_lattice.wgsl.)
+    if globals.aa_mode != AA_ADAPTIVE {
+        output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(total, 1.0);
+    }
 }
 // #endif

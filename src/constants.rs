@@ -339,6 +339,11 @@ pub const VERTEX_UNLIT: u32 = 2;
 pub const SAMPLE_CAMERA_MIRROR: u32 = 1;
 pub const SAMPLE_FINE_DETAIL: u32 = 2;
 pub const SAMPLE_MIRRORS_CORNERS: u32 = 4;
+/// Under adaptive AA, the first word of `work_counts` the wavefront's counters take, and
+/// ×4 the first byte of `work_args` its indirect arguments take (256 bytes: after every
+/// level's of adaptive AA, at MAX_AA_DEPTH at most 6 counters and 144 bytes of arguments,
+/// and a storage-binding offset every adapter accepts): see shaders/wavefront_lattice.wgsl.
+pub const WAVEFRONT_WORK_BASE: u32 = 64;
 
 /// The wavefront kernels' constants, emitted after the prelude only in modules that have
 /// those kernels (`gpu::shader::wavefront_kernels`), so the others stay as they were.
@@ -349,6 +354,7 @@ const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = &[
     ("SAMPLE_CAMERA_MIRROR", SAMPLE_CAMERA_MIRROR),
     ("SAMPLE_FINE_DETAIL", SAMPLE_FINE_DETAIL),
     ("SAMPLE_MIRRORS_CORNERS", SAMPLE_MIRRORS_CORNERS),
+    ("WAVEFRONT_WORK_BASE", WAVEFRONT_WORK_BASE),
 ];
 
 /// The WGSL constants of the wavefront kernels.

@@ -45,14 +45,14 @@ fn split_index(tile: &AdaptiveTile, level: u32, a: u32, b: u32) -> usize {
 
 /// Index of lattice point (i, j).
 // Mirror of shaders/adaptive.wgsl::lattice_index — change both.
-fn lattice_index(tile: &AdaptiveTile, i: u32, j: u32) -> usize {
+pub(crate) fn lattice_index(tile: &AdaptiveTile, i: u32, j: u32) -> usize {
     (j * tile.lattice_width() + i) as usize
 }
 
 /// Film position of lattice point (i, j): exact (a dyadic fraction of few bits), so it is
 /// the very position the per-pixel walk reaches by halving.
 // Mirror of shaders/adaptive.wgsl::lattice_position — change both.
-fn lattice_position(tile: &AdaptiveTile, i: u32, j: u32) -> (f32, f32) {
+pub(crate) fn lattice_position(tile: &AdaptiveTile, i: u32, j: u32) -> (f32, f32) {
     let s = tile.scale();
     let scale = s as f32;
     (
@@ -112,12 +112,12 @@ impl Lattice {
         self.hints[lattice_index(&self.tile, i, j)]
     }
     // Mirror of shaders/adaptive.wgsl::is_split — change both.
-    fn is_split(&self, level: u32, a: u32, b: u32) -> bool {
+    pub(crate) fn is_split(&self, level: u32, a: u32, b: u32) -> bool {
         self.split[split_index(&self.tile, level, a, b)] != 0
     }
     /// Entry `k` of level `level`'s list of split squares.
     // Mirror of shaders/adaptive.wgsl::split_square — change both.
-    fn split_square(&self, level: u32, k: u32) -> (u32, u32) {
+    pub(crate) fn split_square(&self, level: u32, k: u32) -> (u32, u32) {
         unpack_square(self.work_list[(split_offset(self.tile.side, level) + k) as usize])
     }
 }
@@ -141,7 +141,7 @@ fn trace_lattice_point(
 
 /// Lattice point of the centre of square (a, b) of `level` (when [`square_has_centre`]).
 // Mirror of shaders/adaptive.wgsl::square_centre — change both.
-fn square_centre(tile: &AdaptiveTile, level: u32, a: u32, b: u32) -> (u32, u32) {
+pub(crate) fn square_centre(tile: &AdaptiveTile, level: u32, a: u32, b: u32) -> (u32, u32) {
     let l = tile.scale() >> level;
     (a * l + l / 2, b * l + l / 2)
 }
@@ -151,7 +151,7 @@ fn square_centre(tile: &AdaptiveTile, level: u32, a: u32, b: u32) -> (u32, u32) 
 /// decision and, unsplit, its colour use it: the quincunx of corners and centre samples
 /// rows half the square apart, where the corners alone sample them a whole square apart.
 // Mirror of shaders/adaptive.wgsl::square_has_centre — change both.
-fn square_has_centre(tile: &AdaptiveTile, level: u32) -> bool {
+pub(crate) fn square_has_centre(tile: &AdaptiveTile, level: u32) -> bool {
     level < tile.depth
 }
 
@@ -372,11 +372,32 @@ pub fn adaptive_tile(
     threshold: f32,
     counters: &mut impl TraversalCounters,
 ) -> Vec<(Vec3, u32)> {
+    adaptive_tile_passes(lat, threshold, |lat, pass| {
+        if pass == 0 {
+            for idx in 0..lat.tile.first_pass_len() {
+                adaptive_corners(scene, lat, idx, counters);
+            }
+        } else {
+            let level = pass - 1;
+            for idx in 0..AA_SPLIT_POINTS * lat.work_counts[level as usize] {
+                adaptive_midpoints(scene, lat, level, idx, counters);
+            }
+        }
+    })
+}
+
+/// Every pass over `lat`'s tile, the tracing passes through `trace_pass(lat, pass)`
+/// (pass 0: the corner pass, 1 + k: level k's midpoint pass; [`adaptive_tile`]'s
+/// megakernel passes, or `wavefront_lattice`'s through the wavefront passes); its
+/// pixels, row-major, with their leaf counts.
+pub fn adaptive_tile_passes(
+    lat: &mut Lattice,
+    threshold: f32,
+    mut trace_pass: impl FnMut(&mut Lattice, u32),
+) -> Vec<(Vec3, u32)> {
     let t = lat.tile;
     let [w, h] = t.size;
-    for idx in 0..t.first_pass_len() {
-        adaptive_corners(scene, lat, idx, counters);
-    }
+    trace_pass(lat, 0);
     for level in 0..t.depth {
         let squares = if level == 0 {
             w * h
@@ -386,9 +407,7 @@ pub fn adaptive_tile(
         for idx in 0..squares {
             adaptive_decide(lat, level, idx, threshold);
         }
-        for idx in 0..AA_SPLIT_POINTS * lat.work_counts[level as usize] {
-            adaptive_midpoints(scene, lat, level, idx, counters);
-        }
+        trace_pass(lat, level + 1);
     }
     let mut out = Vec::with_capacity((w * h) as usize);
     for ty in 0..h {

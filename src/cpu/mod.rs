@@ -27,6 +27,7 @@ pub mod traverse_mesh;
 pub mod triangle4;
 pub mod uv;
 pub mod wavefront;
+pub mod wavefront_lattice;
 pub mod wavefront_tree;
 
 pub use render::{render, RenderProgress};

@@ -206,6 +206,11 @@ impl<'a> Frame<'a> {
         // Bound in place of work_args where a dispatch may read its arguments from it.
         let no_args = buffer(ctx, "no work args", plan.work_levels * 24, storage);
         let (records, stride) = records(ctx, dispatches);
+        let (samples_len, counts_len, args_len) = (
+            plan.samples_len * 16,
+            plan.work_levels * 4,
+            plan.work_levels * 24,
+        );
         let bind_groups = dispatches
             .iter()
             .enumerate()
@@ -218,14 +223,24 @@ impl<'a> Frame<'a> {
                         OUTPUT_BINDING,
                         binding(&output, b.output_offset, b.output_size),
                     ),
-                    (SAMPLES_BINDING, samples.as_entire_binding()),
+                    (
+                        SAMPLES_BINDING,
+                        binding(&samples, d.offsets.samples, samples_len - d.offsets.samples),
+                    ),
                     (SPLIT_BINDING, split.as_entire_binding()),
                     (GUARD_BINDING, binding(&guard, b.guard_offset, b.guard_size)),
-                    (WORK_COUNTS_BINDING, work_counts.as_entire_binding()),
+                    (
+                        WORK_COUNTS_BINDING,
+                        binding(&work_counts, d.offsets.work, counts_len - d.offsets.work),
+                    ),
                     (WORK_LIST_BINDING, work_list.as_entire_binding()),
                     (
                         WORK_ARGS_BINDING,
-                        if d.writes_args { &work_args } else { &no_args }.as_entire_binding(),
+                        binding(
+                            if d.writes_args { &work_args } else { &no_args },
+                            d.offsets.work,
+                            args_len - d.offsets.work,
+                        ),
                     ),
                 ];
                 entries.extend(

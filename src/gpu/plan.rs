@@ -12,7 +12,9 @@
 use super::buffers::GpuTile;
 use super::lists::LIST_BUDGET_BYTES;
 use super::shader::Entry;
-use crate::constants::{AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, GPU_FRAME_PARTS};
+use crate::constants::{
+    AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, GPU_FRAME_PARTS, WAVEFRONT_WORK_BASE,
+};
 use crate::pack::PackedGlobals;
 use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
 
@@ -28,6 +30,12 @@ pub enum Mode {
     },
     /// AA none through the wavefront kernels (`shaders/wavefront.wgsl`).
     Wavefront(WavefrontShape),
+    /// Adaptive AA with its corner and midpoint passes through the wavefront kernels
+    /// (`shaders/wavefront_lattice.wgsl`): the lattice, then the queues, in `samples`.
+    AdaptiveWavefront {
+        depth: u32,
+        shape: WavefrontShape,
+    },
 }
 
 /// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
@@ -72,6 +80,7 @@ impl Mode {
                 Entry::AdaptiveWorkArgs,
             ],
             Mode::Wavefront(_) => &Entry::WAVEFRONT,
+            Mode::AdaptiveWavefront { .. } => &Entry::ADAPTIVE_WAVEFRONT,
         }
     }
 }
@@ -90,6 +99,32 @@ pub struct Dispatch {
     pub clears_work: bool,
     /// Binds the work-args buffer as storage (`adaptive_work_args`).
     pub writes_args: bool,
+    /// Where `samples` and the work buffers are bound from.
+    pub offsets: BindingOffsets,
+}
+
+/// Where a dispatch binds the `samples` buffer and the work buffers (`work_counts`,
+/// `work_args`) from, in bytes: 0, or under adaptive AA through the wavefront kernels the
+/// queues after the lattice ([`lattice_queue_bytes`]) and the wavefront's counters and
+/// arguments after adaptive AA's ([`WAVEFRONT_WORK_BYTES`]), so that the generations'
+/// kernels index them from 0 as for AA none.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct BindingOffsets {
+    pub samples: u64,
+    pub work: u64,
+}
+
+/// Byte offset of the wavefront's counters in `work_counts` and of its arguments in
+/// `work_args` under adaptive AA (`shaders/wavefront_lattice.wgsl`).
+pub const WAVEFRONT_WORK_BYTES: u64 = 4 * WAVEFRONT_WORK_BASE as u64;
+
+/// Where the wavefront's queues start in `samples` (bytes) for adaptive tiles of side
+/// `side` at depth `depth`: after the lattice, at a multiple of 256 bytes (the coarsest
+/// storage offset alignment WebGPU allows).
+// The same as shaders/wavefront_lattice.wgsl::lattice_queue_base.
+pub fn lattice_queue_bytes(side: u32, depth: u32) -> u64 {
+    let width = side as u64 * (1u64 << depth) + 1;
+    (width * width).div_ceil(16) * 16 * 16
 }
 
 /// How many workgroups a dispatch runs.
@@ -239,6 +274,7 @@ impl FramePlan {
         let (w, h) = (window.width(), window.height());
         let mode = match (Mode::of(g), bounds.wavefront) {
             (Mode::None, Some(shape)) => Mode::Wavefront(shape),
+            (Mode::Adaptive { depth }, Some(shape)) => Mode::AdaptiveWavefront { depth, shape },
             (mode, _) => mode,
         };
         // Rows a band may have: its pixels must fit a 2-D dispatch and its output block
@@ -293,18 +329,42 @@ impl FramePlan {
                 let chunks = squares(window, side);
                 (chunks, lattice, split_offset(side, depth).max(1) as u64)
             }
+            Mode::AdaptiveWavefront { depth, shape } => {
+                // The lattice, then the queues of the busiest lattice pass's samples
+                // (adaptive_slots), in one binding.
+                let vec4s = |side: u32| {
+                    lattice_queue_bytes(side, depth) / 16
+                        + adaptive_slots(side, side, side, depth) * shape.vec4s_per_sample()
+                };
+                let side = (lattice_side(bounds.max_binding) >> depth).max(1);
+                let mut side = side.min(w.max(h).div_ceil(2).next_power_of_two());
+                while side > 1
+                    && (adaptive_slots(side, side, side, depth) > slots
+                        || vec4s(side) * 16 > bounds.max_binding)
+                {
+                    side /= 2;
+                }
+                let chunks = squares(window, side);
+                (chunks, vec4s(side), split_offset(side, depth).max(1) as u64)
+            }
         };
         let parts = split_even(chunks.len(), parts.min(chunks.len()));
         let work_levels = match mode {
             Mode::Adaptive { depth } => depth.max(1) as u64,
             // A generation's 6 words of indirect arguments; the 5 counters.
             Mode::Wavefront(shape) => shape.generations.max(5) as u64,
+            // The wavefront's from WAVEFRONT_WORK_BASE on, after adaptive AA's levels'.
+            Mode::AdaptiveWavefront { shape, .. } => {
+                WAVEFRONT_WORK_BASE as u64 + shape.generations.max(5) as u64
+            }
             _ => 1,
         };
         let chunk_slots = |c: &Chunk| match mode {
             Mode::None | Mode::Wavefront(_) => c.block_pixels(),
             Mode::Uniform { n } => c.size[0] as u64 * c.size[1] as u64 * (n * n) as u64,
-            Mode::Adaptive { depth } => adaptive_slots(c.size[0], c.size[1], c.side, depth),
+            Mode::Adaptive { depth } | Mode::AdaptiveWavefront { depth, .. } => {
+                adaptive_slots(c.size[0], c.size[1], c.side, depth)
+            }
         };
         let lists_len = match bounds.lane_list_words {
             0 => 0,
@@ -349,6 +409,7 @@ impl FramePlan {
             workgroups,
             clears_work: false,
             writes_args: false,
+            offsets: BindingOffsets::default(),
         };
         match self.mode {
             Mode::None => vec![run(0, params(0, 0), square)],
@@ -418,6 +479,76 @@ impl FramePlan {
                     out.push(run(2, params(level, 0), args));
                 }
                 out.push(run(3, params(0, 0), square));
+                out
+            }
+            Mode::AdaptiveWavefront { depth, shape } => {
+                let tile = AdaptiveTile {
+                    origin: c.origin,
+                    size: c.size,
+                    side: c.side,
+                    depth,
+                };
+                // Each lattice pass's samples take the queues' first `n` slots.
+                let n = adaptive_slots(w, h, c.side, depth) as u32;
+                let queues = BindingOffsets {
+                    samples: lattice_queue_bytes(c.side, depth),
+                    work: 0,
+                };
+                let generation = BindingOffsets {
+                    work: WAVEFRONT_WORK_BYTES,
+                    ..queues
+                };
+                // Lattice pass `pass` (0: corners, 1 + k: level k's midpoints) over
+                // `points` invocations: its camera pass, per generation closest, shade,
+                // args, shadow, gather (generation 0's over the pass's invocations, the
+                // rest at the args kernel's offsets, after adaptive AA's), the store pass.
+                let lattice_pass = |pass: u32, points: Workgroups| {
+                    let mut out = vec![Dispatch {
+                        offsets: queues,
+                        ..run(3, params(pass, n), points)
+                    }];
+                    for g in 0..shape.generations {
+                        let args = |at: u64| Workgroups::Indirect(WAVEFRONT_WORK_BYTES + at);
+                        let paths = match g {
+                            0 => points,
+                            _ => args(24 * (g as u64 - 1)),
+                        };
+                        let pass = |entry: usize, workgroups: Workgroups| Dispatch {
+                            offsets: generation,
+                            ..run(entry, params(g, n), workgroups)
+                        };
+                        out.push(pass(4, paths));
+                        out.push(pass(5, paths));
+                        out.push(Dispatch {
+                            writes_args: true,
+                            ..pass(6, Workgroups::Direct(1, 1))
+                        });
+                        out.push(pass(7, args(24 * g as u64 + 12)));
+                        out.push(pass(8, paths));
+                    }
+                    out.push(run(9, params(pass, n), points));
+                    out
+                };
+                let first = tile.first_pass_len();
+                let mut out = lattice_pass(0, linear(first));
+                out[0].clears_work = true;
+                for level in 0..depth {
+                    out.push(if level == 0 {
+                        run(0, params(0, w * h), linear(w * h))
+                    } else {
+                        let args = Workgroups::Indirect(midpoint_args(level - 1) + 12);
+                        run(0, params(level, 0), args)
+                    });
+                    out.push(Dispatch {
+                        writes_args: true,
+                        ..run(1, params(level, 0), Workgroups::Direct(1, 1))
+                    });
+                    out.extend(lattice_pass(
+                        level + 1,
+                        Workgroups::Indirect(midpoint_args(level)),
+                    ));
+                }
+                out.push(run(2, params(0, 0), square));
                 out
             }
         }

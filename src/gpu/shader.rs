@@ -48,6 +48,13 @@ pub enum Entry {
     WavefrontArgs,
     WavefrontShadow,
     WavefrontGather,
+    /// `wavefront_lattice_camera`, `wavefront_lattice_store`: adaptive AA's corner and
+    /// midpoint passes through the wavefront kernels, their camera pass and the pass that
+    /// stores their samples into the lattice (`shaders/wavefront_lattice.wgsl`; only in
+    /// modules with [`wavefront_kernels`], which have no `AdaptiveCorners` nor
+    /// `AdaptiveMidpoints`).
+    WavefrontLatticeCamera,
+    WavefrontLatticeStore,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
     /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`).
     ViewSample,
@@ -67,8 +74,25 @@ impl Entry {
         Entry::WavefrontGather,
     ];
 
+    /// Adaptive AA's passes through the wavefront kernels, in the plan's order of the
+    /// `Mode::AdaptiveWavefront` pipelines: adaptive AA's small kernels, the lattice
+    /// passes' camera pass, the generations' passes ([`Entry::WAVEFRONT`]'s after its
+    /// camera pass) and the store pass.
+    pub const ADAPTIVE_WAVEFRONT: [Entry; 10] = [
+        Entry::AdaptiveDecide,
+        Entry::AdaptiveWorkArgs,
+        Entry::AdaptiveIntegrate,
+        Entry::WavefrontLatticeCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontGather,
+        Entry::WavefrontLatticeStore,
+    ];
+
     /// Every entry point.
-    pub const ALL: [Entry; 16] = [
+    pub const ALL: [Entry; 18] = [
         Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
@@ -83,6 +107,8 @@ impl Entry {
         Entry::WavefrontArgs,
         Entry::WavefrontShadow,
         Entry::WavefrontGather,
+        Entry::WavefrontLatticeCamera,
+        Entry::WavefrontLatticeStore,
         Entry::ViewSample,
         Entry::Probe,
     ];
@@ -104,6 +130,8 @@ impl Entry {
             Entry::WavefrontArgs => "wavefront_args",
             Entry::WavefrontShadow => "wavefront_shadow",
             Entry::WavefrontGather => "wavefront_gather",
+            Entry::WavefrontLatticeCamera => "wavefront_lattice_camera",
+            Entry::WavefrontLatticeStore => "wavefront_lattice_store",
             Entry::ViewSample => "view_sample",
             Entry::Probe => "probe",
         }
@@ -125,12 +153,24 @@ impl Entry {
                 | Entry::WavefrontArgs
                 | Entry::WavefrontShadow
                 | Entry::WavefrontGather
+                | Entry::WavefrontLatticeCamera
+                | Entry::WavefrontLatticeStore
         )
+    }
+
+    /// Whether the entry is a megakernel pass that the wavefront kernels replace where
+    /// the module has them (adaptive AA's tracing passes).
+    pub fn is_replaced_by_wavefront(self) -> bool {
+        matches!(self, Entry::AdaptiveCorners | Entry::AdaptiveMidpoints)
     }
 
     /// Whether the render module of `kernel` for `features` has this entry.
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
-        !self.is_wavefront() || wavefront_kernels(kernel, features)
+        let wavefront = wavefront_kernels(kernel, features);
+        if self.is_replaced_by_wavefront() {
+            return !wavefront;
+        }
+        !self.is_wavefront() || wavefront
     }
 }
 
@@ -183,10 +223,16 @@ const RENDER: &[(&str, &str)] = &[
 ];
 /// Appended to the render module only where the kernel runs the wavefront kernels (so
 /// that the other modules are byte for byte what they were without them).
-const WAVEFRONT: &[(&str, &str)] = &[(
-    "wavefront.wgsl",
-    include_str!("../../shaders/wavefront.wgsl"),
-)];
+const WAVEFRONT: &[(&str, &str)] = &[
+    (
+        "wavefront.wgsl",
+        include_str!("../../shaders/wavefront.wgsl"),
+    ),
+    (
+        "wavefront_lattice.wgsl",
+        include_str!("../../shaders/wavefront_lattice.wgsl"),
+    ),
+];
 const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
 
 /// The common modules (scene layout, intersection, traversal, shading) specialised to

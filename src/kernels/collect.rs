@@ -94,11 +94,12 @@ impl KernelSet {
                 if !entry.exists_in(kernel, features) {
                     continue;
                 }
-                // AA none runs the wavefront kernels instead of `main` where they exist.
-                let dispatched = if mode == Mode::None && wavefront_kernels(kernel, features) {
-                    entry.is_wavefront()
-                } else {
-                    mode.entries().contains(&entry)
+                // AA none runs the wavefront kernels instead of `main` where they exist,
+                // adaptive AA its tracing passes.
+                let dispatched = match (mode, wavefront_kernels(kernel, features)) {
+                    (Mode::None, true) => Entry::WAVEFRONT.contains(&entry),
+                    (Mode::Adaptive { .. }, true) => Entry::ADAPTIVE_WAVEFRONT.contains(&entry),
+                    _ => mode.entries().contains(&entry),
                 };
                 self.add(&name, features, entry, dispatched, kernel, target)?;
             }

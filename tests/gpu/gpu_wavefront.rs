@@ -4,15 +4,18 @@
 //! lavapipe with `--kernel-variant hardware` they give the megakernel's image bit for bit
 //! (and so the CPU tracer's, within the GPU parity tolerance)
 //! on scenes with mirrors (several generations), area lights, textures and bump maps,
-//! smooth meshes, tori, meshes in grids and CSG.
+//! smooth meshes, tori, meshes in grids and CSG. Under adaptive AA the hardware variant
+//! traces the corner and midpoint passes through them (`shaders/wavefront_lattice.wgsl`),
+//! with the same lattice, and so image, as the megakernel passes, bit for bit.
 
 use crate::common;
 
 use common::{gpu_context, packed_from_file, packed_from_source};
+use glint::constants::AA_ADAPTIVE;
 use glint::gpu::shader::{all_feature_sets, assemble_with, validate, wavefront_kernels, Entry};
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelVariant};
 use glint::pack::{PackedScene, SceneFeatures};
-use glint::scene::{AaMode, OptionOverrides};
+use glint::scene::{AaDepth, AaMode, OptionOverrides};
 
 /// Every feature set: the hardware variant's render module has the six wavefront entry
 /// points, valid under naga, exactly where the scene has no refraction; the software
@@ -44,12 +47,28 @@ fn wavefront_kernels_validate_where_they_exist() {
             continue;
         }
         let module = validate(&hard, features).unwrap_or_else(|e| panic!("{e}"));
-        for entry in Entry::WAVEFRONT {
+        for entry in Entry::WAVEFRONT
+            .into_iter()
+            .chain(Entry::ADAPTIVE_WAVEFRONT)
+        {
             assert!(
                 module.entry_points.iter().any(|e| e.name == entry.name()),
                 "[{features}] {entry:?}"
             );
-            assert!(entry.exists_in(hardware, features) && !entry.exists_in(software, features));
+            assert!(entry.exists_in(hardware, features));
+            assert_eq!(
+                entry.exists_in(software, features),
+                !entry.is_wavefront(),
+                "{entry:?}"
+            );
+        }
+        // Adaptive AA's tracing megakernels are not in the module (nor dispatched).
+        for entry in [Entry::AdaptiveCorners, Entry::AdaptiveMidpoints] {
+            assert!(
+                !module.entry_points.iter().any(|e| e.name == entry.name()),
+                "[{features}] {entry:?}"
+            );
+            assert!(!entry.exists_in(hardware, features) && entry.exists_in(software, features));
         }
         validated += 1;
     }
@@ -67,14 +86,14 @@ fn small() -> OptionOverrides {
 
 /// scenes/csg.lua with its glass a mirror (CSG without refraction; the repository has no
 /// such scene).
-fn mirrored_csg() -> PackedScene {
+fn mirrored_csg(overrides: &OptionOverrides) -> PackedScene {
     let source = std::fs::read_to_string(common::root().join("scenes/csg.lua")).unwrap();
     assert!(source.contains("glass:set_refraction(1.5)"));
     let source = source.replace(
         "glass:set_refraction(1.5)",
         "glass:set_reflection(0.8, 0.8, 0.85)",
     );
-    packed_from_source(&source, &small()).remove(0)
+    packed_from_source(&source, overrides).remove(0)
 }
 
 /// `scene` on the hardware variant: through the wavefront kernels (one camera pass and
@@ -92,13 +111,22 @@ fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: &PackedScen
     let render = render_gpu(ctx, scene, &GpuRenderOptions::default())
         .unwrap_or_else(|e| panic!("{name}: {e}"));
     let generations = if scene.features.contains(SceneFeatures::REFLECTION) {
-        scene.globals.max_depth + 1
+        scene.globals.max_depth as u64 + 1
     } else {
         1
     };
+    let adaptive = scene.globals.aa_mode == AA_ADAPTIVE;
+    // AA none: the camera pass, five passes a generation. Adaptive AA: per lattice pass
+    // (the corner pass, a midpoint pass a level) the camera pass, five passes a
+    // generation and the store pass; decide and work args a level; integrate.
+    let depth = scene.globals.aa_depth as u64;
+    let per_tile = match adaptive {
+        false => 1 + 5 * generations,
+        true => (2 + 5 * generations) * (1 + depth) + 2 * depth + 1,
+    };
     assert_eq!(
         render.info.dispatches as u64,
-        render.info.tiles * (1 + 5 * generations as u64),
+        render.info.tiles * per_tile,
         "{name}: the wavefront's dispatches"
     );
     ctx.kernel = KernelConfig {
@@ -108,7 +136,13 @@ fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: &PackedScen
     let mega = render_gpu(ctx, scene, &GpuRenderOptions::default());
     ctx.kernel = hardware;
     let mega = mega.unwrap_or_else(|e| panic!("{name}: {e}"));
-    assert_eq!(mega.info.dispatches as u64, mega.info.tiles, "{name}: main");
+    // main, or adaptive AA's corners, decide + work args + midpoints a level, integrate.
+    let mega_per_tile = if adaptive { 2 + 3 * depth } else { 1 };
+    assert_eq!(
+        mega.info.dispatches as u64,
+        mega.info.tiles * mega_per_tile,
+        "{name}: the megakernels"
+    );
     let bits = |film: &glint::film::Film| -> Vec<[u32; 3]> {
         film.pixels.iter().map(|p| p.map(f32::to_bits)).collect()
     };
@@ -151,7 +185,41 @@ fn hardware_wavefront_renders_mains_image() {
         let scene = packed_from_file(&common::root().join(file), &small()).remove(0);
         assert_wavefront_matches(&mut ctx, file, &scene);
     }
-    let csg = mirrored_csg();
+    let csg = mirrored_csg(&small());
     assert!(csg.features.contains(SceneFeatures::CSG));
     assert_wavefront_matches(&mut ctx, "csg.lua with a mirror for glass", &csg);
+}
+
+fn adaptive(depth: u32) -> OptionOverrides {
+    OptionOverrides {
+        aa: Some(AaMode::Adaptive),
+        aa_depth: Some(AaDepth::constant(depth)),
+        ..small()
+    }
+}
+
+/// Adaptive AA at depths 1 and 2 on lavapipe with the hardware variant: its corner and
+/// midpoint passes through the wavefront kernels give the megakernel passes' image bit
+/// for bit, and the CPU's within the tolerance — on scenes whose splits read every hint:
+/// textures (fine detail), mirrors (the mirrored item), area lights (penumbrae: fine
+/// detail from the gather pass), CSG with a mirror, and plain item edges.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_traces_adaptive_aa_as_its_megakernels() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    let a4 = "scenes/cs488/a4-2021plus";
+    let files = [
+        (format!("{a4}/nonhier.lua"), 2),
+        ("scenes/demo.lua".to_string(), 1),
+        ("scenes/textures.lua".to_string(), 2),
+        ("scenes/soft-shadows.lua".to_string(), 2),
+    ];
+    for (file, depth) in &files {
+        let scene = packed_from_file(&common::root().join(file), &adaptive(*depth)).remove(0);
+        assert_eq!(scene.globals.aa_mode, AA_ADAPTIVE);
+        assert_wavefront_matches(&mut ctx, &format!("{file} at depth {depth}"), &scene);
+    }
+    let csg = mirrored_csg(&adaptive(2));
+    assert_wavefront_matches(&mut ctx, "csg.lua with a mirror, adaptive AA", &csg);
 }
