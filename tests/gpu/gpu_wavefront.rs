@@ -151,7 +151,7 @@ fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: &PackedScen
     if let Some(&p) = differing.first() {
         let w = scene.globals.width as usize;
         panic!(
-            "{name}: {} pixels differ from main's; the first, ({}, {}), is {:?} through the wavefront, {:?} through main",
+            "{name}: {} pixels differ from the megakernels'; the first, ({}, {}), is {:?} through the wavefront, {:?} through the megakernels",
             differing.len(),
             p % w,
             p / w,

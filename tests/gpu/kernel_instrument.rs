@@ -216,6 +216,8 @@ fn the_wavefront_kernels_of_every_scene_meet_the_navi21_budgets() {
         "wavefront_args",
         "wavefront_shadow",
         "wavefront_gather",
+        "wavefront_lattice_camera",
+        "wavefront_lattice_store",
     ]);
 }
 

@@ -262,6 +262,13 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "set_csg_count",
         "writes CsgStack::list_count[l] (see csg_count_at)",
     ),    (
+        "shaders/wavefront_lattice.wgsl",
+        "lattice_queue_base",
+        "where the wavefront's queues start in the `samples` buffer, after the lattice (the \
+         GPU's buffer layout, as src/gpu/plan.rs::lattice_queue_bytes lays it out); the CPU's \
+         lattice and batch are separate Vecs",
+    ),
+    (
         "shaders/wavefront.wgsl",
         "load_path",
         "reads path entry i of a queue from the `samples` buffer's region; the CPU's PathQueue::entry reads its Vecs",
