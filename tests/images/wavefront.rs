@@ -3,12 +3,15 @@
 //! size, renders to the same bits through both — AA none and uniform AA as whole films
 //! (with the traversal counters' totals: the same rays traced), adaptive AA as every
 //! point of the finest lattice (its colour and its hint), since the adaptive passes
-//! sample nothing but lattice points.
+//! sample nothing but lattice points, and as adaptive tiles whose corner and midpoint
+//! passes go through the passes (`cpu::wavefront_lattice`, the GPU's hardware variant's
+//! form).
 
 use crate::common;
 
 use glam::Vec3;
 use glint::constants::{MAX_SHADOW_CROSSINGS, RAY_STACK_SIZE};
+use glint::cpu::adaptive::{adaptive_tile, Lattice};
 use glint::cpu::dielectric::{shadow_transmittance, MediumStack};
 use glint::cpu::pixel_sample::lattice_sample;
 use glint::cpu::render::render_pixel;
@@ -17,9 +20,11 @@ use glint::cpu::wavefront::{
     camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, next_generation,
     render_film, shade_pass, trace_batch, Batch, SampleSource,
 };
+use glint::cpu::wavefront_lattice::adaptive_tile_wavefront;
 use glint::film::Film;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaDepth, AaMode, AaSamples, DebugView, OptionOverrides, TraceDepth};
+use glint::tiling::AdaptiveTile;
 use std::path::{Path, PathBuf};
 
 const W: u32 = 20;
@@ -221,6 +226,63 @@ fn assert_lattice_matches(name: &str, scene: &PackedScene) {
                     "{name}: lattice point ({fx}, {fy})'s hint"
                 );
             }
+        }
+    }
+}
+
+/// Every scene without refraction under adaptive AA (depth 2), in tiles of 8 pixels (the
+/// last ones partial): the corner and midpoint passes through the wavefront passes
+/// (`wavefront_lattice::trace_lattice_pass`) leave the megakernel passes' lattice (every
+/// colour, hint and split flag) and pixels, bit for bit.
+#[test]
+fn adaptive_tiles_through_the_passes_are_the_megakernel_passes_tiles() {
+    let mut checked = Vec::new();
+    for path in chain_scenes() {
+        for scene in packed(&path, AaMode::Adaptive, DebugView::None) {
+            let name = common::scene_name(&path);
+            assert_adaptive_tiles_match(&name, &scene);
+            checked.push(name);
+        }
+    }
+    assert_coverage(&checked, 29);
+}
+
+fn assert_adaptive_tiles_match(name: &str, scene: &PackedScene) {
+    let g = &scene.globals;
+    let side = 8;
+    for ty in (0..g.height).step_by(side as usize) {
+        for tx in (0..g.width).step_by(side as usize) {
+            let tile = AdaptiveTile {
+                origin: [tx, ty],
+                size: [side.min(g.width - tx), side.min(g.height - ty)],
+                side,
+                depth: g.aa_depth,
+            };
+            let mut mega = Lattice::new(tile);
+            let mut wave = Lattice::new(tile);
+            let expected =
+                adaptive_tile(scene, &mut mega, g.aa_threshold, &mut Counters::default());
+            let actual =
+                adaptive_tile_wavefront(scene, &mut wave, g.aa_threshold, &mut Counters::default());
+            let at = format!("{name}: tile at ({tx}, {ty})");
+            let point_bits = |l: &Lattice| -> Vec<[u32; 3]> {
+                l.points
+                    .iter()
+                    .map(|p| p.to_array().map(f32::to_bits))
+                    .collect()
+            };
+            assert!(
+                point_bits(&wave) == point_bits(&mega),
+                "{at}: lattice colours"
+            );
+            assert!(wave.hints == mega.hints, "{at}: lattice hints");
+            assert!(wave.split == mega.split, "{at}: split flags");
+            let pixel_bits = |p: &[(Vec3, u32)]| -> Vec<([u32; 3], u32)> {
+                p.iter()
+                    .map(|(c, n)| (c.to_array().map(f32::to_bits), *n))
+                    .collect()
+            };
+            assert!(pixel_bits(&actual) == pixel_bits(&expected), "{at}: pixels");
         }
     }
 }
