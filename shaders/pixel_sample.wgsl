@@ -108,8 +108,8 @@ fn lattice_jitter(fx: f32, fy: f32) -> JitteredPoint {
     let jy = (random_unit(seed.pixel, seed.sample, 1u) - 0.5) * width;
     return JitteredPoint(vec2<f32>(fx + jx, fy + jy), seed);
 }
-// #endif
 
+// #endif
 // Largest per-channel spread of a square's four corner samples and its centre sample:
 // what the split decision of adaptive AA weighs.
 // Mirror of src/cpu/pixel_sample.rs::square_contrast_of — change both.

@@ -12,7 +12,9 @@
 //! - uniform n×n: `uniform_samples` (one invocation per (pixel, sample)), then
 //!   `uniform_resolve` sums each pixel's samples in the CPU's order;
 //! - adaptive: `adaptive_corners`, then for each level `adaptive_decide` and
-//!   `adaptive_midpoints`, then `adaptive_integrate` (see `shaders/adaptive.wgsl`).
+//!   `adaptive_midpoints`, then `adaptive_integrate` (see `shaders/adaptive.wgsl`); in
+//!   the hardware variant the corner and midpoint passes run through the wavefront
+//!   kernels (`shaders/wavefront_lattice.wgsl`), as AA none does.
 //!
 //! On software adapters the kernels also check the limiter (`ITERATION_GUARD`) and flag
 //! the pixels a tripped invocation touched (a single very heavy ray can still trip it);
