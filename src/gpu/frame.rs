@@ -108,6 +108,12 @@ pub(super) fn binding(buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::Bi
     })
 }
 
+/// `buffer`'s first `len` bytes from `offset` on, as a binding (a dispatch's view of the
+/// samples or work buffers: `super::plan::BindingOffsets`).
+fn from(buffer: &wgpu::Buffer, offset: u64, len: u64) -> wgpu::BindingResource<'_> {
+    binding(buffer, offset, len - offset)
+}
+
 /// Bytes from one dispatch's uniform record (a `GpuTile`) to the next: the adapter's
 /// `min_uniform_buffer_offset_alignment`, so each can be bound at its own offset.
 pub(super) fn record_stride(ctx: &GpuContext) -> u64 {
@@ -206,42 +212,27 @@ impl<'a> Frame<'a> {
         // Bound in place of work_args where a dispatch may read its arguments from it.
         let no_args = buffer(ctx, "no work args", plan.work_levels * 24, storage);
         let (records, stride) = records(ctx, dispatches);
-        let (samples_len, counts_len, args_len) = (
-            plan.samples_len * 16,
-            plan.work_levels * 4,
-            plan.work_levels * 24,
-        );
+        let (samples_len, work_len) = (plan.samples_len * 16, plan.work_levels * 4);
         let bind_groups = dispatches
             .iter()
             .enumerate()
             .map(|(k, d)| {
                 let b = blocks[d.chunk];
                 let mut entries = scene_entries(scene);
+                let args = if d.writes_args { &work_args } else { &no_args };
+                let (from_samples, from_work) = (d.offsets.samples, d.offsets.work);
                 let own = [
                     (TILE_BINDING, binding(&records, k as u64 * stride, stride)),
                     (
                         OUTPUT_BINDING,
                         binding(&output, b.output_offset, b.output_size),
                     ),
-                    (
-                        SAMPLES_BINDING,
-                        binding(&samples, d.offsets.samples, samples_len - d.offsets.samples),
-                    ),
+                    (SAMPLES_BINDING, from(&samples, from_samples, samples_len)),
                     (SPLIT_BINDING, split.as_entire_binding()),
                     (GUARD_BINDING, binding(&guard, b.guard_offset, b.guard_size)),
-                    (
-                        WORK_COUNTS_BINDING,
-                        binding(&work_counts, d.offsets.work, counts_len - d.offsets.work),
-                    ),
+                    (WORK_COUNTS_BINDING, from(&work_counts, from_work, work_len)),
                     (WORK_LIST_BINDING, work_list.as_entire_binding()),
-                    (
-                        WORK_ARGS_BINDING,
-                        binding(
-                            if d.writes_args { &work_args } else { &no_args },
-                            d.offsets.work,
-                            args_len - d.offsets.work,
-                        ),
-                    ),
+                    (WORK_ARGS_BINDING, from(args, from_work, 6 * work_len)),
                 ];
                 entries.extend(
                     own.map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),

@@ -150,6 +150,16 @@ pub struct Chunk {
 }
 
 impl Chunk {
+    /// The chunk as an adaptive tile of depth `depth`.
+    fn adaptive_tile(&self, depth: u32) -> AdaptiveTile {
+        AdaptiveTile {
+            origin: self.origin,
+            size: self.size,
+            side: self.side,
+            depth,
+        }
+    }
+
     /// Pixels of the chunk's output block (its rows at stride `side`).
     pub fn block_pixels(&self) -> u64 {
         self.side as u64 * self.size[1] as u64
@@ -224,6 +234,29 @@ fn adaptive_slots(w: u32, h: u32, side: u32, depth: u32) -> u64 {
         0 => corners,
         d => corners.max(AA_SPLIT_POINTS as u64 * (side as u64).pow(2) * 4u64.pow(d - 1)),
     }
+}
+
+/// The side of adaptive AA's square tiles over a window of `size` at depth `depth`: the
+/// largest power of two whose lattice fits one binding, at most half the window's longer
+/// side (so a frame has a few chunks to spread over its parts, and a small frame gets a
+/// small lattice), whose busiest pass has at most `slots` tracing invocations and whose
+/// `vec4s(side)` further entries of `samples` fit one binding.
+fn adaptive_side(
+    bounds: AdapterBounds,
+    size: [u32; 2],
+    depth: u32,
+    slots: u64,
+    vec4s: impl Fn(u32) -> u64,
+) -> u32 {
+    let side = (lattice_side(bounds.max_binding) >> depth).max(1);
+    let mut side = side.min(size[0].max(size[1]).div_ceil(2).next_power_of_two());
+    while side > 1
+        && (adaptive_slots(side, side, side, depth) > slots
+            || vec4s(side) * 16 > bounds.max_binding)
+    {
+        side /= 2;
+    }
+    side
 }
 
 /// Bands of `window`'s full width of at most `rows` rows, at least `min_bands` of them
@@ -318,13 +351,7 @@ impl FramePlan {
                 (chunks, per_row * rows as u64, 1)
             }
             Mode::Adaptive { depth } => {
-                let side = (lattice_side(bounds.max_binding) >> depth).max(1);
-                // At most half the image's longer side, so a frame has a few chunks to
-                // spread over its parts (and a small frame gets a small lattice).
-                let mut side = side.min(w.max(h).div_ceil(2).next_power_of_two());
-                while side > 1 && adaptive_slots(side, side, side, depth) > slots {
-                    side /= 2;
-                }
+                let side = adaptive_side(bounds, [w, h], depth, slots, |_| 0);
                 let lattice = (side as u64 * (1 << depth) as u64 + 1).pow(2);
                 let chunks = squares(window, side);
                 (chunks, lattice, split_offset(side, depth).max(1) as u64)
@@ -336,14 +363,7 @@ impl FramePlan {
                     lattice_queue_bytes(side, depth) / 16
                         + adaptive_slots(side, side, side, depth) * shape.vec4s_per_sample()
                 };
-                let side = (lattice_side(bounds.max_binding) >> depth).max(1);
-                let mut side = side.min(w.max(h).div_ceil(2).next_power_of_two());
-                while side > 1
-                    && (adaptive_slots(side, side, side, depth) > slots
-                        || vec4s(side) * 16 > bounds.max_binding)
-                {
-                    side /= 2;
-                }
+                let side = adaptive_side(bounds, [w, h], depth, slots, vec4s);
                 let chunks = squares(window, side);
                 (chunks, vec4s(side), split_offset(side, depth).max(1) as u64)
             }
@@ -453,13 +473,7 @@ impl FramePlan {
             }
             Mode::Adaptive { depth } => {
                 // Every pixel corner, then every pixel centre (d ≥ 1).
-                let first = AdaptiveTile {
-                    origin: c.origin,
-                    size: c.size,
-                    side: c.side,
-                    depth,
-                }
-                .first_pass_len();
+                let first = c.adaptive_tile(depth).first_pass_len();
                 let mut out = vec![Dispatch {
                     clears_work: true,
                     ..run(0, params(0, first), linear(first))
@@ -482,77 +496,88 @@ impl FramePlan {
                 out
             }
             Mode::AdaptiveWavefront { depth, shape } => {
-                let tile = AdaptiveTile {
-                    origin: c.origin,
-                    size: c.size,
-                    side: c.side,
-                    depth,
-                };
-                // Each lattice pass's samples take the queues' first `n` slots.
-                let n = adaptive_slots(w, h, c.side, depth) as u32;
-                let queues = BindingOffsets {
-                    samples: lattice_queue_bytes(c.side, depth),
-                    work: 0,
-                };
-                let generation = BindingOffsets {
-                    work: WAVEFRONT_WORK_BYTES,
-                    ..queues
-                };
-                // Lattice pass `pass` (0: corners, 1 + k: level k's midpoints) over
-                // `points` invocations: its camera pass, per generation closest, shade,
-                // args, shadow, gather (generation 0's over the pass's invocations, the
-                // rest at the args kernel's offsets, after adaptive AA's), the store pass.
-                let lattice_pass = |pass: u32, points: Workgroups| {
-                    let mut out = vec![Dispatch {
-                        offsets: queues,
-                        ..run(3, params(pass, n), points)
-                    }];
-                    for g in 0..shape.generations {
-                        let args = |at: u64| Workgroups::Indirect(WAVEFRONT_WORK_BYTES + at);
-                        let paths = match g {
-                            0 => points,
-                            _ => args(24 * (g as u64 - 1)),
-                        };
-                        let pass = |entry: usize, workgroups: Workgroups| Dispatch {
-                            offsets: generation,
-                            ..run(entry, params(g, n), workgroups)
-                        };
-                        out.push(pass(4, paths));
-                        out.push(pass(5, paths));
-                        out.push(Dispatch {
-                            writes_args: true,
-                            ..pass(6, Workgroups::Direct(1, 1))
-                        });
-                        out.push(pass(7, args(24 * g as u64 + 12)));
-                        out.push(pass(8, paths));
-                    }
-                    out.push(run(9, params(pass, n), points));
-                    out
-                };
-                let first = tile.first_pass_len();
-                let mut out = lattice_pass(0, linear(first));
-                out[0].clears_work = true;
-                for level in 0..depth {
-                    out.push(if level == 0 {
-                        run(0, params(0, w * h), linear(w * h))
-                    } else {
-                        let args = Workgroups::Indirect(midpoint_args(level - 1) + 12);
-                        run(0, params(level, 0), args)
-                    });
-                    out.push(Dispatch {
-                        writes_args: true,
-                        ..run(1, params(level, 0), Workgroups::Direct(1, 1))
-                    });
-                    out.extend(lattice_pass(
-                        level + 1,
-                        Workgroups::Indirect(midpoint_args(level)),
-                    ));
-                }
-                out.push(run(2, params(0, 0), square));
-                out
+                adaptive_wavefront_dispatches(c, depth, shape, &run, &params, &linear, square)
             }
         }
     }
+}
+
+/// The dispatches of adaptive tile `c` through the wavefront kernels
+/// ([`Entry::ADAPTIVE_WAVEFRONT`]'s indices), from [`FramePlan::dispatches`]'s `run`,
+/// `params` and `linear`: per lattice pass (the corner pass, then a midpoint pass a level
+/// after its decide and work-args passes) the camera pass, five passes a generation and
+/// the store pass; the integrate pass.
+fn adaptive_wavefront_dispatches(
+    c: Chunk,
+    depth: u32,
+    shape: WavefrontShape,
+    run: &impl Fn(usize, GpuTile, Workgroups) -> Dispatch,
+    params: &impl Fn(u32, u32) -> GpuTile,
+    linear: &impl Fn(u32) -> Workgroups,
+    square: Workgroups,
+) -> Vec<Dispatch> {
+    let [w, h] = c.size;
+    // Each lattice pass's samples take the queues' first `n` slots.
+    let n = adaptive_slots(w, h, c.side, depth) as u32;
+    let queues = BindingOffsets {
+        samples: lattice_queue_bytes(c.side, depth),
+        work: 0,
+    };
+    let generation = BindingOffsets {
+        work: WAVEFRONT_WORK_BYTES,
+        ..queues
+    };
+    // Lattice pass `pass` (0: corners, 1 + k: level k's midpoints) over
+    // `points` invocations: its camera pass, per generation closest, shade,
+    // args, shadow, gather (generation 0's over the pass's invocations, the
+    // rest at the args kernel's offsets, after adaptive AA's), the store pass.
+    let lattice_pass = |pass: u32, points: Workgroups| {
+        let mut out = vec![Dispatch {
+            offsets: queues,
+            ..run(3, params(pass, n), points)
+        }];
+        for g in 0..shape.generations {
+            let args = |at: u64| Workgroups::Indirect(WAVEFRONT_WORK_BYTES + at);
+            let paths = match g {
+                0 => points,
+                _ => args(24 * (g as u64 - 1)),
+            };
+            let pass = |entry: usize, workgroups: Workgroups| Dispatch {
+                offsets: generation,
+                ..run(entry, params(g, n), workgroups)
+            };
+            out.push(pass(4, paths));
+            out.push(pass(5, paths));
+            out.push(Dispatch {
+                writes_args: true,
+                ..pass(6, Workgroups::Direct(1, 1))
+            });
+            out.push(pass(7, args(24 * g as u64 + 12)));
+            out.push(pass(8, paths));
+        }
+        out.push(run(9, params(pass, n), points));
+        out
+    };
+    let mut out = lattice_pass(0, linear(c.adaptive_tile(depth).first_pass_len()));
+    out[0].clears_work = true;
+    for level in 0..depth {
+        out.push(if level == 0 {
+            run(0, params(0, w * h), linear(w * h))
+        } else {
+            let args = Workgroups::Indirect(midpoint_args(level - 1) + 12);
+            run(0, params(level, 0), args)
+        });
+        out.push(Dispatch {
+            writes_args: true,
+            ..run(1, params(level, 0), Workgroups::Direct(1, 1))
+        });
+        out.extend(lattice_pass(
+            level + 1,
+            Workgroups::Indirect(midpoint_args(level)),
+        ));
+    }
+    out.push(run(2, params(0, 0), square));
+    out
 }
 
 /// Workgroups of `lanes` invocations of a one-dimensional kernel over `items`
