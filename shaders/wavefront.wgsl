@@ -116,9 +116,11 @@ fn set_sample_flags(k: u32, flags: u32) {
     samples[2u * k + 1u].y = bitcast<f32>(flags);
 }
 
-// The camera pass, sample k = idx of the chunk (AA none: its pixel's centre, at stride
-// size.x): its record, and its camera ray as generation 0's path k.
-// Mirror of the AA-none source (n = 1, not jittered) of src/cpu/wavefront.rs::camera_entry — change both.
+// The camera pass, sample k = idx of the chunk: stratum k mod n² of chunk pixel k div n²
+// (row-major over size, at stride size.x), n = globals.aa_samples under uniform AA
+// (jittered), 1 under AA none (the pixel's centre): its record, and its camera ray as
+// generation 0's path k.
+// Mirror of the Strata source of src/cpu/wavefront.rs::camera_entry — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let k = linear_index(id, groups);
@@ -128,14 +130,20 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     if k >= tile.items {
         return;
     }
-    // src/cpu/render.rs::stratum_position with n = 1, not jittered (AA none).
-    let x = tile.origin.x + k % tile.size.x;
-    let y = tile.origin.y + k / tile.size.x;
+    let uniform = globals.aa_mode == AA_UNIFORM;
+    let n = select(1u, globals.aa_samples, uniform);
+    let p = k / (n * n);
+    let s = k % (n * n);
+    // src/cpu/render.rs::stratum_position (render.wgsl's uniform_sample).
+    let x = tile.origin.x + p % tile.size.x;
+    let y = tile.origin.y + p / tile.size.x;
     let pixel = y * globals.width + x;
-    let n = 1u;
-    let s = 0u;
-    let jx = 0.5;
-    let jy = 0.5;
+    var jx = 0.5;
+    var jy = 0.5;
+    if uniform {
+        jx = random_unit(pixel, s, 0u);
+        jy = random_unit(pixel, s, 1u);
+    }
     let fx = f32(x) + (f32(s % n) + jx) / f32(n);
     let fy = f32(y) + (f32(s / n) + jy) / f32(n);
     let seed = SampleSeed(pixel, s, 0u, false);
@@ -466,7 +474,28 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
         total = samples[2u * k].xyz + entry.weight * colour;
     }
     samples[2u * k] = vec4<f32>(total, samples[2u * k].w);
-    // AA none: sample k is chunk pixel k (row-major over size, rows at stride side).
-    output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(total, 1.0);
+    // AA none: sample k is chunk pixel k (row-major over size, rows at stride side);
+    // uniform AA's pixels are wavefront_resolve's.
+    if globals.aa_mode != AA_UNIFORM {
+        output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(total, 1.0);
+    }
+}
+
+// Uniform AA, after the chunk's last generation: each chunk pixel's mean over its n²
+// samples' colours (pixel p's samples are p·n² … p·n² + n² − 1), summed in sample order
+// and divided by n² as render.wgsl's uniform_resolve does (the megakernel's image).
+// Mirror of src/cpu/wavefront.rs::resolve_pixel — change both.
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
+fn wavefront_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= tile.size.x || id.y >= tile.size.y {
+        return;
+    }
+    let nn = globals.aa_samples * globals.aa_samples;
+    let first = (id.y * tile.size.x + id.x) * nn;
+    var sum = vec3<f32>(0.0);
+    for (var s = 0u; s < nn; s++) {
+        sum += samples[2u * (first + s)].xyz;
+    }
+    output[id.y * tile.side + id.x] = vec4<f32>(sum / f32(nn), 1.0);
 }
 // #endif

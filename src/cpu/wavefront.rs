@@ -381,7 +381,7 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
 
 /// The camera pass's invocation for sample `k` of `source`: its seed, and its camera ray
 /// as generation 0's path k.
-// Mirror of shaders/wavefront.wgsl::wavefront_camera, which takes AA none's source only so far — change both.
+// Mirror of shaders/wavefront.wgsl::wavefront_camera, which takes the Strata source (AA none's and uniform AA's) only so far — change both.
 fn camera_entry(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k: usize) {
     let g = &scene.globals;
     let (fx, fy, seed) = source.camera_sample(scene, k);
@@ -761,16 +761,30 @@ pub fn render_film(
             uniform,
         };
         let batch = trace_batch(scene, &source, counters);
-        let per_pixel = (n * n) as usize;
         for (p, &[x, y]) in chunk.iter().enumerate() {
-            let mut sum = Vec3::ZERO;
-            for c in &batch.samples.colour[p * per_pixel..(p + 1) * per_pixel] {
-                sum += *c;
-            }
-            film.set(x, y, (sum / (n * n) as f32).to_array());
+            film.set(x, y, resolve_pixel(scene, &batch, p).to_array());
         }
     }
     film
+}
+
+/// Pixel `p` of a batch of the Strata source with n² samples a pixel (n = 1 under AA
+/// none): its samples' colours (p·n² … p·n² + n² − 1) summed in sample order, divided by
+/// n² (`render::render_pixel`'s order).
+// Mirror of shaders/wavefront.wgsl::wavefront_resolve — change both.
+pub fn resolve_pixel(scene: &PackedScene, batch: &Batch, p: usize) -> Vec3 {
+    let g = &scene.globals;
+    let n = if g.aa_mode == AA_UNIFORM {
+        g.aa_samples
+    } else {
+        1
+    };
+    let per_pixel = (n * n) as usize;
+    let mut sum = Vec3::ZERO;
+    for c in &batch.samples.colour[p * per_pixel..(p + 1) * per_pixel] {
+        sum += *c;
+    }
+    sum / (n * n) as f32
 }
 
 #[cfg(test)]

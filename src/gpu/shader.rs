@@ -29,7 +29,8 @@ use crate::pack::SceneFeatures;
 pub enum Entry {
     /// `main`: AA none, one tile into the output buffer.
     Render,
-    /// `uniform_samples`, `uniform_resolve`: uniform AA's two passes.
+    /// `uniform_samples`, `uniform_resolve`: uniform AA's two passes (not in modules with
+    /// [`wavefront_kernels`], which trace uniform AA through them).
     UniformSamples,
     UniformResolve,
     /// `adaptive_corners`, `adaptive_decide`, `adaptive_midpoints`, `adaptive_integrate`,
@@ -40,14 +41,16 @@ pub enum Entry {
     AdaptiveIntegrate,
     AdaptiveWorkArgs,
     /// `wavefront_camera`, `wavefront_closest`, `wavefront_shade`, `wavefront_args`,
-    /// `wavefront_shadow`, `wavefront_gather`: AA none's kernels in the wavefront form
-    /// (`shaders/wavefront.wgsl`; only in modules with [`wavefront_kernels`]).
+    /// `wavefront_shadow`, `wavefront_gather`, `wavefront_resolve`: AA none's and uniform
+    /// AA's kernels in the wavefront form (`shaders/wavefront.wgsl`; only in modules with
+    /// [`wavefront_kernels`]).
     WavefrontCamera,
     WavefrontClosest,
     WavefrontShade,
     WavefrontArgs,
     WavefrontShadow,
     WavefrontGather,
+    WavefrontResolve,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
     /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`).
     ViewSample,
@@ -56,19 +59,25 @@ pub enum Entry {
 }
 
 impl Entry {
-    /// The wavefront kernels of AA none, in the order a generation dispatches them (after
-    /// the camera pass): the plan's `Mode::Wavefront` pipelines.
-    pub const WAVEFRONT: [Entry; 6] = [
+    /// The wavefront kernels: the camera pass, a generation's five in the order it
+    /// dispatches them, then uniform AA's resolve (AA none has no resolve): the plan's
+    /// `Mode::Wavefront` pipelines.
+    pub const WAVEFRONT: [Entry; 7] = [
         Entry::WavefrontCamera,
         Entry::WavefrontClosest,
         Entry::WavefrontShade,
         Entry::WavefrontArgs,
         Entry::WavefrontShadow,
         Entry::WavefrontGather,
+        Entry::WavefrontResolve,
     ];
 
+    /// The megakernel entries the wavefront kernels replace: not in modules with
+    /// [`wavefront_kernels`].
+    pub const REPLACED_BY_WAVEFRONT: [Entry; 2] = [Entry::UniformSamples, Entry::UniformResolve];
+
     /// Every entry point.
-    pub const ALL: [Entry; 16] = [
+    pub const ALL: [Entry; 17] = [
         Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
@@ -83,6 +92,7 @@ impl Entry {
         Entry::WavefrontArgs,
         Entry::WavefrontShadow,
         Entry::WavefrontGather,
+        Entry::WavefrontResolve,
         Entry::ViewSample,
         Entry::Probe,
     ];
@@ -104,6 +114,7 @@ impl Entry {
             Entry::WavefrontArgs => "wavefront_args",
             Entry::WavefrontShadow => "wavefront_shadow",
             Entry::WavefrontGather => "wavefront_gather",
+            Entry::WavefrontResolve => "wavefront_resolve",
             Entry::ViewSample => "view_sample",
             Entry::Probe => "probe",
         }
@@ -117,20 +128,19 @@ impl Entry {
     /// Whether the entry is one of the wavefront kernels (in the render module only with
     /// [`wavefront_kernels`]).
     pub fn is_wavefront(self) -> bool {
-        matches!(
-            self,
-            Entry::WavefrontCamera
-                | Entry::WavefrontClosest
-                | Entry::WavefrontShade
-                | Entry::WavefrontArgs
-                | Entry::WavefrontShadow
-                | Entry::WavefrontGather
-        )
+        Entry::WAVEFRONT.contains(&self)
     }
 
-    /// Whether the render module of `kernel` for `features` has this entry.
+    /// Whether the render module of `kernel` for `features` has this entry: the
+    /// wavefront kernels only with [`wavefront_kernels`], the megakernel entries they
+    /// replace only without.
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
-        !self.is_wavefront() || wavefront_kernels(kernel, features)
+        let wavefront = wavefront_kernels(kernel, features);
+        if self.is_wavefront() {
+            wavefront
+        } else {
+            !(wavefront && Entry::REPLACED_BY_WAVEFRONT.contains(&self))
+        }
     }
 }
 

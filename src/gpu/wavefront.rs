@@ -1,19 +1,25 @@
-//! Whether a render runs AA none through the wavefront kernels (`shaders/wavefront.wgsl`,
-//! twin of `cpu::wavefront`), and the shape the frame plan sizes their queues and
-//! dispatches by.
+//! Whether a render runs AA none or uniform AA through the wavefront kernels
+//! (`shaders/wavefront.wgsl`, twin of `cpu::wavefront`), and the shape the frame plan
+//! sizes their queues and dispatches by.
 
 use super::kernel::KernelConfig;
 use super::plan::WavefrontShape;
 use super::shader::wavefront_kernels;
-use crate::constants::AA_NONE;
+use crate::constants::{AA_NONE, AA_UNIFORM};
 use crate::cpu::wavefront::light_points;
 use crate::pack::{PackedScene, SceneFeatures};
 
 /// The wavefront kernels' shape for `scene` under `kernel`, where `kernel` runs them for
-/// it: AA none, a variant with `wavefront`, no refraction. None: the megakernel.
+/// it: AA none or uniform AA, a variant with `wavefront`, no refraction. None: the
+/// megakernel.
 pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
     let g = &scene.globals;
-    if g.aa_mode != AA_NONE || !wavefront_kernels(kernel, scene.features) {
+    let uniform = match g.aa_mode {
+        AA_NONE => None,
+        AA_UNIFORM => Some(g.aa_samples),
+        _ => return None,
+    };
+    if !wavefront_kernels(kernel, scene.features) {
         return None;
     }
     let generations = if scene.features.contains(SceneFeatures::REFLECTION) {
@@ -24,5 +30,6 @@ pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<Wave
     Some(WavefrontShape {
         light_points: light_points(scene),
         generations,
+        uniform,
     })
 }

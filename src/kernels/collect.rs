@@ -94,11 +94,15 @@ impl KernelSet {
                 if !entry.exists_in(kernel, features) {
                     continue;
                 }
-                // AA none runs the wavefront kernels instead of `main` where they exist.
-                let dispatched = if mode == Mode::None && wavefront_kernels(kernel, features) {
-                    entry.is_wavefront()
-                } else {
-                    mode.entries().contains(&entry)
+                // AA none and uniform AA run the wavefront kernels instead of `main` and
+                // uniform AA's passes where they exist (AA none without the resolve).
+                let wavefront = wavefront_kernels(kernel, features);
+                let dispatched = match mode {
+                    Mode::None if wavefront => {
+                        entry.is_wavefront() && entry != Entry::WavefrontResolve
+                    }
+                    Mode::Uniform { .. } if wavefront => entry.is_wavefront(),
+                    _ => mode.entries().contains(&entry),
                 };
                 self.add(&name, features, entry, dispatched, kernel, target)?;
             }

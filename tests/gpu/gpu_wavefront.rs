@@ -1,23 +1,27 @@
-//! The wavefront kernels (`shaders/wavefront.wgsl`, `KernelConfig::wavefront`: AA none in
-//! the hardware variant, scenes without refraction): naga validates them for every feature
-//! set that has them, the software variant's modules never include them, and rendered on
-//! lavapipe with `--kernel-variant hardware` they give the megakernel's image bit for bit
-//! (and so the CPU tracer's, within the GPU parity tolerance)
-//! on scenes with mirrors (several generations), area lights, textures and bump maps,
-//! smooth meshes, tori, meshes in grids and CSG.
+//! The wavefront kernels (`shaders/wavefront.wgsl`, `KernelConfig::wavefront`: AA none and
+//! uniform AA in the hardware variant, scenes without refraction): naga validates them for
+//! every feature set that has them (where the megakernel entries they replace are gone),
+//! the software variant's modules never include them, and rendered on lavapipe with
+//! `--kernel-variant hardware` they give the megakernel's image bit for bit (and so the
+//! CPU tracer's, within the GPU parity tolerance) on scenes with mirrors (several
+//! generations), area lights, textures and bump maps, smooth meshes, tori, meshes in
+//! grids and CSG.
 
 use crate::common;
 
 use common::{gpu_context, packed_from_file, packed_from_source};
+use glint::constants::AA_UNIFORM;
 use glint::gpu::shader::{all_feature_sets, assemble_with, validate, wavefront_kernels, Entry};
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelVariant};
 use glint::pack::{PackedScene, SceneFeatures};
+use glint::scene::bounded::AaSamples;
 use glint::scene::{AaMode, OptionOverrides};
 
-/// Every feature set: the hardware variant's render module has the six wavefront entry
-/// points, valid under naga, exactly where the scene has no refraction; the software
-/// variant's never mentions them (its modules are what they were before the wavefront
-/// kernels: the file is not even appended).
+/// Every feature set: the hardware variant's render module has the seven wavefront entry
+/// points, valid under naga, exactly where the scene has no refraction, and then not the
+/// megakernel entries they replace (uniform AA's two passes); the software variant's
+/// never mentions them (its modules are what they were before the wavefront kernels: the
+/// file is not even appended) and keeps every megakernel entry.
 #[test]
 fn wavefront_kernels_validate_where_they_exist() {
     let limits = wgpu::Limits::default();
@@ -51,6 +55,17 @@ fn wavefront_kernels_validate_where_they_exist() {
             );
             assert!(entry.exists_in(hardware, features) && !entry.exists_in(software, features));
         }
+        for entry in Entry::REPLACED_BY_WAVEFRONT {
+            assert!(
+                !module.entry_points.iter().any(|e| e.name == entry.name()),
+                "[{features}] {entry:?} is replaced"
+            );
+            assert!(!entry.exists_in(hardware, features) && entry.exists_in(software, features));
+            assert!(
+                soft.contains(&format!("fn {}(", entry.name())),
+                "[{features}]"
+            );
+        }
         validated += 1;
     }
     assert!(validated > 20, "only {validated} feature sets validated");
@@ -65,16 +80,27 @@ fn small() -> OptionOverrides {
     }
 }
 
+/// `small` under uniform n×n AA, smaller (n² samples a pixel).
+fn small_uniform(n: u32) -> OptionOverrides {
+    OptionOverrides {
+        width: Some(24),
+        height: Some(18),
+        aa: Some(AaMode::Uniform),
+        samples: Some(AaSamples::new(n.into()).unwrap()),
+        ..OptionOverrides::default()
+    }
+}
+
 /// scenes/csg.lua with its glass a mirror (CSG without refraction; the repository has no
 /// such scene).
-fn mirrored_csg() -> PackedScene {
+fn mirrored_csg(options: &OptionOverrides) -> PackedScene {
     let source = std::fs::read_to_string(common::root().join("scenes/csg.lua")).unwrap();
     assert!(source.contains("glass:set_refraction(1.5)"));
     let source = source.replace(
         "glass:set_refraction(1.5)",
         "glass:set_reflection(0.8, 0.8, 0.85)",
     );
-    packed_from_source(&source, &small()).remove(0)
+    packed_from_source(&source, options).remove(0)
 }
 
 /// `scene` on the hardware variant: through the wavefront kernels (one camera pass and
@@ -96,9 +122,11 @@ fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: &PackedScen
     } else {
         1
     };
+    // Uniform AA: the resolve pass, and the megakernel's two passes (samples, resolve).
+    let uniform = (scene.globals.aa_mode == AA_UNIFORM) as u64;
     assert_eq!(
         render.info.dispatches as u64,
-        render.info.tiles * (1 + 5 * generations as u64),
+        render.info.tiles * (1 + 5 * generations as u64 + uniform),
         "{name}: the wavefront's dispatches"
     );
     ctx.kernel = KernelConfig {
@@ -108,7 +136,11 @@ fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: &PackedScen
     let mega = render_gpu(ctx, scene, &GpuRenderOptions::default());
     ctx.kernel = hardware;
     let mega = mega.unwrap_or_else(|e| panic!("{name}: {e}"));
-    assert_eq!(mega.info.dispatches as u64, mega.info.tiles, "{name}: main");
+    assert_eq!(
+        mega.info.dispatches as u64,
+        mega.info.tiles * (1 + uniform),
+        "{name}: the megakernel's"
+    );
     let bits = |film: &glint::film::Film| -> Vec<[u32; 3]> {
         film.pixels.iter().map(|p| p.map(f32::to_bits)).collect()
     };
@@ -151,7 +183,34 @@ fn hardware_wavefront_renders_mains_image() {
         let scene = packed_from_file(&common::root().join(file), &small()).remove(0);
         assert_wavefront_matches(&mut ctx, file, &scene);
     }
-    let csg = mirrored_csg();
+    let csg = mirrored_csg(&small());
     assert!(csg.features.contains(SceneFeatures::CSG));
     assert_wavefront_matches(&mut ctx, "csg.lua with a mirror for glass", &csg);
+}
+
+/// Uniform AA (n = 1, 2, 3) on lavapipe with the hardware variant: the wavefront's
+/// strata, generations and resolve give the megakernel's uniform_samples +
+/// uniform_resolve image bit for bit, and the CPU's within the tolerance, on scenes with
+/// mirrors, area lights, textures and bump maps, smooth meshes and CSG.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_renders_uniform_aa_as_the_megakernel() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    let files = [
+        ("scenes/cs488/a4-2021plus/nonhier.lua", 2),
+        ("scenes/demo.lua", 2),
+        ("scenes/textures.lua", 3),
+        ("scenes/soft-shadows.lua", 3),
+        ("scenes/smooth.lua", 1),
+    ];
+    for (file, n) in files {
+        let options = small_uniform(n);
+        let scene = packed_from_file(&common::root().join(file), &options).remove(0);
+        assert_eq!(scene.globals.aa_mode, AA_UNIFORM);
+        assert_eq!(scene.globals.aa_samples, n);
+        assert_wavefront_matches(&mut ctx, &format!("{file} at {n}×{n}"), &scene);
+    }
+    let csg = mirrored_csg(&small_uniform(2));
+    assert_wavefront_matches(&mut ctx, "csg.lua with a mirror for glass at 2×2", &csg);
 }
