@@ -116,11 +116,12 @@ fn set_sample_flags(k: u32, flags: u32) {
     samples[2u * k + 1u].y = bitcast<f32>(flags);
 }
 
-// The camera pass, sample k = idx of the chunk: stratum k mod n² of chunk pixel k div n²
-// (row-major over size, at stride size.x), n = globals.aa_samples under uniform AA
-// (jittered), 1 under AA none (the pixel's centre): its record, and its camera ray as
-// generation 0's path k.
-// Mirror of the Strata source of src/cpu/wavefront.rs::camera_entry — change both.
+// The camera pass, sample k = idx of the chunk: in a render (tile.stratum = ALL_STRATA)
+// stratum k mod n² of chunk pixel k div n², in glint view's frame stratum tile.stratum of
+// chunk pixel k (pixels row-major over size, at stride size.x), n = globals.aa_samples
+// under uniform AA (jittered), 1 under AA none (the pixel's centre): its record, and its
+// camera ray as generation 0's path k.
+// Mirror of the Strata and Stratum sources of src/cpu/wavefront.rs::camera_entry — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let k = linear_index(id, groups);
@@ -132,8 +133,12 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     }
     let uniform = globals.aa_mode == AA_UNIFORM;
     let n = select(1u, globals.aa_samples, uniform);
-    let p = k / (n * n);
-    let s = k % (n * n);
+    var p = k;
+    var s = tile.stratum;
+    if s == ALL_STRATA {
+        p = k / (n * n);
+        s = k % (n * n);
+    }
     // src/cpu/render.rs::stratum_position (render.wgsl's uniform_sample).
     let x = tile.origin.x + p % tile.size.x;
     let y = tile.origin.y + p / tile.size.x;
@@ -474,9 +479,10 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
         total = samples[2u * k].xyz + entry.weight * colour;
     }
     samples[2u * k] = vec4<f32>(total, samples[2u * k].w);
-    // AA none: sample k is chunk pixel k (row-major over size, rows at stride side);
-    // uniform AA's pixels are wavefront_resolve's.
-    if globals.aa_mode != AA_UNIFORM {
+    // A render under AA none: sample k is chunk pixel k (row-major over size, rows at
+    // stride side); uniform AA's pixels are wavefront_resolve's, glint view's sums
+    // progressive.wgsl's wavefront_view_store's.
+    if globals.aa_mode != AA_UNIFORM && tile.stratum == ALL_STRATA {
         output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(total, 1.0);
     }
 }

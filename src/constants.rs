@@ -339,6 +339,9 @@ pub const VERTEX_UNLIT: u32 = 2;
 pub const SAMPLE_CAMERA_MIRROR: u32 = 1;
 pub const SAMPLE_FINE_DETAIL: u32 = 2;
 pub const SAMPLE_MIRRORS_CORNERS: u32 = 4;
+/// `GpuTile::stratum` of a render's chunk: its samples are every stratum of each pixel
+/// (glint view's frames give the one stratum instead).
+pub const ALL_STRATA: u32 = u32::MAX;
 
 /// The wavefront kernels' constants, emitted after the prelude only in modules that have
 /// those kernels (`gpu::shader::wavefront_kernels`), so the others stay as they were.
@@ -349,6 +352,7 @@ const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = &[
     ("SAMPLE_CAMERA_MIRROR", SAMPLE_CAMERA_MIRROR),
     ("SAMPLE_FINE_DETAIL", SAMPLE_FINE_DETAIL),
     ("SAMPLE_MIRRORS_CORNERS", SAMPLE_MIRRORS_CORNERS),
+    ("ALL_STRATA", ALL_STRATA),
 ];
 
 /// The WGSL constants of the wavefront kernels.

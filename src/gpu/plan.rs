@@ -12,7 +12,7 @@
 use super::buffers::GpuTile;
 use super::lists::LIST_BUDGET_BYTES;
 use super::shader::Entry;
-use crate::constants::{AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, GPU_FRAME_PARTS};
+use crate::constants::{AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, ALL_STRATA, GPU_FRAME_PARTS};
 use crate::pack::PackedGlobals;
 use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
 
@@ -350,6 +350,8 @@ impl FramePlan {
             level,
             items,
             sentinel,
+            stratum: ALL_STRATA,
+            _pad0: 0,
         };
         let linear = |items: u32| {
             let lanes = bounds.workgroup_side * bounds.workgroup_side;
@@ -441,6 +443,42 @@ impl FramePlan {
             }
         }
     }
+}
+
+/// `glint view`'s frame `stratum` of `band` through the wavefront kernels
+/// ([`Entry::WAVEFRONT_VIEW`]): AA none's camera pass and generations over the band's
+/// pixels, one sample each (its stratum `stratum`, every pass told so by
+/// [`GpuTile::stratum`]), then the store into the sums over the same samples.
+pub fn view_wavefront_dispatches(
+    band: Chunk,
+    shape: WavefrontShape,
+    stratum: u32,
+    sentinel: u32,
+    bounds: AdapterBounds,
+) -> Vec<Dispatch> {
+    let plan = FramePlan {
+        mode: Mode::Wavefront(WavefrontShape {
+            uniform: None,
+            ..shape
+        }),
+        chunks: vec![band],
+        parts: vec![0..1],
+        samples_len: 0,
+        split_len: 0,
+        work_levels: 0,
+        lists_len: 0,
+    };
+    let mut out = plan.dispatches(0, sentinel, bounds);
+    for d in &mut out {
+        d.params.stratum = stratum;
+    }
+    let camera = out[0];
+    out.push(Dispatch {
+        entry: Entry::WAVEFRONT_VIEW.len() - 1,
+        clears_work: false,
+        ..camera
+    });
+    out
 }
 
 /// Workgroups of `lanes` invocations of a one-dimensional kernel over `items`

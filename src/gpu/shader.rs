@@ -51,8 +51,13 @@ pub enum Entry {
     WavefrontShadow,
     WavefrontGather,
     WavefrontResolve,
+    /// `wavefront_view_store`: `glint view`'s frame through the wavefront kernels, each
+    /// sample added to its pixel's sum (`shaders/progressive.wgsl`; only in modules with
+    /// [`wavefront_kernels`]).
+    WavefrontViewStore,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
-    /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`).
+    /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`; not in modules
+    /// with [`wavefront_kernels`]).
     ViewSample,
     /// `probe`: test-only, traces rays from a buffer and reports hits.
     Probe,
@@ -72,12 +77,28 @@ impl Entry {
         Entry::WavefrontResolve,
     ];
 
+    /// `glint view`'s frame through the wavefront kernels: the camera pass, a
+    /// generation's five, then the store into the sums (`gpu/progressive.rs`'s pipelines).
+    pub const WAVEFRONT_VIEW: [Entry; 7] = [
+        Entry::WavefrontCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontGather,
+        Entry::WavefrontViewStore,
+    ];
+
     /// The megakernel entries the wavefront kernels replace: not in modules with
     /// [`wavefront_kernels`].
-    pub const REPLACED_BY_WAVEFRONT: [Entry; 2] = [Entry::UniformSamples, Entry::UniformResolve];
+    pub const REPLACED_BY_WAVEFRONT: [Entry; 3] = [
+        Entry::UniformSamples,
+        Entry::UniformResolve,
+        Entry::ViewSample,
+    ];
 
     /// Every entry point.
-    pub const ALL: [Entry; 17] = [
+    pub const ALL: [Entry; 18] = [
         Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
@@ -93,6 +114,7 @@ impl Entry {
         Entry::WavefrontShadow,
         Entry::WavefrontGather,
         Entry::WavefrontResolve,
+        Entry::WavefrontViewStore,
         Entry::ViewSample,
         Entry::Probe,
     ];
@@ -115,6 +137,7 @@ impl Entry {
             Entry::WavefrontShadow => "wavefront_shadow",
             Entry::WavefrontGather => "wavefront_gather",
             Entry::WavefrontResolve => "wavefront_resolve",
+            Entry::WavefrontViewStore => "wavefront_view_store",
             Entry::ViewSample => "view_sample",
             Entry::Probe => "probe",
         }
@@ -128,7 +151,7 @@ impl Entry {
     /// Whether the entry is one of the wavefront kernels (in the render module only with
     /// [`wavefront_kernels`]).
     pub fn is_wavefront(self) -> bool {
-        Entry::WAVEFRONT.contains(&self)
+        Entry::WAVEFRONT.contains(&self) || Entry::WAVEFRONT_VIEW.contains(&self)
     }
 
     /// Whether the render module of `kernel` for `features` has this entry: the

@@ -19,17 +19,28 @@ pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<Wave
         AA_UNIFORM => Some(g.aa_samples),
         _ => return None,
     };
+    Some(WavefrontShape {
+        uniform,
+        ..view_wavefront_shape(kernel, scene)?
+    })
+}
+
+/// The wavefront kernels' shape for `glint view`'s frames of `scene` under `kernel`,
+/// where `kernel` runs them for it (a variant with `wavefront`, no refraction): one
+/// sample a pixel a frame, whatever the AA mode (its strata are the frames). None:
+/// `view_sample`.
+pub fn view_wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
     if !wavefront_kernels(kernel, scene.features) {
         return None;
     }
     let generations = if scene.features.contains(SceneFeatures::REFLECTION) {
-        g.max_depth + 1
+        scene.globals.max_depth + 1
     } else {
         1
     };
     Some(WavefrontShape {
         light_points: light_points(scene),
         generations,
-        uniform,
+        uniform: None,
     })
 }

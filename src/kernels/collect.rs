@@ -98,10 +98,8 @@ impl KernelSet {
                 // uniform AA's passes where they exist (AA none without the resolve).
                 let wavefront = wavefront_kernels(kernel, features);
                 let dispatched = match mode {
-                    Mode::None if wavefront => {
-                        entry.is_wavefront() && entry != Entry::WavefrontResolve
-                    }
-                    Mode::Uniform { .. } if wavefront => entry.is_wavefront(),
+                    Mode::None if wavefront => Entry::WAVEFRONT[..6].contains(&entry),
+                    Mode::Uniform { .. } if wavefront => Entry::WAVEFRONT.contains(&entry),
                     _ => mode.entries().contains(&entry),
                 };
                 self.add(&name, features, entry, dispatched, kernel, target)?;

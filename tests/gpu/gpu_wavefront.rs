@@ -11,15 +11,19 @@ use crate::common;
 
 use common::{gpu_context, packed_from_file, packed_from_source};
 use glint::constants::AA_UNIFORM;
+use glint::cpu::wavefront::light_points;
+use glint::gpu::lists::LaneLists;
+use glint::gpu::progressive::{Progressive, SumBuffer};
 use glint::gpu::shader::{all_feature_sets, assemble_with, validate, wavefront_kernels, Entry};
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelVariant};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::bounded::AaSamples;
 use glint::scene::{AaMode, OptionOverrides};
 
-/// Every feature set: the hardware variant's render module has the seven wavefront entry
-/// points, valid under naga, exactly where the scene has no refraction, and then not the
-/// megakernel entries they replace (uniform AA's two passes); the software variant's
+/// Every feature set: the hardware variant's render module has the wavefront entry points
+/// (the renders' and the view's), valid under naga, exactly where the scene has no
+/// refraction, and then not the megakernel entries they replace (uniform AA's two passes,
+/// `view_sample`); the software variant's
 /// never mentions them (its modules are what they were before the wavefront kernels: the
 /// file is not even appended) and keeps every megakernel entry.
 #[test]
@@ -48,7 +52,7 @@ fn wavefront_kernels_validate_where_they_exist() {
             continue;
         }
         let module = validate(&hard, features).unwrap_or_else(|e| panic!("{e}"));
-        for entry in Entry::WAVEFRONT {
+        for entry in Entry::WAVEFRONT.into_iter().chain(Entry::WAVEFRONT_VIEW) {
             assert!(
                 module.entry_points.iter().any(|e| e.name == entry.name()),
                 "[{features}] {entry:?}"
@@ -213,4 +217,108 @@ fn hardware_wavefront_renders_uniform_aa_as_the_megakernel() {
     }
     let csg = mirrored_csg(&small_uniform(2));
     assert_wavefront_matches(&mut ctx, "csg.lua with a mirror for glass at 2×2", &csg);
+}
+
+/// `frames` frames of `glint view`'s progressive sums of `scene` on `ctx` (bands of one
+/// row each where `ctx`'s binding limit asks for them), read back; and whether they went
+/// through the wavefront kernels.
+fn view_sums(ctx: &GpuContext, scene: &PackedScene, frames: u32) -> (Vec<[f32; 4]>, bool, usize) {
+    let g = scene.globals;
+    let pixels = u64::from(g.width * g.height);
+    let sums = SumBuffer::new(ctx, pixels).unwrap();
+    let mut view = Progressive::new(ctx, scene, &sums).unwrap();
+    view.set_globals(ctx, &g);
+    for s in 0..frames {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        view.encode_sample(ctx, &mut encoder, s);
+        ctx.queue.submit([encoder.finish()]);
+    }
+    let read = sums.read(ctx, pixels).unwrap();
+    (read, view.runs_wavefront(), view.bands().len())
+}
+
+/// `glint view` on lavapipe with the hardware variant, where `view_sample` is not in the
+/// module: each frame's band after band through the wavefront kernels (the camera pass
+/// takes the frame's stratum of each pixel, the store adds each sample to its pixel's
+/// sum), and after n² frames (AA none: one) the sums are the megakernel `view_sample`'s
+/// bit for bit — uniform AA at 2×2 and 3×3 and AA none, on scenes with mirrors, area
+/// lights, textures and bump maps, and CSG. The binding limit is lowered to three rows'
+/// queues or lists, so that the window is many bands (each band's pixels at their own
+/// rows of the image's sums).
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_view_sums_are_view_samples() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    let hardware = ctx.kernel;
+    let none = OptionOverrides {
+        width: Some(24),
+        height: Some(18),
+        ..small()
+    };
+    let scenes = [
+        ("scenes/demo.lua", small_uniform(2)),
+        ("scenes/demo.lua", none.clone()),
+        ("scenes/textures.lua", small_uniform(2)),
+        ("scenes/soft-shadows.lua", small_uniform(3)),
+    ];
+    let mut cases: Vec<(String, PackedScene)> = scenes
+        .iter()
+        .map(|(file, o)| {
+            let scene = packed_from_file(&common::root().join(file), o).remove(0);
+            (file.to_string(), scene)
+        })
+        .collect();
+    cases.push((
+        "csg.lua with a mirror".into(),
+        mirrored_csg(&small_uniform(2)),
+    ));
+    for (name, scene) in &cases {
+        let g = scene.globals;
+        let frames = if g.aa_mode == AA_UNIFORM {
+            g.aa_samples * g.aa_samples
+        } else {
+            1
+        };
+        let name = format!("{name}, {frames} frames");
+        // Three rows' queues (14 + 2L vec4s a sample, L light points) or per-ray lists
+        // a binding, whichever is more.
+        let queues = (14 + 2 * u64::from(light_points(scene))) * 16;
+        let lists = 4 * u64::from(LaneLists::of(scene.features, hardware).words());
+        ctx.limits.max_storage_buffer_binding_size = 3 * u64::from(g.width) * queues.max(lists);
+        assert!(
+            Entry::ViewSample.exists_in(hardware, scene.features) == false,
+            "{name}"
+        );
+        let (wave, through_wavefront, bands) = view_sums(&ctx, scene, frames);
+        assert!(through_wavefront, "{name}");
+        assert!(bands > 1, "{name}: {bands} bands");
+        ctx.kernel = KernelConfig {
+            wavefront: false,
+            ..hardware
+        };
+        let (mega, through_wavefront, _) = view_sums(&ctx, scene, frames);
+        ctx.kernel = hardware;
+        assert!(!through_wavefront, "{name}: view_sample");
+        let bits = |sums: &[[f32; 4]]| -> Vec<[u32; 4]> {
+            sums.iter().map(|p| p.map(f32::to_bits)).collect()
+        };
+        let (wave, mega) = (bits(&wave), bits(&mega));
+        let differing: Vec<usize> = (0..mega.len()).filter(|&p| wave[p] != mega[p]).collect();
+        if let Some(&p) = differing.first() {
+            let w = g.width as usize;
+            panic!(
+                "{name}: {} sums differ from view_sample's; the first, ({}, {}), is {:?} through the wavefront, {:?} through view_sample",
+                differing.len(),
+                p % w,
+                p / w,
+                wave[p].map(f32::from_bits),
+                mega[p].map(f32::from_bits)
+            );
+        }
+        assert!(
+            wave.iter().all(|s| f32::from_bits(s[3]) == frames as f32),
+            "{name}"
+        );
+    }
 }

@@ -217,6 +217,7 @@ fn the_wavefront_kernels_of_every_scene_meet_the_navi21_budgets() {
         "wavefront_shadow",
         "wavefront_gather",
         "wavefront_resolve",
+        "wavefront_view_store",
     ]);
 }
 
