@@ -24,8 +24,9 @@
 //! invocation). Design and measurements: docs/journal/2026-12-02-wavefront-split-measured.md.
 //!
 //! Sample sources ([`SampleSource`]): AA none's pixel centres and uniform AA's jittered
-//! strata (whole films: [`render_film`]), adaptive AA's lattice points (a sample's colour
-//! and [`SampleHint`]: [`trace_batch`]).
+//! strata (whole films: [`render_film`]), one stratum of each pixel (`glint view`'s
+//! frames), adaptive AA's lattice points (a sample's colour and [`SampleHint`]:
+//! [`trace_batch`]).
 
 use super::dielectric::MediumStack;
 use super::hit::{Hit, TraversalCounters};
@@ -63,6 +64,14 @@ pub enum SampleSource<'a> {
         n: u32,
         uniform: bool,
     },
+    /// Stratum `s` of the n×n strata of each pixel of `pixels`, sample k being pixel k
+    /// (jittered when `uniform`): `glint view`'s frame s (`progressive::view_sample`).
+    Stratum {
+        pixels: &'a [[u32; 2]],
+        n: u32,
+        uniform: bool,
+        s: u32,
+    },
     /// Adaptive AA's lattice points (film positions before their jitter:
     /// `pixel_sample::lattice_sample`).
     Lattice { points: &'a [[f32; 2]] },
@@ -73,6 +82,7 @@ impl SampleSource<'_> {
     pub fn len(&self) -> usize {
         match *self {
             SampleSource::Strata { pixels, n, .. } => pixels.len() * (n * n) as usize,
+            SampleSource::Stratum { pixels, .. } => pixels.len(),
             SampleSource::Lattice { points } => points.len(),
         }
     }
@@ -88,6 +98,15 @@ impl SampleSource<'_> {
                 let per_pixel = (n * n) as usize;
                 let [x, y] = pixels[k / per_pixel];
                 stratum_position(scene, x, y, (k % per_pixel) as u32, n, uniform)
+            }
+            SampleSource::Stratum {
+                pixels,
+                n,
+                uniform,
+                s,
+            } => {
+                let [x, y] = pixels[k];
+                stratum_position(scene, x, y, s, n, uniform)
             }
             SampleSource::Lattice { points } => {
                 let [fx, fy] = points[k];
@@ -381,7 +400,7 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
 
 /// The camera pass's invocation for sample `k` of `source`: its seed, and its camera ray
 /// as generation 0's path k.
-// Mirror of shaders/wavefront.wgsl::wavefront_camera, which takes the Strata source (AA none's and uniform AA's) only so far — change both.
+// Mirror of shaders/wavefront.wgsl::wavefront_camera, which takes the Strata and Stratum sources (AA none's, uniform AA's, glint view's) only so far — change both.
 fn camera_entry(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k: usize) {
     let g = &scene.globals;
     let (fx, fy, seed) = source.camera_sample(scene, k);
