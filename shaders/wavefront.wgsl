@@ -1,6 +1,9 @@
 // wavefront.wgsl — the wavefront form of trace_ray for scenes without refraction (every
 // path a chain), in the hardware kernel variant (WAVEFRONT: src/gpu/shader.rs): a chunk's
-// samples go through kernels joined by queues instead of one megakernel. Per chunk,
+// samples go through kernels joined by queues instead of one megakernel. Its samples:
+// AA none's pixel centres, uniform AA's n² jittered strata a pixel (wavefront_resolve
+// averages them after the last generation), or one stratum a pixel, tile.stratum (glint
+// view's frame; progressive.wgsl's wavefront_view_store adds it to the sums). Per chunk,
 // wavefront_camera fills generation 0's path queue; per generation g (tile.level)
 // wavefront_closest traces each path to its hit, wavefront_shade shades each hit without
 // tracing (its own term, one shadow request per light point facing it with the point's
@@ -8,7 +11,7 @@
 // queue), wavefront_args turns the counters into the indirect workgroup counts of the
 // shadow pass and of the next generation, wavefront_shadow traces each request (any hit)
 // and zeroes the slot of a blocked one, and wavefront_gather sums each vertex's colour in
-// shade_phong's order into its sample's colour and the chunk's output.
+// shade_phong's order into its sample's colour (and, AA none, the chunk's output).
 // Queues are filled by atomicAdd in any order: every entry carries its sample, and every
 // sum runs in one invocation in the CPU's order, so the image is trace_ray's bit for bit.
 // The queues are structures of arrays in `samples` (render.wgsl; vec4 entries, regions
