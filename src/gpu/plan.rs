@@ -371,34 +371,14 @@ impl FramePlan {
         match self.mode {
             Mode::None => vec![run(0, params(0, 0), square)],
             Mode::Wavefront(shape) => {
-                // The camera pass starts the chunk (its counters cleared); per
-                // generation g closest, shade, args, shadow, gather — generation 0's over
-                // the chunk's samples, later ones' and every shadow pass's as the args
-                // kernel wrote them (24 bytes a generation: the next generation's, then
-                // this one's shadow pass); under uniform AA the resolve pass ends it.
+                // The camera pass starts the chunk (its counters cleared), the
+                // generations follow; under uniform AA the resolve pass ends it.
                 let n = w * h * shape.samples_per_pixel() as u32;
-                let mut out = vec![Dispatch {
+                let camera = Dispatch {
                     clears_work: true,
                     ..run(0, params(0, n), linear(n))
-                }];
-                for g in 0..shape.generations {
-                    let paths = match g {
-                        0 => linear(n),
-                        _ => Workgroups::Indirect(24 * (g as u64 - 1)),
-                    };
-                    out.push(run(1, params(g, n), paths));
-                    out.push(run(2, params(g, n), paths));
-                    out.push(Dispatch {
-                        writes_args: true,
-                        ..run(3, params(g, n), Workgroups::Direct(1, 1))
-                    });
-                    out.push(run(
-                        4,
-                        params(g, n),
-                        Workgroups::Indirect(24 * g as u64 + 12),
-                    ));
-                    out.push(run(5, params(g, n), paths));
-                }
+                };
+                let mut out = wavefront_generations(shape, camera);
                 if shape.uniform.is_some() {
                     out.push(run(6, params(0, n), square));
                 }
@@ -445,10 +425,45 @@ impl FramePlan {
     }
 }
 
+/// The wavefront kernels' dispatches of a chunk after its `camera` pass (which they
+/// copy the chunk, items and stratum of): per generation g closest, shade, args, shadow,
+/// gather — generation 0's over the chunk's samples as the camera pass, later ones' and
+/// every shadow pass's as the args kernel wrote them (24 bytes a generation: the next
+/// generation's, then this one's shadow pass).
+fn wavefront_generations(shape: WavefrontShape, camera: Dispatch) -> Vec<Dispatch> {
+    let mut out = vec![camera];
+    for g in 0..shape.generations {
+        let pass = |entry: usize, workgroups: Workgroups| Dispatch {
+            entry,
+            params: GpuTile {
+                level: g,
+                ..camera.params
+            },
+            workgroups,
+            clears_work: false,
+            writes_args: false,
+            ..camera
+        };
+        let paths = match g {
+            0 => camera.workgroups,
+            _ => Workgroups::Indirect(24 * (g as u64 - 1)),
+        };
+        out.push(pass(1, paths));
+        out.push(pass(2, paths));
+        out.push(Dispatch {
+            writes_args: true,
+            ..pass(3, Workgroups::Direct(1, 1))
+        });
+        out.push(pass(4, Workgroups::Indirect(24 * g as u64 + 12)));
+        out.push(pass(5, paths));
+    }
+    out
+}
+
 /// `glint view`'s frame `stratum` of `band` through the wavefront kernels
-/// ([`Entry::WAVEFRONT_VIEW`]): AA none's camera pass and generations over the band's
-/// pixels, one sample each (its stratum `stratum`, every pass told so by
-/// [`GpuTile::stratum`]), then the store into the sums over the same samples.
+/// ([`Entry::WAVEFRONT_VIEW`]): the camera pass over the band's pixels, one sample each
+/// (its stratum `stratum`, every pass told so by [`GpuTile::stratum`]), the
+/// generations, then the store into the sums over the same samples.
 pub fn view_wavefront_dispatches(
     band: Chunk,
     shape: WavefrontShape,
@@ -456,23 +471,27 @@ pub fn view_wavefront_dispatches(
     sentinel: u32,
     bounds: AdapterBounds,
 ) -> Vec<Dispatch> {
-    let plan = FramePlan {
-        mode: Mode::Wavefront(WavefrontShape {
-            uniform: None,
-            ..shape
-        }),
-        chunks: vec![band],
-        parts: vec![0..1],
-        samples_len: 0,
-        split_len: 0,
-        work_levels: 0,
-        lists_len: 0,
+    let items = band.size[0] * band.size[1];
+    let lanes = bounds.workgroup_side * bounds.workgroup_side;
+    let (x, y) = linear_workgroups(items, lanes, bounds.max_workgroups);
+    let camera = Dispatch {
+        entry: 0,
+        chunk: 0,
+        params: GpuTile {
+            origin: band.origin,
+            size: band.size,
+            side: band.side,
+            level: 0,
+            items,
+            sentinel,
+            stratum,
+            _pad0: 0,
+        },
+        workgroups: Workgroups::Direct(x, y),
+        clears_work: true,
+        writes_args: false,
     };
-    let mut out = plan.dispatches(0, sentinel, bounds);
-    for d in &mut out {
-        d.params.stratum = stratum;
-    }
-    let camera = out[0];
+    let mut out = wavefront_generations(shape, camera);
     out.push(Dispatch {
         entry: Entry::WAVEFRONT_VIEW.len() - 1,
         clears_work: false,
@@ -743,6 +762,49 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `glint view`'s frame s of a band through the wavefront kernels: the camera pass
+    /// over the band's pixels (one sample each), every generation's five passes, then the
+    /// store over the same samples; every pass carries the frame's stratum.
+    #[test]
+    fn a_view_frame_samples_one_stratum_a_pixel_then_stores() {
+        let shape = WavefrontShape {
+            light_points: 3,
+            generations: 4,
+            uniform: Some(3),
+        };
+        let band = bands(PixelRect::full(37, 5), 5, 1)[0];
+        let d = view_wavefront_dispatches(band, shape, 7, 2, LAVAPIPE);
+        assert_eq!(d.len(), 2 + 5 * shape.generations as usize);
+        let entries: Vec<usize> = d.iter().map(|d| d.entry).collect();
+        let mut expected = vec![0];
+        for _ in 0..shape.generations {
+            expected.extend([1, 2, 3, 4, 5]);
+        }
+        expected.push(6);
+        assert_eq!(entries, expected);
+        assert_eq!(Entry::WAVEFRONT_VIEW[6], Entry::WavefrontViewStore);
+        assert!(d
+            .iter()
+            .all(|d| d.params.stratum == 7 && d.params.items == 37 * 5));
+        assert_eq!(
+            d[4].workgroups,
+            Workgroups::Indirect(12),
+            "generation 0's shadows"
+        );
+        assert_eq!(
+            d[6].workgroups,
+            Workgroups::Indirect(0),
+            "generation 1's paths"
+        );
+        let (camera, store) = (d[0], d[d.len() - 1]);
+        assert_eq!(camera.workgroups, Workgroups::Direct(3, 1));
+        assert_eq!(
+            (store.workgroups, store.params),
+            (camera.workgroups, camera.params)
+        );
+        assert!(camera.clears_work && !store.clears_work);
     }
 
     /// The five counters (three path counters, two shadow counters) fit `work_counts`.
