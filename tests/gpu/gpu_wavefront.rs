@@ -287,7 +287,7 @@ fn hardware_wavefront_view_sums_are_view_samples() {
         let lists = 4 * u64::from(LaneLists::of(scene.features, hardware).words());
         ctx.limits.max_storage_buffer_binding_size = 3 * u64::from(g.width) * queues.max(lists);
         assert!(
-            Entry::ViewSample.exists_in(hardware, scene.features) == false,
+            !Entry::ViewSample.exists_in(hardware, scene.features),
             "{name}"
         );
         let (wave, through_wavefront, bands) = view_sums(&ctx, scene, frames);
