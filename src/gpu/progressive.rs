@@ -185,8 +185,12 @@ impl Progressive {
         let full_bands = view_bands(g.width, g.height, bounds);
         let wavefront = match shape {
             Some(shape) => {
-                let pixels = full_bands.iter().map(Chunk::block_pixels).max();
-                let band_pixels = pixels.unwrap_or(1);
+                // A preview's narrower rows may make a band of more pixels than the
+                // full image's widest, up to what one binding of queues holds.
+                let widest = full_bands.iter().map(Chunk::block_pixels).max();
+                let queues = bounds.max_binding / (shape.vec4s_per_sample() * 16);
+                let pixels = u64::from(g.width) * u64::from(g.height);
+                let band_pixels = widest.unwrap_or(1).max(queues.min(pixels));
                 Some(ViewWavefront::new(ctx, scene.features, shape, band_pixels)?)
             }
             None => None,

@@ -116,6 +116,8 @@ impl ViewWavefront {
         bounds: AdapterBounds,
         with: ViewBindings,
     ) {
+        let queue_bytes = |band: &Chunk| band.block_pixels() * self.shape.vec4s_per_sample() * 16;
+        debug_assert!(bands.iter().all(|b| queue_bytes(b) <= self.samples.size()));
         let all = self.dispatches(bands, ALL_STRATA, 0, bounds);
         let count: u64 = all.iter().map(|d| d.len() as u64).sum();
         if self.records.size() < count * self.stride {

@@ -219,14 +219,24 @@ fn hardware_wavefront_renders_uniform_aa_as_the_megakernel() {
     assert_wavefront_matches(&mut ctx, "csg.lua with a mirror for glass at 2×2", &csg);
 }
 
-/// `frames` frames of `glint view`'s progressive sums of `scene` on `ctx` (bands of one
-/// row each where `ctx`'s binding limit asks for them), read back; and whether they went
-/// through the wavefront kernels.
+/// `frames` frames of `glint view`'s progressive sums of `scene` on `ctx` (in bands
+/// where `ctx`'s binding limit asks for them), after a frame of a preview at a third of
+/// the size (the view's narrower rows: bands of more pixels), read back; and whether they
+/// went through the wavefront kernels, in how many bands.
 fn view_sums(ctx: &GpuContext, scene: &PackedScene, frames: u32) -> (Vec<[f32; 4]>, bool, usize) {
     let g = scene.globals;
     let pixels = u64::from(g.width * g.height);
     let sums = SumBuffer::new(ctx, pixels).unwrap();
     let mut view = Progressive::new(ctx, scene, &sums).unwrap();
+    let preview = glint::pack::PackedGlobals {
+        width: g.width.div_ceil(3),
+        height: g.height.div_ceil(3),
+        ..g
+    };
+    view.set_globals(ctx, &preview);
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    view.encode_sample(ctx, &mut encoder, 0);
+    ctx.queue.submit([encoder.finish()]);
     view.set_globals(ctx, &g);
     for s in 0..frames {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
