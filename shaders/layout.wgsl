@@ -158,6 +158,11 @@ struct GpuTile {
     items: u32,
     // Iterations of the loop-limiter check (always 2; see render.wgsl).
     sentinel: u32,
+// #if WAVEFRONT
+    // The wavefront camera pass's stratum of each chunk pixel (glint view's frame), or
+    // ALL_STRATA: every stratum of each (a render's chunk).
+    stratum: u32,
+// #endif
 }
 
 // The packed scene: the globals, and every array as a table: a texture 2^TABLE_ROW_BITS

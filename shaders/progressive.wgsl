@@ -1,3 +1,26 @@
+// #if WAVEFRONT
+// glint view's frame tile.stratum in the hardware variant, after the wavefront kernels'
+// generations over the band (src/gpu/progressive.rs; the camera pass took stratum
+// tile.stratum of each band pixel, sample k = band pixel k): the sample's colour added
+// to the pixel's running sum in `output` (the image's, row-major at the globals' width)
+// as view_sample adds it, so the sums are view_sample's bit for bit.
+// Mirror of the sum of src/cpu/progressive.rs::view_sample — change both.
+@compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
+fn wavefront_view_store(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let k = linear_index(id, groups);
+    if k >= tile.items {
+        return;
+    }
+    let s = tile.stratum;
+    let p = (tile.origin.y + k / tile.size.x) * globals.width + tile.origin.x + k % tile.size.x;
+    var before = vec3<f32>(0.0);
+    if s != 0u {
+        before = output[p].xyz;
+    }
+    let total = before + samples[2u * k].xyz;
+    output[p] = vec4<f32>(total, f32(s + 1u));
+}
+// #else
 // glint view's progressive refinement (src/gpu/progressive.rs dispatches it): frame k
 // adds sample k (tile.level) of each pixel's n×n jittered pattern to the pixel's running
 // sum in `output`, whose fourth component counts the samples; after n² frames the sum is
@@ -36,3 +59,4 @@ fn view_sample(@builtin(global_invocation_id) id: vec3<u32>) {
 // #endif
     output[p] = vec4<f32>(total, f32(s + 1u));
 }
+// #endif

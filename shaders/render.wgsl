@@ -100,6 +100,10 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
 // #endif
 }
 
+// #if WAVEFRONT
+// Uniform AA: the wavefront kernels' strata (wavefront.wgsl's camera pass) and
+// wavefront_resolve, in place of the two passes below.
+// #else
 // Uniform AA, pass 1: sample (idx mod n², idx div n² as a tile pixel, row-major over the
 // tile's size) of the tile into samples[(pixel's row-major index at stride tile.side)·n²
 // + s].
@@ -141,3 +145,4 @@ fn uniform_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     output[q] = vec4<f32>(sum / f32(nn), 1.0);
 }
+// #endif

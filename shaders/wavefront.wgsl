@@ -1,6 +1,9 @@
 // wavefront.wgsl — the wavefront form of trace_ray for scenes without refraction (every
 // path a chain), in the hardware kernel variant (WAVEFRONT: src/gpu/shader.rs): a chunk's
-// samples go through kernels joined by queues instead of one megakernel. Per chunk,
+// samples go through kernels joined by queues instead of one megakernel. Its samples:
+// AA none's pixel centres, uniform AA's n² jittered strata a pixel (wavefront_resolve
+// averages them after the last generation), or one stratum a pixel, tile.stratum (glint
+// view's frame; progressive.wgsl's wavefront_view_store adds it to the sums). Per chunk,
 // wavefront_camera fills generation 0's path queue; per generation g (tile.level)
 // wavefront_closest traces each path to its hit, wavefront_shade shades each hit without
 // tracing (its own term, one shadow request per light point facing it with the point's
@@ -8,7 +11,7 @@
 // queue), wavefront_args turns the counters into the indirect workgroup counts of the
 // shadow pass and of the next generation, wavefront_shadow traces each request (any hit)
 // and zeroes the slot of a blocked one, and wavefront_gather sums each vertex's colour in
-// shade_phong's order into its sample's colour and the chunk's output.
+// shade_phong's order into its sample's colour (and, AA none, the chunk's output).
 // Queues are filled by atomicAdd in any order: every entry carries its sample, and every
 // sum runs in one invocation in the CPU's order, so the image is trace_ray's bit for bit.
 // The queues are structures of arrays in `samples` (render.wgsl; vec4 entries, regions
@@ -116,9 +119,12 @@ fn set_sample_flags(k: u32, flags: u32) {
     samples[2u * k + 1u].y = bitcast<f32>(flags);
 }
 
-// The camera pass, sample k = idx of the chunk (AA none: its pixel's centre, at stride
-// size.x): its record, and its camera ray as generation 0's path k.
-// Mirror of the AA-none source (n = 1, not jittered) of src/cpu/wavefront.rs::camera_entry — change both.
+// The camera pass, sample k = idx of the chunk: in a render (tile.stratum = ALL_STRATA)
+// stratum k mod n² of chunk pixel k div n², in glint view's frame stratum tile.stratum of
+// chunk pixel k (pixels row-major over size, at stride size.x), n = globals.aa_samples
+// under uniform AA (jittered), 1 under AA none (the pixel's centre): its record, and its
+// camera ray as generation 0's path k.
+// Mirror of the Strata and Stratum sources of src/cpu/wavefront.rs::camera_entry — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let k = linear_index(id, groups);
@@ -128,14 +134,24 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     if k >= tile.items {
         return;
     }
-    // src/cpu/render.rs::stratum_position with n = 1, not jittered (AA none).
-    let x = tile.origin.x + k % tile.size.x;
-    let y = tile.origin.y + k / tile.size.x;
+    let uniform = globals.aa_mode == AA_UNIFORM;
+    let n = select(1u, globals.aa_samples, uniform);
+    var p = k;
+    var s = tile.stratum;
+    if s == ALL_STRATA {
+        p = k / (n * n);
+        s = k % (n * n);
+    }
+    // src/cpu/render.rs::stratum_position (render.wgsl's uniform_sample).
+    let x = tile.origin.x + p % tile.size.x;
+    let y = tile.origin.y + p / tile.size.x;
     let pixel = y * globals.width + x;
-    let n = 1u;
-    let s = 0u;
-    let jx = 0.5;
-    let jy = 0.5;
+    var jx = 0.5;
+    var jy = 0.5;
+    if uniform {
+        jx = random_unit(pixel, s, 0u);
+        jy = random_unit(pixel, s, 1u);
+    }
     let fx = f32(x) + (f32(s % n) + jx) / f32(n);
     let fy = f32(y) + (f32(s / n) + jy) / f32(n);
     let seed = SampleSeed(pixel, s, 0u, false);
@@ -466,10 +482,30 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
         total = samples[2u * k].xyz + entry.weight * colour;
     }
     samples[2u * k] = vec4<f32>(total, samples[2u * k].w);
-    // AA none: sample k is chunk pixel k (row-major over size, rows at stride side).
-    // (Adaptive AA's lattice passes store their samples' colours: wavefront_lattice.wgsl.)
-    if globals.aa_mode != AA_ADAPTIVE {
+    // A render under AA none: sample k is chunk pixel k (row-major over size, rows at
+    // stride side); uniform AA's pixels are wavefront_resolve's, adaptive AA's lattice
+    // points wavefront_lattice.wgsl's wavefront_lattice_store's, glint view's sums
+    // progressive.wgsl's wavefront_view_store's.
+    if globals.aa_mode == AA_NONE && tile.stratum == ALL_STRATA {
         output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(total, 1.0);
     }
+}
+
+// Uniform AA, after the chunk's last generation: each chunk pixel's mean over its n²
+// samples' colours (pixel p's samples are p·n² … p·n² + n² − 1), summed in sample order
+// and divided by n² as render.wgsl's uniform_resolve does (the megakernel's image).
+// Mirror of src/cpu/wavefront.rs::resolve_pixel — change both.
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
+fn wavefront_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= tile.size.x || id.y >= tile.size.y {
+        return;
+    }
+    let nn = globals.aa_samples * globals.aa_samples;
+    let first = (id.y * tile.size.x + id.x) * nn;
+    var sum = vec3<f32>(0.0);
+    for (var s = 0u; s < nn; s++) {
+        sum += samples[2u * (first + s)].xyz;
+    }
+    output[id.y * tile.side + id.x] = vec4<f32>(sum / f32(nn), 1.0);
 }
 // #endif

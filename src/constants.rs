@@ -344,6 +344,9 @@ pub const SAMPLE_MIRRORS_CORNERS: u32 = 4;
 /// level's of adaptive AA, at MAX_AA_DEPTH at most 6 counters and 144 bytes of arguments,
 /// and a storage-binding offset every adapter accepts): see shaders/wavefront_lattice.wgsl.
 pub const WAVEFRONT_WORK_BASE: u32 = 64;
+/// `GpuTile::stratum` of a render's chunk: its samples are every stratum of each pixel
+/// (glint view's frames give the one stratum instead).
+pub const ALL_STRATA: u32 = u32::MAX;
 
 /// The wavefront kernels' constants, emitted after the prelude only in modules that have
 /// those kernels (`gpu::shader::wavefront_kernels`), so the others stay as they were.
@@ -355,6 +358,7 @@ const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = &[
     ("SAMPLE_FINE_DETAIL", SAMPLE_FINE_DETAIL),
     ("SAMPLE_MIRRORS_CORNERS", SAMPLE_MIRRORS_CORNERS),
     ("WAVEFRONT_WORK_BASE", WAVEFRONT_WORK_BASE),
+    ("ALL_STRATA", ALL_STRATA),
 ];
 
 /// The WGSL constants of the wavefront kernels.

@@ -24,8 +24,9 @@
 //! invocation). Design and measurements: docs/journal/2026-12-02-wavefront-split-measured.md.
 //!
 //! Sample sources ([`SampleSource`]): AA none's pixel centres and uniform AA's jittered
-//! strata (whole films: [`render_film`]), adaptive AA's lattice points (a sample's colour
-//! and [`SampleHint`]: [`trace_batch`]).
+//! strata (whole films: [`render_film`]), one stratum of each pixel (`glint view`'s
+//! frames), adaptive AA's lattice points (a sample's colour and [`SampleHint`]:
+//! [`trace_batch`]).
 
 use super::dielectric::MediumStack;
 use super::hit::{Hit, TraversalCounters};
@@ -63,6 +64,14 @@ pub enum SampleSource<'a> {
         n: u32,
         uniform: bool,
     },
+    /// Stratum `s` of the n×n strata of each pixel of `pixels`, sample k being pixel k
+    /// (jittered when `uniform`): `glint view`'s frame s (`progressive::view_sample`).
+    Stratum {
+        pixels: &'a [[u32; 2]],
+        n: u32,
+        uniform: bool,
+        s: u32,
+    },
     /// Adaptive AA's lattice points (film positions before their jitter:
     /// `pixel_sample::lattice_sample`).
     Lattice { points: &'a [[f32; 2]] },
@@ -73,6 +82,7 @@ impl SampleSource<'_> {
     pub fn len(&self) -> usize {
         match *self {
             SampleSource::Strata { pixels, n, .. } => pixels.len() * (n * n) as usize,
+            SampleSource::Stratum { pixels, .. } => pixels.len(),
             SampleSource::Lattice { points } => points.len(),
         }
     }
@@ -88,6 +98,15 @@ impl SampleSource<'_> {
                 let per_pixel = (n * n) as usize;
                 let [x, y] = pixels[k / per_pixel];
                 stratum_position(scene, x, y, (k % per_pixel) as u32, n, uniform)
+            }
+            SampleSource::Stratum {
+                pixels,
+                n,
+                uniform,
+                s,
+            } => {
+                let [x, y] = pixels[k];
+                stratum_position(scene, x, y, s, n, uniform)
             }
             SampleSource::Lattice { points } => {
                 let [fx, fy] = points[k];
@@ -381,7 +400,7 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
 
 /// The camera pass's invocation for sample `k` of `source`: its seed, and its camera ray
 /// as generation 0's path k.
-// Mirror of shaders/wavefront.wgsl::wavefront_camera, which takes AA none's source only so far — change both.
+// Mirror of shaders/wavefront.wgsl::wavefront_camera, which takes the Strata and Stratum sources (AA none's, uniform AA's, glint view's) only so far — change both.
 fn camera_entry(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k: usize) {
     let g = &scene.globals;
     let (fx, fy, seed) = source.camera_sample(scene, k);
@@ -761,16 +780,30 @@ pub fn render_film(
             uniform,
         };
         let batch = trace_batch(scene, &source, counters);
-        let per_pixel = (n * n) as usize;
         for (p, &[x, y]) in chunk.iter().enumerate() {
-            let mut sum = Vec3::ZERO;
-            for c in &batch.samples.colour[p * per_pixel..(p + 1) * per_pixel] {
-                sum += *c;
-            }
-            film.set(x, y, (sum / (n * n) as f32).to_array());
+            film.set(x, y, resolve_pixel(scene, &batch, p).to_array());
         }
     }
     film
+}
+
+/// Pixel `p` of a batch of the Strata source with n² samples a pixel (n = 1 under AA
+/// none): its samples' colours (p·n² … p·n² + n² − 1) summed in sample order, divided by
+/// n² (`render::render_pixel`'s order).
+// Mirror of shaders/wavefront.wgsl::wavefront_resolve — change both.
+pub fn resolve_pixel(scene: &PackedScene, batch: &Batch, p: usize) -> Vec3 {
+    let g = &scene.globals;
+    let n = if g.aa_mode == AA_UNIFORM {
+        g.aa_samples
+    } else {
+        1
+    };
+    let per_pixel = (n * n) as usize;
+    let mut sum = Vec3::ZERO;
+    for c in &batch.samples.colour[p * per_pixel..(p + 1) * per_pixel] {
+        sum += *c;
+    }
+    sum / (n * n) as f32
 }
 
 #[cfg(test)]

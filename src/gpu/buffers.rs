@@ -33,6 +33,12 @@ pub struct GpuTile {
     pub items: u32,
     /// Iterations of the loop-limiter check ([`LIMITER_SENTINEL`]).
     pub sentinel: u32,
+    /// The wavefront kernels' (the WGSL struct has the field only in modules with them):
+    /// the camera pass's stratum of each chunk pixel (`glint view`'s frame), or
+    /// [`ALL_STRATA`](crate::constants::ALL_STRATA): every stratum of each (a render).
+    pub stratum: u32,
+    /// To the WGSL struct's size (its vec2 members align it to 8 bytes).
+    pub _pad0: u32,
 }
 
 /// `GpuTile::sentinel`: the loop-limiter check runs a loop of this many iterations; it

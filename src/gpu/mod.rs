@@ -20,6 +20,7 @@ pub mod scratch;
 pub mod shader;
 pub mod spirv;
 pub mod tables;
+pub mod view_wavefront;
 pub mod wavefront;
 
 pub use context::{list_adapters, AdapterSummary, GpuContext};

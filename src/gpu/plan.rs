@@ -13,7 +13,7 @@ use super::buffers::GpuTile;
 use super::lists::LIST_BUDGET_BYTES;
 use super::shader::Entry;
 use crate::constants::{
-    AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, GPU_FRAME_PARTS, WAVEFRONT_WORK_BASE,
+    AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, ALL_STRATA, GPU_FRAME_PARTS, WAVEFRONT_WORK_BASE,
 };
 use crate::pack::PackedGlobals;
 use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
@@ -28,7 +28,7 @@ pub enum Mode {
     Adaptive {
         depth: u32,
     },
-    /// AA none through the wavefront kernels (`shaders/wavefront.wgsl`).
+    /// AA none or uniform AA through the wavefront kernels (`shaders/wavefront.wgsl`).
     Wavefront(WavefrontShape),
     /// Adaptive AA with its corner and midpoint passes through the wavefront kernels
     /// (`shaders/wavefront_lattice.wgsl`): the lattice, then the queues, in `samples`.
@@ -39,15 +39,23 @@ pub enum Mode {
 }
 
 /// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
-/// vertex's light slots: `cpu::wavefront::light_points`) and the generations a path may
-/// have (max_depth + 1 with mirrors, else 1).
+/// vertex's light slots: `cpu::wavefront::light_points`), the generations a path may
+/// have (max_depth + 1 with mirrors, else 1) and the AA mode's strata.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct WavefrontShape {
     pub light_points: u32,
     pub generations: u32,
+    /// Uniform AA's n: a chunk's samples are n² strata a pixel, averaged by the resolve
+    /// pass. None: AA none, a pixel's centre, stored by the gather pass.
+    pub uniform: Option<u32>,
 }
 
 impl WavefrontShape {
+    /// Samples a pixel: n² under uniform AA, else 1.
+    pub fn samples_per_pixel(self) -> u64 {
+        self.uniform.map_or(1, |n| (n * n) as u64)
+    }
+
     /// vec4 entries of the queues a sample of a chunk takes (`shaders/wavefront.wgsl`'s
     /// regions): its record (2), two path queues (4 each), a hit (2), a vertex (2), its
     /// light slots and shadow requests (L each).
@@ -79,6 +87,8 @@ impl Mode {
                 Entry::AdaptiveIntegrate,
                 Entry::AdaptiveWorkArgs,
             ],
+            // AA none's gather stores its pixels: no resolve.
+            Mode::Wavefront(shape) if shape.uniform.is_none() => &Entry::WAVEFRONT[..6],
             Mode::Wavefront(_) => &Entry::WAVEFRONT,
             Mode::AdaptiveWavefront { .. } => &Entry::ADAPTIVE_WAVEFRONT,
         }
@@ -306,8 +316,13 @@ impl FramePlan {
     pub fn for_window(g: &PackedGlobals, bounds: AdapterBounds, window: PixelRect) -> FramePlan {
         let (w, h) = (window.width(), window.height());
         let mode = match (Mode::of(g), bounds.wavefront) {
-            (Mode::None, Some(shape)) => Mode::Wavefront(shape),
-            (Mode::Adaptive { depth }, Some(shape)) => Mode::AdaptiveWavefront { depth, shape },
+            (Mode::None, Some(shape)) if shape.uniform.is_none() => Mode::Wavefront(shape),
+            (Mode::Uniform { n }, Some(shape)) if shape.uniform == Some(n) => {
+                Mode::Wavefront(shape)
+            }
+            (Mode::Adaptive { depth }, Some(shape)) if shape.uniform.is_none() => {
+                Mode::AdaptiveWavefront { depth, shape }
+            }
             (mode, _) => mode,
         };
         // Rows a band may have: its pixels must fit a 2-D dispatch and its output block
@@ -330,16 +345,18 @@ impl FramePlan {
                 1,
             ),
             Mode::Wavefront(shape) => {
-                // Rows whose queues fit one binding.
-                let per_row = w as u64 * shape.vec4s_per_sample() * 16;
+                // Rows whose queues (of every sample of every pixel) fit one binding, and
+                // whose samples each have a list slot.
+                let per_pixel = shape.samples_per_pixel();
+                let per_row = w as u64 * per_pixel * shape.vec4s_per_sample() * 16;
                 let queue_rows = (bounds.max_binding / per_row).clamp(1, u32::MAX as u64) as u32;
                 let rows = dispatch_rows
                     .min(block_rows)
-                    .min(slot_rows(1))
+                    .min(slot_rows(per_pixel))
                     .min(queue_rows);
                 let chunks = bands(window, rows, parts as u32);
                 let pixels = chunks.iter().map(|c| c.block_pixels()).max().unwrap_or(1);
-                (chunks, shape.vec4s_per_sample() * pixels, 1)
+                (chunks, shape.vec4s_per_sample() * per_pixel * pixels, 1)
             }
             Mode::Uniform { n } => {
                 let per_row = w as u64 * (n * n) as u64;
@@ -380,7 +397,8 @@ impl FramePlan {
             _ => 1,
         };
         let chunk_slots = |c: &Chunk| match mode {
-            Mode::None | Mode::Wavefront(_) => c.block_pixels(),
+            Mode::None => c.block_pixels(),
+            Mode::Wavefront(shape) => c.block_pixels() * shape.samples_per_pixel(),
             Mode::Uniform { n } => c.size[0] as u64 * c.size[1] as u64 * (n * n) as u64,
             Mode::Adaptive { depth } | Mode::AdaptiveWavefront { depth, .. } => {
                 adaptive_slots(c.size[0], c.size[1], c.side, depth)
@@ -414,6 +432,8 @@ impl FramePlan {
             level,
             items,
             sentinel,
+            stratum: ALL_STRATA,
+            _pad0: 0,
         };
         let linear = |items: u32| {
             let lanes = bounds.workgroup_side * bounds.workgroup_side;
@@ -434,33 +454,16 @@ impl FramePlan {
         match self.mode {
             Mode::None => vec![run(0, params(0, 0), square)],
             Mode::Wavefront(shape) => {
-                // The camera pass starts the chunk (its counters cleared); per
-                // generation g closest, shade, args, shadow, gather — generation 0's over
-                // the chunk's samples, later ones' and every shadow pass's as the args
-                // kernel wrote them (24 bytes a generation: the next generation's, then
-                // this one's shadow pass).
-                let n = w * h;
-                let mut out = vec![Dispatch {
+                // The camera pass starts the chunk (its counters cleared), the
+                // generations follow; under uniform AA the resolve pass ends it.
+                let n = w * h * shape.samples_per_pixel() as u32;
+                let camera = Dispatch {
                     clears_work: true,
                     ..run(0, params(0, n), linear(n))
-                }];
-                for g in 0..shape.generations {
-                    let paths = match g {
-                        0 => linear(n),
-                        _ => Workgroups::Indirect(24 * (g as u64 - 1)),
-                    };
-                    out.push(run(1, params(g, n), paths));
-                    out.push(run(2, params(g, n), paths));
-                    out.push(Dispatch {
-                        writes_args: true,
-                        ..run(3, params(g, n), Workgroups::Direct(1, 1))
-                    });
-                    out.push(run(
-                        4,
-                        params(g, n),
-                        Workgroups::Indirect(24 * g as u64 + 12),
-                    ));
-                    out.push(run(5, params(g, n), paths));
+                };
+                let mut out = wavefront_generations(shape, camera);
+                if shape.uniform.is_some() {
+                    out.push(run(6, params(0, n), square));
                 }
                 out
             }
@@ -577,6 +580,82 @@ fn adaptive_wavefront_dispatches(
         ));
     }
     out.push(run(2, params(0, 0), square));
+    out
+}
+
+/// The wavefront kernels' dispatches of a chunk after its `camera` pass (which they
+/// copy the chunk, items and stratum of): per generation g closest, shade, args, shadow,
+/// gather — generation 0's over the chunk's samples as the camera pass, later ones' and
+/// every shadow pass's as the args kernel wrote them (24 bytes a generation: the next
+/// generation's, then this one's shadow pass).
+fn wavefront_generations(shape: WavefrontShape, camera: Dispatch) -> Vec<Dispatch> {
+    let mut out = vec![camera];
+    for g in 0..shape.generations {
+        let pass = |entry: usize, workgroups: Workgroups| Dispatch {
+            entry,
+            params: GpuTile {
+                level: g,
+                ..camera.params
+            },
+            workgroups,
+            clears_work: false,
+            writes_args: false,
+            ..camera
+        };
+        let paths = match g {
+            0 => camera.workgroups,
+            _ => Workgroups::Indirect(24 * (g as u64 - 1)),
+        };
+        out.push(pass(1, paths));
+        out.push(pass(2, paths));
+        out.push(Dispatch {
+            writes_args: true,
+            ..pass(3, Workgroups::Direct(1, 1))
+        });
+        out.push(pass(4, Workgroups::Indirect(24 * g as u64 + 12)));
+        out.push(pass(5, paths));
+    }
+    out
+}
+
+/// `glint view`'s frame `stratum` of `band` through the wavefront kernels
+/// ([`Entry::WAVEFRONT_VIEW`]): the camera pass over the band's pixels, one sample each
+/// (its stratum `stratum`, every pass told so by [`GpuTile::stratum`]), the
+/// generations, then the store into the sums over the same samples.
+pub fn view_wavefront_dispatches(
+    band: Chunk,
+    shape: WavefrontShape,
+    stratum: u32,
+    sentinel: u32,
+    bounds: AdapterBounds,
+) -> Vec<Dispatch> {
+    let items = band.size[0] * band.size[1];
+    let lanes = bounds.workgroup_side * bounds.workgroup_side;
+    let (x, y) = linear_workgroups(items, lanes, bounds.max_workgroups);
+    let camera = Dispatch {
+        entry: 0,
+        chunk: 0,
+        params: GpuTile {
+            origin: band.origin,
+            size: band.size,
+            side: band.side,
+            level: 0,
+            items,
+            sentinel,
+            stratum,
+            _pad0: 0,
+        },
+        workgroups: Workgroups::Direct(x, y),
+        clears_work: true,
+        writes_args: false,
+        offsets: BindingOffsets::default(),
+    };
+    let mut out = wavefront_generations(shape, camera);
+    out.push(Dispatch {
+        entry: Entry::WAVEFRONT_VIEW.len() - 1,
+        clears_work: false,
+        ..camera
+    });
     out
 }
 
@@ -723,6 +802,7 @@ mod tests {
         let shape = WavefrontShape {
             light_points: 17,
             generations: 6,
+            uniform: None,
         };
         let bounds = AdapterBounds {
             wavefront: Some(shape),
@@ -779,6 +859,7 @@ mod tests {
         let shape = WavefrontShape {
             light_points: 17,
             generations: 3,
+            uniform: None,
         };
         let words = 562;
         let bounds = AdapterBounds {
@@ -830,7 +911,7 @@ mod tests {
                         assert_eq!(store.workgroups, camera.workgroups);
                         for (g, gen) in run[1..run.len() - 1].chunks(5).enumerate() {
                             let names: Vec<Entry> = gen.iter().map(entry).collect();
-                            assert_eq!(names, Entry::WAVEFRONT[1..]);
+                            assert_eq!(names, Entry::WAVEFRONT[1..6]);
                             assert!(gen[2].writes_args);
                             for p in gen {
                                 assert_eq!(p.params.level, g as u32);
@@ -860,6 +941,125 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Uniform AA through the wavefront kernels: a band's samples are its pixels × n²
+    /// (stratum s of pixel p is sample p·n² + s), its queues fit one binding and each of
+    /// its samples has a list slot; each band runs the camera pass, the generations over
+    /// its samples, then the resolve pass over its pixels. AA none's shape leaves uniform
+    /// AA to its own passes, and uniform AA's shape AA none.
+    #[test]
+    fn wavefront_uniform_bands_sample_every_stratum_then_resolve() {
+        let words = 272u64;
+        for n in [1, 2, 3, 4] {
+            let shape = WavefrontShape {
+                light_points: 5,
+                generations: 3,
+                uniform: Some(n),
+            };
+            // (A row of 1920 pixels at 4×4 takes 30 720 slots: 32 MiB of lists.)
+            let bounds = AdapterBounds {
+                wavefront: Some(shape),
+                max_binding: 64 << 20,
+                lane_list_words: words as u32,
+                ..LAVAPIPE
+            };
+            for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
+                let g = PackedGlobals {
+                    aa_samples: n,
+                    ..globals(w, h, AA_UNIFORM)
+                };
+                let plan = FramePlan::new(&g, bounds);
+                assert_eq!(plan.mode, Mode::Wavefront(shape));
+                assert_eq!(plan.mode.entries(), &Entry::WAVEFRONT);
+                assert_covers(&plan, w, h);
+                assert!(plan.samples_len * 16 <= bounds.max_binding, "{w}×{h}");
+                assert!(plan.lists_len * 4 <= bounds.max_binding, "{w}×{h}");
+                let nn = (n * n) as u64;
+                for (k, c) in plan.chunks.iter().enumerate() {
+                    let samples = c.size[0] as u64 * c.size[1] as u64 * nn;
+                    assert!(shape.vec4s_per_sample() * samples <= plan.samples_len);
+                    assert!(
+                        samples * words <= plan.lists_len,
+                        "{w}×{h}: a slot a sample"
+                    );
+                    let d = plan.dispatches(k, 2, bounds);
+                    assert_eq!(d.len(), 2 + 5 * shape.generations as usize);
+                    assert!(d[..d.len() - 1]
+                        .iter()
+                        .all(|d| d.params.items as u64 == samples));
+                    assert_eq!(d[0].workgroups, d[1].workgroups, "camera, generation 0");
+                    let Workgroups::Direct(x, y) = d[0].workgroups else {
+                        panic!("the camera pass is direct")
+                    };
+                    assert!(x as u64 * y as u64 * 64 >= samples);
+                    let resolve = d.last().unwrap();
+                    assert_eq!(resolve.entry, 6);
+                    assert_eq!(
+                        resolve.workgroups,
+                        Workgroups::Direct(c.size[0].div_ceil(8), c.size[1].div_ceil(8))
+                    );
+                }
+                let none = FramePlan::new(&globals(w, h, 0), bounds);
+                assert!(matches!(none.mode, Mode::None));
+                let aa_none = AdapterBounds {
+                    wavefront: Some(WavefrontShape {
+                        uniform: None,
+                        ..shape
+                    }),
+                    ..bounds
+                };
+                let uniform = FramePlan::new(&g, aa_none);
+                assert!(matches!(uniform.mode, Mode::Uniform { .. }));
+                assert_eq!(
+                    FramePlan::new(&globals(w, h, 0), aa_none).mode.entries(),
+                    &Entry::WAVEFRONT[..6]
+                );
+            }
+        }
+    }
+
+    /// `glint view`'s frame s of a band through the wavefront kernels: the camera pass
+    /// over the band's pixels (one sample each), every generation's five passes, then the
+    /// store over the same samples; every pass carries the frame's stratum.
+    #[test]
+    fn a_view_frame_samples_one_stratum_a_pixel_then_stores() {
+        let shape = WavefrontShape {
+            light_points: 3,
+            generations: 4,
+            uniform: Some(3),
+        };
+        let band = bands(PixelRect::full(37, 5), 5, 1)[0];
+        let d = view_wavefront_dispatches(band, shape, 7, 2, LAVAPIPE);
+        assert_eq!(d.len(), 2 + 5 * shape.generations as usize);
+        let entries: Vec<usize> = d.iter().map(|d| d.entry).collect();
+        let mut expected = vec![0];
+        for _ in 0..shape.generations {
+            expected.extend([1, 2, 3, 4, 5]);
+        }
+        expected.push(6);
+        assert_eq!(entries, expected);
+        assert_eq!(Entry::WAVEFRONT_VIEW[6], Entry::WavefrontViewStore);
+        assert!(d
+            .iter()
+            .all(|d| d.params.stratum == 7 && d.params.items == 37 * 5));
+        assert_eq!(
+            d[4].workgroups,
+            Workgroups::Indirect(12),
+            "generation 0's shadows"
+        );
+        assert_eq!(
+            d[6].workgroups,
+            Workgroups::Indirect(0),
+            "generation 1's paths"
+        );
+        let (camera, store) = (d[0], d[d.len() - 1]);
+        assert_eq!(camera.workgroups, Workgroups::Direct(3, 1));
+        assert_eq!(
+            (store.workgroups, store.params),
+            (camera.workgroups, camera.params)
+        );
+        assert!(camera.clears_work && !store.clears_work);
     }
 
     /// The five counters (three path counters, two shadow counters) fit `work_counts`.

@@ -20,6 +20,10 @@
 //! render` re-renders its flagged pixels (`super::render`); so the view converges to the
 //! render's image there too.
 //!
+//! In the hardware variant, on scenes without glass, the frames go through the wavefront
+//! kernels instead of `view_sample` ([`ViewWavefront`]: the same sums, bit for bit), the
+//! bands then also bounded by their queues.
+//!
 //! The view's own copy of the globals (camera moved, preview size) is a uniform written
 //! before each restart; the scene's tables are uploaded once per scene load.
 
@@ -35,7 +39,10 @@ use super::pipeline::{
 use super::plan::{bands, slot_budget, AdapterBounds, Chunk};
 use super::render::adapter_bounds;
 use super::shader::Entry;
+use super::view_wavefront::{ViewBindings, ViewWavefront};
+use super::wavefront::view_wavefront_shape;
 use super::GpuError;
+use crate::constants::ALL_STRATA;
 use crate::cpu::progressive::view_sample;
 use crate::pack::{PackedGlobals, PackedScene};
 use crate::tiling::PixelRect;
@@ -94,12 +101,17 @@ impl SumBuffer {
 
 /// The full-width bands a `width` × `height` window is dispatched in: as many rows each
 /// as give every pixel of a band a list slot under `bounds` (one band when the kernel
-/// keeps no lists in storage) and fit one 2-D dispatch. A band is laid out `width`
-/// pixels a row, so its pixel (x, y) has slot y·width + x.
+/// keeps no lists in storage), fit one 2-D dispatch and, through the wavefront kernels,
+/// whose queues fit one binding. A band is laid out `width` pixels a row, so its pixel
+/// (x, y) has slot y·width + x.
 pub fn view_bands(width: u32, height: u32, bounds: AdapterBounds) -> Vec<Chunk> {
     let (w, h) = (width.max(1), height.max(1));
     let dispatch_rows = bounds.max_workgroups.saturating_mul(bounds.workgroup_side);
-    let rows = (slot_budget(bounds) / u64::from(w)).clamp(1, u64::from(h)) as u32;
+    let mut rows = (slot_budget(bounds) / u64::from(w)).clamp(1, u64::from(h)) as u32;
+    if let Some(shape) = bounds.wavefront {
+        let per_row = u64::from(w) * shape.vec4s_per_sample() * 16;
+        rows = rows.min((bounds.max_binding / per_row).clamp(1, u64::from(h)) as u32);
+    }
     bands(PixelRect::full(w, h), rows.min(dispatch_rows), 1)
 }
 
@@ -115,7 +127,10 @@ pub struct Retraced {
 /// A scene on the device, ready to add one sample per pixel per [`Self::encode_sample`]
 /// (or [`Self::trace_sample`], which also re-traces what the loop limiter cut short).
 pub struct Progressive {
+    /// `view_sample`, or the wavefront's first kernel (the layout and kernel variant).
     pipeline: Arc<CompiledPipeline>,
+    /// The wavefront kernels, where the kernel has them for the scene.
+    wavefront: Option<ViewWavefront>,
     globals: wgpu::Buffer,
     guard: wgpu::Buffer,
     /// The sums the samples are added to (a handle on the session's [`SumBuffer`]).
@@ -161,13 +176,33 @@ impl Progressive {
         scene: &PackedScene,
         sums: &SumBuffer,
     ) -> Result<Progressive, GpuError> {
-        let pipeline = get_pipeline(ctx, scene.features, Entry::ViewSample)?;
-        let buffers = upload_scene(ctx, scene)?;
+        let shape = view_wavefront_shape(ctx.kernel, scene);
         let g = &scene.globals;
+        let bounds = AdapterBounds {
+            wavefront: shape,
+            ..adapter_bounds(ctx, ctx.kernel, scene.features)
+        };
+        let full_bands = view_bands(g.width, g.height, bounds);
+        let wavefront = match shape {
+            Some(shape) => {
+                // A preview's narrower rows may make a band of more pixels than the
+                // full image's widest, up to what one binding of queues holds.
+                let widest = full_bands.iter().map(Chunk::block_pixels).max();
+                let queues = bounds.max_binding / (shape.vec4s_per_sample() * 16);
+                let pixels = u64::from(g.width) * u64::from(g.height);
+                let band_pixels = widest.unwrap_or(1).max(queues.min(pixels));
+                Some(ViewWavefront::new(ctx, scene.features, shape, band_pixels)?)
+            }
+            None => None,
+        };
+        let pipeline = match &wavefront {
+            Some(w) => Arc::clone(w.first_pipeline()),
+            None => get_pipeline(ctx, scene.features, Entry::ViewSample)?,
+        };
+        let buffers = upload_scene(ctx, scene)?;
         let guard_pixels = u64::from(g.width) * u64::from(g.height);
-        let bounds = adapter_bounds(ctx, pipeline.kernel, scene.features);
         let lane_words = bounds.lane_list_words;
-        let lists_bytes = lists_bytes(&view_bands(g.width, g.height, bounds), lane_words);
+        let lists_bytes = lists_bytes(&full_bands, lane_words);
         if lane_words > 0 {
             super::buffers::check_size(ctx, "view per-ray lists", lists_bytes)?;
         }
@@ -210,6 +245,7 @@ impl Progressive {
             });
             let mut progressive = Progressive {
                 pipeline: Arc::clone(&pipeline),
+                wavefront,
                 globals,
                 guard,
                 sums: sums.buffer.clone(),
@@ -248,6 +284,22 @@ impl Progressive {
         }
         let lists_size = lists_bytes(&bands, self.lane_words);
         debug_assert!(lists_size <= self.lists.size());
+        if let Some(wavefront) = &mut self.wavefront {
+            let lists = self.pipeline.kernel.lists_in_storage;
+            let with = ViewBindings {
+                scene: &self.scene,
+                globals: &self.globals,
+                sums: &self.sums,
+                guard: &self.guard,
+                split: &self.unused[1],
+                work_list: &self.unused[3],
+                lists: lists.then_some((&self.lists, lists_size)),
+            };
+            wavefront.bind(ctx, &bands, self.bounds, with);
+            self.bind_groups = Vec::new();
+            self.bands = bands;
+            return;
+        }
         let tile_size = std::mem::size_of::<GpuTile>() as u64;
         self.bind_groups = (0..bands.len() as u64)
             .map(|k| {
@@ -299,6 +351,11 @@ impl Progressive {
         self.retraced_pixels.fill(false);
     }
 
+    /// Whether the frames go through the wavefront kernels (else `view_sample`).
+    pub fn runs_wavefront(&self) -> bool {
+        self.wavefront.is_some()
+    }
+
     /// The bands the window is dispatched in, at the current size.
     pub fn bands(&self) -> &[Chunk] {
         &self.bands
@@ -314,6 +371,11 @@ impl Progressive {
     /// kernel that [checks the limiter](Self::checks_limiter), the pixels it cut short
     /// keep their sums and are flagged for [`Self::trace_sample`]'s fallback.
     pub fn encode_sample(&self, ctx: &GpuContext, encoder: &mut wgpu::CommandEncoder, s: u32) {
+        if let Some(wavefront) = &self.wavefront {
+            let bounds = self.bounds;
+            wavefront.encode(ctx, encoder, &self.bands, s, self.sentinel, bounds);
+            return;
+        }
         let records = record_bytes(
             self.record_stride,
             self.bands.iter().map(|band| GpuTile {
@@ -323,6 +385,8 @@ impl Progressive {
                 level: s,
                 items: 0,
                 sentinel: self.sentinel,
+                stratum: ALL_STRATA,
+                _pad0: 0,
             }),
         );
         // Written before the submit that carries this pass (queue writes come first).

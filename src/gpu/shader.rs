@@ -29,7 +29,8 @@ use crate::pack::SceneFeatures;
 pub enum Entry {
     /// `main`: AA none, one tile into the output buffer.
     Render,
-    /// `uniform_samples`, `uniform_resolve`: uniform AA's two passes.
+    /// `uniform_samples`, `uniform_resolve`: uniform AA's two passes (not in modules with
+    /// [`wavefront_kernels`], which trace uniform AA through them).
     UniformSamples,
     UniformResolve,
     /// `adaptive_corners`, `adaptive_decide`, `adaptive_midpoints`, `adaptive_integrate`,
@@ -40,14 +41,16 @@ pub enum Entry {
     AdaptiveIntegrate,
     AdaptiveWorkArgs,
     /// `wavefront_camera`, `wavefront_closest`, `wavefront_shade`, `wavefront_args`,
-    /// `wavefront_shadow`, `wavefront_gather`: AA none's kernels in the wavefront form
-    /// (`shaders/wavefront.wgsl`; only in modules with [`wavefront_kernels`]).
+    /// `wavefront_shadow`, `wavefront_gather`, `wavefront_resolve`: AA none's and uniform
+    /// AA's kernels in the wavefront form (`shaders/wavefront.wgsl`; only in modules with
+    /// [`wavefront_kernels`]).
     WavefrontCamera,
     WavefrontClosest,
     WavefrontShade,
     WavefrontArgs,
     WavefrontShadow,
     WavefrontGather,
+    WavefrontResolve,
     /// `wavefront_lattice_camera`, `wavefront_lattice_store`: adaptive AA's corner and
     /// midpoint passes through the wavefront kernels, their camera pass and the pass that
     /// stores their samples into the lattice (`shaders/wavefront_lattice.wgsl`; only in
@@ -55,23 +58,52 @@ pub enum Entry {
     /// `AdaptiveMidpoints`).
     WavefrontLatticeCamera,
     WavefrontLatticeStore,
+    /// `wavefront_view_store`: `glint view`'s frame through the wavefront kernels, each
+    /// sample added to its pixel's sum (`shaders/progressive.wgsl`; only in modules with
+    /// [`wavefront_kernels`]).
+    WavefrontViewStore,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
-    /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`).
+    /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`; not in modules
+    /// with [`wavefront_kernels`]).
     ViewSample,
     /// `probe`: test-only, traces rays from a buffer and reports hits.
     Probe,
 }
 
 impl Entry {
-    /// The wavefront kernels of AA none, in the order a generation dispatches them (after
-    /// the camera pass): the plan's `Mode::Wavefront` pipelines.
-    pub const WAVEFRONT: [Entry; 6] = [
+    /// The wavefront kernels: the camera pass, a generation's five in the order it
+    /// dispatches them, then uniform AA's resolve (AA none has no resolve): the plan's
+    /// `Mode::Wavefront` pipelines.
+    pub const WAVEFRONT: [Entry; 7] = [
         Entry::WavefrontCamera,
         Entry::WavefrontClosest,
         Entry::WavefrontShade,
         Entry::WavefrontArgs,
         Entry::WavefrontShadow,
         Entry::WavefrontGather,
+        Entry::WavefrontResolve,
+    ];
+
+    /// `glint view`'s frame through the wavefront kernels: the camera pass, a
+    /// generation's five, then the store into the sums (`gpu/progressive.rs`'s pipelines).
+    pub const WAVEFRONT_VIEW: [Entry; 7] = [
+        Entry::WavefrontCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontGather,
+        Entry::WavefrontViewStore,
+    ];
+
+    /// The megakernel entries the wavefront kernels replace: not in modules with
+    /// [`wavefront_kernels`].
+    pub const REPLACED_BY_WAVEFRONT: [Entry; 5] = [
+        Entry::UniformSamples,
+        Entry::UniformResolve,
+        Entry::AdaptiveCorners,
+        Entry::AdaptiveMidpoints,
+        Entry::ViewSample,
     ];
 
     /// Adaptive AA's passes through the wavefront kernels, in the plan's order of the
@@ -92,7 +124,7 @@ impl Entry {
     ];
 
     /// Every entry point.
-    pub const ALL: [Entry; 18] = [
+    pub const ALL: [Entry; 20] = [
         Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
@@ -109,6 +141,8 @@ impl Entry {
         Entry::WavefrontGather,
         Entry::WavefrontLatticeCamera,
         Entry::WavefrontLatticeStore,
+        Entry::WavefrontResolve,
+        Entry::WavefrontViewStore,
         Entry::ViewSample,
         Entry::Probe,
     ];
@@ -132,6 +166,8 @@ impl Entry {
             Entry::WavefrontGather => "wavefront_gather",
             Entry::WavefrontLatticeCamera => "wavefront_lattice_camera",
             Entry::WavefrontLatticeStore => "wavefront_lattice_store",
+            Entry::WavefrontResolve => "wavefront_resolve",
+            Entry::WavefrontViewStore => "wavefront_view_store",
             Entry::ViewSample => "view_sample",
             Entry::Probe => "probe",
         }
@@ -145,32 +181,21 @@ impl Entry {
     /// Whether the entry is one of the wavefront kernels (in the render module only with
     /// [`wavefront_kernels`]).
     pub fn is_wavefront(self) -> bool {
-        matches!(
-            self,
-            Entry::WavefrontCamera
-                | Entry::WavefrontClosest
-                | Entry::WavefrontShade
-                | Entry::WavefrontArgs
-                | Entry::WavefrontShadow
-                | Entry::WavefrontGather
-                | Entry::WavefrontLatticeCamera
-                | Entry::WavefrontLatticeStore
-        )
+        Entry::WAVEFRONT.contains(&self)
+            || Entry::WAVEFRONT_VIEW.contains(&self)
+            || Entry::ADAPTIVE_WAVEFRONT[3..].contains(&self)
     }
 
-    /// Whether the entry is a megakernel pass that the wavefront kernels replace where
-    /// the module has them (adaptive AA's tracing passes).
-    pub fn is_replaced_by_wavefront(self) -> bool {
-        matches!(self, Entry::AdaptiveCorners | Entry::AdaptiveMidpoints)
-    }
-
-    /// Whether the render module of `kernel` for `features` has this entry.
+    /// Whether the render module of `kernel` for `features` has this entry: the
+    /// wavefront kernels only with [`wavefront_kernels`], the megakernel entries they
+    /// replace only without.
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
         let wavefront = wavefront_kernels(kernel, features);
-        if self.is_replaced_by_wavefront() {
-            return !wavefront;
+        if self.is_wavefront() {
+            wavefront
+        } else {
+            !(wavefront && Entry::REPLACED_BY_WAVEFRONT.contains(&self))
         }
-        !self.is_wavefront() || wavefront
     }
 }
 

@@ -94,11 +94,16 @@ impl KernelSet {
                 if !entry.exists_in(kernel, features) {
                     continue;
                 }
-                // AA none runs the wavefront kernels instead of `main` where they exist,
-                // adaptive AA its tracing passes.
-                let dispatched = match (mode, wavefront_kernels(kernel, features)) {
-                    (Mode::None, true) => Entry::WAVEFRONT.contains(&entry),
-                    (Mode::Adaptive { .. }, true) => Entry::ADAPTIVE_WAVEFRONT.contains(&entry),
+                // Where the wavefront kernels exist, AA none and uniform AA run them
+                // instead of `main` and uniform AA's passes (AA none without the
+                // resolve), adaptive AA instead of its tracing passes.
+                let wavefront = wavefront_kernels(kernel, features);
+                let dispatched = match mode {
+                    Mode::None if wavefront => Entry::WAVEFRONT[..6].contains(&entry),
+                    Mode::Uniform { .. } if wavefront => Entry::WAVEFRONT.contains(&entry),
+                    Mode::Adaptive { .. } if wavefront => {
+                        Entry::ADAPTIVE_WAVEFRONT.contains(&entry)
+                    }
                     _ => mode.entries().contains(&entry),
                 };
                 self.add(&name, features, entry, dispatched, kernel, target)?;

@@ -51,6 +51,7 @@ fn module(entry: Entry) -> naga::Module {
 #[test]
 fn wgsl_structs_match_rust_layout() {
     let render = module(Entry::Render);
+    let all = SceneFeatures(SceneFeatures::ALL.iter().fold(0, |m, (f, _)| m | f.0));
     check_struct(
         &render,
         rust_fields!(PackedInstance {
@@ -143,17 +144,32 @@ fn wgsl_structs_match_rust_layout() {
             _pad2
         }),
     );
+    // GpuTile's last field is the wavefront kernels' only: in modules with them (the
+    // hardware variant without refraction) all of it, in the others the fields before it.
+    let hardware_chains = SceneFeatures(all.0 & !SceneFeatures::REFRACTION.0);
+    let wavefront = validate(&assemble(hardware_chains, Entry::Render), hardware_chains)
+        .unwrap_or_else(|e| panic!("{e}"));
     check_struct(
-        &render,
+        &wavefront,
         rust_fields!(GpuTile {
             origin,
             size,
             side,
             level,
             items,
-            sentinel
+            sentinel,
+            stratum
         }),
     );
+    let (name, _, fields) = rust_fields!(GpuTile {
+        origin,
+        size,
+        side,
+        level,
+        items,
+        sentinel
+    });
+    check_struct(&render, (name, offset_of!(GpuTile, stratum), fields));
     let probe = module(Entry::Probe);
     check_struct(
         &probe,

@@ -1,26 +1,34 @@
-//! The wavefront kernels (`shaders/wavefront.wgsl`, `KernelConfig::wavefront`: AA none in
-//! the hardware variant, scenes without refraction): naga validates them for every feature
-//! set that has them, the software variant's modules never include them, and rendered on
-//! lavapipe with `--kernel-variant hardware` they give the megakernel's image bit for bit
-//! (and so the CPU tracer's, within the GPU parity tolerance)
-//! on scenes with mirrors (several generations), area lights, textures and bump maps,
-//! smooth meshes, tori, meshes in grids and CSG. Under adaptive AA the hardware variant
-//! traces the corner and midpoint passes through them (`shaders/wavefront_lattice.wgsl`),
-//! with the same lattice, and so image, as the megakernel passes, bit for bit.
+//! The wavefront kernels (`shaders/wavefront.wgsl`, `KernelConfig::wavefront`: AA none and
+//! uniform AA in the hardware variant, scenes without refraction): naga validates them for
+//! every feature set that has them (where the megakernel entries they replace are gone),
+//! the software variant's modules never include them, and rendered on lavapipe with
+//! `--kernel-variant hardware` they give the megakernel's image bit for bit (and so the
+//! CPU tracer's, within the GPU parity tolerance) on scenes with mirrors (several
+//! generations), area lights, textures and bump maps, smooth meshes, tori, meshes in
+//! grids and CSG. Under adaptive AA the hardware variant traces the corner and midpoint
+//! passes through them (`shaders/wavefront_lattice.wgsl`), with the same lattice, and so
+//! image, as the megakernel passes, bit for bit; `glint view`'s frames go through them
+//! too, with `view_sample`'s sums.
 
 use crate::common;
 
 use common::{gpu_context, packed_from_file, packed_from_source};
-use glint::constants::AA_ADAPTIVE;
+use glint::constants::{AA_ADAPTIVE, AA_UNIFORM};
+use glint::cpu::wavefront::light_points;
+use glint::gpu::lists::LaneLists;
+use glint::gpu::progressive::{Progressive, SumBuffer};
 use glint::gpu::shader::{all_feature_sets, assemble_with, validate, wavefront_kernels, Entry};
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelVariant};
 use glint::pack::{PackedScene, SceneFeatures};
+use glint::scene::bounded::AaSamples;
 use glint::scene::{AaDepth, AaMode, OptionOverrides};
 
-/// Every feature set: the hardware variant's render module has the six wavefront entry
-/// points, valid under naga, exactly where the scene has no refraction; the software
-/// variant's never mentions them (its modules are what they were before the wavefront
-/// kernels: the file is not even appended).
+/// Every feature set: the hardware variant's render module has the wavefront entry points
+/// (the renders' and the view's), valid under naga, exactly where the scene has no
+/// refraction, and then not the megakernel entries they replace (uniform AA's two passes,
+/// `view_sample`); the software variant's
+/// never mentions them (its modules are what they were before the wavefront kernels: the
+/// file is not even appended) and keeps every megakernel entry.
 #[test]
 fn wavefront_kernels_validate_where_they_exist() {
     let limits = wgpu::Limits::default();
@@ -49,6 +57,7 @@ fn wavefront_kernels_validate_where_they_exist() {
         let module = validate(&hard, features).unwrap_or_else(|e| panic!("{e}"));
         for entry in Entry::WAVEFRONT
             .into_iter()
+            .chain(Entry::WAVEFRONT_VIEW)
             .chain(Entry::ADAPTIVE_WAVEFRONT)
         {
             assert!(
@@ -62,13 +71,16 @@ fn wavefront_kernels_validate_where_they_exist() {
                 "{entry:?}"
             );
         }
-        // Adaptive AA's tracing megakernels are not in the module (nor dispatched).
-        for entry in [Entry::AdaptiveCorners, Entry::AdaptiveMidpoints] {
+        for entry in Entry::REPLACED_BY_WAVEFRONT {
             assert!(
                 !module.entry_points.iter().any(|e| e.name == entry.name()),
-                "[{features}] {entry:?}"
+                "[{features}] {entry:?} is replaced"
             );
             assert!(!entry.exists_in(hardware, features) && entry.exists_in(software, features));
+            assert!(
+                soft.contains(&format!("fn {}(", entry.name())),
+                "[{features}]"
+            );
         }
         validated += 1;
     }
@@ -84,16 +96,27 @@ fn small() -> OptionOverrides {
     }
 }
 
+/// `small` under uniform n×n AA, smaller (n² samples a pixel).
+fn small_uniform(n: u32) -> OptionOverrides {
+    OptionOverrides {
+        width: Some(24),
+        height: Some(18),
+        aa: Some(AaMode::Uniform),
+        samples: Some(AaSamples::new(n.into()).unwrap()),
+        ..OptionOverrides::default()
+    }
+}
+
 /// scenes/csg.lua with its glass a mirror (CSG without refraction; the repository has no
 /// such scene).
-fn mirrored_csg(overrides: &OptionOverrides) -> PackedScene {
+fn mirrored_csg(options: &OptionOverrides) -> PackedScene {
     let source = std::fs::read_to_string(common::root().join("scenes/csg.lua")).unwrap();
     assert!(source.contains("glass:set_refraction(1.5)"));
     let source = source.replace(
         "glass:set_refraction(1.5)",
         "glass:set_reflection(0.8, 0.8, 0.85)",
     );
-    packed_from_source(&source, overrides).remove(0)
+    packed_from_source(&source, options).remove(0)
 }
 
 /// `scene` on the hardware variant: through the wavefront kernels (one camera pass and
@@ -116,12 +139,14 @@ fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: &PackedScen
         1
     };
     let adaptive = scene.globals.aa_mode == AA_ADAPTIVE;
-    // AA none: the camera pass, five passes a generation. Adaptive AA: per lattice pass
-    // (the corner pass, a midpoint pass a level) the camera pass, five passes a
-    // generation and the store pass; decide and work args a level; integrate.
+    // AA none and uniform AA: the camera pass, five passes a generation (uniform AA: then
+    // the resolve pass; its megakernel: two passes). Adaptive AA: per lattice pass (the
+    // corner pass, a midpoint pass a level) the camera pass, five passes a generation and
+    // the store pass; decide and work args a level; integrate.
     let depth = scene.globals.aa_depth as u64;
+    let uniform = (scene.globals.aa_mode == AA_UNIFORM) as u64;
     let per_tile = match adaptive {
-        false => 1 + 5 * generations,
+        false => 1 + 5 * generations + uniform,
         true => (2 + 5 * generations) * (1 + depth) + 2 * depth + 1,
     };
     assert_eq!(
@@ -136,8 +161,9 @@ fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: &PackedScen
     let mega = render_gpu(ctx, scene, &GpuRenderOptions::default());
     ctx.kernel = hardware;
     let mega = mega.unwrap_or_else(|e| panic!("{name}: {e}"));
-    // main, or adaptive AA's corners, decide + work args + midpoints a level, integrate.
-    let mega_per_tile = if adaptive { 2 + 3 * depth } else { 1 };
+    // main (uniform AA: its two passes), or adaptive AA's corners, decide + work args +
+    // midpoints a level, integrate.
+    let mega_per_tile = if adaptive { 2 + 3 * depth } else { 1 + uniform };
     assert_eq!(
         mega.info.dispatches as u64,
         mega.info.tiles * mega_per_tile,
@@ -222,4 +248,145 @@ fn hardware_wavefront_traces_adaptive_aa_as_its_megakernels() {
     }
     let csg = mirrored_csg(&adaptive(2));
     assert_wavefront_matches(&mut ctx, "csg.lua with a mirror, adaptive AA", &csg);
+}
+
+/// Uniform AA (n = 1, 2, 3) on lavapipe with the hardware variant: the wavefront's
+/// strata, generations and resolve give the megakernel's uniform_samples +
+/// uniform_resolve image bit for bit, and the CPU's within the tolerance, on scenes with
+/// mirrors, area lights, textures and bump maps, smooth meshes and CSG.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_renders_uniform_aa_as_the_megakernel() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    let files = [
+        ("scenes/cs488/a4-2021plus/nonhier.lua", 2),
+        ("scenes/demo.lua", 2),
+        ("scenes/textures.lua", 3),
+        ("scenes/soft-shadows.lua", 3),
+        ("scenes/smooth.lua", 1),
+    ];
+    for (file, n) in files {
+        let options = small_uniform(n);
+        let scene = packed_from_file(&common::root().join(file), &options).remove(0);
+        assert_eq!(scene.globals.aa_mode, AA_UNIFORM);
+        assert_eq!(scene.globals.aa_samples, n);
+        assert_wavefront_matches(&mut ctx, &format!("{file} at {n}×{n}"), &scene);
+    }
+    let csg = mirrored_csg(&small_uniform(2));
+    assert_wavefront_matches(&mut ctx, "csg.lua with a mirror for glass at 2×2", &csg);
+}
+
+/// `frames` frames of `glint view`'s progressive sums of `scene` on `ctx` (in bands
+/// where `ctx`'s binding limit asks for them), after a frame of a preview at a third of
+/// the size (the view's narrower rows: bands of more pixels), read back; and whether they
+/// went through the wavefront kernels, in how many bands.
+fn view_sums(ctx: &GpuContext, scene: &PackedScene, frames: u32) -> (Vec<[f32; 4]>, bool, usize) {
+    let g = scene.globals;
+    let pixels = u64::from(g.width * g.height);
+    let sums = SumBuffer::new(ctx, pixels).unwrap();
+    let mut view = Progressive::new(ctx, scene, &sums).unwrap();
+    let preview = glint::pack::PackedGlobals {
+        width: g.width.div_ceil(3),
+        height: g.height.div_ceil(3),
+        ..g
+    };
+    view.set_globals(ctx, &preview);
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    view.encode_sample(ctx, &mut encoder, 0);
+    ctx.queue.submit([encoder.finish()]);
+    view.set_globals(ctx, &g);
+    for s in 0..frames {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        view.encode_sample(ctx, &mut encoder, s);
+        ctx.queue.submit([encoder.finish()]);
+    }
+    let read = sums.read(ctx, pixels).unwrap();
+    (read, view.runs_wavefront(), view.bands().len())
+}
+
+/// `glint view` on lavapipe with the hardware variant, where `view_sample` is not in the
+/// module: each frame's band after band through the wavefront kernels (the camera pass
+/// takes the frame's stratum of each pixel, the store adds each sample to its pixel's
+/// sum), and after n² frames (AA none: one) the sums are the megakernel `view_sample`'s
+/// bit for bit — uniform AA at 2×2 and 3×3 and AA none, on scenes with mirrors, area
+/// lights, textures and bump maps, and CSG. The binding limit is lowered to three rows'
+/// queues or lists, so that the window is many bands (each band's pixels at their own
+/// rows of the image's sums).
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_view_sums_are_view_samples() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    let hardware = ctx.kernel;
+    let none = OptionOverrides {
+        width: Some(24),
+        height: Some(18),
+        ..small()
+    };
+    let scenes = [
+        ("scenes/demo.lua", small_uniform(2)),
+        ("scenes/demo.lua", none.clone()),
+        ("scenes/textures.lua", small_uniform(2)),
+        ("scenes/soft-shadows.lua", small_uniform(3)),
+    ];
+    let mut cases: Vec<(String, PackedScene)> = scenes
+        .iter()
+        .map(|(file, o)| {
+            let scene = packed_from_file(&common::root().join(file), o).remove(0);
+            (file.to_string(), scene)
+        })
+        .collect();
+    cases.push((
+        "csg.lua with a mirror".into(),
+        mirrored_csg(&small_uniform(2)),
+    ));
+    for (name, scene) in &cases {
+        let g = scene.globals;
+        let frames = if g.aa_mode == AA_UNIFORM {
+            g.aa_samples * g.aa_samples
+        } else {
+            1
+        };
+        let name = format!("{name}, {frames} frames");
+        // Three rows' queues (14 + 2L vec4s a sample, L light points) or per-ray lists
+        // a binding, whichever is more.
+        let queues = (14 + 2 * u64::from(light_points(scene))) * 16;
+        let lists = 4 * u64::from(LaneLists::of(scene.features, hardware).words());
+        ctx.limits.max_storage_buffer_binding_size = 3 * u64::from(g.width) * queues.max(lists);
+        assert!(
+            !Entry::ViewSample.exists_in(hardware, scene.features),
+            "{name}"
+        );
+        let (wave, through_wavefront, bands) = view_sums(&ctx, scene, frames);
+        assert!(through_wavefront, "{name}");
+        assert!(bands > 1, "{name}: {bands} bands");
+        ctx.kernel = KernelConfig {
+            wavefront: false,
+            ..hardware
+        };
+        let (mega, through_wavefront, _) = view_sums(&ctx, scene, frames);
+        ctx.kernel = hardware;
+        assert!(!through_wavefront, "{name}: view_sample");
+        let bits = |sums: &[[f32; 4]]| -> Vec<[u32; 4]> {
+            sums.iter().map(|p| p.map(f32::to_bits)).collect()
+        };
+        let (wave, mega) = (bits(&wave), bits(&mega));
+        let differing: Vec<usize> = (0..mega.len()).filter(|&p| wave[p] != mega[p]).collect();
+        if let Some(&p) = differing.first() {
+            let w = g.width as usize;
+            panic!(
+                "{name}: {} sums differ from view_sample's; the first, ({}, {}), is {:?} through the wavefront, {:?} through view_sample",
+                differing.len(),
+                p % w,
+                p / w,
+                wave[p].map(f32::from_bits),
+                mega[p].map(f32::from_bits)
+            );
+        }
+        assert!(
+            wave.iter().all(|s| f32::from_bits(s[3]) == frames as f32),
+            "{name}"
+        );
+    }
 }

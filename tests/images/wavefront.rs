@@ -519,3 +519,49 @@ fn passes_start_camera_rays_in_the_media_around_the_camera() {
     );
     assert_films_match("under water", &scene, 29);
 }
+
+/// `glint view`'s frames through the passes (the Stratum source, the GPU wavefront
+/// view's twin): every chain scene of scenes/ under uniform AA, frame s of each pixel
+/// added to its sum as `view_sample` adds it, for every s of n², gives `view_sample`'s
+/// sums bit for bit.
+#[test]
+fn passes_sample_the_views_frames_as_view_sample_does() {
+    use glint::cpu::progressive::view_sample;
+    let mut checked = 0;
+    for path in common::own_scenes() {
+        for scene in packed(&path, AaMode::Uniform, DebugView::None) {
+            let g = scene.globals;
+            let pixels: Vec<[u32; 2]> = (0..g.height)
+                .flat_map(|y| (0..g.width).map(move |x| [x, y]))
+                .collect();
+            let mut expected = vec![[0.0f32; 4]; pixels.len()];
+            let mut actual = expected.clone();
+            for s in 0..g.aa_samples * g.aa_samples {
+                let source = SampleSource::Stratum {
+                    pixels: &pixels,
+                    n: g.aa_samples,
+                    uniform: true,
+                    s,
+                };
+                let batch = trace_batch(&scene, &source, &mut Counters::default());
+                for (k, &[x, y]) in pixels.iter().enumerate() {
+                    expected[k] = view_sample(&scene, x, y, s, expected[k]);
+                    // view_sample's sum: from zero at s = 0.
+                    let before = if s == 0 {
+                        Vec3::ZERO
+                    } else {
+                        Vec3::from_slice(&actual[k][..3])
+                    };
+                    let total = before + batch.samples.colour[k];
+                    actual[k] = [total.x, total.y, total.z, (s + 1) as f32];
+                }
+            }
+            let bits = |sums: &[[f32; 4]]| -> Vec<[u32; 4]> {
+                sums.iter().map(|p| p.map(f32::to_bits)).collect()
+            };
+            assert_eq!(bits(&actual), bits(&expected), "{}", path.display());
+            checked += 1;
+        }
+    }
+    assert!(checked > 5, "only {checked} scenes");
+}
