@@ -461,7 +461,7 @@ impl FramePlan {
                     clears_work: true,
                     ..run(0, params(0, n), linear(n))
                 };
-                let mut out = wavefront_generations(shape, camera);
+                let mut out = wavefront_generations(shape, camera, 1, camera.offsets);
                 if shape.uniform.is_some() {
                     out.push(run(6, params(0, n), square));
                 }
@@ -535,29 +535,11 @@ fn adaptive_wavefront_dispatches(
     // args, shadow, gather (generation 0's over the pass's invocations, the
     // rest at the args kernel's offsets, after adaptive AA's), the store pass.
     let lattice_pass = |pass: u32, points: Workgroups| {
-        let mut out = vec![Dispatch {
+        let camera = Dispatch {
             offsets: queues,
             ..run(3, params(pass, n), points)
-        }];
-        for g in 0..shape.generations {
-            let args = |at: u64| Workgroups::Indirect(WAVEFRONT_WORK_BYTES + at);
-            let paths = match g {
-                0 => points,
-                _ => args(24 * (g as u64 - 1)),
-            };
-            let pass = |entry: usize, workgroups: Workgroups| Dispatch {
-                offsets: generation,
-                ..run(entry, params(g, n), workgroups)
-            };
-            out.push(pass(4, paths));
-            out.push(pass(5, paths));
-            out.push(Dispatch {
-                writes_args: true,
-                ..pass(6, Workgroups::Direct(1, 1))
-            });
-            out.push(pass(7, args(24 * g as u64 + 12)));
-            out.push(pass(8, paths));
-        }
+        };
+        let mut out = wavefront_generations(shape, camera, 4, generation);
         out.push(run(9, params(pass, n), points));
         out
     };
@@ -585,14 +567,21 @@ fn adaptive_wavefront_dispatches(
 
 /// The wavefront kernels' dispatches of a chunk after its `camera` pass (which they
 /// copy the chunk, items and stratum of): per generation g closest, shade, args, shadow,
-/// gather — generation 0's over the chunk's samples as the camera pass, later ones' and
-/// every shadow pass's as the args kernel wrote them (24 bytes a generation: the next
-/// generation's, then this one's shadow pass).
-fn wavefront_generations(shape: WavefrontShape, camera: Dispatch) -> Vec<Dispatch> {
+/// gather (entries `closest` … `closest` + 4 of the mode's list, bound at `offsets`) —
+/// generation 0's over the chunk's samples as the camera pass, later ones' and every
+/// shadow pass's as the args kernel wrote them (24 bytes a generation from
+/// `offsets.work`: the next generation's, then this one's shadow pass).
+fn wavefront_generations(
+    shape: WavefrontShape,
+    camera: Dispatch,
+    closest: usize,
+    offsets: BindingOffsets,
+) -> Vec<Dispatch> {
     let mut out = vec![camera];
+    let args = |at: u64| Workgroups::Indirect(offsets.work + at);
     for g in 0..shape.generations {
         let pass = |entry: usize, workgroups: Workgroups| Dispatch {
-            entry,
+            entry: closest + entry,
             params: GpuTile {
                 level: g,
                 ..camera.params
@@ -600,20 +589,21 @@ fn wavefront_generations(shape: WavefrontShape, camera: Dispatch) -> Vec<Dispatc
             workgroups,
             clears_work: false,
             writes_args: false,
+            offsets,
             ..camera
         };
         let paths = match g {
             0 => camera.workgroups,
-            _ => Workgroups::Indirect(24 * (g as u64 - 1)),
+            _ => args(24 * (g as u64 - 1)),
         };
+        out.push(pass(0, paths));
         out.push(pass(1, paths));
-        out.push(pass(2, paths));
         out.push(Dispatch {
             writes_args: true,
-            ..pass(3, Workgroups::Direct(1, 1))
+            ..pass(2, Workgroups::Direct(1, 1))
         });
-        out.push(pass(4, Workgroups::Indirect(24 * g as u64 + 12)));
-        out.push(pass(5, paths));
+        out.push(pass(3, args(24 * g as u64 + 12)));
+        out.push(pass(4, paths));
     }
     out
 }
@@ -650,7 +640,7 @@ pub fn view_wavefront_dispatches(
         writes_args: false,
         offsets: BindingOffsets::default(),
     };
-    let mut out = wavefront_generations(shape, camera);
+    let mut out = wavefront_generations(shape, camera, 1, camera.offsets);
     out.push(Dispatch {
         entry: Entry::WAVEFRONT_VIEW.len() - 1,
         clears_work: false,
