@@ -43,24 +43,46 @@ fn light_points() -> u32 {
     return points;
 }
 
+// (With refraction the regions are wavefront_tree.wgsl's: a generation may be wider than
+// the chunk.)
 fn wavefront_paths(parity: u32) -> u32 {
+// #if REFRACTION
+    return tree_paths(parity);
+// #else
     return 2u * tile.items + 4u * tile.items * parity;
+// #endif
 }
 
 fn wavefront_hits() -> u32 {
+// #if REFRACTION
+    return tree_hits();
+// #else
     return 10u * tile.items;
+// #endif
 }
 
 fn wavefront_vertices() -> u32 {
+// #if REFRACTION
+    return tree_vertices();
+// #else
     return 12u * tile.items;
+// #endif
 }
 
 fn wavefront_slots() -> u32 {
+// #if REFRACTION
+    return tree_slots();
+// #else
     return 14u * tile.items;
+// #endif
 }
 
 fn wavefront_shadows(points: u32) -> u32 {
+// #if REFRACTION
+    return tree_shadows(points);
+// #else
     return (14u + points) * tile.items;
+// #endif
 }
 
 // Generation g's path counter.
@@ -74,6 +96,9 @@ fn shadow_counter(g: u32) -> u32 {
 }
 
 fn load_path(parity: u32, i: u32) -> StackEntry {
+// #if REFRACTION
+    return load_tree_path(parity, i);
+// #else
     let at = wavefront_paths(parity) + 4u * i;
     let a = samples[at];
     let b = samples[at + 1u];
@@ -86,17 +111,30 @@ fn load_path(parity: u32, i: u32) -> StackEntry {
     entry.cone = vec2<f32>(c.w, samples[at + 3u].x);
 // #endif
     return entry;
+// #endif
 }
 
 fn path_sample(parity: u32, i: u32) -> u32 {
+// #if REFRACTION
+    return bitcast<u32>(samples[wavefront_paths(parity) + 5u * i].w);
+// #else
     return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i].w);
+// #endif
 }
 
 fn path_depth(parity: u32, i: u32) -> u32 {
+// #if REFRACTION
+    return bitcast<u32>(samples[wavefront_paths(parity) + 5u * i + 1u].w);
+// #else
     return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i + 1u].w);
+// #endif
 }
 
 fn store_path(parity: u32, i: u32, entry: StackEntry, sample: u32) {
+// #if REFRACTION
+    // A camera ray: nothing under it on trace_ray's stack.
+    store_tree_path(parity, i, entry, 0u, sample);
+// #else
     let at = wavefront_paths(parity) + 4u * i;
     samples[at] = vec4<f32>(entry.ray.origin, bitcast<f32>(sample));
     samples[at + 1u] = vec4<f32>(entry.ray.dir, bitcast<f32>(entry.depth));
@@ -105,6 +143,7 @@ fn store_path(parity: u32, i: u32, entry: StackEntry, sample: u32) {
     samples[at + 3u] = vec4<f32>(entry.cone.y, 0.0, 0.0, 0.0);
 // #else
     samples[at + 2u] = vec4<f32>(entry.weight, 0.0);
+// #endif
 // #endif
 }
 
@@ -152,6 +191,10 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     entry.depth = 0u;
 // #if TEXTURE|BUMP
     entry.cone = camera_cone(ray);
+// #endif
+// #if REFRACTION
+    // Camera rays start in the media around the camera.
+    entry.media = camera_medium_stack();
 // #endif
     store_path(0u, k, entry, k);
 }
@@ -239,6 +282,11 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     let h = samples[wavefront_hits() + 2u * i];
     let hit = Hit(h.x, bitcast<u32>(h.y), h.z, h.w, bitcast<u32>(samples[wavefront_hits() + 2u * i + 1u].x));
     let vertex = wavefront_vertices() + 2u * i;
+// #if REFRACTION
+    // The ray stack push_secondary_rays fills is in this invocation's list slot.
+    begin_lane(i);
+    clear_tree_children(atomicLoad(&work_counts[vertex_base_counter(g)]) + i);
+// #endif
     if !is_hit(hit) {
         samples[vertex] = vec4<f32>(background(entry.ray.dir), bitcast<f32>(VERTEX_MISS));
         return;
@@ -338,6 +386,9 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
         ask_shadow(s, phong, n, v, light.position, light, slot, points);
         slot += 1u;
     }
+// #if REFRACTION
+    push_tree_children(i, entry, k, ShadedHit(s, facing, n, vec3<f32>(0.0), false), hit);
+// #else
 // #if REFLECTION
     // Without refraction a hit spawns at most its reflected ray, onto an empty stack as
     // trace_ray's chain has it.
@@ -350,6 +401,7 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
         store_path(1u - parity, at, load_pending(&stack, 0u), k);
     }
 // #endif
+// #endif
 }
 
 // After generation tile.level's shade pass (one invocation): the indirect workgroups of
@@ -359,6 +411,9 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
 // Mirror of src/cpu/wavefront.rs::next_generation — change both.
 @compute @workgroup_size(1)
 fn wavefront_args() {
+// #if REFRACTION
+    tree_generation_args_entry();
+// #else
     let g = tile.level;
     let next = indirect_workgroups(atomicLoad(&work_counts[path_counter(g + 1u)]));
     var shadow_requests = atomicLoad(&work_counts[shadow_counter(g)]);
@@ -370,6 +425,7 @@ fn wavefront_args() {
     store_indirect_pair(6u * g, next, shadows);
     atomicStore(&work_counts[path_counter(g + 2u)], 0u);
     atomicStore(&work_counts[shadow_counter(g + 1u)], 0u);
+// #endif
 }
 
 // The shadow pass: each shadow request of generation tile.level through shadow_request.
@@ -382,6 +438,13 @@ fn wavefront_args() {
 fn wavefront_shadow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
     let count = atomicLoad(&work_counts[shadow_counter(tile.level)]);
+// #if REFRACTION
+    // Through glass: each request's first leg, for the rounds (wavefront_tree.wgsl).
+    if idx >= count {
+        return;
+    }
+    start_shadow_leg(idx);
+// #else
 // #if CSG
     if idx >= tile.items {
         return;
@@ -395,6 +458,7 @@ fn wavefront_shadow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
         return;
     }
     shadow_request(idx);
+// #endif
 // #endif
 }
 
@@ -461,6 +525,14 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
             slot += 1u;
         }
     }
+// #if REFRACTION
+    // A tree's values are summed by the fold, in trace_ray's pop order.
+    var value = colour;
+    if entry.depth != 0u {
+        value = entry.weight * colour;
+    }
+    set_tree_value(atomicLoad(&work_counts[vertex_base_counter(g)]) + i, value);
+// #else
     var total = colour;
     if entry.depth != 0u {
         total = samples[2u * k].xyz + entry.weight * colour;
@@ -468,5 +540,6 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     samples[2u * k] = vec4<f32>(total, samples[2u * k].w);
     // AA none: sample k is chunk pixel k (row-major over size, rows at stride side).
     output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(total, 1.0);
+// #endif
 }
 // #endif

@@ -12,7 +12,10 @@
 use super::buffers::GpuTile;
 use super::lists::LIST_BUDGET_BYTES;
 use super::shader::Entry;
-use crate::constants::{AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, GPU_FRAME_PARTS};
+use crate::constants::{
+    AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, GPU_FRAME_PARTS, MAX_SHADOW_CROSSINGS,
+    TREE_PATHS_PER_SAMPLE, TREE_VERTICES_PER_SAMPLE,
+};
 use crate::pack::PackedGlobals;
 use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
 
@@ -31,20 +34,80 @@ pub enum Mode {
 }
 
 /// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
-/// vertex's light slots: `cpu::wavefront::light_points`) and the generations a path may
-/// have (max_depth + 1 with mirrors, else 1).
+/// vertex's light slots: `cpu::wavefront::light_points`), the generations a path may
+/// have (max_depth + 1 with mirrors or glass, else 1), and whether paths branch (a
+/// tree: scenes with refraction).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct WavefrontShape {
     pub light_points: u32,
     pub generations: u32,
+    pub tree: bool,
 }
+
+/// Glass shadow rounds a tree's generation runs (`shaders/wavefront_tree.wgsl`): a leg
+/// crosses at most MAX_SHADOW_CROSSINGS surfaces and is blocked at the next.
+pub const SHADOW_ROUNDS: u32 = MAX_SHADOW_CROSSINGS + 1;
+
+/// Words of work_args before a tree's generations' (round r's legs at 3r, r < 10).
+const TREE_ROUND_ARGS_WORDS: u64 = 30;
 
 impl WavefrontShape {
     /// vec4 entries of the queues a sample of a chunk takes (`shaders/wavefront.wgsl`'s
     /// regions): its record (2), two path queues (4 each), a hit (2), a vertex (2), its
-    /// light slots and shadow requests (L each).
+    /// light slots and shadow requests (L each). A tree's (`shaders/wavefront_tree.wgsl`):
+    /// the record, then per path of a generation (TREE_PATHS_PER_SAMPLE a sample) two
+    /// path queues (5 each, with media and pending count), a hit, a vertex, L slots, L
+    /// requests, two leg queues (3L each) and the legs' hits (2L), and the vertex tree (2
+    /// a vertex, TREE_VERTICES_PER_SAMPLE a sample).
     pub fn vec4s_per_sample(self) -> u64 {
-        14 + 2 * self.light_points as u64
+        let l = self.light_points as u64;
+        if self.tree {
+            2 + (14 + 10 * l) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
+        } else {
+            14 + 2 * l
+        }
+    }
+
+    /// Tracing invocations (list slots) a wavefront dispatch may have per sample of the
+    /// chunk: a tree's generation holds up to TREE_PATHS_PER_SAMPLE paths a sample.
+    pub fn slots_per_sample(self) -> u64 {
+        if self.tree {
+            TREE_PATHS_PER_SAMPLE as u64
+        } else {
+            1
+        }
+    }
+
+    /// Byte offset in work_args of the indirect arguments of generation g's passes over
+    /// paths (g ≥ 1; written by generation g − 1's args kernel).
+    fn paths_args(self, g: u32) -> u64 {
+        let words = if self.tree {
+            TREE_ROUND_ARGS_WORDS + 6 * (g as u64 - 1)
+        } else {
+            6 * (g as u64 - 1)
+        };
+        4 * words
+    }
+
+    /// Byte offset of generation g's shadow pass's arguments.
+    fn shadow_args(self, g: u32) -> u64 {
+        4 * 3 + self.paths_args(g + 1)
+    }
+
+    /// Byte offset of a tree's round r's leg arguments (the same words every generation).
+    fn round_args(r: u32) -> u64 {
+        12 * r as u64
+    }
+
+    /// 24-byte levels of work_args (and 4-byte counters of work_counts) the kernels use:
+    /// a generation's 6 words (after a tree's round arguments); at least the counters
+    /// (5 for chains; a tree's 10: also three leg counters and two vertex bases).
+    fn work_levels(self) -> u64 {
+        if self.tree {
+            (TREE_ROUND_ARGS_WORDS / 6 + self.generations as u64).max(10)
+        } else {
+            self.generations.max(5) as u64
+        }
     }
 }
 
@@ -71,6 +134,7 @@ impl Mode {
                 Entry::AdaptiveIntegrate,
                 Entry::AdaptiveWorkArgs,
             ],
+            Mode::Wavefront(shape) if shape.tree => &Entry::WAVEFRONT_TREE,
             Mode::Wavefront(_) => &Entry::WAVEFRONT,
         }
     }
@@ -266,7 +330,7 @@ impl FramePlan {
                 let queue_rows = (bounds.max_binding / per_row).clamp(1, u32::MAX as u64) as u32;
                 let rows = dispatch_rows
                     .min(block_rows)
-                    .min(slot_rows(1))
+                    .min(slot_rows(shape.slots_per_sample()))
                     .min(queue_rows);
                 let chunks = bands(window, rows, parts as u32);
                 let pixels = chunks.iter().map(|c| c.block_pixels()).max().unwrap_or(1);
@@ -297,12 +361,12 @@ impl FramePlan {
         let parts = split_even(chunks.len(), parts.min(chunks.len()));
         let work_levels = match mode {
             Mode::Adaptive { depth } => depth.max(1) as u64,
-            // A generation's 6 words of indirect arguments; the 5 counters.
-            Mode::Wavefront(shape) => shape.generations.max(5) as u64,
+            Mode::Wavefront(shape) => shape.work_levels(),
             _ => 1,
         };
         let chunk_slots = |c: &Chunk| match mode {
-            Mode::None | Mode::Wavefront(_) => c.block_pixels(),
+            Mode::None => c.block_pixels(),
+            Mode::Wavefront(shape) => shape.slots_per_sample() * c.block_pixels(),
             Mode::Uniform { n } => c.size[0] as u64 * c.size[1] as u64 * (n * n) as u64,
             Mode::Adaptive { depth } => adaptive_slots(c.size[0], c.size[1], c.side, depth),
         };
@@ -363,10 +427,14 @@ impl FramePlan {
                     clears_work: true,
                     ..run(0, params(0, n), linear(n))
                 }];
+                if shape.tree {
+                    tree_dispatches(shape, n, &mut out, params, linear(n), run);
+                    return out;
+                }
                 for g in 0..shape.generations {
                     let paths = match g {
                         0 => linear(n),
-                        _ => Workgroups::Indirect(24 * (g as u64 - 1)),
+                        _ => Workgroups::Indirect(shape.paths_args(g)),
                     };
                     out.push(run(1, params(g, n), paths));
                     out.push(run(2, params(g, n), paths));
@@ -377,7 +445,7 @@ impl FramePlan {
                     out.push(run(
                         4,
                         params(g, n),
-                        Workgroups::Indirect(24 * g as u64 + 12),
+                        Workgroups::Indirect(shape.shadow_args(g)),
                     ));
                     out.push(run(5, params(g, n), paths));
                 }
@@ -422,6 +490,50 @@ impl FramePlan {
             }
         }
     }
+}
+
+/// A tree's generations after its camera pass (entries of `Entry::WAVEFRONT_TREE`): per
+/// generation g closest, shade, args, the shadow pass (each request's first leg), then
+/// SHADOW_ROUNDS rounds of leg closest and crossing (level: the round) with the leg args
+/// between rounds, and gather; after the last generation the fold over the chunk's `n`
+/// samples. Generation 0's passes over paths run over the samples, later ones' and every
+/// shadow pass and round as the args kernels wrote them.
+fn tree_dispatches(
+    shape: WavefrontShape,
+    n: u32,
+    out: &mut Vec<Dispatch>,
+    params: impl Fn(u32, u32) -> GpuTile,
+    samples: Workgroups,
+    run: impl Fn(usize, GpuTile, Workgroups) -> Dispatch,
+) {
+    let writes_args = |d: Dispatch| Dispatch {
+        writes_args: true,
+        ..d
+    };
+    for g in 0..shape.generations {
+        let paths = match g {
+            0 => samples,
+            _ => Workgroups::Indirect(shape.paths_args(g)),
+        };
+        out.push(run(1, params(g, n), paths));
+        out.push(run(2, params(g, n), paths));
+        out.push(writes_args(run(3, params(g, n), Workgroups::Direct(1, 1))));
+        out.push(run(
+            4,
+            params(g, n),
+            Workgroups::Indirect(shape.shadow_args(g)),
+        ));
+        for r in 0..SHADOW_ROUNDS {
+            let legs = Workgroups::Indirect(WavefrontShape::round_args(r));
+            out.push(run(5, params(r, n), legs));
+            out.push(run(6, params(r, n), legs));
+            if r + 1 < SHADOW_ROUNDS {
+                out.push(writes_args(run(7, params(r, n), Workgroups::Direct(1, 1))));
+            }
+        }
+        out.push(run(8, params(g, n), paths));
+    }
+    out.push(run(9, params(0, n), samples));
 }
 
 /// Workgroups of `lanes` invocations of a one-dimensional kernel over `items`
@@ -567,6 +679,7 @@ mod tests {
         let shape = WavefrontShape {
             light_points: 17,
             generations: 6,
+            tree: false,
         };
         let bounds = AdapterBounds {
             wavefront: Some(shape),

@@ -19,7 +19,7 @@
 
 use super::kernel::KernelConfig;
 use super::lists::LaneLists;
-use crate::constants::{wavefront_wgsl_prelude, wgsl_prelude};
+use crate::constants::{wavefront_tree_wgsl_prelude, wavefront_wgsl_prelude, wgsl_prelude};
 use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
 
@@ -48,6 +48,14 @@ pub enum Entry {
     WavefrontArgs,
     WavefrontShadow,
     WavefrontGather,
+    /// `wavefront_leg_closest`, `wavefront_crossing`, `wavefront_leg_args`,
+    /// `wavefront_fold`: the glass shadow rounds and the fold of scenes with refraction
+    /// (`shaders/wavefront_tree.wgsl`; only in modules with [`wavefront_kernels`] and
+    /// REFRACTION).
+    WavefrontLegClosest,
+    WavefrontCrossing,
+    WavefrontLegArgs,
+    WavefrontFold,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
     /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`).
     ViewSample,
@@ -67,8 +75,26 @@ impl Entry {
         Entry::WavefrontGather,
     ];
 
+    /// The wavefront kernels of AA none in scenes with refraction (paths that branch), in
+    /// the order a generation dispatches them after the camera pass (the shadow pass
+    /// starting each request's first leg, then rounds of leg closest, crossing and leg
+    /// args), then the fold after the last generation: the plan's `Mode::Wavefront`
+    /// pipelines for a tree.
+    pub const WAVEFRONT_TREE: [Entry; 10] = [
+        Entry::WavefrontCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontLegClosest,
+        Entry::WavefrontCrossing,
+        Entry::WavefrontLegArgs,
+        Entry::WavefrontGather,
+        Entry::WavefrontFold,
+    ];
+
     /// Every entry point.
-    pub const ALL: [Entry; 16] = [
+    pub const ALL: [Entry; 20] = [
         Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
@@ -83,6 +109,10 @@ impl Entry {
         Entry::WavefrontArgs,
         Entry::WavefrontShadow,
         Entry::WavefrontGather,
+        Entry::WavefrontLegClosest,
+        Entry::WavefrontCrossing,
+        Entry::WavefrontLegArgs,
+        Entry::WavefrontFold,
         Entry::ViewSample,
         Entry::Probe,
     ];
@@ -104,6 +134,10 @@ impl Entry {
             Entry::WavefrontArgs => "wavefront_args",
             Entry::WavefrontShadow => "wavefront_shadow",
             Entry::WavefrontGather => "wavefront_gather",
+            Entry::WavefrontLegClosest => "wavefront_leg_closest",
+            Entry::WavefrontCrossing => "wavefront_crossing",
+            Entry::WavefrontLegArgs => "wavefront_leg_args",
+            Entry::WavefrontFold => "wavefront_fold",
             Entry::ViewSample => "view_sample",
             Entry::Probe => "probe",
         }
@@ -125,11 +159,27 @@ impl Entry {
                 | Entry::WavefrontArgs
                 | Entry::WavefrontShadow
                 | Entry::WavefrontGather
+        ) || self.is_wavefront_tree()
+    }
+
+    /// Whether the entry is one of the kernels only trees have (in the render module only
+    /// with [`wavefront_kernels`] and REFRACTION).
+    pub fn is_wavefront_tree(self) -> bool {
+        matches!(
+            self,
+            Entry::WavefrontLegClosest
+                | Entry::WavefrontCrossing
+                | Entry::WavefrontLegArgs
+                | Entry::WavefrontFold
         )
     }
 
     /// Whether the render module of `kernel` for `features` has this entry.
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
+        if self.is_wavefront_tree() {
+            return wavefront_kernels(kernel, features)
+                && features.contains(SceneFeatures::REFRACTION);
+        }
         !self.is_wavefront() || wavefront_kernels(kernel, features)
     }
 }
@@ -187,6 +237,11 @@ const WAVEFRONT: &[(&str, &str)] = &[(
     "wavefront.wgsl",
     include_str!("../../shaders/wavefront.wgsl"),
 )];
+/// Appended after `WAVEFRONT` where the scene has refraction (paths that branch).
+const WAVEFRONT_TREE: &[(&str, &str)] = &[(
+    "wavefront_tree.wgsl",
+    include_str!("../../shaders/wavefront_tree.wgsl"),
+)];
 const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
 
 /// The common modules (scene layout, intersection, traversal, shading) specialised to
@@ -223,14 +278,19 @@ pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig
     let mut out = wgsl_prelude() + &kernel_prelude(kernel);
     out += &LaneLists::of(features, kernel).wgsl_prelude();
     let wavefront = entry.is_render() && wavefront_kernels(kernel, features);
+    let tree = wavefront && features.contains(SceneFeatures::REFRACTION);
     if wavefront {
         out += &wavefront_wgsl_prelude();
+    }
+    if tree {
+        out += &wavefront_tree_wgsl_prelude();
     }
     out += &format!("// Specialised for features: {features}; kernel: {kernel}\n");
     let files = COMMON
         .iter()
         .chain(if entry.is_render() { RENDER } else { PROBE })
-        .chain(if wavefront { WAVEFRONT } else { &[] });
+        .chain(if wavefront { WAVEFRONT } else { &[] })
+        .chain(if tree { WAVEFRONT_TREE } else { &[] });
     for (name, text) in files {
         out += &format!("\n// ---- shaders/{name} ----\n");
         out += &preprocess_with(name, text, features, kernel)
@@ -294,10 +354,10 @@ pub fn preprocess_with(
 }
 
 /// Whether the render module of `kernel` for a scene with `features` has the wavefront
-/// kernels (`WAVEFRONT`): where the variant asks for them and the scene's paths are chains
-/// (no refraction: `cpu::wavefront` traces nothing else yet).
-pub fn wavefront_kernels(kernel: KernelConfig, features: SceneFeatures) -> bool {
-    kernel.wavefront && !features.contains(SceneFeatures::REFRACTION)
+/// kernels (`WAVEFRONT`): where the variant asks for them; with refraction (paths that
+/// branch) also the tree's (`shaders/wavefront_tree.wgsl`).
+pub fn wavefront_kernels(kernel: KernelConfig, _features: SceneFeatures) -> bool {
+    kernel.wavefront
 }
 
 /// Whether a kernel variant sets one of its flags for a scene with these features.

@@ -10,13 +10,15 @@ use crate::cpu::wavefront::light_points;
 use crate::pack::{PackedScene, SceneFeatures};
 
 /// The wavefront kernels' shape for `scene` under `kernel`, where `kernel` runs them for
-/// it: AA none, a variant with `wavefront`, no refraction. None: the megakernel.
+/// it: AA none, a variant with `wavefront` (with refraction: a tree, whose vertex tree,
+/// glass shadow rounds and fold `shaders/wavefront_tree.wgsl` adds). None: the megakernel.
 pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
     let g = &scene.globals;
     if g.aa_mode != AA_NONE || !wavefront_kernels(kernel, scene.features) {
         return None;
     }
-    let generations = if scene.features.contains(SceneFeatures::REFLECTION) {
+    let tree = scene.features.contains(SceneFeatures::REFRACTION);
+    let generations = if tree || scene.features.contains(SceneFeatures::REFLECTION) {
         g.max_depth + 1
     } else {
         1
@@ -24,5 +26,6 @@ pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<Wave
     Some(WavefrontShape {
         light_points: light_points(scene),
         generations,
+        tree,
     })
 }
