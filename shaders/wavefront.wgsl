@@ -43,10 +43,10 @@ fn light_points() -> u32 {
     return points;
 }
 
-// (With refraction the regions are wavefront_tree.wgsl's: a generation may be wider than
-// the chunk.)
 fn wavefront_paths(parity: u32) -> u32 {
 // #if REFRACTION
+    // With refraction the regions are wavefront_tree.wgsl's: a generation may be wider
+    // than the chunk.
     return tree_paths(parity);
 // #else
     return 2u * tile.items + 4u * tile.items * parity;
