@@ -269,6 +269,21 @@ pub(super) fn bands(window: PixelRect, rows: u32, min_bands: u32) -> Vec<Chunk> 
         .collect()
 }
 
+/// Each row of `window` in pieces of at most `width` pixels (each its own chunk, laid out
+/// `width` wide), row by row.
+fn row_pieces(window: PixelRect, width: u32) -> Vec<Chunk> {
+    let w = window.width();
+    (window.y0..window.y0 + window.height())
+        .flat_map(|y| {
+            (0..w.div_ceil(width)).map(move |k| Chunk {
+                origin: [window.x0 + k * width, y],
+                size: [width.min(w - k * width), 1],
+                side: width,
+            })
+        })
+        .collect()
+}
+
 /// Square tiles of side `side` from `window`'s top-left corner, row-major.
 fn squares(window: PixelRect, side: u32) -> Vec<Chunk> {
     let (w, h) = (window.width(), window.height());
@@ -326,13 +341,22 @@ impl FramePlan {
             ),
             Mode::Wavefront(shape) => {
                 // Rows whose queues fit one binding.
-                let per_row = w as u64 * shape.vec4s_per_sample() * 16;
+                let per_sample = shape.vec4s_per_sample() * 16;
+                let per_row = w as u64 * per_sample;
                 let queue_rows = (bounds.max_binding / per_row).clamp(1, u32::MAX as u64) as u32;
                 let rows = dispatch_rows
                     .min(block_rows)
                     .min(slot_rows(shape.slots_per_sample()))
                     .min(queue_rows);
-                let chunks = bands(window, rows, parts as u32);
+                // A tree's queues may not fit even one row: then pieces of rows.
+                let fit = (bounds.max_binding / per_sample)
+                    .min(slots / shape.slots_per_sample())
+                    .max(1);
+                let chunks = if (w as u64) > fit {
+                    row_pieces(window, fit as u32)
+                } else {
+                    bands(window, rows, parts as u32)
+                };
                 let pixels = chunks.iter().map(|c| c.block_pixels()).max().unwrap_or(1);
                 (chunks, shape.vec4s_per_sample() * pixels, 1)
             }
@@ -722,6 +746,98 @@ mod tests {
             assert!(matches!(uniform.mode, Mode::Uniform { .. }));
         }
         assert!(plan_counters_fit(shape));
+    }
+
+    /// A tree's bands (scenes with refraction): their queues fit one binding, every
+    /// closest or shade invocation of a generation (up to TREE_PATHS_PER_SAMPLE a sample)
+    /// has a list slot, and each band runs the camera pass, then per generation closest,
+    /// shade, args, shadow, SHADOW_ROUNDS rounds of leg closest and crossing with the leg
+    /// args between them, gather — then the fold; every indirect offset inside the
+    /// work-args buffer, rounds at the same offsets every generation, the generations'
+    /// after them.
+    #[test]
+    fn tree_bands_run_every_generation_every_round_and_the_fold() {
+        let shape = WavefrontShape {
+            light_points: 17,
+            generations: 9,
+            tree: true,
+        };
+        assert_eq!(
+            shape.vec4s_per_sample(),
+            2 + (14 + 10 * 17) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
+        );
+        let words = 562;
+        let bounds = AdapterBounds {
+            wavefront: Some(shape),
+            max_binding: 16 << 20,
+            lane_list_words: words,
+            ..LAVAPIPE
+        };
+        // 1920 samples of 13.5 KiB are more than one 16 MiB binding: rows in pieces.
+        for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
+            let plan = FramePlan::new(&globals(w, h, 0), bounds);
+            assert_eq!(plan.mode, Mode::Wavefront(shape));
+            assert_eq!(plan.mode.entries(), &Entry::WAVEFRONT_TREE);
+            assert_eq!(plan.chunks.len() > h as usize, w == 1920, "{w}×{h}");
+            assert_covers(&plan, w, h);
+            assert!(plan.samples_len * 16 <= bounds.max_binding, "{w}×{h}");
+            assert!(plan.lists_len * 4 <= bounds.max_binding.min(LIST_BUDGET_BYTES));
+            assert!(plan.work_levels >= 10, "the ten counters");
+            for (k, c) in plan.chunks.iter().enumerate() {
+                assert!(shape.vec4s_per_sample() * c.block_pixels() <= plan.samples_len);
+                let paths = TREE_PATHS_PER_SAMPLE as u64 * c.block_pixels();
+                assert!(paths * words as u64 <= plan.lists_len, "{w}×{h}: slots");
+                let d = plan.dispatches(k, 2, bounds);
+                let per_generation = 5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+                assert_eq!(d.len(), 2 + per_generation * shape.generations as usize);
+                assert!(d[0].clears_work && d[0].entry == 0);
+                let fold = d.last().unwrap();
+                assert_eq!((fold.entry, fold.workgroups), (9, d[0].workgroups));
+                for (g, pass) in d[1..d.len() - 1].chunks(per_generation).enumerate() {
+                    let g = g as u32;
+                    let entries: Vec<usize> = pass.iter().map(|d| d.entry).collect();
+                    let mut expected = vec![1, 2, 3, 4];
+                    for r in 0..SHADOW_ROUNDS {
+                        expected.extend([5, 6]);
+                        if r + 1 < SHADOW_ROUNDS {
+                            expected.push(7);
+                        }
+                    }
+                    expected.push(8);
+                    assert_eq!(entries, expected);
+                    let rounds = &pass[4..pass.len() - 1];
+                    for (r, round) in rounds.chunks(3).enumerate() {
+                        assert!(round.iter().all(|d| d.params.level == r as u32));
+                        assert_eq!(round[0].workgroups, Workgroups::Indirect(12 * r as u64));
+                        assert_eq!(round[1].workgroups, round[0].workgroups);
+                        if round.len() == 3 {
+                            assert!(round[2].writes_args);
+                        }
+                    }
+                    for d in pass[..4].iter().chain(&pass[pass.len() - 1..]) {
+                        assert_eq!(d.params.level, g);
+                    }
+                    assert!(pass[2].writes_args);
+                    let expected = match g {
+                        0 => d[0].workgroups,
+                        _ => Workgroups::Indirect(4 * (30 + 6 * (g as u64 - 1))),
+                    };
+                    assert_eq!(pass[0].workgroups, expected);
+                    assert_eq!(pass[1].workgroups, expected);
+                    assert_eq!(pass[pass.len() - 1].workgroups, expected);
+                    assert_eq!(
+                        pass[3].workgroups,
+                        Workgroups::Indirect(4 * (30 + 6 * g as u64 + 3))
+                    );
+                    for at in pass.iter().filter_map(|d| match d.workgroups {
+                        Workgroups::Indirect(at) => Some(at),
+                        Workgroups::Direct(..) => None,
+                    }) {
+                        assert!(at + 12 <= plan.work_levels * 24, "{at}");
+                    }
+                }
+            }
+        }
     }
 
     /// The five counters (three path counters, two shadow counters) fit `work_counts`.
