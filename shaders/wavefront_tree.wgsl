@@ -24,14 +24,16 @@
 //                               (dir, depth), (weight, cone.x), (cone.y, pending, media
 //                               count, 0), (media indices)
 //   2N + 10C                    hits, 2 a path;  2N + 12C: vertices, 2 a path
-//   2N + 14C                    light slots, L a path;  2N + (14 + L)C: shadow requests
-//   2N + (14 + 2L)C + 3LC·p     legs of round parity p, 3 a leg: (start, transmittance),
+//   2N + 14C                    the vertex tree, 2 a vertex (V = TREE_VERTICES_PER_SAMPLE
+//                               · N of them): (value, first child), (second child)
+//   S = 2N + 14C + 2V           light slots, L a path;  S + LC: shadow requests
+//   S + 2LC + 3LC·p             legs of round parity p, 3 a leg: (start, transmittance),
 //                               (media indices), (media count, request)
-//   2N + (14 + 8L)C             the round's leg hits, 2 a leg
-//   2N + (14 + 10L)C            the vertex tree, 2 a vertex (TREE_VERTICES_PER_SAMPLE · N):
-//                               (value, first child), (second child)
+//   S + 8LC                     the round's leg hits, 2 a leg
 // Counters in work_counts: as for chains (paths g mod 3, requests 3 + g mod 2), round r's
-// legs at 5 + r mod 3, generation g's vertex base at 8 + g mod 2. Indirect arguments in
+// legs at 5 + r mod 3, generation g's vertex base at 8 + g mod 2, the scene's light
+// points at 10 (written by the shadow pass, for the rounds' kernels: their regions lie
+// after L-sized ones). Indirect arguments in
 // work_args: round r's legs at 3r (r < 10), generation g's pair (next paths, requests) at
 // 30 + 6g.
 // Overflow: a generation holds at most C paths and the tree TREE_VERTICES_PER_SAMPLE · N
@@ -61,29 +63,35 @@ fn tree_vertices() -> u32 {
     return 2u * tile.items + 12u * tree_capacity();
 }
 
-fn tree_slots() -> u32 {
+fn tree_nodes() -> u32 {
     return 2u * tile.items + 14u * tree_capacity();
 }
 
+fn tree_slots() -> u32 {
+    return tree_nodes() + 2u * TREE_VERTICES_PER_SAMPLE * tile.items;
+}
+
 fn tree_shadows(points: u32) -> u32 {
-    return 2u * tile.items + (14u + points) * tree_capacity();
+    return tree_slots() + points * tree_capacity();
 }
 
 fn tree_legs(parity: u32, points: u32) -> u32 {
-    return 2u * tile.items + (14u + 2u * points) * tree_capacity() + 3u * points * tree_capacity() * parity;
+    return tree_slots() + (2u + 3u * parity) * points * tree_capacity();
 }
 
 fn tree_leg_hits(points: u32) -> u32 {
-    return 2u * tile.items + (14u + 8u * points) * tree_capacity();
-}
-
-fn tree_nodes(points: u32) -> u32 {
-    return 2u * tile.items + (14u + 10u * points) * tree_capacity();
+    return tree_slots() + 8u * points * tree_capacity();
 }
 
 // Round r's leg counter.
 fn leg_counter(r: u32) -> u32 {
     return 5u + r % 3u;
+}
+
+// The scene's light points, as the shadow pass noted them (the CPU's
+// ShadowRequests::light_points).
+fn tree_points() -> u32 {
+    return atomicLoad(&work_counts[10u]);
 }
 
 // Generation g's vertex base (its path i is vertex base + i).
@@ -128,8 +136,8 @@ fn load_tree_path(parity: u32, i: u32) -> StackEntry {
     return entry;
 }
 
-// Writes `entry` of sample `sample` with pending count `pending` as path i.
-// Mirror of src/cpu/wavefront.rs::PathQueue::store_path — change both.
+// Writes `entry` of sample `sample` with pending count `pending` as path i (the CPU's
+// PathQueue::store_path).
 fn store_tree_path(parity: u32, i: u32, entry: StackEntry, pending: u32, sample: u32) {
     let at = tree_paths(parity) + 5u * i;
     samples[at] = vec4<f32>(entry.ray.origin, bitcast<f32>(sample));
@@ -146,28 +154,28 @@ fn store_tree_path(parity: u32, i: u32, entry: StackEntry, pending: u32, sample:
 
 // Vertex v's value, and its children in push order.
 fn tree_value(v: u32) -> vec3<f32> {
-    return samples[tree_nodes(light_points()) + 2u * v].xyz;
+    return samples[tree_nodes() + 2u * v].xyz;
 }
 
 fn tree_children(v: u32) -> vec2<u32> {
-    let at = tree_nodes(light_points()) + 2u * v;
+    let at = tree_nodes() + 2u * v;
     return vec2<u32>(bitcast<u32>(samples[at].w), bitcast<u32>(samples[at + 1u].x));
 }
 
 fn set_tree_value(v: u32, value: vec3<f32>) {
-    let at = tree_nodes(light_points()) + 2u * v;
+    let at = tree_nodes() + 2u * v;
     samples[at] = vec4<f32>(value, samples[at].w);
 }
 
 // A vertex childless until its shade step appends children.
 fn clear_tree_children(v: u32) {
-    let at = tree_nodes(light_points()) + 2u * v;
+    let at = tree_nodes() + 2u * v;
     samples[at].w = bitcast<f32>(NO_CHILD);
     samples[at + 1u] = vec4<f32>(bitcast<f32>(NO_CHILD), 0.0, 0.0, 0.0);
 }
 
 fn set_tree_child(v: u32, place: u32, child: u32) {
-    let at = tree_nodes(light_points()) + 2u * v;
+    let at = tree_nodes() + 2u * v;
     if place == 0u {
         samples[at].w = bitcast<f32>(child);
     } else {
@@ -243,8 +251,8 @@ fn store_leg_args(r: u32, legs: u32) {
     work_args[at + 2u] = groups.z;
 }
 
-// A shadow ray's state between the dielectric surfaces it crosses.
-// Mirror of src/cpu/dielectric.rs::ShadowLeg — change both.
+// A shadow ray's state between the dielectric surfaces it crosses (the CPU's
+// dielectric::ShadowLeg).
 struct ShadowLeg {
     start: vec3<f32>,
     transmittance: f32,
@@ -263,19 +271,25 @@ struct Crossed {
     blocked: bool,
 }
 
-// Appends request r's leg to round parity `parity`'s queue as leg l.
-// Mirror of src/cpu/wavefront_tree.rs::LegQueue::append_leg — change both.
+// Writes request r's leg as leg l of round parity `parity`'s queue.
 fn store_leg(parity: u32, l: u32, r: u32, leg: ShadowLeg) {
-    let at = tree_legs(parity, light_points()) + 3u * l;
+    let at = tree_legs(parity, tree_points()) + 3u * l;
     var m = leg.media;
     samples[at] = vec4<f32>(leg.start, leg.transmittance);
     samples[at + 1u] = vec4<f32>(m.iors[0], m.iors[1], m.iors[2], m.iors[3]);
     samples[at + 2u] = vec4<f32>(bitcast<f32>(m.count), bitcast<f32>(r), 0.0, 0.0);
 }
 
-// Mirror of src/cpu/wavefront_tree.rs::LegQueue::load_leg — change both.
+// Appends request r's `leg` to the next round's queue (round tile.level + 1).
+// Mirror of src/cpu/wavefront_tree.rs::LegQueue::append_leg — change both.
+fn append_leg(r: u32, leg: ShadowLeg) {
+    let l = atomicAdd(&work_counts[leg_counter(tile.level + 1u)], 1u);
+    store_leg(1u - tile.level % 2u, l, r, leg);
+}
+
+// Leg l of round parity `parity`'s queue (the CPU's LegQueue::load_leg).
 fn load_leg(parity: u32, l: u32) -> ShadowLeg {
-    let at = tree_legs(parity, light_points()) + 3u * l;
+    let at = tree_legs(parity, tree_points()) + 3u * l;
     let a = samples[at];
     let m = samples[at + 1u];
     let media = MediumStack(array<f32, MEDIUM_STACK_SIZE>(m.x, m.y, m.z, m.w), bitcast<u32>(samples[at + 2u].x));
@@ -283,12 +297,13 @@ fn load_leg(parity: u32, l: u32) -> ShadowLeg {
 }
 
 fn leg_request(parity: u32, l: u32) -> u32 {
-    return bitcast<u32>(samples[tree_legs(parity, light_points()) + 3u * l + 2u].y);
+    return bitcast<u32>(samples[tree_legs(parity, tree_points()) + 3u * l + 2u].y);
 }
 
 // The ray of `leg` toward a light at `position` and its reach (magnitude: the shaded
-// surface's).
-// Mirror of src/cpu/dielectric.rs::shadow_leg_ray — change both.
+// surface's): the CPU's dielectric::shadow_leg_ray, which its shadow_transmittance
+// shares; dielectric.wgsl's keeps its own lines, so the software variant's module stays
+// byte for byte what it was.
 fn shadow_leg_ray(leg: ShadowLeg, position: vec3<f32>, magnitude: f32) -> LegRay {
     let to_light = position - leg.start;
     let distance = length(to_light);
@@ -298,8 +313,8 @@ fn shadow_leg_ray(leg: ShadowLeg, position: vec3<f32>, magnitude: f32) -> LegRay
 
 // The leg's ray meets a surface at `hit`, its crossing number `crossing`: the next leg,
 // beyond the surface and dimmed by its normal_transmission; blocked where the surface is
-// opaque or the crossing is MAX_SHADOW_CROSSINGS.
-// Mirror of src/cpu/dielectric.rs::cross_shadow_surface — change both.
+// opaque or the crossing is MAX_SHADOW_CROSSINGS (the CPU's
+// dielectric::cross_shadow_surface; see shadow_leg_ray).
 fn cross_shadow_surface(ray: Ray, hit: Hit, crossing: u32, leg: ShadowLeg) -> Crossed {
     let s = surface_at(ray, hit);
     let m = load_material(s.material);
@@ -307,9 +322,10 @@ fn cross_shadow_surface(ray: Ray, hit: Hit, crossing: u32, leg: ShadowLeg) -> Cr
         return Crossed(leg, true);
     }
     let sides = surface_sides(ray.dir, s.normal, m.ior, leg.media);
+    let transmittance = leg.transmittance * normal_transmission(sides.n1, sides.n2);
     // Go on from just beyond the surface.
-    let next = ShadowLeg(offset_ray(s.p, -sides.n, s.magnitude), leg.transmittance * normal_transmission(sides.n1, sides.n2), sides.beyond);
-    return Crossed(next, false);
+    let start = offset_ray(s.p, -sides.n, s.magnitude);
+    return Crossed(ShadowLeg(start, transmittance, sides.beyond), false);
 }
 
 // Shadow request r's first leg (wavefront_shadow with refraction; round 0's leg r): from
@@ -317,6 +333,10 @@ fn cross_shadow_surface(ray: Ray, hit: Hit, crossing: u32, leg: ShadowLeg) -> Cr
 // Mirror of the first-leg loop of src/cpu/wavefront_tree.rs::glass_shadow_rounds — change both.
 fn start_shadow_leg(r: u32) {
     let points = light_points();
+    if r == 0u {
+        // For the rounds' kernels, which run only where there are requests (tree_points).
+        atomicStore(&work_counts[10u], points);
+    }
     let i = bitcast<u32>(samples[tree_shadows(points) + r].w) / points;
     let origin = samples[tree_vertices() + 2u * i + 1u].xyz;
     store_leg(0u, r, r, ShadowLeg(origin, 1.0, path_media(tile.level % 2u, i)));
@@ -324,7 +344,7 @@ fn start_shadow_leg(r: u32) {
 
 // Request r's light point and its vertex's magnitude.
 fn request_target(r: u32) -> vec4<f32> {
-    let points = light_points();
+    let points = tree_points();
     let request = samples[tree_shadows(points) + r];
     let i = bitcast<u32>(request.w) / points;
     return vec4<f32>(request.xyz, samples[tree_vertices() + 2u * i + 1u].w);
@@ -361,7 +381,7 @@ fn leg_closest_entry(l: u32) {
     let light = request_target(leg_request(parity, l));
     let leg_ray = shadow_leg_ray(load_leg(parity, l), light.xyz, light.w);
     let hit = closest_hit(leg_ray.ray, leg_ray.reach);
-    let at = tree_leg_hits(light_points()) + 2u * l;
+    let at = tree_leg_hits(tree_points()) + 2u * l;
     samples[at] = vec4<f32>(hit.t, bitcast<f32>(hit.item), hit.b1, hit.b2);
     samples[at + 1u] = vec4<f32>(bitcast<f32>(hit.part), 0.0, 0.0, 0.0);
 }
@@ -378,25 +398,31 @@ fn wavefront_crossing(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
         return;
     }
     for (var l = idx; l < count; l += tree_capacity()) {
-        crossing_entry(l, tile.level);
+        crossing_entry(l, leg_hit(l), tile.level);
     }
 // #else
     if idx >= count {
         return;
     }
-    crossing_entry(idx, tile.level);
+    crossing_entry(idx, leg_hit(idx), tile.level);
 // #endif
 }
 
-// Leg l's crossing `crossing`: a miss ends its request with the transmittance so far, an
-// opaque surface (or the crossing after the last) with 0; glass appends the next leg.
+// Leg l's closest hit, as wavefront_leg_closest stored it.
+fn leg_hit(l: u32) -> Hit {
+    let at = tree_leg_hits(tree_points()) + 2u * l;
+    let h = samples[at];
+    return Hit(h.x, bitcast<u32>(h.y), h.z, h.w, bitcast<u32>(samples[at + 1u].x));
+}
+
+// Leg l's crossing `crossing`, whose closest hit is `hit`: a miss ends its request with
+// the transmittance so far, an opaque surface (or the crossing after the last) with 0;
+// glass appends the next leg.
 // Mirror of src/cpu/wavefront_tree.rs::crossing_entry — change both.
-fn crossing_entry(l: u32, crossing: u32) {
+fn crossing_entry(l: u32, hit: Hit, crossing: u32) {
     let parity = crossing % 2u;
     let r = leg_request(parity, l);
     let leg = load_leg(parity, l);
-    let h = samples[tree_leg_hits(light_points()) + 2u * l];
-    let hit = Hit(h.x, bitcast<u32>(h.y), h.z, h.w, bitcast<u32>(samples[tree_leg_hits(light_points()) + 2u * l + 1u].x));
     if !is_hit(hit) {
         end_request(r, leg.transmittance);
         return;
@@ -408,15 +434,14 @@ fn crossing_entry(l: u32, crossing: u32) {
         end_request(r, 0.0);
         return;
     }
-    let next = atomicAdd(&work_counts[leg_counter(crossing + 1u)], 1u);
-    store_leg(1u - parity, next, r, beyond.leg);
+    append_leg(r, beyond.leg);
 }
 
 // Request r's slot × its transmittance (shade.wgsl's point_light's last product, the
 // CPU's shadowed_term), once, when its last leg ends.
 // Mirror of the slot product of src/cpu/wavefront_tree.rs::glass_shadow_rounds — change both.
 fn end_request(r: u32, transmittance: f32) {
-    let slot = tree_slots() + bitcast<u32>(samples[tree_shadows(light_points()) + r].w);
+    let slot = tree_slots() + bitcast<u32>(samples[tree_shadows(tree_points()) + r].w);
     var term = vec3<f32>(0.0);
     if !(transmittance <= 0.0) {
         term = samples[slot].xyz * transmittance;

@@ -56,9 +56,9 @@ impl WavefrontShape {
     /// regions): its record (2), two path queues (4 each), a hit (2), a vertex (2), its
     /// light slots and shadow requests (L each). A tree's (`shaders/wavefront_tree.wgsl`):
     /// the record, then per path of a generation (TREE_PATHS_PER_SAMPLE a sample) two
-    /// path queues (5 each, with media and pending count), a hit, a vertex, L slots, L
-    /// requests, two leg queues (3L each) and the legs' hits (2L), and the vertex tree (2
-    /// a vertex, TREE_VERTICES_PER_SAMPLE a sample).
+    /// path queues (5 each, with media and pending count), a hit, a vertex, the vertex
+    /// tree (2 a vertex, TREE_VERTICES_PER_SAMPLE a sample), then per path L slots, L
+    /// requests, two leg queues (3L each) and the legs' hits (2L).
     pub fn vec4s_per_sample(self) -> u64 {
         let l = self.light_points as u64;
         if self.tree {
@@ -101,10 +101,11 @@ impl WavefrontShape {
 
     /// 24-byte levels of work_args (and 4-byte counters of work_counts) the kernels use:
     /// a generation's 6 words (after a tree's round arguments); at least the counters
-    /// (5 for chains; a tree's 10: also three leg counters and two vertex bases).
+    /// (5 for chains; a tree's 11: also three leg counters, two vertex bases and the
+    /// light points).
     fn work_levels(self) -> u64 {
         if self.tree {
-            (TREE_ROUND_ARGS_WORDS / 6 + self.generations as u64).max(10)
+            (TREE_ROUND_ARGS_WORDS / 6 + self.generations as u64).max(11)
         } else {
             self.generations.max(5) as u64
         }
@@ -782,7 +783,7 @@ mod tests {
             assert_covers(&plan, w, h);
             assert!(plan.samples_len * 16 <= bounds.max_binding, "{w}×{h}");
             assert!(plan.lists_len * 4 <= bounds.max_binding.min(LIST_BUDGET_BYTES));
-            assert!(plan.work_levels >= 10, "the ten counters");
+            assert!(plan.work_levels >= 11, "the eleven counters");
             for (k, c) in plan.chunks.iter().enumerate() {
                 assert!(shape.vec4s_per_sample() * c.block_pixels() <= plan.samples_len);
                 let paths = TREE_PATHS_PER_SAMPLE as u64 * c.block_pixels();
