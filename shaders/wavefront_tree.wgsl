@@ -43,9 +43,6 @@
 // Mirror of src/cpu/wavefront_tree.rs — change both.
 
 // #if REFRACTION
-// A vertex without a child in that place.
-const NO_CHILD: u32 = 0xffffffffu;
-
 // Paths one generation of the chunk may hold.
 fn tree_capacity() -> u32 {
     return TREE_PATHS_PER_SAMPLE * tile.items;

@@ -368,11 +368,14 @@ pub const TREE_PATHS_PER_SAMPLE: u32 = 4;
 /// chunk (shared: a sample may take more than its share).
 pub const TREE_VERTICES_PER_SAMPLE: u32 = 64;
 
+/// A vertex of the wavefront's vertex tree without a child in that place.
+pub const NO_CHILD: u32 = u32::MAX;
+
 /// The WGSL constants of the wavefront kernels for scenes with refraction, emitted after
 /// [`wavefront_wgsl_prelude`] only in those modules.
 pub fn wavefront_tree_wgsl_prelude() -> String {
     format!(
-        "const TREE_PATHS_PER_SAMPLE: u32 = {TREE_PATHS_PER_SAMPLE}u;\nconst TREE_VERTICES_PER_SAMPLE: u32 = {TREE_VERTICES_PER_SAMPLE}u;\n"
+        "const TREE_PATHS_PER_SAMPLE: u32 = {TREE_PATHS_PER_SAMPLE}u;\nconst TREE_VERTICES_PER_SAMPLE: u32 = {TREE_VERTICES_PER_SAMPLE}u;\nconst NO_CHILD: u32 = {NO_CHILD}u;\n"
     )
 }
 

@@ -30,7 +30,7 @@ use crate::pack::PackedScene;
 use glam::Vec3;
 
 /// A vertex without a child in that place.
-pub const NO_CHILD: u32 = u32::MAX;
+pub use crate::constants::NO_CHILD;
 
 /// Every vertex of a batch, generation after generation (generation g's path i is
 /// vertex ``cpu::wavefront::Batch::vertex_base`` + i): its value and its children in push order.

@@ -139,3 +139,53 @@ fn hardware_wavefront_renders_mains_image_of_tree_edge_cases() {
         assert_wavefront_matches(&mut ctx, name, scene);
     }
 }
+
+/// The camera inside a glass shell (index 1.5 and a 0.9 mirror) around a glass ball: a
+/// ray that meets the ball splits in two at every surface and both halves stay inside,
+/// so a sample's tree grows toward 2^9 vertices at max_depth 8 — more than the queues'
+/// room (TREE_PATHS_PER_SAMPLE paths a generation, TREE_VERTICES_PER_SAMPLE vertices a
+/// sample).
+const BUSHY_SCENE: &str = r#"
+glass = gr.material({0.1, 0.1, 0.1}, {0.5, 0.5, 0.5}, 50)
+glass:set_reflection(0.9, 0.9, 0.9)
+glass:set_refraction(1.5)
+root = gr.node('root')
+shell = gr.nh_sphere('shell', {0, 0, 0}, 10)
+shell:set_material(glass)
+root:add_child(shell)
+ball = gr.nh_sphere('ball', {0, 0, -4}, 3)
+ball:set_material(glass)
+root:add_child(ball)
+gr.render(root, 'bushy.png', 8, 6, {0, 0, 5}, {0, 0, -1}, {0, 1, 0}, 50,
+          {0.3, 0.3, 0.3}, {gr.light({0, 5, 0}, {0.8, 0.8, 0.8}, {1, 0, 0})})
+"#;
+
+/// Where a tree outgrows the queues, no ray is lost: the children without room set their
+/// pixel's guard flag and the host renders those pixels with the CPU tracer (its bits);
+/// the image is the CPU's within the parity tolerance.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_hands_pixels_without_room_to_the_cpu() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    let scene = packed_from_source(BUSHY_SCENE, &overrides_at(Some(8), 8, 6)).remove(0);
+    let render = glint::gpu::render_gpu(&ctx, &scene, &glint::gpu::GpuRenderOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let handed = render.info.cpu_fallback_pixels;
+    eprintln!("bushy: {handed} of 48 pixels handed to the CPU");
+    assert!(handed > 0, "no pixel outgrew the queues");
+    let cpu = glint::cpu::render::render(&scene, &|_, _| {});
+    let bits = |p: &[f32; 3]| p.map(f32::to_bits);
+    let cpu_bits = render
+        .film
+        .pixels
+        .iter()
+        .zip(&cpu.pixels)
+        .filter(|(g, c)| bits(g) == bits(c))
+        .count();
+    assert!(
+        cpu_bits as u64 >= handed,
+        "{handed} pixels handed to the CPU, {cpu_bits} with its bits"
+    );
+    common::assert_gpu_matches_cpu(&ctx, "gpu_wavefront", "bushy", &scene, 0.01);
+}
