@@ -144,7 +144,7 @@ fn hardware_wavefront_renders_mains_image_of_tree_edge_cases() {
 /// ray that meets the ball splits in two at every surface and both halves stay inside,
 /// so a sample's tree grows toward 2^9 vertices at max_depth 8 — more than the queues'
 /// room (TREE_PATHS_PER_SAMPLE paths a generation, TREE_VERTICES_PER_SAMPLE vertices a
-/// sample).
+/// sample). A white box fills the lower right of the view: its pixels spawn no rays.
 const BUSHY_SCENE: &str = r#"
 glass = gr.material({0.1, 0.1, 0.1}, {0.5, 0.5, 0.5}, 50)
 glass:set_reflection(0.9, 0.9, 0.9)
@@ -156,6 +156,10 @@ root:add_child(shell)
 ball = gr.nh_sphere('ball', {0, 0, -4}, 3)
 ball:set_material(glass)
 root:add_child(ball)
+white = gr.material({0.8, 0.8, 0.8}, {0.2, 0.2, 0.2}, 20)
+wall = gr.nh_box('wall', {0.5, -4, -1}, 4)
+wall:set_material(white)
+root:add_child(wall)
 gr.render(root, 'bushy.png', 8, 6, {0, 0, 5}, {0, 0, -1}, {0, 1, 0}, 50,
           {0.3, 0.3, 0.3}, {gr.light({0, 5, 0}, {0.8, 0.8, 0.8}, {1, 0, 0})})
 "#;
@@ -174,6 +178,7 @@ fn hardware_wavefront_hands_pixels_without_room_to_the_cpu() {
     let handed = render.info.cpu_fallback_pixels;
     eprintln!("bushy: {handed} of 48 pixels handed to the CPU");
     assert!(handed > 0, "no pixel outgrew the queues");
+    assert!(handed < 48, "the box's pixels spawn no rays: traced on the GPU");
     let cpu = glint::cpu::render::render(&scene, &|_, _| {});
     let bits = |p: &[f32; 3]| p.map(f32::to_bits);
     let cpu_bits = render
