@@ -26,6 +26,11 @@
 // Mirror of src/cpu/wavefront.rs — change both.
 
 // #if WAVEFRONT
+// #if REFRACTION
+// With refraction (this module) paths are trees: the regions, the vertex tree, the glass
+// shadow rounds and the fold are wavefront_tree.wgsl's; the blocks under `#if REFRACTION`
+// below hand over to it. (The header above stays as chain modules compile it.)
+// #endif
 // The light points of the scene: one per point light, n² per n×n area light.
 // Mirror of src/cpu/wavefront.rs::light_points — change both.
 fn light_points() -> u32 {

@@ -178,7 +178,10 @@ fn hardware_wavefront_hands_pixels_without_room_to_the_cpu() {
     let handed = render.info.cpu_fallback_pixels;
     eprintln!("bushy: {handed} of 48 pixels handed to the CPU");
     assert!(handed > 0, "no pixel outgrew the queues");
-    assert!(handed < 48, "the box's pixels spawn no rays: traced on the GPU");
+    assert!(
+        handed < 48,
+        "the box's pixels spawn no rays: traced on the GPU"
+    );
     let cpu = glint::cpu::render::render(&scene, &|_, _| {});
     let bits = |p: &[f32; 3]| p.map(f32::to_bits);
     let cpu_bits = render
