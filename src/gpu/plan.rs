@@ -453,8 +453,7 @@ impl FramePlan {
                     ..run(0, params(0, n), linear(n))
                 }];
                 if shape.tree {
-                    tree_dispatches(shape, n, &mut out, params, linear(n), run);
-                    return out;
+                    return tree_dispatches(shape, n, out, params, linear(n), run);
                 }
                 for g in 0..shape.generations {
                     let paths = match g {
@@ -467,11 +466,8 @@ impl FramePlan {
                         writes_args: true,
                         ..run(3, params(g, n), Workgroups::Direct(1, 1))
                     });
-                    out.push(run(
-                        4,
-                        params(g, n),
-                        Workgroups::Indirect(shape.shadow_args(g)),
-                    ));
+                    let shadows = Workgroups::Indirect(shape.shadow_args(g));
+                    out.push(run(4, params(g, n), shadows));
                     out.push(run(5, params(g, n), paths));
                 }
                 out
@@ -526,11 +522,11 @@ impl FramePlan {
 fn tree_dispatches(
     shape: WavefrontShape,
     n: u32,
-    out: &mut Vec<Dispatch>,
+    mut out: Vec<Dispatch>,
     params: impl Fn(u32, u32) -> GpuTile,
     samples: Workgroups,
     run: impl Fn(usize, GpuTile, Workgroups) -> Dispatch,
-) {
+) -> Vec<Dispatch> {
     let writes_args = |d: Dispatch| Dispatch {
         writes_args: true,
         ..d
@@ -559,6 +555,7 @@ fn tree_dispatches(
         out.push(run(8, params(g, n), paths));
     }
     out.push(run(9, params(0, n), samples));
+    out
 }
 
 /// Workgroups of `lanes` invocations of a one-dimensional kernel over `items`
