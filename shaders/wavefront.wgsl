@@ -29,6 +29,11 @@
 // Mirror of src/cpu/wavefront.rs — change both.
 
 // #if WAVEFRONT
+// #if REFRACTION
+// With refraction (this module) paths are trees: the regions, the vertex tree, the glass
+// shadow rounds and the fold are wavefront_tree.wgsl's; the blocks under `#if REFRACTION`
+// below hand over to it. (The header above stays as chain modules compile it.)
+// #endif
 // The light points of the scene: one per point light, n² per n×n area light.
 // Mirror of src/cpu/wavefront.rs::light_points — change both.
 fn light_points() -> u32 {
@@ -47,23 +52,45 @@ fn light_points() -> u32 {
 }
 
 fn wavefront_paths(parity: u32) -> u32 {
+// #if REFRACTION
+    // With refraction the regions are wavefront_tree.wgsl's: a generation may be wider
+    // than the chunk.
+    return tree_paths(parity);
+// #else
     return 2u * tile.items + 4u * tile.items * parity;
+// #endif
 }
 
 fn wavefront_hits() -> u32 {
+// #if REFRACTION
+    return tree_hits();
+// #else
     return 10u * tile.items;
+// #endif
 }
 
 fn wavefront_vertices() -> u32 {
+// #if REFRACTION
+    return tree_vertices();
+// #else
     return 12u * tile.items;
+// #endif
 }
 
 fn wavefront_slots() -> u32 {
+// #if REFRACTION
+    return tree_slots();
+// #else
     return 14u * tile.items;
+// #endif
 }
 
 fn wavefront_shadows(points: u32) -> u32 {
+// #if REFRACTION
+    return tree_shadows(points);
+// #else
     return (14u + points) * tile.items;
+// #endif
 }
 
 // Generation g's path counter.
@@ -77,6 +104,9 @@ fn shadow_counter(g: u32) -> u32 {
 }
 
 fn load_path(parity: u32, i: u32) -> StackEntry {
+// #if REFRACTION
+    return load_tree_path(parity, i);
+// #else
     let at = wavefront_paths(parity) + 4u * i;
     let a = samples[at];
     let b = samples[at + 1u];
@@ -89,17 +119,30 @@ fn load_path(parity: u32, i: u32) -> StackEntry {
     entry.cone = vec2<f32>(c.w, samples[at + 3u].x);
 // #endif
     return entry;
+// #endif
 }
 
 fn path_sample(parity: u32, i: u32) -> u32 {
+// #if REFRACTION
+    return bitcast<u32>(samples[wavefront_paths(parity) + 5u * i].w);
+// #else
     return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i].w);
+// #endif
 }
 
 fn path_depth(parity: u32, i: u32) -> u32 {
+// #if REFRACTION
+    return bitcast<u32>(samples[wavefront_paths(parity) + 5u * i + 1u].w);
+// #else
     return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i + 1u].w);
+// #endif
 }
 
 fn store_path(parity: u32, i: u32, entry: StackEntry, sample: u32) {
+// #if REFRACTION
+    // A camera ray: nothing under it on trace_ray's stack.
+    store_tree_path(parity, i, entry, 0u, sample);
+// #else
     let at = wavefront_paths(parity) + 4u * i;
     samples[at] = vec4<f32>(entry.ray.origin, bitcast<f32>(sample));
     samples[at + 1u] = vec4<f32>(entry.ray.dir, bitcast<f32>(entry.depth));
@@ -108,6 +151,7 @@ fn store_path(parity: u32, i: u32, entry: StackEntry, sample: u32) {
     samples[at + 3u] = vec4<f32>(entry.cone.y, 0.0, 0.0, 0.0);
 // #else
     samples[at + 2u] = vec4<f32>(entry.weight, 0.0);
+// #endif
 // #endif
 }
 
@@ -168,6 +212,10 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     entry.depth = 0u;
 // #if TEXTURE|BUMP
     entry.cone = camera_cone(ray);
+// #endif
+// #if REFRACTION
+    // Camera rays start in the media around the camera.
+    entry.media = camera_medium_stack();
 // #endif
     store_path(0u, k, entry, k);
 }
@@ -255,6 +303,11 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     let h = samples[wavefront_hits() + 2u * i];
     let hit = Hit(h.x, bitcast<u32>(h.y), h.z, h.w, bitcast<u32>(samples[wavefront_hits() + 2u * i + 1u].x));
     let vertex = wavefront_vertices() + 2u * i;
+// #if REFRACTION
+    // The ray stack push_secondary_rays fills is in this invocation's list slot.
+    begin_lane(i);
+    clear_tree_children(atomicLoad(&work_counts[vertex_base_counter(g)]) + i);
+// #endif
     if !is_hit(hit) {
         samples[vertex] = vec4<f32>(background(entry.ray.dir), bitcast<f32>(VERTEX_MISS));
         return;
@@ -354,6 +407,9 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
         ask_shadow(s, phong, n, v, light.position, light, slot, points);
         slot += 1u;
     }
+// #if REFRACTION
+    push_tree_children(i, entry, k, ShadedHit(s, facing, n, vec3<f32>(0.0), false), hit);
+// #else
 // #if REFLECTION
     // Without refraction a hit spawns at most its reflected ray, onto an empty stack as
     // trace_ray's chain has it.
@@ -366,6 +422,7 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
         store_path(1u - parity, at, load_pending(&stack, 0u), k);
     }
 // #endif
+// #endif
 }
 
 // After generation tile.level's shade pass (one invocation): the indirect workgroups of
@@ -375,6 +432,9 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
 // Mirror of src/cpu/wavefront.rs::next_generation — change both.
 @compute @workgroup_size(1)
 fn wavefront_args() {
+// #if REFRACTION
+    tree_generation_args_entry();
+// #else
     let g = tile.level;
     let next = indirect_workgroups(atomicLoad(&work_counts[path_counter(g + 1u)]));
     var shadow_requests = atomicLoad(&work_counts[shadow_counter(g)]);
@@ -386,6 +446,7 @@ fn wavefront_args() {
     store_indirect_pair(6u * g, next, shadows);
     atomicStore(&work_counts[path_counter(g + 2u)], 0u);
     atomicStore(&work_counts[shadow_counter(g + 1u)], 0u);
+// #endif
 }
 
 // The shadow pass: each shadow request of generation tile.level through shadow_request.
@@ -398,6 +459,13 @@ fn wavefront_args() {
 fn wavefront_shadow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
     let count = atomicLoad(&work_counts[shadow_counter(tile.level)]);
+// #if REFRACTION
+    // Through glass: each request's first leg, for the rounds (wavefront_tree.wgsl).
+    if idx >= count {
+        return;
+    }
+    start_shadow_leg(idx);
+// #else
 // #if CSG
     if idx >= tile.items {
         return;
@@ -411,6 +479,7 @@ fn wavefront_shadow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
         return;
     }
     shadow_request(idx);
+// #endif
 // #endif
 }
 
@@ -477,6 +546,14 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
             slot += 1u;
         }
     }
+// #if REFRACTION
+    // A tree's values are summed by the fold, in trace_ray's pop order.
+    var value = colour;
+    if entry.depth != 0u {
+        value = entry.weight * colour;
+    }
+    set_tree_value(atomicLoad(&work_counts[vertex_base_counter(g)]) + i, value);
+// #else
     var total = colour;
     if entry.depth != 0u {
         total = samples[2u * k].xyz + entry.weight * colour;
@@ -489,8 +566,10 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     if globals.aa_mode == AA_NONE && tile.stratum == ALL_STRATA {
         output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(total, 1.0);
     }
+// #endif
 }
 
+// #if WAVEFRONT_MODES
 // Uniform AA, after the chunk's last generation: each chunk pixel's mean over its n²
 // samples' colours (pixel p's samples are p·n² … p·n² + n² − 1), summed in sample order
 // and divided by n² as render.wgsl's uniform_resolve does (the megakernel's image).
@@ -508,4 +587,5 @@ fn wavefront_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     output[id.y * tile.side + id.x] = vec4<f32>(sum / f32(nn), 1.0);
 }
+// #endif
 // #endif

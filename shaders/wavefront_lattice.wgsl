@@ -17,7 +17,7 @@
 // (it reads the level's count), the store pass both whole.
 // Mirror of src/cpu/wavefront_lattice.rs — change both.
 
-// #if WAVEFRONT
+// #if WAVEFRONT_MODES
 // Where the wavefront's queues start in `samples` (vec4 entries): after the tile's
 // lattice, at a multiple of 16 entries (256 bytes, the coarsest storage-binding offset
 // alignment WebGPU allows an adapter). src/gpu/plan.rs::lattice_queue_base is the same.

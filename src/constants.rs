@@ -370,6 +370,25 @@ pub fn wavefront_wgsl_prelude() -> String {
     out
 }
 
+/// Paths a generation of the wavefront kernels may hold with refraction, per sample of
+/// the chunk (a tree's generation can be wider than the chunk: `shaders/wavefront_tree.wgsl`;
+/// a child that finds no room sends its pixel to the CPU tracer).
+pub const TREE_PATHS_PER_SAMPLE: u32 = 4;
+/// Vertices the wavefront kernels' vertex tree holds with refraction, per sample of the
+/// chunk (shared: a sample may take more than its share).
+pub const TREE_VERTICES_PER_SAMPLE: u32 = 64;
+
+/// A vertex of the wavefront's vertex tree without a child in that place.
+pub const NO_CHILD: u32 = u32::MAX;
+
+/// The WGSL constants of the wavefront kernels for scenes with refraction, emitted after
+/// [`wavefront_wgsl_prelude`] only in those modules.
+pub fn wavefront_tree_wgsl_prelude() -> String {
+    format!(
+        "const TREE_PATHS_PER_SAMPLE: u32 = {TREE_PATHS_PER_SAMPLE}u;\nconst TREE_VERTICES_PER_SAMPLE: u32 = {TREE_VERTICES_PER_SAMPLE}u;\nconst NO_CHILD: u32 = {NO_CHILD}u;\n"
+    )
+}
+
 /// Deepest adaptive anti-aliasing split accepted (`aa_depth`).
 pub const MAX_AA_DEPTH: u32 = 6;
 /// Adaptive anti-aliasing splits a square with a sample (corner or centre) that saw fine

@@ -30,7 +30,7 @@ use crate::pack::PackedScene;
 use glam::Vec3;
 
 /// A vertex without a child in that place.
-pub const NO_CHILD: u32 = u32::MAX;
+pub use crate::constants::NO_CHILD;
 
 /// Every vertex of a batch, generation after generation (generation g's path i is
 /// vertex ``cpu::wavefront::Batch::vertex_base`` + i): its value and its children in push order.
@@ -59,6 +59,7 @@ impl VertexTree {
 
 /// The fold pass: each sample's colour (sample k's camera vertex is vertex k) from its
 /// vertex tree.
+// Mirror of shaders/wavefront_tree.wgsl::wavefront_fold — change both.
 pub fn fold_samples(tree: &VertexTree, colours: &mut [Vec3]) {
     for (k, colour) in colours.iter_mut().enumerate() {
         *colour = fold_entry(tree, k as u32);
@@ -70,6 +71,7 @@ pub fn fold_samples(tree: &VertexTree, colours: &mut [Vec3]) {
 /// (children pushed in push order, so the last pushed, a dielectric's reflected ray, is
 /// summed first with its whole subtree). The stack never holds more than RAY_STACK_SIZE:
 /// the shade pass appended only what `trace_ray`'s stack held.
+// Mirror of shaders/wavefront_tree.wgsl::fold_entry — change both.
 pub fn fold_entry(tree: &VertexTree, k: u32) -> Vec3 {
     let mut stack = [NO_CHILD; RAY_STACK_SIZE as usize];
     let mut size = 0;
@@ -85,6 +87,7 @@ pub fn fold_entry(tree: &VertexTree, k: u32) -> Vec3 {
 }
 
 /// Pushes `vertex`'s children onto the fold's stack in the order shade appended them.
+// Mirror of shaders/wavefront_tree.wgsl::push_children — change both.
 fn push_children(
     tree: &VertexTree,
     vertex: u32,
@@ -119,12 +122,15 @@ impl LegQueue {
     }
 
     /// Appends request `request`'s `leg`; its index (the GPU's `atomicAdd`).
+    // Mirror of shaders/wavefront_tree.wgsl::append_leg — change both.
     fn append_leg(&mut self, request: u32, leg: &ShadowLeg) -> usize {
         let l = self.len();
-        self.request.push(request);
-        self.start.push(leg.start);
-        self.transmittance.push(leg.transmittance);
-        self.media.push(leg.media);
+        self.request.resize(l + 1, 0);
+        self.start.resize(l + 1, Vec3::ZERO);
+        self.transmittance.resize(l + 1, 0.0);
+        self.media.resize(l + 1, leg.media);
+        (self.request[l], self.start[l], self.transmittance[l]) =
+            (request, leg.start, leg.transmittance);
         l
     }
 
@@ -210,6 +216,7 @@ pub fn glass_shadow_rounds(
 
 /// The round's closest pass for leg `l`: its ray toward the request's light point, to
 /// the first surface short of it.
+// Mirror of shaders/wavefront_tree.wgsl::leg_closest_entry — change both.
 fn leg_closest_entry(
     scene: &PackedScene,
     requests: &ShadowRequests,
@@ -226,6 +233,7 @@ fn leg_closest_entry(
 /// The round's crossing step for leg `l` (crossing `crossing`), whose closest hit is
 /// `hit`: a miss ends the request with the transmittance so far, an opaque surface (or
 /// the crossing after the last) with 0; glass appends the next leg to `next`.
+// Mirror of shaders/wavefront_tree.wgsl::crossing_entry — change both.
 #[allow(clippy::too_many_arguments)]
 fn crossing_entry(
     scene: &PackedScene,

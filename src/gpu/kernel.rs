@@ -44,11 +44,12 @@ pub struct KernelConfig {
     /// without it), while llvmpipe, which runs every branch of a loop body, would run the
     /// mesh walks masked beside every item test.
     pub any_hit_one_loop: bool,
-    /// Whether AA none traces scenes without refraction through the wavefront kernels
-    /// (`WAVEFRONT`, `shaders/wavefront.wgsl`: camera, closest hit, shading, shadow rays
-    /// and gathering as kernels of their own joined by queues) rather than the megakernel
-    /// `main`. The images are the same bit for bit (the CPU twin is
-    /// `cpu::wavefront`).
+    /// Whether AA none traces scenes through the wavefront kernels (`WAVEFRONT`,
+    /// `shaders/wavefront.wgsl`: camera, closest hit, shading, shadow rays and gathering
+    /// as kernels of their own joined by queues; with refraction also the vertex tree,
+    /// glass shadow rounds and the fold of `shaders/wavefront_tree.wgsl`) rather than the
+    /// megakernel `main`. The images are the same bit for bit (the CPU twins are
+    /// `cpu::wavefront` and `cpu::wavefront_tree`).
     pub wavefront: bool,
 }
 
@@ -106,7 +107,7 @@ impl KernelConfig {
     ///   docs/journal/2026-12-02-one-traversal-in-mirror-scenes.md); software adapters keep
     ///   the hit before the loop, since on llvmpipe a loop around the first hit cost
     ///   20–25% of the render (docs/journal/2026-11-30-one-hit-no-loop.md).
-    /// - wavefront (AA none, no refraction): on hardware adapters, where a megakernel's
+    /// - wavefront (AA none): on hardware adapters, where a megakernel's
     ///   registers are the traversal's plus everything live across it (RADV NAVI21:
     ///   112–176 VGPRs, docs/journal/2026-12-02-wavefront-split-measured.md); software
     ///   adapters keep the megakernel (unmeasured there: llvmpipe pays per dispatch and

@@ -13,7 +13,8 @@ use super::buffers::GpuTile;
 use super::lists::LIST_BUDGET_BYTES;
 use super::shader::Entry;
 use crate::constants::{
-    AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, ALL_STRATA, GPU_FRAME_PARTS, WAVEFRONT_WORK_BASE,
+    AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, ALL_STRATA, GPU_FRAME_PARTS, MAX_SHADOW_CROSSINGS,
+    TREE_PATHS_PER_SAMPLE, TREE_VERTICES_PER_SAMPLE, WAVEFRONT_WORK_BASE,
 };
 use crate::pack::PackedGlobals;
 use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
@@ -40,7 +41,8 @@ pub enum Mode {
 
 /// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
 /// vertex's light slots: `cpu::wavefront::light_points`), the generations a path may
-/// have (max_depth + 1 with mirrors, else 1) and the AA mode's strata.
+/// have (max_depth + 1 with mirrors or glass, else 1), the AA mode's strata, and whether
+/// paths branch (a tree: scenes with refraction).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct WavefrontShape {
     pub light_points: u32,
@@ -48,7 +50,15 @@ pub struct WavefrontShape {
     /// Uniform AA's n: a chunk's samples are n² strata a pixel, averaged by the resolve
     /// pass. None: AA none, a pixel's centre, stored by the gather pass.
     pub uniform: Option<u32>,
+    pub tree: bool,
 }
+
+/// Glass shadow rounds a tree's generation runs (`shaders/wavefront_tree.wgsl`): a leg
+/// crosses at most MAX_SHADOW_CROSSINGS surfaces and is blocked at the next.
+pub const SHADOW_ROUNDS: u32 = MAX_SHADOW_CROSSINGS + 1;
+
+/// Words of work_args before a tree's generations' (round r's legs at 3r, r < 10).
+const TREE_ROUND_ARGS_WORDS: u64 = 30;
 
 impl WavefrontShape {
     /// Samples a pixel: n² under uniform AA, else 1.
@@ -58,9 +68,61 @@ impl WavefrontShape {
 
     /// vec4 entries of the queues a sample of a chunk takes (`shaders/wavefront.wgsl`'s
     /// regions): its record (2), two path queues (4 each), a hit (2), a vertex (2), its
-    /// light slots and shadow requests (L each).
+    /// light slots and shadow requests (L each). A tree's (`shaders/wavefront_tree.wgsl`):
+    /// the record, then per path of a generation (TREE_PATHS_PER_SAMPLE a sample) two
+    /// path queues (5 each, with media and pending count), a hit, a vertex, the vertex
+    /// tree (2 a vertex, TREE_VERTICES_PER_SAMPLE a sample), then per path L slots, L
+    /// requests, two leg queues (3L each) and the legs' hits (2L).
     pub fn vec4s_per_sample(self) -> u64 {
-        14 + 2 * self.light_points as u64
+        let l = self.light_points as u64;
+        if self.tree {
+            2 + (14 + 10 * l) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
+        } else {
+            14 + 2 * l
+        }
+    }
+
+    /// Tracing invocations (list slots) a wavefront dispatch may have per sample of the
+    /// chunk: a tree's generation holds up to TREE_PATHS_PER_SAMPLE paths a sample.
+    pub fn slots_per_sample(self) -> u64 {
+        if self.tree {
+            TREE_PATHS_PER_SAMPLE as u64
+        } else {
+            1
+        }
+    }
+
+    /// Byte offset in work_args of the indirect arguments of generation g's passes over
+    /// paths (g ≥ 1; written by generation g − 1's args kernel).
+    fn paths_args(self, g: u32) -> u64 {
+        let words = if self.tree {
+            TREE_ROUND_ARGS_WORDS + 6 * (g as u64 - 1)
+        } else {
+            6 * (g as u64 - 1)
+        };
+        4 * words
+    }
+
+    /// Byte offset of generation g's shadow pass's arguments.
+    fn shadow_args(self, g: u32) -> u64 {
+        4 * 3 + self.paths_args(g + 1)
+    }
+
+    /// Byte offset of a tree's round r's leg arguments (the same words every generation).
+    fn round_args(r: u32) -> u64 {
+        12 * r as u64
+    }
+
+    /// 24-byte levels of work_args (and 4-byte counters of work_counts) the kernels use:
+    /// a generation's 6 words (after a tree's round arguments); at least the counters
+    /// (5 for chains; a tree's 11: also three leg counters, two vertex bases and the
+    /// light points).
+    fn work_levels(self) -> u64 {
+        if self.tree {
+            (TREE_ROUND_ARGS_WORDS / 6 + self.generations as u64).max(11)
+        } else {
+            self.generations.max(5) as u64
+        }
     }
 }
 
@@ -87,6 +149,7 @@ impl Mode {
                 Entry::AdaptiveIntegrate,
                 Entry::AdaptiveWorkArgs,
             ],
+            Mode::Wavefront(shape) if shape.tree => &Entry::WAVEFRONT_TREE,
             // AA none's gather stores its pixels: no resolve.
             Mode::Wavefront(shape) if shape.uniform.is_none() => &Entry::WAVEFRONT[..6],
             Mode::Wavefront(_) => &Entry::WAVEFRONT,
@@ -283,6 +346,21 @@ pub(super) fn bands(window: PixelRect, rows: u32, min_bands: u32) -> Vec<Chunk> 
         .collect()
 }
 
+/// Each row of `window` in pieces of at most `width` pixels (each its own chunk, laid out
+/// `width` wide), row by row.
+fn row_pieces(window: PixelRect, width: u32) -> Vec<Chunk> {
+    let w = window.width();
+    (window.y0..window.y0 + window.height())
+        .flat_map(|y| {
+            (0..w.div_ceil(width)).map(move |k| Chunk {
+                origin: [window.x0 + k * width, y],
+                size: [width.min(w - k * width), 1],
+                side: width,
+            })
+        })
+        .collect()
+}
+
 /// Square tiles of side `side` from `window`'s top-left corner, row-major.
 fn squares(window: PixelRect, side: u32) -> Vec<Chunk> {
     let (w, h) = (window.width(), window.height());
@@ -345,18 +423,8 @@ impl FramePlan {
                 1,
             ),
             Mode::Wavefront(shape) => {
-                // Rows whose queues (of every sample of every pixel) fit one binding, and
-                // whose samples each have a list slot.
-                let per_pixel = shape.samples_per_pixel();
-                let per_row = w as u64 * per_pixel * shape.vec4s_per_sample() * 16;
-                let queue_rows = (bounds.max_binding / per_row).clamp(1, u32::MAX as u64) as u32;
-                let rows = dispatch_rows
-                    .min(block_rows)
-                    .min(slot_rows(per_pixel))
-                    .min(queue_rows);
-                let chunks = bands(window, rows, parts as u32);
-                let pixels = chunks.iter().map(|c| c.block_pixels()).max().unwrap_or(1);
-                (chunks, shape.vec4s_per_sample() * per_pixel * pixels, 1)
+                let rows = dispatch_rows.min(block_rows);
+                wavefront_chunks(window, shape, bounds, rows, parts as u32)
             }
             Mode::Uniform { n } => {
                 let per_row = w as u64 * (n * n) as u64;
@@ -388,17 +456,18 @@ impl FramePlan {
         let parts = split_even(chunks.len(), parts.min(chunks.len()));
         let work_levels = match mode {
             Mode::Adaptive { depth } => depth.max(1) as u64,
-            // A generation's 6 words of indirect arguments; the 5 counters.
-            Mode::Wavefront(shape) => shape.generations.max(5) as u64,
+            Mode::Wavefront(shape) => shape.work_levels(),
             // The wavefront's from WAVEFRONT_WORK_BASE on, after adaptive AA's levels'.
             Mode::AdaptiveWavefront { shape, .. } => {
-                WAVEFRONT_WORK_BASE as u64 + shape.generations.max(5) as u64
+                WAVEFRONT_WORK_BASE as u64 + shape.work_levels()
             }
             _ => 1,
         };
         let chunk_slots = |c: &Chunk| match mode {
             Mode::None => c.block_pixels(),
-            Mode::Wavefront(shape) => c.block_pixels() * shape.samples_per_pixel(),
+            Mode::Wavefront(shape) => {
+                c.block_pixels() * shape.samples_per_pixel() * shape.slots_per_sample()
+            }
             Mode::Uniform { n } => c.size[0] as u64 * c.size[1] as u64 * (n * n) as u64,
             Mode::Adaptive { depth } | Mode::AdaptiveWavefront { depth, .. } => {
                 adaptive_slots(c.size[0], c.size[1], c.side, depth)
@@ -461,6 +530,9 @@ impl FramePlan {
                     clears_work: true,
                     ..run(0, params(0, n), linear(n))
                 };
+                if shape.tree {
+                    return tree_dispatches(shape, n, vec![camera], params, linear(n), run);
+                }
                 let mut out = wavefront_generations(shape, camera, 1, camera.offsets);
                 if shape.uniform.is_some() {
                     out.push(run(6, params(0, n), square));
@@ -503,6 +575,37 @@ impl FramePlan {
             }
         }
     }
+}
+
+/// The chunks of `window` through the wavefront kernels, and the samples array's vec4s:
+/// bands of at most `rows` rows whose queues (of every sample of every pixel) fit one
+/// binding and whose tracing invocations each have a list slot; where a tree's queues do
+/// not fit even one row, pieces of rows.
+fn wavefront_chunks(
+    window: PixelRect,
+    shape: WavefrontShape,
+    bounds: AdapterBounds,
+    rows: u32,
+    parts: u32,
+) -> (Vec<Chunk>, u64, u64) {
+    let w = window.width() as u64;
+    let slots = slot_budget(bounds);
+    let per_pixel = shape.samples_per_pixel();
+    let pixel_bytes = per_pixel * shape.vec4s_per_sample() * 16;
+    let pixel_slots = per_pixel * shape.slots_per_sample();
+    let queue_rows = bounds.max_binding / (w * pixel_bytes);
+    let slot_rows = slots / (pixel_slots * w);
+    let rows = (queue_rows.min(slot_rows).clamp(1, u32::MAX as u64) as u32).min(rows);
+    let fit = (bounds.max_binding / pixel_bytes)
+        .min(slots / pixel_slots)
+        .max(1);
+    let chunks = if w > fit {
+        row_pieces(window, fit as u32)
+    } else {
+        bands(window, rows, parts)
+    };
+    let pixels = chunks.iter().map(|c| c.block_pixels()).max().unwrap_or(1);
+    (chunks, shape.vec4s_per_sample() * per_pixel * pixels, 1)
 }
 
 /// The dispatches of adaptive tile `c` through the wavefront kernels
@@ -646,6 +749,51 @@ pub fn view_wavefront_dispatches(
         clears_work: false,
         ..camera
     });
+    out
+}
+
+/// A tree's generations after its camera pass (entries of `Entry::WAVEFRONT_TREE`): per
+/// generation g closest, shade, args, the shadow pass (each request's first leg), then
+/// SHADOW_ROUNDS rounds of leg closest and crossing (level: the round) with the leg args
+/// between rounds, and gather; after the last generation the fold over the chunk's `n`
+/// samples. Generation 0's passes over paths run over the samples, later ones' and every
+/// shadow pass and round as the args kernels wrote them.
+fn tree_dispatches(
+    shape: WavefrontShape,
+    n: u32,
+    mut out: Vec<Dispatch>,
+    params: impl Fn(u32, u32) -> GpuTile,
+    samples: Workgroups,
+    run: impl Fn(usize, GpuTile, Workgroups) -> Dispatch,
+) -> Vec<Dispatch> {
+    let writes_args = |d: Dispatch| Dispatch {
+        writes_args: true,
+        ..d
+    };
+    for g in 0..shape.generations {
+        let paths = match g {
+            0 => samples,
+            _ => Workgroups::Indirect(shape.paths_args(g)),
+        };
+        out.push(run(1, params(g, n), paths));
+        out.push(run(2, params(g, n), paths));
+        out.push(writes_args(run(3, params(g, n), Workgroups::Direct(1, 1))));
+        out.push(run(
+            4,
+            params(g, n),
+            Workgroups::Indirect(shape.shadow_args(g)),
+        ));
+        for r in 0..SHADOW_ROUNDS {
+            let legs = Workgroups::Indirect(WavefrontShape::round_args(r));
+            out.push(run(5, params(r, n), legs));
+            out.push(run(6, params(r, n), legs));
+            if r + 1 < SHADOW_ROUNDS {
+                out.push(writes_args(run(7, params(r, n), Workgroups::Direct(1, 1))));
+            }
+        }
+        out.push(run(8, params(g, n), paths));
+    }
+    out.push(run(9, params(0, n), samples));
     out
 }
 
@@ -793,6 +941,7 @@ mod tests {
             light_points: 17,
             generations: 6,
             uniform: None,
+            tree: false,
         };
         let bounds = AdapterBounds {
             wavefront: Some(shape),
@@ -850,6 +999,7 @@ mod tests {
             light_points: 17,
             generations: 3,
             uniform: None,
+            tree: false,
         };
         let words = 562;
         let bounds = AdapterBounds {
@@ -946,6 +1096,7 @@ mod tests {
                 light_points: 5,
                 generations: 3,
                 uniform: Some(n),
+                tree: false,
             };
             // (A row of 1920 pixels at 4×4 takes 30 720 slots: 32 MiB of lists.)
             let bounds = AdapterBounds {
@@ -1018,6 +1169,7 @@ mod tests {
             light_points: 3,
             generations: 4,
             uniform: Some(3),
+            tree: false,
         };
         let band = bands(PixelRect::full(37, 5), 5, 1)[0];
         let d = view_wavefront_dispatches(band, shape, 7, 2, LAVAPIPE);
@@ -1050,6 +1202,99 @@ mod tests {
             (camera.workgroups, camera.params)
         );
         assert!(camera.clears_work && !store.clears_work);
+    }
+
+    /// A tree's bands (scenes with refraction): their queues fit one binding, every
+    /// closest or shade invocation of a generation (up to TREE_PATHS_PER_SAMPLE a sample)
+    /// has a list slot, and each band runs the camera pass, then per generation closest,
+    /// shade, args, shadow, SHADOW_ROUNDS rounds of leg closest and crossing with the leg
+    /// args between them, gather — then the fold; every indirect offset inside the
+    /// work-args buffer, rounds at the same offsets every generation, the generations'
+    /// after them.
+    #[test]
+    fn tree_bands_run_every_generation_every_round_and_the_fold() {
+        let shape = WavefrontShape {
+            light_points: 17,
+            generations: 9,
+            uniform: None,
+            tree: true,
+        };
+        assert_eq!(
+            shape.vec4s_per_sample(),
+            2 + (14 + 10 * 17) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
+        );
+        let words = 562;
+        let bounds = AdapterBounds {
+            wavefront: Some(shape),
+            max_binding: 16 << 20,
+            lane_list_words: words,
+            ..LAVAPIPE
+        };
+        // 1920 samples of 13.5 KiB are more than one 16 MiB binding: rows in pieces.
+        for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
+            let plan = FramePlan::new(&globals(w, h, 0), bounds);
+            assert_eq!(plan.mode, Mode::Wavefront(shape));
+            assert_eq!(plan.mode.entries(), &Entry::WAVEFRONT_TREE);
+            assert_eq!(plan.chunks.len() > h as usize, w == 1920, "{w}×{h}");
+            assert_covers(&plan, w, h);
+            assert!(plan.samples_len * 16 <= bounds.max_binding, "{w}×{h}");
+            assert!(plan.lists_len * 4 <= bounds.max_binding.min(LIST_BUDGET_BYTES));
+            assert!(plan.work_levels >= 11, "the eleven counters");
+            for (k, c) in plan.chunks.iter().enumerate() {
+                assert!(shape.vec4s_per_sample() * c.block_pixels() <= plan.samples_len);
+                let paths = TREE_PATHS_PER_SAMPLE as u64 * c.block_pixels();
+                assert!(paths * words as u64 <= plan.lists_len, "{w}×{h}: slots");
+                let d = plan.dispatches(k, 2, bounds);
+                let per_generation = 5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+                assert_eq!(d.len(), 2 + per_generation * shape.generations as usize);
+                assert!(d[0].clears_work && d[0].entry == 0);
+                let fold = d.last().unwrap();
+                assert_eq!((fold.entry, fold.workgroups), (9, d[0].workgroups));
+                for (g, pass) in d[1..d.len() - 1].chunks(per_generation).enumerate() {
+                    let g = g as u32;
+                    let entries: Vec<usize> = pass.iter().map(|d| d.entry).collect();
+                    let mut expected = vec![1, 2, 3, 4];
+                    for r in 0..SHADOW_ROUNDS {
+                        expected.extend([5, 6]);
+                        if r + 1 < SHADOW_ROUNDS {
+                            expected.push(7);
+                        }
+                    }
+                    expected.push(8);
+                    assert_eq!(entries, expected);
+                    let rounds = &pass[4..pass.len() - 1];
+                    for (r, round) in rounds.chunks(3).enumerate() {
+                        assert!(round.iter().all(|d| d.params.level == r as u32));
+                        assert_eq!(round[0].workgroups, Workgroups::Indirect(12 * r as u64));
+                        assert_eq!(round[1].workgroups, round[0].workgroups);
+                        if round.len() == 3 {
+                            assert!(round[2].writes_args);
+                        }
+                    }
+                    for d in pass[..4].iter().chain(&pass[pass.len() - 1..]) {
+                        assert_eq!(d.params.level, g);
+                    }
+                    assert!(pass[2].writes_args);
+                    let expected = match g {
+                        0 => d[0].workgroups,
+                        _ => Workgroups::Indirect(4 * (30 + 6 * (g as u64 - 1))),
+                    };
+                    assert_eq!(pass[0].workgroups, expected);
+                    assert_eq!(pass[1].workgroups, expected);
+                    assert_eq!(pass[pass.len() - 1].workgroups, expected);
+                    assert_eq!(
+                        pass[3].workgroups,
+                        Workgroups::Indirect(4 * (30 + 6 * g as u64 + 3))
+                    );
+                    for at in pass.iter().filter_map(|d| match d.workgroups {
+                        Workgroups::Indirect(at) => Some(at),
+                        Workgroups::Direct(..) => None,
+                    }) {
+                        assert!(at + 12 <= plan.work_levels * 24, "{at}");
+                    }
+                }
+            }
+        }
     }
 
     /// The five counters (three path counters, two shadow counters) fit `work_counts`.

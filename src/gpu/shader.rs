@@ -19,7 +19,7 @@
 
 use super::kernel::KernelConfig;
 use super::lists::LaneLists;
-use crate::constants::{wavefront_wgsl_prelude, wgsl_prelude};
+use crate::constants::{wavefront_tree_wgsl_prelude, wavefront_wgsl_prelude, wgsl_prelude};
 use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
 
@@ -62,6 +62,14 @@ pub enum Entry {
     /// sample added to its pixel's sum (`shaders/progressive.wgsl`; only in modules with
     /// [`wavefront_kernels`]).
     WavefrontViewStore,
+    /// `wavefront_leg_closest`, `wavefront_crossing`, `wavefront_leg_args`,
+    /// `wavefront_fold`: the glass shadow rounds and the fold of scenes with refraction
+    /// (`shaders/wavefront_tree.wgsl`; only in modules with [`wavefront_kernels`] and
+    /// REFRACTION).
+    WavefrontLegClosest,
+    WavefrontCrossing,
+    WavefrontLegArgs,
+    WavefrontFold,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
     /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`; not in modules
     /// with [`wavefront_kernels`]).
@@ -123,8 +131,26 @@ impl Entry {
         Entry::WavefrontLatticeStore,
     ];
 
+    /// The wavefront kernels of AA none in scenes with refraction (paths that branch), in
+    /// the order a generation dispatches them after the camera pass (the shadow pass
+    /// starting each request's first leg, then rounds of leg closest, crossing and leg
+    /// args), then the fold after the last generation: the plan's `Mode::Wavefront`
+    /// pipelines for a tree.
+    pub const WAVEFRONT_TREE: [Entry; 10] = [
+        Entry::WavefrontCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontLegClosest,
+        Entry::WavefrontCrossing,
+        Entry::WavefrontLegArgs,
+        Entry::WavefrontGather,
+        Entry::WavefrontFold,
+    ];
+
     /// Every entry point.
-    pub const ALL: [Entry; 20] = [
+    pub const ALL: [Entry; 24] = [
         Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
@@ -143,6 +169,10 @@ impl Entry {
         Entry::WavefrontLatticeStore,
         Entry::WavefrontResolve,
         Entry::WavefrontViewStore,
+        Entry::WavefrontLegClosest,
+        Entry::WavefrontCrossing,
+        Entry::WavefrontLegArgs,
+        Entry::WavefrontFold,
         Entry::ViewSample,
         Entry::Probe,
     ];
@@ -168,6 +198,10 @@ impl Entry {
             Entry::WavefrontLatticeStore => "wavefront_lattice_store",
             Entry::WavefrontResolve => "wavefront_resolve",
             Entry::WavefrontViewStore => "wavefront_view_store",
+            Entry::WavefrontLegClosest => "wavefront_leg_closest",
+            Entry::WavefrontCrossing => "wavefront_crossing",
+            Entry::WavefrontLegArgs => "wavefront_leg_args",
+            Entry::WavefrontFold => "wavefront_fold",
             Entry::ViewSample => "view_sample",
             Entry::Probe => "probe",
         }
@@ -184,17 +218,47 @@ impl Entry {
         Entry::WAVEFRONT.contains(&self)
             || Entry::WAVEFRONT_VIEW.contains(&self)
             || Entry::ADAPTIVE_WAVEFRONT[3..].contains(&self)
+            || self.is_wavefront_tree()
+    }
+
+    /// Whether the entry is one of the kernels only trees have (in the render module only
+    /// with [`wavefront_kernels`] and REFRACTION).
+    pub fn is_wavefront_tree(self) -> bool {
+        matches!(
+            self,
+            Entry::WavefrontLegClosest
+                | Entry::WavefrontCrossing
+                | Entry::WavefrontLegArgs
+                | Entry::WavefrontFold
+        )
+    }
+
+    /// Whether the entry is one of the kernels of the AA modes other than AA none and of
+    /// the view (in the render module only with [`wavefront_modes`]).
+    fn is_wavefront_modes(self) -> bool {
+        matches!(
+            self,
+            Entry::WavefrontResolve
+                | Entry::WavefrontLatticeCamera
+                | Entry::WavefrontLatticeStore
+                | Entry::WavefrontViewStore
+        )
     }
 
     /// Whether the render module of `kernel` for `features` has this entry: the
-    /// wavefront kernels only with [`wavefront_kernels`], the megakernel entries they
-    /// replace only without.
+    /// wavefront kernels only with [`wavefront_kernels`] (a tree's only with
+    /// refraction, the other AA modes' and the view's only with [`wavefront_modes`]),
+    /// the megakernel entries they replace only without [`wavefront_modes`].
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
-        let wavefront = wavefront_kernels(kernel, features);
-        if self.is_wavefront() {
-            wavefront
+        let modes = wavefront_modes(kernel, features);
+        if self.is_wavefront_tree() {
+            wavefront_kernels(kernel, features) && features.contains(SceneFeatures::REFRACTION)
+        } else if self.is_wavefront_modes() {
+            modes
+        } else if self.is_wavefront() {
+            wavefront_kernels(kernel, features)
         } else {
-            !(wavefront && Entry::REPLACED_BY_WAVEFRONT.contains(&self))
+            !(modes && Entry::REPLACED_BY_WAVEFRONT.contains(&self))
         }
     }
 }
@@ -258,6 +322,11 @@ const WAVEFRONT: &[(&str, &str)] = &[
         include_str!("../../shaders/wavefront_lattice.wgsl"),
     ),
 ];
+/// Appended after `WAVEFRONT` where the scene has refraction (paths that branch).
+const WAVEFRONT_TREE: &[(&str, &str)] = &[(
+    "wavefront_tree.wgsl",
+    include_str!("../../shaders/wavefront_tree.wgsl"),
+)];
 const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
 
 /// The common modules (scene layout, intersection, traversal, shading) specialised to
@@ -294,14 +363,19 @@ pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig
     let mut out = wgsl_prelude() + &kernel_prelude(kernel);
     out += &LaneLists::of(features, kernel).wgsl_prelude();
     let wavefront = entry.is_render() && wavefront_kernels(kernel, features);
+    let tree = wavefront && features.contains(SceneFeatures::REFRACTION);
     if wavefront {
         out += &wavefront_wgsl_prelude();
+    }
+    if tree {
+        out += &wavefront_tree_wgsl_prelude();
     }
     out += &format!("// Specialised for features: {features}; kernel: {kernel}\n");
     let files = COMMON
         .iter()
         .chain(if entry.is_render() { RENDER } else { PROBE })
-        .chain(if wavefront { WAVEFRONT } else { &[] });
+        .chain(if wavefront { WAVEFRONT } else { &[] })
+        .chain(if tree { WAVEFRONT_TREE } else { &[] });
     for (name, text) in files {
         out += &format!("\n// ---- shaders/{name} ----\n");
         out += &preprocess_with(name, text, features, kernel)
@@ -365,17 +439,26 @@ pub fn preprocess_with(
 }
 
 /// Whether the render module of `kernel` for a scene with `features` has the wavefront
-/// kernels (`WAVEFRONT`): where the variant asks for them and the scene's paths are chains
-/// (no refraction: `cpu::wavefront` traces nothing else yet).
-pub fn wavefront_kernels(kernel: KernelConfig, features: SceneFeatures) -> bool {
-    kernel.wavefront && !features.contains(SceneFeatures::REFRACTION)
+/// kernels (`WAVEFRONT`): where the variant asks for them; with refraction (paths that
+/// branch) also the tree's (`shaders/wavefront_tree.wgsl`).
+pub fn wavefront_kernels(kernel: KernelConfig, _features: SceneFeatures) -> bool {
+    kernel.wavefront
+}
+
+/// Whether every AA mode and `glint view` run through the wavefront kernels in the render
+/// module of `kernel` for `features` (`WAVEFRONT_MODES`: uniform AA's resolve, adaptive
+/// AA's lattice passes, the view's store, and no `uniform_samples`, `uniform_resolve`,
+/// `adaptive_corners`, `adaptive_midpoints` nor `view_sample`): with the wavefront
+/// kernels, in scenes without refraction (a tree runs them under AA none only).
+pub fn wavefront_modes(kernel: KernelConfig, features: SceneFeatures) -> bool {
+    wavefront_kernels(kernel, features) && !features.contains(SceneFeatures::REFRACTION)
 }
 
 /// Whether a kernel variant sets one of its flags for a scene with these features.
 type KernelFlag = fn(KernelConfig, SceneFeatures) -> bool;
 
 /// The kernel variant's flags a shader may test with `#if`, and whether `kernel` sets each.
-const KERNEL_FLAGS: [(&str, KernelFlag); 8] = [
+const KERNEL_FLAGS: [(&str, KernelFlag); 9] = [
     ("ITERATION_GUARD", |k, _| k.iteration_guard),
     ("MAILBOXES", |k, _| k.mailboxes == Mailboxes::Full),
     ("LAST_ITEM_MAILBOX", |k, _| {
@@ -393,6 +476,7 @@ const KERNEL_FLAGS: [(&str, KernelFlag); 8] = [
     }),
     ("ANY_HIT_ONE_LOOP", |k, _| k.any_hit_one_loop),
     ("WAVEFRONT", wavefront_kernels),
+    ("WAVEFRONT_MODES", wavefront_modes),
 ];
 
 /// Evaluates `NAME`, `A|B` or `!A|B` against `features` and `kernel`'s flags.

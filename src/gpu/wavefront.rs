@@ -5,36 +5,50 @@
 
 use super::kernel::KernelConfig;
 use super::plan::WavefrontShape;
-use super::shader::wavefront_kernels;
+use super::shader::{wavefront_kernels, wavefront_modes};
 use crate::constants::{AA_ADAPTIVE, AA_NONE, AA_UNIFORM};
 use crate::cpu::wavefront::light_points;
 use crate::pack::{PackedScene, SceneFeatures};
 
 /// The wavefront kernels' shape for `scene` under `kernel`, where `kernel` runs them for
-/// it: any AA mode (adaptive AA's corner and midpoint passes), a variant with
-/// `wavefront`, no refraction. None: the megakernels.
+/// it: a variant with `wavefront`; AA none (with refraction a tree, whose vertex tree,
+/// glass shadow rounds and fold `shaders/wavefront_tree.wgsl` adds), and without
+/// refraction uniform AA and adaptive AA's corner and midpoint passes too
+/// ([`wavefront_modes`]). None: the megakernels.
 pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
     let g = &scene.globals;
+    let all_modes = wavefront_modes(kernel, scene.features);
     let uniform = match g.aa_mode {
-        AA_NONE | AA_ADAPTIVE => None,
-        AA_UNIFORM => Some(g.aa_samples),
+        AA_NONE => None,
+        AA_ADAPTIVE if all_modes => None,
+        AA_UNIFORM if all_modes => Some(g.aa_samples),
         _ => return None,
     };
-    Some(WavefrontShape {
-        uniform,
-        ..view_wavefront_shape(kernel, scene)?
-    })
+    shape(kernel, scene, uniform)
 }
 
 /// The wavefront kernels' shape for `glint view`'s frames of `scene` under `kernel`,
-/// where `kernel` runs them for it (a variant with `wavefront`, no refraction): one
-/// sample a pixel a frame, whatever the AA mode (its strata are the frames). None:
-/// `view_sample`.
+/// where `kernel` runs them for it ([`wavefront_modes`]): one sample a pixel a frame,
+/// whatever the AA mode (its strata are the frames). None: `view_sample`.
 pub fn view_wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
+    if !wavefront_modes(kernel, scene.features) {
+        return None;
+    }
+    shape(kernel, scene, None)
+}
+
+/// The shape of `scene`'s paths under `kernel` with these strata, where the module has
+/// the wavefront kernels.
+fn shape(
+    kernel: KernelConfig,
+    scene: &PackedScene,
+    uniform: Option<u32>,
+) -> Option<WavefrontShape> {
     if !wavefront_kernels(kernel, scene.features) {
         return None;
     }
-    let generations = if scene.features.contains(SceneFeatures::REFLECTION) {
+    let tree = scene.features.contains(SceneFeatures::REFRACTION);
+    let generations = if tree || scene.features.contains(SceneFeatures::REFLECTION) {
         scene.globals.max_depth + 1
     } else {
         1
@@ -42,6 +56,7 @@ pub fn view_wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option
     Some(WavefrontShape {
         light_points: light_points(scene),
         generations,
-        uniform: None,
+        uniform,
+        tree,
     })
 }

@@ -4,7 +4,7 @@
 
 use glint::gpu::buffers::GpuTile;
 use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
-use glint::gpu::KernelConfig;
+use glint::gpu::{KernelConfig, KernelVariant};
 use glint::mailboxes::Mailboxes;
 use glint::pack::{
     PackedGlobals, PackedInstance, PackedLight, PackedMaterial, PackedMesh, PackedTriangle,
@@ -145,22 +145,25 @@ fn wgsl_structs_match_rust_layout() {
         }),
     );
     // GpuTile's last field is the wavefront kernels' only: in modules with them (the
-    // hardware variant without refraction) all of it, in the others the fields before it.
+    // hardware variant's, glass or not) all of it, in the others (the software variant's)
+    // the fields before it.
+    let gpu_tile = rust_fields!(GpuTile {
+        origin,
+        size,
+        side,
+        level,
+        items,
+        sentinel,
+        stratum
+    });
+    check_struct(&render, gpu_tile.clone());
     let hardware_chains = SceneFeatures(all.0 & !SceneFeatures::REFRACTION.0);
-    let wavefront = validate(&assemble(hardware_chains, Entry::Render), hardware_chains)
+    let chains = validate(&assemble(hardware_chains, Entry::Render), hardware_chains)
         .unwrap_or_else(|e| panic!("{e}"));
-    check_struct(
-        &wavefront,
-        rust_fields!(GpuTile {
-            origin,
-            size,
-            side,
-            level,
-            items,
-            sentinel,
-            stratum
-        }),
-    );
+    check_struct(&chains, gpu_tile);
+    let software = KernelConfig::for_variant(KernelVariant::Software, &wgpu::Limits::default());
+    let software = validate(&assemble_with(all, Entry::Render, software), all)
+        .unwrap_or_else(|e| panic!("{e}"));
     let (name, _, fields) = rust_fields!(GpuTile {
         origin,
         size,
@@ -169,7 +172,7 @@ fn wgsl_structs_match_rust_layout() {
         items,
         sentinel
     });
-    check_struct(&render, (name, offset_of!(GpuTile, stratum), fields));
+    check_struct(&software, (name, offset_of!(GpuTile, stratum), fields));
     let probe = module(Entry::Probe);
     check_struct(
         &probe,

@@ -26,6 +26,7 @@ mod gpu_scrabble;
 mod gpu_textures;
 mod gpu_trace_forms;
 mod gpu_wavefront;
+mod gpu_wavefront_tree;
 mod kernel_instrument;
 mod twins;
 mod twins_broken;

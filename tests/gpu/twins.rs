@@ -343,6 +343,166 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "wavefront_unshadowed_term",
         "the CPU's src/cpu/shade.rs::unshadowed_term, which the CPU's point_light shares; the WGSL point_light keeps its own copy of these lines so that the software variant's module (no wavefront) stays byte for byte what it was",
     ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_capacity",
+        "how many paths a tree's generation may hold in the `samples` buffer; the CPU's queues are Vecs that grow",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_paths",
+        "where a tree's path queue's region of `samples` starts (see wavefront.wgsl's wavefront_paths)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_hits",
+        "where a tree's hit queue's region of `samples` starts (see tree_paths)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_vertices",
+        "where a tree's vertex queue's region of `samples` starts (see tree_paths)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_nodes",
+        "where the vertex tree's region of `samples` starts (see tree_paths)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_slots",
+        "where a tree's light slots' region of `samples` starts (see tree_paths)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_shadows",
+        "where a tree's shadow requests' region of `samples` starts (see tree_paths)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_legs",
+        "where a glass round's leg queue's region of `samples` starts (see tree_paths)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_leg_hits",
+        "where a glass round's leg hits' region of `samples` starts (see tree_paths)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "leg_counter",
+        "which work_counts word counts a round's legs; the CPU's LegQueue is a Vec that knows its length",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "vertex_base_counter",
+        "which work_counts word holds a generation's first vertex (the CPU's Batch::vertex_base)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_generation_args",
+        "where a tree's generation's indirect arguments lie in work_args; the CPU has no dispatches",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "leg_args",
+        "where a round's indirect arguments lie in work_args; the CPU has no dispatches",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "store_leg_args",
+        "writes a round's indirect workgroups (the CPU's round loop runs over its Vec)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "next_generation_room",
+        "the paths a tree's next generation has room for in the `samples` buffer; the CPU's Vecs grow (a child without room sends its pixel to the CPU: src/gpu/render.rs::scatter)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "path_pending",
+        "reads a path entry's pending count (the CPU's PathQueue::pending[i])",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "path_media",
+        "reads a path entry's media (the CPU's PathQueue::media[i])",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "load_tree_path",
+        "reads path entry i of a tree's queue (see wavefront.wgsl's load_path)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "store_tree_path",
+        "writes path entry i of a tree's queue with its pending count (the CPU's PathQueue::store_path; see wavefront.wgsl's store_path)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_value",
+        "reads a vertex's value (the CPU's VertexTree::value[v])",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_children",
+        "reads a vertex's children (the CPU's VertexTree::children[v])",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "set_tree_value",
+        "writes a vertex's value (the CPU's VertexTree::value[v] = …)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "set_tree_child",
+        "writes a vertex's child link (the CPU's VertexTree::children[v][place] = …)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "clear_tree_children",
+        "a vertex childless until shaded: the CPU's VertexTree::grow fills NO_CHILD",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "store_leg",
+        "writes leg l of a round's queue (append_leg's store, and each request's first leg at its own index)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "load_leg",
+        "reads leg l of a round's queue (the CPU's LegQueue::load_leg)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "leg_request",
+        "reads a leg's request (the CPU's LegQueue::request[l])",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "leg_hit",
+        "reads a leg's closest hit from the `samples` buffer (the CPU's round keeps its hits in a Vec)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "request_target",
+        "reads a shadow request's light point and its vertex's magnitude (the CPU's ShadowRequests::position[r] and magnitude[vertex])",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "shadow_leg_ray",
+        "the CPU's src/cpu/dielectric.rs::shadow_leg_ray, which the CPU's shadow_transmittance shares; dielectric.wgsl's shadow_transmittance keeps its own copy of these lines so that the software variant's module (no wavefront) stays byte for byte what it was",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "cross_shadow_surface",
+        "the CPU's src/cpu/dielectric.rs::cross_shadow_surface (see shadow_leg_ray)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_points",
+        "reads the scene's light points from the `work_counts` word the shadow pass wrote (the CPU's ShadowRequests::light_points)",
+    ),
 ];
 
 /// Types of Rust parameters that a WGSL twin reads from module scope instead (unless the
@@ -365,6 +525,22 @@ const MODULE_SCOPE: &[(&str, &str)] = &[
         "the csg_* private variables or the list slot (src/gpu/lists.rs)",
     ),
     ("MediumStack", "the `shading_media` private variable"),
+    (
+        "VertexTree",
+        "a tree's vertex tree in the `samples` storage buffer (shaders/wavefront_tree.wgsl)",
+    ),
+    (
+        "ShadowRequests",
+        "a tree's shadow requests, vertices and paths in the `samples` storage buffer",
+    ),
+    (
+        "LegQueue",
+        "a glass round's leg queues in the `samples` storage buffer and their `work_counts`",
+    ),
+    (
+        "[f32]",
+        "a tree's light slots in the `samples` storage buffer (the glass rounds' products)",
+    ),
     ("[u32]", "the `texel_table` texture"),
     (
         "impl TraversalCounters",

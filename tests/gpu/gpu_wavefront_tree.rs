@@ -1,0 +1,199 @@
+//! The wavefront kernels of scenes with refraction (`shaders/wavefront_tree.wgsl` with
+//! `shaders/wavefront.wgsl`: pending counts, the vertex tree and its fold, glass shadow
+//! rounds), rendered on lavapipe with the hardware variant: the megakernel `main`'s image
+//! bit for bit and the CPU's within the GPU parity tolerance
+//! (`gpu_wavefront::assert_wavefront_matches`), on the repository's glass scenes and on
+//! the CPU twin's test scenes (tests/images/wavefront.rs): a scene that fills the ray
+//! stack, a floor under 4 and 5 glass slabs, the camera under water.
+
+use crate::common;
+use crate::gpu_wavefront::assert_wavefront_matches;
+
+use common::{gpu_context, packed_from_file, packed_from_source};
+use glint::gpu::KernelVariant;
+use glint::pack::SceneFeatures;
+use glint::scene::{AaMode, OptionOverrides, TraceDepth};
+
+fn overrides_at(max_depth: Option<u32>, w: u32, h: u32) -> OptionOverrides {
+    OptionOverrides {
+        aa: Some(AaMode::None),
+        max_depth: max_depth.map(TraceDepth::constant),
+        width: Some(w),
+        height: Some(h),
+        ..OptionOverrides::default()
+    }
+}
+
+/// The camera inside a closed sphere of half-mirror glass (index 1, a 0.9 mirror): every
+/// hit pushes a transmitted ray that waits under the reflected chain, so the stack fills
+/// and trace_ray drops the reflected ray at its last slot (tests/images/wavefront.rs).
+const FULL_STACK_SCENE: &str = r#"
+half = gr.material({0.3, 0.2, 0.1}, {0.2, 0.2, 0.2}, 20)
+half:set_reflection(0.9, 0.9, 0.9)
+half:set_refraction(1.0)
+root = gr.node('root')
+shell = gr.nh_sphere('shell', {0, 0, 0}, 5)
+shell:set_material(half)
+root:add_child(shell)
+gr.render(root, 'full.png', 8, 6, {1, 0.5, 2}, {0.3, -0.2, -1}, {0, 1, 0}, 60,
+          {0.3, 0.3, 0.3}, {gr.light({0, 20, 3}, {0.8, 0.8, 0.8}, {1, 0, 0})},
+          {background = {top = {0.5, 0.7, 0.9}, bottom = {0.9, 0.8, 0.6}}})
+"#;
+
+/// A floor lit through `slabs` thin glass slabs (two surfaces each) over its left half,
+/// seen through them from above: 4 slabs are MAX_SHADOW_CROSSINGS surfaces (lit after
+/// every round), 5 are more (blocked at the last).
+fn slab_scene(slabs: u32) -> String {
+    let mut source = String::from(
+        r#"
+gr.transform_order('pre')
+white = gr.material({0.8, 0.8, 0.8}, {0.3, 0.3, 0.3}, 30)
+glass = gr.material({0, 0, 0}, {0.5, 0.5, 0.5}, 100)
+glass:set_refraction(1.5)
+root = gr.node('root')
+floor = gr.cube('floor')
+floor:set_material(white)
+floor:scale(20, 1, 20)
+floor:translate(-10, -1, -10)
+root:add_child(floor)
+"#,
+    );
+    for k in 0..slabs {
+        source += &format!(
+            "slab{k} = gr.cube('slab{k}')\nslab{k}:set_material(glass)\n\
+             slab{k}:scale(6, 0.2, 12)\nslab{k}:translate(-6, {}, -6)\nroot:add_child(slab{k})\n",
+            2 + k
+        );
+    }
+    source += r#"
+gr.render(root, 'slabs.png', 12, 8, {0, 14, 10}, {0, -14, -10}, {0, 1, 0}, 50,
+          {0.2, 0.2, 0.2}, {gr.light({0, 12, 0}, {0.9, 0.9, 0.9}, {1, 0, 0})})
+"#;
+    source
+}
+
+/// The camera under water (a sphere of index 1.33 around the whole scene), looking at a
+/// glass ball over a floor: camera rays start in the water's medium.
+const UNDERWATER_SCENE: &str = r#"
+white = gr.material({0.8, 0.8, 0.8}, {0.3, 0.3, 0.3}, 30)
+glass = gr.material({0, 0, 0}, {0.5, 0.5, 0.5}, 100)
+glass:set_refraction(1.5)
+water = gr.material({0, 0, 0}, {0.3, 0.3, 0.3}, 100)
+water:set_refraction(1.33)
+root = gr.node('root')
+sea = gr.nh_sphere('sea', {0, 0, 0}, 30)
+sea:set_material(water)
+root:add_child(sea)
+floor = gr.nh_box('floor', {-10, -11, -10}, 20)
+floor:set_material(white)
+root:add_child(floor)
+ball = gr.nh_sphere('ball', {0, 1.5, 0}, 1.5)
+ball:set_material(glass)
+root:add_child(ball)
+gr.render(root, 'underwater.png', 12, 8, {0, 3, 8}, {0, -0.3, -1}, {0, 1, 0}, 50,
+          {0.2, 0.2, 0.2}, {gr.light({10, 40, 10}, {0.9, 0.9, 0.9}, {1, 0, 0})})
+"#;
+
+/// scenes/glass.lua, csg.lua and scrabble.lua (small) through the tree's wavefront.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_renders_mains_image_of_glass_scenes() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    for (file, w, h) in [
+        ("scenes/glass.lua", 40, 30),
+        ("scenes/csg.lua", 40, 30),
+        ("scenes/scrabble.lua", 24, 16),
+    ] {
+        let scene =
+            packed_from_file(&common::root().join(file), &overrides_at(None, w, h)).remove(0);
+        assert!(scene.features.contains(SceneFeatures::REFRACTION), "{file}");
+        assert_wavefront_matches(&mut ctx, file, &scene);
+    }
+}
+
+/// The CPU twin's tree scenes: the full ray stack (max_depth 40: pending counts up to
+/// 15, the rays trace_ray drops), 4 and 5 slabs (every shadow round), under water.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_renders_mains_image_of_tree_edge_cases() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    let mut scenes = vec![
+        (
+            "full stack".to_string(),
+            packed_from_source(FULL_STACK_SCENE, &overrides_at(Some(40), 8, 6)).remove(0),
+        ),
+        (
+            "under water".to_string(),
+            packed_from_source(UNDERWATER_SCENE, &overrides_at(Some(8), 12, 8)).remove(0),
+        ),
+    ];
+    for slabs in [4, 5] {
+        let scene = packed_from_source(&slab_scene(slabs), &overrides_at(Some(8), 12, 8));
+        scenes.push((format!("{slabs} slabs"), scene.into_iter().next().unwrap()));
+    }
+    assert_eq!(scenes[1].1.globals.camera_media_count, 1, "under water");
+    for (name, scene) in &scenes {
+        assert!(scene.features.contains(SceneFeatures::REFRACTION), "{name}");
+        assert_wavefront_matches(&mut ctx, name, scene);
+    }
+}
+
+/// The camera inside a glass shell (index 1.5 and a 0.9 mirror) around a glass ball: a
+/// ray that meets the ball splits in two at every surface and both halves stay inside,
+/// so a sample's tree grows toward 2^9 vertices at max_depth 8 — more than the queues'
+/// room (TREE_PATHS_PER_SAMPLE paths a generation, TREE_VERTICES_PER_SAMPLE vertices a
+/// sample). A white box fills the lower right of the view: its pixels spawn no rays.
+const BUSHY_SCENE: &str = r#"
+glass = gr.material({0.1, 0.1, 0.1}, {0.5, 0.5, 0.5}, 50)
+glass:set_reflection(0.9, 0.9, 0.9)
+glass:set_refraction(1.5)
+root = gr.node('root')
+shell = gr.nh_sphere('shell', {0, 0, 0}, 10)
+shell:set_material(glass)
+root:add_child(shell)
+ball = gr.nh_sphere('ball', {0, 0, -4}, 3)
+ball:set_material(glass)
+root:add_child(ball)
+white = gr.material({0.8, 0.8, 0.8}, {0.2, 0.2, 0.2}, 20)
+wall = gr.nh_box('wall', {0.5, -4, -1}, 4)
+wall:set_material(white)
+root:add_child(wall)
+gr.render(root, 'bushy.png', 8, 6, {0, 0, 5}, {0, 0, -1}, {0, 1, 0}, 50,
+          {0.3, 0.3, 0.3}, {gr.light({0, 5, 0}, {0.8, 0.8, 0.8}, {1, 0, 0})})
+"#;
+
+/// Where a tree outgrows the queues, no ray is lost: the children without room set their
+/// pixel's guard flag and the host renders those pixels with the CPU tracer (its bits);
+/// the image is the CPU's within the parity tolerance.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_hands_pixels_without_room_to_the_cpu() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    let scene = packed_from_source(BUSHY_SCENE, &overrides_at(Some(8), 8, 6)).remove(0);
+    let render = glint::gpu::render_gpu(&ctx, &scene, &glint::gpu::GpuRenderOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let handed = render.info.cpu_fallback_pixels;
+    eprintln!("bushy: {handed} of 48 pixels handed to the CPU");
+    assert!(handed > 0, "no pixel outgrew the queues");
+    assert!(
+        handed < 48,
+        "the box's pixels spawn no rays: traced on the GPU"
+    );
+    let cpu = glint::cpu::render::render(&scene, &|_, _| {});
+    let bits = |p: &[f32; 3]| p.map(f32::to_bits);
+    let cpu_bits = render
+        .film
+        .pixels
+        .iter()
+        .zip(&cpu.pixels)
+        .filter(|(g, c)| bits(g) == bits(c))
+        .count();
+    assert!(
+        cpu_bits as u64 >= handed,
+        "{handed} pixels handed to the CPU, {cpu_bits} with its bits"
+    );
+    common::assert_gpu_matches_cpu(&ctx, "gpu_wavefront", "bushy", &scene, 0.01);
+}
