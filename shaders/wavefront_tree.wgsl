@@ -350,20 +350,22 @@ fn request_target(r: u32) -> vec4<f32> {
 // Round tile.level's closest pass: each live leg's ray to the first surface short of
 // its light point. With CSG, whose interval lists take a list slot per invocation (C of
 // them), at most C invocations, each a grid-stride loop over legs idx, idx + C, …
+// The loop's test reads the round's leg count again each turn (no kernel of the pass
+// changes it) and holds no early return around the loop: RADV then keeps neither the
+// count nor an exec mask live across closest_hit, which in wave64 spilled 2 SGPRs
+// (csg.lua) and 10 (scrabble.lua) with the count and the return held
+// (docs/journal/2026-12-02-leg-closest-registers.md).
 // Mirror of the round loop's closest pass of src/cpu/wavefront_tree.rs::glass_shadow_rounds — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_leg_closest(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
-    let count = atomicLoad(&work_counts[leg_counter(tile.level)]);
 // #if CSG
-    if idx >= tree_capacity() {
-        return;
-    }
     begin_lane(idx);
-    for (var l = idx; l < count; l += tree_capacity()) {
+    for (var l = idx; idx < tree_capacity() && l < atomicLoad(&work_counts[leg_counter(tile.level)]); l += tree_capacity()) {
         leg_closest_entry(l);
     }
 // #else
+    let count = atomicLoad(&work_counts[leg_counter(tile.level)]);
     if idx >= count {
         return;
     }
@@ -375,10 +377,13 @@ fn wavefront_leg_closest(@builtin(global_invocation_id) id: vec3<u32>, @builtin(
 // Mirror of src/cpu/wavefront_tree.rs::leg_closest_entry — change both.
 fn leg_closest_entry(l: u32) {
     let parity = tile.level % 2u;
+    // Where the hit goes, found before the traversal: one index live across it rather
+    // than the light points and l (with CSG this spared RADV's last 2 spilled SGPRs in
+    // wave64).
+    let at = tree_leg_hits(tree_points()) + 2u * l;
     let light = request_target(leg_request(parity, l));
     let leg_ray = shadow_leg_ray(load_leg(parity, l), light.xyz, light.w);
     let hit = closest_hit(leg_ray.ray, leg_ray.reach);
-    let at = tree_leg_hits(tree_points()) + 2u * l;
     samples[at] = vec4<f32>(hit.t, bitcast<f32>(hit.item), hit.b1, hit.b2);
     samples[at + 1u] = vec4<f32>(bitcast<f32>(hit.part), 0.0, 0.0, 0.0);
 }
