@@ -25,7 +25,8 @@
 //   [14N + LN, …)      shadow requests (≤ LN): (light point position, slot index)
 // Counters in work_counts (adaptive.wgsl's binding): generation g's paths at g mod 3, its
 // shadow requests at 3 + g mod 2 (wavefront_args clears the ones the next generation
-// appends to); indirect arguments in work_args, 6 words a generation.
+// appends to); indirect arguments in work_args, 6 words a generation (with CSG 3 + 3L:
+// the shadow pass's slices, see wavefront_shadow).
 // Mirror of src/cpu/wavefront.rs — change both.
 
 // #if WAVEFRONT
@@ -427,7 +428,8 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
 
 // After generation tile.level's shade pass (one invocation): the indirect workgroups of
 // the next generation's passes (work_args[6g ..]) and of this generation's shadow pass
-// (work_args[6g + 3 ..]: with CSG at most N invocations, see wavefront_shadow), and the
+// (work_args[6g + 3 ..]; with CSG a generation's words are 3 + 3L, its slices' from
+// 3 on, see wavefront_shadow), and the
 // counters of generation g − 1 cleared for generation g + 1.
 // Mirror of src/cpu/wavefront.rs::next_generation — change both.
 @compute @workgroup_size(1)
@@ -437,44 +439,55 @@ fn wavefront_args() {
 // #else
     let g = tile.level;
     let next = indirect_workgroups(atomicLoad(&work_counts[path_counter(g + 1u)]));
-    var shadow_requests = atomicLoad(&work_counts[shadow_counter(g)]);
+    let shadow_requests = atomicLoad(&work_counts[shadow_counter(g)]);
 // #if CSG
-    // At most one invocation per list slot (see wavefront_shadow).
-    shadow_requests = min(shadow_requests, tile.items);
+    // One slice of at most N requests per light point (see wavefront_shadow): a
+    // generation's 3 + 3L words, the next generation's passes', then slice s's at 3 + 3s.
+    let slices = light_points();
+    let at = (3u + 3u * slices) * g;
+    let first = indirect_workgroups(min(shadow_requests, tile.items));
+    store_indirect_pair(at, next, first);
+    for (var s = 1u; s < slices; s++) {
+        let groups = indirect_workgroups(min(shadow_requests - min(shadow_requests, s * tile.items), tile.items));
+        work_args[at + 3u + 3u * s] = groups.x;
+        work_args[at + 4u + 3u * s] = groups.y;
+        work_args[at + 5u + 3u * s] = groups.z;
+    }
+// #else
+    store_indirect_pair(6u * g, next, indirect_workgroups(shadow_requests));
 // #endif
-    let shadows = indirect_workgroups(shadow_requests);
-    store_indirect_pair(6u * g, next, shadows);
     atomicStore(&work_counts[path_counter(g + 2u)], 0u);
     atomicStore(&work_counts[shadow_counter(g + 1u)], 0u);
 // #endif
 }
 
-// The shadow pass: each shadow request of generation tile.level through shadow_request.
-// With CSG, whose interval lists take a slot of ray_lists per invocation (one per
-// sample of the chunk: N), at most N invocations, each a grid-stride loop over requests
-// idx, idx + N, …; without, one request per invocation (a loop around the traversal
-// cost RADV 13 spilled SGPRs in wave64).
+// The shadow pass: each shadow request of generation tile.level through shadow_request,
+// one a invocation. With CSG, whose interval lists take a slot of ray_lists per
+// invocation (one per sample of the chunk: N), the pass is L dispatches (slices, L the
+// light points: requests ≤ L·N) of at most N invocations, slice s's invocation idx taking
+// request s·N + idx and list slot idx. A grid-stride loop over requests idx, idx + N, …
+// instead spilled 8–10 SGPRs in wave64 around any_hit's own loops, without CSG 13
+// (docs/journal/2026-12-02-shadow-kernel-csg-registers.md).
 // Mirror of the loop of src/cpu/wavefront.rs::shadow_pass — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_shadow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
-    let count = atomicLoad(&work_counts[shadow_counter(tile.level)]);
 // #if REFRACTION
     // Through glass: each request's first leg, for the rounds (wavefront_tree.wgsl).
-    if idx >= count {
+    if idx >= atomicLoad(&work_counts[shadow_counter(tile.level)]) {
         return;
     }
     start_shadow_leg(idx);
 // #else
 // #if CSG
-    if idx >= tile.items {
+    let r = tile.slice * tile.items + idx;
+    if idx >= tile.items || r >= atomicLoad(&work_counts[shadow_counter(tile.level)]) {
         return;
     }
     begin_lane(idx);
-    for (var r = idx; r < count; r += tile.items) {
-        shadow_request(r);
-    }
+    shadow_request(r);
 // #else
+    let count = atomicLoad(&work_counts[shadow_counter(tile.level)]);
     if idx >= count {
         return;
     }

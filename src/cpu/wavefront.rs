@@ -596,8 +596,9 @@ impl<C: TraversalCounters> TraversalCounters for DetailWatch<'_, C> {
     }
 }
 
-/// The shadow pass: each request's shadow ray (any hit).
-// Mirror of the loop of shaders/wavefront.wgsl::wavefront_shadow (one request an invocation, or with CSG every N-th) — change both.
+/// The shadow pass: each request's shadow ray (any hit), in request order (on the GPU
+/// one request an invocation; with CSG L dispatches, slice s requests s·N … s·N + N − 1).
+// Mirror of the loop of shaders/wavefront.wgsl::wavefront_shadow (one request an invocation, with CSG over slices) — change both.
 pub fn shadow_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for r in 0..batch.shadows.len() {
         shadow_entry(scene, batch, r, counters);

@@ -37,8 +37,9 @@ pub struct GpuTile {
     /// the camera pass's stratum of each chunk pixel (`glint view`'s frame), or
     /// [`ALL_STRATA`](crate::constants::ALL_STRATA): every stratum of each (a render).
     pub stratum: u32,
-    /// To the WGSL struct's size (its vec2 members align it to 8 bytes).
-    pub _pad0: u32,
+    /// The wavefront shadow pass's slice with CSG (WavefrontShape::shadow_slices): its
+    /// requests are slice × items … slice × items + items − 1 (shaders/wavefront.wgsl).
+    pub slice: u32,
 }
 
 /// `GpuTile::sentinel`: the loop-limiter check runs a loop of this many iterations; it

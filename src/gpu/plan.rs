@@ -51,6 +51,10 @@ pub struct WavefrontShape {
     /// pass. None: AA none, a pixel's centre, stored by the gather pass.
     pub uniform: Option<u32>,
     pub tree: bool,
+    /// Dispatches of a chain's shadow pass a generation: 1, or with CSG (at most one
+    /// invocation per list slot, one request each) the light points, each a slice of at
+    /// most a request per sample (`shaders/wavefront.wgsl::wavefront_shadow`). A tree's: 1.
+    pub shadow_slices: u32,
 }
 
 /// Glass shadow rounds a tree's generation runs (`shaders/wavefront_tree.wgsl`): a leg
@@ -95,17 +99,27 @@ impl WavefrontShape {
     /// Byte offset in work_args of the indirect arguments of generation g's passes over
     /// paths (g ≥ 1; written by generation g − 1's args kernel).
     fn paths_args(self, g: u32) -> u64 {
-        let words = if self.tree {
-            TREE_ROUND_ARGS_WORDS + 6 * (g as u64 - 1)
-        } else {
-            6 * (g as u64 - 1)
-        };
-        4 * words
+        4 * (self.args_prefix_words() + self.generation_words() * (g as u64 - 1))
     }
 
-    /// Byte offset of generation g's shadow pass's arguments.
-    fn shadow_args(self, g: u32) -> u64 {
-        4 * 3 + self.paths_args(g + 1)
+    /// Byte offset of slice `slice` of generation g's shadow pass's arguments.
+    fn shadow_args(self, g: u32, slice: u32) -> u64 {
+        4 * (3 + 3 * slice as u64) + self.paths_args(g + 1)
+    }
+
+    /// Words of work_args before the generations' (a tree's round arguments).
+    fn args_prefix_words(self) -> u64 {
+        if self.tree {
+            TREE_ROUND_ARGS_WORDS
+        } else {
+            0
+        }
+    }
+
+    /// Words of work_args a generation: the next generation's passes' 3, then 3 a
+    /// shadow slice.
+    fn generation_words(self) -> u64 {
+        3 + 3 * self.shadow_slices as u64
     }
 
     /// Byte offset of a tree's round r's leg arguments (the same words every generation).
@@ -117,11 +131,13 @@ impl WavefrontShape {
     /// a generation's 6 words (after a tree's round arguments); at least the counters
     /// (5 for chains; a tree's 11: also three leg counters, two vertex bases and the
     /// light points).
-    fn work_levels(self) -> u64 {
+    pub fn work_levels(self) -> u64 {
         if self.tree {
             (TREE_ROUND_ARGS_WORDS / 6 + self.generations as u64).max(11)
         } else {
-            self.generations.max(5) as u64
+            (self.generation_words() * self.generations as u64)
+                .div_ceil(6)
+                .max(5)
         }
     }
 }
@@ -502,7 +518,7 @@ impl FramePlan {
             items,
             sentinel,
             stratum: ALL_STRATA,
-            _pad0: 0,
+            slice: 0,
         };
         let linear = |items: u32| {
             let lanes = bounds.workgroup_side * bounds.workgroup_side;
@@ -672,8 +688,9 @@ fn adaptive_wavefront_dispatches(
 /// copy the chunk, items and stratum of): per generation g closest, shade, args, shadow,
 /// gather (entries `closest` … `closest` + 4 of the mode's list, bound at `offsets`) —
 /// generation 0's over the chunk's samples as the camera pass, later ones' and every
-/// shadow pass's as the args kernel wrote them (24 bytes a generation from
-/// `offsets.work`: the next generation's, then this one's shadow pass).
+/// shadow pass's as the args kernel wrote them (`generation_words` a generation from
+/// `offsets.work`: the next generation's, then this one's shadow pass, with CSG one
+/// dispatch a slice, `GpuTile::slice` telling it which).
 fn wavefront_generations(
     shape: WavefrontShape,
     camera: Dispatch,
@@ -697,7 +714,7 @@ fn wavefront_generations(
         };
         let paths = match g {
             0 => camera.workgroups,
-            _ => args(24 * (g as u64 - 1)),
+            _ => args(shape.paths_args(g)),
         };
         out.push(pass(0, paths));
         out.push(pass(1, paths));
@@ -705,7 +722,11 @@ fn wavefront_generations(
             writes_args: true,
             ..pass(2, Workgroups::Direct(1, 1))
         });
-        out.push(pass(3, args(24 * g as u64 + 12)));
+        for slice in 0..shape.shadow_slices {
+            let mut shadow = pass(3, args(shape.shadow_args(g, slice)));
+            shadow.params.slice = slice;
+            out.push(shadow);
+        }
         out.push(pass(4, paths));
     }
     out
@@ -736,7 +757,7 @@ pub fn view_wavefront_dispatches(
             items,
             sentinel,
             stratum,
-            _pad0: 0,
+            slice: 0,
         },
         workgroups: Workgroups::Direct(x, y),
         clears_work: true,
@@ -781,7 +802,7 @@ fn tree_dispatches(
         out.push(run(
             4,
             params(g, n),
-            Workgroups::Indirect(shape.shadow_args(g)),
+            Workgroups::Indirect(shape.shadow_args(g, 0)),
         ));
         for r in 0..SHADOW_ROUNDS {
             let legs = Workgroups::Indirect(WavefrontShape::round_args(r));
@@ -934,20 +955,31 @@ mod tests {
     /// queues fit one binding, and each band runs the camera pass (clearing its counters)
     /// then closest, shade, args, shadow and gather per generation — generation 0's over
     /// the band's samples, the rest and every shadow pass at the args kernel's offsets,
-    /// inside the work-args buffer.
+    /// inside the work-args buffer. With CSG the shadow pass is one dispatch per slice,
+    /// every slice 0 … L − 1 once (a skipped one would leave its requests unlit), each at
+    /// its own arguments (the args kernel's 3 + 3L words a generation).
     #[test]
     fn wavefront_bands_fit_their_queues_and_run_every_generation() {
-        let shape = WavefrontShape {
-            light_points: 17,
-            generations: 6,
-            uniform: None,
-            tree: false,
-        };
+        for shadow_slices in [1, 17] {
+            let shape = WavefrontShape {
+                light_points: 17,
+                generations: 6,
+                uniform: None,
+                tree: false,
+                shadow_slices,
+            };
+            assert_wavefront_bands(shape);
+        }
+    }
+
+    fn assert_wavefront_bands(shape: WavefrontShape) {
         let bounds = AdapterBounds {
             wavefront: Some(shape),
             max_binding: 16 << 20,
             ..LAVAPIPE
         };
+        let slices = shape.shadow_slices as usize;
+        let words = 4 * (3 + 3 * slices as u64);
         for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
             let plan = FramePlan::new(&globals(w, h, 0), bounds);
             assert_eq!(plan.mode, Mode::Wavefront(shape));
@@ -956,11 +988,14 @@ mod tests {
             for (k, c) in plan.chunks.iter().enumerate() {
                 assert!(shape.vec4s_per_sample() * c.block_pixels() <= plan.samples_len);
                 let d = plan.dispatches(k, 2, bounds);
-                assert_eq!(d.len(), 1 + 5 * shape.generations as usize);
+                assert_eq!(d.len(), 1 + (4 + slices) * shape.generations as usize);
                 assert!(d[0].clears_work && d[0].entry == 0);
-                for (g, pass) in d[1..].chunks(5).enumerate() {
+                for (g, pass) in d[1..].chunks(4 + slices).enumerate() {
                     let entries: Vec<usize> = pass.iter().map(|d| d.entry).collect();
-                    assert_eq!(entries, [1, 2, 3, 4, 5]);
+                    let mut expected_entries = vec![1, 2, 3];
+                    expected_entries.extend(std::iter::repeat_n(4, slices));
+                    expected_entries.push(5);
+                    assert_eq!(entries, expected_entries);
                     assert!(pass.iter().all(|d| d.params.level == g as u32));
                     assert!(pass[2].writes_args);
                     let offsets = pass.iter().filter_map(|d| match d.workgroups {
@@ -972,11 +1007,17 @@ mod tests {
                     }
                     let expected = match g {
                         0 => d[0].workgroups,
-                        _ => Workgroups::Indirect(24 * (g as u64 - 1)),
+                        _ => Workgroups::Indirect(words * (g as u64 - 1)),
                     };
                     assert_eq!(pass[0].workgroups, expected);
-                    assert_eq!(pass[4].workgroups, expected);
-                    assert_eq!(pass[3].workgroups, Workgroups::Indirect(24 * g as u64 + 12));
+                    assert_eq!(pass[3 + slices].workgroups, expected);
+                    let shadows = &pass[3..3 + slices];
+                    let slice_of: Vec<u32> = shadows.iter().map(|d| d.params.slice).collect();
+                    assert_eq!(slice_of, (0..slices as u32).collect::<Vec<_>>());
+                    for (s, shadow) in shadows.iter().enumerate() {
+                        let at = words * g as u64 + 12 + 12 * s as u64;
+                        assert_eq!(shadow.workgroups, Workgroups::Indirect(at));
+                    }
                 }
             }
             // Uniform AA keeps its own passes.
@@ -1000,6 +1041,7 @@ mod tests {
             generations: 3,
             uniform: None,
             tree: false,
+            shadow_slices: 1,
         };
         let words = 562;
         let bounds = AdapterBounds {
@@ -1097,6 +1139,7 @@ mod tests {
                 generations: 3,
                 uniform: Some(n),
                 tree: false,
+                shadow_slices: 1,
             };
             // (A row of 1920 pixels at 4×4 takes 30 720 slots: 32 MiB of lists.)
             let bounds = AdapterBounds {
@@ -1170,6 +1213,7 @@ mod tests {
             generations: 4,
             uniform: Some(3),
             tree: false,
+            shadow_slices: 1,
         };
         let band = bands(PixelRect::full(37, 5), 5, 1)[0];
         let d = view_wavefront_dispatches(band, shape, 7, 2, LAVAPIPE);
@@ -1218,6 +1262,7 @@ mod tests {
             generations: 9,
             uniform: None,
             tree: true,
+            shadow_slices: 1,
         };
         assert_eq!(
             shape.vec4s_per_sample(),

@@ -386,7 +386,7 @@ impl Progressive {
                 items: 0,
                 sentinel: self.sentinel,
                 stratum: ALL_STRATA,
-                _pad0: 0,
+                slice: 0,
             }),
         );
         // Written before the submit that carries this pass (queue writes come first).

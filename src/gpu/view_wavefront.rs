@@ -74,8 +74,9 @@ impl ViewWavefront {
                 mapped_at_creation: false,
             })
         };
-        // A generation's 6 words of indirect arguments; the 5 counters.
-        let levels = u64::from(shape.generations.max(5));
+        // The generations' indirect arguments (with CSG their shadow slices'); the 5
+        // counters.
+        let levels = shape.work_levels();
         Ok(ViewWavefront {
             samples: buffer("view wavefront queues", samples_bytes, storage),
             work_counts: buffer("view work counts", levels * 4, storage),

@@ -58,5 +58,12 @@ fn shape(
         generations,
         uniform,
         tree,
+        // With CSG one shadow request per invocation and list slot: a slice per light
+        // point (shaders/wavefront.wgsl::wavefront_shadow).
+        shadow_slices: if !tree && scene.features.contains(SceneFeatures::CSG) {
+            light_points(scene)
+        } else {
+            1
+        },
     })
 }

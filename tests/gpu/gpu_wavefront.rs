@@ -135,8 +135,8 @@ fn mirrored_csg(options: &OptionOverrides) -> PackedScene {
 }
 
 /// `scene` on the hardware variant: through the wavefront kernels (one camera pass and
-/// five passes a generation per chunk; with refraction also the shadow rounds' 26 a
-/// generation and the fold), the same bits as the hardware variant's
+/// five passes a generation per chunk, with CSG a shadow dispatch per light point; with
+/// refraction also the shadow rounds' 26 a generation and the fold), the same bits as the hardware variant's
 /// megakernel `main` (the same WGSL steps in the same order, on the same device), and the
 /// CPU's image within the GPU parity tests' tolerance (lavapipe's `length`, `normalize`,
 /// `exp2`… are not Rust's, so no GPU image is the CPU's bit for bit: tests/gpu/gpu_images.rs).
@@ -158,12 +158,22 @@ pub(crate) fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: 
     // the store pass; decide and work args a level; integrate.
     let depth = scene.globals.aa_depth as u64;
     let uniform = (scene.globals.aa_mode == AA_UNIFORM) as u64;
+    // With CSG (no glass) a chain's shadow pass is a dispatch per light point (its
+    // slices: one request an invocation, at most one a sample each).
+    let slices = match !tree && scene.features.contains(SceneFeatures::CSG) {
+        true => light_points(scene) as u64,
+        false => 1,
+    };
     // A tree's generation: 5 passes, 9 rounds of leg closest and crossing, 8 leg args;
     // then its fold.
-    let (per_generation, fold) = if tree { (5 + 2 * 9 + 8, 1) } else { (5, 0) };
+    let (per_generation, fold) = if tree {
+        (5 + 2 * 9 + 8, 1)
+    } else {
+        (4 + slices, 0)
+    };
     let per_tile = match adaptive {
         false => 1 + per_generation * generations + fold + uniform,
-        true => (2 + 5 * generations) * (1 + depth) + 2 * depth + 1,
+        true => (2 + (4 + slices) * generations) * (1 + depth) + 2 * depth + 1,
     };
     assert_eq!(
         render.info.dispatches as u64,
