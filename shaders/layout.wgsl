@@ -162,7 +162,8 @@ struct GpuTile {
     // The wavefront camera pass's stratum of each chunk pixel (glint view's frame), or
     // ALL_STRATA: every stratum of each (a render's chunk).
     stratum: u32,
-    // The shadow pass's slice with CSG: requests slice × items … (see wavefront_shadow).
+    // The shadow pass's slice with CSG: requests slice × items … (see wavefront_shadow);
+    // the args kernel's: the slices of a shadow pass.
     slice: u32,
 // #endif
 }

@@ -443,7 +443,8 @@ fn wavefront_args() {
 // #if CSG
     // One slice of at most N requests per light point (see wavefront_shadow): a
     // generation's 3 + 3L words, the next generation's passes', then slice s's at 3 + 3s.
-    let slices = light_points();
+    // The slices, L, from the host (tile.slice of this dispatch: plan.rs).
+    let slices = tile.slice;
     let at = (3u + 3u * slices) * g;
     let first = indirect_workgroups(min(shadow_requests, tile.items));
     store_indirect_pair(at, next, first);

@@ -718,10 +718,12 @@ fn wavefront_generations(
         };
         out.push(pass(0, paths));
         out.push(pass(1, paths));
-        out.push(Dispatch {
+        let mut args_kernel = Dispatch {
             writes_args: true,
             ..pass(2, Workgroups::Direct(1, 1))
-        });
+        };
+        args_kernel.params.slice = shape.shadow_slices;
+        out.push(args_kernel);
         for slice in 0..shape.shadow_slices {
             let mut shadow = pass(3, args(shape.shadow_args(g, slice)));
             shadow.params.slice = slice;
@@ -998,6 +1000,7 @@ mod tests {
                     assert_eq!(entries, expected_entries);
                     assert!(pass.iter().all(|d| d.params.level == g as u32));
                     assert!(pass[2].writes_args);
+                    assert_eq!(pass[2].params.slice, shape.shadow_slices);
                     let offsets = pass.iter().filter_map(|d| match d.workgroups {
                         Workgroups::Indirect(at) => Some(at),
                         Workgroups::Direct(..) => None,
