@@ -154,7 +154,8 @@ fn wgsl_structs_match_rust_layout() {
         level,
         items,
         sentinel,
-        stratum
+        stratum,
+        slice
     });
     check_struct(&render, gpu_tile.clone());
     let hardware_chains = SceneFeatures(all.0 & !SceneFeatures::REFRACTION.0);
