@@ -4,6 +4,7 @@
 pub mod light_on_surface;
 pub mod probes;
 pub mod tilings;
+pub mod tree_scenes;
 
 use glint::film::Film;
 use glint::pack::PackedScene;
