@@ -583,7 +583,6 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
 // #endif
 }
 
-// #if WAVEFRONT_MODES
 // Uniform AA, after the chunk's last generation: each chunk pixel's mean over its n²
 // samples' colours (pixel p's samples are p·n² … p·n² + n² − 1), summed in sample order
 // and divided by n² as render.wgsl's uniform_resolve does (the megakernel's image).
@@ -601,5 +600,4 @@ fn wavefront_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     output[id.y * tile.side + id.x] = vec4<f32>(sum / f32(nn), 1.0);
 }
-// #endif
 // #endif

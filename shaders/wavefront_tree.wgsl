@@ -200,12 +200,22 @@ fn push_tree_children(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit:
         let j = atomicAdd(&work_counts[path_counter(g + 1u)], 1u);
         if j >= room {
             // No room: the host renders this sample's pixel on the CPU.
-            guard[(k / tile.size.x) * tile.side + k % tile.size.x] = 1u;
+            guard[sample_guard(k)] = 1u;
             continue;
         }
         store_tree_path(1u - parity, j, load_pending(&stack, q), q, k);
         set_tree_child(base + i, q - pending, next_base + j);
     }
+}
+
+// The guard flag of sample k's chunk pixel: under uniform AA (a render) pixel k div n²
+// (the camera pass's strata), else pixel k (AA none, glint view's frame).
+fn sample_guard(k: u32) -> u32 {
+    var p = k;
+    if globals.aa_mode == AA_UNIFORM && tile.stratum == ALL_STRATA {
+        p = k / (globals.aa_samples * globals.aa_samples);
+    }
+    return (p / tile.size.x) * tile.side + p % tile.size.x;
 }
 
 // Paths the next generation may hold when its vertices start at next_base: the queue's
@@ -462,7 +472,8 @@ fn wavefront_leg_args() {
 }
 
 // The fold pass (after the chunk's last generation), sample k = idx: its colour from its
-// vertex tree, into its record and the chunk's output pixel.
+// vertex tree, into its record (for uniform AA's resolve and glint view's store, as
+// wavefront_gather leaves a chain's) and, a render under AA none, the chunk's output pixel.
 // Mirror of src/cpu/wavefront_tree.rs::fold_samples — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_fold(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -472,8 +483,11 @@ fn wavefront_fold(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     }
     let colour = fold_entry(k);
     samples[2u * k] = vec4<f32>(colour, samples[2u * k].w);
-    // AA none: sample k is chunk pixel k (row-major over size, rows at stride side).
-    output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(colour, 1.0);
+    // A render under AA none: sample k is chunk pixel k (row-major over size, rows at
+    // stride side).
+    if globals.aa_mode == AA_NONE && tile.stratum == ALL_STRATA {
+        output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(colour, 1.0);
+    }
 }
 
 // Sample k's colour (its camera vertex is vertex k): trace_ray's running sum over its

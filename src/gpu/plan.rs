@@ -165,6 +165,9 @@ impl Mode {
                 Entry::AdaptiveIntegrate,
                 Entry::AdaptiveWorkArgs,
             ],
+            Mode::Wavefront(shape) if shape.tree && shape.uniform.is_none() => {
+                &Entry::WAVEFRONT_TREE[..10]
+            }
             Mode::Wavefront(shape) if shape.tree => &Entry::WAVEFRONT_TREE,
             // AA none's gather stores its pixels: no resolve.
             Mode::Wavefront(shape) if shape.uniform.is_none() => &Entry::WAVEFRONT[..6],
@@ -547,7 +550,11 @@ impl FramePlan {
                     ..run(0, params(0, n), linear(n))
                 };
                 if shape.tree {
-                    return tree_dispatches(shape, n, vec![camera], params, linear(n), run);
+                    let mut out = tree_dispatches(shape, n, vec![camera], params, linear(n), run);
+                    if shape.uniform.is_some() {
+                        out.push(run(10, params(0, n), square));
+                    }
+                    return out;
                 }
                 let mut out = wavefront_generations(shape, camera, 1, camera.offsets);
                 if shape.uniform.is_some() {
@@ -1282,7 +1289,7 @@ mod tests {
         for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
             let plan = FramePlan::new(&globals(w, h, 0), bounds);
             assert_eq!(plan.mode, Mode::Wavefront(shape));
-            assert_eq!(plan.mode.entries(), &Entry::WAVEFRONT_TREE);
+            assert_eq!(plan.mode.entries(), &Entry::WAVEFRONT_TREE[..10]);
             assert_eq!(plan.chunks.len() > h as usize, w == 1920, "{w}×{h}");
             assert_covers(&plan, w, h);
             assert!(plan.samples_len * 16 <= bounds.max_binding, "{w}×{h}");
@@ -1343,6 +1350,57 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A tree's bands under uniform n×n AA: each pixel's n² samples take n² times a
+    /// sample's queues and list slots in the band's binding, the generations and the fold
+    /// run over every sample, and the resolve pass (the 11th entry) ends the band over
+    /// its pixels.
+    #[test]
+    fn uniform_tree_bands_sample_every_stratum_then_fold_then_resolve() {
+        let n = 2;
+        let shape = WavefrontShape {
+            light_points: 3,
+            generations: 9,
+            uniform: Some(n),
+            tree: true,
+        };
+        let words = 562;
+        let bounds = AdapterBounds {
+            wavefront: Some(shape),
+            max_binding: 16 << 20,
+            lane_list_words: words,
+            ..LAVAPIPE
+        };
+        let mut g = globals(200, 120, AA_UNIFORM);
+        g.aa_samples = n;
+        let plan = FramePlan::new(&g, bounds);
+        assert_eq!(plan.mode, Mode::Wavefront(shape));
+        assert_eq!(plan.mode.entries(), &Entry::WAVEFRONT_TREE);
+        assert_eq!(plan.mode.entries()[10], Entry::WavefrontResolve);
+        assert_covers(&plan, 200, 120);
+        assert!(plan.samples_len * 16 <= bounds.max_binding);
+        for (k, c) in plan.chunks.iter().enumerate() {
+            let samples = c.block_pixels() * (n * n) as u64;
+            assert!(shape.vec4s_per_sample() * samples <= plan.samples_len);
+            let paths = TREE_PATHS_PER_SAMPLE as u64 * samples;
+            assert!(paths * words as u64 <= plan.lists_len, "slots");
+            let d = plan.dispatches(k, 2, bounds);
+            let per_generation = 5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+            assert_eq!(d.len(), 3 + per_generation * shape.generations as usize);
+            assert_eq!(d[0].params.items as u64, samples);
+            let (fold, resolve) = (d[d.len() - 2], d[d.len() - 1]);
+            assert_eq!((fold.entry, fold.workgroups), (9, d[0].workgroups));
+            let side = bounds.workgroup_side;
+            let square = Workgroups::Direct(c.size[0].div_ceil(side), c.size[1].div_ceil(side));
+            assert_eq!((resolve.entry, resolve.workgroups), (10, square));
+        }
+        // Without its shape (another n) uniform AA keeps its own passes.
+        g.aa_samples = 3;
+        assert!(matches!(
+            FramePlan::new(&g, bounds).mode,
+            Mode::Uniform { n: 3 }
+        ));
     }
 
     /// The five counters (three path counters, two shadow counters) fit `work_counts`.

@@ -131,12 +131,12 @@ impl Entry {
         Entry::WavefrontLatticeStore,
     ];
 
-    /// The wavefront kernels of AA none in scenes with refraction (paths that branch), in
-    /// the order a generation dispatches them after the camera pass (the shadow pass
-    /// starting each request's first leg, then rounds of leg closest, crossing and leg
-    /// args), then the fold after the last generation: the plan's `Mode::Wavefront`
-    /// pipelines for a tree.
-    pub const WAVEFRONT_TREE: [Entry; 10] = [
+    /// The wavefront kernels in scenes with refraction (paths that branch), in the order
+    /// a generation dispatches them after the camera pass (the shadow pass starting each
+    /// request's first leg, then rounds of leg closest, crossing and leg args), then the
+    /// fold after the last generation, then uniform AA's resolve (AA none has none): the
+    /// plan's `Mode::Wavefront` pipelines for a tree.
+    pub const WAVEFRONT_TREE: [Entry; 11] = [
         Entry::WavefrontCamera,
         Entry::WavefrontClosest,
         Entry::WavefrontShade,
@@ -147,6 +147,7 @@ impl Entry {
         Entry::WavefrontLegArgs,
         Entry::WavefrontGather,
         Entry::WavefrontFold,
+        Entry::WavefrontResolve,
     ];
 
     /// Every entry point.
@@ -238,8 +239,7 @@ impl Entry {
     fn is_wavefront_modes(self) -> bool {
         matches!(
             self,
-            Entry::WavefrontResolve
-                | Entry::WavefrontLatticeCamera
+            Entry::WavefrontLatticeCamera
                 | Entry::WavefrontLatticeStore
                 | Entry::WavefrontViewStore
         )

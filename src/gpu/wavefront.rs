@@ -11,9 +11,9 @@ use crate::cpu::wavefront::light_points;
 use crate::pack::{PackedScene, SceneFeatures};
 
 /// The wavefront kernels' shape for `scene` under `kernel`, where `kernel` runs them for
-/// it: a variant with `wavefront`; AA none (with refraction a tree, whose vertex tree,
-/// glass shadow rounds and fold `shaders/wavefront_tree.wgsl` adds), and without
-/// refraction uniform AA and adaptive AA's corner and midpoint passes too
+/// it: a variant with `wavefront`; AA none and uniform AA (with refraction a tree, whose
+/// vertex tree, glass shadow rounds and fold `shaders/wavefront_tree.wgsl` adds), and
+/// without refraction adaptive AA's corner and midpoint passes too
 /// ([`wavefront_modes`]). None: the megakernels.
 pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
     let g = &scene.globals;
@@ -21,7 +21,7 @@ pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<Wave
     let uniform = match g.aa_mode {
         AA_NONE => None,
         AA_ADAPTIVE if all_modes => None,
-        AA_UNIFORM if all_modes => Some(g.aa_samples),
+        AA_UNIFORM => Some(g.aa_samples),
         _ => return None,
     };
     shape(kernel, scene, uniform)

@@ -102,7 +102,10 @@ impl KernelSet {
                 let modes = wavefront_modes(kernel, features);
                 let tree = features.contains(SceneFeatures::REFRACTION);
                 let dispatched = match mode {
-                    Mode::None if wavefront && tree => Entry::WAVEFRONT_TREE.contains(&entry),
+                    Mode::None if wavefront && tree => Entry::WAVEFRONT_TREE[..10].contains(&entry),
+                    Mode::Uniform { .. } if wavefront && tree => {
+                        Entry::WAVEFRONT_TREE.contains(&entry)
+                    }
                     Mode::None if wavefront => Entry::WAVEFRONT[..6].contains(&entry),
                     Mode::Uniform { .. } if modes => Entry::WAVEFRONT.contains(&entry),
                     Mode::Adaptive { .. } if modes => Entry::ADAPTIVE_WAVEFRONT.contains(&entry),

@@ -13,6 +13,7 @@ use common::tree_scenes::{slab_scene, FULL_STACK_SCENE, UNDERWATER_SCENE};
 use common::{gpu_context, packed_from_file, packed_from_source};
 use glint::gpu::KernelVariant;
 use glint::pack::SceneFeatures;
+use glint::scene::bounded::AaSamples;
 use glint::scene::{AaMode, OptionOverrides, TraceDepth};
 
 fn overrides_at(max_depth: Option<u32>, w: u32, h: u32) -> OptionOverrides {
@@ -127,4 +128,31 @@ fn hardware_wavefront_hands_pixels_without_room_to_the_cpu() {
         "{handed} pixels handed to the CPU, {cpu_bits} with its bits"
     );
     common::assert_gpu_matches_cpu(&ctx, "gpu_wavefront", "bushy", &scene, 0.01);
+}
+
+/// `overrides_at` under uniform n×n AA.
+fn uniform_at(n: u32, w: u32, h: u32) -> OptionOverrides {
+    OptionOverrides {
+        aa: Some(AaMode::Uniform),
+        samples: Some(AaSamples::new(n.into()).unwrap()),
+        ..overrides_at(None, w, h)
+    }
+}
+
+/// scenes/glass.lua and csg.lua (small) under uniform 2×2 AA through the tree's
+/// wavefront (the strata of the camera pass, the generations and rounds, the fold into
+/// each sample's record, the resolve pass): the megakernel passes' (uniform_samples +
+/// uniform_resolve) image bit for bit where their pixel is their own, the CPU's within
+/// the tolerance.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_renders_uniform_aa_of_glass_scenes() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    for (file, w, h) in [("scenes/glass.lua", 20, 15), ("scenes/csg.lua", 20, 15)] {
+        let scene = packed_from_file(&common::root().join(file), &uniform_at(2, w, h)).remove(0);
+        assert!(scene.features.contains(SceneFeatures::REFRACTION), "{file}");
+        assert_eq!(scene.globals.aa_mode, glint::constants::AA_UNIFORM);
+        assert_wavefront_matches(&mut ctx, &format!("{file} at 2×2"), &scene);
+    }
 }
