@@ -189,7 +189,7 @@ fn trace_lattice_point(i: u32, j: u32) {
 // #endif
 }
 
-// #if !WAVEFRONT_MODES
+// #if !WAVEFRONT
 // Corner pass (tile.items = src/tiling.rs::AdaptiveTile::first_pass_len invocations):
 // invocation idx traces pixel corner (idx mod (w+1), idx div (w+1)) for idx < (w+1)(h+1),
 // after those the centre of pixel number idx − (w+1)(h+1).
@@ -278,7 +278,7 @@ fn adaptive_work_args() {
     store_indirect_pair(6u * tile.level, midpoints, children);
 }
 
-// #if !WAVEFRONT_MODES
+// #if !WAVEFRONT
 // Midpoint pass of tile.level: point idx mod AA_SPLIT_POINTS of entry idx div
 // AA_SPLIT_POINTS of the level's list — its top, left, right and bottom edge midpoints,
 // then the centres of its top-left, top-right, bottom-left and bottom-right children where

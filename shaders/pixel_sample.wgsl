@@ -90,7 +90,7 @@ fn lattice_sample(fx: f32, fy: f32) -> vec4<f32> {
     return hinted_sample(fx + jx, fy + jy, seed);
 }
 
-// #if WAVEFRONT_MODES
+// #if WAVEFRONT
 // Where lattice_sample samples a lattice point, and the seed it samples it with.
 struct JitteredPoint {
     position: vec2<f32>,

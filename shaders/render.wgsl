@@ -100,7 +100,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
 // #endif
 }
 
-// #if WAVEFRONT_MODES
+// #if WAVEFRONT
 // Uniform AA: the wavefront kernels' strata (wavefront.wgsl's camera pass) and
 // wavefront_resolve, in place of the two passes below.
 // #else

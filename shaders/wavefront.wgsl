@@ -215,8 +215,9 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     entry.cone = camera_cone(ray);
 // #endif
 // #if REFRACTION
-    // Camera rays start in the media around the camera.
+    // Camera rays start in the media around the camera; path k is vertex k.
     entry.media = camera_medium_stack();
+    set_tree_camera_vertex(k, k);
 // #endif
     store_path(0u, k, entry, k);
 }

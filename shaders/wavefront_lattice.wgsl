@@ -17,7 +17,7 @@
 // (it reads the level's count), the store pass both whole.
 // Mirror of src/cpu/wavefront_lattice.rs — change both.
 
-// #if WAVEFRONT_MODES
+// #if WAVEFRONT
 // Where the wavefront's queues start in `samples` (vec4 entries): after the tile's
 // lattice, at a multiple of 16 entries (256 bytes, the coarsest storage-binding offset
 // alignment WebGPU allows an adapter). src/gpu/plan.rs::lattice_queue_base is the same.
@@ -100,6 +100,12 @@ fn lattice_pass_point(lattice_pass: u32, idx: u32) -> vec3<u32> {
 fn wavefront_lattice_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
     let lattice_pass = tile.level;
+// #if REFRACTION
+    // The fold runs over this pass's invocations: none of a sample without a point.
+    if idx < tile.items {
+        set_tree_camera_vertex(idx, NO_CHILD);
+    }
+// #endif
     if idx >= lattice_pass_len(lattice_pass) {
         return;
     }
@@ -124,9 +130,31 @@ fn wavefront_lattice_camera(@builtin(global_invocation_id) id: vec3<u32>, @built
 // #if TEXTURE|BUMP
     entry.cone = camera_cone(ray);
 // #endif
+// #if REFRACTION
+    // Camera rays start in the media around the camera (a tree's camera pass).
+    entry.media = camera_medium_stack();
+// #endif
     let at = atomicAdd(&work_counts[WAVEFRONT_WORK_BASE], 1u);
+// #if REFRACTION
+    set_tree_camera_vertex(idx, at);
+// #endif
     store_path(0u, at, entry, idx);
 }
+
+// #if REFRACTION
+// The guard flags of every pixel whose closed square holds lattice point (i, j).
+fn guard_lattice_point(i: u32, j: u32) {
+    let s = adaptive_scale();
+    let x_hi = min(i / s, tile.size.x - 1u);
+    let y_hi = min(j / s, tile.size.y - 1u);
+    let x_lo = select(x_hi, (i - 1u) / s, i > 0u);
+    let y_lo = select(y_hi, (j - 1u) / s, j > 0u);
+    guard[y_lo * tile.side + x_lo] = 1u;
+    guard[y_lo * tile.side + x_hi] = 1u;
+    guard[y_hi * tile.side + x_lo] = 1u;
+    guard[y_hi * tile.side + x_hi] = 1u;
+}
+// #endif
 
 // The store pass of lattice pass tile.level, sample idx: the sample's colour and, in w,
 // its hint (encode_hint of the camera item's key, mixed with the mirrored item's, and
@@ -138,7 +166,12 @@ fn wavefront_lattice_store(@builtin(global_invocation_id) id: vec3<u32>, @builti
     let idx = linear_index(id, groups);
     let lattice_pass = tile.level;
     if idx == 0u {
-        for (var c = 0u; c < 5u; c++) {
+        // A chain's five counters; a tree's also its leg counters and vertex bases.
+        var counters = 5u;
+// #if REFRACTION
+        counters = 10u;
+// #endif
+        for (var c = 0u; c < counters; c++) {
             atomicStore(&work_counts[WAVEFRONT_WORK_BASE + c], 0u);
         }
     }
@@ -153,6 +186,13 @@ fn wavefront_lattice_store(@builtin(global_invocation_id) id: vec3<u32>, @builti
     let first = samples[record];
     let second = samples[record + 1u];
     let fine_detail = (bitcast<u32>(second.y) & SAMPLE_FINE_DETAIL) != 0u;
+// #if REFRACTION
+    // A tree without room for a child: every pixel whose closed square holds the point
+    // goes to the CPU tracer (as trace_lattice_point's loop-limiter guard).
+    if (bitcast<u32>(second.y) & SAMPLE_NO_ROOM) != 0u {
+        guard_lattice_point(point.x, point.y);
+    }
+// #endif
     let key = sample_item_key(bitcast<u32>(first.w), bitcast<u32>(second.x));
     samples[lattice_index(point.x, point.y)] = vec4<f32>(first.xyz, encode_hint(SampleHint(fine_detail, key)));
 }

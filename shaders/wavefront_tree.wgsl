@@ -26,7 +26,8 @@
 //   2N + 10C                    hits, 2 a path;  2N + 12C: vertices, 2 a path
 //   2N + 14C                    the vertex tree, 2 a vertex (V = TREE_VERTICES_PER_SAMPLE
 //                               · N of them): (value, first child), (second child)
-//   S = 2N + 14C + 2V           light slots, L a path;  S + LC: shadow requests
+//   2N + 14C + 2V               each sample's camera vertex (x; NO_CHILD: none), 1 a sample
+//   S = 3N + 14C + 2V           light slots, L a path;  S + LC: shadow requests
 //   S + 2LC + 3LC·p             legs of round parity p, 3 a leg: (start, transmittance),
 //                               (media indices), (media count, request)
 //   S + 8LC                     the round's leg hits, 2 a leg
@@ -64,8 +65,12 @@ fn tree_nodes() -> u32 {
     return 2u * tile.items + 14u * tree_capacity();
 }
 
-fn tree_slots() -> u32 {
+fn tree_camera_vertices() -> u32 {
     return tree_nodes() + 2u * TREE_VERTICES_PER_SAMPLE * tile.items;
+}
+
+fn tree_slots() -> u32 {
+    return tree_camera_vertices() + tile.items;
 }
 
 fn tree_shadows(points: u32) -> u32 {
@@ -164,6 +169,18 @@ fn set_tree_value(v: u32, value: vec3<f32>) {
     samples[at] = vec4<f32>(value, samples[at].w);
 }
 
+// Sample k's camera vertex (the camera pass's path of it in generation 0, whose vertex
+// base is 0): k itself where the camera pass takes sample k as path k, the path its
+// atomicAdd gave it in adaptive AA's lattice camera; NO_CHILD where the sample traces
+// nothing (a lattice invocation without a point).
+fn tree_camera_vertex(k: u32) -> u32 {
+    return bitcast<u32>(samples[tree_camera_vertices() + k].x);
+}
+
+fn set_tree_camera_vertex(k: u32, vertex: u32) {
+    samples[tree_camera_vertices() + k] = vec4<f32>(bitcast<f32>(vertex), 0.0, 0.0, 0.0);
+}
+
 // A vertex childless until its shade step appends children.
 fn clear_tree_children(v: u32) {
     let at = tree_nodes() + 2u * v;
@@ -200,7 +217,7 @@ fn push_tree_children(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit:
         let j = atomicAdd(&work_counts[path_counter(g + 1u)], 1u);
         if j >= room {
             // No room: the host renders this sample's pixel on the CPU.
-            guard[sample_guard(k)] = 1u;
+            sample_without_room(k);
             continue;
         }
         store_tree_path(1u - parity, j, load_pending(&stack, q), q, k);
@@ -208,14 +225,20 @@ fn push_tree_children(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit:
     }
 }
 
-// The guard flag of sample k's chunk pixel: under uniform AA (a render) pixel k div n²
-// (the camera pass's strata), else pixel k (AA none, glint view's frame).
-fn sample_guard(k: u32) -> u32 {
+// Sample k has a child without room: the guard flag of its chunk pixel — under uniform AA
+// (a render) pixel k div n² (the camera pass's strata), else pixel k (AA none, glint
+// view's frame) — or, adaptive AA's lattice sample, its record's SAMPLE_NO_ROOM (its
+// store pass flags the pixels around its point).
+fn sample_without_room(k: u32) {
+    if tile.stratum == ALL_STRATA && globals.aa_mode == AA_ADAPTIVE {
+        set_sample_flags(k, sample_flags(k) | SAMPLE_NO_ROOM);
+        return;
+    }
     var p = k;
-    if globals.aa_mode == AA_UNIFORM && tile.stratum == ALL_STRATA {
+    if tile.stratum == ALL_STRATA && globals.aa_mode == AA_UNIFORM {
         p = k / (globals.aa_samples * globals.aa_samples);
     }
-    return (p / tile.size.x) * tile.side + p % tile.size.x;
+    guard[(p / tile.size.x) * tile.side + p % tile.size.x] = 1u;
 }
 
 // Paths the next generation may hold when its vertices start at next_base: the queue's
@@ -481,7 +504,11 @@ fn wavefront_fold(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     if k >= tile.items {
         return;
     }
-    let colour = fold_entry(k);
+    let vertex = tree_camera_vertex(k);
+    if vertex == NO_CHILD {
+        return;
+    }
+    let colour = fold_entry(vertex);
     samples[2u * k] = vec4<f32>(colour, samples[2u * k].w);
     // A render under AA none: sample k is chunk pixel k (row-major over size, rows at
     // stride side).
@@ -490,7 +517,7 @@ fn wavefront_fold(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     }
 }
 
-// Sample k's colour (its camera vertex is vertex k): trace_ray's running sum over its
+// The colour of the sample whose camera vertex is vertex k: trace_ray's running sum over its
 // stack — the camera vertex's value, then each vertex as it pops, its children pushed in
 // push order (so the reflected subtree is summed before the transmitted one).
 // Mirror of src/cpu/wavefront_tree.rs::fold_entry — change both.

@@ -339,6 +339,9 @@ pub const VERTEX_UNLIT: u32 = 2;
 pub const SAMPLE_CAMERA_MIRROR: u32 = 1;
 pub const SAMPLE_FINE_DETAIL: u32 = 2;
 pub const SAMPLE_MIRRORS_CORNERS: u32 = 4;
+/// GPU only: a tree's sample under adaptive AA with a child the queues had no room for
+/// (wavefront_lattice_store sets the guard flags of the pixels around its lattice point).
+pub const SAMPLE_NO_ROOM: u32 = 8;
 /// Under adaptive AA, the first word of `work_counts` the wavefront's counters take, and
 /// ×4 the first byte of `work_args` its indirect arguments take (256 bytes: after every
 /// level's of adaptive AA, at MAX_AA_DEPTH at most 6 counters and 144 bytes of arguments,
@@ -357,6 +360,7 @@ const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = &[
     ("SAMPLE_CAMERA_MIRROR", SAMPLE_CAMERA_MIRROR),
     ("SAMPLE_FINE_DETAIL", SAMPLE_FINE_DETAIL),
     ("SAMPLE_MIRRORS_CORNERS", SAMPLE_MIRRORS_CORNERS),
+    ("SAMPLE_NO_ROOM", SAMPLE_NO_ROOM),
     ("WAVEFRONT_WORK_BASE", WAVEFRONT_WORK_BASE),
     ("ALL_STRATA", ALL_STRATA),
 ];

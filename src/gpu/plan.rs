@@ -80,7 +80,7 @@ impl WavefrontShape {
     pub fn vec4s_per_sample(self) -> u64 {
         let l = self.light_points as u64;
         if self.tree {
-            2 + (14 + 10 * l) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
+            3 + (14 + 10 * l) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
         } else {
             14 + 2 * l
         }
@@ -172,6 +172,7 @@ impl Mode {
             // AA none's gather stores its pixels: no resolve.
             Mode::Wavefront(shape) if shape.uniform.is_none() => &Entry::WAVEFRONT[..6],
             Mode::Wavefront(_) => &Entry::WAVEFRONT,
+            Mode::AdaptiveWavefront { shape, .. } if shape.tree => &Entry::ADAPTIVE_WAVEFRONT_TREE,
             Mode::AdaptiveWavefront { .. } => &Entry::ADAPTIVE_WAVEFRONT,
         }
     }
@@ -467,7 +468,9 @@ impl FramePlan {
                     lattice_queue_bytes(side, depth) / 16
                         + adaptive_slots(side, side, side, depth) * shape.vec4s_per_sample()
                 };
-                let side = adaptive_side(bounds, [w, h], depth, slots, vec4s);
+                // A tree's generation: up to TREE_PATHS_PER_SAMPLE paths a sample.
+                let samples = slots / shape.slots_per_sample();
+                let side = adaptive_side(bounds, [w, h], depth, samples, vec4s);
                 let chunks = squares(window, side);
                 (chunks, vec4s(side), split_offset(side, depth).max(1) as u64)
             }
@@ -488,8 +491,9 @@ impl FramePlan {
                 c.block_pixels() * shape.samples_per_pixel() * shape.slots_per_sample()
             }
             Mode::Uniform { n } => c.size[0] as u64 * c.size[1] as u64 * (n * n) as u64,
-            Mode::Adaptive { depth } | Mode::AdaptiveWavefront { depth, .. } => {
-                adaptive_slots(c.size[0], c.size[1], c.side, depth)
+            Mode::Adaptive { depth } => adaptive_slots(c.size[0], c.size[1], c.side, depth),
+            Mode::AdaptiveWavefront { depth, shape } => {
+                adaptive_slots(c.size[0], c.size[1], c.side, depth) * shape.slots_per_sample()
             }
         };
         let lists_len = match bounds.lane_list_words {
@@ -550,7 +554,7 @@ impl FramePlan {
                     ..run(0, params(0, n), linear(n))
                 };
                 if shape.tree {
-                    let mut out = tree_dispatches(shape, n, vec![camera], params, linear(n), run);
+                    let mut out = tree_dispatches(shape, camera, 1, camera.offsets);
                     if shape.uniform.is_some() {
                         out.push(run(10, params(0, n), square));
                     }
@@ -665,8 +669,12 @@ fn adaptive_wavefront_dispatches(
             offsets: queues,
             ..run(3, params(pass, n), points)
         };
-        let mut out = wavefront_generations(shape, camera, 4, generation);
-        out.push(run(9, params(pass, n), points));
+        // A tree: its rounds and fold between the generations and the store.
+        let (mut out, store) = match shape.tree {
+            true => (tree_dispatches(shape, camera, 4, generation), 13),
+            false => (wavefront_generations(shape, camera, 4, generation), 9),
+        };
+        out.push(run(store, params(pass, n), points));
         out
     };
     let mut out = lattice_pass(0, linear(c.adaptive_tile(depth).first_pass_len()));
@@ -782,48 +790,59 @@ pub fn view_wavefront_dispatches(
     out
 }
 
-/// A tree's generations after its camera pass (entries of `Entry::WAVEFRONT_TREE`): per
-/// generation g closest, shade, args, the shadow pass (each request's first leg), then
-/// SHADOW_ROUNDS rounds of leg closest and crossing (level: the round) with the leg args
-/// between rounds, and gather; after the last generation the fold over the chunk's `n`
-/// samples. Generation 0's passes over paths run over the samples, later ones' and every
-/// shadow pass and round as the args kernels wrote them.
+/// A tree's generations after its `camera` pass (which they copy the chunk, items and
+/// stratum of): per generation g closest, shade, args, the shadow pass (each request's
+/// first leg), then SHADOW_ROUNDS rounds of leg closest and crossing (level: the round)
+/// with the leg args between rounds, and gather; after the last generation the fold over
+/// the camera pass's samples (entries `closest` … `closest` + 8 of the mode's list:
+/// `Entry::WAVEFRONT_TREE`'s after its camera pass, bound at `offsets`). Generation 0's
+/// passes over paths run over the samples as the camera pass, later ones' and every
+/// shadow pass and round as the args kernels wrote them (from `offsets.work`).
 fn tree_dispatches(
     shape: WavefrontShape,
-    n: u32,
-    mut out: Vec<Dispatch>,
-    params: impl Fn(u32, u32) -> GpuTile,
-    samples: Workgroups,
-    run: impl Fn(usize, GpuTile, Workgroups) -> Dispatch,
+    camera: Dispatch,
+    closest: usize,
+    offsets: BindingOffsets,
 ) -> Vec<Dispatch> {
+    let mut out = vec![camera];
+    let args = |at: u64| Workgroups::Indirect(offsets.work + at);
+    let pass = |entry: usize, level: u32, workgroups: Workgroups| Dispatch {
+        entry: closest + entry,
+        params: GpuTile {
+            level,
+            ..camera.params
+        },
+        workgroups,
+        clears_work: false,
+        writes_args: false,
+        offsets,
+        ..camera
+    };
     let writes_args = |d: Dispatch| Dispatch {
         writes_args: true,
         ..d
     };
+    let one = Workgroups::Direct(1, 1);
     for g in 0..shape.generations {
         let paths = match g {
-            0 => samples,
-            _ => Workgroups::Indirect(shape.paths_args(g)),
+            0 => camera.workgroups,
+            _ => args(shape.paths_args(g)),
         };
-        out.push(run(1, params(g, n), paths));
-        out.push(run(2, params(g, n), paths));
-        out.push(writes_args(run(3, params(g, n), Workgroups::Direct(1, 1))));
-        out.push(run(
-            4,
-            params(g, n),
-            Workgroups::Indirect(shape.shadow_args(g, 0)),
-        ));
+        out.push(pass(0, g, paths));
+        out.push(pass(1, g, paths));
+        out.push(writes_args(pass(2, g, one)));
+        out.push(pass(3, g, args(shape.shadow_args(g, 0))));
         for r in 0..SHADOW_ROUNDS {
-            let legs = Workgroups::Indirect(WavefrontShape::round_args(r));
-            out.push(run(5, params(r, n), legs));
-            out.push(run(6, params(r, n), legs));
+            let legs = args(WavefrontShape::round_args(r));
+            out.push(pass(4, r, legs));
+            out.push(pass(5, r, legs));
             if r + 1 < SHADOW_ROUNDS {
-                out.push(writes_args(run(7, params(r, n), Workgroups::Direct(1, 1))));
+                out.push(writes_args(pass(6, r, one)));
             }
         }
-        out.push(run(8, params(g, n), paths));
+        out.push(pass(7, g, paths));
     }
-    out.push(run(9, params(0, n), samples));
+    out.push(pass(8, 0, camera.workgroups));
     out
 }
 
@@ -1135,6 +1154,86 @@ mod tests {
         }
     }
 
+    /// Adaptive AA's tiles in a scene with refraction: the lattice and the busiest lattice
+    /// pass's tree queues fit one binding, each of its paths (TREE_PATHS_PER_SAMPLE a
+    /// sample) has a list slot, and each lattice pass runs the lattice camera pass, a
+    /// tree's generations with their rounds at the wavefront's binding offsets (their
+    /// indirect arguments after adaptive AA's), the fold over the camera pass's
+    /// invocations, then the store.
+    #[test]
+    fn adaptive_tree_tiles_run_the_trees_passes_and_fold_every_lattice_pass() {
+        let shape = WavefrontShape {
+            light_points: 5,
+            generations: 4,
+            uniform: None,
+            tree: true,
+        };
+        let words = 562;
+        let bounds = AdapterBounds {
+            wavefront: Some(shape),
+            max_binding: 64 << 20,
+            lane_list_words: words,
+            ..LAVAPIPE
+        };
+        let per_generation = 5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+        for depth in [1, 2] {
+            let g = PackedGlobals {
+                aa_depth: depth,
+                ..globals(300, 200, AA_ADAPTIVE)
+            };
+            let plan = FramePlan::new(&g, bounds);
+            assert_eq!(plan.mode, Mode::AdaptiveWavefront { depth, shape });
+            assert_covers(&plan, 300, 200);
+            assert!(plan.samples_len * 16 <= bounds.max_binding);
+            let entries = plan.mode.entries();
+            assert_eq!(entries, &Entry::ADAPTIVE_WAVEFRONT_TREE);
+            let entry = |d: &Dispatch| entries[d.entry];
+            for (k, c) in plan.chunks.iter().enumerate() {
+                let queues = lattice_queue_bytes(c.side, depth);
+                let d = plan.dispatches(k, 2, bounds);
+                let n = d[0].params.items as u64;
+                assert!(queues / 16 + n * shape.vec4s_per_sample() <= plan.samples_len);
+                let paths = n * TREE_PATHS_PER_SAMPLE as u64;
+                assert!(paths * words as u64 <= plan.lists_len, "slots");
+                let cameras: Vec<usize> = (0..d.len())
+                    .filter(|&i| entry(&d[i]) == Entry::WavefrontLatticeCamera)
+                    .collect();
+                assert_eq!(cameras.len(), 1 + depth as usize);
+                for (pass, &at) in cameras.iter().enumerate() {
+                    let run = &d[at..at + 3 + per_generation * shape.generations as usize];
+                    let (camera, fold, store) = (run[0], run[run.len() - 2], run[run.len() - 1]);
+                    assert_eq!(camera.params.level, pass as u32);
+                    assert_eq!(camera.offsets.samples, queues);
+                    assert_eq!(entry(&fold), Entry::WavefrontFold);
+                    assert_eq!(fold.workgroups, camera.workgroups);
+                    assert_eq!(entry(&store), Entry::WavefrontLatticeStore);
+                    assert_eq!(store.workgroups, camera.workgroups);
+                    assert_eq!(store.offsets, BindingOffsets::default());
+                    for p in &run[1..run.len() - 1] {
+                        assert!(entries[p.entry].is_wavefront(), "{p:?}");
+                        assert_eq!(p.params.items as u64, n);
+                        assert_eq!(p.offsets.samples, queues);
+                        assert_eq!(p.offsets.work, WAVEFRONT_WORK_BYTES);
+                        match p.workgroups {
+                            Workgroups::Indirect(at) if p.workgroups != camera.workgroups => {
+                                assert!(at >= WAVEFRONT_WORK_BYTES, "{at}");
+                                assert!(at + 12 <= plan.work_levels * 24, "{at}");
+                            }
+                            _ => {}
+                        }
+                    }
+                    let gens = &run[1..run.len() - 2];
+                    for gen in gens.chunks(per_generation) {
+                        let names: Vec<Entry> = gen.iter().map(entry).collect();
+                        assert_eq!(names[..4], Entry::WAVEFRONT_TREE[1..5]);
+                        assert_eq!(names[per_generation - 1], Entry::WavefrontGather);
+                    }
+                }
+                assert_eq!(entry(&d[d.len() - 1]), Entry::AdaptiveIntegrate);
+            }
+        }
+    }
+
     /// Uniform AA through the wavefront kernels: a band's samples are its pixels × n²
     /// (stratum s of pixel p is sample p·n² + s), its queues fit one binding and each of
     /// its samples has a list slot; each band runs the camera pass, the generations over
@@ -1276,7 +1375,7 @@ mod tests {
         };
         assert_eq!(
             shape.vec4s_per_sample(),
-            2 + (14 + 10 * 17) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
+            3 + (14 + 10 * 17) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
         );
         let words = 562;
         let bounds = AdapterBounds {

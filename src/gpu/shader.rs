@@ -150,6 +150,28 @@ impl Entry {
         Entry::WavefrontResolve,
     ];
 
+    /// Adaptive AA's passes through the wavefront kernels in scenes with refraction, in
+    /// the plan's order of the `Mode::AdaptiveWavefront` pipelines for a tree: adaptive
+    /// AA's small kernels, the lattice camera pass, a tree's generation's passes and its
+    /// fold ([`Entry::WAVEFRONT_TREE`]'s between its camera pass and its resolve), the
+    /// store pass.
+    pub const ADAPTIVE_WAVEFRONT_TREE: [Entry; 14] = [
+        Entry::AdaptiveDecide,
+        Entry::AdaptiveWorkArgs,
+        Entry::AdaptiveIntegrate,
+        Entry::WavefrontLatticeCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontLegClosest,
+        Entry::WavefrontCrossing,
+        Entry::WavefrontLegArgs,
+        Entry::WavefrontGather,
+        Entry::WavefrontFold,
+        Entry::WavefrontLatticeStore,
+    ];
+
     /// Every entry point.
     pub const ALL: [Entry; 24] = [
         Entry::Render,
@@ -234,15 +256,10 @@ impl Entry {
         )
     }
 
-    /// Whether the entry is one of the kernels of the AA modes other than AA none and of
-    /// the view (in the render module only with [`wavefront_modes`]).
-    fn is_wavefront_modes(self) -> bool {
-        matches!(
-            self,
-            Entry::WavefrontLatticeCamera
-                | Entry::WavefrontLatticeStore
-                | Entry::WavefrontViewStore
-        )
+    /// Whether the entry is one of the view's kernels (in the render module only with
+    /// [`wavefront_modes`]), or the megakernel entry it replaces.
+    fn is_view(self) -> bool {
+        matches!(self, Entry::WavefrontViewStore | Entry::ViewSample)
     }
 
     /// Whether the render module of `kernel` for `features` has this entry: the
@@ -250,15 +267,16 @@ impl Entry {
     /// refraction, the other AA modes' and the view's only with [`wavefront_modes`]),
     /// the megakernel entries they replace only without [`wavefront_modes`].
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
-        let modes = wavefront_modes(kernel, features);
+        let wavefront = wavefront_kernels(kernel, features);
+        let replaced = Entry::REPLACED_BY_WAVEFRONT.contains(&self);
         if self.is_wavefront_tree() {
-            wavefront_kernels(kernel, features) && features.contains(SceneFeatures::REFRACTION)
-        } else if self.is_wavefront_modes() {
-            modes
+            wavefront && features.contains(SceneFeatures::REFRACTION)
+        } else if self.is_view() {
+            wavefront_modes(kernel, features) != replaced
         } else if self.is_wavefront() {
-            wavefront_kernels(kernel, features)
+            wavefront
         } else {
-            !(modes && Entry::REPLACED_BY_WAVEFRONT.contains(&self))
+            !(wavefront && replaced)
         }
     }
 }

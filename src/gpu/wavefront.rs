@@ -6,7 +6,7 @@
 use super::kernel::KernelConfig;
 use super::plan::WavefrontShape;
 use super::shader::{wavefront_kernels, wavefront_modes};
-use crate::constants::{AA_ADAPTIVE, AA_NONE, AA_UNIFORM};
+use crate::constants::{AA_ADAPTIVE, AA_NONE};
 use crate::cpu::wavefront::light_points;
 use crate::pack::{PackedScene, SceneFeatures};
 
@@ -17,12 +17,9 @@ use crate::pack::{PackedScene, SceneFeatures};
 /// ([`wavefront_modes`]). None: the megakernels.
 pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
     let g = &scene.globals;
-    let all_modes = wavefront_modes(kernel, scene.features);
     let uniform = match g.aa_mode {
-        AA_NONE => None,
-        AA_ADAPTIVE if all_modes => None,
-        AA_UNIFORM => Some(g.aa_samples),
-        _ => return None,
+        AA_NONE | AA_ADAPTIVE => None,
+        _ => Some(g.aa_samples),
     };
     shape(kernel, scene, uniform)
 }

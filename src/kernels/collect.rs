@@ -6,7 +6,7 @@
 
 use crate::gpu::kernel::{KernelConfig, KernelVariant};
 use crate::gpu::plan::Mode;
-use crate::gpu::shader::{assemble_with, wavefront_kernels, wavefront_modes, Entry};
+use crate::gpu::shader::{assemble_with, wavefront_kernels, Entry};
 use crate::gpu::spirv::{entry_spirv, spirv_bytes, SpirvTarget};
 use crate::pack::SceneFeatures;
 use crate::pipeline::prepare_request;
@@ -94,12 +94,10 @@ impl KernelSet {
                 if !entry.exists_in(kernel, features) {
                     continue;
                 }
-                // Where the wavefront kernels exist, AA none runs them instead of `main`
-                // (a tree: with its rounds and fold); where they serve every AA mode,
+                // Where the wavefront kernels exist, AA none runs them instead of `main`,
                 // uniform AA instead of its passes, adaptive AA instead of its tracing
-                // passes.
+                // passes (a tree: with its rounds and fold).
                 let wavefront = wavefront_kernels(kernel, features);
-                let modes = wavefront_modes(kernel, features);
                 let tree = features.contains(SceneFeatures::REFRACTION);
                 let dispatched = match mode {
                     Mode::None if wavefront && tree => Entry::WAVEFRONT_TREE[..10].contains(&entry),
@@ -107,8 +105,13 @@ impl KernelSet {
                         Entry::WAVEFRONT_TREE.contains(&entry)
                     }
                     Mode::None if wavefront => Entry::WAVEFRONT[..6].contains(&entry),
-                    Mode::Uniform { .. } if modes => Entry::WAVEFRONT.contains(&entry),
-                    Mode::Adaptive { .. } if modes => Entry::ADAPTIVE_WAVEFRONT.contains(&entry),
+                    Mode::Uniform { .. } if wavefront => Entry::WAVEFRONT.contains(&entry),
+                    Mode::Adaptive { .. } if wavefront && tree => {
+                        Entry::ADAPTIVE_WAVEFRONT_TREE.contains(&entry)
+                    }
+                    Mode::Adaptive { .. } if wavefront => {
+                        Entry::ADAPTIVE_WAVEFRONT.contains(&entry)
+                    }
                     _ => mode.entries().contains(&entry),
                 };
                 self.add(&name, features, entry, dispatched, kernel, target)?;

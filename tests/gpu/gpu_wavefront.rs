@@ -53,7 +53,10 @@ fn wavefront_kernels_validate_where_they_exist() {
         );
         let module = validate(&hard, features).unwrap_or_else(|e| panic!("{e}"));
         let entries: Vec<Entry> = if tree {
-            Entry::WAVEFRONT_TREE.to_vec()
+            Entry::WAVEFRONT_TREE
+                .into_iter()
+                .chain(Entry::ADAPTIVE_WAVEFRONT_TREE)
+                .collect()
         } else {
             Entry::WAVEFRONT
                 .into_iter()
@@ -74,13 +77,14 @@ fn wavefront_kernels_validate_where_they_exist() {
             );
         }
         for entry in Entry::REPLACED_BY_WAVEFRONT {
-            // A tree runs the wavefront kernels under AA none only.
+            // A tree's view still runs view_sample.
+            let kept = tree && entry == Entry::ViewSample;
             assert_eq!(
                 module.entry_points.iter().any(|e| e.name == entry.name()),
-                tree,
+                kept,
                 "[{features}] {entry:?} is replaced"
             );
-            assert_eq!(entry.exists_in(hardware, features), tree);
+            assert_eq!(entry.exists_in(hardware, features), kept);
             assert!(entry.exists_in(software, features));
             assert!(
                 soft.contains(&format!("fn {}(", entry.name())),
@@ -173,7 +177,7 @@ pub(crate) fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: 
     };
     let per_tile = match adaptive {
         false => 1 + per_generation * generations + fold + uniform,
-        true => (2 + (4 + slices) * generations) * (1 + depth) + 2 * depth + 1,
+        true => (2 + fold + per_generation * generations) * (1 + depth) + 2 * depth + 1,
     };
     assert_eq!(
         render.info.dispatches as u64,

@@ -14,7 +14,7 @@ use common::{gpu_context, packed_from_file, packed_from_source};
 use glint::gpu::KernelVariant;
 use glint::pack::SceneFeatures;
 use glint::scene::bounded::AaSamples;
-use glint::scene::{AaMode, OptionOverrides, TraceDepth};
+use glint::scene::{AaDepth, AaMode, OptionOverrides, TraceDepth};
 
 fn overrides_at(max_depth: Option<u32>, w: u32, h: u32) -> OptionOverrides {
     OptionOverrides {
@@ -154,5 +154,32 @@ fn hardware_wavefront_renders_uniform_aa_of_glass_scenes() {
         assert!(scene.features.contains(SceneFeatures::REFRACTION), "{file}");
         assert_eq!(scene.globals.aa_mode, glint::constants::AA_UNIFORM);
         assert_wavefront_matches(&mut ctx, &format!("{file} at 2×2"), &scene);
+    }
+}
+
+/// scenes/glass.lua and csg.lua (small) under adaptive AA at depths 1 and 2 through the
+/// tree's wavefront (per lattice pass the lattice camera pass with the camera's media,
+/// the generations and rounds, the fold into each traced point's record, the store): the
+/// megakernel passes' (adaptive_corners, adaptive_midpoints) image bit for bit where
+/// their pixel is their own, the CPU's within the tolerance.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_traces_adaptive_aa_of_glass_scenes() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    for (file, depth) in [
+        ("scenes/glass.lua", 1),
+        ("scenes/glass.lua", 2),
+        ("scenes/csg.lua", 2),
+    ] {
+        let options = OptionOverrides {
+            aa: Some(AaMode::Adaptive),
+            aa_depth: Some(AaDepth::constant(depth)),
+            ..overrides_at(None, 20, 15)
+        };
+        let scene = packed_from_file(&common::root().join(file), &options).remove(0);
+        assert!(scene.features.contains(SceneFeatures::REFRACTION), "{file}");
+        assert_eq!(scene.globals.aa_mode, glint::constants::AA_ADAPTIVE);
+        assert_wavefront_matches(&mut ctx, &format!("{file} at depth {depth}"), &scene);
     }
 }

@@ -470,6 +470,31 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     ),
     (
         "shaders/wavefront_tree.wgsl",
+        "tree_camera_vertices",
+        "where the camera vertices lie in the `samples` buffer (the CPU's batch compacts its samples: sample k's camera vertex is vertex k)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "tree_camera_vertex",
+        "reads a sample's camera vertex (the CPU's is vertex k: fold_samples passes k)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "set_tree_camera_vertex",
+        "writes a sample's camera vertex (the GPU's lattice camera pass appends paths by atomicAdd and keeps records at the invocation; the CPU compacts)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "sample_without_room",
+        "GPU queues only: a child without room hands the sample's pixels to the CPU tracer (the CPU's queues are Vecs that grow)",
+    ),
+    (
+        "shaders/wavefront_lattice.wgsl",
+        "guard_lattice_point",
+        "GPU queues only: the pixels around a lattice point whose tree had no room go to the CPU tracer (adaptive.wgsl's trace_lattice_point guards the same pixels for the loop limiter)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
         "load_leg",
         "reads leg l of a round's queue (the CPU's LegQueue::load_leg)",
     ),

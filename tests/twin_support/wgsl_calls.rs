@@ -68,7 +68,7 @@ fn all_features() -> SceneFeatures {
 /// the kernel variant's flags that select calls: the mailboxes, the tables' binding and
 /// `CAMERA_RAY_IN_LOOP` with `ANY_HIT_ONE_LOOP` (trace_ray's and occlusion_walk's two
 /// forms, each compared with the one CPU form).
-/// Not `ITERATION_GUARD` (see [`WgslFunction::calls`]) nor `LISTS_IN_STORAGE`, whose
+/// With and without the wavefront kernels (`wavefront`). Not `ITERATION_GUARD` (see [`WgslFunction::calls`]) nor `LISTS_IN_STORAGE`, whose
 /// branches call no twin.
 fn candidates() -> Vec<(SceneFeatures, KernelConfig)> {
     let flags: Vec<SceneFeatures> = SceneFeatures::ALL.iter().map(|(f, _)| *f).collect();
@@ -96,6 +96,13 @@ fn candidates() -> Vec<(SceneFeatures, KernelConfig)> {
                 }
             }
         }
+        // Without the wavefront kernels: the megakernel passes they replace (`main`'s
+        // siblings uniform_samples, adaptive_corners…) exist only there.
+        let megakernels = KernelConfig {
+            wavefront: false,
+            ..KernelConfig::default()
+        };
+        out.push((features, megakernels));
     }
     out
 }
