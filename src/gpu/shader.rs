@@ -264,8 +264,9 @@ impl Entry {
 
     /// Whether the render module of `kernel` for `features` has this entry: the
     /// wavefront kernels only with [`wavefront_kernels`] (a tree's only with
-    /// refraction, the other AA modes' and the view's only with [`wavefront_modes`]),
-    /// the megakernel entries they replace only without [`wavefront_modes`].
+    /// refraction, the view's store only with [`wavefront_modes`]), the megakernel
+    /// entries they replace only without them (`view_sample` without
+    /// [`wavefront_modes`]).
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
         let wavefront = wavefront_kernels(kernel, features);
         let replaced = Entry::REPLACED_BY_WAVEFRONT.contains(&self);
@@ -463,11 +464,10 @@ pub fn wavefront_kernels(kernel: KernelConfig, _features: SceneFeatures) -> bool
     kernel.wavefront
 }
 
-/// Whether every AA mode and `glint view` run through the wavefront kernels in the render
-/// module of `kernel` for `features` (`WAVEFRONT_MODES`: uniform AA's resolve, adaptive
-/// AA's lattice passes, the view's store, and no `uniform_samples`, `uniform_resolve`,
-/// `adaptive_corners`, `adaptive_midpoints` nor `view_sample`): with the wavefront
-/// kernels, in scenes without refraction (a tree runs them under AA none only).
+/// Whether `glint view` runs through the wavefront kernels in the render module of
+/// `kernel` for `features` (`WAVEFRONT_MODES`: the view's store and no `view_sample`):
+/// with the wavefront kernels, in scenes without refraction (a tree's view keeps
+/// `view_sample`; every AA mode of a render runs them with refraction too).
 pub fn wavefront_modes(kernel: KernelConfig, features: SceneFeatures) -> bool {
     wavefront_kernels(kernel, features) && !features.contains(SceneFeatures::REFRACTION)
 }
