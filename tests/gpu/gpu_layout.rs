@@ -280,10 +280,18 @@ fn every_specialisation_validates() {
     }
     // Every entry point is in its module.
     let all = SceneFeatures(SceneFeatures::ALL.iter().fold(0, |m, (f, _)| m | f.0));
-    // (The wavefront entries are in modules without refraction only: their validation is
-    // gpu_wavefront.rs's.)
+    // (The wavefront entries' validation is gpu_wavefront.rs's; the megakernel entries
+    // they replace are only in the modules without them.)
+    let megakernels = KernelConfig {
+        wavefront: false,
+        ..KernelConfig::default()
+    };
     for entry in Entry::ALL.into_iter().filter(|e| !e.is_wavefront()) {
-        let module = validate(&assemble(all, entry), all).unwrap();
+        let source = match entry.exists_in(KernelConfig::default(), all) {
+            true => assemble(all, entry),
+            false => assemble_with(all, entry, megakernels),
+        };
+        let module = validate(&source, all).unwrap();
         assert!(
             module.entry_points.iter().any(|e| e.name == entry.name()),
             "{entry:?}"
