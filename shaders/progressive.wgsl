@@ -1,4 +1,4 @@
-// #if WAVEFRONT_MODES
+// #if WAVEFRONT
 // glint view's frame tile.stratum in the hardware variant, after the wavefront kernels'
 // generations over the band (src/gpu/progressive.rs; the camera pass took stratum
 // tile.stratum of each band pixel, sample k = band pixel k): the sample's colour added

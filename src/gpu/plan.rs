@@ -781,9 +781,13 @@ pub fn view_wavefront_dispatches(
         writes_args: false,
         offsets: BindingOffsets::default(),
     };
-    let mut out = wavefront_generations(shape, camera, 1, camera.offsets);
+    // A tree: its rounds and fold before the store.
+    let (mut out, store) = match shape.tree {
+        true => (tree_dispatches(shape, camera, 1, camera.offsets), 10),
+        false => (wavefront_generations(shape, camera, 1, camera.offsets), 6),
+    };
     out.push(Dispatch {
-        entry: Entry::WAVEFRONT_VIEW.len() - 1,
+        entry: store,
         clears_work: false,
         ..camera
     });
@@ -1350,6 +1354,40 @@ mod tests {
         );
         let (camera, store) = (d[0], d[d.len() - 1]);
         assert_eq!(camera.workgroups, Workgroups::Direct(3, 1));
+        assert_eq!(
+            (store.workgroups, store.params),
+            (camera.workgroups, camera.params)
+        );
+        assert!(camera.clears_work && !store.clears_work);
+    }
+
+    /// A view frame of a tree: the camera pass of the frame's stratum, a tree's
+    /// generations with their rounds, the fold over the band's samples, then the store
+    /// (entries of `Entry::WAVEFRONT_VIEW_TREE`), every pass told the stratum.
+    #[test]
+    fn a_view_frame_of_a_tree_folds_then_stores() {
+        let shape = WavefrontShape {
+            light_points: 3,
+            generations: 4,
+            uniform: None,
+            tree: true,
+        };
+        let band = bands(PixelRect::full(37, 5), 5, 1)[0];
+        let d = view_wavefront_dispatches(band, shape, 2, 2, LAVAPIPE);
+        let per_generation = 5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+        assert_eq!(d.len(), 3 + per_generation * shape.generations as usize);
+        let names: Vec<Entry> = d
+            .iter()
+            .map(|d| Entry::WAVEFRONT_VIEW_TREE[d.entry])
+            .collect();
+        assert_eq!(names[..5], Entry::WAVEFRONT_VIEW_TREE[..5]);
+        assert_eq!(names[names.len() - 2], Entry::WavefrontFold);
+        assert_eq!(names[names.len() - 1], Entry::WavefrontViewStore);
+        assert!(d
+            .iter()
+            .all(|d| d.params.stratum == 2 && d.params.items == 37 * 5));
+        let (camera, fold, store) = (d[0], d[d.len() - 2], d[d.len() - 1]);
+        assert_eq!(fold.workgroups, camera.workgroups);
         assert_eq!(
             (store.workgroups, store.params),
             (camera.workgroups, camera.params)

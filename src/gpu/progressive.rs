@@ -107,7 +107,9 @@ impl SumBuffer {
 pub fn view_bands(width: u32, height: u32, bounds: AdapterBounds) -> Vec<Chunk> {
     let (w, h) = (width.max(1), height.max(1));
     let dispatch_rows = bounds.max_workgroups.saturating_mul(bounds.workgroup_side);
-    let mut rows = (slot_budget(bounds) / u64::from(w)).clamp(1, u64::from(h)) as u32;
+    // A tree's generation: up to TREE_PATHS_PER_SAMPLE paths (list slots) a pixel.
+    let per_pixel = bounds.wavefront.map_or(1, |s| s.slots_per_sample());
+    let mut rows = (slot_budget(bounds) / (per_pixel * u64::from(w))).clamp(1, u64::from(h)) as u32;
     if let Some(shape) = bounds.wavefront {
         let per_row = u64::from(w) * shape.vec4s_per_sample() * 16;
         rows = rows.min((bounds.max_binding / per_row).clamp(1, u64::from(h)) as u32);
@@ -161,12 +163,12 @@ pub struct Progressive {
     unused: Vec<wgpu::Buffer>,
 }
 
-/// Bytes of the per-ray lists that `bands` need: a slot of `lane_words` words for each
-/// pixel of the largest band (the kernel learns its slots from the binding's length,
-/// lists.wgsl::begin_lane).
-fn lists_bytes(bands: &[Chunk], lane_words: u32) -> u64 {
+/// Bytes of the per-ray lists that `bands` need: `per_pixel` slots of `lane_words` words
+/// for each pixel of the largest band (a tree's: its paths; the kernel learns its slots
+/// from the binding's length, lists.wgsl::begin_lane).
+fn lists_bytes(bands: &[Chunk], lane_words: u32, per_pixel: u64) -> u64 {
     let slots = bands.iter().map(Chunk::block_pixels).max().unwrap_or(1);
-    slots * 4 * u64::from(lane_words)
+    slots * per_pixel * 4 * u64::from(lane_words)
 }
 
 impl Progressive {
@@ -202,7 +204,8 @@ impl Progressive {
         let buffers = upload_scene(ctx, scene)?;
         let guard_pixels = u64::from(g.width) * u64::from(g.height);
         let lane_words = bounds.lane_list_words;
-        let lists_bytes = lists_bytes(&full_bands, lane_words);
+        let per_pixel = shape.map_or(1, |s| s.slots_per_sample());
+        let lists_bytes = lists_bytes(&full_bands, lane_words, per_pixel);
         if lane_words > 0 {
             super::buffers::check_size(ctx, "view per-ray lists", lists_bytes)?;
         }
@@ -282,7 +285,11 @@ impl Progressive {
                 mapped_at_creation: false,
             });
         }
-        let lists_size = lists_bytes(&bands, self.lane_words);
+        let per_pixel = self
+            .wavefront
+            .as_ref()
+            .map_or(1, |w| w.shape().slots_per_sample());
+        let lists_size = lists_bytes(&bands, self.lane_words, per_pixel);
         debug_assert!(lists_size <= self.lists.size());
         if let Some(wavefront) = &mut self.wavefront {
             let lists = self.pipeline.kernel.lists_in_storage;

@@ -104,6 +104,23 @@ impl Entry {
         Entry::WavefrontViewStore,
     ];
 
+    /// `glint view`'s frame through the wavefront kernels in scenes with refraction: the
+    /// camera pass, a tree's generation's passes and its fold ([`Entry::WAVEFRONT_TREE`]'s
+    /// before its resolve), then the store into the sums.
+    pub const WAVEFRONT_VIEW_TREE: [Entry; 11] = [
+        Entry::WavefrontCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontLegClosest,
+        Entry::WavefrontCrossing,
+        Entry::WavefrontLegArgs,
+        Entry::WavefrontGather,
+        Entry::WavefrontFold,
+        Entry::WavefrontViewStore,
+    ];
+
     /// The megakernel entries the wavefront kernels replace: not in modules with
     /// [`wavefront_kernels`].
     pub const REPLACED_BY_WAVEFRONT: [Entry; 5] = [
@@ -256,24 +273,14 @@ impl Entry {
         )
     }
 
-    /// Whether the entry is one of the view's kernels (in the render module only with
-    /// [`wavefront_modes`]), or the megakernel entry it replaces.
-    fn is_view(self) -> bool {
-        matches!(self, Entry::WavefrontViewStore | Entry::ViewSample)
-    }
-
     /// Whether the render module of `kernel` for `features` has this entry: the
     /// wavefront kernels only with [`wavefront_kernels`] (a tree's only with
-    /// refraction, the view's store only with [`wavefront_modes`]), the megakernel
-    /// entries they replace only without them (`view_sample` without
-    /// [`wavefront_modes`]).
+    /// refraction), the megakernel entries they replace only without them.
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
         let wavefront = wavefront_kernels(kernel, features);
         let replaced = Entry::REPLACED_BY_WAVEFRONT.contains(&self);
         if self.is_wavefront_tree() {
             wavefront && features.contains(SceneFeatures::REFRACTION)
-        } else if self.is_view() {
-            wavefront_modes(kernel, features) != replaced
         } else if self.is_wavefront() {
             wavefront
         } else {
@@ -464,19 +471,11 @@ pub fn wavefront_kernels(kernel: KernelConfig, _features: SceneFeatures) -> bool
     kernel.wavefront
 }
 
-/// Whether `glint view` runs through the wavefront kernels in the render module of
-/// `kernel` for `features` (`WAVEFRONT_MODES`: the view's store and no `view_sample`):
-/// with the wavefront kernels, in scenes without refraction (a tree's view keeps
-/// `view_sample`; every AA mode of a render runs them with refraction too).
-pub fn wavefront_modes(kernel: KernelConfig, features: SceneFeatures) -> bool {
-    wavefront_kernels(kernel, features) && !features.contains(SceneFeatures::REFRACTION)
-}
-
 /// Whether a kernel variant sets one of its flags for a scene with these features.
 type KernelFlag = fn(KernelConfig, SceneFeatures) -> bool;
 
 /// The kernel variant's flags a shader may test with `#if`, and whether `kernel` sets each.
-const KERNEL_FLAGS: [(&str, KernelFlag); 9] = [
+const KERNEL_FLAGS: [(&str, KernelFlag); 8] = [
     ("ITERATION_GUARD", |k, _| k.iteration_guard),
     ("MAILBOXES", |k, _| k.mailboxes == Mailboxes::Full),
     ("LAST_ITEM_MAILBOX", |k, _| {
@@ -494,7 +493,6 @@ const KERNEL_FLAGS: [(&str, KernelFlag); 9] = [
     }),
     ("ANY_HIT_ONE_LOOP", |k, _| k.any_hit_one_loop),
     ("WAVEFRONT", wavefront_kernels),
-    ("WAVEFRONT_MODES", wavefront_modes),
 ];
 
 /// Evaluates `NAME`, `A|B` or `!A|B` against `features` and `kernel`'s flags.

@@ -58,7 +58,11 @@ impl ViewWavefront {
         shape: WavefrontShape,
         band_pixels: u64,
     ) -> Result<ViewWavefront, GpuError> {
-        let pipelines = Entry::WAVEFRONT_VIEW
+        let entries: &[Entry] = match shape.tree {
+            true => &Entry::WAVEFRONT_VIEW_TREE,
+            false => &Entry::WAVEFRONT_VIEW,
+        };
+        let pipelines = entries
             .iter()
             .map(|&e| get_pipeline(ctx, features, e))
             .collect::<Result<Vec<_>, GpuError>>()?;
@@ -74,7 +78,7 @@ impl ViewWavefront {
                 mapped_at_creation: false,
             })
         };
-        // The generations' indirect arguments (with CSG their shadow slices'); the 5
+        // The generations' indirect arguments (a tree's rounds' first; with CSG their shadow slices'); the 5
         // counters.
         let levels = shape.work_levels();
         Ok(ViewWavefront {
@@ -88,6 +92,11 @@ impl ViewWavefront {
             shape,
             bind_groups: Vec::new(),
         })
+    }
+
+    /// The shape the view's queues and dispatches are sized by.
+    pub fn shape(&self) -> WavefrontShape {
+        self.shape
     }
 
     /// The pipeline whose layout and kernel variant the view's passes share.

@@ -5,16 +5,16 @@
 
 use super::kernel::KernelConfig;
 use super::plan::WavefrontShape;
-use super::shader::{wavefront_kernels, wavefront_modes};
+use super::shader::wavefront_kernels;
 use crate::constants::{AA_ADAPTIVE, AA_NONE};
 use crate::cpu::wavefront::light_points;
 use crate::pack::{PackedScene, SceneFeatures};
 
 /// The wavefront kernels' shape for `scene` under `kernel`, where `kernel` runs them for
-/// it: a variant with `wavefront`; AA none and uniform AA (with refraction a tree, whose
-/// vertex tree, glass shadow rounds and fold `shaders/wavefront_tree.wgsl` adds), and
-/// without refraction adaptive AA's corner and midpoint passes too
-/// ([`wavefront_modes`]). None: the megakernels.
+/// it (a variant with `wavefront`: [`wavefront_kernels`]): AA none, uniform AA and
+/// adaptive AA's corner and midpoint passes (with refraction a tree, whose vertex tree,
+/// glass shadow rounds and fold `shaders/wavefront_tree.wgsl` adds). None: the
+/// megakernels.
 pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
     let g = &scene.globals;
     let uniform = match g.aa_mode {
@@ -25,12 +25,9 @@ pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<Wave
 }
 
 /// The wavefront kernels' shape for `glint view`'s frames of `scene` under `kernel`,
-/// where `kernel` runs them for it ([`wavefront_modes`]): one sample a pixel a frame,
+/// where `kernel` runs them for it ([`wavefront_kernels`]): one sample a pixel a frame,
 /// whatever the AA mode (its strata are the frames). None: `view_sample`.
 pub fn view_wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
-    if !wavefront_modes(kernel, scene.features) {
-        return None;
-    }
     shape(kernel, scene, None)
 }
 

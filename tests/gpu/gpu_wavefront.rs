@@ -56,6 +56,7 @@ fn wavefront_kernels_validate_where_they_exist() {
             Entry::WAVEFRONT_TREE
                 .into_iter()
                 .chain(Entry::ADAPTIVE_WAVEFRONT_TREE)
+                .chain(Entry::WAVEFRONT_VIEW_TREE)
                 .collect()
         } else {
             Entry::WAVEFRONT
@@ -77,14 +78,11 @@ fn wavefront_kernels_validate_where_they_exist() {
             );
         }
         for entry in Entry::REPLACED_BY_WAVEFRONT {
-            // A tree's view still runs view_sample.
-            let kept = tree && entry == Entry::ViewSample;
-            assert_eq!(
-                module.entry_points.iter().any(|e| e.name == entry.name()),
-                kept,
+            assert!(
+                !module.entry_points.iter().any(|e| e.name == entry.name()),
                 "[{features}] {entry:?} is replaced"
             );
-            assert_eq!(entry.exists_in(hardware, features), kept);
+            assert!(!entry.exists_in(hardware, features));
             assert!(entry.exists_in(software, features));
             assert!(
                 soft.contains(&format!("fn {}(", entry.name())),
@@ -341,7 +339,11 @@ fn hardware_wavefront_renders_uniform_aa_as_the_megakernel() {
 /// where `ctx`'s binding limit asks for them), after a frame of a preview at a third of
 /// the size (the view's narrower rows: bands of more pixels), read back; and whether they
 /// went through the wavefront kernels, in how many bands.
-fn view_sums(ctx: &GpuContext, scene: &PackedScene, frames: u32) -> (Vec<[f32; 4]>, bool, usize) {
+pub(crate) fn view_sums(
+    ctx: &GpuContext,
+    scene: &PackedScene,
+    frames: u32,
+) -> (Vec<[f32; 4]>, bool, usize) {
     let g = scene.globals;
     let pixels = u64::from(g.width * g.height);
     let sums = SumBuffer::new(ctx, pixels).unwrap();

@@ -7,7 +7,7 @@
 //! stack, a floor under 4 and 5 glass slabs, the camera under water.
 
 use crate::common;
-use crate::gpu_wavefront::assert_wavefront_matches;
+use crate::gpu_wavefront::{assert_wavefront_matches, view_sums};
 
 use common::tree_scenes::{slab_scene, FULL_STACK_SCENE, UNDERWATER_SCENE};
 use common::{gpu_context, packed_from_file, packed_from_source};
@@ -181,5 +181,43 @@ fn hardware_wavefront_traces_adaptive_aa_of_glass_scenes() {
         assert!(scene.features.contains(SceneFeatures::REFRACTION), "{file}");
         assert_eq!(scene.globals.aa_mode, glint::constants::AA_ADAPTIVE);
         assert_wavefront_matches(&mut ctx, &format!("{file} at depth {depth}"), &scene);
+    }
+}
+
+/// `glint view` of scenes/glass.lua (uniform 2×2: four frames; and AA none) on lavapipe with
+/// the hardware variant, where `view_sample` is not in the module: each frame through the
+/// tree's wavefront (camera pass of the frame's stratum, generations and rounds, the fold
+/// into each sample's record, the store into the sums) gives `view_sample`'s sums bit
+/// for bit.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn hardware_wavefront_view_sums_of_glass_are_view_samples() {
+    let Some(mut ctx) = gpu_context() else { return };
+    ctx.force_kernel_variant(KernelVariant::Hardware);
+    let hardware = ctx.kernel;
+    for (options, frames) in [(uniform_at(2, 16, 12), 4), (overrides_at(None, 16, 12), 1)] {
+        let file = "scenes/glass.lua";
+        let scene = packed_from_file(&common::root().join(file), &options).remove(0);
+        assert!(scene.features.contains(SceneFeatures::REFRACTION));
+        assert!(!glint::gpu::shader::Entry::ViewSample.exists_in(hardware, scene.features));
+        let (wave, through_wavefront, _) = view_sums(&ctx, &scene, frames);
+        assert!(through_wavefront, "{file}");
+        ctx.kernel = glint::gpu::KernelConfig {
+            wavefront: false,
+            ..hardware
+        };
+        let (mega, through_wavefront, _) = view_sums(&ctx, &scene, frames);
+        ctx.kernel = hardware;
+        assert!(!through_wavefront, "{file}: view_sample");
+        let bits = |sums: &[[f32; 4]]| -> Vec<[u32; 4]> {
+            sums.iter().map(|p| p.map(f32::to_bits)).collect()
+        };
+        let (wave, mega) = (bits(&wave), bits(&mega));
+        let differing = (0..mega.len()).filter(|&p| wave[p] != mega[p]).count();
+        assert_eq!(
+            differing, 0,
+            "{file}, {frames} frames: sums differ from view_sample's"
+        );
+        assert!(wave.iter().all(|s| f32::from_bits(s[3]) == frames as f32));
     }
 }
