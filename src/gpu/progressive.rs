@@ -20,8 +20,8 @@
 //! render` re-renders its flagged pixels (`super::render`); so the view converges to the
 //! render's image there too.
 //!
-//! In the hardware variant, on scenes without glass, the frames go through the wavefront
-//! kernels instead of `view_sample` ([`ViewWavefront`]: the same sums, bit for bit), the
+//! In the hardware variant the frames go through the wavefront kernels (with glass, a
+//! tree's passes and fold) instead of `view_sample` ([`ViewWavefront`]: the same sums, bit for bit), the
 //! bands then also bounded by their queues.
 //!
 //! The view's own copy of the globals (camera moved, preview size) is a uniform written

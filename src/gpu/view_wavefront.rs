@@ -1,5 +1,6 @@
-//! `glint view`'s frames through the wavefront kernels (the hardware variant, scenes
-//! without glass, where `view_sample` is not in the module): per band, the camera pass
+//! `glint view`'s frames through the wavefront kernels (the hardware variant, where
+//! `view_sample` is not in the module; with glass a tree's passes and fold before the
+//! store): per band, the camera pass
 //! takes the frame's stratum of each pixel, the generations trace the samples as a
 //! render's chunk does, and `wavefront_view_store` (`shaders/progressive.wgsl`) adds each
 //! sample's colour to its pixel's sum as `view_sample` adds it, so the sums are the
