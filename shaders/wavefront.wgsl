@@ -175,6 +175,9 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     let k = linear_index(id, groups);
     if k == 0u {
         atomicStore(&work_counts[path_counter(0u)], tile.items);
+// #if REFRACTION
+        note_tree_points(0u);
+// #endif
     }
     if k >= tile.items {
         return;

@@ -101,6 +101,9 @@ fn wavefront_lattice_camera(@builtin(global_invocation_id) id: vec3<u32>, @built
     let idx = linear_index(id, groups);
     let lattice_pass = tile.level;
 // #if REFRACTION
+    if idx == 0u {
+        note_tree_points(WAVEFRONT_WORK_BASE);
+    }
     // The fold runs over this pass's invocations: none of a sample without a point.
     if idx < tile.items {
         set_tree_camera_vertex(idx, NO_CHILD);

@@ -33,10 +33,9 @@
 //   S + 8LC                     the round's leg hits, 2 a leg
 // Counters in work_counts: as for chains (paths g mod 3, requests 3 + g mod 2), round r's
 // legs at 5 + r mod 3, generation g's vertex base at 8 + g mod 2, the scene's light
-// points at 10 (written by the shadow pass, for the rounds' kernels: their regions lie
-// after L-sized ones). Indirect arguments in
-// work_args: round r's legs at 3r (r < 10), generation g's pair (next paths, requests) at
-// 30 + 6g.
+// points at 10 (written by the camera pass, for the shadow pass and the rounds' kernels:
+// their regions lie after L-sized ones). Indirect arguments in work_args: round r's
+// legs at 3r (r < 10), generation g's pair (next paths, requests) at 30 + 6g.
 // Overflow: a generation holds at most C paths and the tree TREE_VERTICES_PER_SAMPLE · N
 // vertices. A child that finds no room is not appended and its sample's guard flag is set:
 // the host renders that pixel with the CPU tracer (src/gpu/render.rs::scatter), so no ray
@@ -85,13 +84,24 @@ fn tree_leg_hits(points: u32) -> u32 {
     return tree_slots() + 8u * points * tree_capacity();
 }
 
+// The scene's light points into their counter (tree_points), by invocation 0 of a camera
+// pass (wavefront_camera, wavefront_lattice_camera), none of whose invocations reads it.
+// Not in the shadow pass, whose every invocation reads it (store_leg): there its other
+// workgroups — other threads on lavapipe — could read it before invocation 0 wrote it and
+// put their legs at the wrong place (tests/gpu/gpu_wavefront_tree.rs, several chunks).
+// `base`: where the wavefront's counters start in work_counts as the pass binds it (the
+// lattice camera binds it whole: WAVEFRONT_WORK_BASE).
+fn note_tree_points(base: u32) {
+    atomicStore(&work_counts[base + 10u], light_points());
+}
+
 // Round r's leg counter.
 fn leg_counter(r: u32) -> u32 {
     return 5u + r % 3u;
 }
 
-// The scene's light points, as the shadow pass noted them (the CPU's
-// ShadowRequests::light_points).
+// The scene's light points, as the camera pass noted them (note_tree_points; the CPU's
+// Batch::light_points, which its camera_pass notes).
 fn tree_points() -> u32 {
     return atomicLoad(&work_counts[10u]);
 }
@@ -362,11 +372,7 @@ fn cross_shadow_surface(ray: Ray, hit: Hit, crossing: u32, leg: ShadowLeg) -> Cr
 // its vertex's shadow origin, in the media of the vertex's path.
 // Mirror of the first-leg loop of src/cpu/wavefront_tree.rs::glass_shadow_rounds — change both.
 fn start_shadow_leg(r: u32) {
-    let points = light_points();
-    if r == 0u {
-        // For the rounds' kernels, which run only where there are requests (tree_points).
-        atomicStore(&work_counts[10u], points);
-    }
+    let points = tree_points();
     let i = bitcast<u32>(samples[tree_shadows(points) + r].w) / points;
     let origin = samples[tree_vertices() + 2u * i + 1u].xyz;
     store_leg(0u, r, r, ShadowLeg(origin, 1.0, path_media(tile.level % 2u, i)));

@@ -526,7 +526,12 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     (
         "shaders/wavefront_tree.wgsl",
         "tree_points",
-        "reads the scene's light points from the `work_counts` word the shadow pass wrote (the CPU's ShadowRequests::light_points)",
+        "reads the scene's light points from the `work_counts` word the camera pass wrote (the CPU's Batch::light_points)",
+    ),
+    (
+        "shaders/wavefront_tree.wgsl",
+        "note_tree_points",
+        "writes the scene's light points into a `work_counts` word for the later passes (the CPU's camera_pass keeps them in Batch::light_points)",
     ),
 ];
 
