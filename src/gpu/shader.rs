@@ -27,7 +27,8 @@ use crate::pack::SceneFeatures;
 /// module (one source, one bind group layout).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Entry {
-    /// `main`: AA none, one tile into the output buffer.
+    /// `main`: AA none, one tile into the output buffer (the megakernel: not in modules
+    /// with [`wavefront_kernels`], which trace AA none through them, glass too).
     Render,
     /// `uniform_samples`, `uniform_resolve`: uniform AA's two passes (not in modules with
     /// [`wavefront_kernels`], which trace uniform AA through them).
@@ -248,7 +249,8 @@ impl Entry {
     /// Whether the render module of `kernel` for `features` has this entry: the
     /// wavefront kernels only with [`wavefront_kernels`] (a tree's only with
     /// refraction, the other AA modes' and the view's only with [`wavefront_modes`]),
-    /// the megakernel entries they replace only without [`wavefront_modes`].
+    /// the megakernel entries they replace only without [`wavefront_modes`] (`main`
+    /// only without [`wavefront_kernels`]).
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
         let modes = wavefront_modes(kernel, features);
         if self.is_wavefront_tree() {
@@ -257,6 +259,8 @@ impl Entry {
             modes
         } else if self.is_wavefront() {
             wavefront_kernels(kernel, features)
+        } else if self == Entry::Render {
+            !wavefront_kernels(kernel, features)
         } else {
             !(modes && Entry::REPLACED_BY_WAVEFRONT.contains(&self))
         }
