@@ -57,6 +57,7 @@ fn loop_limiter_tripped() -> bool {
 }
 // #endif
 
+// #if !WAVEFRONT
 // The chunk pixel invocation gid traces in `main`: the same square of pixels as its
 // workgroup, but each run of 8 consecutive invocations (local index order, x fastest)
 // takes a 4×2 block instead of 8 pixels of one row. llvmpipe runs 8 invocations in the 8
@@ -99,6 +100,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
 // #endif
 }
+// #endif
 
 // #if WAVEFRONT
 // Uniform AA: the wavefront kernels' strata (wavefront.wgsl's camera pass) and

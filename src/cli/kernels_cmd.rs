@@ -3,7 +3,7 @@
 //! before anything loads a driver ([`set_driver_env`]); without it, a hardware device
 //! that reports compiler statistics is used.
 
-use crate::gpu::shader::Entry;
+use crate::gpu::shader::{all_feature_sets, Entry};
 use crate::gpu::KernelVariant;
 use crate::kernels::occupancy::Family;
 use crate::kernels::{collect, measure, report, write_kernels, Wave};
@@ -34,7 +34,8 @@ pub struct KernelsArgs {
     /// as wgpu leaves it); repeatable. Default: 64 and 32.
     #[arg(long = "wave", value_parser = Wave::parse)]
     pub waves: Vec<Wave>,
-    /// Only this entry point (repeatable); default: every entry of the render module.
+    /// Only this entry point (repeatable; one the variant's render modules have: the
+    /// hardware variant's have no `main`); default: every entry of the render module.
     #[arg(long = "entry", value_parser = parse_entry)]
     pub entries: Vec<Entry>,
     /// table (markdown) or json.
@@ -63,6 +64,50 @@ fn parse_entry(name: &str) -> Result<Entry, String> {
     })
 }
 
+/// The variant's name as `--kernel-variant` spells it.
+fn variant_name(variant: KernelVariant) -> &'static str {
+    match variant {
+        KernelVariant::Hardware => "hardware",
+        KernelVariant::Software => "software",
+    }
+}
+
+/// An error for the first `--entry` that no render module of the chosen kernel variant has
+/// for any feature set (the hardware variant has no megakernel `main`: the wavefront
+/// kernels replace it), naming the variant that has it: without it, asking for `main`
+/// would silently measure nothing. Not with `--wgsl`, whose own modules may have it.
+fn entry_missing_from_variant(args: &KernelsArgs) -> Option<String> {
+    if !args.wgsl.is_empty() {
+        return None;
+    }
+    let in_variant = |entry: Entry, variant: KernelVariant| {
+        let kernel = collect::variant_config(variant);
+        all_feature_sets()
+            .into_iter()
+            .any(|features| entry.exists_in(kernel, features))
+    };
+    let chosen = args.kernel_variant;
+    let other = match chosen {
+        KernelVariant::Hardware => KernelVariant::Software,
+        KernelVariant::Software => KernelVariant::Hardware,
+    };
+    let entry = args
+        .entries
+        .iter()
+        .copied()
+        .find(|&entry| !in_variant(entry, chosen))?;
+    let hint = if in_variant(entry, other) {
+        format!(" (--kernel-variant {} compiles it)", variant_name(other))
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "entry point '{}' is in no render module of the {} kernel variant{hint}",
+        entry.name(),
+        variant_name(chosen)
+    ))
+}
+
 /// Points the Vulkan loader at RADV's null device of `args.family`, if given.
 ///
 /// # Safety
@@ -79,8 +124,8 @@ pub unsafe fn set_driver_env(args: &KernelsArgs) -> Result<(), String> {
 }
 
 /// Runs the instrument and prints its table or JSON on stdout. Exit codes: 2 bad
-/// arguments (a scene folder without scenes), 5 no Vulkan, RADV or device, 7 a
-/// budget broken with `--check-budget`.
+/// arguments (a scene folder without scenes, an `--entry` the variant lacks), 5 no
+/// Vulkan, RADV or device, 7 a budget broken with `--check-budget`.
 pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
     let mut scenes = Vec::new();
     for s in &args.scenes {
@@ -93,6 +138,9 @@ pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
         } else {
             scenes.push(s.clone());
         }
+    }
+    if let Some(message) = entry_missing_from_variant(args) {
+        return Err((message, 2));
     }
     let waves = if args.waves.is_empty() {
         vec![Wave::Required(64), Wave::Required(32)]

@@ -48,8 +48,8 @@ pub struct KernelConfig {
     /// `shaders/wavefront.wgsl`: camera, closest hit, shading, shadow rays and gathering
     /// as kernels of their own joined by queues; with refraction also the vertex tree,
     /// glass shadow rounds and the fold of `shaders/wavefront_tree.wgsl`) rather than the
-    /// megakernel `main`. The images are the same bit for bit (the CPU twins are
-    /// `cpu::wavefront` and `cpu::wavefront_tree`).
+    /// megakernel `main` (which the module then lacks). The images are the same bit for
+    /// bit (the CPU twins are `cpu::wavefront` and `cpu::wavefront_tree`).
     pub wavefront: bool,
 }
 

@@ -27,7 +27,8 @@ use crate::pack::SceneFeatures;
 /// module (one source, one bind group layout).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Entry {
-    /// `main`: AA none, one tile into the output buffer.
+    /// `main`: AA none, one tile into the output buffer (the megakernel: not in modules
+    /// with [`wavefront_kernels`], which trace AA none through them, glass too).
     Render,
     /// `uniform_samples`, `uniform_resolve`: uniform AA's two passes (not in modules with
     /// [`wavefront_kernels`], which trace uniform AA through them).
@@ -123,7 +124,8 @@ impl Entry {
 
     /// The megakernel entries the wavefront kernels replace: not in modules with
     /// [`wavefront_kernels`].
-    pub const REPLACED_BY_WAVEFRONT: [Entry; 5] = [
+    pub const REPLACED_BY_WAVEFRONT: [Entry; 6] = [
+        Entry::Render,
         Entry::UniformSamples,
         Entry::UniformResolve,
         Entry::AdaptiveCorners,
@@ -275,7 +277,8 @@ impl Entry {
 
     /// Whether the render module of `kernel` for `features` has this entry: the
     /// wavefront kernels only with [`wavefront_kernels`] (a tree's only with
-    /// refraction), the megakernel entries they replace only without them.
+    /// refraction), the megakernel entries they replace (`main` among them) only without
+    /// them.
     pub fn exists_in(self, kernel: KernelConfig, features: SceneFeatures) -> bool {
         let wavefront = wavefront_kernels(kernel, features);
         let replaced = Entry::REPLACED_BY_WAVEFRONT.contains(&self);

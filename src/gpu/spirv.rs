@@ -206,7 +206,7 @@ pub fn spirv_bytes(words: &[u32]) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gpu::kernel::KernelConfig;
+    use crate::gpu::kernel::{KernelConfig, KernelVariant};
     use crate::gpu::pipeline::layout_entries;
     use crate::gpu::shader::assemble_with;
     use crate::pack::SceneFeatures;
@@ -231,10 +231,12 @@ mod tests {
         assert_eq!(render[&key].binding, 12);
     }
 
-    /// One SPIR-V module per entry, a valid header, and the same words every time.
+    /// One SPIR-V module per entry, a valid header, and the same words every time (the
+    /// megakernel `main`: the software variant's, the hardware variant's module has none).
     #[test]
     fn spirv_is_one_entry_point_and_deterministic() {
-        let kernel = KernelConfig::default();
+        let limits = wgpu::Limits::default();
+        let kernel = KernelConfig::for_variant(KernelVariant::Software, &limits);
         let source = assemble_with(SceneFeatures::empty(), Entry::Render, kernel);
         let mut target = SpirvTarget::vulkan_1_3();
         target.debug = false;

@@ -207,12 +207,12 @@ fn every_specialisation_validates() {
     for features in sets {
         // Every render kernel is in one module, so Render covers them all; each kernel
         // variant an adapter may choose (hardware: one mailbox slot, no guard, sampled
-        // tables, per-ray lists in storage, the camera ray in the loop;
-        // software: one mailbox slot, the guard and storage-texture tables; a smaller
-        // workgroup where the adapter's limits ask
+        // tables, per-ray lists in storage, the camera ray in the loop, the wavefront
+        // kernels; software: one mailbox slot, the guard and storage-texture tables, the
+        // megakernel `main`; a smaller workgroup where the adapter's limits ask
         // for it), and the variants with full mailboxes (`bench --gpu --mailboxes on`)
-        // and without mailboxes the tests compare them with. The guard is in the render
-        // module only.
+        // and without mailboxes the tests compare them with (this one with the wavefront
+        // kernels). The guard is in the render module only.
         let hardware = KernelConfig::default();
         let full = KernelConfig {
             mailboxes: Mailboxes::Full,
@@ -225,6 +225,7 @@ fn every_specialisation_validates() {
             lists_in_storage: false,
             camera_ray_in_loop: false,
             any_hit_one_loop: false,
+            wavefront: false,
             ..hardware
         };
         let small = KernelConfig {
@@ -233,6 +234,7 @@ fn every_specialisation_validates() {
         };
         let bare = KernelConfig {
             mailboxes: Mailboxes::Off,
+            wavefront: true,
             ..software
         };
         for (entry, kernel) in [
@@ -278,7 +280,8 @@ fn every_specialisation_validates() {
             }
         }
     }
-    // Every entry point is in its module.
+    // Every entry point is in its module: the hardware variant's, or where that has not
+    // the entry (`main`), the software variant's.
     let all = SceneFeatures(SceneFeatures::ALL.iter().fold(0, |m, (f, _)| m | f.0));
     // (The wavefront entries' validation is gpu_wavefront.rs's; the megakernel entries
     // they replace are only in the modules without them.)
@@ -657,4 +660,43 @@ fn csg_code_only_with_csg() {
         .global_variables
         .iter()
         .all(|(_, g)| g.name.as_deref().is_none_or(|n| !n.starts_with("csg_t"))));
+}
+
+/// The render module's entry points are exactly those `Entry::exists_in` names, in both
+/// kernel variants and for every feature set (what `glint kernels`, `--dump-kernels` and
+/// the pipelines look up is what naga finds): in particular the hardware variant's module
+/// has no megakernel `main`, whose AA none the wavefront kernels trace (glass too), and
+/// the software variant's has it.
+#[test]
+fn render_entries_are_those_exists_in_names() {
+    let limits = wgpu::Limits::default();
+    for variant in [KernelVariant::Hardware, KernelVariant::Software] {
+        let kernel = KernelConfig::for_variant(variant, &limits);
+        for features in all_feature_sets() {
+            let source = assemble_with(features, Entry::Render, kernel);
+            let module = naga::front::wgsl::parse_str(&source)
+                .unwrap_or_else(|e| panic!("[{features}] {variant:?}: {e}"));
+            let mut found: Vec<&str> = module
+                .entry_points
+                .iter()
+                .map(|e| e.name.as_str())
+                .collect();
+            found.sort_unstable();
+            let mut named: Vec<&str> = Entry::ALL
+                .into_iter()
+                .filter(|e| e.is_render() && e.exists_in(kernel, features))
+                .map(Entry::name)
+                .collect();
+            named.sort_unstable();
+            assert_eq!(
+                found, named,
+                "[{features}] {variant:?}: in the module (left), exists_in (right)"
+            );
+            assert_eq!(
+                found.contains(&"main"),
+                variant == KernelVariant::Software,
+                "[{features}] {variant:?}: `main`"
+            );
+        }
+    }
 }

@@ -1,8 +1,7 @@
 //! `glint kernels` (the kernel instrument, docs/gpu.md) on RADV's null device, and
 //! `glint render --dump-kernels` on lavapipe: a kernel known to spill reports scratch,
 //! the dumped SPIR-V is the SPIR-V the instrument compiles, and the register budgets of
-//! the GPU kernels over every scene (ignored until the kernels meet them; the wavefront
-//! kernels' alone meet them and are checked); and the
+//! the GPU kernels over every scene; and the
 //! wavefront-split prototypes that `benches/wavefront_split/measure.py` compiles still
 //! validate.
 
@@ -118,6 +117,36 @@ fn an_unknown_family_is_a_clear_error() {
     );
 }
 
+/// `--entry main` in the hardware variant, whose modules have no megakernel `main`, is
+/// refused with the variant named (rather than measuring nothing); the software variant
+/// compiles it.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn main_is_the_software_variants_alone() {
+    let scene = "scenes/cs488/a4-2021plus/simple.lua";
+    let args = [
+        "kernels", scene, "--family", "NAVI21", "--wave", "64", "--format", "json",
+    ];
+    let out = glint(&[&args[..], &["--entry", "main"]].concat());
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("entry point 'main' is in no render module of the hardware kernel variant")
+            && stderr.contains("--kernel-variant software"),
+        "{stderr}"
+    );
+    let software = ["--kernel-variant", "software", "--entry", "main"];
+    let out = glint(&[&args[..], &software].concat());
+    assert!(out.status.success(), "{}", text(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let rows: Vec<&str> = stdout.lines().filter(|l| l.contains("\"entry\"")).collect();
+    assert!(!rows.is_empty(), "{stdout}");
+    assert!(
+        rows.iter().all(|r| string(r, "entry") == Some("main")),
+        "{stdout}"
+    );
+}
+
 /// What `render --dump-kernels` writes is, byte for byte, what `glint kernels` compiles
 /// for the same scene and variant (on lavapipe, with the hardware variant forced).
 #[test]
@@ -196,44 +225,21 @@ fn dumped_kernels_are_the_kernels_the_instrument_compiles() {
 
 /// The budgets on NAVI21 for every kernel of every scene of scenes/ and the CS488 corpus,
 /// both wave sizes: no spills, no scratch, ≤ 128 VGPRs in wave32, ≤ 96 for traversal
-/// kernels. The hardware variant's module still holds megakernels that break them (80–256
-/// VGPRs): `main`, which no hardware render dispatches any more, and in scenes with glass
-/// uniform AA's, adaptive AA's and the view's tracing passes, which still run there. The
-/// test below checks every other kernel.
-#[test]
-#[ignore = "megakernels still in the hardware variant's module: `main` (undispatched) and, with glass, uniform AA's, adaptive AA's and the view's (docs/gpu-kernels.md#register-budgets)"]
-fn every_kernel_of_every_scene_meets_the_navi21_budgets() {
-    check_navi21_budgets(&[]);
-}
-
-/// Every kernel but the megakernels meets the budgets on every scene: the wavefront
-/// kernels of every AA mode and the view (without glass) and of AA none with glass (its
-/// tree's rounds and fold), and adaptive AA's decide, work-args and integrate passes.
-/// textures.lua's `wavefront_closest` is 96 VGPRs in wave32 only because it keeps the
-/// path's depth out of the traversal's registers
-/// (docs/journal/2026-12-02-textures-closest-kernel.md; 112 with it held).
+/// kernels. The hardware variant's module holds no megakernel: every AA mode and the view,
+/// glass included, run the wavefront kernels (the tree's rounds and fold with glass) and
+/// adaptive AA's decide, work-args and integrate passes. textures.lua's
+/// `wavefront_closest` is 96 VGPRs in wave32 only because it keeps the path's depth out of
+/// the traversal's registers (docs/journal/2026-12-02-textures-closest-kernel.md; 112 with
+/// it held).
 #[test]
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
-fn every_kernel_but_the_megakernels_meets_the_navi21_budgets() {
-    use glint::gpu::shader::Entry;
-    let megakernels = [
-        Entry::Render,
-        Entry::UniformSamples,
-        Entry::AdaptiveCorners,
-        Entry::AdaptiveMidpoints,
-        Entry::ViewSample,
-    ];
-    let entries: Vec<&str> = Entry::ALL
-        .into_iter()
-        .filter(|e| e.is_render() && !megakernels.contains(e))
-        .map(Entry::name)
-        .collect();
-    check_navi21_budgets(&entries);
+fn every_kernel_of_every_scene_meets_the_navi21_budgets() {
+    check_navi21_budgets();
 }
 
 /// `glint kernels --check-budget` over every scene of scenes/ and the CS488 corpus, both
-/// wave sizes, for these entry points (every entry where none is named).
-fn check_navi21_budgets(entries: &[&str]) {
+/// wave sizes, every entry point: success, and rows for every scene of scenes/.
+fn check_navi21_budgets() {
     let mut args = vec!["kernels".to_string()];
     let mut scenes: Vec<String> = std::fs::read_dir(repo().join("scenes"))
         .unwrap()
@@ -242,16 +248,14 @@ fn check_navi21_budgets(entries: &[&str]) {
         .map(|p| format!("scenes/{}", p.file_name().unwrap().to_string_lossy()))
         .collect();
     scenes.sort();
-    args.extend(scenes);
+    args.extend(scenes.iter().cloned());
     // The meshes and the corpus, by folder (the dialect examples need their preludes).
     for dir in ["scenes/meshes", "scenes/cs488"] {
         args.push(dir.to_string());
     }
-    for entry in entries {
-        args.push("--entry".to_string());
-        args.push(entry.to_string());
-    }
     for flag in [
+        "--format",
+        "json",
         "--family",
         "NAVI21",
         "--wave",
@@ -269,6 +273,17 @@ fn check_navi21_budgets(entries: &[&str]) {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    let rows = String::from_utf8_lossy(&out.stdout);
+    for scene in &scenes {
+        for wave in [32, 64] {
+            let row = format!("\"scene\": \"{scene}\"");
+            assert!(
+                rows.lines()
+                    .any(|l| l.contains(&row) && l.contains(&format!("\"wave\": {wave},"))),
+                "no wave{wave} row of {scene}"
+            );
+        }
+    }
 }
 
 /// The wavefront-split prototypes (`benches/wavefront_split/split.wgsl`, measured by

@@ -67,8 +67,9 @@ fn all_features() -> SceneFeatures {
 /// The candidate configurations: feature sets (none, all, each alone, all but each) ×
 /// the kernel variant's flags that select calls: the mailboxes, the tables' binding and
 /// `CAMERA_RAY_IN_LOOP` with `ANY_HIT_ONE_LOOP` (trace_ray's and occlusion_walk's two
-/// forms, each compared with the one CPU form).
-/// With and without the wavefront kernels (`wavefront`). Not `ITERATION_GUARD` (see [`WgslFunction::calls`]) nor `LISTS_IN_STORAGE`, whose
+/// forms, each compared with the one CPU form), and `WAVEFRONT` (the wavefront kernels'
+/// files, or the megakernel `main`, which only modules without them have).
+/// Not `ITERATION_GUARD` (see [`WgslFunction::calls`]) nor `LISTS_IN_STORAGE`, whose
 /// branches call no twin.
 fn candidates() -> Vec<(SceneFeatures, KernelConfig)> {
     let flags: Vec<SceneFeatures> = SceneFeatures::ALL.iter().map(|(f, _)| *f).collect();
@@ -83,26 +84,22 @@ fn candidates() -> Vec<(SceneFeatures, KernelConfig)> {
         for mailboxes in Mailboxes::ALL {
             for storage_tables in [false, true] {
                 for camera_ray_in_loop in [true, false] {
-                    let kernel = KernelConfig {
-                        mailboxes,
-                        storage_tables,
-                        camera_ray_in_loop,
-                        // Tied to the other loop form (each form of each function
-                        // against the one CPU form): the two are the hardware variant's.
-                        any_hit_one_loop: camera_ray_in_loop,
-                        ..KernelConfig::default()
-                    };
-                    out.push((features, kernel));
+                    for wavefront in [true, false] {
+                        let kernel = KernelConfig {
+                            mailboxes,
+                            storage_tables,
+                            camera_ray_in_loop,
+                            // Tied to the other loop form (each form of each function
+                            // against the one CPU form): the two are the hardware variant's.
+                            any_hit_one_loop: camera_ray_in_loop,
+                            wavefront,
+                            ..KernelConfig::default()
+                        };
+                        out.push((features, kernel));
+                    }
                 }
             }
         }
-        // Without the wavefront kernels: the megakernel passes they replace (`main`'s
-        // siblings uniform_samples, adaptive_corners…) exist only there.
-        let megakernels = KernelConfig {
-            wavefront: false,
-            ..KernelConfig::default()
-        };
-        out.push((features, megakernels));
     }
     out
 }
@@ -217,17 +214,30 @@ fn covering(kind: ModuleKind, texts: &HashMap<&str, &str>) -> Vec<(SceneFeatures
     }
     let tagged = tagged_texts(texts);
     let all = candidates();
-    // (A module's files are the same in every configuration. The probe module shares
-    // the render module's common files, whose lines the render module's cover keeps.)
-    let files_of = |kind| layout(kind, SceneFeatures::empty(), KernelConfig::default()).1;
-    let mut files = files_of(kind);
-    if let ModuleKind::Probe = kind {
-        let render = files_of(ModuleKind::Render);
-        files.retain(|f| !render.contains(f));
-    }
+    // (A module's files are the same in every configuration of one `wavefront`, which
+    // appends the wavefront kernels' files. The probe module shares the render module's
+    // common files, whose lines the render module's cover keeps.)
+    let files_of = |kind, wavefront| {
+        let kernel = KernelConfig {
+            wavefront,
+            ..KernelConfig::default()
+        };
+        layout(kind, SceneFeatures::empty(), kernel).1
+    };
+    let files: [Vec<String>; 2] = [false, true].map(|wavefront| {
+        let mut files = files_of(kind, wavefront);
+        if let ModuleKind::Probe = kind {
+            let render = files_of(ModuleKind::Render, wavefront);
+            files.retain(|f| !render.contains(f));
+        }
+        files
+    });
     let kept: Vec<BTreeSet<(String, usize)>> = all
         .iter()
-        .map(|&(features, kernel)| kept_lines(&files, &tagged, features, kernel))
+        .map(|&(features, kernel)| {
+            let files = &files[kernel.wavefront as usize];
+            kept_lines(files, &tagged, features, kernel)
+        })
         .collect();
     let mut covered: BTreeSet<(String, usize)> = BTreeSet::new();
     let mut chosen = Vec::new();
@@ -405,6 +415,7 @@ fn read_modules(texts: &[(String, String)]) -> WgslModules {
             // The loop-limiter check's functions are listed too (their calls are not).
             let guarded = KernelConfig {
                 iteration_guard: true,
+                wavefront: false,
                 ..KernelConfig::default()
             };
             configurations.push((all_features(), guarded));
