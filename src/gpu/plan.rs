@@ -1171,6 +1171,7 @@ mod tests {
             generations: 4,
             uniform: None,
             tree: true,
+            shadow_slices: 1,
         };
         let words = 562;
         let bounds = AdapterBounds {
@@ -1371,6 +1372,7 @@ mod tests {
             generations: 4,
             uniform: None,
             tree: true,
+            shadow_slices: 1,
         };
         let band = bands(PixelRect::full(37, 5), 5, 1)[0];
         let d = view_wavefront_dispatches(band, shape, 2, 2, LAVAPIPE);
@@ -1501,6 +1503,7 @@ mod tests {
             generations: 9,
             uniform: Some(n),
             tree: true,
+            shadow_slices: 1,
         };
         let words = 562;
         let bounds = AdapterBounds {
