@@ -124,8 +124,8 @@ fn small_uniform(n: u32) -> OptionOverrides {
     }
 }
 
-/// scenes/csg.lua with its glass a mirror (CSG without refraction; the repository has no
-/// such scene).
+/// scenes/csg.lua with its glass a mirror (CSG without refraction, as in
+/// scenes/machined.lua, with csg.lua's objects and two point lights).
 fn mirrored_csg(options: &OptionOverrides) -> PackedScene {
     let source = std::fs::read_to_string(common::root().join("scenes/csg.lua")).unwrap();
     assert!(source.contains("glass:set_refraction(1.5)"));
@@ -247,7 +247,8 @@ pub(crate) fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: 
 }
 
 /// The scenes of the issue without glass, and CSG with a mirror, on lavapipe with the
-/// hardware variant: main's bits, and the CPU's image.
+/// hardware variant: main's bits, and the CPU's image. machined.lua is CSG without glass
+/// under an area light: its shadow pass is 10 slices, not csg.lua's 2.
 #[test]
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn hardware_wavefront_renders_mains_image() {
@@ -264,6 +265,7 @@ fn hardware_wavefront_renders_mains_image() {
         "scenes/tori.lua".to_string(),
         "scenes/columns.lua".to_string(),
         "scenes/smooth.lua".to_string(),
+        "scenes/machined.lua".to_string(),
     ];
     for file in &files {
         let scene = packed_from_file(&common::root().join(file), &small()).remove(0);
@@ -311,7 +313,8 @@ fn hardware_wavefront_traces_adaptive_aa_as_its_megakernels() {
 /// Uniform AA (n = 1, 2, 3) on lavapipe with the hardware variant: the wavefront's
 /// strata, generations and resolve give the megakernel's uniform_samples +
 /// uniform_resolve image bit for bit, and the CPU's within the tolerance, on scenes with
-/// mirrors, area lights, textures and bump maps, smooth meshes and CSG.
+/// mirrors, area lights, textures and bump maps, smooth meshes and CSG (machined.lua: with
+/// an area light, 10 shadow slices).
 #[test]
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn hardware_wavefront_renders_uniform_aa_as_the_megakernel() {
@@ -323,6 +326,7 @@ fn hardware_wavefront_renders_uniform_aa_as_the_megakernel() {
         ("scenes/textures.lua", 3),
         ("scenes/soft-shadows.lua", 3),
         ("scenes/smooth.lua", 1),
+        ("scenes/machined.lua", 2),
     ];
     for (file, n) in files {
         let options = small_uniform(n);
