@@ -6,11 +6,10 @@
 
 use std::ffi::OsString;
 use std::fs::{self, File};
-use std::io::BufWriter;
+use std::io::{BufWriter, Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicPtr, AtomicU64, Ordering};
 
-use image::codecs::openexr::OpenExrEncoder;
 use image::codecs::png::PngEncoder;
 use image::{DynamicImage, ExtendedColorType, ImageEncoder};
 use thiserror::Error;
@@ -54,6 +53,12 @@ pub enum ImageIoError {
         path: PathBuf,
         #[source]
         source: image::ImageError,
+    },
+    #[error("cannot encode {path}: {source}")]
+    EncodeExr {
+        path: PathBuf,
+        #[source]
+        source: exr::error::Error,
     },
     /// `message` names the path.
     #[error("{message}")]
@@ -205,7 +210,7 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
     // memory cannot strand it.
     let pixels = match format {
         Format::Png => Pixels::Rgb8(film.to_rgb8()),
-        Format::Exr => Pixels::Rgb32F(bytemuck::cast_slice(&film.pixels)),
+        Format::Exr => Pixels::Rgb32F(&film.pixels),
     };
     let mut temp_name = OsString::from(".");
     temp_name.push(&file_name);
@@ -236,7 +241,7 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
 /// The encoded-ready pixels of a film.
 enum Pixels<'a> {
     Rgb8(Vec<u8>),
-    Rgb32F(&'a [u8]),
+    Rgb32F(&'a [[f32; 3]]),
 }
 
 /// The temporary file being written, as a C string, for the signal handler (null when
@@ -350,14 +355,39 @@ fn write_to_temp(
         Pixels::Rgb8(rgb) => PngEncoder::new(&mut out)
             .write_image(rgb, film.width, film.height, ExtendedColorType::Rgb8)
             .map_err(encode_err)?,
-        Pixels::Rgb32F(bytes) => OpenExrEncoder::new(&mut out)
-            .write_image(bytes, film.width, film.height, ExtendedColorType::Rgb32F)
-            .map_err(encode_err)?,
+        Pixels::Rgb32F(pixels) => {
+            write_exr(film.width, pixels, &mut out).map_err(|source| ImageIoError::EncodeExr {
+                path: path.to_path_buf(),
+                source,
+            })?
+        }
     }
     let file = out.into_inner().map_err(|e| io_err(e.into_error()))?;
     // Data on disk before the rename, so a crash cannot leave a renamed-but-empty file.
     file.sync_all().map_err(io_err)?;
     Ok(())
+}
+
+/// The chunk order every EXR glint writes has: increasing, so that the file's bytes are
+/// the same on every run. The exr crate compresses chunks in parallel and, with the
+/// order unspecified (its default, and the image crate's), writes them as they finish:
+/// the same pixels in files that differed from run to run.
+pub const EXR_ENCODING: exr::prelude::Encoding = exr::prelude::Encoding {
+    line_order: exr::prelude::LineOrder::Increasing,
+    ..exr::prelude::Encoding::FAST_LOSSLESS
+};
+
+/// `pixels` (rows of `width`) as an f32 RGB EXR.
+fn write_exr(width: u32, pixels: &[[f32; 3]], out: impl Write + Seek) -> exr::error::UnitResult {
+    use exr::prelude::{Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage};
+    let width = width as usize;
+    let size = (width, pixels.len() / width.max(1));
+    let channels = SpecificChannels::rgb(|p: Vec2<usize>| {
+        let [r, g, b] = pixels[p.y() * width + p.x()];
+        (r, g, b)
+    });
+    let layer = Layer::new(size, LayerAttributes::default(), EXR_ENCODING, channels);
+    Image::from_layer(layer).write().to_buffered(out)
 }
 
 /// Most pixels [`read_image`] decodes (glint's own largest image).
@@ -471,6 +501,33 @@ mod tests {
         let back = read_image(&path).unwrap();
         assert_eq!(back, film);
         assert_eq!(dir_entries(&dir), vec!["out.EXR"]);
+    }
+
+    /// The same film gives the same EXR bytes every time (the determinism rule, for
+    /// files): with the exr crate's default chunk order its parallel compression wrote the
+    /// 64×64 tiles as they finished.
+    #[test]
+    fn an_exr_is_the_same_bytes_every_time() {
+        let dir = scratch("exr-bytes");
+        let mut film = gradient(640, 384);
+        for (i, p) in film.pixels.iter_mut().enumerate() {
+            // Tiles that compress differently, so that they finish at different times.
+            let noise = (i as u32).wrapping_mul(2_654_435_761) >> 8;
+            if (i / 640 / 64 + i % 640 / 64) % 2 == 0 {
+                p[0] = noise as f32;
+            }
+        }
+        let path = dir.join("out.exr");
+        write_image(&film, &path).unwrap();
+        let first = fs::read(&path).unwrap();
+        for run in 1..12 {
+            write_image(&film, &path).unwrap();
+            assert!(
+                fs::read(&path).unwrap() == first,
+                "write {run} differs from write 0"
+            );
+        }
+        assert_eq!(read_image(&path).unwrap(), film);
     }
 
     #[test]

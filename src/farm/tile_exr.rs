@@ -4,9 +4,7 @@
 
 use crate::film::Film;
 use exr::meta::attribute::{AttributeValue, Text};
-use exr::prelude::{
-    Encoding, Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage,
-};
+use exr::prelude::{Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -28,7 +26,7 @@ pub fn write_exr(film: &Film, record: &[(&str, String)], temp: &Path) -> Result<
     let layer = Layer::new(
         size,
         attributes,
-        Encoding::FAST_LOSSLESS,
+        crate::image_io::EXR_ENCODING,
         SpecificChannels::rgb(pixels),
     );
     Image::from_layer(layer)
