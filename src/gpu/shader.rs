@@ -83,44 +83,17 @@ impl Entry {
     /// The wavefront kernels: the camera pass, a generation's five in the order it
     /// dispatches them, then uniform AA's resolve (AA none has no resolve): the plan's
     /// `Mode::Wavefront` pipelines.
-    pub const WAVEFRONT: [Entry; 7] = [
-        Entry::WavefrontCamera,
-        Entry::WavefrontClosest,
-        Entry::WavefrontShade,
-        Entry::WavefrontArgs,
-        Entry::WavefrontShadow,
-        Entry::WavefrontGather,
-        Entry::WavefrontResolve,
-    ];
+    pub const WAVEFRONT: [Entry; 7] = then(Entry::CHAIN_PASSES, Entry::WavefrontResolve);
 
     /// `glint view`'s frame through the wavefront kernels: the camera pass, a
     /// generation's five, then the store into the sums (`gpu/progressive.rs`'s pipelines).
-    pub const WAVEFRONT_VIEW: [Entry; 7] = [
-        Entry::WavefrontCamera,
-        Entry::WavefrontClosest,
-        Entry::WavefrontShade,
-        Entry::WavefrontArgs,
-        Entry::WavefrontShadow,
-        Entry::WavefrontGather,
-        Entry::WavefrontViewStore,
-    ];
+    pub const WAVEFRONT_VIEW: [Entry; 7] = then(Entry::CHAIN_PASSES, Entry::WavefrontViewStore);
 
     /// `glint view`'s frame through the wavefront kernels in scenes with refraction: the
     /// camera pass, a tree's generation's passes and its fold ([`Entry::WAVEFRONT_TREE`]'s
     /// before its resolve), then the store into the sums.
-    pub const WAVEFRONT_VIEW_TREE: [Entry; 11] = [
-        Entry::WavefrontCamera,
-        Entry::WavefrontClosest,
-        Entry::WavefrontShade,
-        Entry::WavefrontArgs,
-        Entry::WavefrontShadow,
-        Entry::WavefrontLegClosest,
-        Entry::WavefrontCrossing,
-        Entry::WavefrontLegArgs,
-        Entry::WavefrontGather,
-        Entry::WavefrontFold,
-        Entry::WavefrontViewStore,
-    ];
+    pub const WAVEFRONT_VIEW_TREE: [Entry; 11] =
+        then(Entry::TREE_PASSES, Entry::WavefrontViewStore);
 
     /// The megakernel entries the wavefront kernels replace: not in modules with
     /// [`wavefront_kernels`].
@@ -155,7 +128,22 @@ impl Entry {
     /// request's first leg, then rounds of leg closest, crossing and leg args), then the
     /// fold after the last generation, then uniform AA's resolve (AA none has none): the
     /// plan's `Mode::Wavefront` pipelines for a tree.
-    pub const WAVEFRONT_TREE: [Entry; 11] = [
+    pub const WAVEFRONT_TREE: [Entry; 11] = then(Entry::TREE_PASSES, Entry::WavefrontResolve);
+
+    /// A chain's camera pass and generation's passes, the start of every chain mode's
+    /// list (the last entry is the mode's own: uniform AA's resolve, the view's store).
+    const CHAIN_PASSES: [Entry; 6] = [
+        Entry::WavefrontCamera,
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontGather,
+    ];
+
+    /// A tree's camera pass, generation's passes and rounds, and fold: the start of
+    /// every tree mode's list.
+    const TREE_PASSES: [Entry; 10] = [
         Entry::WavefrontCamera,
         Entry::WavefrontClosest,
         Entry::WavefrontShade,
@@ -166,7 +154,6 @@ impl Entry {
         Entry::WavefrontLegArgs,
         Entry::WavefrontGather,
         Entry::WavefrontFold,
-        Entry::WavefrontResolve,
     ];
 
     /// Adaptive AA's passes through the wavefront kernels in scenes with refraction, in
@@ -290,6 +277,18 @@ impl Entry {
             !(wavefront && replaced)
         }
     }
+}
+
+/// `passes` followed by `last` (a mode's pipeline list: its shared passes, then its own).
+const fn then<const N: usize, const M: usize>(passes: [Entry; N], last: Entry) -> [Entry; M] {
+    assert!(M == N + 1);
+    let mut out = [last; M];
+    let mut i = 0;
+    while i < N {
+        out[i] = passes[i];
+        i += 1;
+    }
+    out
 }
 
 /// The shader files, in module order (WGSL does not care about order; readers do).
