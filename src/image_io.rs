@@ -210,7 +210,7 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
     // memory cannot strand it.
     let pixels = match format {
         Format::Png => Pixels::Rgb8(film.to_rgb8()),
-        Format::Exr => Pixels::Rgb32F(&film.pixels),
+        Format::Exr => Pixels::Rgb32F,
     };
     let mut temp_name = OsString::from(".");
     temp_name.push(&file_name);
@@ -239,9 +239,10 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
 }
 
 /// The encoded-ready pixels of a film.
-enum Pixels<'a> {
+enum Pixels {
     Rgb8(Vec<u8>),
-    Rgb32F(&'a [[f32; 3]]),
+    /// The film's own floats, written as they are.
+    Rgb32F,
 }
 
 /// The temporary file being written, as a C string, for the signal handler (null when
@@ -355,10 +356,12 @@ fn write_to_temp(
         Pixels::Rgb8(rgb) => PngEncoder::new(&mut out)
             .write_image(rgb, film.width, film.height, ExtendedColorType::Rgb8)
             .map_err(encode_err)?,
-        Pixels::Rgb32F(pixels) => {
-            write_exr(film.width, pixels, &mut out).map_err(|source| ImageIoError::EncodeExr {
-                path: path.to_path_buf(),
-                source,
+        Pixels::Rgb32F => {
+            write_exr_layer(film, Default::default(), &mut out).map_err(|source| {
+                ImageIoError::EncodeExr {
+                    path: path.to_path_buf(),
+                    source,
+                }
             })?
         }
     }
@@ -372,21 +375,26 @@ fn write_to_temp(
 /// the same on every run. The exr crate compresses chunks in parallel and, with the
 /// order unspecified (its default, and the image crate's), writes them as they finish:
 /// the same pixels in files that differed from run to run.
-pub const EXR_ENCODING: exr::prelude::Encoding = exr::prelude::Encoding {
+const EXR_ENCODING: exr::prelude::Encoding = exr::prelude::Encoding {
     line_order: exr::prelude::LineOrder::Increasing,
     ..exr::prelude::Encoding::FAST_LOSSLESS
 };
 
-/// `pixels` (rows of `width`) as an f32 RGB EXR.
-fn write_exr(width: u32, pixels: &[[f32; 3]], out: impl Write + Seek) -> exr::error::UnitResult {
-    use exr::prelude::{Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage};
-    let width = width as usize;
-    let size = (width, pixels.len() / width.max(1));
+/// `film` as an f32 RGB EXR of one layer with `attributes` (a render's: none; a farm
+/// tile's: its record), in [`EXR_ENCODING`].
+pub fn write_exr_layer(
+    film: &Film,
+    attributes: exr::prelude::LayerAttributes,
+    out: impl Write + Seek,
+) -> exr::error::UnitResult {
+    use exr::prelude::{Image, Layer, SpecificChannels, Vec2, WritableImage};
+    let width = film.width as usize;
     let channels = SpecificChannels::rgb(|p: Vec2<usize>| {
-        let [r, g, b] = pixels[p.y() * width + p.x()];
+        let [r, g, b] = film.pixels[p.y() * width + p.x()];
         (r, g, b)
     });
-    let layer = Layer::new(size, LayerAttributes::default(), EXR_ENCODING, channels);
+    let size = (width, film.height as usize);
+    let layer = Layer::new(size, attributes, EXR_ENCODING, channels);
     Image::from_layer(layer).write().to_buffered(out)
 }
 

@@ -4,7 +4,7 @@
 
 use crate::film::Film;
 use exr::meta::attribute::{AttributeValue, Text};
-use exr::prelude::{Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage};
+use exr::prelude::LayerAttributes;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -17,25 +17,10 @@ pub fn write_exr(film: &Film, record: &[(&str, String)], temp: &Path) -> Result<
             AttributeValue::Text(Text::from(value.as_str())),
         );
     }
-    let width = film.width as usize;
-    let pixels = |p: Vec2<usize>| {
-        let [r, g, b] = film.pixels[p.y() * width + p.x()];
-        (r, g, b)
-    };
-    let size = (width, film.height as usize);
-    let layer = Layer::new(
-        size,
-        attributes,
-        crate::image_io::EXR_ENCODING,
-        SpecificChannels::rgb(pixels),
-    );
-    Image::from_layer(layer)
-        .write()
-        .to_file(temp)
-        .map_err(|e| e.to_string())?;
-    std::fs::File::open(temp)
-        .and_then(|f| f.sync_all())
-        .map_err(|e| e.to_string())
+    let mut out = std::io::BufWriter::new(std::fs::File::create(temp).map_err(|e| e.to_string())?);
+    crate::image_io::write_exr_layer(film, attributes, &mut out).map_err(|e| e.to_string())?;
+    let file = out.into_inner().map_err(|e| e.error().to_string())?;
+    file.sync_all().map_err(|e| e.to_string())
 }
 
 /// An EXR layer's text attributes (key to text).
