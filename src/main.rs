@@ -234,9 +234,11 @@ fn main() -> ExitCode {
         Command::Bench(args) => {
             glint::bench::cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1))
         }
-        Command::Assemble(args) => glint::farm::assemble::assemble(&args.tiles, &args.output)
-            .map(|()| eprintln!("glint: wrote {}", args.output.display()))
-            .map_err(|e| (e.to_string(), e.exit_code())),
+        Command::Assemble(args) => {
+            glint::farm::assemble::assemble(&args.tiles, &args.output, args.memory_budget())
+                .map(|()| eprintln!("glint: wrote {}", args.output.display()))
+                .map_err(|e| (e.to_string(), e.exit_code()))
+        }
         Command::View(args) => glint::view::run(&args),
         Command::Info => {
             info();

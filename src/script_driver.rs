@@ -5,8 +5,8 @@
 //! weaker limits than another.
 
 use crate::scene::lua::{
-    run_scene_file, FrameGlobals, OnRender, SceneError, ScriptConfig, ScriptReport,
-    DEFAULT_MEMORY_LIMIT, DEFAULT_TIME_LIMIT,
+    run_scene_file, run_scene_source, FrameGlobals, OnRender, SceneError, ScriptConfig,
+    ScriptReport, DEFAULT_MEMORY_LIMIT, DEFAULT_TIME_LIMIT,
 };
 use crate::scene::TransformOrder;
 use std::path::{Path, PathBuf};
@@ -69,6 +69,20 @@ pub fn run_script(
     on_render: &mut OnRender<'_>,
 ) -> Result<ScriptReport, SceneError> {
     run_scene_file(path, &settings.config(), on_render)
+}
+
+/// [`run_script`] on the scene's bytes, read already by the caller (the farm digests the
+/// bytes it runs, so it reads them once: [`crate::scene::lua::read_scene_bytes`]).
+pub fn run_script_bytes(
+    path: &Path,
+    bytes: &[u8],
+    settings: &ScriptSettings,
+    on_render: &mut OnRender<'_>,
+) -> Result<ScriptReport, SceneError> {
+    let source = String::from_utf8_lossy(bytes);
+    let base_dir = path.parent().unwrap_or(Path::new(""));
+    let name = path.display().to_string();
+    run_scene_source(&name, &source, base_dir, &settings.config(), on_render)
 }
 
 /// The sandbox flags every subcommand that runs a script takes (`render`, `bench`).

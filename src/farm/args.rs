@@ -3,6 +3,7 @@
 
 use super::run::FarmSettings;
 use super::spec::{parse_crop, parse_frame, parse_frames, parse_tile, FrameRange, Index, TileSpec};
+use crate::scene::lua::DEFAULT_MEMORY_LIMIT;
 use crate::tiling::PixelRect;
 use std::path::PathBuf;
 
@@ -52,4 +53,16 @@ pub struct AssembleArgs {
     /// The image to write (.png from PNG tiles, .exr from EXR tiles).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Memory budget in MiB for the tiles' files, the image and decoding a tile: tiles
+    /// whose records ask for more are refused before anything is allocated.
+    #[arg(long, value_name = "MIB", default_value_t = (DEFAULT_MEMORY_LIMIT >> 20) as u64,
+          value_parser = clap::value_parser!(u64).range(16..=1 << 20))]
+    pub memory_limit: u64,
+}
+
+impl AssembleArgs {
+    /// `--memory-limit` in bytes.
+    pub fn memory_budget(&self) -> u64 {
+        self.memory_limit << 20
+    }
 }

@@ -1,15 +1,24 @@
 //! `glint assemble TILE... -o OUT`: the tiles of one render back into its image. The
-//! tiles must share one digest and full size and cover the image exactly once; each
-//! refusal names the tiles at fault. PNG tiles make a PNG, EXR tiles an EXR; the image is
-//! written with
+//! tiles are untrusted input ([`super::tile_read`]): each is read once and its record
+//! checked, then the memory the whole job takes (the tiles' files, the image, decoding
+//! the largest tile) is checked against the budget before the image is allocated; the
+//! tiles must share one digest and full size and cover the image exactly once, and each
+//! tile's pixels must match its record's digest. Each refusal names the tiles at fault.
+//! PNG tiles make a PNG, EXR tiles an EXR; the image is written with
 //! [`crate::image_io::write_image`] (atomic), so it is byte for byte the file the full
 //! render writes.
 
-use super::tile_file::{read_tile, TileFileError, TileFormat, TileMeta};
+use super::tile_file::{TileFileError, TileFormat};
+use super::tile_read::{TileFile, MAX_TILE_FILE_BYTES};
 use crate::film::Film;
 use crate::image_io::{write_image, ImageIoError};
 use crate::tiling::PixelRect;
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
+
+/// Bytes per pixel of the full image that assembling holds: the film (12), which tile
+/// owns each pixel (4), and the encoder's copies while it writes (at most 16).
+pub const ASSEMBLE_BYTES_PER_PIXEL: u64 = 32;
 
 /// Why tiles cannot be assembled.
 #[derive(Debug, thiserror::Error)]
@@ -62,6 +71,15 @@ pub enum AssembleError {
         /// The missing tiles of the split, when the tiles name one (`, missing: tile 3/8 …`).
         named: String,
     },
+    #[error("{first}: assembling its {w}×{h} image from {count} tiles may take {need_mib} MiB (the tiles' files, the image, decoding the largest tile), over the memory limit of {limit_mib} MiB; --memory-limit MIB raises it")]
+    OverBudget {
+        first: PathBuf,
+        w: u32,
+        h: u32,
+        count: usize,
+        need_mib: u64,
+        limit_mib: u64,
+    },
     #[error("{0}")]
     Output(#[from] ImageIoError),
 }
@@ -76,9 +94,10 @@ impl AssembleError {
     }
 }
 
-/// Reads, checks and joins `tiles` (all PNG or all EXR), writing the image to `output`
-/// (of the tiles' format: PNG tiles hold 8-bit pixels, EXR tiles the floats).
-pub fn assemble(tiles: &[PathBuf], output: &Path) -> Result<(), AssembleError> {
+/// Reads, checks and joins `tiles` (all PNG or all EXR) within `budget` bytes, writing the
+/// image to `output` (of the tiles' format: PNG tiles hold 8-bit pixels, EXR tiles the
+/// floats).
+pub fn assemble(tiles: &[PathBuf], output: &Path, budget: u64) -> Result<(), AssembleError> {
     let Some(first) = tiles.first() else {
         return Err(AssembleError::NoTiles);
     };
@@ -110,34 +129,47 @@ pub fn assemble(tiles: &[PathBuf], output: &Path) -> Result<(), AssembleError> {
         });
     }
     crate::image_io::check_output_path(output)?;
-    let read: Vec<(TileMeta, Film)> = tiles
-        .iter()
-        .map(|t| read_tile(t))
-        .collect::<Result<_, _>>()?;
-    let film = join(tiles, &read)?;
+    let read = read_tiles(tiles, budget)?;
+    check_alike(&read)?;
+    check_budget(&read, budget)?;
+    let film = join(&read)?;
     write_image(&film, output)?;
     Ok(())
 }
 
-/// The checks and the join, on tiles read already.
-pub fn join(paths: &[PathBuf], tiles: &[(TileMeta, Film)]) -> Result<Film, AssembleError> {
-    let Some((first, _)) = tiles.first() else {
+/// Reads each tile once, its file counted against `budget` before it is read.
+fn read_tiles(paths: &[PathBuf], budget: u64) -> Result<Vec<TileFile>, AssembleError> {
+    let mut held = 0u64;
+    let mut tiles = Vec::with_capacity(paths.len());
+    for path in paths {
+        let cap = MAX_TILE_FILE_BYTES.min(budget.saturating_sub(held));
+        let tile = TileFile::open(path, cap)?;
+        held += tile.file_len();
+        tiles.push(tile);
+    }
+    Ok(tiles)
+}
+
+/// The tiles share one render digest and one full size.
+fn check_alike(tiles: &[TileFile]) -> Result<(), AssembleError> {
+    let Some(first) = tiles.first() else {
         return Err(AssembleError::NoTiles);
     };
-    for (k, (meta, _)) in tiles.iter().enumerate() {
-        if meta.digest != first.digest {
+    for tile in tiles {
+        let (meta, first_meta) = (&tile.meta, &first.meta);
+        if meta.digest != first_meta.digest {
             return Err(AssembleError::Foreign {
-                tile: paths[k].clone(),
-                first: paths[0].clone(),
+                tile: tile.path.clone(),
+                first: first.path.clone(),
                 tile_digest: meta.digest.clone(),
-                first_digest: first.digest.clone(),
+                first_digest: first_meta.digest.clone(),
             });
         }
-        if meta.full_size != first.full_size {
-            let ((tile_w, tile_h), (first_w, first_h)) = (meta.full_size, first.full_size);
+        if meta.full_size != first_meta.full_size {
+            let ((tile_w, tile_h), (first_w, first_h)) = (meta.full_size, first_meta.full_size);
             return Err(AssembleError::SizeMismatch {
-                tile: paths[k].clone(),
-                first: paths[0].clone(),
+                tile: tile.path.clone(),
+                first: first.path.clone(),
                 tile_w,
                 tile_h,
                 first_w,
@@ -145,28 +177,61 @@ pub fn join(paths: &[PathBuf], tiles: &[(TileMeta, Film)]) -> Result<Film, Assem
             });
         }
     }
-    let (w, h) = first.full_size;
+    Ok(())
+}
+
+/// What assembling `tiles` may hold at most, against `budget`: their files, the full
+/// image and the decoding of the largest tile (tiles are decoded one at a time).
+fn check_budget(tiles: &[TileFile], budget: u64) -> Result<(), AssembleError> {
+    let (w, h) = tiles[0].meta.full_size;
+    let files: u64 = tiles.iter().map(TileFile::file_len).sum();
+    let decode = tiles.iter().map(TileFile::decode_bytes).max().unwrap_or(0);
+    let image = u64::from(w) * u64::from(h) * ASSEMBLE_BYTES_PER_PIXEL;
+    let need = files + image + decode;
+    if need > budget {
+        return Err(AssembleError::OverBudget {
+            first: tiles[0].path.clone(),
+            w,
+            h,
+            count: tiles.len(),
+            need_mib: need.div_ceil(1 << 20),
+            limit_mib: budget >> 20,
+        });
+    }
+    Ok(())
+}
+
+/// The join, on tiles whose records are checked and fit the budget: each tile's place is
+/// claimed (overlaps refused) before its pixels are decoded and checked.
+fn join(tiles: &[TileFile]) -> Result<Film, AssembleError> {
+    let (w, h) = tiles[0].meta.full_size;
+    let decode_budget = tiles.iter().map(TileFile::decode_bytes).max().unwrap_or(0);
     // Which tile holds each pixel (u32::MAX: none yet).
     let mut owner = vec![u32::MAX; w as usize * h as usize];
     let mut film = Film::new(w, h);
-    for (k, (meta, pixels)) in tiles.iter().enumerate() {
-        let b = meta.bounds;
+    for (k, tile) in tiles.iter().enumerate() {
+        let b = tile.meta.bounds;
         for y in b.y0..b.y1 {
             for x in b.x0..b.x1 {
                 let slot = &mut owner[(y * w + x) as usize];
                 if *slot != u32::MAX {
-                    let other = *slot as usize;
+                    let other = &tiles[*slot as usize];
                     return Err(AssembleError::Overlap {
-                        a: paths[other].clone(),
-                        b: paths[k].clone(),
-                        overlap: tiles[other]
-                            .0
+                        a: other.path.clone(),
+                        b: tile.path.clone(),
+                        overlap: other
+                            .meta
                             .bounds
                             .intersection(&b)
                             .expect("they share a pixel"),
                     });
                 }
                 *slot = k as u32;
+            }
+        }
+        let pixels = tile.pixels(decode_budget)?;
+        for y in b.y0..b.y1 {
+            for x in b.x0..b.x1 {
                 film.set(x, y, pixels.get(x - b.x0, y - b.y0));
             }
         }
@@ -175,7 +240,7 @@ pub fn join(paths: &[PathBuf], tiles: &[(TileMeta, Film)]) -> Result<Film, Assem
     Ok(film)
 }
 
-fn check_no_gap(owner: &[u32], w: u32, tiles: &[(TileMeta, Film)]) -> Result<(), AssembleError> {
+fn check_no_gap(owner: &[u32], w: u32, tiles: &[TileFile]) -> Result<(), AssembleError> {
     let mut missing = 0u64;
     let mut bounds: Option<PixelRect> = None;
     for (p, &o) in owner.iter().enumerate() {
@@ -207,17 +272,23 @@ fn check_no_gap(owner: &[u32], w: u32, tiles: &[(TileMeta, Film)]) -> Result<(),
     })
 }
 
-/// `, missing: tile 1/4 (x0,x1,y0,y1), …` when every tile names the same split.
-fn missing_tiles(tiles: &[(TileMeta, Film)]) -> String {
-    let Some((_, n)) = tiles[0].0.tile else {
+/// `, missing: tile 1/4 (x0,x1,y0,y1), …` when every tile names the same split (their
+/// labels checked against it already).
+fn missing_tiles(tiles: &[TileFile]) -> String {
+    let Some((_, n)) = tiles[0].meta.tile else {
         return String::new();
     };
-    if tiles.iter().any(|(m, _)| m.tile.map(|t| t.1) != Some(n)) {
+    if tiles.iter().any(|t| t.meta.tile.map(|t| t.1) != Some(n)) {
         return String::new();
     }
-    let (w, h) = tiles[0].0.full_size;
+    let (w, h) = tiles[0].meta.full_size;
+    let present: HashSet<u32> = tiles
+        .iter()
+        .filter_map(|t| t.meta.tile)
+        .map(|t| t.0)
+        .collect();
     let names: Vec<String> = (0..n)
-        .filter(|i| !tiles.iter().any(|(m, _)| m.tile.map(|t| t.0) == Some(*i)))
+        .filter(|i| !present.contains(i))
         .take(8)
         .map(|i| match super::split::tile_rect(w, h, i, n) {
             Ok(r) => format!("tile {i}/{n} ({r})"),

@@ -6,8 +6,9 @@
 //! for bit the full render. See docs/farm.md.
 //!
 //! Layout: [`spec`] parses the flags, [`split`] cuts an image into tiles, [`digest`]
-//! fingerprints a render, [`tile_file`] writes and reads tile images (EXR ones with
-//! [`tile_exr`]), [`assemble`] checks and joins them, [`run`] drives a script through
+//! fingerprints a render and a tile's pixels, [`tile_file`] writes tile images (EXR ones
+//! with [`tile_exr`]), [`tile_read`] reads them back as untrusted input, [`assemble`]
+//! checks and joins them, [`run`] drives a script through
 //! frames and tiles.
 
 pub mod args;
@@ -18,3 +19,4 @@ pub mod spec;
 pub mod split;
 pub mod tile_exr;
 pub mod tile_file;
+pub mod tile_read;

@@ -8,7 +8,8 @@
 use super::digest::render_digest;
 use super::spec::{task_index, FrameRange, Index, TileSpec};
 use super::split::tile_rect;
-use super::tile_file::{check_tile_path, read_tile_meta, write_tile, TileFileError, TileMeta};
+use super::tile_file::{check_tile_path, write_tile, TileFileError, TileMeta};
+use super::tile_read::{TileFile, MAX_TILE_FILE_BYTES};
 use crate::cpu::render::render_window;
 use crate::film::Film;
 use crate::gpu::{render_gpu, GpuRenderOptions};
@@ -18,7 +19,7 @@ use crate::pipeline::{
 };
 use crate::scene::lua::FrameGlobals;
 use crate::scene::{RenderRequest, SceneGraph};
-use crate::script_driver::run_script;
+use crate::script_driver::run_script_bytes;
 use crate::tiling::PixelRect;
 use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
@@ -216,12 +217,11 @@ pub fn run_farm(
             })
             .collect(),
     };
-    let script = std::fs::read(scene).map_err(|e| {
-        RunError::Scene(crate::scene::lua::SceneError::Read {
-            path: scene.to_path_buf(),
-            message: e.to_string(),
-        })
-    })?;
+    // Read once, as every scene is read (a regular file, its size checked against the
+    // budget first), and run from these bytes: the digest is of what ran.
+    let memory_limit = settings.script.config().memory_limit;
+    let script =
+        crate::scene::lua::read_scene_bytes(scene, memory_limit).map_err(RunError::Scene)?;
     // Script-named outputs are confined as in every other mode (docs/limits.md, Writes).
     let policy = write_policy(settings).map_err(FarmError::Run)?;
     let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref()).map_err(RunError::Gpu)?;
@@ -281,7 +281,7 @@ fn run_frame(
             }
         }
     };
-    let result = run_script(scene, &script_settings, &mut on_render);
+    let result = run_script_bytes(scene, c.script, &script_settings, &mut on_render);
     if let Some(e) = failure.into_inner() {
         return Err(e);
     }
@@ -364,7 +364,7 @@ fn render_one(
             "CPU"
         },
     };
-    if c.farm.skip_existing && read_tile_meta(&output).is_ok_and(|m| m == meta) {
+    if c.farm.skip_existing && holds_tile(&output, &meta, c.settings.script.config().memory_limit) {
         image.skipped = true;
         return Ok(image);
     }
@@ -377,6 +377,15 @@ fn render_one(
         crate::image_io::write_image(&film, &output).map_err(RunError::Output)?;
     }
     Ok(image)
+}
+
+/// Whether `path` already holds the tile `meta` describes, pixels checked against its
+/// digest (read as any tile is: a FIFO, a device or a file of another kind there is
+/// not waited on, not trusted, and rendered over).
+fn holds_tile(path: &Path, meta: &TileMeta, budget: usize) -> bool {
+    let budget = budget as u64;
+    TileFile::open(path, MAX_TILE_FILE_BYTES.min(budget))
+        .is_ok_and(|tile| tile.meta == *meta && tile.pixels(budget).is_ok())
 }
 
 /// The pixels of `bounds` on `tracer`.

@@ -2,22 +2,27 @@
 //! (linear f32 RGB, the full render's floats; [`super::tile_exr`]) of the tile's pixels,
 //! whose text chunks (PNG tEXt, EXR text attributes) record where it belongs — the full
 //! image's size, the tile's pixel bounds, the render's digest ([`super::digest`]) and
-//! glint's version. Written atomically through [`crate::image_io::write_via_temp`]; the
-//! record comes before the pixels, so [`read_tile_meta`] reads it alone.
+//! glint's version — and the digest of that record and the pixels
+//! ([`super::digest::tile_digest`]). Written atomically through
+//! [`crate::image_io::write_via_temp`]; read back, as untrusted input, by
+//! `tile_read`.
 
+use super::digest::{tile_digest, TilePixels};
 use crate::film::Film;
 use crate::image_io::write_via_temp;
 use crate::tiling::PixelRect;
 use std::fs::File;
-use std::io::{BufReader, BufWriter};
+use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
 /// Text keys of a tile's record.
-const KEY_FULL_SIZE: &str = "glint:full-size";
-const KEY_BOUNDS: &str = "glint:bounds";
-const KEY_DIGEST: &str = "glint:digest";
-const KEY_VERSION: &str = "glint:version";
-const KEY_TILE: &str = "glint:tile";
+pub(super) const KEY_FULL_SIZE: &str = "glint:full-size";
+pub(super) const KEY_BOUNDS: &str = "glint:bounds";
+pub(super) const KEY_DIGEST: &str = "glint:digest";
+pub(super) const KEY_VERSION: &str = "glint:version";
+pub(super) const KEY_TILE: &str = "glint:tile";
+/// The digest of the rest of the record and the pixels; written last.
+pub(super) const KEY_PIXELS: &str = "glint:pixels";
 
 /// Where a tile belongs and what rendered it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -67,9 +72,11 @@ pub enum TileFileError {
     Read { path: PathBuf, message: String },
     #[error("{path} is not a glint tile: {message}")]
     NotATile { path: PathBuf, message: String },
+    #[error("{path}: its pixels do not match the digest in its record ({KEY_PIXELS}): the tile was changed or damaged after it was written, or its record is another tile's; render it again")]
+    Changed { path: PathBuf },
 }
 
-fn format_of(path: &Path) -> Result<TileFormat, TileFileError> {
+pub(super) fn format_of(path: &Path) -> Result<TileFormat, TileFileError> {
     TileFormat::of(path).ok_or_else(|| TileFileError::NotTileFormat {
         path: path.to_path_buf(),
     })
@@ -82,8 +89,9 @@ pub fn check_tile_path(path: &Path) -> Result<(), String> {
     crate::image_io::check_output_path(path).map_err(|e| e.to_string())
 }
 
-/// The record as text pairs, in the order written.
-fn record(meta: &TileMeta) -> Vec<(&'static str, String)> {
+/// The record as text pairs, in the order written, without its pixel digest (which
+/// covers them).
+pub(super) fn record(meta: &TileMeta) -> Vec<(&'static str, String)> {
     let (w, h) = meta.full_size;
     let mut pairs = vec![
         (KEY_FULL_SIZE, format!("{w}x{h}")),
@@ -100,7 +108,12 @@ fn record(meta: &TileMeta) -> Vec<(&'static str, String)> {
 /// Writes `film` (the tile's pixels) to `path` with `meta`, atomically.
 pub fn write_tile(film: &Film, meta: &TileMeta, path: &Path) -> Result<(), TileFileError> {
     let format = format_of(path)?;
-    let pairs = record(meta);
+    let mut pairs = record(meta);
+    let pixel_digest = match format {
+        TileFormat::Png => tile_digest(&pairs, TilePixels::Rgb8(&film.to_rgb8())),
+        TileFormat::Exr => tile_digest(&pairs, TilePixels::Float(&film.pixels)),
+    };
+    pairs.push((KEY_PIXELS, pixel_digest));
     let result = write_via_temp(path, |temp| -> Result<(), std::io::Error> {
         match format {
             TileFormat::Png => write_png(film, &pairs, temp),
@@ -132,194 +145,4 @@ fn write_png(film: &Film, pairs: &[(&str, String)], temp: &Path) -> Result<(), s
     writer.finish().map_err(encode)?;
     // finish() flushed the BufWriter; sync by reopening, as the File is inside it.
     File::open(temp)?.sync_all()
-}
-
-fn open(path: &Path) -> Result<png::Reader<BufReader<File>>, TileFileError> {
-    let read_err = |message: String| TileFileError::Read {
-        path: path.to_path_buf(),
-        message,
-    };
-    let file = File::open(path).map_err(|e| read_err(e.to_string()))?;
-    png::Decoder::new(BufReader::new(file))
-        .read_info()
-        .map_err(|e| read_err(e.to_string()))
-}
-
-/// The record of the tile at `path`.
-pub fn read_tile_meta(path: &Path) -> Result<TileMeta, TileFileError> {
-    let read_err = |message: String| TileFileError::Read {
-        path: path.to_path_buf(),
-        message,
-    };
-    match format_of(path)? {
-        TileFormat::Png => {
-            let reader = open(path)?;
-            let info = reader.info();
-            if (info.color_type, info.bit_depth) != (png::ColorType::Rgb, png::BitDepth::Eight) {
-                return Err(TileFileError::NotATile {
-                    path: path.to_path_buf(),
-                    message: "its pixels are not 8-bit RGB".into(),
-                });
-            }
-            let text = |key: &str| {
-                info.uncompressed_latin1_text
-                    .iter()
-                    .find(|c| c.keyword == key)
-                    .map(|c| c.text.clone())
-            };
-            meta_from(path, text, (info.width, info.height))
-        }
-        TileFormat::Exr => {
-            let (texts, size) = super::tile_exr::read_exr_record(path).map_err(read_err)?;
-            meta_from(path, |key| texts.get(key).cloned(), size)
-        }
-    }
-}
-
-/// The record from its texts, checked against the image's `pixels` (width, height).
-fn meta_from(
-    path: &Path,
-    text: impl Fn(&str) -> Option<String>,
-    pixels: (u32, u32),
-) -> Result<TileMeta, TileFileError> {
-    let not_tile = |message: String| TileFileError::NotATile {
-        path: path.to_path_buf(),
-        message,
-    };
-    let need = |key: &str| text(key).ok_or_else(|| not_tile(format!("it has no {key} text")));
-    let size = need(KEY_FULL_SIZE)?;
-    let full_size = size
-        .split_once('x')
-        .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
-        .ok_or_else(|| not_tile(format!("{KEY_FULL_SIZE} '{size}' is not WxH")))?;
-    let bounds_text = need(KEY_BOUNDS)?;
-    let bounds = super::spec::parse_crop(&bounds_text)
-        .map_err(|e| not_tile(format!("{KEY_BOUNDS}: {e}")))?;
-    let (w, h) = full_size;
-    if !bounds.fits(w, h) || (bounds.width(), bounds.height()) != pixels {
-        return Err(not_tile(format!(
-            "its bounds {bounds_text} do not match its {}×{} pixels inside a {w}×{h} image",
-            pixels.0, pixels.1
-        )));
-    }
-    let tile = match text(KEY_TILE) {
-        Some(t) => Some(
-            t.split_once('/')
-                .and_then(|(i, n)| Some((i.parse().ok()?, n.parse().ok()?)))
-                .ok_or_else(|| not_tile(format!("{KEY_TILE} '{t}' is not I/N")))?,
-        ),
-        None => None,
-    };
-    Ok(TileMeta {
-        full_size,
-        bounds,
-        digest: need(KEY_DIGEST)?,
-        version: need(KEY_VERSION)?,
-        tile,
-    })
-}
-
-/// The record and the pixels of the tile at `path`: a PNG's bytes c as c/255 (which
-/// [`Film::to_rgb8`] quantises back to c), an EXR's floats as they are.
-pub fn read_tile(path: &Path) -> Result<(TileMeta, Film), TileFileError> {
-    let meta = read_tile_meta(path)?;
-    let read_err = |message: String| TileFileError::Read {
-        path: path.to_path_buf(),
-        message,
-    };
-    let film = match format_of(path)? {
-        TileFormat::Png => {
-            let mut reader = open(path)?;
-            let len = reader
-                .output_buffer_size()
-                .ok_or_else(|| read_err("the image is too large".into()))?;
-            let mut rgb = vec![0; len];
-            let frame = reader
-                .next_frame(&mut rgb)
-                .map_err(|e| read_err(e.to_string()))?;
-            rgb.truncate(frame.buffer_size());
-            Film {
-                width: meta.bounds.width(),
-                height: meta.bounds.height(),
-                pixels: rgb
-                    .chunks_exact(3)
-                    .map(|p| [0, 1, 2].map(|c| f32::from(p[c]) / 255.0))
-                    .collect(),
-            }
-        }
-        TileFormat::Exr => super::tile_exr::read_exr_film(path).map_err(read_err)?,
-    };
-    Ok((meta, film))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_tile_round_trips_its_pixels_and_record() {
-        let dir = crate::testing::scratch::temp_dir("farm-tile-file");
-        let path = dir.join("t.png");
-        let mut film = Film::new(3, 2);
-        film.set(2, 1, [1.0, 0.5, 0.25]);
-        let meta = TileMeta {
-            full_size: (10, 7),
-            bounds: PixelRect {
-                x0: 4,
-                x1: 7,
-                y0: 5,
-                y1: 7,
-            },
-            digest: "ab".repeat(32),
-            version: "0.1.0".into(),
-            tile: Some((3, 4)),
-        };
-        write_tile(&film, &meta, &path).unwrap();
-        assert_eq!(read_tile_meta(&path).unwrap(), meta);
-        let (read_meta, read) = read_tile(&path).unwrap();
-        assert_eq!(read_meta, meta);
-        assert_eq!(read.to_rgb8(), film.to_rgb8());
-        // EXR: the floats themselves.
-        let exr = dir.join("t.exr");
-        film.set(0, 0, [0.123_456_7, 2.5, -0.0]);
-        write_tile(&film, &meta, &exr).unwrap();
-        assert_eq!(read_tile_meta(&exr).unwrap(), meta);
-        let (_, read) = read_tile(&exr).unwrap();
-        let bits = |f: &Film| {
-            f.pixels
-                .iter()
-                .flat_map(|p| p.map(f32::to_bits))
-                .collect::<Vec<_>>()
-        };
-        assert_eq!(bits(&read), bits(&film));
-    }
-
-    #[test]
-    fn a_plain_image_is_not_a_tile_and_jpeg_is_refused() {
-        let dir = crate::testing::scratch::temp_dir("farm-tile-plain");
-        let path = dir.join("plain.png");
-        crate::image_io::write_image(&Film::new(2, 2), &path).unwrap();
-        let e = read_tile_meta(&path).unwrap_err().to_string();
-        assert!(e.contains("plain.png is not a glint tile"), "{e}");
-        let plain_exr = dir.join("plain.exr");
-        crate::image_io::write_image(&Film::new(2, 2), &plain_exr).unwrap();
-        let e = read_tile_meta(&plain_exr).unwrap_err().to_string();
-        assert!(e.contains("plain.exr is not a glint tile"), "{e}");
-        let jpg = dir.join("t.jpg");
-        assert!(matches!(
-            write_tile(&Film::new(1, 1), &read_meta_stub(), &jpg),
-            Err(TileFileError::NotTileFormat { .. })
-        ));
-        assert!(!jpg.exists());
-    }
-
-    fn read_meta_stub() -> TileMeta {
-        TileMeta {
-            full_size: (1, 1),
-            bounds: PixelRect::full(1, 1),
-            digest: String::new(),
-            version: String::new(),
-            tile: None,
-        }
-    }
 }

@@ -1645,3 +1645,670 @@ fn huge_names_are_counted_and_never_copied_whole_into_messages() {
         assert_eq!(listing(&dir), vec!["scene.lua"]);
     }
 }
+
+// ---- Round three: farm tiles as untrusted input ----
+// Tiles come back from other machines: `glint assemble` (and `--skip-existing`) must
+// treat them as a hostile file, bounded before anything is allocated, opened once, their
+// labels checked against the split and their pixels against the digest in their record.
+
+/// A 16×8 render of one sphere of colour `rgb` (two colours: two different renders).
+/// Split in two, its tiles are 8×8 each, so their bounds can be swapped.
+fn farm_scene(rgb: &str) -> String {
+    format!(
+        "root = gr.node('root')\ns = gr.sphere('s')\nroot:add_child(s)\n\
+         s:set_material(gr.material({{{rgb}}}, {{0.3, 0.3, 0.3}}, 10))\n\
+         gr.render(root, 'out.png', 16, 8, {{0, 0, 4}}, {{0, 0, -1}}, {{0, 1, 0}}, 50, \
+         {{0.1, 0.1, 0.3}}, {{gr.light({{5, 5, 5}}, {{1, 1, 1}}, {{1, 0, 0}})}})\n"
+    )
+}
+
+/// Runs glint with `args` in `dir` (at most `seconds`, the usual peak memory) and checks
+/// its exit code and message ([`check_ended`]).
+fn farm_glint(tag: &str, dir: &Path, logs: &Path, args: &[&str], code: i32, needles: &[&str]) {
+    farm_glint_within(tag, dir, logs, args, (code, needles), 20);
+}
+
+fn farm_glint_within(
+    tag: &str,
+    dir: &Path,
+    logs: &Path,
+    args: &[&str],
+    (code, needles): (i32, &[&str]),
+    seconds: u64,
+) -> Ended {
+    let args: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+    let ended = run_glint(&args, dir, logs, Duration::from_secs(seconds), &mut |_| {
+        false
+    });
+    check_ended(&Case::new(tag, "", code, needles), &ended);
+    ended
+}
+
+/// Renders `scene` (a file in `dir`) as tiles 0..n of n, `OUT-tile-I-of-N.EXT`.
+fn render_farm_tiles(dir: &Path, logs: &Path, scene: &str, n: u32, out: &str) {
+    for i in 0..n {
+        let tile = format!("{i}/{n}");
+        let args = [
+            "render",
+            scene,
+            "--backend",
+            "cpu",
+            "--tile",
+            &tile,
+            "-o",
+            out,
+        ];
+        farm_glint("render-tile", dir, logs, &args, 0, &[]);
+    }
+}
+
+/// `glint assemble TILES -o out.EXT` refused (exit code 2) naming `needles`, within
+/// `seconds`, writing nothing.
+fn assemble_refused(tag: &str, dir: &Path, logs: &Path, tiles: &[&str], needles: &[&str]) {
+    assemble_refused_within(tag, dir, logs, tiles, needles, 20);
+}
+
+fn assemble_refused_within(
+    tag: &str,
+    dir: &Path,
+    logs: &Path,
+    tiles: &[&str],
+    needles: &[&str],
+    seconds: u64,
+) {
+    let before = listing(dir);
+    let out = if tiles[0].ends_with(".exr") {
+        "out.exr"
+    } else {
+        "out.png"
+    };
+    let mut args = vec!["assemble", "-o", out];
+    args.extend(tiles);
+    farm_glint_within(tag, dir, logs, &args, (2, needles), seconds);
+    assert_eq!(listing(dir), before, "{tag}: a file was written");
+}
+
+/// A PNG tile taken apart: its size, its text chunks (the record) and its RGB bytes.
+struct PngTile {
+    width: u32,
+    height: u32,
+    texts: Vec<(String, String)>,
+    rgb: Vec<u8>,
+}
+
+impl PngTile {
+    fn read(path: &Path) -> PngTile {
+        let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+        let mut reader = png::Decoder::new(file).read_info().unwrap();
+        let info = reader.info();
+        let (width, height) = (info.width, info.height);
+        let texts = info
+            .uncompressed_latin1_text
+            .iter()
+            .map(|c| (c.keyword.clone(), c.text.clone()))
+            .collect();
+        let mut rgb = vec![0; reader.output_buffer_size().unwrap()];
+        reader.next_frame(&mut rgb).unwrap();
+        PngTile {
+            width,
+            height,
+            texts,
+            rgb,
+        }
+    }
+    /// A `width`×`height` grey tile with the record `texts`.
+    fn forged(width: u32, height: u32, texts: &[(&str, &str)]) -> PngTile {
+        PngTile {
+            width,
+            height,
+            texts: texts
+                .iter()
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+                .collect(),
+            rgb: vec![128; (width * height * 3) as usize],
+        }
+    }
+    fn text(&self, key: &str) -> String {
+        let found = self.texts.iter().find(|(k, _)| k == key);
+        found.map(|(_, v)| v.clone()).unwrap_or_default()
+    }
+    fn set(&mut self, key: &str, value: &str) {
+        self.texts.retain(|(k, _)| k != key);
+        self.texts.push((key.to_string(), value.to_string()));
+    }
+    fn remove(&mut self, key: &str) {
+        self.texts.retain(|(k, _)| k != key);
+    }
+    fn write(&self, path: &Path) {
+        let mut bytes = Vec::new();
+        let mut encoder = png::Encoder::new(&mut bytes, self.width, self.height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        for (k, v) in &self.texts {
+            encoder.add_text_chunk(k.clone(), v.clone()).unwrap();
+        }
+        let mut writer = encoder.write_header().unwrap();
+        writer.write_image_data(&self.rgb).unwrap();
+        writer.finish().unwrap();
+        std::fs::write(path, bytes).unwrap();
+    }
+}
+
+/// A record claiming a `full` image of which the tile holds `bounds`, with digests that
+/// look right (64 hex digits) so that only the claim itself can be refused.
+fn forged_record<'a>(full: &'a str, bounds: &'a str) -> Vec<(&'a str, &'a str)> {
+    const HEX: &str = "0123456789abcdef0123456789abcdef0123456789abcdef0123456789abcdef";
+    vec![
+        ("glint:full-size", full),
+        ("glint:bounds", bounds),
+        ("glint:digest", HEX),
+        ("glint:version", env!("CARGO_PKG_VERSION")),
+        ("glint:pixels", HEX),
+    ]
+}
+
+fn mkfifo(path: &Path) {
+    let c = std::ffi::CString::new(path.to_str().unwrap()).unwrap();
+    // SAFETY: a valid NUL-terminated path.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+}
+
+/// A PNG chunk: length, name, data, CRC.
+fn png_chunk(out: &mut Vec<u8>, name: &[u8; 4], data: &[u8]) {
+    out.extend((data.len() as u32).to_be_bytes());
+    let mut named = name.to_vec();
+    named.extend(data);
+    out.extend(&named);
+    out.extend(crc32(&named).to_be_bytes());
+}
+
+/// A zlib stream of `n` zero bytes in fixed-Huffman deflate: a literal 0, then copies of
+/// 258 bytes at distance 1 (13 bits each), so a few MB stand for hundreds of MB.
+fn zlib_zeros(n: u64) -> Vec<u8> {
+    struct Bits {
+        out: Vec<u8>,
+        acc: u64,
+        count: u32,
+    }
+    impl Bits {
+        fn put(&mut self, value: u64, bits: u32) {
+            self.acc |= value << self.count;
+            self.count += bits;
+            while self.count >= 8 {
+                self.out.push(self.acc as u8);
+                self.acc >>= 8;
+                self.count -= 8;
+            }
+        }
+        /// A Huffman code: most significant bit first.
+        fn code(&mut self, code: u32, bits: u32) {
+            self.put(u64::from(code.reverse_bits() >> (32 - bits)), bits);
+        }
+    }
+    let mut b = Bits {
+        out: vec![0x78, 0x01],
+        acc: 0,
+        count: 0,
+    };
+    b.put(1, 1); // the final block
+    b.put(1, 2); // fixed Huffman codes
+    b.code(0x30, 8); // literal 0
+    let mut left = n - 1;
+    while left >= 258 {
+        b.code(0b1100_0101, 8); // length 258
+        b.code(0, 5); // distance 1
+        left -= 258;
+    }
+    for _ in 0..left {
+        b.code(0x30, 8);
+    }
+    b.code(0, 7); // end of block
+    if b.count > 0 {
+        b.out.push(b.acc as u8);
+    }
+    // Adler-32 of zeros: a stays 1, b counts the bytes.
+    let adler = ((n % 65521) << 16) as u32 | 1;
+    b.out.extend(adler.to_be_bytes());
+    b.out
+}
+
+/// A real `side`×`side` RGB PNG of black pixels (its deflated rows, a few MB) whose
+/// record claims it is a whole image of that size.
+fn huge_png_tile(side: u32) -> Vec<u8> {
+    let full = format!("{side}x{side}");
+    let bounds = format!("0,{side},0,{side}");
+    let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut ihdr = side.to_be_bytes().to_vec();
+    ihdr.extend(side.to_be_bytes());
+    ihdr.extend([8, 2, 0, 0, 0]);
+    png_chunk(&mut out, b"IHDR", &ihdr);
+    for (k, v) in forged_record(&full, &bounds) {
+        png_chunk(&mut out, b"tEXt", format!("{k}\0{v}").as_bytes());
+    }
+    let raw = u64::from(side) * (1 + 3 * u64::from(side));
+    png_chunk(&mut out, b"IDAT", &zlib_zeros(raw));
+    png_chunk(&mut out, b"IEND", &[]);
+    out
+}
+
+/// Layer attributes holding `texts` (a tile's record).
+fn exr_texts(name: &str, texts: &[(&str, &str)]) -> exr::prelude::LayerAttributes {
+    use exr::meta::attribute::{AttributeValue, Text};
+    let mut attributes = exr::prelude::LayerAttributes::named(name);
+    for (k, v) in texts {
+        let value = AttributeValue::Text(Text::from(*v));
+        attributes.other.insert(Text::from(*k), value);
+    }
+    attributes
+}
+
+/// A 4×4 grey EXR tile whose layer carries `texts`, stored as one 16×16 block, its data
+/// window and block size then rewritten to claim `side`×`side` pixels in one block: the
+/// file stays a few hundred bytes and its table of blocks stays consistent.
+fn forged_exr_tile(texts: &[(&str, &str)], side: i32) -> Vec<u8> {
+    use exr::prelude::*;
+    let encoding = Encoding {
+        compression: Compression::Uncompressed,
+        blocks: Blocks::Tiles(Vec2(16, 16)),
+        line_order: LineOrder::Increasing,
+    };
+    let layer = Layer::new(
+        (4, 4),
+        exr_texts("glint tile", texts),
+        encoding,
+        SpecificChannels::rgb(|_| (0.5_f32, 0.5_f32, 0.5_f32)),
+    );
+    let mut bytes = Vec::new();
+    let image = Image::from_layer(layer);
+    image
+        .write()
+        .to_buffered(std::io::Cursor::new(&mut bytes))
+        .unwrap();
+    let find =
+        |key: &[u8]| bytes.windows(key.len()).position(|w| w == key).unwrap() + key.len() + 4;
+    let window = find(b"dataWindow\0box2i\0");
+    let tiles = find(b"tiles\0tiledesc\0");
+    bytes[window + 8..window + 12].copy_from_slice(&(side - 1).to_le_bytes());
+    bytes[window + 12..window + 16].copy_from_slice(&(side - 1).to_le_bytes());
+    bytes[tiles..tiles + 4].copy_from_slice(&side.to_le_bytes());
+    bytes[tiles + 4..tiles + 8].copy_from_slice(&side.to_le_bytes());
+    bytes
+}
+
+/// A two-part EXR: the first part carries a 4×4 tile's record over a luminance channel
+/// only, the second is a 2×2 RGB image without one (what a reader of "the first RGB
+/// layer" would take).
+fn two_part_exr_tile() -> Vec<u8> {
+    use exr::prelude::*;
+    let record = forged_record("4x4", "0,4,0,4");
+    let first = Layer::new(
+        (4, 4),
+        exr_texts("glint tile", &record),
+        Encoding::UNCOMPRESSED,
+        SpecificChannels::build()
+            .with_channel("Y")
+            .with_pixel_fn(|_| (0.5_f32,)),
+    );
+    let second = Layer::new(
+        (2, 2),
+        LayerAttributes::named("other"),
+        Encoding::UNCOMPRESSED,
+        SpecificChannels::rgb(|_| (1.0_f32, 0.0_f32, 0.0_f32)),
+    );
+    let image = Image::empty(ImageAttributes::new(IntegerBounds::from_dimensions((4, 4))))
+        .with_layer(first)
+        .with_layer(second);
+    let mut bytes = Vec::new();
+    image
+        .write()
+        .to_buffered(std::io::Cursor::new(&mut bytes))
+        .unwrap();
+    bytes
+}
+
+/// The members of one class, each checked in turn; the test fails once at the end,
+/// naming every member that failed (one run against an old binary shows them all).
+struct Members<'a> {
+    dir: &'a Path,
+    failed: Vec<String>,
+}
+
+impl<'a> Members<'a> {
+    fn new(dir: &'a Path) -> Members<'a> {
+        Members {
+            dir,
+            failed: Vec::new(),
+        }
+    }
+    fn check(&mut self, name: &str, case: impl FnOnce()) {
+        if std::panic::catch_unwind(std::panic::AssertUnwindSafe(case)).is_err() {
+            self.failed.push(name.to_string());
+            // What a failed member wrote must not decide the next one.
+            for out in ["out.png", "out.exr"] {
+                let _ = std::fs::remove_file(self.dir.join(out));
+            }
+        }
+    }
+    fn done(self) {
+        assert!(self.failed.is_empty(), "members failed: {:?}", self.failed);
+    }
+}
+
+/// Tiles that claim more than any image glint makes, or more than the memory budget, are
+/// refused from their record, before anything is sized from it: a few hundred bytes
+/// claiming 100000² or 4294967295² pixels, a real 16000² PNG, an EXR whose data window
+/// asks 206 GB, a full size within the pixel limit but over the budget.
+#[test]
+fn assemble_bounds_a_tiles_claims_before_allocating() {
+    let (dir, logs, _root) = case_dir("farm-claims");
+    let mut members = Members::new(&dir);
+    let cases: [(&str, &str, &[&str]); 3] = [
+        (
+            "t-100k.png",
+            "100000x100000",
+            &["t-100k.png", "100000×100000"],
+        ),
+        (
+            "t-u32.png",
+            "4294967295x4294967295",
+            &["t-u32.png", "4294967295×4294967295"],
+        ),
+        (
+            "t-budget.png",
+            "10000x10000",
+            &["t-budget.png", "--memory-limit"],
+        ),
+    ];
+    for (name, full, needles) in cases {
+        PngTile::forged(1, 1, &forged_record(full, "0,1,0,1")).write(&dir.join(name));
+        members.check(name, || {
+            assemble_refused(name, &dir, &logs, &[name], needles)
+        });
+        std::fs::remove_file(dir.join(name)).unwrap();
+    }
+    std::fs::write(dir.join("t-16k.png"), huge_png_tile(16000)).unwrap();
+    members.check("png-16k", || {
+        assemble_refused(
+            "png-16k",
+            &dir,
+            &logs,
+            &["t-16k.png"],
+            &["t-16k.png", "16000×16000"],
+        )
+    });
+    std::fs::remove_file(dir.join("t-16k.png")).unwrap();
+    let side = 131_072;
+    let (full, bounds) = (format!("{side}x{side}"), format!("0,{side},0,{side}"));
+    let exr = forged_exr_tile(&forged_record(&full, &bounds), side);
+    assert!(exr.len() < 1000, "{} bytes", exr.len());
+    std::fs::write(dir.join("t-206g.exr"), exr).unwrap();
+    members.check("exr-206g", || {
+        assemble_refused(
+            "exr-206g",
+            &dir,
+            &logs,
+            &["t-206g.exr"],
+            &["t-206g.exr", "131072"],
+        )
+    });
+    members.done();
+}
+
+/// Only a regular file is a tile: a FIFO is refused at once (never waited on), a device
+/// too; a multi-part EXR is refused (the part checked would not be the part read).
+#[test]
+fn assemble_reads_each_tile_once_as_the_regular_file_it_is() {
+    let (dir, logs, _root) = case_dir("farm-special");
+    let mut members = Members::new(&dir);
+    mkfifo(&dir.join("t-fifo.png"));
+    std::os::unix::fs::symlink("/dev/zero", dir.join("t-zero.exr")).unwrap();
+    std::fs::write(dir.join("t-parts.exr"), two_part_exr_tile()).unwrap();
+    for (tile, needle) in [
+        ("t-fifo.png", "not a regular file"),
+        ("t-zero.exr", "not a regular file"),
+        ("t-parts.exr", "several parts"),
+    ] {
+        members.check(tile, || {
+            assemble_refused_within(tile, &dir, &logs, &[tile], &[tile, needle], 10)
+        });
+    }
+    members.done();
+}
+
+/// A farm of two tiles of scene A (`a-tile-I-of-2.EXT`) and two of scene B, in `dir`.
+fn two_farms(dir: &Path, logs: &Path, ext: &str) {
+    std::fs::write(dir.join("a.lua"), farm_scene("0.8, 0.3, 0.2")).unwrap();
+    std::fs::write(dir.join("b.lua"), farm_scene("0.2, 0.3, 0.8")).unwrap();
+    render_farm_tiles(dir, logs, "a.lua", 2, &format!("a.{ext}"));
+    render_farm_tiles(dir, logs, "b.lua", 2, &format!("b.{ext}"));
+}
+
+/// A tile whose record or pixels were changed after it was written is refused, naming
+/// it: bounds swapped between two tiles (the label no longer matches the split; with the
+/// labels swapped too, or on crop tiles without labels, the pixels no longer match their
+/// digest), a digest copied from another render's tile, an edited pixel, a forged tile
+/// count (at once, not after a minute), and a tile without the pixel digest (written
+/// before it existed: to be rendered again).
+#[test]
+fn assemble_checks_labels_and_pixels_against_the_record() {
+    let (dir, logs, _root) = case_dir("farm-forged");
+    two_farms(&dir, &logs, "png");
+    let mut members = Members::new(&dir);
+    let (a0, a1) = ("a-tile-0-of-2.png", "a-tile-1-of-2.png");
+    let read = |name: &str| PngTile::read(&dir.join(name));
+    let write = |tile: &PngTile, name: &str| tile.write(&dir.join(name));
+    let refused = |tag: &str, tiles: &[&str], needles: &[&str]| {
+        assemble_refused_within(tag, &dir, &logs, tiles, needles, 10)
+    };
+    // The genuine tiles assemble.
+    farm_glint(
+        "genuine",
+        &dir,
+        &logs,
+        &["assemble", a0, a1, "-o", "ok.png"],
+        0,
+        &[],
+    );
+    std::fs::remove_file(dir.join("ok.png")).unwrap();
+    let (mut s0, mut s1) = (read(a0), read(a1));
+    let (b0, b1) = (s0.text("glint:bounds"), s1.text("glint:bounds"));
+    s0.set("glint:bounds", &b1);
+    s1.set("glint:bounds", &b0);
+    write(&s0, "s0.png");
+    write(&s1, "s1.png");
+    let swapped = ["s0.png", "s1.png"];
+    members.check("swapped", || {
+        refused("swapped", &swapped, &["s0.png", "0/2", &b0])
+    });
+    s0.set("glint:tile", "1/2");
+    s1.set("glint:tile", "0/2");
+    write(&s0, "s0.png");
+    write(&s1, "s1.png");
+    members.check("swapped-labels", || {
+        refused("swapped-labels", &swapped, &["s0.png", "pixels"])
+    });
+    s0.remove("glint:tile");
+    s1.remove("glint:tile");
+    write(&s0, "s0.png");
+    write(&s1, "s1.png");
+    members.check("swapped-crops", || {
+        refused("swapped-crops", &swapped, &["s0.png", "pixels"])
+    });
+    // Another render's tile under this render's digest, with or without its pixel digest.
+    let mut copied = read("b-tile-1-of-2.png");
+    copied.set("glint:digest", &read(a1).text("glint:digest"));
+    write(&copied, "c1.png");
+    members.check("copied-digest", || {
+        refused("copied-digest", &[a0, "c1.png"], &["c1.png", "pixels"])
+    });
+    copied.set("glint:pixels", &read(a1).text("glint:pixels"));
+    write(&copied, "c2.png");
+    members.check("copied-both", || {
+        refused("copied-both", &[a0, "c2.png"], &["c2.png", "pixels"])
+    });
+    let mut edited = read(a1);
+    edited.rgb[7] ^= 0x10;
+    write(&edited, "e1.png");
+    members.check("edited", || {
+        refused("edited", &[a0, "e1.png"], &["e1.png", "pixels"])
+    });
+    let mut old = read(a1);
+    old.remove("glint:pixels");
+    write(&old, "o1.png");
+    members.check("no-pixel-digest", || {
+        refused(
+            "no-pixel-digest",
+            &[a0, "o1.png"],
+            &["o1.png", "render it again"],
+        )
+    });
+    for (k, (label, needle)) in [
+        ("0/4294967295", "4294967295"),
+        ("0/65537", "65537"),
+        ("3/2", "3/2"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut forged = read(a0);
+        forged.set("glint:tile", label);
+        let name = format!("f{k}.png");
+        write(&forged, &name);
+        members.check(label, || refused(label, &[&name], &[&name, needle]));
+    }
+    members.done();
+}
+
+/// Any bit flipped in an EXR tile (60 places spread over the file, header and pixels) is
+/// refused, or changes nothing: never an image other than the full render's.
+#[test]
+fn a_bit_flipped_in_an_exr_tile_never_makes_a_wrong_image() {
+    let (dir, logs, _root) = case_dir("farm-flips");
+    std::fs::write(dir.join("a.lua"), farm_scene("0.8, 0.3, 0.2")).unwrap();
+    render_farm_tiles(&dir, &logs, "a.lua", 2, "a.exr");
+    let (a0, a1) = ("a-tile-0-of-2.exr", "a-tile-1-of-2.exr");
+    farm_glint(
+        "genuine",
+        &dir,
+        &logs,
+        &["assemble", a0, a1, "-o", "ref.exr"],
+        0,
+        &[],
+    );
+    let reference = std::fs::read(dir.join("ref.exr")).unwrap();
+    let genuine = std::fs::read(dir.join(a1)).unwrap();
+    let (mut refused, mut wrong) = (0, Vec::new());
+    for k in 0..60 {
+        let mut bytes = genuine.clone();
+        let at = k * bytes.len() / 60 + k % 7;
+        bytes[at] ^= 1 << (k % 8);
+        std::fs::write(dir.join("f1.exr"), &bytes).unwrap();
+        let args: Vec<String> = ["assemble", a0, "f1.exr", "-o", "out.exr"]
+            .map(String::from)
+            .to_vec();
+        let ended = run_glint(&args, &dir, &logs, Duration::from_secs(20), &mut |_| false);
+        let err = &ended.stderr;
+        assert_eq!(
+            ended.signal, None,
+            "flip at {at}: killed by a signal:\n{err}"
+        );
+        assert!(!err.contains("panicked"), "flip at {at}: panicked:\n{err}");
+        match ended.code {
+            Some(0) => {
+                let out = std::fs::read(dir.join("out.exr")).unwrap();
+                if out != reference {
+                    wrong.push(at);
+                }
+                std::fs::remove_file(dir.join("out.exr")).unwrap();
+            }
+            Some(2) => {
+                assert!(err.contains("f1.exr"), "flip at {at}: {err}");
+                assert!(
+                    !dir.join("out.exr").exists(),
+                    "flip at {at}: an image was written"
+                );
+                refused += 1;
+            }
+            other => panic!("flip at {at}: exit {other:?}:\n{err}"),
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "exit 0 with a wrong image for flips at bytes {wrong:?}"
+    );
+    assert!(refused >= 40, "only {refused} of 60 flips refused");
+}
+
+/// `--skip-existing` looks at what is at the tile's name without blocking and trusts
+/// only a regular file holding this render's tile: a FIFO or a link to a device there is
+/// rendered over.
+#[test]
+fn skip_existing_never_blocks_on_what_is_at_the_tiles_name() {
+    let (dir, logs, _root) = case_dir("farm-skip");
+    std::fs::write(dir.join("scene.lua"), farm_scene("0.8, 0.3, 0.2")).unwrap();
+    let mut members = Members::new(&dir);
+    let tile = dir.join("out-tile-0-of-2.png");
+    let args = [
+        "render",
+        "scene.lua",
+        "--backend",
+        "cpu",
+        "--tile",
+        "0/2",
+        "--skip-existing",
+        "-o",
+        "out.png",
+    ];
+    for plant in ["fifo", "zero"] {
+        match plant {
+            "fifo" => mkfifo(&tile),
+            _ => std::os::unix::fs::symlink("/dev/zero", &tile).unwrap(),
+        }
+        members.check(plant, || {
+            farm_glint_within(
+                plant,
+                &dir,
+                &logs,
+                &args,
+                (0, &["wrote", "out-tile-0-of-2.png"]),
+                10,
+            );
+            let kind = std::fs::symlink_metadata(&tile).unwrap().file_type();
+            assert!(kind.is_file(), "{plant}: {kind:?}");
+            // Now a genuine tile: kept.
+            farm_glint_within(plant, &dir, &logs, &args, (0, &["kept"]), 10);
+        });
+        let _ = std::fs::remove_file(&tile);
+    }
+    members.done();
+}
+
+/// With a farm flag, the scene is read as every scene is: a FIFO or a device is refused
+/// without blocking or reading it, a file over the limit before it is read.
+#[test]
+fn farm_renders_read_the_scene_as_a_bounded_regular_file() {
+    let (dir, logs, _root) = case_dir("farm-scene");
+    let mut members = Members::new(&dir);
+    mkfifo(&dir.join("fifo.lua"));
+    let big = std::fs::File::create(dir.join("big.lua")).unwrap();
+    big.set_len(2 << 30).unwrap();
+    for (scene, needle) in [
+        ("fifo.lua", "not a regular file"),
+        ("/dev/zero", "not a regular file"),
+        ("big.lua", "big.lua"),
+    ] {
+        for flag in [
+            &["--tile", "0/2"][..],
+            &["--frames", "1-2"],
+            &["--skip-existing"],
+        ] {
+            let mut args = vec!["render", scene, "--backend", "cpu", "-o", "out.png"];
+            args.extend(flag);
+            members.check(&format!("{scene} {}", flag[0]), || {
+                farm_glint_within(scene, &dir, &logs, &args, (3, &[scene, needle]), 10);
+            });
+        }
+    }
+    assert_eq!(listing(&dir), vec!["big.lua", "fifo.lua"]);
+    members.done();
+}

@@ -27,7 +27,7 @@ mod wrappers;
 
 pub use gr::MAX_IMAGE_SIDE;
 
-use super::files::{open_regular, read_regular, ReadPolicy, MAX_FILE_BYTES};
+use super::files::{open_regular, ReadPolicy, MAX_FILE_BYTES};
 use super::paths::SceneFolders;
 use super::{MeshId, NodeId, RenderRequest, SceneGraph, TransformOrder};
 use mlua::chunk::ChunkMode;
@@ -199,21 +199,7 @@ pub fn run_scene_file(
     config: &ScriptConfig,
     on_render: &mut OnRender<'_>,
 ) -> Result<ScriptReport, SceneError> {
-    let read_error = |message| SceneError::Read {
-        path: path.to_path_buf(),
-        message,
-    };
-    // Held while the script runs, with Lua's compiled copy: counted before it is read.
-    let (_, len) = open_regular(path, "scene file", MAX_FILE_BYTES).map_err(read_error)?;
-    if len.saturating_mul(SOURCE_BYTES_PER_BYTE) > config.memory_limit as u64 {
-        return Err(read_error(format!(
-            "{}: the scene file is {} MiB; running it may take {SOURCE_BYTES_PER_BYTE}× that, over the memory limit of {} MiB; --memory-limit MIB raises it",
-            path.display(),
-            len.div_ceil(1 << 20),
-            config.memory_limit >> 20
-        )));
-    }
-    let bytes = read_regular(path, "scene file", MAX_FILE_BYTES).map_err(read_error)?;
+    let bytes = read_scene_bytes(path, config.memory_limit)?;
     let source = String::from_utf8_lossy(&bytes);
     let base_dir = path.parent().unwrap_or(Path::new(""));
     run_scene_source(
@@ -223,6 +209,41 @@ pub fn run_scene_file(
         config,
         on_render,
     )
+}
+
+/// The scene file's bytes, read once: a regular file (a FIFO or a device is refused
+/// without blocking), its size counted against `memory_limit` before it is read (it is
+/// held while the script runs, with Lua's compiled copy), and read from the handle
+/// whose size was checked (a file that grows meanwhile is refused).
+pub fn read_scene_bytes(path: &Path, memory_limit: usize) -> Result<Vec<u8>, SceneError> {
+    use std::io::Read;
+    let read_error = |message| SceneError::Read {
+        path: path.to_path_buf(),
+        message,
+    };
+    let (file, len) = open_regular(path, "scene file", MAX_FILE_BYTES).map_err(read_error)?;
+    if len.saturating_mul(SOURCE_BYTES_PER_BYTE) > memory_limit as u64 {
+        return Err(read_error(format!(
+            "{}: the scene file is {} MiB; running it may take {SOURCE_BYTES_PER_BYTE}× that, over the memory limit of {} MiB; --memory-limit MIB raises it",
+            path.display(),
+            len.div_ceil(1 << 20),
+            memory_limit >> 20
+        )));
+    }
+    let cannot =
+        |e: std::io::Error| read_error(format!("cannot read scene file '{}': {e}", path.display()));
+    let mut bytes = Vec::new();
+    bytes
+        .try_reserve_exact(len as usize)
+        .map_err(|e| cannot(std::io::Error::other(e)))?;
+    file.take(len + 1).read_to_end(&mut bytes).map_err(cannot)?;
+    if bytes.len() as u64 > len {
+        return Err(read_error(format!(
+            "cannot read scene file '{}': it grew while being read",
+            path.display()
+        )));
+    }
+    Ok(bytes)
 }
 
 /// Bytes of the budget one byte of scene or module text may take while it runs: the
