@@ -5,15 +5,16 @@
 //! we wrote reads back to a film that re-quantises to the same bytes.
 
 use std::ffi::OsString;
-use std::fs::{self, File};
+use std::fs::File;
 use std::io::{BufWriter, Seek, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicPtr, AtomicU64, Ordering};
 
 use image::codecs::png::PngEncoder;
 use image::{DynamicImage, ExtendedColorType, ImageEncoder};
 use thiserror::Error;
 
+use crate::atomic_write::write_via_temp_with;
+pub use crate::atomic_write::{remove_temp_files_on_signals, write_via_temp, TEMP_SUFFIX_MAX};
 use crate::film::Film;
 
 /// Everything that can go wrong reading or writing an image; every message names the path.
@@ -127,13 +128,6 @@ fn output_target(path: &Path) -> Result<(Format, PathBuf, OsString), ImageIoErro
     Ok((format, dir, file_name))
 }
 
-/// Distinguishes temp files of concurrent writers in one process (pid alone would not).
-static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
-
-/// Most bytes the temporary name adds to the output's: `.` before it and
-/// `.tmp-PID-COUNTER` after it (a u32 and a u64 in decimal).
-pub const TEMP_SUFFIX_MAX: usize = 1 + ".tmp-".len() + 10 + 1 + 20;
-
 /// Whether this process may create files in `dir` (checked before a render, so that a
 /// folder it cannot write fails at once, not after the render).
 fn writable_dir(dir: &Path) -> bool {
@@ -160,41 +154,15 @@ fn name_max(dir: &Path) -> usize {
     }
 }
 
-/// Writes `path` atomically with `write`, which creates and fills the file it is given:
-/// a hidden temp file beside `path` (same filesystem), renamed over `path` once `write`
-/// succeeds and removed when anything fails. For the files other than images (plots, ray
-/// dumps); images go through [`write_image`], which also arms the signal cleanup.
-pub fn write_via_temp<E: From<std::io::Error>>(
-    path: &Path,
-    write: impl FnOnce(&Path) -> Result<(), E>,
-) -> Result<(), E> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut temp_name = OsString::from(".");
-    temp_name.push(path.file_name().unwrap_or_default());
-    temp_name.push(format!(
-        ".tmp-{}-{}",
-        std::process::id(),
-        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let temp = dir.join(temp_name);
-    let result = write(&temp).and_then(|()| Ok(fs::rename(&temp, path)?));
-    if result.is_err() {
-        let _ = fs::remove_file(&temp);
-    }
-    result
-}
-
 /// Writes `film` to `path`, format chosen by extension (`.png` 8-bit RGB, `.exr` f32 RGB).
 ///
-/// Atomic: the image goes to a hidden temp file in the target's directory (same
-/// filesystem, so the rename cannot degrade to a copy) and is renamed over `path` only
-/// once complete; on any failure the temp file is removed. A reader therefore sees
+/// Atomic ([`crate::atomic_write`]): the image goes to a hidden temp file in the
+/// target's directory, created exclusively under an unpredictable name, and is renamed
+/// over `path` only once complete; on any failure or ending signal the temp file is
+/// removed. A reader therefore sees
 /// either the old file or the whole new one, never a truncated image.
 pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
-    let (format, dir, file_name) = output_target(path)?;
+    let (format, _, _) = output_target(path)?;
     let expected = film.width as usize * film.height as usize;
     if film.pixels.len() != expected {
         // Checked up front: the encoders assert on buffer length and would panic.
@@ -212,30 +180,13 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
         Format::Png => Pixels::Rgb8(film.to_rgb8()),
         Format::Exr => Pixels::Rgb32F,
     };
-    let mut temp_name = OsString::from(".");
-    temp_name.push(&file_name);
-    temp_name.push(format!(
-        ".tmp-{}-{}",
-        std::process::id(),
-        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let temp = dir.join(temp_name);
-
-    let armed = arm_signal_cleanup(&temp);
-    let result = write_to_temp(film, &pixels, path, &temp).and_then(|()| {
-        fs::rename(&temp, path).map_err(|source| ImageIoError::Io {
-            path: path.to_path_buf(),
-            source,
-        })
-    });
-    if result.is_err() {
-        // Best effort: the temp may never have been created.
-        let _ = fs::remove_file(&temp);
-    }
-    if let Some(armed) = armed {
-        disarm_signal_cleanup(armed);
-    }
-    result
+    let io_err = |source| ImageIoError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    write_via_temp_with(path, io_err, |file| {
+        write_encoded(film, &pixels, path, file)
+    })
 }
 
 /// The encoded-ready pixels of a film.
@@ -245,101 +196,12 @@ enum Pixels {
     Rgb32F,
 }
 
-/// The temporary file being written, as a C string, for the signal handler (null when
-/// none). Each string is leaked (a few bytes per image written) so that a handler
-/// running on another thread can never read freed memory.
-static SIGNAL_TEMP: AtomicPtr<libc::c_char> = AtomicPtr::new(std::ptr::null_mut());
-
-/// Makes every signal that ends a process by default while an image is written (SIGINT,
-/// SIGTERM, SIGHUP, SIGQUIT, SIGABRT (also raised when an allocation fails), SIGUSR1,
-/// SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU, SIGXFSZ (a file-size limit), SIGTRAP,
-/// SIGSYS, SIGIO, SIGPWR, SIGSTKFLT, the real-time signals and SIGPIPE; not the faults
-/// SIGSEGV and SIGBUS, whose handlers Rust uses to report a stack overflow) remove the
-/// temporary image being written, if any, then end the process as the
-/// signal would have. Signals the caller ignored stay ignored. For the command line.
-/// (Rust ignores SIGPIPE in every program, so a report printed into a closed pipe, as in
-/// `glint diff a b | head -0`, would panic; a command-line tool ends quietly instead.)
-pub fn remove_temp_files_on_signals() {
-    let realtime = libc::SIGRTMIN()..=libc::SIGRTMAX();
-    let signals = [
-        libc::SIGINT,
-        libc::SIGTERM,
-        libc::SIGHUP,
-        libc::SIGQUIT,
-        libc::SIGABRT,
-        libc::SIGUSR1,
-        libc::SIGUSR2,
-        libc::SIGALRM,
-        libc::SIGVTALRM,
-        libc::SIGPROF,
-        libc::SIGXCPU,
-        libc::SIGXFSZ,
-        libc::SIGTRAP,
-        libc::SIGSYS,
-        libc::SIGIO,
-        libc::SIGPWR,
-        libc::SIGSTKFLT,
-        libc::SIGPIPE,
-    ];
-    for sig in signals.into_iter().chain(realtime) {
-        // SAFETY: installs an async-signal-safe handler (atomic load, unlink, signal,
-        // raise); `signal` is called before any thread writes an image.
-        unsafe {
-            let old = libc::signal(
-                sig,
-                on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t,
-            );
-            // (The Rust runtime, not the caller, set SIGPIPE to ignored before main.)
-            if old == libc::SIG_IGN && sig != libc::SIGPIPE {
-                libc::signal(sig, libc::SIG_IGN);
-            }
-        }
-    }
-}
-
-extern "C" fn on_signal(sig: libc::c_int) {
-    let temp = SIGNAL_TEMP.load(Ordering::SeqCst);
-    // SAFETY: `temp` is null or a leaked, NUL-terminated string; unlink, signal and
-    // raise are async-signal-safe.
-    unsafe {
-        if !temp.is_null() {
-            libc::unlink(temp);
-        }
-        libc::signal(sig, libc::SIG_DFL);
-        libc::raise(sig);
-    }
-}
-
-/// Points the signal handler at `temp` (when no other write holds it).
-fn arm_signal_cleanup(temp: &Path) -> Option<*mut libc::c_char> {
-    use std::os::unix::ffi::OsStrExt;
-    let c = std::ffi::CString::new(temp.as_os_str().as_bytes()).ok()?;
-    let ptr = c.into_raw();
-    SIGNAL_TEMP
-        .compare_exchange(
-            std::ptr::null_mut(),
-            ptr,
-            Ordering::SeqCst,
-            Ordering::SeqCst,
-        )
-        .ok()
-        .map(|_| ptr)
-}
-
-fn disarm_signal_cleanup(ptr: *mut libc::c_char) {
-    let _ = SIGNAL_TEMP.compare_exchange(
-        ptr,
-        std::ptr::null_mut(),
-        Ordering::SeqCst,
-        Ordering::SeqCst,
-    );
-}
-
-fn write_to_temp(
+/// Encodes `film` into `file` (the temporary file [`write_via_temp_with`] made).
+fn write_encoded(
     film: &Film,
     pixels: &Pixels,
     path: &Path,
-    temp: &Path,
+    file: &mut File,
 ) -> Result<(), ImageIoError> {
     // Errors name the output, not the internal temporary file.
     let io_err = |source| ImageIoError::Io {
@@ -350,7 +212,6 @@ fn write_to_temp(
         path: path.to_path_buf(),
         source,
     };
-    let file = File::create(temp).map_err(io_err)?;
     let mut out = BufWriter::new(file);
     match pixels {
         Pixels::Rgb8(rgb) => PngEncoder::new(&mut out)
@@ -365,9 +226,8 @@ fn write_to_temp(
             })?
         }
     }
-    let file = out.into_inner().map_err(|e| io_err(e.into_error()))?;
-    // Data on disk before the rename, so a crash cannot leave a renamed-but-empty file.
-    file.sync_all().map_err(io_err)?;
+    // (write_via_temp_with syncs the file before the rename.)
+    out.flush().map_err(io_err)?;
     Ok(())
 }
 
@@ -457,6 +317,7 @@ pub fn read_image_within(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::fs;
 
     /// A fresh scratch directory per test, under the system temp dir.
     fn scratch(name: &str) -> crate::testing::scratch::TempDir {
@@ -587,21 +448,6 @@ mod tests {
         // A zero-sized PNG is rejected by the encoder after the temp file exists.
         assert!(write_image(&Film::new(0, 0), &dir.join("y.png")).is_err());
         assert!(dir_entries(&dir).is_empty());
-    }
-
-    /// Files other than images: the whole new file or the old one, never a partial one.
-    #[test]
-    fn write_via_temp_renames_on_success_and_cleans_up_on_failure() {
-        let dir = scratch("via-temp");
-        let target = dir.join("dump.bin");
-        write_via_temp(&target, |temp| fs::write(temp, b"old")).unwrap();
-        let failed: std::io::Result<()> = write_via_temp(&target, |temp| {
-            fs::write(temp, b"half")?;
-            Err(std::io::Error::other("disk full"))
-        });
-        assert!(failed.is_err());
-        assert_eq!(fs::read(&target).unwrap(), b"old");
-        assert_eq!(dir_entries(&dir), vec!["dump.bin".to_string()]);
     }
 
     #[test]

@@ -9,11 +9,13 @@
 
 pub mod aa_map;
 pub mod accel;
+pub mod atomic_write;
 pub mod bench;
 pub mod cli;
 pub mod constants;
 pub mod cpu;
 pub mod diff;
+pub mod display_path;
 pub mod farm;
 pub mod film;
 pub mod gpu;

@@ -224,6 +224,17 @@ fn main() -> ExitCode {
             return ExitCode::from(5);
         }
     }
+    if matches!(
+        cli.command,
+        Command::Render(_) | Command::Bench(_) | Command::View(_)
+    ) {
+        // A bad cache setting is the command line's mistake (exit code 2), found before
+        // anything runs rather than when the first GPU pipeline is compiled.
+        if let Err(e) = glint::gpu::disk_cache::check_switch() {
+            eprintln!("glint: error: {e}");
+            return ExitCode::from(2);
+        }
+    }
     let result = match cli.command {
         Command::Render(args) => render(args),
         Command::Diff { a, b, heatmap } => {
@@ -236,7 +247,7 @@ fn main() -> ExitCode {
         }
         Command::Assemble(args) => {
             glint::farm::assemble::assemble(&args.tiles, &args.output, args.memory_budget())
-                .map(|()| eprintln!("glint: wrote {}", args.output.display()))
+                .map(|()| eprintln!("glint: wrote {}", glint::display_path::shown(&args.output)))
                 .map_err(|e| (e.to_string(), e.exit_code()))
         }
         Command::View(args) => glint::view::run(&args),
@@ -375,12 +386,12 @@ fn render_farm(
         if image.skipped {
             eprintln!(
                 "glint: kept {} ({part}: written already with this digest)",
-                image.output.display()
+                glint::display_path::shown(&image.output)
             );
         } else {
             eprintln!(
                 "glint: wrote {} ({part}, {:.2} s on the {})",
-                image.output.display(),
+                glint::display_path::shown(&image.output),
                 image.render_time.as_secs_f64(),
                 image.tracer
             );
@@ -454,7 +465,7 @@ fn report_image(
     if image.view == DebugView::AaSamples {
         eprintln!(
             "glint: wrote {} (adaptive AA leaf squares per pixel, {}×{}, decided on the {} in {:.2} s)",
-            image.output.display(),
+            glint::display_path::shown(&image.output),
             image.film.width,
             image.film.height,
             if image.adapter.is_some() { "GPU" } else { "CPU" },
@@ -464,7 +475,7 @@ fn report_image(
     }
     eprintln!(
         "glint: wrote {} ({}×{}, {:.2} s on the {})",
-        image.output.display(),
+        glint::display_path::shown(&image.output),
         image.film.width,
         image.film.height,
         image.render_time.as_secs_f64(),

@@ -142,6 +142,7 @@ impl RunError {
         match self {
             RunError::Scene(_) => 3,
             RunError::Output(_) | RunError::OutputAt { .. } => 4,
+            RunError::Gpu(crate::gpu::GpuError::Setting { .. }) => 2,
             RunError::Gpu(_) => 5,
             RunError::Usage(_) | RunError::Flag(_) => 2,
         }

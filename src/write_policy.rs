@@ -126,8 +126,14 @@ fn check_replaceable(path: &Path) -> Result<(), String> {
         return Err("it exists and is read-only".into());
     }
     let mut head = [0u8; 8];
-    let n = std::fs::File::open(path)
-        .and_then(|mut f| f.read(&mut head))
+    // Opened as every reader opens (never blocking: the file may have been replaced by
+    // a FIFO since it was looked at).
+    let (mut file, _) = crate::scene::files::open_checked(path, u64::MAX).map_err(|r| match r {
+        crate::scene::files::Refusal::Io(e) => format!("it exists and cannot be examined: {e}"),
+        _ => "it exists and is not a regular file".to_string(),
+    })?;
+    let n = file
+        .read(&mut head)
         .map_err(|e| format!("it exists and cannot be examined: {e}"))?;
     if !IMAGE_MAGICS.iter().any(|m| head[..n].starts_with(m)) {
         return Err(

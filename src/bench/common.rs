@@ -13,11 +13,11 @@ pub struct BenchArgs {
     /// The CS488 corpus (macho-cows.lua is taken from its a4-2021plus folder).
     #[arg(long, default_value = "scenes/cs488")]
     pub cs488: PathBuf,
-    /// Largest N of the random-triangle sweep (powers of ten from 10³).
-    #[arg(long, default_value_t = 1_000_000)]
+    /// Largest N of the random-triangle sweep (powers of ten from 10³; at most 10⁸).
+    #[arg(long, default_value_t = 1_000_000, value_parser = triangle_count)]
     pub max_triangles: usize,
-    /// Rays per random-triangle measurement.
-    #[arg(long, default_value_t = 200_000)]
+    /// Rays per random-triangle measurement (1 to 10⁸).
+    #[arg(long, default_value_t = 200_000, value_parser = ray_count)]
     pub rays: usize,
     /// Timed repetitions of each measurement (the fastest is reported).
     #[arg(long, default_value_t = 3)]
@@ -64,8 +64,9 @@ pub struct BenchArgs {
     /// --sweep: no GPU column.
     #[arg(long)]
     pub cpu_only: bool,
-    /// --sweep: seconds the GPU column may take in all (compile runs included).
-    #[arg(long, default_value_t = 120.0)]
+    /// --sweep: seconds the GPU column may take in all (compile runs included; more than
+    /// 0, at most a week).
+    #[arg(long, default_value_t = 120.0, value_parser = budget_seconds)]
     pub gpu_budget: f64,
     /// --sweep: where the error-against-time plot (SVG) goes.
     #[arg(long, default_value = "error-vs-time.svg")]
@@ -92,6 +93,43 @@ pub struct BenchArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub threads: Option<u32>,
+}
+
+/// Most triangles the random-triangle sweep may build (about 10 GB with its grid): a
+/// larger `--max-triangles` is a usage error, not an allocation that aborts.
+pub const MAX_SWEEP_TRIANGLES: usize = 100_000_000;
+/// Most rays a random-triangle measurement may cast (3.2 GB of rays and hits).
+pub const MAX_BENCH_RAYS: usize = 100_000_000;
+/// Longest `--gpu-budget`, in seconds (a week).
+pub const MAX_GPU_BUDGET_SECONDS: f64 = 604_800.0;
+
+/// `--max-triangles`: a whole number from 1 to [`MAX_SWEEP_TRIANGLES`].
+fn triangle_count(text: &str) -> Result<usize, String> {
+    whole_number_in(text, 1, MAX_SWEEP_TRIANGLES)
+}
+
+/// `--rays`: a whole number from 1 (no rays would time nothing, and print inf/NaN
+/// rates) to [`MAX_BENCH_RAYS`].
+fn ray_count(text: &str) -> Result<usize, String> {
+    whole_number_in(text, 1, MAX_BENCH_RAYS)
+}
+
+fn whole_number_in(text: &str, low: usize, high: usize) -> Result<usize, String> {
+    match text.parse::<u128>() {
+        Ok(n) if (low as u128..=high as u128).contains(&n) => Ok(n as usize),
+        _ => Err(format!("expected a whole number from {low} to {high}")),
+    }
+}
+
+/// `--gpu-budget`: seconds, finite and positive, at most [`MAX_GPU_BUDGET_SECONDS`]
+/// (NaN, infinity or a negative time would reach `Duration::from_secs_f64`, which panics).
+fn budget_seconds(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(s) if s > 0.0 && s <= MAX_GPU_BUDGET_SECONDS => Ok(s),
+        _ => Err(format!(
+            "expected seconds, more than 0 and at most {MAX_GPU_BUDGET_SECONDS}"
+        )),
+    }
 }
 
 impl BenchArgs {

@@ -57,21 +57,21 @@ pub fn write_trace_dump(
     occluded: &[bool],
 ) -> anyhow::Result<()> {
     check_dumpable(scene)?;
-    crate::image_io::write_via_temp(path, |temp| {
-        write_to(temp, scene, primary, hits, shadow, occluded)
+    crate::image_io::write_via_temp(path, |file| {
+        write_to(file, scene, primary, hits, shadow, occluded)
     })
     .map_err(|e| e.context(format!("cannot write {}", path.display())))
 }
 
 fn write_to(
-    temp: &Path,
+    file: &mut std::fs::File,
     scene: &PackedScene,
     primary: &[Ray],
     hits: &[Hit],
     shadow: &[ShadowRay],
     occluded: &[bool],
 ) -> anyhow::Result<()> {
-    let mut out = std::io::BufWriter::new(std::fs::File::create(temp)?);
+    let mut out = std::io::BufWriter::new(file);
     let count = |n: usize| u32::try_from(n).map_err(|_| anyhow::anyhow!("{n} is over 2^32"));
     let instances = &scene.instances[..scene.globals.num_instances as usize];
     let (meshes, others): (Vec<_>, Vec<_>) = instances.iter().partition(|i| i.kind == KIND_MESH);

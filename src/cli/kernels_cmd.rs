@@ -142,6 +142,11 @@ pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
     if let Some(message) = entry_missing_from_variant(args) {
         return Err((message, 2));
     }
+    // A module of one's own that cannot be read, or that naga could not take, is a bad
+    // argument, found before any device is opened.
+    for file in &args.wgsl {
+        collect::read_wgsl(file).map_err(|e| (e, 2))?;
+    }
     let waves = if args.waves.is_empty() {
         vec![Wave::Required(64), Wave::Required(32)]
     } else {

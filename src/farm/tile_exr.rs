@@ -10,8 +10,13 @@ use std::collections::HashMap;
 use std::io::Cursor;
 use std::path::Path;
 
-/// Writes `film` with the text attributes `record` to `temp` (a fresh file).
-pub fn write_exr(film: &Film, record: &[(&str, String)], temp: &Path) -> Result<(), String> {
+/// Writes `film` with the text attributes `record` into `file` (a fresh temporary file,
+/// which the caller syncs).
+pub fn write_exr(
+    film: &Film,
+    record: &[(&str, String)],
+    file: &mut std::fs::File,
+) -> Result<(), String> {
     let mut attributes = LayerAttributes::named("glint tile");
     for (key, value) in record {
         attributes.other.insert(
@@ -19,10 +24,10 @@ pub fn write_exr(film: &Film, record: &[(&str, String)], temp: &Path) -> Result<
             AttributeValue::Text(Text::from(value.as_str())),
         );
     }
-    let mut out = std::io::BufWriter::new(std::fs::File::create(temp).map_err(|e| e.to_string())?);
+    use std::io::Write;
+    let mut out = std::io::BufWriter::new(file);
     crate::image_io::write_exr_layer(film, attributes, &mut out).map_err(|e| e.to_string())?;
-    let file = out.into_inner().map_err(|e| e.error().to_string())?;
-    file.sync_all().map_err(|e| e.to_string())
+    out.flush().map_err(|e| e.to_string())
 }
 
 /// An EXR layer's text attributes (key to text).

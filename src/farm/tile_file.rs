@@ -114,11 +114,11 @@ pub fn write_tile(film: &Film, meta: &TileMeta, path: &Path) -> Result<(), TileF
         TileFormat::Exr => tile_digest(&pairs, TilePixels::Float(&film.pixels)),
     };
     pairs.push((KEY_PIXELS, pixel_digest));
-    let result = write_via_temp(path, |temp| -> Result<(), std::io::Error> {
+    let result = write_via_temp(path, |file| -> Result<(), std::io::Error> {
         match format {
-            TileFormat::Png => write_png(film, &pairs, temp),
+            TileFormat::Png => write_png(film, &pairs, file),
             TileFormat::Exr => {
-                super::tile_exr::write_exr(film, &pairs, temp).map_err(std::io::Error::other)
+                super::tile_exr::write_exr(film, &pairs, file).map_err(std::io::Error::other)
             }
         }
     });
@@ -128,10 +128,9 @@ pub fn write_tile(film: &Film, meta: &TileMeta, path: &Path) -> Result<(), TileF
     })
 }
 
-fn write_png(film: &Film, pairs: &[(&str, String)], temp: &Path) -> Result<(), std::io::Error> {
+fn write_png(film: &Film, pairs: &[(&str, String)], file: &mut File) -> Result<(), std::io::Error> {
     let encode = |e: png::EncodingError| std::io::Error::other(e.to_string());
     let rgb = film.to_rgb8();
-    let file = File::create(temp)?;
     let mut encoder = png::Encoder::new(BufWriter::new(file), film.width, film.height);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
@@ -142,7 +141,6 @@ fn write_png(film: &Film, pairs: &[(&str, String)], temp: &Path) -> Result<(), s
     }
     let mut writer = encoder.write_header().map_err(encode)?;
     writer.write_image_data(&rgb).map_err(encode)?;
-    writer.finish().map_err(encode)?;
-    // finish() flushed the BufWriter; sync by reopening, as the File is inside it.
-    File::open(temp)?.sync_all()
+    // finish() flushes the BufWriter; write_via_temp syncs the file.
+    writer.finish().map_err(encode)
 }

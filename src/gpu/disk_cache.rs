@@ -51,6 +51,11 @@ pub enum Rejection {
     Foreign,
     /// It exists but could not be read.
     Unreadable,
+    /// A FIFO, device, socket or folder (or a link to one): never opened for reading
+    /// in a way that could block or never end.
+    NotAFile,
+    /// Larger than any cache file ([`MAX_FILE_BYTES`]): not read.
+    TooBig,
 }
 
 impl std::fmt::Display for Rejection {
@@ -61,6 +66,8 @@ impl std::fmt::Display for Rejection {
             Rejection::Corrupt => "corrupt (checksum mismatch)",
             Rejection::Foreign => "made for another adapter, driver or kernel",
             Rejection::Unreadable => "unreadable",
+            Rejection::NotAFile => "not a regular file",
+            Rejection::TooBig => "larger than any pipeline cache file",
         })
     }
 }
@@ -138,6 +145,21 @@ fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
+/// Whether [`CACHE_SWITCH_VAR`] holds a value glint takes (unset, `on` or `off`): the
+/// command line checks it before anything runs, so that a bad value is a usage error
+/// (exit code 2) and not a failed render.
+pub fn check_switch() -> Result<(), GpuError> {
+    let switch = std::env::var_os(CACHE_SWITCH_VAR).unwrap_or_default();
+    match switch.to_str() {
+        Some("" | "on" | "off") => Ok(()),
+        _ => Err(GpuError::Setting {
+            var: CACHE_SWITCH_VAR,
+            value: switch.to_string_lossy().into_owned(),
+            expected: "on or off",
+        }),
+    }
+}
+
 impl DiskCache {
     /// No cache: nothing read or written.
     pub fn off() -> DiskCache {
@@ -158,19 +180,15 @@ impl DiskCache {
     /// The cache the environment asks for ([`CACHE_SWITCH_VAR`], [`default_dir`]); a
     /// value of the switch other than `on` or `off` is an error naming it.
     pub fn from_env(info: &wgpu::AdapterInfo) -> Result<DiskCache, GpuError> {
+        check_switch()?;
         let switch = std::env::var_os(CACHE_SWITCH_VAR).unwrap_or_default();
-        match switch.to_str() {
-            Some("off") => Ok(DiskCache::off()),
-            Some("" | "on") => Ok(match default_dir() {
-                Some(dir) => DiskCache::at(dir, info),
-                None => DiskCache::off(),
-            }),
-            _ => Err(GpuError::Setting {
-                var: CACHE_SWITCH_VAR,
-                value: switch.to_string_lossy().into_owned(),
-                expected: "on or off",
-            }),
+        if switch == "off" {
+            return Ok(DiskCache::off());
         }
+        Ok(match default_dir() {
+            Some(dir) => DiskCache::at(dir, info),
+            None => DiskCache::off(),
+        })
     }
 
     /// The folder, None when off.
@@ -210,13 +228,10 @@ impl DiskCache {
         let key = self.key(source, kernel, entry);
         let name = hex(&Sha256::digest(key.as_bytes())[..16]);
         let path = dir.join(format!("{}-{name}.bin", entry.name()));
-        let (payload, state) = match std::fs::read(&path) {
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => (None, DiskOutcome::Written),
-            Err(_) => (None, DiskOutcome::Rejected(Rejection::Unreadable)),
-            Ok(bytes) => match parse(&bytes, &key) {
-                Ok(payload) => (Some(payload.to_vec()), DiskOutcome::Reused),
-                Err(why) => (None, DiskOutcome::Rejected(why)),
-            },
+        let (payload, state) = match read_file(&path, &key) {
+            Ok(None) => (None, DiskOutcome::Written),
+            Ok(Some(payload)) => (Some(payload), DiskOutcome::Reused),
+            Err(why) => (None, DiskOutcome::Rejected(why)),
         };
         if let DiskOutcome::Rejected(why) = state {
             note_once(|| {
@@ -328,16 +343,10 @@ pub fn parse<'a>(bytes: &'a [u8], key: &str) -> Result<&'a [u8], Rejection> {
             Rejection::NotACacheFile
         });
     }
-    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap_or([0; 4]));
-    if bytes[..8] != MAGIC || word(8) != FORMAT_VERSION {
-        return Err(Rejection::NotACacheFile);
-    }
-    let key_len = word(12) as u64;
-    let payload_len = u64::from_le_bytes(bytes[16..24].try_into().unwrap_or([0; 8]));
-    let total = (HEADER_LEN as u64)
-        .checked_add(key_len)
-        .and_then(|n| n.checked_add(payload_len))
-        .ok_or(Rejection::Corrupt)?;
+    let total = header_total(&bytes[..HEADER_LEN])?;
+    let key_len = u64::from(u32::from_le_bytes(
+        bytes[12..16].try_into().unwrap_or([0; 4]),
+    ));
     let len = bytes.len() as u64;
     if len < total {
         return Err(Rejection::Truncated);
@@ -356,13 +365,72 @@ pub fn parse<'a>(bytes: &'a [u8], key: &str) -> Result<&'a [u8], Rejection> {
     Ok(payload)
 }
 
+/// The payload of the cache file at `path` for `key` (None: there is none), read as
+/// every reader of glint reads ([`crate::scene::files::open_checked`]): a FIFO, device
+/// or link to one, or a file over [`MAX_FILE_BYTES`], is refused without blocking or
+/// reading it; the header is read and checked against the file's size before the rest,
+/// so a large file that is not a cache file costs its first bytes only.
+pub fn read_file(path: &Path, key: &str) -> Result<Option<Vec<u8>>, Rejection> {
+    use crate::scene::files::{open_checked, Refusal};
+    use std::io::Read;
+    let (file, len) = match open_checked(path, MAX_FILE_BYTES) {
+        Ok(opened) => opened,
+        Err(Refusal::Io(e)) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(Refusal::Io(_)) => return Err(Rejection::Unreadable),
+        Err(Refusal::NotRegular) => return Err(Rejection::NotAFile),
+        Err(Refusal::TooBig(_)) => return Err(Rejection::TooBig),
+    };
+    let mut bytes = Vec::new();
+    let mut reader = file.take(MAX_FILE_BYTES + 1);
+    (&mut reader)
+        .take(HEADER_LEN as u64)
+        .read_to_end(&mut bytes)
+        .map_err(|_| Rejection::Unreadable)?;
+    if bytes.len() == HEADER_LEN {
+        // The lengths the header claims against the file's: nothing more is read from
+        // a file that cannot be whole.
+        let claimed = header_total(&bytes)?;
+        if claimed != len {
+            return Err(if claimed > len {
+                Rejection::Truncated
+            } else {
+                Rejection::Corrupt
+            });
+        }
+        reader
+            .read_to_end(&mut bytes)
+            .map_err(|_| Rejection::Unreadable)?;
+    }
+    parse(&bytes, key).map(|payload| Some(payload.to_vec()))
+}
+
+/// Largest cache file read: a driver's data for one pipeline is kilobytes to a few
+/// megabytes.
+pub const MAX_FILE_BYTES: u64 = 64 << 20;
+
+/// The whole length a file's header claims (header, key and payload), if the header is
+/// a glint cache file's of this format.
+fn header_total(header: &[u8]) -> Result<u64, Rejection> {
+    let word = |at: usize| u32::from_le_bytes(header[at..at + 4].try_into().unwrap_or([0; 4]));
+    if header[..8] != MAGIC || word(8) != FORMAT_VERSION {
+        return Err(Rejection::NotACacheFile);
+    }
+    let key_len = u64::from(word(12));
+    let payload_len = u64::from_le_bytes(header[16..24].try_into().unwrap_or([0; 8]));
+    (HEADER_LEN as u64)
+        .checked_add(key_len)
+        .and_then(|n| n.checked_add(payload_len))
+        .ok_or(Rejection::Corrupt)
+}
+
 /// Writes the file whole under a temporary name and renames it over `path`.
 fn write_file(path: &Path, key: &str, payload: &[u8]) -> std::io::Result<()> {
+    use std::io::Write;
     if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir)?;
+        crate::atomic_write::create_dir_all_clearly(dir)?;
     }
     let bytes = encode(key, payload);
-    crate::image_io::write_via_temp(path, |temp| std::fs::write(temp, &bytes))
+    crate::atomic_write::write_via_temp(path, |file| file.write_all(&bytes))
 }
 
 #[cfg(test)]
@@ -400,6 +468,48 @@ mod tests {
         longer.push(0);
         assert_eq!(parse(&longer, KEY), Err(Rejection::Corrupt));
         assert_eq!(parse(b"PNG....", KEY), Err(Rejection::NotACacheFile));
+    }
+
+    /// Files that are not what they seem are refused without blocking, and without
+    /// reading more than a header of a file that cannot be whole.
+    #[test]
+    fn cache_files_are_read_as_they_really_are() {
+        let dir = crate::testing::scratch::temp_dir("cache-files");
+        let path = |name: &str| dir.join(name);
+        assert_eq!(read_file(&path("missing.bin"), KEY), Ok(None));
+        std::fs::write(path("good.bin"), encode(KEY, b"driver data")).unwrap();
+        assert_eq!(
+            read_file(&path("good.bin"), KEY),
+            Ok(Some(b"driver data".to_vec()))
+        );
+        let fifo = std::ffi::CString::new(path("fifo.bin").to_str().unwrap()).unwrap();
+        // SAFETY: a valid NUL-terminated path.
+        assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o600) }, 0);
+        assert_eq!(read_file(&path("fifo.bin"), KEY), Err(Rejection::NotAFile));
+        std::os::unix::fs::symlink("/dev/zero", path("zero.bin")).unwrap();
+        assert_eq!(read_file(&path("zero.bin"), KEY), Err(Rejection::NotAFile));
+        // Sparse: 2 GiB, and 60 MiB whose header claims 40 bytes of key and payload.
+        let sized = |name: &str, len: u64, head: &[u8]| {
+            std::fs::write(path(name), head).unwrap();
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(path(name))
+                .unwrap();
+            file.set_len(len).unwrap();
+        };
+        sized("huge.bin", 2 << 30, b"");
+        assert_eq!(read_file(&path("huge.bin"), KEY), Err(Rejection::TooBig));
+        sized("long.bin", 60 << 20, &encode(KEY, b"driver data"));
+        assert_eq!(read_file(&path("long.bin"), KEY), Err(Rejection::Corrupt));
+        sized(
+            "other.bin",
+            60 << 20,
+            b"not a cache file at all, just bytes, many of them",
+        );
+        assert_eq!(
+            read_file(&path("other.bin"), KEY),
+            Err(Rejection::NotACacheFile)
+        );
     }
 
     #[test]

@@ -22,7 +22,7 @@ pub struct KernelDump {
 impl KernelDump {
     /// A dump into `dir`, created if missing.
     pub fn new(dir: &Path) -> Result<KernelDump, GpuError> {
-        std::fs::create_dir_all(dir).map_err(|e| GpuError::Dump {
+        crate::atomic_write::create_dir_all_clearly(dir).map_err(|e| GpuError::Dump {
             path: dir.display().to_string(),
             message: e.to_string(),
         })?;
@@ -44,19 +44,15 @@ impl KernelDump {
     }
 }
 
-/// Writes `bytes` to `path` through a temporary file beside it, so that a failed write
-/// leaves no half-written kernel.
+/// Writes `bytes` to `path` through a temporary file beside it
+/// ([`crate::atomic_write`]), so that a failed write leaves no half-written kernel.
 fn write_whole(path: &Path, bytes: &[u8]) -> Result<(), GpuError> {
     let fail = |e: std::io::Error| GpuError::Dump {
         path: path.display().to_string(),
         message: e.to_string(),
     };
-    let temp = path.with_extension("partial");
-    std::fs::write(&temp, bytes).map_err(fail)?;
-    std::fs::rename(&temp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        fail(e)
-    })
+    use std::io::Write;
+    crate::atomic_write::write_via_temp_with(path, fail, |file| file.write_all(bytes).map_err(fail))
 }
 
 /// Writes one kernel as `STEM.wgsl` and `STEM.spv` in `dir`.

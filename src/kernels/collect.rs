@@ -129,7 +129,7 @@ impl KernelSet {
         kernel: KernelConfig,
         target: SpirvTarget,
     ) -> Result<(), String> {
-        let wgsl = std::fs::read_to_string(file).map_err(|e| format!("{}: {e}", file.display()))?;
+        let wgsl = read_wgsl(file)?;
         let name = scene_name(file);
         for &entry in entries.unwrap_or(&[Entry::Render]) {
             self.push(
@@ -200,14 +200,30 @@ impl KernelSet {
     }
 }
 
+/// A WGSL module of one's own, read as every file glint reads (regular files only, at
+/// most [`super::wgsl_bounds::MAX_WGSL_BYTES`]) and held to
+/// [`super::wgsl_bounds::check_bounds`] before naga sees it.
+pub fn read_wgsl(file: &Path) -> Result<String, String> {
+    use super::wgsl_bounds::{check_bounds, MAX_WGSL_BYTES};
+    let shown = crate::display_path::shown(file);
+    let bytes = crate::scene::files::read_regular(file, "WGSL module", MAX_WGSL_BYTES)?;
+    let wgsl = String::from_utf8(bytes).map_err(|_| format!("{shown}: not UTF-8 text"))?;
+    check_bounds(&wgsl).map_err(|e| format!("{shown}:{e}"))?;
+    Ok(wgsl)
+}
+
 /// A scene as the tables name it: its path as given.
 fn scene_name(scene: &Path) -> String {
     scene.display().to_string()
 }
 
 /// Every scene script under `dir` (recursively, `.lua` files that call `gr.render`
-/// somewhere in their text), sorted.
+/// somewhere in their text), sorted. Symbolic links to folders are not followed (a link
+/// loop would never end); a `.lua` entry is read as a scene is
+/// ([`crate::scene::files::read_regular`]: a FIFO, a device or a link to one is
+/// skipped without blocking, and at most [`crate::scene::files::MAX_FILE_BYTES`]).
 pub fn scenes_under(dir: &Path) -> Vec<PathBuf> {
+    use crate::scene::files::{read_regular, MAX_FILE_BYTES};
     let mut found = Vec::new();
     let mut stack = vec![dir.to_path_buf()];
     while let Some(d) = stack.pop() {
@@ -216,10 +232,12 @@ pub fn scenes_under(dir: &Path) -> Vec<PathBuf> {
         };
         for e in read.flatten() {
             let p = e.path();
-            if p.is_dir() {
+            // The entry itself, not what a link points at.
+            if e.file_type().is_ok_and(|t| t.is_dir()) {
                 stack.push(p);
             } else if p.extension().is_some_and(|x| x == "lua")
-                && std::fs::read_to_string(&p).is_ok_and(|t| t.contains("gr.render"))
+                && read_regular(&p, "scene", MAX_FILE_BYTES)
+                    .is_ok_and(|t| t.windows(9).any(|w| w == b"gr.render"))
             {
                 found.push(p);
             }

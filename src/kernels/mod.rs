@@ -12,6 +12,7 @@ pub mod occupancy;
 pub mod report;
 pub mod stats;
 pub mod vulkan;
+pub mod wgsl_bounds;
 
 use collect::KernelSet;
 use occupancy::Family;
@@ -151,14 +152,19 @@ pub fn measure(
 /// Writes each distinct kernel as `ENTRY-DIGEST8.spv` and `.wgsl` under `dir` (what
 /// `--spirv-dir` asks for, to feed other tools).
 pub fn write_kernels(set: &KernelSet, dir: &Path) -> Result<(), String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    use std::io::Write;
+    crate::atomic_write::create_dir_all_clearly(dir)
+        .map_err(|e| format!("{}: {e}", dir.display()))?;
+    // Each file whole or not at all, through an exclusive temporary file.
+    let write = |path: &Path, bytes: &[u8]| {
+        crate::atomic_write::write_via_temp(path, |file| file.write_all(bytes))
+            .map_err(|e| format!("{}: {e}", path.display()))
+    };
     for k in &set.kernels {
         let stem = format!("{}-{}", k.entry.name(), &k.digest[..8]);
-        let spv = dir.join(format!("{stem}.spv"));
-        std::fs::write(&spv, crate::gpu::spirv::spirv_bytes(&k.spirv))
-            .map_err(|e| format!("{}: {e}", spv.display()))?;
-        let wgsl = dir.join(format!("{stem}.wgsl"));
-        std::fs::write(&wgsl, &k.wgsl).map_err(|e| format!("{}: {e}", wgsl.display()))?;
+        let spirv = crate::gpu::spirv::spirv_bytes(&k.spirv);
+        write(&dir.join(format!("{stem}.spv")), &spirv)?;
+        write(&dir.join(format!("{stem}.wgsl")), k.wgsl.as_bytes())?;
     }
     Ok(())
 }

@@ -11,6 +11,8 @@ use std::io::Read;
 use std::os::unix::fs::OpenOptionsExt;
 use std::path::{Path, PathBuf};
 
+use crate::display_path::shown;
+
 /// Largest file a scene may read (a mesh, texture or module), in bytes.
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
@@ -50,6 +52,13 @@ impl ReadPolicy {
         }
     }
 
+    /// This policy and the folder `dir` (a prelude reading its own folder's modules).
+    pub fn with_root(&self, dir: &Path) -> ReadPolicy {
+        let mut wider = self.clone();
+        wider.roots.extend(dir.canonicalize().ok());
+        wider
+    }
+
     /// Whether `path` lies inside a folder the scene may read (whether or not it exists).
     pub fn allows(&self, path: &Path) -> bool {
         let resolved = resolve(path);
@@ -62,12 +71,12 @@ impl ReadPolicy {
             // Inside: now a missing file may be reported as such.
             return path
                 .canonicalize()
-                .map_err(|e| format!("cannot read {what} '{}': {e}", path.display()));
+                .map_err(|e| format!("cannot read {what} '{}': {e}", shown(path)));
         }
-        let roots: Vec<String> = self.roots.iter().map(|r| r.display().to_string()).collect();
+        let roots: Vec<String> = self.roots.iter().map(|r| shown(r)).collect();
         Err(format!(
             "cannot read {what} '{}': it is outside the folders this scene may read ({}); {} allows another folder",
-            path.display(),
+            shown(path),
             roots.join(", "),
             self.flag
         ))
@@ -99,32 +108,51 @@ fn resolve(path: &Path) -> PathBuf {
     out
 }
 
-/// Opens `path` for reading without blocking on a FIFO, and checks that it is a regular
-/// file of at most `cap` bytes. Returns the file and its size.
-pub fn open_regular(path: &Path, what: &str, cap: u64) -> Result<(File, u64), String> {
-    note_read(path);
-    let cannot = |e: std::io::Error| format!("cannot read {what} '{}': {e}", path.display());
-    // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer forever.
+/// Why [`open_checked`] refused a file.
+#[derive(Debug)]
+pub enum Refusal {
+    /// Opening or looking at it failed (missing, no permission, a symbolic link loop…).
+    Io(std::io::Error),
+    /// A FIFO, device, socket or folder.
+    NotRegular,
+    /// Larger than the cap (its size in bytes).
+    TooBig(u64),
+}
+
+/// Opens `path` for reading the way every reader of glint does: without blocking (a FIFO
+/// would otherwise wait for a writer forever; `O_NONBLOCK`, and `O_NOCTTY` so that a
+/// terminal never becomes glint's), then looks at what the opened handle is (`fstat`,
+/// so that nothing can be swapped in between): a regular file of at most `cap` bytes.
+/// Returns the file and its size. Reads through it should stop at `cap` bytes too (a
+/// file may grow): [`read_regular`] does.
+pub fn open_checked(path: &Path, cap: u64) -> Result<(File, u64), Refusal> {
     let file = OpenOptions::new()
         .read(true)
-        .custom_flags(libc::O_NONBLOCK)
+        .custom_flags(libc::O_NONBLOCK | libc::O_NOCTTY)
         .open(path)
-        .map_err(cannot)?;
-    let meta = file.metadata().map_err(cannot)?;
+        .map_err(Refusal::Io)?;
+    let meta = file.metadata().map_err(Refusal::Io)?;
     if !meta.is_file() {
-        return Err(format!(
-            "cannot read {what} '{}': not a regular file",
-            path.display()
-        ));
+        return Err(Refusal::NotRegular);
     }
     if meta.len() > cap {
-        return Err(format!(
-            "cannot read {what} '{}': it is {} bytes, over the limit of {cap} bytes",
-            path.display(),
-            meta.len()
-        ));
+        return Err(Refusal::TooBig(meta.len()));
     }
     Ok((file, meta.len()))
+}
+
+/// [`open_checked`] for a scene's reads (recorded for `glint view`'s reload), with the
+/// refusal said as a message naming `what` and the path.
+pub fn open_regular(path: &Path, what: &str, cap: u64) -> Result<(File, u64), String> {
+    note_read(path);
+    let shown = shown(path);
+    open_checked(path, cap).map_err(|refusal| match refusal {
+        Refusal::Io(e) => format!("cannot read {what} '{shown}': {e}"),
+        Refusal::NotRegular => format!("cannot read {what} '{shown}': not a regular file"),
+        Refusal::TooBig(len) => format!(
+            "cannot read {what} '{shown}': it is {len} bytes, over the limit of {cap} bytes"
+        ),
+    })
 }
 
 thread_local! {
@@ -137,9 +165,14 @@ thread_local! {
 fn note_read(path: &Path) {
     READ_LOG.with(|log| {
         if let Some(paths) = log.borrow_mut().as_mut() {
-            let path = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
-            if !paths.contains(&path) {
-                paths.push(path);
+            let canonical = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
+            // The path as given too where it differs (a symbolic link on the way): a
+            // link re-pointed at another file is a change to watch for.
+            let given = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+            for path in [canonical, given] {
+                if !paths.contains(&path) {
+                    paths.push(path);
+                }
             }
         }
     });
@@ -164,14 +197,14 @@ pub fn read_regular(path: &Path, what: &str, cap: u64) -> Result<Vec<u8>, String
     let mut bytes = Vec::new();
     bytes
         .try_reserve_exact(len as usize)
-        .map_err(|e| format!("cannot read {what} '{}': {e}", path.display()))?;
+        .map_err(|e| format!("cannot read {what} '{}': {e}", shown(path)))?;
     file.take(cap + 1)
         .read_to_end(&mut bytes)
-        .map_err(|e| format!("cannot read {what} '{}': {e}", path.display()))?;
+        .map_err(|e| format!("cannot read {what} '{}': {e}", shown(path)))?;
     if bytes.len() as u64 > cap {
         return Err(format!(
             "cannot read {what} '{}': it grew past the limit of {cap} bytes while being read",
-            path.display()
+            shown(path)
         ));
     }
     Ok(bytes)

@@ -70,11 +70,13 @@ impl Presenter {
             usage |= wgpu::TextureUsages::COPY_SRC;
         }
         let size = window.inner_size();
+        let limit = ctx.device.limits().max_texture_dimension_2d;
+        let (width, height) = surface_size(size.width, size.height, limit);
         let config = wgpu::SurfaceConfiguration {
             usage,
             format,
-            width: size.width.max(1),
-            height: size.height.max(1),
+            width,
+            height,
             present_mode: wgpu::PresentMode::Fifo,
             desired_maximum_frame_latency: 2,
             alpha_mode: caps
@@ -112,8 +114,8 @@ impl Presenter {
         if width == 0 || height == 0 {
             return;
         }
-        self.config.width = width;
-        self.config.height = height;
+        let limit = ctx.device.limits().max_texture_dimension_2d;
+        (self.config.width, self.config.height) = surface_size(width, height, limit);
         self.surface.configure(&ctx.device, &self.config);
     }
 
@@ -227,6 +229,20 @@ impl Presenter {
     }
 }
 
+/// The surface's size for a window of `width`×`height`: at least 1×1, and scaled down
+/// (keeping its shape) to fit the adapter's texture limit `limit`, which a window as
+/// wide as a large image can pass (wgpu panics on such a surface; the present pass
+/// scales the film to whatever size the surface has).
+pub fn surface_size(width: u32, height: u32, limit: u32) -> (u32, u32) {
+    let (width, height, limit) = (width.max(1), height.max(1), limit.max(1));
+    let longest = width.max(height);
+    if longest <= limit {
+        return (width, height);
+    }
+    let scale = |side: u32| (u64::from(side) * u64::from(limit) / u64::from(longest)).max(1) as u32;
+    (scale(width), scale(height))
+}
+
 /// A surface texture's copy on its way back.
 struct SurfaceCopy {
     buffer: wgpu::Buffer,
@@ -314,4 +330,18 @@ fn present_pipeline(
         cache: None,
     });
     (pipeline, layout)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::surface_size;
+
+    #[test]
+    fn a_surface_wider_than_the_texture_limit_is_scaled_to_fit() {
+        assert_eq!(surface_size(800, 600, 8192), (800, 600));
+        assert_eq!(surface_size(0, 0, 8192), (1, 1));
+        assert_eq!(surface_size(20_000, 10_000, 8192), (8192, 4096));
+        assert_eq!(surface_size(100, 65_536, 16_384), (25, 16_384));
+        assert_eq!(surface_size(1, 1_000_000, 8192), (1, 8192));
+    }
 }

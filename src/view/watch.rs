@@ -16,12 +16,15 @@ use std::time::{Duration, SystemTime};
 /// How often the watched files are looked at.
 pub const POLL_INTERVAL: Duration = Duration::from_millis(200);
 
-/// What is compared: modification time and size, or None for a missing file.
-type Stamp = Option<(SystemTime, u64)>;
+/// What is compared: modification time, size and which file it is (device and inode:
+/// a symbolic link re-pointed at another file of the same time and size is a change),
+/// or None for a missing file.
+type Stamp = Option<(SystemTime, u64, u64, u64)>;
 
 fn stamp(path: &PathBuf) -> Stamp {
+    use std::os::unix::fs::MetadataExt;
     let meta = std::fs::metadata(path).ok()?;
-    Some((meta.modified().ok()?, meta.len()))
+    Some((meta.modified().ok()?, meta.len(), meta.dev(), meta.ino()))
 }
 
 /// The watched files, shared with the watcher thread.
@@ -109,5 +112,37 @@ mod tests {
         assert!(list.changed(), "a file the run looked for appeared");
         std::fs::remove_file(&a).unwrap();
         assert!(list.changed());
+    }
+
+    /// A scene opened through a symbolic link, the link then pointed at another file of
+    /// the same size and time: the view reloads.
+    #[test]
+    fn a_symbolic_link_re_pointed_is_a_change() {
+        let dir = crate::testing::scratch::temp_dir("watch-link");
+        let (one, two, link) = (
+            dir.join("one.lua"),
+            dir.join("two.lua"),
+            dir.join("scene.lua"),
+        );
+        std::fs::write(&one, "x = 1").unwrap();
+        std::fs::write(&two, "x = 2").unwrap();
+        let time = std::fs::metadata(&one).unwrap().modified().unwrap();
+        std::fs::File::options()
+            .write(true)
+            .open(&two)
+            .unwrap()
+            .set_modified(time)
+            .unwrap();
+        std::os::unix::fs::symlink(&one, &link).unwrap();
+        let ((), reads) = crate::scene::files::record_reads(|| {
+            crate::scene::files::read_regular(&link, "scene", 100).unwrap();
+        });
+        let list = WatchList::default();
+        list.set(&reads);
+        assert!(!list.changed());
+        let new_link = dir.join("new-link");
+        std::os::unix::fs::symlink(&two, &new_link).unwrap();
+        std::fs::rename(&new_link, &link).unwrap();
+        assert!(list.changed(), "watching {reads:?}");
     }
 }

@@ -2312,3 +2312,478 @@ fn farm_renders_read_the_scene_as_a_bounded_regular_file() {
     assert_eq!(listing(&dir), vec!["big.lua", "fifo.lua"]);
     members.done();
 }
+
+// ---- Round three: files as they are, temp names, signals ----
+
+/// Runs glint as [`run_glint`] does (address-space cap, time bound, default SIGINT and
+/// SIGTERM), with `env` set, `HOME` a scratch folder unless `env` names it, and the
+/// cache variables of the caller's environment removed; `shell` (if any) runs first in
+/// the same process, which then becomes glint (`exec`, same pid: a planted name can
+/// hold glint's pid).
+fn run_glint_env(
+    args: &[&str],
+    dir: &Path,
+    env: &[(&str, &std::ffi::OsStr)],
+    shell: Option<&str>,
+    limit: Duration,
+    during: &mut dyn FnMut(i32) -> bool,
+) -> Ended {
+    let scratch_home = dir.with_extension("home");
+    std::fs::create_dir_all(&scratch_home).unwrap();
+    let err_path = dir.with_extension("stderr");
+    let mut command = match shell {
+        Some(script) => {
+            let mut c = Command::new("sh");
+            c.arg("-c")
+                .arg(format!("{script}\nexec \"$0\" \"$@\""))
+                .arg(env!("CARGO_BIN_EXE_glint"));
+            c
+        }
+        None => Command::new(env!("CARGO_BIN_EXE_glint")),
+    };
+    command
+        .args(args)
+        .current_dir(dir)
+        .env("HOME", &scratch_home)
+        .env_remove("GLINT_CACHE_DIR")
+        .env_remove("GLINT_PIPELINE_CACHE")
+        .env_remove("XDG_CACHE_HOME")
+        .envs(env.iter().copied())
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(std::fs::File::create(&err_path).unwrap());
+    // SAFETY: signal and setrlimit are async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(|| {
+            libc::signal(libc::SIGINT, libc::SIG_DFL);
+            libc::signal(libc::SIGTERM, libc::SIG_DFL);
+            let cap = libc::rlimit {
+                rlim_cur: ADDRESS_SPACE_BYTES,
+                rlim_max: ADDRESS_SPACE_BYTES,
+            };
+            libc::setrlimit(libc::RLIMIT_AS, &cap);
+            Ok(())
+        });
+    }
+    let pid = command.spawn().expect("glint starts").id() as i32;
+    let start = Instant::now();
+    let (mut status, mut hooked) = (0, true);
+    // SAFETY: plain libc calls on our own child; rusage is plain data.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    while unsafe { libc::wait4(pid, &mut status, libc::WNOHANG, &mut usage) } == 0 {
+        if start.elapsed() > limit {
+            unsafe { libc::kill(pid, libc::SIGKILL) };
+            unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
+            let stderr = std::fs::read_to_string(&err_path).unwrap_or_default();
+            panic!("glint {args:?} ran past {limit:?}; stderr:\n{stderr}");
+        }
+        if hooked {
+            hooked = during(pid);
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let exited = libc::WIFEXITED(status);
+    Ended {
+        code: exited.then(|| libc::WEXITSTATUS(status)),
+        signal: (!exited).then(|| libc::WTERMSIG(status)),
+        peak_mib: usage.ru_maxrss as u64 / 1024,
+        elapsed: start.elapsed(),
+        stderr: std::fs::read_to_string(&err_path).unwrap_or_default(),
+    }
+}
+
+/// Checks how a [`run_glint_env`] run ended: `code`, each needle, no panic, the peak.
+fn ended_as(tag: &str, ended: &Ended, code: i32, needles: &[&str], peak_mib: u64) {
+    let case = Case::new(tag, "", code, needles).within(30, peak_mib);
+    check_ended(&case, ended);
+}
+
+const SMALL_RENDER: &str = "root = gr.node('root')\ngr.render(root, 'out.png', 16, 16, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {}, {aa='none'})\n";
+
+/// A link planted at the temporary name glint would have used (`.NAME.tmp-PID-0`, the
+/// first write of the process) pointing at a victim file: glint must neither write
+/// through it nor rename it over the output, for a render, a tile, a crop and `-o`.
+#[test]
+fn temporary_files_cannot_be_hijacked_by_a_planted_link() {
+    for (tag, extra, output) in [
+        ("plant-render", vec![], "out.png"),
+        ("plant-tile", vec!["--tile", "0/2"], "out-tile-0-of-2.png"),
+        ("plant-crop", vec!["--crop", "0,8,0,8"], "out.png"),
+        ("plant-o", vec!["-o", "mine.exr"], "mine.exr"),
+    ] {
+        let (dir, _logs, _root) = case_dir(tag);
+        std::fs::write(dir.join("scene.lua"), SMALL_RENDER).unwrap();
+        std::fs::write(dir.join("victim.txt"), "precious").unwrap();
+        let planted = format!(".{output}.tmp-");
+        let shell = format!("ln -s victim.txt \"{planted}$$-0\"");
+        let mut args = vec!["render", "scene.lua", "--backend", "cpu"];
+        args.extend(extra);
+        let ended = run_glint_env(
+            &args,
+            &dir,
+            &[],
+            Some(&shell),
+            Duration::from_secs(30),
+            &mut |_| false,
+        );
+        ended_as(tag, &ended, 0, &[], BUDGET_MIB + OVERHEAD_MIB);
+        assert_eq!(
+            std::fs::read_to_string(dir.join("victim.txt")).unwrap(),
+            "precious",
+            "{tag}: written through the planted link"
+        );
+        let meta = std::fs::symlink_metadata(dir.join(output)).unwrap();
+        assert!(meta.is_file(), "{tag}: the output is not a regular file");
+        let names = listing(&dir);
+        let stray: Vec<_> = names.iter().filter(|n| n.contains(".tmp-")).collect();
+        assert_eq!(stray.len(), 1, "{tag}: only the planted link: {names:?}");
+        assert!(stray[0].starts_with(&planted), "{tag}: {names:?}");
+    }
+}
+
+/// SIGTERM (what Slurm sends at a time limit), SIGINT and SIGXFSZ while a `--tile` or
+/// `--crop` file is written remove its temporary file, as for a plain render.
+#[test]
+fn a_signal_during_a_tile_write_leaves_nothing_behind() {
+    const ATTEMPTS: usize = 5;
+    let cases = [
+        (libc::SIGTERM, "--tile", "0/2"),
+        (libc::SIGINT, "--crop", "0,4000,0,2000"),
+        (libc::SIGXFSZ, "--tile", "1/2"),
+    ];
+    for (sig, flag, value) in cases {
+        let mut interrupted = false;
+        for attempt in 0..ATTEMPTS {
+            let (dir, _logs, _root) = case_dir(&format!("tile-signal-{sig}-{attempt}"));
+            let scene = "root = gr.node('root')\ngr.render(root, 'big.png', 4000, 4000, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {}, {aa='none'})\n";
+            std::fs::write(dir.join("scene.lua"), scene).unwrap();
+            let args = ["render", "scene.lua", "--backend", "cpu", flag, value];
+            let ended = run_glint_env(
+                &args,
+                &dir,
+                &[],
+                None,
+                Duration::from_secs(120),
+                &mut |pid| {
+                    let temp = listing(&dir).iter().any(|n| n.contains(".tmp-"));
+                    if temp {
+                        // SAFETY: signalling our own child.
+                        unsafe { libc::kill(pid, sig) };
+                    }
+                    !temp
+                },
+            );
+            let names = listing(&dir);
+            assert!(
+                !names.iter().any(|n| n.contains(".tmp-")),
+                "signal {sig} during {flag} {value}: temporary file left: {names:?}; stderr:\n{}",
+                ended.stderr
+            );
+            if ended.signal == Some(sig) && names == ["scene.lua"] {
+                interrupted = true;
+                break;
+            }
+        }
+        assert!(
+            interrupted,
+            "signal {sig} never landed during a {flag} write"
+        );
+    }
+}
+
+/// Pipeline-cache files that are not what they seem (a FIFO, links to `/dev/zero` and
+/// to a FIFO, a 2 GiB sparse file, a 60 MiB one whose header cannot be whole) are
+/// refused without blocking or reading them, and the render goes on; a cache folder
+/// behind a dangling link is said as such; a bad `GLINT_PIPELINE_CACHE` is usage.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn pipeline_cache_files_are_opened_as_they_really_are() {
+    let (dir, _logs, _root) = case_dir("cache-files");
+    std::fs::write(dir.join("scene.lua"), SMALL_RENDER).unwrap();
+    let cache = dir.with_extension("cache");
+    let env = [("GLINT_CACHE_DIR", cache.as_os_str())];
+    let args = ["render", "scene.lua", "--backend", "gpu"];
+    let limit = Duration::from_secs(30);
+    let ended = run_glint_env(&args, &dir, &env, None, limit, &mut |_| false);
+    ended_as("cache-fill", &ended, 0, &[], BUDGET_MIB + OVERHEAD_MIB);
+    let files: Vec<PathBuf> = std::fs::read_dir(&cache)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert!(!files.is_empty(), "no cache file written");
+    let fifo = dir.with_extension("fifo");
+    mkfifo(&fifo);
+    let plant = |how: &str, file: &Path| {
+        std::fs::remove_file(file).unwrap();
+        match how {
+            "fifo" => mkfifo(file),
+            "zero" => std::os::unix::fs::symlink("/dev/zero", file).unwrap(),
+            "fifo-link" => std::os::unix::fs::symlink(&fifo, file).unwrap(),
+            sparse => {
+                let f = std::fs::File::create(file).unwrap();
+                let len = if sparse == "2GiB" { 2 << 30 } else { 60 << 20 };
+                use std::io::Write;
+                (&f).write_all(b"GLINTPC\n\x01\0\0\0\x10\0\0\0\x10\0\0\0\0\0\0\0")
+                    .unwrap();
+                f.set_len(len).unwrap();
+            }
+        }
+    };
+    for (how, needle) in [
+        ("fifo", "not a regular file"),
+        ("zero", "not a regular file"),
+        ("fifo-link", "not a regular file"),
+        ("2GiB", "larger than any pipeline cache file"),
+        ("60MiB", "corrupt"),
+    ] {
+        for file in &files {
+            plant(how, file);
+        }
+        let ended = run_glint_env(&args, &dir, &env, None, limit, &mut |_| false);
+        ended_as(
+            how,
+            &ended,
+            0,
+            &[needle, "it is rewritten"],
+            BUDGET_MIB + OVERHEAD_MIB,
+        );
+        assert!(
+            ended.elapsed < Duration::from_secs(20),
+            "{how}: {:?}",
+            ended.elapsed
+        );
+    }
+    // The cache folder behind a dangling link.
+    let dangling = dir.with_extension("dangling");
+    std::os::unix::fs::symlink(dir.with_extension("nowhere"), &dangling).unwrap();
+    let below = dangling.join("sub");
+    let env = [("GLINT_CACHE_DIR", below.as_os_str())];
+    let ended = run_glint_env(&args, &dir, &env, None, limit, &mut |_| false);
+    ended_as(
+        "cache-dangling",
+        &ended,
+        0,
+        &["is a symbolic link to nothing"],
+        512,
+    );
+    assert!(!ended.stderr.contains("os error 17"), "{}", ended.stderr);
+    // A value of the switch glint does not take: a usage error, before anything runs.
+    let env = [("GLINT_PIPELINE_CACHE", std::ffi::OsStr::new("maybe"))];
+    for command in [&args[..], &["bench", "--torus"][..]] {
+        let ended = run_glint_env(command, &dir, &env, None, limit, &mut |_| false);
+        ended_as(
+            "cache-switch",
+            &ended,
+            2,
+            &["GLINT_PIPELINE_CACHE=\"maybe\""],
+            512,
+        );
+    }
+    assert_eq!(listing(&dir), vec!["out.png", "scene.lua"]);
+}
+
+/// `glint kernels DIR` walks the folder without following a symbolic-link loop and
+/// without reading FIFOs or devices named `.lua`; `--wgsl` of a module naga would
+/// overflow its stack on is refused, naming its file and line.
+#[test]
+fn kernels_walks_folders_as_they_are_and_bounds_what_reaches_naga() {
+    let (dir, _logs, _root) = case_dir("kernels-dir");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(scenes.join("sub")).unwrap();
+    std::os::unix::fs::symlink("..", scenes.join("sub/loop")).unwrap();
+    std::os::unix::fs::symlink(&scenes, scenes.join("self")).unwrap();
+    mkfifo(&scenes.join("fifo.lua"));
+    std::os::unix::fs::symlink("/dev/zero", scenes.join("zero.lua")).unwrap();
+    let args = ["kernels", "scenes", "--family", "NAVI21", "--wave", "64"];
+    let limit = Duration::from_secs(30);
+    let ended = run_glint_env(&args, &dir, &[], None, limit, &mut |_| false);
+    // Nothing but links and special files: no scene scripts under it.
+    ended_as(
+        "kernels-dir",
+        &ended,
+        2,
+        &["no scene scripts under it"],
+        512,
+    );
+    let terms = vec!["x"; 20_000].join(" + ");
+    let module = format!(
+        "@compute @workgroup_size(1)\nfn main() {{\n  var x: f32 = 1.0;\n  let y = {terms};\n}}\n"
+    );
+    std::fs::write(dir.join("sum.wgsl"), module).unwrap();
+    let nested = format!(
+        "fn f() -> f32 {{ return {}1.0{}; }}\n",
+        "(".repeat(5000),
+        ")".repeat(5000)
+    );
+    std::fs::write(dir.join("nested.wgsl"), nested).unwrap();
+    for (file, needle) in [
+        ("sum.wgsl", "sum.wgsl:4: a statement with more than"),
+        ("nested.wgsl", "nested.wgsl:1: brackets nest deeper"),
+    ] {
+        let args = [
+            "kernels", "--wgsl", file, "--family", "NAVI21", "--wave", "64",
+        ];
+        let ended = run_glint_env(&args, &dir, &[], None, limit, &mut |_| false);
+        ended_as(file, &ended, 2, &[needle], 512);
+    }
+    mkfifo(&dir.join("fifo.wgsl"));
+    let args = ["kernels", "--wgsl", "fifo.wgsl", "--family", "NAVI21"];
+    let ended = run_glint_env(&args, &dir, &[], None, limit, &mut |_| false);
+    ended_as(
+        "fifo.wgsl",
+        &ended,
+        2,
+        &["fifo.wgsl", "not a regular file"],
+        512,
+    );
+}
+
+/// `--prelude ~/dialect.lua` runs the prelude (which may read its own folder's
+/// modules) but gives a downloaded scene nothing of the home folder.
+#[test]
+fn a_prelude_in_the_home_folder_does_not_open_it_to_the_scene() {
+    let (dir, _logs, _root) = case_dir("prelude-home");
+    let home = dir.join("home");
+    let downloads = home.join("downloads");
+    std::fs::create_dir_all(&downloads).unwrap();
+    std::fs::write(home.join("dialect.lua"), "require('helper')\n").unwrap();
+    std::fs::write(home.join("helper.lua"), "helper_ran = true\n").unwrap();
+    std::fs::write(
+        home.join("secret.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let scene = "assert(helper_ran)\ngr.mesh('m', '../secret.obj')\n";
+    std::fs::write(downloads.join("scene.lua"), scene).unwrap();
+    let prelude = home.join("dialect.lua");
+    let args = [
+        "render",
+        "scene.lua",
+        "--backend",
+        "cpu",
+        "--prelude",
+        prelude.to_str().unwrap(),
+    ];
+    let env = [("HOME", home.as_os_str())];
+    let ended = run_glint_env(
+        &args,
+        &downloads,
+        &env,
+        None,
+        Duration::from_secs(20),
+        &mut |_| false,
+    );
+    ended_as(
+        "prelude-home",
+        &ended,
+        3,
+        &["scene.lua:2:", "secret.obj", "outside the folders"],
+        BUDGET_MIB + OVERHEAD_MIB,
+    );
+    // A prelude beside the scene still opens its folder (the dialects' layout).
+    std::fs::copy(home.join("secret.obj"), downloads.join("mine.obj")).unwrap();
+    std::fs::write(downloads.join("scene.lua"), "gr.mesh('m', 'mine.obj')\n").unwrap();
+    let ended = run_glint_env(
+        &args,
+        &downloads,
+        &env,
+        None,
+        Duration::from_secs(20),
+        &mut |_| false,
+    );
+    ended_as(
+        "prelude-home-own",
+        &ended,
+        0,
+        &["never called gr.render"],
+        BUDGET_MIB + OVERHEAD_MIB,
+    );
+}
+
+/// `glint bench` flags that would panic or allocate without bound are usage errors.
+#[test]
+fn bench_flags_out_of_range_are_usage_errors() {
+    let (dir, _logs, _root) = case_dir("bench-flags");
+    for (flag, value) in [
+        ("--gpu-budget", "nan"),
+        ("--gpu-budget", "inf"),
+        ("--gpu-budget", "-5"),
+        ("--gpu-budget", "0"),
+        ("--max-triangles", "18446744073709551615"),
+        ("--max-triangles", "0"),
+        ("--rays", "0"),
+    ] {
+        let value = format!("{flag}={value}");
+        let args = ["bench", "--sweep", "--quick", "--cpu-only", &value];
+        let ended = run_glint_env(&args, &dir, &[], None, Duration::from_secs(20), &mut |_| {
+            false
+        });
+        ended_as(&value, &ended, 2, &[flag], 512);
+    }
+    assert!(listing(&dir).is_empty());
+}
+
+/// A file name that holds a newline or a terminal escape is printed escaped: it cannot
+/// forge a status line or recolour the terminal.
+#[test]
+fn printed_names_escape_control_characters() {
+    let (dir, _logs, _root) = case_dir("control-names");
+    std::fs::write(dir.join("scene.lua"), SMALL_RENDER).unwrap();
+    let name = "a\nglint: error: forged\x1b[31m.png";
+    let args = ["render", "scene.lua", "--backend", "cpu", "-o", name];
+    let ended = run_glint_env(&args, &dir, &[], None, Duration::from_secs(20), &mut |_| {
+        false
+    });
+    ended_as(
+        "control-names",
+        &ended,
+        0,
+        &["a\\nglint: error: forged\\u{1b}[31m.png"],
+        512,
+    );
+    assert!(!ended.stderr.contains('\x1b'), "{:?}", ended.stderr);
+    assert!(
+        !ended.stderr.lines().any(|l| l.starts_with("glint: error")),
+        "{:?}",
+        ended.stderr
+    );
+}
+
+/// A script nesting deeper than Lua's parser follows names its file and line (Lua says
+/// a bare "C stack overflow"), and a path too long to show whole keeps the reason.
+#[test]
+fn parse_overflows_and_long_paths_say_where_and_why() {
+    for (tag, line2) in [
+        (
+            "nest-parens",
+            format!("x = {}1{}", "(".repeat(300), ")".repeat(300)),
+        ),
+        (
+            "nest-tables",
+            format!("x = {}{}", "{".repeat(300), "}".repeat(300)),
+        ),
+        ("nest-concat", format!("x = 1{}", " .. 1".repeat(400))),
+    ] {
+        let scene = format!("x = 0\n{line2}\n");
+        check(Case::new(
+            tag,
+            &scene,
+            3,
+            &["scene.lua:2: the script nests too deeply"],
+        ));
+    }
+    let (dir, _logs, _root) = case_dir("long-path");
+    let long = format!("{}/scene.lua", vec!["d".repeat(200); 21].join("/"));
+    let args = ["render", long.as_str(), "--backend", "cpu"];
+    let ended = run_glint_env(&args, &dir, &[], None, Duration::from_secs(20), &mut |_| {
+        false
+    });
+    assert_ne!(ended.code, Some(0), "{}", ended.stderr);
+    assert!(!ended.stderr.contains("panicked"), "{}", ended.stderr);
+    assert!(ended.stderr.contains("d/scene.lua': "), "{}", ended.stderr);
+    assert!(
+        ended.stderr.contains("No such file or directory"),
+        "{}",
+        ended.stderr
+    );
+}

@@ -12,6 +12,7 @@
 //! is a scoped function.
 
 mod args;
+mod deep_nesting;
 mod gr;
 mod handle_types;
 mod handles;
@@ -331,7 +332,10 @@ pub fn run_scene_source(
             .load(source)
             .set_name(format!("@{chunk_name}"))
             .set_mode(ChunkMode::Text)
-            .into_function()?;
+            .into_function()
+            .map_err(|e| {
+                deep_nesting::locate(e, source.as_bytes(), chunk_name, config.memory_limit)
+            })?;
         run_main(&lua, main, &mut memory_at)
     });
 

@@ -51,11 +51,30 @@ pub(super) fn read_all(paths: &[PathBuf]) -> Result<Vec<Prelude>, SceneError> {
         .collect()
 }
 
-/// The folders the scene may read besides its own: `--allow-read` and the preludes'.
+/// The folders the scene may read besides its own: `--allow-read` and the preludes'
+/// that are not too wide ([`too_wide`]: such a prelude reads its own folder, for its
+/// modules, but the scene gains nothing from it).
 pub(super) fn readable(config: &ScriptConfig, preludes: &[Prelude]) -> Vec<PathBuf> {
+    let home = std::env::var_os("HOME").and_then(|h| Path::new(&h).canonicalize().ok());
+    let start = std::env::current_dir().and_then(|d| d.canonicalize()).ok();
     let mut folders = config.allow_read.clone();
-    folders.extend(preludes.iter().map(|p| p.folder.clone()));
+    folders.extend(
+        preludes
+            .iter()
+            .filter(|p| !too_wide(&p.folder, start.as_deref(), home.as_deref()))
+            .map(|p| p.folder.clone()),
+    );
     folders
+}
+
+/// Whether a prelude's (canonical) `folder` would open too much to a scene: the
+/// filesystem's root, the home folder `home` or a folder above it, or a folder above the
+/// start folder `start` (the rule the start folder follows: `--prelude ~/dialect.lua`
+/// must not make every file of the user readable to a downloaded scene).
+fn too_wide(folder: &Path, start: Option<&Path>, home: Option<&Path>) -> bool {
+    folder.parent().is_none()
+        || home.is_some_and(|home| home.starts_with(folder))
+        || start.is_some_and(|start| start.starts_with(folder) && start != folder)
 }
 
 /// Runs the preludes in order (each at most once), before the scene.
@@ -98,4 +117,29 @@ pub(super) fn adopt_module(lua: &Lua, chunk: &str, dir: &Path) {
     with_state(lua, |s| {
         s.module_dirs.insert(chunk.to_string(), dir.to_path_buf());
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::too_wide;
+    use std::path::Path;
+
+    #[test]
+    fn root_home_and_folders_above_the_start_are_too_wide_for_a_scene() {
+        let (start, home) = (Some(Path::new("/h/me/a4")), Some(Path::new("/h/me")));
+        assert!(too_wide(Path::new("/"), start, home), "root");
+        assert!(too_wide(Path::new("/h/me"), start, home), "home");
+        assert!(too_wide(Path::new("/h"), start, home), "above home");
+        let outside = (Some(Path::new("/srv/a4")), home);
+        assert!(
+            too_wide(Path::new("/srv"), outside.0, outside.1),
+            "above start"
+        );
+        assert!(
+            !too_wide(Path::new("/h/me/a4"), start, home),
+            "the start folder"
+        );
+        assert!(!too_wide(Path::new("/h/me/dialects"), start, home));
+        assert!(!too_wide(Path::new("/h/me/a4/dialects"), start, home));
+    }
 }

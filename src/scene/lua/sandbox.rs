@@ -306,10 +306,14 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     }
     let file = format!("{}.lua", name.replace('.', "/"));
     let found = with_state(lua, |s| match &prelude_dir {
-        // A prelude's modules are beside it.
+        // A prelude's modules are beside it: its folder is readable to it even where
+        // the scene may not read it (a prelude in the home folder).
         Some(dir) => {
             let path = dir.join(&file);
-            s.read_policy.check(&path, "module").map(|c| (path, c))
+            s.read_policy
+                .with_root(dir)
+                .check(&path, "module")
+                .map(|c| (path, c))
         }
         None => s.folders.find(&s.read_policy, &file, "module"),
     });
