@@ -8,7 +8,6 @@ use exr::meta::attribute::{AttributeValue, Text};
 use exr::prelude::LayerAttributes;
 use std::collections::HashMap;
 use std::io::Cursor;
-use std::path::Path;
 
 /// Writes `film` with the text attributes `record` into `file` (a fresh temporary file,
 /// which the caller syncs).
