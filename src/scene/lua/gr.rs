@@ -754,9 +754,12 @@ pub(super) fn render(
 pub(super) const RENDER_SIGNATURE: &str =
     "gr.render(root, file, width, height, eye, view, up, fov, ambient, lights[, options])";
 
+/// One positional argument's kind: its name, a test of its value, what it must be.
+type ArgumentKind = (&'static str, fn(&Value) -> bool, &'static str);
+
 /// The Lua type each of `gr.render`'s ten positional arguments must have: its name, a
 /// test of the value, and what it must be (the words the value checks use).
-const RENDER_SHAPE: [(&str, fn(&Value) -> bool, &str); 10] = [
+const RENDER_SHAPE: [ArgumentKind; 10] = [
     (
         "root",
         |v| matches!(v, Value::UserData(u) if u.is::<NodeHandle>()),

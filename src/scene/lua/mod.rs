@@ -297,8 +297,7 @@ pub fn run_scene_source(
         })?;
     let readable_preludes = preludes::readable(config, &preludes);
     let state = initial_state(
-        chunk_name,
-        source,
+        (chunk_name, source),
         config,
         base_dir,
         readable_preludes,
@@ -366,12 +365,11 @@ pub fn run_scene_source(
     }
 }
 
-/// The script's state before it runs: an empty graph, the read policy (the scene's
+/// The script's state before it runs (the scene's chunk name and text): an empty graph, the read policy (the scene's
 /// folders, the preludes' and `--allow-read`'s), `charged` bytes already held (the
 /// script's text) and the limits' shared record.
 fn initial_state(
-    chunk_name: &str,
-    source: &str,
+    (chunk_name, source): (&str, &str),
     config: &ScriptConfig,
     base_dir: &Path,
     prelude_dirs: Vec<PathBuf>,
