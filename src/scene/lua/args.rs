@@ -230,7 +230,9 @@ impl<'a> Args<'a> {
         let got = describe(self.lua, self.get(n));
         let missing = self.offset == 1 && self.get(n).is_nil() && n > self.passed();
         let hint = match missing {
-            true => super::dot_call::hint(self.lua, &self.func).unwrap_or_default(),
+            true => {
+                super::dot_call::hint(self.lua, &self.func, &location(self.lua)).unwrap_or_default()
+            }
             false => String::new(),
         };
         self.error(format!(
@@ -404,7 +406,7 @@ impl<'a> Args<'a> {
             "must be called on a {kind} with ':' (x:{}(...)), got {} as the receiver{}",
             self.func.rsplit(':').next().unwrap_or(""),
             describe(self.lua, self.get(0)),
-            super::dot_call::hint(self.lua, &self.func).unwrap_or_default()
+            super::dot_call::hint(self.lua, &self.func, &location(self.lua)).unwrap_or_default()
         )))
     }
 

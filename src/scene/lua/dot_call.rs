@@ -3,19 +3,17 @@
 //! for it. Lua's debug information tells the two calls apart (a `:` call is named a
 //! "method", a `.` call a "field"); the scene's own line gives the call to write instead.
 
-use super::args::location;
 use super::with_state;
 
 /// `; called with '.'? write 'root:add_child(s)' …` when the running method (`func`,
-/// `node:add_child`) was called with `.`, else None.
-pub(crate) fn hint(lua: &mlua::Lua, func: &str) -> Option<String> {
+/// `node:add_child`, at `at`: `scene.lua:3`) was called with `.`, else None.
+pub(crate) fn hint(lua: &mlua::Lua, func: &str, at: &str) -> Option<String> {
     let called_as = lua.inspect_stack(0, |d| d.names().name_what)?;
     if called_as != Some("field") {
         return None;
     }
     let method = func.rsplit(':').next()?;
-    let at = location(lua);
-    let instead = suggestion(lua, &at, method).unwrap_or_else(|| format!("object:{method}(…)"));
+    let instead = suggestion(lua, at, method).unwrap_or_else(|| format!("object:{method}(…)"));
     Some(format!(
         "; called with `.`? write `{instead}` (with `:`, Lua passes the object itself as the first argument)"
     ))
