@@ -403,3 +403,25 @@ fn collect(dir: &Path, out: &mut Vec<PathBuf>) {
         }
     }
 }
+
+/// The progress bar (drawn only on a terminal: `script` from util-linux gives glint one)
+/// names the file written, `-o`'s, not the name the script gave.
+#[test]
+fn the_progress_bar_names_the_file_written() {
+    let dir = temp_dir("progress-label");
+    std::fs::write(dir.join("scene.lua"), sphere_scene("50", "")).unwrap();
+    let glint = env!("CARGO_BIN_EXE_glint");
+    let out = Command::new("script")
+        .args([
+            "-qec",
+            &format!("{glint} render scene.lua --backend cpu -o written.png"),
+        ])
+        .arg("/dev/null")
+        .current_dir(&dir)
+        .output()
+        .expect("script (util-linux, in every Debian) runs glint on a terminal");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{text}");
+    assert!(text.contains("rendering written.png ["), "{text}");
+    assert!(!text.contains("rendering out.png"), "{text}");
+}
