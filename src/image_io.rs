@@ -1,7 +1,8 @@
 //! Image files: PNG/EXR written atomically, read back for diffs.
 //!
-//! PNG holds what `Film::to_rgb8` gives (clamped, no gamma); EXR holds the linear f32
-//! film unclamped. Reading maps 8-bit channels back by `/255` with no gamma, so a PNG
+//! PNG (and JPEG) hold what `Film::to_rgb8` gives (clamped, no gamma), or with
+//! [`OutputTransfer::Srgb`] the sRGB transfer curve applied before quantisation; EXR
+//! holds the linear f32 film unclamped, always. Reading maps 8-bit channels back by `/255` with no gamma, so a PNG
 //! we wrote reads back to a film that re-quantises to the same bytes.
 
 use std::ffi::OsString;
@@ -9,6 +10,7 @@ use std::fs::File;
 use std::io::{BufWriter, Seek, Write};
 use std::path::{Path, PathBuf};
 
+use image::codecs::jpeg::JpegEncoder;
 use image::codecs::png::PngEncoder;
 use image::{DynamicImage, ExtendedColorType, ImageEncoder};
 use thiserror::Error;
@@ -20,7 +22,7 @@ use crate::film::Film;
 /// Everything that can go wrong reading or writing an image; every message names the path.
 #[derive(Debug, Error)]
 pub enum ImageIoError {
-    #[error("cannot write {path}: unsupported extension (supported: .png, .exr)")]
+    #[error("cannot write {path}: unsupported extension (supported: {SUPPORTED_EXTENSIONS})")]
     UnsupportedExtension { path: PathBuf },
     #[error("cannot write {path}: the name is {len} bytes; with the temporary file's suffix ({TEMP_SUFFIX_MAX} bytes) it passes the file system's limit of {max} bytes per name")]
     NameTooLong {
@@ -72,10 +74,17 @@ pub enum ImageIoError {
     },
 }
 
+/// The output extensions glint writes, for messages.
+pub const SUPPORTED_EXTENSIONS: &str = ".png, .exr, .jpg, .jpeg";
+
+/// JPEG quality of `.jpg` outputs (1–100): high, since a render is the product.
+const JPEG_QUALITY: u8 = 95;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Format {
     Png,
     Exr,
+    Jpeg,
 }
 
 fn format_for(path: &Path) -> Option<Format> {
@@ -83,7 +92,70 @@ fn format_for(path: &Path) -> Option<Format> {
     match ext.as_str() {
         "png" => Some(Format::Png),
         "exr" => Some(Format::Exr),
+        "jpg" | "jpeg" => Some(Format::Jpeg),
         _ => None,
+    }
+}
+
+/// Whether `path`'s extension is one glint writes (checked before a script runs).
+pub fn is_supported_output(path: &Path) -> bool {
+    format_for(path).is_some()
+}
+
+/// Whether `path` is written as float EXR, which keeps the film linear whatever the
+/// [`OutputTransfer`].
+pub fn is_float_output(path: &Path) -> bool {
+    format_for(path) == Some(Format::Exr)
+}
+
+/// How the linear film is encoded into 8-bit outputs (`--output-transfer`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OutputTransfer {
+    /// The film's values as they are, clamped and quantised (A4's convention; the goldens).
+    #[default]
+    Linear,
+    /// The sRGB transfer curve (IEC 61966-2-1) applied before quantisation: a
+    /// display-referred image, as pbrt or Cycles write one.
+    Srgb,
+}
+
+impl OutputTransfer {
+    /// The choices, for messages.
+    pub const CHOICES: &'static str = "linear or srgb";
+
+    /// `linear` or `srgb` (any case).
+    pub fn parse(s: &str) -> Result<OutputTransfer, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "linear" => Ok(OutputTransfer::Linear),
+            "srgb" => Ok(OutputTransfer::Srgb),
+            _ => Err(format!("expected {}, got '{s}'", OutputTransfer::CHOICES)),
+        }
+    }
+
+    /// The film's 8-bit RGB bytes under this transfer.
+    fn rgb8(self, film: &Film) -> Vec<u8> {
+        match self {
+            OutputTransfer::Linear => film.to_rgb8(),
+            OutputTransfer::Srgb => film
+                .pixels
+                .iter()
+                .flat_map(|p| p.map(|c| crate::film::quantize_channel(srgb_encode(c))))
+                .collect(),
+        }
+    }
+}
+
+/// The sRGB transfer curve of a linear value (clamped to [0, 1] first; NaN stays NaN,
+/// which quantises to 0 as in the linear encoding).
+pub fn srgb_encode(c: f32) -> f32 {
+    if c.is_nan() {
+        return c;
+    }
+    let c = c.clamp(0.0, 1.0);
+    if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
     }
 }
 
@@ -154,14 +226,24 @@ fn name_max(dir: &Path) -> usize {
     }
 }
 
-/// Writes `film` to `path`, format chosen by extension (`.png` 8-bit RGB, `.exr` f32 RGB).
+/// Writes `film` to `path`, format chosen by extension (`.png` 8-bit RGB, `.exr` f32 RGB,
+/// `.jpg` 8-bit RGB), linear ([`write_image_with`] for the sRGB transfer).
+pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
+    write_image_with(film, path, OutputTransfer::Linear)
+}
+
+/// [`write_image`] with the 8-bit formats encoded by `transfer` (EXR stays linear).
 ///
 /// Atomic ([`crate::atomic_write`]): the image goes to a hidden temp file in the
 /// target's directory, created exclusively under an unpredictable name, and is renamed
 /// over `path` only once complete; on any failure or ending signal the temp file is
 /// removed. A reader therefore sees
 /// either the old file or the whole new one, never a truncated image.
-pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
+pub fn write_image_with(
+    film: &Film,
+    path: &Path,
+    transfer: OutputTransfer,
+) -> Result<(), ImageIoError> {
     let (format, _, _) = output_target(path)?;
     let expected = film.width as usize * film.height as usize;
     if film.pixels.len() != expected {
@@ -177,7 +259,8 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
     // Everything big is allocated before the temporary file exists, so running out of
     // memory cannot strand it.
     let pixels = match format {
-        Format::Png => Pixels::Rgb8(film.to_rgb8()),
+        Format::Png => Pixels::Rgb8(transfer.rgb8(film)),
+        Format::Jpeg => Pixels::Jpeg(transfer.rgb8(film)),
         Format::Exr => Pixels::Rgb32F,
     };
     let io_err = |source| ImageIoError::Io {
@@ -192,6 +275,8 @@ pub fn write_image(film: &Film, path: &Path) -> Result<(), ImageIoError> {
 /// The encoded-ready pixels of a film.
 enum Pixels {
     Rgb8(Vec<u8>),
+    /// 8-bit RGB for the JPEG encoder.
+    Jpeg(Vec<u8>),
     /// The film's own floats, written as they are.
     Rgb32F,
 }
@@ -215,6 +300,9 @@ fn write_encoded(
     let mut out = BufWriter::new(file);
     match pixels {
         Pixels::Rgb8(rgb) => PngEncoder::new(&mut out)
+            .write_image(rgb, film.width, film.height, ExtendedColorType::Rgb8)
+            .map_err(encode_err)?,
+        Pixels::Jpeg(rgb) => JpegEncoder::new_with_quality(&mut out, JPEG_QUALITY)
             .write_image(rgb, film.width, film.height, ExtendedColorType::Rgb8)
             .map_err(encode_err)?,
         Pixels::Rgb32F => {

@@ -76,10 +76,16 @@ enum BackendArg {
 struct RenderArgs {
     /// The scene script (Lua, CS488 `gr` language).
     scene: PathBuf,
-    /// Output image (.png or .exr); default: the file named in gr.render. Further
+    /// Output image (.png, .exr or .jpg); default: the file named in gr.render. Further
     /// gr.render calls of the same script get -2, -3… before the extension.
     #[arg(short, long)]
     output: Option<PathBuf>,
+    /// How PNG and JPEG outputs encode the linear film: linear (A4's convention, the
+    /// default) or srgb (the sRGB transfer curve before 8-bit quantisation, a
+    /// display-referred image). EXR stays linear.
+    #[arg(long, value_name = "linear|srgb", default_value = "linear",
+          value_parser = glint::image_io::OutputTransfer::parse)]
+    output_transfer: glint::image_io::OutputTransfer,
     /// Image width (overrides gr.render's).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_IMAGE_SIDE as i64))]
     width: Option<u32>,
@@ -106,7 +112,7 @@ struct RenderArgs {
     #[arg(long, value_name = "DIR")]
     allow_write: Vec<PathBuf>,
     /// Tracer: cpu (the reference), gpu (wgpu compute: Vulkan, Metal or DX12), auto (a
-    /// hardware GPU when one exists, else the CPU, with a one-line notice), or both
+    /// hardware GPU when one exists, else the CPU; --stats says why), or both
     /// (render on each, write NAME-cpu and NAME-gpu, print the difference and both times;
     /// exit code 6 when they differ beyond --min-within).
     #[arg(long, value_enum, default_value = "auto")]
@@ -292,6 +298,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             height: args.height.filter(|&h| h > 0),
         },
         output: args.output.clone(),
+        output_transfer: args.output_transfer,
         stats: args.stats,
         progress: true,
         output_dir: args.output_dir.clone(),
@@ -332,21 +339,14 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
     });
     match report {
         Ok(report) => {
-            if report.looks_pre2015
-                && !report.order_set_by_script
-                && settings.script.transform_order.is_none()
-            {
-                eprintln!(
-                    "glint: hint: this scene looks like a pre-2015 CS488 scene (inline meshes, require, bare unpack); if it looks wrong, try --transform-order post"
-                );
+            if let Some(evidence) = &report.looks_pre2015 {
+                if !report.order_set_by_script && settings.script.transform_order.is_none() {
+                    eprintln!(
+                        "glint: hint: this scene looks like a pre-2015 CS488 scene ({evidence}); if it looks wrong, try --transform-order post (gr.transform_order('pre') in the scene silences this hint)"
+                    );
+                }
             }
-            if report.renders == 0 {
-                eprintln!(
-                    "glint: note: {} never called gr.render; nothing written",
-                    args.scene.display()
-                );
-            }
-            Ok(())
+            no_render_outcome(&args, report.renders)
         }
         Err(e) => Err((e.to_string(), e.exit_code() as u8)),
     }
@@ -374,8 +374,11 @@ fn render_farm(
     if args.debug == Some(DebugView::AaSamples) {
         return refuse("--debug aa-samples");
     }
+    if args.output_transfer != glint::image_io::OutputTransfer::Linear {
+        return refuse("--output-transfer srgb");
+    }
     let farm = args.farm.settings();
-    let renders = glint::farm::run::run_farm(&args.scene, settings, &farm, &mut |image| {
+    let run = glint::farm::run::run_farm(&args.scene, settings, &farm, &mut |image| {
         let b = image.bounds;
         let (w, h) = image.full_size;
         let part = if b == glint::tiling::PixelRect::full(w, h) {
@@ -398,13 +401,38 @@ fn render_farm(
         }
     })
     .map_err(|e| (e.to_string(), e.exit_code()))?;
-    if renders == 0 {
+    if !run.reads_frame && args.farm.frames.is_some() {
         eprintln!(
-            "glint: note: {} never called gr.render; nothing written",
+            "glint: note: {} never reads `frame` or `clock`: every frame of --frames is the same image",
             args.scene.display()
         );
     }
-    Ok(())
+    no_render_outcome(args, run.renders)
+}
+
+/// After a script ran: with no `gr.render` nothing was written, a note; and an error
+/// (exit code 3) when `-o` asked for an image.
+fn no_render_outcome(args: &RenderArgs, renders: usize) -> Result<(), (String, u8)> {
+    if renders > 0 {
+        return Ok(());
+    }
+    match &args.output {
+        Some(out) => Err((
+            format!(
+                "{} never called gr.render, so -o {} was not written (gr.render(root, file, width, height, …) renders; docs/scene-language.md)",
+                args.scene.display(),
+                out.display()
+            ),
+            3,
+        )),
+        None => {
+            eprintln!(
+                "glint: note: {} never called gr.render; nothing written",
+                args.scene.display()
+            );
+            Ok(())
+        }
+    }
 }
 
 /// The first GPU kernel flag given (`--kernel-variant`, `--dump-kernels`), if any.
@@ -442,6 +470,18 @@ fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
                 format!(
                     "--width {w} --height {h} is {} pixels, over glint's limit of {MAX_PIXELS}",
                     u64::from(w) * u64::from(h)
+                ),
+                2,
+            ));
+        }
+    }
+    if let Some(out) = &args.output {
+        if !glint::image_io::is_supported_output(out) {
+            return Err((
+                format!(
+                    "-o {}: glint writes images by their extension: {}",
+                    out.display(),
+                    glint::image_io::SUPPORTED_EXTENSIONS
                 ),
                 2,
             ));

@@ -100,8 +100,10 @@ fn render_both(
         settings.progress,
         Tracer::Gpu(ctx),
     )?;
-    write_image(&cpu.film, &cpu_output)?;
-    write_image(&gpu.film, &gpu_output)?;
+    // Compared as films (linear); written as `--output-transfer` asks.
+    let transfer = settings.output_transfer;
+    crate::image_io::write_image_with(&cpu.film, &cpu_output, transfer)?;
+    crate::image_io::write_image_with(&gpu.film, &gpu_output, transfer)?;
     let (report, heat) = diff_films(&cpu.film, &gpu.film)?;
     if let Some(path) = &heatmap {
         write_image(&heat, path)?;

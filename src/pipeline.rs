@@ -2,11 +2,11 @@
 //! render and write the image atomically. Shared by the CLI, the benchmark and the tests.
 
 use crate::aa_map::{aa_samples_film, AaMapError};
-use crate::cpu::camera_media::fill_camera_media;
+use crate::cpu::camera_media::{fill_camera_media, opaque_solid_around_eye};
 use crate::cpu::render::{adaptive_leaf_counts, render, render_with_counters, RenderCounters};
 use crate::film::Film;
 use crate::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderInfo, GpuRenderOptions};
-use crate::image_io::{check_output_path, write_image, ImageIoError};
+use crate::image_io::{check_output_path, write_image_with, ImageIoError, OutputTransfer};
 use crate::pack::{pack, PackError, PackedScene, SceneFeatures};
 use crate::scene::flatten::flatten;
 use crate::scene::flatten::FlatScene;
@@ -28,6 +28,8 @@ pub struct RenderSettings {
     pub overrides: OptionOverrides,
     /// `-o`: output of the first render; later renders of the same script get `-2`, `-3`…
     pub output: Option<PathBuf>,
+    /// `--output-transfer`: how PNG and JPEG outputs encode the linear film.
+    pub output_transfer: OutputTransfer,
     /// Print statistics (grid, features, rays) after each render.
     pub stats: bool,
     /// Show a progress bar (only drawn on a terminal).
@@ -68,10 +70,12 @@ pub enum Tracer<'a> {
 }
 
 /// Resolves `backend` to a tracer, making the GPU context when needed; `auto` falls back
-/// to the CPU with a notice on stderr.
+/// to the CPU, saying why on stderr when `explain` (`--stats`: every render's line says
+/// which tracer drew it, so the reason is not repeated on every run).
 pub fn acquire_gpu(
     backend: Backend,
     adapter: Option<&str>,
+    explain: bool,
 ) -> Result<Option<GpuContext>, crate::gpu::GpuError> {
     match backend {
         Backend::Cpu => Ok(None),
@@ -80,15 +84,19 @@ pub fn acquire_gpu(
             // A software rasterizer (lavapipe) is slower than the CPU tracer on the same
             // cores: auto takes it only when it was asked for by name.
             Ok(ctx) if ctx.info.device_type == wgpu::DeviceType::Cpu && adapter.is_none() => {
-                eprintln!(
-                    "glint: note: rendering on the CPU tracer; the only GPU adapter, {}, is a software one (slower here; --backend gpu uses it)",
-                    ctx.info.name
-                );
+                if explain {
+                    eprintln!(
+                        "glint: note: rendering on the CPU tracer; the only GPU adapter, {}, is a software one (slower here; --backend gpu uses it)",
+                        ctx.info.name
+                    );
+                }
                 Ok(None)
             }
             Ok(ctx) => Ok(Some(ctx)),
             Err(e) => {
-                eprintln!("glint: note: rendering on the CPU ({e})");
+                if explain {
+                    eprintln!("glint: note: rendering on the CPU ({e})");
+                }
                 Ok(None)
             }
         },
@@ -172,7 +180,31 @@ pub fn prepare_request(
     request.height = overrides.height.unwrap_or(request.height);
     let scene = flatten(graph, &request)?;
     let packed = pack_scene(&scene)?;
+    note_eye_inside_solid(&request, &scene, &packed);
     Ok((request, packed))
+}
+
+/// A note when the eye is inside an opaque solid ([`opaque_solid_around_eye`]), naming it:
+/// the render shows its inside, usually not what was meant.
+fn note_eye_inside_solid(request: &RenderRequest, scene: &FlatScene, packed: &PackedScene) {
+    let Some(item) = opaque_solid_around_eye(packed) else {
+        return;
+    };
+    let item = item as usize;
+    let name = match scene.objects.get(item) {
+        Some(object) => object.name.as_str(),
+        None => match scene.csg.get(item - scene.objects.len()) {
+            Some(csg) => csg.name.as_str(),
+            None => return,
+        },
+    };
+    // The node's own name, the last part of its path from the root.
+    let name = crate::scene::short_name(name.rsplit('/').next().unwrap_or(name));
+    let e = request.camera.eye;
+    eprintln!(
+        "glint: note: {}: gr.render: the eye {{{}, {}, {}}} is inside '{name}', an opaque solid: the camera sees only its inside (move the eye, argument 5, out of it)",
+        request.location, e.x, e.y, e.z
+    );
 }
 
 /// `--debug aa-samples`: adaptive anti-aliasing's leaf squares per pixel, mapped to
@@ -348,7 +380,11 @@ pub fn run_scene(
     on_image: &mut dyn FnMut(&RenderedImage),
 ) -> Result<ScriptReport, RunError> {
     let policy = write_policy(settings)?;
-    let mut gpu = acquire_gpu(settings.backend, settings.adapter.as_deref())?;
+    let mut gpu = acquire_gpu(
+        settings.backend,
+        settings.adapter.as_deref(),
+        settings.stats,
+    )?;
     if let Some(ctx) = gpu.as_mut() {
         apply_kernel_settings(ctx, settings)?;
     }
@@ -366,6 +402,12 @@ pub fn run_scene(
         // Refuse an unwritable path before spending time on the render.
         check_output_path(&output).map_err(fail)?;
         let view = settings.overrides.debug.unwrap_or(request.options.debug);
+        // The request names the file written (for the progress bar): `-o`'s, not the
+        // script's.
+        let request = &RenderRequest {
+            output: output.clone(),
+            ..request.clone()
+        };
         let mut rendered = match view {
             DebugView::AaSamples => {
                 render_aa_samples_map(graph, request, &settings.overrides, tracer)?
@@ -380,7 +422,7 @@ pub fn run_scene(
             )?,
         };
         rendered.output = output;
-        write_image(&rendered.film, &rendered.output).map_err(fail)?;
+        write_rendered(&rendered, settings.output_transfer).map_err(fail)?;
         on_image(&rendered);
         Ok(())
     };
@@ -388,6 +430,18 @@ pub fn run_scene(
         Ok(report) => Ok(report),
         Err(e) => Err(scene_error(e, output_error.into_inner())),
     }
+}
+
+/// Writes a render's image with the transfer `--output-transfer` asked for; an EXR
+/// stays linear, with a note when sRGB was asked for.
+fn write_rendered(image: &RenderedImage, transfer: OutputTransfer) -> Result<(), ImageIoError> {
+    if transfer != OutputTransfer::Linear && crate::image_io::is_float_output(&image.output) {
+        eprintln!(
+            "glint: note: {} is EXR, written linear (float): --output-transfer applies to PNG and JPEG",
+            image.output.display()
+        );
+    }
+    write_image_with(&image.film, &image.output, transfer)
 }
 
 /// `--kernel-variant` and `--dump-kernels` on a GPU context, before its first pipeline.

@@ -48,7 +48,7 @@ pub struct KernelsArgs {
     #[arg(long, value_name = "DIR")]
     pub spirv_dir: Option<PathBuf>,
     /// Exit with code 7 and a table of what breaks which budget when a kernel spills,
-    /// uses scratch or has too many wave32 VGPRs (docs/gpu.md, "Register budgets").
+    /// uses scratch or has too many wave32 VGPRs (docs/gpu-kernels.md#register-budgets).
     #[arg(long)]
     pub check_budget: bool,
 }
@@ -185,7 +185,7 @@ pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
             let rows = breaks.lines().count().saturating_sub(2);
             return Err((
                 format!(
-                    "{rows} kernel rows break the register budgets and {} did not compile (the table above; docs/gpu.md, \"Register budgets\")",
+                    "{rows} kernel rows break the register budgets and {} did not compile (the table above; the budgets: docs/gpu-kernels.md#register-budgets)",
                     failed.len()
                 ),
                 7,

@@ -1,7 +1,9 @@
 //! The media that contain the camera: found once per scene after packing, by walking a
-//! ray from the eye through every surface (see [`camera_media`]).
+//! ray from the eye through every surface (see [`camera_media`]); the same walk finds an
+//! opaque solid around the eye, a likely mistake ([`opaque_solid_around_eye`]).
 
 use super::dielectric::{medium_push, MediumStack};
+use super::hit::Hit;
 use super::ray::{offset_ray, Ray};
 use super::surface::surface_at;
 use super::traverse::{closest_hit, NoCounters};
@@ -27,18 +29,8 @@ pub fn camera_media(scene: &PackedScene) -> MediumStack {
     // (solid key, distance from the eye, left, ior) of each solid's first surface.
     let mut firsts: Vec<(u32, f32, bool, f32)> = Vec::new();
     let eye = Vec3::from(g.eye);
-    let mut ray = Ray {
-        origin: eye,
-        dir: PARITY_RAY_DIR,
-    };
-    for _ in 0..PARITY_RAY_STEPS {
-        let hit = closest_hit(scene, &ray, T_MISS, &mut NoCounters);
-        if !hit.is_hit() {
-            break;
-        }
-        let s = surface_at(scene, &ray, &hit);
+    walk_from_eye(scene, &mut |hit, s, left| {
         let m = &scene.materials[s.material as usize];
-        let left = s.normal.dot(ray.dir) > 0.0;
         if m.flags & MATERIAL_REFRACTIVE != 0 {
             // Triangles of one material form one solid; keys above the instances.
             let key = if scene.instances[hit.item as usize].kind == KIND_MESH {
@@ -50,9 +42,8 @@ pub fn camera_media(scene: &PackedScene) -> MediumStack {
                 firsts.push((key, (s.p - eye).length(), left, m.ior));
             }
         }
-        let beyond = if left { s.normal } else { -s.normal };
-        ray.origin = offset_ray(s.p, beyond, s.magnitude);
-    }
+        true
+    });
     let mut containing: Vec<(f32, f32)> =
         firsts.iter().filter(|f| f.2).map(|f| (f.1, f.3)).collect();
     // Farthest first; ties (a shared surface) keep ray order.
@@ -62,6 +53,55 @@ pub fn camera_media(scene: &PackedScene) -> MediumStack {
         .fold(MediumStack::default(), |media, &(_, ior)| {
             medium_push(&media, ior)
         })
+}
+
+/// Walks [`PARITY_RAY_DIR`] from the eye through every surface, calling `visit` with
+/// each hit, its surface and whether the ray leaves the surface there (runs against its
+/// outward normal: the tracer's entering rule), until `visit` returns false.
+fn walk_from_eye(
+    scene: &PackedScene,
+    visit: &mut dyn FnMut(&Hit, &super::surface::Surface, bool) -> bool,
+) {
+    let mut ray = Ray {
+        origin: Vec3::from(scene.globals.eye),
+        dir: PARITY_RAY_DIR,
+    };
+    for _ in 0..PARITY_RAY_STEPS {
+        let hit = closest_hit(scene, &ray, T_MISS, &mut NoCounters);
+        if !hit.is_hit() {
+            break;
+        }
+        let s = surface_at(scene, &ray, &hit);
+        let left = s.normal.dot(ray.dir) > 0.0;
+        if !visit(&hit, &s, left) {
+            break;
+        }
+        let beyond = if left { s.normal } else { -s.normal };
+        ray.origin = offset_ray(s.p, beyond, s.magnitude);
+    }
+}
+
+/// The grid item (a primitive or CSG object, not a mesh: a mesh need not be closed) of
+/// an opaque material that contains the eye, if any: the first surface of it that the
+/// eye's ray meets is left rather than entered. The camera then sees only its inside, a
+/// likely mistake (an eye at the origin inside a box around the scene).
+pub fn opaque_solid_around_eye(scene: &PackedScene) -> Option<u32> {
+    let mut met: Vec<u32> = Vec::new();
+    let mut inside = None;
+    walk_from_eye(scene, &mut |hit, s, left| {
+        let item = hit.item;
+        let opaque = scene.materials[s.material as usize].flags & MATERIAL_REFRACTIVE == 0;
+        if scene.instances[item as usize].kind == KIND_MESH || met.contains(&item) {
+            return true;
+        }
+        met.push(item);
+        if left && opaque {
+            inside = Some(item);
+            return false;
+        }
+        true
+    });
+    inside
 }
 
 /// Stores [`camera_media`] in the scene's globals, where both tracers read it.

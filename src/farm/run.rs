@@ -177,14 +177,22 @@ pub fn tile_suffix(i: u32, n: u32) -> String {
     format!("-tile-{i:0digits$}-of-{n}")
 }
 
+/// What a farm run did, for the command line's notes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FarmRun {
+    /// The number of `gr.render` calls, over all frames.
+    pub renders: usize,
+    /// Some frame's script read the global `frame` or `clock`.
+    pub reads_frame: bool,
+}
+
 /// Runs `scene` under the farm flags; `on_image` sees each image written or skipped.
-/// Returns the number of `gr.render` calls, over all frames.
 pub fn run_farm(
     scene: &Path,
     settings: &RenderSettings,
     farm: &FarmSettings,
     on_image: &mut dyn FnMut(&FarmImage),
-) -> Result<usize, FarmError> {
+) -> Result<FarmRun, FarmError> {
     if farm.tile.is_some_and(|t| t.index == Index::Auto) && farm.frame == Some(Index::Auto) {
         return Err(FarmError::Usage("--tile auto and --frame auto would take the same task index; give one of them a number".into()));
     }
@@ -224,9 +232,14 @@ pub fn run_farm(
         crate::scene::lua::read_scene_bytes(scene, memory_limit).map_err(RunError::Scene)?;
     // Script-named outputs are confined as in every other mode (docs/limits.md, Writes).
     let policy = write_policy(settings).map_err(FarmError::Run)?;
-    let gpu = acquire_gpu(settings.backend, settings.adapter.as_deref()).map_err(RunError::Gpu)?;
+    let gpu = acquire_gpu(
+        settings.backend,
+        settings.adapter.as_deref(),
+        settings.stats,
+    )
+    .map_err(RunError::Gpu)?;
     let tracer = gpu.as_ref().map_or(Tracer::Cpu, Tracer::Gpu);
-    let mut renders = 0;
+    let mut run = FarmRun::default();
     for job in jobs {
         let context = JobContext {
             settings,
@@ -237,9 +250,11 @@ pub fn run_farm(
             script: &script,
             job,
         };
-        renders += run_frame(scene, &context, on_image)?;
+        let (renders, reads_frame) = run_frame(scene, &context, on_image)?;
+        run.renders += renders;
+        run.reads_frame |= reads_frame;
     }
-    Ok(renders)
+    Ok(run)
 }
 
 /// What every `gr.render` of one frame shares.
@@ -254,11 +269,13 @@ struct JobContext<'a> {
     job: FrameJob,
 }
 
+/// Runs one frame's script: its `gr.render` calls, and whether it read `frame` or
+/// `clock`.
 fn run_frame(
     scene: &Path,
     c: &JobContext,
     on_image: &mut dyn FnMut(&FarmImage),
-) -> Result<usize, FarmError> {
+) -> Result<(usize, bool), FarmError> {
     let mut script_settings = c.settings.script.clone();
     script_settings.frame = c.job.globals;
     let failure: RefCell<Option<FarmError>> = RefCell::new(None);
@@ -285,8 +302,8 @@ fn run_frame(
     if let Some(e) = failure.into_inner() {
         return Err(e);
     }
-    result.map_err(|e| FarmError::Run(scene_error(e, None)))?;
-    Ok(index)
+    let report = result.map_err(|e| FarmError::Run(scene_error(e, None)))?;
+    Ok((index, report.reads_frame))
 }
 
 /// The output path of render `index` of the frame: `-o`'s (the user's choice), or the

@@ -1,4 +1,4 @@
-//! The register budgets of issue 38 (docs/gpu.md, "Register budgets"): a kernel compiled
+//! The register budgets of issue 38 (docs/gpu-kernels.md#register-budgets): a kernel compiled
 //! for NAVI21 may not spill VGPRs or SGPRs, may use no scratch, and may use at most 128
 //! VGPRs in wave32 (8 waves a SIMD), 96 (10 waves) if it is a traversal kernel.
 

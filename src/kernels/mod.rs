@@ -4,7 +4,7 @@
 //! (`--family NAVI21`), or a hardware device — and each kernel's registers, spills,
 //! scratch and code size are read back through `VK_KHR_pipeline_executable_properties`,
 //! with the waves per SIMD they leave by the hardware rule ([`occupancy`]) and the
-//! register budgets they break ([`budget`]). docs/gpu.md, "The kernel instrument".
+//! register budgets they break ([`budget`]). docs/gpu-kernels.md#the-kernel-instrument.
 
 pub mod budget;
 pub mod collect;

@@ -861,7 +861,7 @@ fn empty_and_wrong_files_are_errors_naming_the_file() {
 
 #[test]
 fn messages_name_the_scene_file_and_line() {
-    check(Case::new("out-jpg", "root = gr.node('root')\ngr.render(root, 'out.jpg', 8, 8, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {})\n", 4, &["scene.lua:2: gr.render:", "out.jpg"]));
+    check(Case::new("out-bmp", "root = gr.node('root')\ngr.render(root, 'out.bmp', 8, 8, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {})\n", 4, &["scene.lua:2: gr.render:", "out.bmp"]));
     check(Case::new("out-nodir", "root = gr.node('root')\ngr.render(root, 'nodir/out.png', 8, 8, {0,0,5}, {0,0,-1}, {0,1,0}, 50, {0.1,0.1,0.1}, {})\n", 4, &["scene.lua:2: gr.render:", "nodir"]));
     // An output folder that exists but cannot be written (even by root): the message
     // names the output, not the temporary file.

@@ -9,6 +9,7 @@ mod cli;
 mod doc_links;
 mod farm;
 mod first_gpu;
+mod first_hour;
 mod fuzz_front_end;
 mod hostile;
 mod house;

@@ -553,6 +553,7 @@ fn light_on_a_surface_does_not_speckle_on_the_gpu() {
 /// POV-Ray comparison torus, and a smooth glass ball, on both tracers; and scenes/smooth.lua under
 /// `shading = 'flat'`, which packs no normals and compiles no smooth code.
 #[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn smooth_meshes_match() {
     use glint::scene::Shading;
     let Some(ctx) = gpu_context() else { return };

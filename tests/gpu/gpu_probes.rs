@@ -267,6 +267,7 @@ fn probes_instanced_meshes() {
 /// the same hit and the same interpolated normal within 10⁻⁴ on every ray, and the
 /// normals are not the flat ones.
 #[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn probes_smooth_normals() {
     use common::probes::{agree, random_rays};
     use glint::constants::PROBE_SHADING_NORMAL;

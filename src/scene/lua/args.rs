@@ -224,10 +224,20 @@ impl<'a> Args<'a> {
         mlua::Error::RuntimeError(format!("{at}: {}{via}: {msg}", self.func))
     }
 
-    /// `… argument n (name) must be WHAT, got VALUE`.
+    /// `… argument n (name) must be WHAT, got VALUE`; for a method called with `.` whose
+    /// argument is missing (the object took its place), how to call it with `:`.
     pub fn bad(&self, n: usize, name: &str, what: &str) -> mlua::Error {
         let got = describe(self.lua, self.get(n));
-        self.error(format!("argument {n} ({name}) must be {what}, got {got}"))
+        let missing = self.offset == 1 && self.get(n).is_nil() && n > self.passed();
+        let hint = match missing {
+            true => {
+                super::dot_call::hint(self.lua, &self.func, &location(self.lua)).unwrap_or_default()
+            }
+            false => String::new(),
+        };
+        self.error(format!(
+            "argument {n} ({name}) must be {what}, got {got}{hint}"
+        ))
     }
 
     /// `… argument n (name): DETAIL`, for problems inside a table argument.
@@ -393,9 +403,10 @@ impl<'a> Args<'a> {
             }
         }
         Err(self.error(format!(
-            "must be called on a {kind} with ':' (x:{}(...)), got {} as the receiver",
+            "must be called on a {kind} with ':' (x:{}(...)), got {} as the receiver{}",
             self.func.rsplit(':').next().unwrap_or(""),
-            describe(self.lua, self.get(0))
+            describe(self.lua, self.get(0)),
+            super::dot_call::hint(self.lua, &self.func, &location(self.lua)).unwrap_or_default()
         )))
     }
 

@@ -263,9 +263,10 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
             // Counted (by inline_mesh) before its vectors are built.
             let mesh = inline_mesh(a, &name)?;
             // A prelude's quads are no sign of a pre-2015 scene.
-            let from_scene = super::preludes::caller_module_dir(a.lua).is_none();
+            if super::preludes::caller_module_dir(a.lua).is_none() {
+                inline_mesh_evidence(a);
+            }
             with_state(a.lua, |s| {
-                s.report.looks_pre2015 |= from_scene;
                 s.graph.meshes.push(mesh);
                 s.graph.meshes.len() - 1
             })
@@ -279,6 +280,24 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
         }
     };
     new_node(a, name, geometry(Primitive::Mesh(id), DMat4::IDENTITY))
+}
+
+/// An inline mesh of the scene's code: built by the scene itself, weak evidence of the
+/// pre-2015 course; by a module it `require`s, strong (see `era`).
+fn inline_mesh_evidence(a: &Args) {
+    let at = location(a.lua);
+    let in_scene = with_state(a.lua, |s| {
+        at.strip_prefix(s.scene_chunk.as_str())
+            .is_some_and(|rest| rest.starts_with(':'))
+    });
+    if in_scene {
+        super::era::inline_mesh(a.lua, at);
+    } else {
+        super::era::strong(
+            a.lua,
+            "an inline mesh built by a required module (meshes shipped as Lua modules)",
+        );
+    }
 }
 
 /// Bytes a mesh holds in the scene graph.
@@ -654,6 +673,7 @@ fn camera(a: &Args) -> mlua::Result<Camera> {
         Some(f) if f > 0.0 && f < 180.0 => f,
         _ => return Err(a.bad(8, "fov", "a number of degrees between 0 and 180")),
     };
+    super::advice::check_fov(a, fov_deg);
     Ok(Camera {
         eye,
         view,
@@ -689,7 +709,9 @@ pub(super) fn render(
     if with_state(lua, |s| s.render_error.is_some()) {
         return Err(a.error("an earlier gr.render failed; no more renders"));
     }
+    check_render_shape(&a)?;
     let root = a.node(1, "root")?;
+    super::advice::check_root(&a, root);
     let output = output_name(&a)?;
     let width = a.positive_int(3, "width", MAX_IMAGE_SIDE)?;
     let height = a.positive_int(4, "height", MAX_IMAGE_SIDE)?;
@@ -726,6 +748,72 @@ pub(super) fn render(
     });
     super::release(lua, light_bytes);
     result
+}
+
+/// `gr.render`'s signature, for messages about its arguments.
+pub(super) const RENDER_SIGNATURE: &str =
+    "gr.render(root, file, width, height, eye, view, up, fov, ambient, lights[, options])";
+
+/// One positional argument's kind: its name, a test of its value, what it must be.
+type ArgumentKind = (&'static str, fn(&Value) -> bool, &'static str);
+
+/// The Lua type each of `gr.render`'s ten positional arguments must have: its name, a
+/// test of the value, and what it must be (the words the value checks use).
+const RENDER_SHAPE: [ArgumentKind; 10] = [
+    (
+        "root",
+        |v| matches!(v, Value::UserData(u) if u.is::<NodeHandle>()),
+        "a node",
+    ),
+    (
+        "file",
+        |v| v.is_string(),
+        "the image's file name, a string such as 'out.png'",
+    ),
+    (
+        "width",
+        |v| v.is_number() || v.is_integer(),
+        "a positive integer",
+    ),
+    (
+        "height",
+        |v| v.is_number() || v.is_integer(),
+        "a positive integer",
+    ),
+    ("eye", |v| v.is_table(), "a table of 3 numbers {x, y, z}"),
+    ("view", |v| v.is_table(), "a table of 3 numbers {x, y, z}"),
+    ("up", |v| v.is_table(), "a table of 3 numbers {x, y, z}"),
+    (
+        "fov",
+        |v| v.is_number() || v.is_integer(),
+        "a number of degrees between 0 and 180",
+    ),
+    (
+        "ambient",
+        |v| v.is_table(),
+        "a table of 3 numbers {r, g, b}",
+    ),
+    (
+        "lights",
+        |v| v.is_table(),
+        "a table of lights made by gr.light",
+    ),
+];
+
+/// Checks the kinds of `gr.render`'s positional arguments before any value, so that a
+/// shifted or missing argument (`gr.render(root, 160, 120, 'a.png', …)`) is named where
+/// the shift starts, with the signature, rather than where a value first fails.
+fn check_render_shape(a: &Args) -> mlua::Result<()> {
+    for (i, (name, fits, what)) in RENDER_SHAPE.iter().enumerate() {
+        let n = i + 1;
+        if !fits(a.get(n)) {
+            let got = super::args::describe(a.lua, a.get(n));
+            return Err(a.error(format!(
+                "argument {n} ({name}) must be {what}, got {got}; the arguments are {RENDER_SIGNATURE}"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Argument 2 of `gr.render`, the output's name: UTF-8 (a name is never mangled into

@@ -9,6 +9,7 @@
 //! material changed after it was set. Methods return their receiver so calls chain.
 
 use super::args::Args;
+use super::era::TransformKind;
 pub(crate) use super::handle_types::{LightHandle, MaterialHandle, NodeHandle};
 use super::methods::Method;
 use super::unknown::unknown_method;
@@ -69,11 +70,15 @@ pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
                 }
                 f[k] = x;
             }
-            compose(a, DMat4::from_scale(DVec3::from_array(f)))
+            compose(
+                a,
+                DMat4::from_scale(DVec3::from_array(f)),
+                TransformKind::RotateOrScale,
+            )
         }),
         method!("translate", |a: &Args| {
             let t = DVec3::new(a.number(1, "x")?, a.number(2, "y")?, a.number(3, "z")?);
-            compose(a, DMat4::from_translation(t))
+            compose(a, DMat4::from_translation(t), TransformKind::Translate)
         }),
         method!("rotate", |a: &Args| {
             let axis = a.text(1, "axis")?;
@@ -85,7 +90,8 @@ pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
                 "z" => DMat4::from_rotation_z(r),
                 _ => return Err(a.bad(1, "axis", "'x', 'y' or 'z' (any case)")),
             };
-            compose(a, op)
+            super::advice::check_rotate_angle(a, deg);
+            compose(a, op, TransformKind::RotateOrScale)
         }),
         method!("set_placement", set_placement),
     ]
@@ -143,9 +149,11 @@ fn set_placement(a: &Args) -> mlua::Result<()> {
     }
 }
 
-/// Applies `op` to the receiver's matrix in the current transform order.
-fn compose(a: &Args, op: DMat4) -> mlua::Result<()> {
+/// Applies `op` (a transform of `kind`) to the receiver's matrix in the current
+/// transform order.
+fn compose(a: &Args, op: DMat4, kind: TransformKind) -> mlua::Result<()> {
     let id = a.receiver::<NodeHandle>("node")?.0;
+    super::era::transform(a.lua, id, kind);
     with_state(a.lua, |s| {
         let node = &mut s.graph.nodes[id];
         node.matrix = s.order.apply(node.matrix, op);

@@ -11,8 +11,11 @@
 //! mlua requires can reach it; only `gr.render`, which borrows the caller's `on_render`,
 //! is a scoped function.
 
+mod advice;
 mod args;
 mod deep_nesting;
+mod dot_call;
+mod era;
 mod gr;
 mod handle_types;
 mod handles;
@@ -155,11 +158,17 @@ pub struct ScriptReport {
     pub renders: usize,
     /// The script called `gr.transform_order`.
     pub order_set_by_script: bool,
-    /// The script used inline meshes, `require` or bare `unpack`: the pre-2015 family,
-    /// which needs `--transform-order post` unless it says so itself.
-    pub looks_pre2015: bool,
+    /// What makes the script look written for the pre-2015 course, which needs
+    /// `--transform-order post` unless it says so itself (`readobj at scene.lua:8`;
+    /// see `era`), or None.
+    pub looks_pre2015: Option<String>,
+    /// The script read the global `frame` or `clock` (set for `--frames`).
+    pub reads_frame: bool,
     /// The notes printed on stderr (arguments glint does not use), one per call site.
     pub notes: Vec<String>,
+    /// The advice printed on stderr (likely mistakes: a field of view in radians, a root
+    /// with nothing under it), one per call site.
+    pub advice: Vec<String>,
 }
 
 /// A scene script failed. `Display` is the whole message, starting with `file:line:`
@@ -262,12 +271,27 @@ pub(crate) fn source_text<'s>(chunk_name: &str, source: &'s str) -> Result<&'s s
     Ok(source.strip_prefix('\u{feff}').unwrap_or(source))
 }
 
-/// Sets `frame` and `clock` for an animation's frame.
+/// Gives the script `frame` and `clock` for an animation's frame: looked up through the
+/// globals' `__index` (they are not stored), so that reading either is recorded in the
+/// report (`--frames` on a script that never reads them makes the same image each frame).
 fn set_frame_globals(lua: &Lua, frame: Option<FrameGlobals>) -> mlua::Result<()> {
-    if let Some(f) = frame {
-        lua.globals().set("frame", f.frame)?;
-        lua.globals().set("clock", f.clock)?;
-    }
+    let Some(f) = frame else {
+        return Ok(());
+    };
+    let meta = lua.create_table()?;
+    meta.set(
+        "__index",
+        lua.create_function(move |lua, (_, key): (mlua::Value, mlua::Value)| {
+            let value = match key.as_string().map(|s| s.to_string_lossy()).as_deref() {
+                Some("frame") => mlua::Value::Integer(f.frame),
+                Some("clock") => mlua::Value::Number(f.clock),
+                _ => return Ok(mlua::Value::Nil),
+            };
+            with_state(lua, |s| s.report.reads_frame = true);
+            Ok(value)
+        })?,
+    )?;
+    lua.globals().set_metatable(Some(meta))?;
     Ok(())
 }
 
@@ -295,6 +319,7 @@ pub fn run_scene_source(
         })?;
     let readable_preludes = preludes::readable(config, &preludes);
     let state = initial_state(
+        (chunk_name, source),
         config,
         base_dir,
         readable_preludes,
@@ -343,6 +368,7 @@ pub fn run_scene_source(
     // still run while closing can find it missing.
     let (render_error, report) = with_state(&lua, |s| {
         notes::flush(s);
+        s.report.looks_pre2015 = s.era.verdict();
         (s.render_error.take(), std::mem::take(&mut s.report))
     });
     // A render failure or a reached limit ends the script even if a `pcall` in the
@@ -364,10 +390,11 @@ pub fn run_scene_source(
     }
 }
 
-/// The script's state before it runs: an empty graph, the read policy (the scene's
+/// The script's state before it runs (the scene's chunk name and text): an empty graph, the read policy (the scene's
 /// folders, the preludes' and `--allow-read`'s), `charged` bytes already held (the
 /// script's text) and the limits' shared record.
 fn initial_state(
+    (chunk_name, source): (&str, &str),
     config: &ScriptConfig,
     base_dir: &Path,
     prelude_dirs: Vec<PathBuf>,
@@ -377,6 +404,9 @@ fn initial_state(
 ) -> State {
     let folders = SceneFolders::new(base_dir);
     State {
+        scene_chunk: chunk_name.to_string(),
+        scene_source: source.into(),
+        era: era::EraEvidence::default(),
         graph: SceneGraph::default(),
         order: config.transform_order.unwrap_or_default(),
         order_fixed: config.transform_order.is_some(),
@@ -457,6 +487,12 @@ fn innermost_line(thread: &mlua::Thread) -> Option<String> {
 /// Everything the callbacks share while a script runs (kept in Lua's app data).
 pub(crate) struct State {
     pub graph: SceneGraph,
+    /// The scene's chunk name as locations start (`scene.lua` of `scene.lua:7`).
+    pub scene_chunk: String,
+    /// The scene's text, for advice that quotes a line (`dot_call`).
+    pub scene_source: std::sync::Arc<str>,
+    /// What tells the pre-2015 course's scenes from later ones (`era`).
+    pub era: era::EraEvidence,
     pub order: TransformOrder,
     /// The CLI flag fixed the order: `gr.transform_order` is recorded but has no effect.
     pub order_fixed: bool,

@@ -6,6 +6,10 @@
 //!
 //! Notes are held until the next `gr.render` or the end of the script, so that the
 //! scene's own `gr.ignore_extra_arguments()` silences notes of calls before it too.
+//!
+//! Advice ([`advise`]: a likely mistake the scene makes without an error, such as a field
+//! of view in radians) goes the same way, one per call site, but is never silenced: it
+//! is about the image, not about arguments another tracer used.
 
 use super::args::{describe, finite, location, Args};
 use super::with_state;
@@ -18,6 +22,8 @@ pub(crate) struct Notes {
     seen: HashSet<(String, String)>,
     /// Notes not yet printed.
     pending: Vec<String>,
+    /// Advice not yet printed ([`advise`]).
+    pending_advice: Vec<String>,
     /// `--ignore-extra-arguments` or `gr.ignore_extra_arguments()`.
     silenced: bool,
 }
@@ -42,9 +48,23 @@ pub(crate) fn note(a: &Args, at: String, message: String) {
     });
 }
 
-/// Prints the pending notes (`glint: note: …`) unless silenced, and records them in the
-/// script's report.
+/// Queues advice `message` (already prefixed with `file:line: call:`) for the call site
+/// `at` under `topic` (one piece of advice per site and topic); never silenced.
+pub(crate) fn advise(lua: &mlua::Lua, at: String, topic: &str, message: String) {
+    with_state(lua, |s| {
+        if s.notes.seen.insert((at, topic.to_string())) {
+            s.notes.pending_advice.push(message);
+        }
+    });
+}
+
+/// Prints the pending advice, then the pending notes unless silenced (`glint: note: …`),
+/// and records them in the script's report.
 pub(crate) fn flush(s: &mut super::State) {
+    for message in std::mem::take(&mut s.notes.pending_advice) {
+        eprintln!("glint: note: {message}");
+        s.report.advice.push(message);
+    }
     let pending = std::mem::take(&mut s.notes.pending);
     if s.notes.silenced {
         return;

@@ -238,7 +238,9 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
         "unpack",
         lua.create_function(move |lua, args: MultiValue| {
             ensure_live(lua)?;
-            with_state(lua, |s| s.report.looks_pre2015 = true);
+            if super::preludes::caller_module_dir(lua).is_none() {
+                super::era::strong(lua, "bare unpack (Lua 5.1)");
+            }
             table_unpack.call::<MultiValue>(args)
         })?,
     )?;
@@ -290,10 +292,10 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     let a = Args::new(lua, "require", args);
     let name = a.text(1, "module")?;
     let prelude_dir = super::preludes::caller_module_dir(lua);
-    if prelude_dir.is_none() {
-        with_state(lua, |s| s.report.looks_pre2015 = true);
-    }
     if name == "readobj" {
+        if prelude_dir.is_none() {
+            super::era::strong(lua, "require('readobj'), the old course's mesh reader,");
+        }
         super::notes::check_extra_arguments(&a);
         return Ok(Value::Boolean(true));
     }
@@ -362,10 +364,10 @@ fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     ensure_live(lua)?;
     let a = Args::new(lua, "readobj", args);
     let file = a.text(1, "path")?;
-    let found = with_state(lua, |s| {
-        s.report.looks_pre2015 = true;
-        s.folders.find(&s.read_policy, &file, "mesh file")
-    });
+    if super::preludes::caller_module_dir(lua).is_none() {
+        super::era::strong(lua, "readobj, the old course's mesh reader,");
+    }
+    let found = with_state(lua, |s| s.folders.find(&s.read_policy, &file, "mesh file"));
     let (path, _) = found.map_err(|e| a.error(e))?;
     super::check_file_cost(&a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
     let (verts, faces) = crate::scene::obj::read_obj_raw(&path).map_err(|e| a.error(e))?;

@@ -1,6 +1,6 @@
 //! Calls the scene language does not have, answered with what to do instead: an unknown
-//! `gr.X` (other students' tracers added `gr.plane`, `gr.arealight`, …) names the nearest
-//! of glint's calls, the one that does the same where there is one, and the dialect
+//! `gr.X` names the nearest of glint's calls; one that other students' tracers added
+//! (`gr.plane`, `gr.arealight`, …) also the one that does the same and the dialect
 //! preludes; a method a node, material or light does not have names the type as the
 //! scene language calls it (never a Rust type) and its methods.
 
@@ -41,6 +41,37 @@ const FOREIGN_CALLS: &[(&[&str], &str)] = &[
     (&["box", "nh_cube"], "gr.cube(name) or gr.nh_box(name, corner, size)"),
 ];
 
+/// Methods other CS488 tracers' handles had (the dialect preludes map the first ones):
+/// only these get [`DIALECT_HINT`], not a typo of one of glint's methods.
+const FOREIGN_METHODS: &[&str] = &[
+    "set_texture",
+    "set_bumpmap",
+    "set_bump_map",
+    "set_normal_map",
+    "set_transparency",
+    "set_transmission",
+    "set_ior",
+    "set_index",
+    "set_reflectivity",
+    "set_reflective",
+    "set_refractive",
+    "set_mirror",
+    "set_glossiness",
+    "set_position",
+    "set_colour",
+    "set_color",
+    "set_falloff",
+];
+
+/// `; DIALECT_HINT` when `name` is a method other tracers' handles had, else nothing.
+fn foreign_method_hint(name: &str) -> String {
+    if FOREIGN_METHODS.contains(&name.to_ascii_lowercase().as_str()) {
+        format!("; {DIALECT_HINT}")
+    } else {
+        String::new()
+    }
+}
+
 /// Makes indexing `gr` with a name it does not hold an error that says so (instead of
 /// nil, which Lua reports as `attempt to call a nil value (field 'plane')`). A script
 /// that wants to test for a call uses `rawget(gr, 'name')`.
@@ -77,13 +108,14 @@ fn unknown_gr_call(lua: &Lua, gr: &Table, key: &Value) -> mlua::Error {
         nearest.join(", ")
     );
     let lower = name.to_ascii_lowercase();
+    // Names other tracers use get glint's way and the dialect preludes; a typo of one of
+    // glint's own calls gets the nearest names alone.
     if let Some((_, instead)) = FOREIGN_CALLS
         .iter()
         .find(|(names, _)| names.contains(&lower.as_str()))
     {
-        message += &format!("; {instead}");
+        message += &format!("; {instead}; {DIALECT_HINT}");
     }
-    message += &format!("; {DIALECT_HINT}");
     mlua::Error::RuntimeError(message)
 }
 
@@ -95,16 +127,17 @@ pub(crate) fn unknown_method(lua: &Lua, kind: &str, key: &Value, methods: &[&str
         other => describe(lua, other),
     };
     let at = location(lua);
+    let dialect = foreign_method_hint(&name);
     if methods.is_empty() {
         return mlua::Error::RuntimeError(format!(
             "{at}: {kind} has no methods (`{name}` was asked for): a light is made whole by \
              gr.light(position, colour, falloff) or gr.area_light(centre, u, v, colour, \
-             falloff[, n]) and goes in gr.render's list of lights; {DIALECT_HINT}"
+             falloff[, n]) and goes in gr.render's list of lights{dialect}"
         ));
     }
     let names: Vec<String> = methods.iter().map(|m| m.to_string()).collect();
     mlua::Error::RuntimeError(format!(
-        "{at}: {kind} has no method `{name}` (its methods: {}; nearest: {}); {DIALECT_HINT}",
+        "{at}: {kind} has no method `{name}` (its methods: {}; nearest: {}){dialect}",
         methods.join(", "),
         nearest(&name, &names).join(", ")
     ))
