@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes N random triangles in the unit cube as an OBJ: the same triangles as glint's
-`random_triangle_scene(N, seed)` (src/bench/cmd.rs, splitmix64 in src/bench/splitmix.rs):
+`random_triangle_scene(N, seed)` (src/bin/glint/bench/cmd.rs, splitmix64 in src/bench/splitmix.rs):
 each centred at a uniform point, its corners within ±size/2 of the centre, size =
 N^(-1/3), so depth complexity does not grow with N. Deterministic for (N, seed).
 

@@ -1,5 +1,6 @@
 //! From a scene script to image files: run the script; at each `gr.render`, flatten, pack,
-//! render and write the image atomically. Shared by the CLI, the benchmark and the tests.
+//! render and write the image atomically, telling a [`ProgressSink`] how each render
+//! advances. Shared by the command line, the benchmark, the tests and embedding programs.
 
 use crate::aa_map::{aa_samples_film, AaMapError};
 use crate::cpu::camera_media::fill_camera_media;
@@ -16,7 +17,19 @@ use crate::script_driver::{run_script, ScriptSettings};
 use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
+
+/// Hears how each render advances: the command line draws it as a progress bar; a library
+/// caller may show it its own way, or leave [`RenderSettings::progress`] empty.
+pub trait ProgressSink: std::fmt::Debug + Send + Sync {
+    /// A render of the image `output` begins; its `advance` calls follow.
+    fn begin(&self, output: &Path);
+    /// `done` of `total` units of the current render are finished (from any thread).
+    fn advance(&self, done: u64, total: u64);
+    /// The current render's film is made (before it is written).
+    fn end(&self);
+}
 
 /// How to run a scene: everything the CLI can say.
 #[derive(Clone, Debug, Default)]
@@ -30,8 +43,8 @@ pub struct RenderSettings {
     pub output: Option<PathBuf>,
     /// Print statistics (grid, features, rays) after each render.
     pub stats: bool,
-    /// Show a progress bar (only drawn on a terminal).
-    pub progress: bool,
+    /// Hears each render's progress (the command line draws a bar; None: nothing hears).
+    pub progress: Option<Arc<dyn ProgressSink>>,
     /// `--output-dir`: the folder the script's own output names are taken from and
     /// confined to (None: the current folder; `-o` is not confined).
     pub output_dir: Option<PathBuf>,
@@ -222,14 +235,22 @@ pub fn render_request(
     request: &RenderRequest,
     overrides: &OptionOverrides,
     stats: bool,
-    progress: bool,
+    progress: Option<&dyn ProgressSink>,
     tracer: Tracer,
 ) -> anyhow::Result<RenderedImage> {
     let (request, packed) = prepare_request(graph, request, overrides)?;
-    let bar = progress_bar(progress, &request.output);
+    if let Some(sink) = progress {
+        sink.begin(&request.output);
+    }
     let tick = |done: u64, total: u64| {
-        bar.set_length(total);
-        bar.set_position(done);
+        if let Some(sink) = progress {
+            sink.advance(done, total);
+        }
+    };
+    let end = || {
+        if let Some(sink) = progress {
+            sink.end();
+        }
     };
     let start = Instant::now();
     if let Tracer::Gpu(ctx) = tracer {
@@ -238,7 +259,7 @@ pub fn render_request(
             ..GpuRenderOptions::default()
         };
         let GpuRender { film, info, .. } = render_gpu(ctx, &packed, &options)?;
-        bar.finish_and_clear();
+        end();
         if info.cpu_fallback_pixels > 0 {
             eprintln!(
                 "glint: note: {} pixels of {} re-rendered on the CPU: they passed the software adapter's loop limit (Mesa: 65 535 loop iterations per invocation)",
@@ -263,7 +284,7 @@ pub fn render_request(
     } else {
         (render(&packed, &tick), None)
     };
-    bar.finish_and_clear();
+    end();
     Ok(RenderedImage {
         output: request.output.clone(),
         film,
@@ -283,21 +304,6 @@ fn shown_view(debug: DebugView) -> DebugView {
         DebugView::AaSamples => DebugView::None,
         view => view,
     }
-}
-
-fn progress_bar(enabled: bool, output: &Path) -> indicatif::ProgressBar {
-    if !enabled {
-        return indicatif::ProgressBar::hidden();
-    }
-    // indicatif draws only when stderr is a terminal.
-    let bar = indicatif::ProgressBar::new(1);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {percent}% ({elapsed} < {eta})")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_message(format!("rendering {}", output.display()));
-    bar
 }
 
 /// Output path of the `index`-th render (0-based) of a script.
@@ -374,7 +380,7 @@ pub fn run_scene(
                 request,
                 &settings.overrides,
                 settings.stats,
-                settings.progress,
+                settings.progress.as_deref(),
                 tracer,
             )?,
         };

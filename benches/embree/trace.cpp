@@ -5,7 +5,7 @@
 // counts and checksum, and how many rays Embree answers differently from glint.
 //
 // Usage: glint-embree-trace DUMP [--threads N] [--repeat K]
-// Dump format: src/bench/trace_dump.rs in the glint repository, and README.md here.
+// Dump format: src/bin/glint/bench/trace_dump.rs in the glint repository, and README.md here.
 
 #include <embree3/rtcore.h>
 

@@ -195,7 +195,7 @@ def cell(r):
 def report(data):
     """One row per (module, candidate): VGPRs (spilled VGPRs / SGPRs, scratch bytes where
     any) in wave32 and wave64 for each mailbox choice measured, the wave32 code size and
-    waves per SIMD, and the verdict of the NAVI21 budgets (src/kernels/budget.rs: in
+    waves per SIMD, and the verdict of the NAVI21 budgets (src/bin/glint/kernels/budget.rs: in
     wave32 traversal ≤ 96 VGPRs, others ≤ 128; in both sizes nothing spilled, no
     scratch)."""
     rows = {}

@@ -5,12 +5,11 @@
 //! digest of what determined its pixels; `glint assemble` puts tiles back together, bit
 //! for bit the full render. See docs/farm.md.
 //!
-//! Layout: [`spec`] parses the flags, [`split`] cuts an image into tiles, [`digest`]
-//! fingerprints a render, [`tile_file`] writes and reads tile images (EXR ones with
-//! [`tile_exr`]), [`assemble`] checks and joins them, [`run`] drives a script through
-//! frames and tiles.
+//! Layout: [`spec`] parses the flags' values (the binary's `farm_args` declares the
+//! flags), [`split`] cuts an image into tiles, [`digest`] fingerprints a render,
+//! [`tile_file`] writes and reads tile images (EXR ones with [`tile_exr`]), [`assemble`]
+//! checks and joins them, [`run`] drives a script through frames and tiles.
 
-pub mod args;
 pub mod assemble;
 pub mod digest;
 pub mod run;

@@ -12,6 +12,7 @@ mod first_gpu;
 mod fuzz_front_end;
 mod hostile;
 mod house;
+mod library_crate;
 mod pipeline_cache;
 mod scene_script;
 mod view_cli;

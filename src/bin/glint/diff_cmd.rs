@@ -2,22 +2,15 @@
 
 use std::path::Path;
 
-use crate::diff::{check_diff_size, diff_films, DiffError, DiffReport};
-use crate::image_io::{read_image_within, write_image, ImageIoError, MAX_READ_PIXELS};
+use glint::diff::{diff_files, DiffFilesError, DiffReport};
+use glint::image_io::{write_image, ImageIoError};
 
 /// Why `glint diff` failed; each kind has its exit code.
 #[derive(Debug, thiserror::Error)]
 pub enum DiffCmdError {
-    /// An input is missing, unreadable or too big (exit code 2: a bad argument).
-    #[error("{0}")]
-    Input(String),
-    /// The images cannot be compared (exit code 3).
-    #[error("cannot compare {a} with {b}: {error}")]
-    Compare {
-        a: String,
-        b: String,
-        error: DiffError,
-    },
+    /// An input is missing, unreadable or too big, or the images cannot be compared.
+    #[error(transparent)]
+    Files(DiffFilesError),
     /// The heat map cannot be written (exit code 4).
     #[error("{0}")]
     Output(ImageIoError),
@@ -26,36 +19,21 @@ pub enum DiffCmdError {
 impl DiffCmdError {
     pub fn exit_code(&self) -> u8 {
         match self {
-            DiffCmdError::Input(_) => 2,
-            DiffCmdError::Compare { .. } => 3,
+            // A bad argument.
+            DiffCmdError::Files(DiffFilesError::Input(_)) => 2,
+            DiffCmdError::Files(DiffFilesError::Compare { .. }) => 3,
             DiffCmdError::Output(_) => 4,
         }
     }
 }
 
-/// Reads one input: a regular file, decoded by its content, its size checked from the
-/// header before it is decoded.
-fn read_input(path: &Path) -> Result<crate::film::Film, DiffCmdError> {
-    read_image_within(path, MAX_READ_PIXELS, |w, h| {
-        check_diff_size(w, h).map_err(|e| e.to_string())
-    })
-    .map_err(|e| DiffCmdError::Input(e.to_string()))
-}
-
-/// Reads `a` (the reference) and `b`, prints the report to stdout and, if asked, writes
-/// FLIP's magma heat map to `heatmap` (atomically, format by extension).
+/// Compares `a` (the reference) with `b`, prints the report to stdout and, if asked,
+/// writes FLIP's magma heat map to `heatmap` (atomically, format by extension).
 pub fn run_diff(a: &Path, b: &Path, heatmap: Option<&Path>) -> Result<DiffReport, DiffCmdError> {
     if let Some(path) = heatmap {
-        crate::image_io::check_output_path(path).map_err(DiffCmdError::Output)?;
+        glint::image_io::check_output_path(path).map_err(DiffCmdError::Output)?;
     }
-    let film_a = read_input(a)?;
-    let film_b = read_input(b)?;
-    let (report, heat_map) =
-        diff_films(&film_a, &film_b).map_err(|error| DiffCmdError::Compare {
-            a: a.display().to_string(),
-            b: b.display().to_string(),
-            error,
-        })?;
+    let (report, heat_map) = diff_files(a, b).map_err(DiffCmdError::Files)?;
     println!("{report}");
     if let Some(path) = heatmap {
         write_image(&heat_map, path).map_err(DiffCmdError::Output)?;
@@ -66,8 +44,8 @@ pub fn run_diff(a: &Path, b: &Path, heatmap: Option<&Path>) -> Result<DiffReport
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::film::Film;
-    use crate::image_io::read_image;
+    use glint::film::Film;
+    use glint::image_io::read_image;
 
     #[test]
     fn diffs_files_and_writes_heat_map() {

@@ -1,9 +1,11 @@
 //! The farm flags as `glint render` takes them (flattened into its arguments), and
 //! `glint assemble`'s.
 
-use super::run::FarmSettings;
-use super::spec::{parse_crop, parse_frame, parse_frames, parse_tile, FrameRange, Index, TileSpec};
-use crate::tiling::PixelRect;
+use glint::farm::run::FarmSettings;
+use glint::farm::spec::{
+    parse_crop, parse_frame, parse_frames, parse_tile, FrameRange, Index, TileSpec,
+};
+use glint::tiling::PixelRect;
 use std::path::PathBuf;
 
 /// Tiles, crop windows and frames (docs/farm.md).

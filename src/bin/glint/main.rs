@@ -1,4 +1,18 @@
-//! The `glint` command line: `render`, `diff`, `bench`, `assemble`, `info` and `kernels`.
+//! The `glint` binary: the command line (clap) of `render`, `diff`, `bench`, `assemble`,
+//! `view`, `info` and `kernels`, and each subcommand's body; what they call is the
+//! library `glint` (docs/architecture.md). Beside it: [`bench`], [`kernels`] and [`view`]
+//! (the benchmarks, the kernel instrument and the window), the flags several subcommands
+//! share ([`script_args`], [`farm_args`]), and what they print ([`progress`], [`stats`]).
+
+mod bench;
+mod diff_cmd;
+mod farm_args;
+mod kernels;
+mod kernels_cmd;
+mod progress;
+mod script_args;
+mod stats;
+mod view;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::scene::flatten::MAX_PIXELS;
@@ -42,20 +56,20 @@ enum Command {
     },
     /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles;
     /// --trace SCENE: traversal alone in rays/s (beside Embree: benches/).
-    Bench(glint::bench::common::BenchArgs),
+    Bench(bench::common::BenchArgs),
     /// Join tiles of one render (`render --tile`/`--crop`) into its image, bit for bit the
     /// full render; refuses tiles of other renders, gaps and overlaps.
-    Assemble(glint::farm::args::AssembleArgs),
+    Assemble(farm_args::AssembleArgs),
     /// Open a window showing the scene traced progressively (GPU or CPU tracer), with a
     /// camera to move and live reload of the script and every file it reads
     /// (docs/view.md).
-    View(glint::view::ViewArgs),
+    View(view::ViewArgs),
     /// List the GPU adapters (Vulkan, Metal, DX12, or the backends WGPU_BACKEND names)
     /// and their limits.
     Info,
     /// The GPU kernels' registers, spills, scratch and waves per SIMD, compiled by a real
     /// GPU compiler (RADV's null device with --family, else a hardware Vulkan device).
-    Kernels(glint::cli::kernels_cmd::KernelsArgs),
+    Kernels(kernels_cmd::KernelsArgs),
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -97,7 +111,7 @@ struct RenderArgs {
     stats: bool,
     /// The sandbox's limits and readable folders (the same flags as `bench`).
     #[command(flatten)]
-    script: glint::script_driver::ScriptArgs,
+    script: script_args::ScriptArgs,
     /// The folder the image names a script gives gr.render are taken from and confined
     /// to (default: the current folder). -o is not confined.
     #[arg(long, value_name = "DIR")]
@@ -176,7 +190,7 @@ struct RenderArgs {
     shading: Option<Shading>,
     /// Tiles and frames for render farms (docs/farm.md).
     #[command(flatten)]
-    farm: glint::farm::args::FarmArgs,
+    farm: farm_args::FarmArgs,
 }
 
 fn parse_aa(s: &str) -> Result<AaMode, String> {
@@ -219,30 +233,26 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     if let Command::Kernels(args) = &cli.command {
         // SAFETY: still single-threaded (signal handlers only), and no Vulkan loader yet.
-        if let Err(message) = unsafe { glint::cli::kernels_cmd::set_driver_env(args) } {
+        if let Err(message) = unsafe { kernels_cmd::set_driver_env(args) } {
             eprintln!("glint: error: {message}");
             return ExitCode::from(5);
         }
     }
     let result = match cli.command {
         Command::Render(args) => render(args),
-        Command::Diff { a, b, heatmap } => {
-            glint::cli::diff_cmd::run_diff(&a, &b, heatmap.as_deref())
-                .map(|_| ())
-                .map_err(|e| (e.to_string(), e.exit_code()))
-        }
-        Command::Bench(args) => {
-            glint::bench::cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1))
-        }
+        Command::Diff { a, b, heatmap } => diff_cmd::run_diff(&a, &b, heatmap.as_deref())
+            .map(|_| ())
+            .map_err(|e| (e.to_string(), e.exit_code())),
+        Command::Bench(args) => bench::cmd::run_bench(&args).map_err(|e| (format!("{e:#}"), 1)),
         Command::Assemble(args) => glint::farm::assemble::assemble(&args.tiles, &args.output)
             .map(|()| eprintln!("glint: wrote {}", args.output.display()))
             .map_err(|e| (e.to_string(), e.exit_code())),
-        Command::View(args) => glint::view::run(&args),
+        Command::View(args) => view::run(&args),
         Command::Info => {
             info();
             Ok(())
         }
-        Command::Kernels(args) => glint::cli::kernels_cmd::run_kernels(&args),
+        Command::Kernels(args) => kernels_cmd::run_kernels(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -280,7 +290,7 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
         },
         output: args.output.clone(),
         stats: args.stats,
-        progress: true,
+        progress: Some(std::sync::Arc::new(progress::ProgressBars::default())),
         output_dir: args.output_dir.clone(),
         allow_write: args.allow_write.clone(),
         backend: match args.backend {
@@ -469,7 +479,7 @@ fn report_image(
         if image.gpu.is_some() { "GPU" } else { "CPU" }
     );
     if settings.stats {
-        eprint!("{}", glint::cli::stats::format_stats(image));
+        eprint!("{}", stats::format_stats(image));
     }
 }
 

@@ -1,6 +1,6 @@
 //! `--stats`: what a render compiled in, how its grid came out, and what its rays cost.
 
-use crate::pipeline::RenderedImage;
+use glint::pipeline::RenderedImage;
 use std::fmt::Write;
 
 /// Multi-line statistics of one render.
@@ -45,7 +45,7 @@ fn write_gpu(out: &mut String, image: &RenderedImage) {
 }
 
 /// Where the pipelines' compile time went, and what the on-disk pipeline cache did.
-fn write_compile(out: &mut String, c: &crate::gpu::pipeline::CompileSummary) {
+fn write_compile(out: &mut String, c: &glint::gpu::pipeline::CompileSummary) {
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
     let _ = writeln!(
         out,
@@ -68,7 +68,7 @@ fn write_items(out: &mut String, image: &RenderedImage) {
     let g = &packed.globals;
     let csg_items = packed.instances[..g.num_instances as usize]
         .iter()
-        .filter(|i| i.kind == crate::constants::KIND_CSG)
+        .filter(|i| i.kind == glint::constants::KIND_CSG)
         .count();
     let csg = if csg_items > 0 {
         format!(
@@ -80,7 +80,7 @@ fn write_items(out: &mut String, image: &RenderedImage) {
     };
     let mesh_instances = packed.instances[..g.num_instances as usize]
         .iter()
-        .filter(|i| i.kind == crate::constants::KIND_MESH)
+        .filter(|i| i.kind == glint::constants::KIND_MESH)
         .count();
     let _ = writeln!(
         out,

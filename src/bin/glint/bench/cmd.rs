@@ -10,19 +10,19 @@
 //! the traversal benchmark of one scene, beside Embree (`bench_trace`).
 
 use super::common::{load_scene, with_grid, BenchArgs};
-use super::splitmix::SplitMix;
 use super::timing::fastest;
-use crate::accel::aabb::Aabb;
-use crate::accel::grid::{Grid, DEFAULT_DENSITY, MESH_DEFAULT_DENSITY};
-use crate::cpu::intersect::triangle_vertices;
-use crate::cpu::ray::camera_ray;
-use crate::cpu::ray::Ray;
-use crate::cpu::traverse::{closest_hit, NoCounters};
-use crate::pack::PackedScene;
-use crate::pipeline::pack_scene;
-use crate::scene::flatten::{FlatScene, Triangle};
-use crate::scene::{Camera, GridMode, RenderOptions};
 use glam::{DVec3, Vec3};
+use glint::accel::aabb::Aabb;
+use glint::accel::grid::{Grid, DEFAULT_DENSITY, MESH_DEFAULT_DENSITY};
+use glint::bench::splitmix::SplitMix;
+use glint::cpu::intersect::triangle_vertices;
+use glint::cpu::ray::camera_ray;
+use glint::cpu::ray::Ray;
+use glint::cpu::traverse::{closest_hit, NoCounters};
+use glint::pack::PackedScene;
+use glint::pipeline::pack_scene;
+use glint::scene::flatten::{FlatScene, Triangle};
+use glint::scene::{Camera, GridMode, RenderOptions};
 use rayon::prelude::*;
 use std::time::Duration;
 
@@ -149,7 +149,7 @@ pub fn random_triangle_scene(n: usize, seed: u64) -> FlatScene {
         meshes: Vec::new(),
         mesh_instances: Vec::new(),
         csg: Vec::new(),
-        materials: vec![crate::scene::Material::default()],
+        materials: vec![glint::scene::Material::default()],
         textures: Vec::new(),
         lights: Vec::new(),
         camera: Camera {

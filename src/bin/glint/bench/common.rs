@@ -1,11 +1,12 @@
 //! What the `glint bench` subcommands share: the arguments (`BenchArgs`) and loading a
 //! scene script into a flat scene, and packing it with a chosen grid mode.
 
-use crate::pack::PackedScene;
-use crate::pipeline::pack_scene;
-use crate::scene::flatten::{flatten, FlatScene};
-use crate::scene::GridMode;
-use crate::script_driver::{run_script, ScriptArgs, ScriptSettings};
+use crate::script_args::ScriptArgs;
+use glint::pack::PackedScene;
+use glint::pipeline::pack_scene;
+use glint::scene::flatten::{flatten, FlatScene};
+use glint::scene::GridMode;
+use glint::script_driver::{run_script, ScriptSettings};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Clone, Debug)]

@@ -289,7 +289,7 @@ fn draw_legend(svg: &mut String, panel_count: usize, families: &[String], scenes
 
 /// Writes `text` to `path` atomically (a temp file beside it, then a rename).
 pub fn write_atomically(path: &Path, text: &str) -> std::io::Result<()> {
-    crate::image_io::write_via_temp(path, |temp| std::fs::write(temp, text))
+    glint::image_io::write_via_temp(path, |temp| std::fs::write(temp, text))
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@
 //! timed (best of `--repeat`; a setting whose first run takes over [`TWO_RUNS_ABOVE`]
 //! runs twice at most, over [`SINGLE_RUN_ABOVE`] once; settings are compared by core
 //! time, which other load on a shared machine stretches far less than wall time) and
-//! compared with the reference (RMSE and FLIP mean, `crate::diff`). Scenes with area lights also sweep the shadow samples n×n with
+//! compared with the reference (RMSE and FLIP mean, `glint::diff`). Scenes with area lights also sweep the shadow samples n×n with
 //! AA off against a reference at n = 32 (residual: against n = 24), so that error is the
 //! shadows' alone. The GPU tracer renders a subset where an adapter exists, within a time
 //! budget. Then the figures of [`super::sweep_analysis`] and the plot.
@@ -18,14 +18,14 @@ use super::plot_svg::{loglog_svg, write_atomically, Panel, Series};
 use super::sweep_analysis::{
     cheapest_within, choose_default, loglog_slope, target_ratio, Measured, Metric,
 };
-use crate::diff::diff_films;
-use crate::film::Film;
-use crate::gpu::{render_gpu, GpuContext, GpuRenderOptions};
-use crate::pack::SceneFeatures;
-use crate::pipeline::pack_scene;
-use crate::scene::flatten::FlatScene;
-use crate::scene::{AaDepth, AaMode, AaSamples, RenderOptions, ShadowSamples};
-use crate::script_driver::ScriptSettings;
+use glint::diff::diff_films;
+use glint::film::Film;
+use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions};
+use glint::pack::SceneFeatures;
+use glint::pipeline::pack_scene;
+use glint::scene::flatten::FlatScene;
+use glint::scene::{AaDepth, AaMode, AaSamples, RenderOptions, ShadowSamples};
+use glint::script_driver::ScriptSettings;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -251,7 +251,7 @@ fn time_cpu(scene: &FlatScene, repeat: usize) -> anyhow::Result<(Timing, Film)> 
             break;
         }
         let (core0, start) = (process_cpu_time(), Instant::now());
-        film = Some(crate::cpu::render(&packed, &|_, _| {}));
+        film = Some(glint::cpu::render(&packed, &|_, _| {}));
         let wall = start.elapsed();
         let core = process_cpu_time()
             .zip(core0)

@@ -7,13 +7,13 @@
 //! With a GPU adapter, both solvers also run on the GPU (`bench_torus_gpu`).
 
 use super::common::BenchArgs;
-use super::ferrari::intersect_torus_ferrari;
 use super::timing::fastest;
-use super::torus_gpu::{GpuTorusBench, GpuTorusSolver};
-pub use super::torus_rays::{rays, TorusRay};
-use crate::cpu::torus::intersect_torus;
-use crate::gpu::GpuContext;
 use glam::DVec3;
+use glint::bench::ferrari::intersect_torus_ferrari;
+use glint::bench::torus_gpu::{GpuTorusBench, GpuTorusSolver};
+pub use glint::bench::torus_rays::{rays, TorusRay};
+use glint::cpu::torus::intersect_torus;
+use glint::gpu::GpuContext;
 use rayon::prelude::*;
 
 /// f64 oracle: first sign change of the factored torus function along the bounding

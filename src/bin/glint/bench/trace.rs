@@ -12,14 +12,14 @@
 
 use super::timing::fastest;
 use super::trace_dump::{check_dumpable, write_trace_dump};
-use super::trace_rays::{
+use glint::bench::trace_rays::{
     camera_rays, count_work, load_first_render, shadow_rays, summarise, trace_primary_into,
     trace_shadow_into, TraceSummary,
 };
-use crate::cpu::traverse::Hit;
-use crate::pack::PackedScene;
-use crate::pipeline::pack_scene;
-use crate::script_driver::ScriptSettings;
+use glint::cpu::traverse::Hit;
+use glint::pack::PackedScene;
+use glint::pipeline::pack_scene;
+use glint::script_driver::ScriptSettings;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -134,4 +134,19 @@ pub fn rate(x: f64) -> String {
 
 fn mrays(rays: usize, time: Duration) -> f64 {
     rays as f64 / time.as_secs_f64().max(1e-9) / 1e6
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rate;
+
+    #[test]
+    fn rates_keep_three_significant_digits_below_one() {
+        assert_eq!(rate(31.25), "31.250");
+        assert_eq!(rate(1.0), "1.000");
+        assert_eq!(rate(0.5), "0.500");
+        assert_eq!(rate(0.0123), "0.0123");
+        assert_eq!(rate(0.000965), "0.000965");
+        assert_eq!(rate(0.0), "0.000");
+    }
 }

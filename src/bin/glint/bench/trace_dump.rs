@@ -18,14 +18,14 @@
 //!
 //! Only spheres, boxes and triangles are written: the harness implements no other kind.
 
-use super::trace_rays::{ItemNumbering, ShadowRay};
-use crate::constants::{KIND_CUBE, KIND_MESH, KIND_SPHERE, T_MISS};
-use crate::cpu::intersect::triangle_vertices;
-use crate::cpu::ray::Ray;
-use crate::cpu::traverse::Hit;
-use crate::cpu::traverse_mesh::instance_mesh;
-use crate::pack::PackedScene;
 use glam::Vec3;
+use glint::bench::trace_rays::{ItemNumbering, ShadowRay};
+use glint::constants::{KIND_CUBE, KIND_MESH, KIND_SPHERE, T_MISS};
+use glint::cpu::intersect::triangle_vertices;
+use glint::cpu::ray::Ray;
+use glint::cpu::traverse::Hit;
+use glint::cpu::traverse_mesh::instance_mesh;
+use glint::pack::PackedScene;
 use std::io::Write;
 use std::path::Path;
 
@@ -57,7 +57,7 @@ pub fn write_trace_dump(
     occluded: &[bool],
 ) -> anyhow::Result<()> {
     check_dumpable(scene)?;
-    crate::image_io::write_via_temp(path, |temp| {
+    glint::image_io::write_via_temp(path, |temp| {
         write_to(temp, scene, primary, hits, shadow, occluded)
     })
     .map_err(|e| e.context(format!("cannot write {}", path.display())))

@@ -1,17 +1,17 @@
 //! The kernels a scene's renders would compile: each `gr.render` of the script flattened
 //! and packed as `glint render` does, its feature set specialising every render-module
 //! entry point in the chosen kernel variant, and each entry's SPIR-V built as wgpu 30
-//! hands it to Vulkan ([`crate::gpu::spirv`]). Identical SPIR-V (the same entry of
+//! hands it to Vulkan ([`glint::gpu::spirv`]). Identical SPIR-V (the same entry of
 //! scenes with the same features) is kept once, with every scene that uses it.
 
-use crate::gpu::kernel::{KernelConfig, KernelVariant};
-use crate::gpu::plan::Mode;
-use crate::gpu::shader::{assemble_with, wavefront_kernels, Entry};
-use crate::gpu::spirv::{entry_spirv, spirv_bytes, SpirvTarget};
-use crate::pack::SceneFeatures;
-use crate::pipeline::prepare_request;
-use crate::scene::OptionOverrides;
-use crate::script_driver::{run_script, ScriptSettings};
+use glint::gpu::kernel::{KernelConfig, KernelVariant};
+use glint::gpu::plan::Mode;
+use glint::gpu::shader::{assemble_with, wavefront_kernels, Entry};
+use glint::gpu::spirv::{entry_spirv, spirv_bytes, SpirvTarget};
+use glint::pack::SceneFeatures;
+use glint::pipeline::prepare_request;
+use glint::scene::OptionOverrides;
+use glint::script_driver::{run_script, ScriptSettings};
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 
@@ -45,8 +45,8 @@ pub struct KernelSet {
 /// The (features, AA mode) of each `gr.render` of `scene`.
 pub fn scene_renders(scene: &Path) -> Result<Vec<(SceneFeatures, Mode)>, String> {
     let mut renders = Vec::new();
-    let mut on_render = |graph: &crate::scene::SceneGraph,
-                         request: &crate::scene::RenderRequest|
+    let mut on_render = |graph: &glint::scene::SceneGraph,
+                         request: &glint::scene::RenderRequest|
      -> anyhow::Result<()> {
         let (_, packed) = prepare_request(graph, request, &OptionOverrides::default())?;
         renders.push((packed.features, Mode::of(&packed.globals)));
@@ -180,7 +180,7 @@ impl KernelSet {
         kernel: KernelConfig,
         target: SpirvTarget,
     ) -> Result<(), String> {
-        let layout = crate::gpu::pipeline::layout_entries(entry, kernel);
+        let layout = glint::gpu::pipeline::layout_entries(entry, kernel);
         let (spirv, functions) = entry_spirv(wgsl, entry, &layout, target)
             .map_err(|e| format!("{scene}: {}: {e}", entry.name()))?;
         let traversal = functions

@@ -7,10 +7,10 @@
 //! Nothing is allocated, recorded or submitted.
 
 use super::stats::KernelStats;
-use crate::gpu::kernel::KernelConfig;
-use crate::gpu::pipeline::layout_entries;
-use crate::gpu::shader::Entry;
 use ash::vk;
+use glint::gpu::kernel::KernelConfig;
+use glint::gpu::pipeline::layout_entries;
+use glint::gpu::shader::Entry;
 use std::ffi::CStr;
 
 /// A Vulkan device that compiles kernels and reports their statistics.

@@ -11,7 +11,7 @@ use super::present::Presenter;
 use super::session::{Session, TracerKind};
 use super::status::title;
 use super::watch::WatchList;
-use crate::gpu::GpuContext;
+use glint::gpu::GpuContext;
 use std::sync::Arc;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseScrollDelta, WindowEvent};
@@ -144,7 +144,7 @@ impl App {
                         let why = "the window's surface cannot be copied on this adapter";
                         return self.fail(event_loop, format!("--screenshot: {why}"), 1);
                     };
-                    if let Err(e) = crate::image_io::write_image(&film, &path) {
+                    if let Err(e) = glint::image_io::write_image(&film, &path) {
                         return self.fail(event_loop, e.to_string(), 4);
                     }
                     eprintln!("glint view: wrote {}", path.display());
@@ -346,12 +346,12 @@ fn device_for_window(
     name: Option<&str>,
 ) -> Result<(GpuContext, wgpu::Surface<'static>), String> {
     let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-    desc.backends = crate::gpu::context::backends();
+    desc.backends = glint::gpu::context::backends();
     let instance = wgpu::Instance::new(desc);
     let surface = instance
         .create_surface(Arc::clone(window))
         .map_err(|e| format!("cannot make a surface for the window: {e}"))?;
-    let adapters = pollster::block_on(instance.enumerate_adapters(crate::gpu::context::backends()));
+    let adapters = pollster::block_on(instance.enumerate_adapters(glint::gpu::context::backends()));
     let names: Vec<String> = adapters.iter().map(|a| a.get_info().name).collect();
     let mut usable: Vec<wgpu::Adapter> = adapters
         .into_iter()

@@ -2,9 +2,10 @@
 //! to, where S writes, and the sandbox flags every script-running command shares
 //! ([`ScriptArgs`], one script driver).
 
-use crate::scene::lua::MAX_IMAGE_SIDE;
-use crate::scene::{AaMode, AaSamples, OptionOverrides, TransformOrder};
-use crate::script_driver::{ScriptArgs, ScriptSettings};
+use crate::script_args::ScriptArgs;
+use glint::scene::lua::MAX_IMAGE_SIDE;
+use glint::scene::{AaMode, AaSamples, OptionOverrides, TransformOrder};
+use glint::script_driver::ScriptSettings;
 use std::path::PathBuf;
 
 /// Most frames `--frames` accepts (a test's bound, not a render's).
@@ -57,8 +58,8 @@ pub struct ViewArgs {
     pub adapter: Option<String>,
     /// GPU kernel variant: hardware or software, instead of the one chosen by adapter
     /// (as `render`'s; the hardware one on lavapipe shows what a hardware GPU would run).
-    #[arg(long, value_parser = crate::gpu::KernelVariant::parse)]
-    pub kernel_variant: Option<crate::gpu::KernelVariant>,
+    #[arg(long, value_parser = glint::gpu::KernelVariant::parse)]
+    pub kernel_variant: Option<glint::gpu::KernelVariant>,
     /// What the view converges to: uniform (n×n jittered samples a pixel, one a frame)
     /// or none (pixel centres, one frame). Default: the scene's own `aa` when it is none
     /// or uniform, else uniform.

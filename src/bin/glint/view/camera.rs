@@ -6,9 +6,9 @@
 //! Every move is scale-free: orbit turns about a pivot, pan and fly move by shares of the
 //! distance to the pivot or of the scene's bounds, dolly multiplies that distance.
 
-use crate::pack::{camera_frame, PackedGlobals};
-use crate::scene::Camera;
 use glam::DVec3;
+use glint::pack::{camera_frame, PackedGlobals};
+use glint::scene::Camera;
 
 /// Radians turned per pixel of mouse drag when orbiting (a drag across a 640-pixel window
 /// turns about 1.1 turns).

@@ -3,8 +3,8 @@
 
 use super::args::{ViewArgs, ViewBackend};
 use super::load::ViewSampling;
-use crate::scene::OptionOverrides;
-use crate::script_driver::ScriptSettings;
+use glint::scene::OptionOverrides;
+use glint::script_driver::ScriptSettings;
 use std::path::PathBuf;
 
 /// Exit code of a view that cannot open a window (as a usage error: nothing ran).
@@ -22,14 +22,14 @@ pub struct ViewConfig {
     pub allow_write: Vec<PathBuf>,
     pub backend: ViewBackend,
     pub adapter: Option<String>,
-    pub kernel_variant: Option<crate::gpu::KernelVariant>,
+    pub kernel_variant: Option<glint::gpu::KernelVariant>,
     pub frames: Option<u64>,
     pub screenshot: Option<PathBuf>,
 }
 
 impl ViewConfig {
     pub fn from_args(args: &ViewArgs) -> Result<ViewConfig, String> {
-        crate::write_policy::WritePolicy::new(args.output_dir.as_deref(), &args.allow_write)?;
+        glint::write_policy::WritePolicy::new(args.output_dir.as_deref(), &args.allow_write)?;
         Ok(ViewConfig {
             scene: args.scene.clone(),
             script: args.script_settings()?,

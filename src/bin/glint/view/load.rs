@@ -2,12 +2,12 @@
 //! sandbox and limits as `glint render`), its first `gr.render` flattened and packed as
 //! `render` packs it, and every file the run read (for live reload).
 
-use crate::constants::{AA_NONE, AA_UNIFORM};
-use crate::pack::PackedScene;
-use crate::pipeline::prepare_request;
-use crate::scene::files::record_reads;
-use crate::scene::{AaMode, AaSamples, Camera, OptionOverrides, RenderRequest};
-use crate::script_driver::{run_script, ScriptSettings};
+use glint::constants::{AA_NONE, AA_UNIFORM};
+use glint::pack::PackedScene;
+use glint::pipeline::prepare_request;
+use glint::scene::files::record_reads;
+use glint::scene::{AaMode, AaSamples, Camera, OptionOverrides, RenderRequest};
+use glint::script_driver::{run_script, ScriptSettings};
 use std::path::{Path, PathBuf};
 
 /// What the view shows of a script run.
@@ -72,7 +72,7 @@ pub fn load_scene(
 ) -> LoadOutcome {
     let mut first: Option<LoadedScene> = None;
     let mut on_render =
-        |graph: &crate::scene::SceneGraph, request: &RenderRequest| -> anyhow::Result<()> {
+        |graph: &glint::scene::SceneGraph, request: &RenderRequest| -> anyhow::Result<()> {
             if first.is_some() {
                 return Ok(());
             }
@@ -87,7 +87,7 @@ pub fn load_scene(
         };
     let (result, files) = record_reads(|| run_script(path, settings, &mut on_render));
     let scene = match result {
-        Err(e) => Err(crate::scene::lua::cap_message(&e.to_string())),
+        Err(e) => Err(glint::scene::lua::cap_message(&e.to_string())),
         Ok(_) => first.ok_or_else(|| {
             format!(
                 "{}: the script never called gr.render: nothing to show",

@@ -22,7 +22,7 @@ pub mod session;
 pub mod status;
 pub mod watch;
 
-pub use args::{ViewArgs, ViewBackend};
+pub use args::ViewArgs;
 pub use config::{display_available, no_display_message, ViewConfig, NO_DISPLAY_EXIT};
 
 /// Runs `glint view`: Ok on a clean quit, else the message and exit code.

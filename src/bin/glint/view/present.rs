@@ -2,9 +2,9 @@
 //! (`shaders/view_present.wgsl`), on the tracer's own device; and the screenshot of what
 //! was presented (`--screenshot`: the surface texture copied back before it is shown).
 
-use crate::film::Film;
-use crate::gpu::progressive::SumBuffer;
-use crate::gpu::GpuContext;
+use glint::film::Film;
+use glint::gpu::progressive::SumBuffer;
+use glint::gpu::GpuContext;
 use std::sync::Arc;
 use wgpu::util::DeviceExt;
 use winit::window::Window;
@@ -239,7 +239,7 @@ impl SurfaceCopy {
     /// The copied pixels as a film (8-bit values over 255), or None if it failed.
     fn read(self, ctx: &GpuContext, format: wgpu::TextureFormat) -> Option<Film> {
         let size = u64::from(self.row) * u64::from(self.h);
-        let bytes = crate::gpu::buffers::read_back(ctx, &self.buffer, size).ok()?;
+        let bytes = glint::gpu::buffers::read_back(ctx, &self.buffer, size).ok()?;
         let bgra = matches!(
             format,
             wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
@@ -268,7 +268,9 @@ fn present_pipeline(
 ) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("view present"),
-        source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/view_present.wgsl").into()),
+        source: wgpu::ShaderSource::Wgsl(
+            include_str!("../../../../shaders/view_present.wgsl").into(),
+        ),
     });
     let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
         binding,

@@ -3,8 +3,8 @@
 //! `-view-0002`… under the same write rule as `render` ([`WritePolicy`]).
 
 use super::config::ViewConfig;
-use crate::pipeline::output_path;
-use crate::write_policy::WritePolicy;
+use glint::pipeline::output_path;
+use glint::write_policy::WritePolicy;
 use std::path::{Path, PathBuf};
 
 /// `name` with `-view-NNNN` (k + 1, at least four digits) before its extension.

@@ -7,12 +7,12 @@ use super::config::ViewConfig;
 use super::load::{frames_to_converge, load_scene, LoadedScene};
 use super::present::{Presented, Presenter};
 use super::status::Status;
-use crate::cpu::camera_media::fill_camera_media;
-use crate::cpu::progressive::{accumulate_sample, film_of_sums};
-use crate::film::Film;
-use crate::gpu::progressive::{Progressive, SumBuffer};
-use crate::gpu::{GpuContext, GpuError};
-use crate::pack::{PackedGlobals, SceneFeatures};
+use glint::cpu::camera_media::fill_camera_media;
+use glint::cpu::progressive::{accumulate_sample, film_of_sums};
+use glint::film::Film;
+use glint::gpu::progressive::{Progressive, SumBuffer};
+use glint::gpu::{GpuContext, GpuError};
+use glint::pack::{PackedGlobals, SceneFeatures};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use winit::window::Window;
@@ -352,7 +352,7 @@ impl Session {
     pub fn save(&mut self) -> Result<std::path::PathBuf, String> {
         let film = self.current_film().map_err(|e| e.to_string())?;
         let path = super::save::save_path(&self.config, &self.scene.request.output, self.saves)?;
-        crate::image_io::write_image(&film, &path).map_err(|e| e.to_string())?;
+        glint::image_io::write_image(&film, &path).map_err(|e| e.to_string())?;
         self.saves += 1;
         Ok(path)
     }

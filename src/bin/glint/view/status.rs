@@ -45,11 +45,6 @@ impl Default for Status {
 }
 
 impl Status {
-    /// The time the view started (for the first image's latency).
-    pub fn since_start(&self) -> Duration {
-        self.started.elapsed()
-    }
-
     pub fn full_frame_time(&self) -> Option<Duration> {
         self.last_full_frame
     }

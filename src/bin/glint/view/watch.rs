@@ -51,13 +51,6 @@ impl WatchList {
         }
     }
 
-    pub fn paths(&self) -> Vec<PathBuf> {
-        self.files
-            .lock()
-            .map(|l| l.iter().map(|(p, _)| p.clone()).collect())
-            .unwrap_or_default()
-    }
-
     /// Whether any watched file changed since it was stamped (restamping those).
     pub fn changed(&self) -> bool {
         let Ok(mut list) = self.files.lock() else {
@@ -96,7 +89,7 @@ mod tests {
 
     #[test]
     fn a_rewrite_a_new_file_and_a_removal_are_changes() {
-        let dir = crate::testing::scratch::temp_dir("watch");
+        let dir = glint::testing::scratch::temp_dir("watch");
         let (a, b) = (dir.join("a.lua"), dir.join("b.obj"));
         std::fs::write(&a, "x").unwrap();
         let list = WatchList::default();
