@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # glint beside Embree 3 and POV-Ray, in one run: the tables of docs/performance-trace.md.
 #
-#   benches/compare.sh [--threads N] [--quick] [--stadium-size WxH] [--rows LIST] [--repeat K]
+#   tools/benches/compare.sh [--threads N] [--quick] [--stadium-size WxH] [--rows LIST] [--repeat K]
 #
 # 1. Trace rows: `glint bench --trace` on each scene dumps its exact rays with its
-#    answers; the Embree harness (benches/embree/) traces the same rays; one row each:
+#    answers; the Embree harness (tools/benches/embree/) traces the same rays; one row each:
 #    primary and shadow Mrays/s, bytes per triangle, rays answered differently.
 #    Scenes: cow.obj at 2048², 10³…10⁶ random triangles (generated here, not committed),
 #    macho-cows, the stadium.
-# 2. Render rows: `glint render` against POV-Ray 3.7 (benches/povray/), whole-process wall
+# 2. Render rows: `glint render` against POV-Ray 3.7 (tools/benches/povray/), whole-process wall
 #    time, 1024×768, no anti-aliasing: the stadium and nonhier.
 #
 # --quick: small images and 10³–10⁴ triangles only (checks the machinery in a minute).
@@ -21,14 +21,14 @@
 # Needs: cargo, make, g++, libembree-dev, povray, python3. Scratch files go to
 # target/bench-compare (GLINT_BENCH_DIR overrides); ray dumps are deleted after use.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 threads=2
 quick=0
 stadium_size=1024x768
 rows=cow,random,macho-cows,stadium,renders
 repeat=3
-usage="usage: benches/compare.sh [--threads N] [--quick] [--stadium-size WxH] [--rows LIST] [--repeat K]"
+usage="usage: tools/benches/compare.sh [--threads N] [--quick] [--stadium-size WxH] [--rows LIST] [--repeat K]"
 while [ $# -gt 0 ]; do
     case "$1" in
         --threads) threads="$2"; shift 2 ;;
@@ -46,9 +46,9 @@ stadium_h="${stadium_size#*x}"
 work="${GLINT_BENCH_DIR:-target/bench-compare}"
 mkdir -p "$work"
 cargo build --release --locked --quiet
-make -C benches/embree --quiet
+make -C tools/benches/embree --quiet
 glint=target/release/glint
-# benches/scenes/ read their meshes from the CS488 corpus, outside their own folder; the
+# tools/benches/scenes/ read their meshes from the CS488 corpus, outside their own folder; the
 # 10⁶-triangle OBJ (195 MiB) needs more than the default 2 GiB scene memory budget.
 corpus=scenes/cs488/a4-2021plus
 embree=target/embree/glint-embree-trace
@@ -92,13 +92,13 @@ trace_row() {
         "$(value "$g" "hit checksum: ")" "$(value "$e" "hit checksum: ")"
 }
 
-want cow && trace_row cow benches/scenes/cow.lua "${cow_size[@]}"
+want cow && trace_row cow tools/benches/scenes/cow.lua "${cow_size[@]}"
 n=1000
 while want random && [ "$n" -le "$max_n" ]; do
     dir="$work/random-$n"
     mkdir -p "$dir"
-    [ -s "$dir/random-triangles.obj" ] || python3 benches/random_triangles.py "$n" "$n" > "$dir/random-triangles.obj"
-    cp benches/scenes/random-triangles.lua "$dir/"
+    [ -s "$dir/random-triangles.obj" ] || python3 tools/benches/random_triangles.py "$n" "$n" > "$dir/random-triangles.obj"
+    cp tools/benches/scenes/random-triangles.lua "$dir/"
     if [ "$quick" = 1 ]; then
         trace_row "random-$n" "$dir/random-triangles.lua" --width 256 --height 256
     else
@@ -107,7 +107,7 @@ while want random && [ "$n" -le "$max_n" ]; do
     n=$((n * 10))
 done
 want macho-cows && trace_row macho-cows scenes/cs488/a4-2021plus/macho-cows.lua
-want stadium && trace_row stadium benches/scenes/stadium.lua --width "$stadium_w" --height "$stadium_h"
+want stadium && trace_row stadium tools/benches/scenes/stadium.lua --width "$stadium_w" --height "$stadium_h"
 
 if want random; then
 echo
@@ -125,8 +125,8 @@ echo "## Render: glint against POV-Ray 3.7, no anti-aliasing, whole-process wall
 echo
 echo "| scene | size | glint (CPU) | POV-Ray | glint / POV-Ray |"
 echo "| --- | --- | ---: | ---: | ---: |"
-python3 benches/povray/obj2mesh2.py scenes/cs488/a4-2021plus/cow.obj Cow > "$work/Cow.inc"
-python3 benches/povray/obj2mesh2.py scenes/cs488/a4-2021plus/smstdodeca.obj Dodec > "$work/Dodec.inc"
+python3 tools/benches/povray/obj2mesh2.py scenes/cs488/a4-2021plus/cow.obj Cow > "$work/Cow.inc"
+python3 tools/benches/povray/obj2mesh2.py scenes/cs488/a4-2021plus/smstdodeca.obj Dodec > "$work/Dodec.inc"
 
 # seconds COMMAND...: its wall time (its output discarded; a failure stops the script).
 seconds() {
@@ -147,5 +147,5 @@ render_row() {
     printf '| %s | %s×%s | %s s | %s s | %s |\n' "$name" "$w" "$h" "$tg" "$tp" "$(ratio "$tg" "$tp")"
 }
 
-render_row stadium benches/scenes/stadium.lua benches/povray/stadium.pov "$stadium_w" "$stadium_h"
-render_row nonhier scenes/cs488/a4-2021plus/nonhier.lua benches/povray/nonhier.pov "${render_size[0]}" "${render_size[1]}"
+render_row stadium tools/benches/scenes/stadium.lua tools/benches/povray/stadium.pov "$stadium_w" "$stadium_h"
+render_row nonhier scenes/cs488/a4-2021plus/nonhier.lua tools/benches/povray/nonhier.pov "${render_size[0]}" "${render_size[1]}"

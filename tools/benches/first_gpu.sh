@@ -2,7 +2,7 @@
 # The first table to take on a machine with a hardware Vulkan GPU (issue 38, item 6), in
 # under five minutes at the defaults on such a machine:
 #
-#   benches/first_gpu.sh [--glint BIN] [--size N] [--adapter NAME] [--with-bench] [SCENE.lua...]
+#   tools/benches/first_gpu.sh [--glint BIN] [--size N] [--adapter NAME] [--with-bench] [SCENE.lua...]
 #
 # Per scene (default: the scenes of `glint bench --gpu`), each in a process of its own:
 #   - the GPU render (`glint render --backend gpu --stats`, N×N, the scene's own AA): the
@@ -17,14 +17,14 @@
 # timestamps", "not exposed"). Runs on lavapipe too (slowly: use --size 32 and one scene;
 # tests/cli/first_gpu.rs does).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 glint=target/release/glint
 size=512
 adapter=()
 with_bench=0
 scenes=()
-usage="usage: benches/first_gpu.sh [--glint BIN] [--size N] [--adapter NAME] [--with-bench] [SCENE.lua...]"
+usage="usage: tools/benches/first_gpu.sh [--glint BIN] [--size N] [--adapter NAME] [--with-bench] [SCENE.lua...]"
 while [ $# -gt 0 ]; do
     case "$1" in
         --glint) glint="$2"; shift 2 ;;

@@ -3,7 +3,7 @@
 # kernel change that this shared machine's load cannot blur (wall and GPU times of the
 # same frame move by ±20% between runs; these counts repeat within 0.3%).
 #
-#   benches/llvmpipe_instructions.sh [--glint BIN] [--size N] [--aa MODE]
+#   tools/benches/llvmpipe_instructions.sh [--glint BIN] [--size N] [--aa MODE]
 #                                    [--kernel-variant software|hardware] SCENE.lua...
 #
 # For each scene it renders with the GPU tracer under `valgrind --tool=callgrind` at 8×8
@@ -17,14 +17,14 @@
 # `--kernel-variant hardware` counts the kernels a hardware GPU gets (the wavefront
 # kernels) on lavapipe instead of its own (the megakernels); default: lavapipe's own.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 glint=target/release/glint
 size=256
 aa=none
 variant=()
 scenes=()
-usage="usage: benches/llvmpipe_instructions.sh [--glint BIN] [--size N] [--aa MODE] [--kernel-variant software|hardware] SCENE.lua..."
+usage="usage: tools/benches/llvmpipe_instructions.sh [--glint BIN] [--size N] [--aa MODE] [--kernel-variant software|hardware] SCENE.lua..."
 while [ $# -gt 0 ]; do
     case "$1" in
         --glint) glint="$2"; shift 2 ;;

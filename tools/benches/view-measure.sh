@@ -2,12 +2,12 @@
 # glint view's figures (docs/view.md#measured): for each scene and tracer, the time to
 # the first image, the preview's frames per second while the camera moves, and samples
 # per second while the image refines, at 640×400. Runs on the display in $DISPLAY (a
-# hardware GPU's desktop: `benches/view-measure.sh`), or, with none, on a private Xvfb
+# hardware GPU's desktop: `tools/benches/view-measure.sh`), or, with none, on a private Xvfb
 # (lavapipe presents there). Needs xdotool (and Xvfb without a display).
-#   usage: [VIEW_SCENES="a.lua b.lua"] [VIEW_BACKENDS="gpu cpu"] benches/view-measure.sh [GLINT_BINARY] [VIEW FLAGS…]
+#   usage: [VIEW_SCENES="a.lua b.lua"] [VIEW_BACKENDS="gpu cpu"] tools/benches/view-measure.sh [GLINT_BINARY] [VIEW FLAGS…]
 #   (view flags such as --adapter NAME, or --samples 2 to bound a slow adapter's run)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 glint="${1:-target/release/glint}"
 shift || true
 extra=("$@")

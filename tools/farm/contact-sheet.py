@@ -2,7 +2,7 @@
 """Contact sheet of rendered frames for docs/farm.md: the frames in a grid, each labelled
 with its number, as one JPEG. Needs Pillow (pip install pillow).
 
-Usage: farm/contact-sheet.py OUT.jpg COLUMNS FRAME.png...   (frames named NAME-0001.png)
+Usage: tools/farm/contact-sheet.py OUT.jpg COLUMNS FRAME.png...   (frames named NAME-0001.png)
 """
 import re
 import sys

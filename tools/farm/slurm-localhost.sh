@@ -4,11 +4,11 @@
 # frames of an animation — and the results are checked byte for byte against the same
 # renders made in one process. Starts every daemon it needs in a scratch folder (no
 # system configuration is touched) and stops them on exit, also on failure.
-# Usage: farm/slurm-localhost.sh [GLINT]   (default: the release build in CARGO_TARGET_DIR
+# Usage: tools/farm/slurm-localhost.sh [GLINT]   (default: the release build in CARGO_TARGET_DIR
 # or target/, else the debug build, else one built now with cargo build --locked)
 # Exit code 0 when the farm's images equal the single renders; docs/farm.md.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 repo=$PWD
 target=${CARGO_TARGET_DIR:-$repo/target}
 if [ $# -ge 1 ]; then

@@ -4,7 +4,7 @@
 # crop (a task's fixed cost: start-up, the script, the scene's build). One TSV row per
 # process: tiles, index, wall seconds, CPU seconds (user + system), exit code; glint's
 # messages go to stderr. docs/farm.md quotes a run.
-# Usage: farm/timings.sh GLINT SCENE WIDTH HEIGHT [TILE COUNTS...]  (default 1 2 4 8 16)
+# Usage: tools/farm/timings.sh GLINT SCENE WIDTH HEIGHT [TILE COUNTS...]  (default 1 2 4 8 16)
 set -uo pipefail
 glint=$1 scene=$2 width=$3 height=$4
 shift 4

@@ -55,7 +55,7 @@ enum Command {
         heatmap: Option<PathBuf>,
     },
     /// Benchmarks: primary rays with and without the grid, grid scaling with N triangles;
-    /// --trace SCENE: traversal alone in rays/s (beside Embree: benches/).
+    /// --trace SCENE: traversal alone in rays/s (beside Embree: tools/benches/).
     Bench(bench::common::BenchArgs),
     /// Join tiles of one render (`render --tile`/`--crop`) into its image, bit for bit the
     /// full render; refuses tiles of other renders, gaps and overlaps.

@@ -1,8 +1,8 @@
-// POV-Ray twin of benches/scenes/stadium.lua: the same camera, geometry, lights,
+// POV-Ray twin of tools/benches/scenes/stadium.lua: the same camera, geometry, lights,
 // materials and random draws, z negated (POV-Ray is left-handed). A4 Phong: pigment kd, finish
 // { ambient 1 diffuse 1 phong ks phong_size p } under ambient_light = the scene's ambient.
 // Render: povray +Istadium.pov +W1024 +H768 -A +WT2 File_Gamma=1.0 +L<folder of Cow.inc>
-// where Cow.inc is `obj2mesh2.py scenes/cs488/a4-2021plus/cow.obj Cow` (benches/compare.sh
+// where Cow.inc is `obj2mesh2.py scenes/cs488/a4-2021plus/cow.obj Cow` (tools/benches/compare.sh
 // does all of this).
 #version 3.7;
 global_settings { assumed_gamma 1.0 ambient_light rgb <0.3, 0.3, 0.3> }

@@ -2,7 +2,7 @@
 // scenes/meshes/make_torus.py as smooth triangles (mesh2 with normal_vectors, from
 // `obj2mesh2.py scenes/meshes/torus.obj Torus`), z negated (POV-Ray is left-handed), A4
 // Phong: pigment kd, finish { ambient 1 diffuse 1 phong ks phong_size p } under
-// ambient_light = the scene's ambient. Rendered by benches/povray/torus-reference.sh into
+// ambient_light = the scene's ambient. Rendered by tools/benches/povray/torus-reference.sh into
 // tests/golden/povray-torus.png, which tests/oracle/shading.rs compares glint's render with.
 #version 3.7;
 global_settings { assumed_gamma 1.0 ambient_light rgb <0.15, 0.15, 0.15> }

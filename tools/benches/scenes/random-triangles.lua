@@ -1,5 +1,5 @@
 -- N random triangles in the unit cube, read from random-triangles.obj beside this file
--- (benches/compare.sh writes it with benches/random_triangles.py N SEED: the triangles
+-- (tools/benches/compare.sh writes it with tools/benches/random_triangles.py N SEED: the triangles
 -- of glint's own `glint bench` sweep), seen from +z as `glint bench` sees them, one light.
 local soup = gr.mesh('soup', 'random-triangles.obj')
 soup:set_material(gr.material({0.7, 0.7, 0.7}, {0.0, 0.0, 0.0}, 1))

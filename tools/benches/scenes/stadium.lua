@@ -2,7 +2,7 @@
 -- 4000 × 4000 floor with 440 spheres spread over it, the camera a few units from the cow.
 -- A uniform grid sized for the whole field puts the cow into one or two cells: the
 -- "teapot in a stadium" case of acceleration structures. Its POV-Ray twin is
--- benches/povray/stadium.pov (same camera, geometry, lights and random draws). It is a
+-- tools/benches/povray/stadium.pov (same camera, geometry, lights and random draws). It is a
 -- benchmark scene, not in scenes/: every scene there is rendered by the golden-image
 -- tests, and this one takes minutes with the uniform grid.
 

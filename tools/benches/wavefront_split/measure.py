@@ -7,7 +7,7 @@ specialised module: the constants prelude, then `// ---- shaders/NAME ----` sect
 re-assembles the module from this tree's shaders/ with the same features, for each
 mailbox choice (`--mailboxes`, default `mb,last`: the hardware variant's slots, the
 software variant's last-item slot; `off`: none), appends
-benches/wavefront_split/split.wgsl (the prototype kernels) and writes, for each prototype,
+tools/benches/wavefront_split/split.wgsl (the prototype kernels) and writes, for each prototype,
 a module in which it is the entry `main` (the megakernel renamed away; `main` itself is
 measured too). Then it runs `glint kernels --wgsl ... --format json` on them (RADV's
 compiler, the render module's layout), keeps OUT/kernels.json and prints one table row
@@ -15,9 +15,9 @@ per (module, kernel): VGPRs per wave size and mailbox choice, code size, waves p
 and the NAVI21 budgets' verdict.
 
     glint kernels SCENE... --entry main --wave 32 --spirv-dir /tmp/split/base
-    benches/wavefront_split/measure.py /tmp/split/base /tmp/split/out [--glint BIN]
+    tools/benches/wavefront_split/measure.py /tmp/split/base /tmp/split/out [--glint BIN]
         [--only split_closest,split_any] [--mailboxes mb,last,off] [--drop mesh]
-    benches/wavefront_split/measure.py - /tmp/split/out --report   # the table again
+    tools/benches/wavefront_split/measure.py - /tmp/split/out --report   # the table again
 
 `--drop FEATURE,...` resolves features as absent: a what-if (what the kernels cost
 without that feature's code), not a module any scene would get. The re-assembly with the
@@ -34,7 +34,7 @@ import re
 import subprocess
 import sys
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
+ROOT = pathlib.Path(__file__).resolve().parents[3]
 SPLIT = ROOT / "benches" / "wavefront_split" / "split.wgsl"
 CANDIDATES = [
     "main",
@@ -145,7 +145,7 @@ def main():
             mailbox = {"mb": {"MAILBOXES"}, "last": {"LAST_ITEM_MAILBOX"}, "off": set()}[mb]
             names = (features | flags) - {"MAILBOXES", "LAST_ITEM_MAILBOX"} | mailbox
             module = assemble(dump, names)
-            module += "\n// ---- benches/wavefront_split/split.wgsl ----\n"
+            module += "\n// ---- tools/benches/wavefront_split/split.wgsl ----\n"
             module += preprocess(SPLIT.read_text(), names)
             for cand in wanted:
                 if f"fn {cand}(" not in module:

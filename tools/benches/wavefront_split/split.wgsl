@@ -1,6 +1,6 @@
 // split.wgsl — measurement prototypes of a wavefront split of the tracing megakernel
 // (docs/journal/2026-12-02-wavefront-split-measured.md). Not part of glint's render module:
-// benches/wavefront_split/measure.py appends this file to a scene's specialised render
+// tools/benches/wavefront_split/measure.py appends this file to a scene's specialised render
 // module (as `glint kernels --spirv-dir` writes it), resolves its `// #if` blocks with the
 // scene's features, renames one of the entry points below to `main` and compiles it with
 // `glint kernels --wgsl`. Each kernel reads its queue from `work_list` and writes its

@@ -1,4 +1,4 @@
-//! The texture generator behind `examples/make_textures.rs`: every image of `textures/`
+//! The texture generator behind `tools/examples/make_textures.rs`: every image of `textures/`
 //! as PNG bytes, made from code and a font in the repository (nothing else is read), so
 //! the same build always makes the same bytes.
 

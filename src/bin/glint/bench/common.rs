@@ -82,10 +82,10 @@ pub struct BenchArgs {
     #[arg(long, requires = "trace", value_parser = clap::value_parser!(u32).range(1..))]
     pub height: Option<u32>,
     /// --trace: also write the geometry and the exact rays, with glint's answers, for the
-    /// Embree harness (`benches/embree/`; format in `bench::trace_dump`).
+    /// Embree harness (`tools/benches/embree/`; format in `bench::trace_dump`).
     #[arg(long, requires = "trace", value_name = "FILE")]
     pub dump_rays: Option<PathBuf>,
-    /// The sandbox's limits and readable folders, as `glint render`'s (benches/scenes/
+    /// The sandbox's limits and readable folders, as `glint render`'s (tools/benches/scenes/
     /// read the CS488 corpus's meshes through `--allow-read`; a 10⁶-triangle OBJ needs a
     /// larger `--memory-limit`).
     #[command(flatten)]

@@ -1,5 +1,5 @@
 //! `glint bench --trace SCENE.lua`: the CPU tracer's traversal alone, in rays per second,
-//! for comparison with Embree on the same rays (`benches/embree/`).
+//! for comparison with Embree on the same rays (`tools/benches/embree/`).
 //!
 //! One camera ray per pixel through the pixel centre (no anti-aliasing), traced with
 //! `closest_hit`; then, for every hit and every light in front of the hit surface, one

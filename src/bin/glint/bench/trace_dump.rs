@@ -1,8 +1,8 @@
 //! `glint bench --trace --dump-rays FILE`: the geometry and the exact rays of a trace
 //! benchmark, with glint's answers, for another tracer (the Embree harness in
-//! `benches/embree/`) to trace the same rays and count where it disagrees.
+//! `tools/benches/embree/`) to trace the same rays and count where it disagrees.
 //!
-//! Binary, little-endian, no padding (`benches/embree/README.md` documents it too):
+//! Binary, little-endian, no padding (`tools/benches/embree/README.md` documents it too):
 //! - header: `GLINTRAY` (8 bytes), then u32 version (1), triangles, instances, primary
 //!   rays, shadow rays;
 //! - per triangle: p0, p1, p2 (9 f32, world space: each mesh instance's triangles mapped
