@@ -433,3 +433,84 @@ pub fn scene_error(error: SceneError, output_error: Option<ImageIoError>) -> Run
         other => RunError::Scene(other),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Mutex;
+
+    /// A progress sink that writes down what it hears, in order.
+    #[derive(Debug, Default)]
+    struct Heard(Mutex<Vec<(&'static str, u64, u64)>>);
+
+    impl ProgressSink for Heard {
+        fn begin(&self, _output: &Path) {
+            self.0.lock().unwrap().push(("begin", 0, 0));
+        }
+        fn advance(&self, done: u64, total: u64) {
+            self.0.lock().unwrap().push(("advance", done, total));
+        }
+        fn end(&self) {
+            self.0.lock().unwrap().push(("end", 0, 0));
+        }
+    }
+
+    /// Each render of a script opens with `begin`, advances to its total and closes with
+    /// `end` before the next one begins; without a sink nothing is heard and the render
+    /// is the same.
+    #[test]
+    fn each_render_tells_the_progress_sink_begin_advances_and_end() {
+        let dir = crate::testing::scratch::temp_dir("pipeline-progress");
+        let scene = dir.join("two.lua");
+        let render = "gr.render(root, 'out.png', 40, 24, {0,0,10}, {0,0,-1}, {0,1,0}, 50, \
+                      {0.1,0.1,0.1}, {gr.light({1,2,3}, {1,1,1}, {1,0,0})})";
+        let script = format!(
+            "root = gr.node('root')\ns = gr.sphere('s')\nroot:add_child(s)\n\
+             s:set_material(gr.material({{0.7,0.2,0.2}}, {{0.5,0.5,0.5}}, 25))\n{render}\n{render}\n"
+        );
+        std::fs::write(&scene, script).unwrap();
+        let heard = Arc::new(Heard::default());
+        let settings = RenderSettings {
+            output: Some(dir.join("a.png")),
+            progress: Some(heard.clone()),
+            ..RenderSettings::default()
+        };
+        let mut films = Vec::new();
+        run_scene(&scene, &settings, &mut |image| {
+            films.push(image.film.clone())
+        })
+        .unwrap();
+        let heard = heard.0.lock().unwrap().clone();
+        let opens: Vec<usize> = heard
+            .iter()
+            .enumerate()
+            .filter(|(_, h)| h.0 == "begin")
+            .map(|(i, _)| i)
+            .collect();
+        assert_eq!(opens.len(), 2, "{heard:?}");
+        for (n, &open) in opens.iter().enumerate() {
+            let close = open + heard[open..].iter().position(|h| h.0 == "end").unwrap();
+            assert!(
+                opens.get(n + 1).is_none_or(|&next| close < next),
+                "{heard:?}"
+            );
+            let advances = &heard[open + 1..close];
+            assert!(advances.iter().all(|h| h.0 == "advance" && h.1 <= h.2));
+            let total = advances.iter().map(|h| h.2).max().unwrap();
+            assert!(
+                total > 0 && advances.iter().any(|h| h.1 == total),
+                "{heard:?}"
+            );
+        }
+        let quiet = RenderSettings {
+            output: Some(dir.join("b.png")),
+            ..RenderSettings::default()
+        };
+        let mut quiet_films = Vec::new();
+        run_scene(&scene, &quiet, &mut |image| {
+            quiet_films.push(image.film.clone())
+        })
+        .unwrap();
+        assert_eq!(films, quiet_films);
+    }
+}
