@@ -3,7 +3,7 @@
 --
 -- One unit is one board square. The table's top is y = 0; the board lies on it centred
 -- on the origin, row 1 at the far side (z = -7) and row 15 nearest the camera (z = +7).
--- Every texture comes from examples/make_textures.rs (cargo run --example make_textures):
+-- Every texture comes from tools/examples/make_textures.rs (cargo run --example make_textures):
 -- the board (premium squares, labels) with a groove between squares in its bump map; one
 -- atlas of tile faces (letter and value per cell, engraved in its bump map); and wood,
 -- with a matching bump map, for the table, the racks and the mirror's frame.

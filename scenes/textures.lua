@@ -4,7 +4,7 @@
 -- map. Back row, left to right: sphere (pole up), box, cylinder, cone (tip up), torus
 -- (facing the camera). Front: an inline quad with its own UVs (repeating twice), a
 -- pyramid without UVs (planar projection), the bump-mapped sphere.
--- The textures (in ../textures/) are made by examples/make_textures.rs
+-- The textures (in ../textures/) are made by tools/examples/make_textures.rs
 -- (cargo run --example make_textures). Render it with:  glint render scenes/textures.lua
 -- UV view:  glint render scenes/textures.lua --debug uv
 

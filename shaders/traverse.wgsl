@@ -90,7 +90,7 @@ fn intersect_item(item: u32, ray: Ray, t_max: f32, mailbox: ptr<function, Mailbo
 // Tests one item that is not a mesh instance (an analytic primitive or a CSG object): its
 // hit (t = T_MISS on a miss). Its own function so that a shadow ray's test of such an item
 // does not pass through intersect_item's mesh walk: llvmpipe (Mesa 22.3) runs the code of
-// every branch, taken by a lane or not, under a lane mask (examples/llvmpipe_branches.rs),
+// every branch, taken by a lane or not, under a lane mask (tools/examples/llvmpipe_branches.rs),
 // so that walk's set-up, one cell and one triangle test ran, masked, beside mesh_occludes's
 // for every item a shadow ray tested (within noise when removed, docs/journal/2026-11-30-every-branch-runs-on-llvmpipe.md).
 // Mirror of src/cpu/traverse.rs::intersect_primitive_item — change both.

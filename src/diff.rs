@@ -1,5 +1,5 @@
 //! Image comparison for `glint diff` and golden-image tests: RMSE, PSNR, max difference
-//! and NVIDIA's FLIP, plus a FLIP heat map.
+//! and NVIDIA's FLIP, plus a FLIP heat map; of films, or of two image files.
 //!
 //! Pixel metrics are taken on values clamped to [0,1] (NaN as 0), i.e. on what a PNG of
 //! the film shows, so a diff of two renders agrees with a diff of their PNGs up to 8-bit
@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 use crate::film::Film;
-use crate::image_io::write_image;
+use crate::image_io::{read_image_within, write_image, MAX_READ_PIXELS};
 
 /// FLIP's default viewing setup (0.7 m from a 0.7 m wide 4K monitor).
 pub const PIXELS_PER_DEGREE: f32 = 67.0;
@@ -112,6 +112,42 @@ pub fn check_diff_size(width: u32, height: u32) -> Result<(), DiffError> {
         });
     }
     Ok(())
+}
+
+/// Why two image files cannot be compared ([`diff_files`]).
+#[derive(Debug, Error)]
+pub enum DiffFilesError {
+    /// An input is missing, unreadable or too big (the message names the file).
+    #[error("{0}")]
+    Input(String),
+    /// The images cannot be compared (sizes differ, or a film is malformed).
+    #[error("cannot compare {a} with {b}: {error}")]
+    Compare {
+        a: String,
+        b: String,
+        error: DiffError,
+    },
+}
+
+/// Reads one input: a regular file, decoded by its content, its size checked from the
+/// header before it is decoded.
+fn read_diff_input(path: &Path) -> Result<Film, DiffFilesError> {
+    read_image_within(path, MAX_READ_PIXELS, |w, h| {
+        check_diff_size(w, h).map_err(|e| e.to_string())
+    })
+    .map_err(|e| DiffFilesError::Input(e.to_string()))
+}
+
+/// Reads `a` (the reference) and `b` (PNG, JPEG or EXR, by content) and compares them as
+/// [`diff_films`] does: the figures and FLIP's heat map.
+pub fn diff_files(a: &Path, b: &Path) -> Result<(DiffReport, Film), DiffFilesError> {
+    let film_a = read_diff_input(a)?;
+    let film_b = read_diff_input(b)?;
+    diff_films(&film_a, &film_b).map_err(|error| DiffFilesError::Compare {
+        a: a.display().to_string(),
+        b: b.display().to_string(),
+        error,
+    })
 }
 
 fn check_film(film: &Film) -> Result<(), DiffError> {

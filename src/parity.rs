@@ -91,15 +91,9 @@ fn render_both(
         check_output_path(path)?;
     }
     let o = &settings.overrides;
-    let cpu = render_request(graph, request, o, false, settings.progress, Tracer::Cpu)?;
-    let gpu = render_request(
-        graph,
-        request,
-        o,
-        false,
-        settings.progress,
-        Tracer::Gpu(ctx),
-    )?;
+    let progress = settings.progress.as_deref();
+    let cpu = render_request(graph, request, o, false, progress, Tracer::Cpu)?;
+    let gpu = render_request(graph, request, o, false, progress, Tracer::Gpu(ctx))?;
     // Compared as films (linear); written as `--output-transfer` asks.
     let transfer = settings.output_transfer;
     crate::image_io::write_image_with(&cpu.film, &cpu_output, transfer)?;

@@ -1,5 +1,6 @@
 //! From a scene script to image files: run the script; at each `gr.render`, flatten, pack,
-//! render and write the image atomically. Shared by the CLI, the benchmark and the tests.
+//! render and write the image atomically, telling a [`ProgressSink`] how each render
+//! advances. Shared by the command line, the benchmark, the tests and embedding programs.
 
 use crate::aa_map::{aa_samples_film, AaMapError};
 use crate::cpu::camera_media::{fill_camera_media, opaque_solid_around_eye};
@@ -16,7 +17,19 @@ use crate::script_driver::{run_script, ScriptSettings};
 use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
+
+/// Hears how each render advances: the command line draws it as a progress bar; a library
+/// caller may show it its own way, or leave [`RenderSettings::progress`] empty.
+pub trait ProgressSink: std::fmt::Debug + Send + Sync {
+    /// A render of the image `output` begins; its `advance` calls follow.
+    fn begin(&self, output: &Path);
+    /// `done` of `total` units of the current render are finished (from any thread).
+    fn advance(&self, done: u64, total: u64);
+    /// The current render's film is made (before it is written).
+    fn end(&self);
+}
 
 /// How to run a scene: everything the CLI can say.
 #[derive(Clone, Debug, Default)]
@@ -32,8 +45,8 @@ pub struct RenderSettings {
     pub output_transfer: OutputTransfer,
     /// Print statistics (grid, features, rays) after each render.
     pub stats: bool,
-    /// Show a progress bar (only drawn on a terminal).
-    pub progress: bool,
+    /// Hears each render's progress (the command line draws a bar; None: nothing hears).
+    pub progress: Option<Arc<dyn ProgressSink>>,
     /// `--output-dir`: the folder the script's own output names are taken from and
     /// confined to (None: the current folder; `-o` is not confined).
     pub output_dir: Option<PathBuf>,
@@ -255,14 +268,22 @@ pub fn render_request(
     request: &RenderRequest,
     overrides: &OptionOverrides,
     stats: bool,
-    progress: bool,
+    progress: Option<&dyn ProgressSink>,
     tracer: Tracer,
 ) -> anyhow::Result<RenderedImage> {
     let (request, packed) = prepare_request(graph, request, overrides)?;
-    let bar = progress_bar(progress, &request.output);
+    if let Some(sink) = progress {
+        sink.begin(&request.output);
+    }
     let tick = |done: u64, total: u64| {
-        bar.set_length(total);
-        bar.set_position(done);
+        if let Some(sink) = progress {
+            sink.advance(done, total);
+        }
+    };
+    let end = || {
+        if let Some(sink) = progress {
+            sink.end();
+        }
     };
     let start = Instant::now();
     if let Tracer::Gpu(ctx) = tracer {
@@ -271,7 +292,7 @@ pub fn render_request(
             ..GpuRenderOptions::default()
         };
         let GpuRender { film, info, .. } = render_gpu(ctx, &packed, &options)?;
-        bar.finish_and_clear();
+        end();
         if info.cpu_fallback_pixels > 0 {
             eprintln!(
                 "glint: note: {} pixels of {} re-rendered on the CPU: they passed the software adapter's loop limit (Mesa: 65 535 loop iterations per invocation)",
@@ -296,7 +317,7 @@ pub fn render_request(
     } else {
         (render(&packed, &tick), None)
     };
-    bar.finish_and_clear();
+    end();
     Ok(RenderedImage {
         output: request.output.clone(),
         film,
@@ -316,21 +337,6 @@ fn shown_view(debug: DebugView) -> DebugView {
         DebugView::AaSamples => DebugView::None,
         view => view,
     }
-}
-
-fn progress_bar(enabled: bool, output: &Path) -> indicatif::ProgressBar {
-    if !enabled {
-        return indicatif::ProgressBar::hidden();
-    }
-    // indicatif draws only when stderr is a terminal.
-    let bar = indicatif::ProgressBar::new(1);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {percent}% ({elapsed} < {eta})")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_message(format!("rendering {}", output.display()));
-    bar
 }
 
 /// Output path of the `index`-th render (0-based) of a script.
@@ -417,7 +423,7 @@ pub fn run_scene(
                 request,
                 &settings.overrides,
                 settings.stats,
-                settings.progress,
+                settings.progress.as_deref(),
                 tracer,
             )?,
         };
@@ -480,5 +486,86 @@ pub fn scene_error(error: SceneError, output_error: Option<ImageIoError>) -> Run
             },
         },
         other => RunError::Scene(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Mutex;
+
+    /// A progress sink that writes down what it hears, in order.
+    #[derive(Debug, Default)]
+    struct Heard(Mutex<Vec<(&'static str, u64, u64)>>);
+
+    impl ProgressSink for Heard {
+        fn begin(&self, _output: &Path) {
+            self.0.lock().unwrap().push(("begin", 0, 0));
+        }
+        fn advance(&self, done: u64, total: u64) {
+            self.0.lock().unwrap().push(("advance", done, total));
+        }
+        fn end(&self) {
+            self.0.lock().unwrap().push(("end", 0, 0));
+        }
+    }
+
+    /// Each render of a script opens with `begin`, advances to its total and closes with
+    /// `end` before the next one begins; without a sink nothing is heard and the render
+    /// is the same.
+    #[test]
+    fn each_render_tells_the_progress_sink_begin_advances_and_end() {
+        let dir = crate::testing::scratch::temp_dir("pipeline-progress");
+        let scene = dir.join("two.lua");
+        let render = "gr.render(root, 'out.png', 40, 24, {0,0,10}, {0,0,-1}, {0,1,0}, 50, \
+                      {0.1,0.1,0.1}, {gr.light({1,2,3}, {1,1,1}, {1,0,0})})";
+        let script = format!(
+            "root = gr.node('root')\ns = gr.sphere('s')\nroot:add_child(s)\n\
+             s:set_material(gr.material({{0.7,0.2,0.2}}, {{0.5,0.5,0.5}}, 25))\n{render}\n{render}\n"
+        );
+        std::fs::write(&scene, script).unwrap();
+        let heard = Arc::new(Heard::default());
+        let settings = RenderSettings {
+            output: Some(dir.join("a.png")),
+            progress: Some(heard.clone()),
+            ..RenderSettings::default()
+        };
+        let mut films = Vec::new();
+        run_scene(&scene, &settings, &mut |image| {
+            films.push(image.film.clone())
+        })
+        .unwrap();
+        let heard = heard.0.lock().unwrap().clone();
+        let opens: Vec<usize> = heard
+            .iter()
+            .enumerate()
+            .filter(|(_, h)| h.0 == "begin")
+            .map(|(i, _)| i)
+            .collect();
+        assert_eq!(opens.len(), 2, "{heard:?}");
+        for (n, &open) in opens.iter().enumerate() {
+            let close = open + heard[open..].iter().position(|h| h.0 == "end").unwrap();
+            assert!(
+                opens.get(n + 1).is_none_or(|&next| close < next),
+                "{heard:?}"
+            );
+            let advances = &heard[open + 1..close];
+            assert!(advances.iter().all(|h| h.0 == "advance" && h.1 <= h.2));
+            let total = advances.iter().map(|h| h.2).max().unwrap();
+            assert!(
+                total > 0 && advances.iter().any(|h| h.1 == total),
+                "{heard:?}"
+            );
+        }
+        let quiet = RenderSettings {
+            output: Some(dir.join("b.png")),
+            ..RenderSettings::default()
+        };
+        let mut quiet_films = Vec::new();
+        run_scene(&scene, &quiet, &mut |image| {
+            quiet_films.push(image.film.clone())
+        })
+        .unwrap();
+        assert_eq!(films, quiet_films);
     }
 }

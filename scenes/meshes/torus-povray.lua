@@ -1,7 +1,7 @@
--- glint's twin of benches/povray/torus.pov: the smooth torus of make_torus.py (OBJ
+-- glint's twin of tools/benches/povray/torus.pov: the smooth torus of make_torus.py (OBJ
 -- vertex normals), two point lights, A4 Phong, no anti-aliasing. POV-Ray renders the same
 -- mesh as smooth triangles (mesh2 with normal_vectors); tests/shading.rs compares the two
--- images (tests/golden/povray-torus.png, made by benches/povray/torus-reference.sh).
+-- images (tests/golden/povray-torus.png, made by tools/benches/povray/torus-reference.sh).
 
 gr.transform_order('pre')
 

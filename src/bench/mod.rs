@@ -1,19 +1,12 @@
-//! `glint bench`: the benchmarks, kept apart from the tracers. Each speed figure is
-//! printed with the error it was measured at; `cmd::run_bench` dispatches on the
-//! arguments (`common::BenchArgs`). Their GPU kernel is `shaders/bench/torus.wgsl`.
+//! The benchmarks' measuring core, kept apart from the tracers and shared by `glint bench`
+//! (the binary's `bench` module, which times and reports them) and the tests that hold
+//! them to the tracers: Ferrari's torus solver ([`ferrari`]) and its GPU kernel
+//! `shaders/bench/torus.wgsl` ([`torus_gpu`]), the torus rays ([`torus_rays`]), the
+//! traversal benchmark's rays and counts ([`trace_rays`]), and their seeded generator
+//! ([`splitmix`]).
 
-pub mod cmd;
-pub mod common;
 pub mod ferrari;
-pub mod gpu;
-pub mod plot_svg;
 pub mod splitmix;
-pub mod sweep;
-pub mod sweep_analysis;
-pub mod timing;
-pub mod torus;
 pub mod torus_gpu;
 pub mod torus_rays;
-pub mod trace;
-pub mod trace_dump;
 pub mod trace_rays;

@@ -5,13 +5,12 @@
 //! digest of what determined its pixels; `glint assemble` puts tiles back together, bit
 //! for bit the full render. See docs/farm.md.
 //!
-//! Layout: [`spec`] parses the flags, [`split`] cuts an image into tiles, [`digest`]
-//! fingerprints a render and a tile's pixels, [`tile_file`] writes tile images (EXR ones
-//! with [`tile_exr`]), [`tile_read`] reads them back as untrusted input, [`assemble`]
-//! checks and joins them, [`run`] drives a script through
-//! frames and tiles.
+//! Layout: [`spec`] parses the flags' values (the binary's `farm_args` declares the
+//! flags), [`split`] cuts an image into tiles, [`digest`] fingerprints a render and a
+//! tile's pixels, [`tile_file`] writes tile images (EXR ones with [`tile_exr`]),
+//! [`tile_read`] reads them back as untrusted input, [`assemble`] checks and joins them,
+//! [`run`] drives a script through frames and tiles.
 
-pub mod args;
 pub mod assemble;
 pub mod digest;
 pub mod run;

@@ -225,7 +225,7 @@ impl GpuContext {
     }
 
     /// Waits for all submitted work; a device loss or poll failure becomes an error.
-    pub(crate) fn wait(&self) -> Result<(), GpuError> {
+    pub fn wait(&self) -> Result<(), GpuError> {
         let polled = self.device.poll(wgpu::PollType::wait_indefinitely());
         if let Some(reason) = self.lost.lock().ok().and_then(|l| l.clone()) {
             return Err(GpuError::DeviceLost(reason));

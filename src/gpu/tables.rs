@@ -8,7 +8,7 @@
 //! Why not storage buffers: Mesa's llvmpipe (lavapipe, glint's CI
 //! GPU) loads a storage buffer with a per-lane scalar loop, one branch per lane and per
 //! word, while a texel fetch is one vector gather for the 8 lanes. Measured on this
-//! machine (`examples/llvmpipe_loads.rs`, 2¹⁸ invocations × 256 dependent reads): a
+//! machine (`tools/examples/llvmpipe_loads.rs`, 2¹⁸ invocations × 256 dependent reads): a
 //! 16-byte read 15.5 ns from a storage buffer against 1.8–3.1 ns as a texel, a 4-byte
 //! read 5.4 ns against 3.3 ns. Hardware GPUs read both through caches; textures were the
 //! usual place for traversal data in GPU ray tracers before storage buffers.

@@ -1,7 +1,7 @@
 //! The docs' links hold: every relative link of README.md and docs/ (journal included)
 //! points at a file that exists, and at a heading of it where it names an anchor (GitHub's
 //! slug rules); every `docs/….md` or `docs/….md#anchor` that a comment in src/, shaders/,
-//! tests/ or benches/ cites does too. External http(s) links are not checked. Also: the
+//! tests/ or tools/ cites does too. External http(s) links are not checked. Also: the
 //! README is a front page of at most 150 lines, and every reference page in docs/ (the
 //! journal apart) at most 400. Plain std, read from the source text: nothing is built.
 
@@ -298,7 +298,7 @@ fn every_docs_page_cited_by_the_code_exists_with_its_anchor() {
     let mut checker = Checker::new(&read_in_repository, &exists_in_repository);
     let mut broken = Vec::new();
     let mut cited = 0;
-    for file in ["src", "shaders", "tests", "benches"]
+    for file in ["src", "shaders", "tests", "tools"]
         .into_iter()
         .flat_map(files_under)
     {

@@ -1,4 +1,4 @@
-//! `benches/first_gpu.sh` (the table for the first hardware GPU, docs/gpu.md) end to end
+//! `tools/benches/first_gpu.sh` (the table for the first hardware GPU, docs/gpu.md) end to end
 //! on whatever adapter there is — lavapipe here — at a tiny size on one scene: every row
 //! and section is there, and a column the device cannot give says so.
 
@@ -10,7 +10,7 @@ use std::process::Command;
 fn the_first_gpu_script_runs_end_to_end() {
     let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
     let out = Command::new("bash")
-        .arg(repo.join("benches/first_gpu.sh"))
+        .arg(repo.join("tools/benches/first_gpu.sh"))
         .args(["--glint", env!("CARGO_BIN_EXE_glint"), "--size", "8"])
         .arg("scenes/cs488/a4-2021plus/simple.lua")
         .current_dir(repo)

@@ -408,8 +408,8 @@ fn mutate(r: &mut Rng, bytes: &[u8]) -> Vec<u8> {
 
 /// Mutated PNG, JPEG and EXR files through the texture loader (under a 64 MiB budget,
 /// named by every extension: content decides) and through `glint diff`'s reader and
-/// comparison: no panic, no abort (an allocation the header check missed would end
-/// this process), and every refusal names the file.
+/// comparison (`glint::diff::diff_files`): no panic, no abort (an allocation the header
+/// check missed would end this process), and every refusal names the file.
 #[test]
 fn mutated_images_never_panic_or_abort() {
     use glint::image_io::{read_image_within, MAX_READ_PIXELS};
@@ -437,7 +437,7 @@ fn mutated_images_never_panic_or_abort() {
         let outcome = catch_unwind(|| {
             let texture = load_texture(&path, 64 << 20);
             let film = read_image_within(&path, MAX_READ_PIXELS, |_, _| Ok(()));
-            let diff = glint::cli::diff_cmd::run_diff(&reference, &path, None);
+            let diff = glint::diff::diff_files(&reference, &path);
             (texture, film.map(|_| ()), diff.map(|_| ()))
         })
         .unwrap_or_else(|_| panic!("seed {seed}: panicked on {name}"));

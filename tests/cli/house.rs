@@ -1,6 +1,7 @@
 //! The house rules, checked from the source text (no build of anything else needed):
-//! dependencies between the top-level modules of `src/` point one way, so do those between
-//! the files of every module folder at any depth, and no function in `src/` is longer than 100 lines.
+//! dependencies between the top-level modules of each crate of `src/` (the library, and
+//! the binary in `src/bin/glint/`) point one way, so do those between the files of every
+//! module folder at any depth, and no function in `src/` is longer than 100 lines.
 //! Test modules (`#[cfg(test)] mod tests` and what follows it) are not counted: tests may
 //! reach anywhere.
 
@@ -10,15 +11,20 @@ use std::path::{Path, PathBuf};
 /// The longest function the house allows, in lines from its `fn` line to its closing brace.
 const MAX_FUNCTION_LINES: usize = 100;
 
-/// One source file: its path relative to `src/` (with `/` separators) and its text
-/// without the test module.
+/// The source roots of the package's crates, each checked on its own (`crate::` names its
+/// own root): the library (`src/`, `src/bin/` left out) and the binary `glint`.
+const CRATE_ROOTS: [&str; 2] = ["src", "src/bin/glint"];
+
+/// One source file: its path relative to its crate's root (with `/` separators) and its
+/// text without the test module.
 struct SourceFile {
     relative: String,
     text: String,
 }
 
-fn source_files() -> Vec<SourceFile> {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+/// The files of the crate whose sources lie under `root` (one of [`CRATE_ROOTS`]).
+fn source_files(root: &str) -> Vec<SourceFile> {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join(root);
     let mut paths = Vec::new();
     collect_rust_files(&src, &mut paths);
     paths.sort();
@@ -42,7 +48,8 @@ fn source_files() -> Vec<SourceFile> {
 fn collect_rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).expect("read src/") {
         let path = entry.unwrap().path();
-        if path.is_dir() {
+        // The binaries under src/bin/ are crates of their own.
+        if path.is_dir() && !path.ends_with("src/bin") {
             collect_rust_files(&path, out);
         } else if path.extension().is_some_and(|e| e == "rs") {
             out.push(path);
@@ -168,20 +175,22 @@ fn top_module(relative: &str) -> String {
 
 #[test]
 fn top_level_modules_depend_one_way() {
-    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    for file in source_files() {
-        let module = top_module(&file.relative);
-        let uses = names_used_under(&file.text, "crate::");
-        graph
-            .entry(module.clone())
-            .or_default()
-            .extend(uses.into_iter().filter(|u| *u != module));
+    for root in CRATE_ROOTS {
+        let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+        for file in source_files(root) {
+            let module = top_module(&file.relative);
+            let uses = names_used_under(&file.text, "crate::");
+            graph
+                .entry(module.clone())
+                .or_default()
+                .extend(uses.into_iter().filter(|u| *u != module));
+        }
+        let found = cycles(&graph);
+        assert!(
+            found.is_empty(),
+            "import cycles between top-level modules of {root}/: {found:?}"
+        );
     }
-    let found = cycles(&graph);
-    assert!(
-        found.is_empty(),
-        "import cycles between top-level modules of src/: {found:?}"
-    );
 }
 
 /// The module path of a file relative to `src/`: `scene/lua/args.rs` is
@@ -302,11 +311,13 @@ fn folder_cycles(files: &[SourceFile]) -> Vec<String> {
 
 #[test]
 fn files_of_every_module_folder_depend_one_way() {
-    let problems = folder_cycles(&source_files());
-    assert!(
-        problems.is_empty(),
-        "import cycles between files of one folder: {problems:#?}"
-    );
+    for root in CRATE_ROOTS {
+        let problems = folder_cycles(&source_files(root));
+        assert!(
+            problems.is_empty(),
+            "import cycles between files of one folder of {root}/: {problems:#?}"
+        );
+    }
 }
 
 /// The folder check sees nested folders: a cycle two levels down (and one through
@@ -413,11 +424,13 @@ fn function_name(line: &str) -> Option<String> {
 
 #[test]
 fn no_function_in_src_is_longer_than_the_limit() {
-    let long = long_functions(&source_files());
-    assert!(
-        long.is_empty(),
-        "functions over {MAX_FUNCTION_LINES} lines: {long:#?}"
-    );
+    for root in CRATE_ROOTS {
+        let long = long_functions(&source_files(root));
+        assert!(
+            long.is_empty(),
+            "functions over {MAX_FUNCTION_LINES} lines in {root}/: {long:#?}"
+        );
+    }
 }
 
 #[test]

@@ -13,6 +13,7 @@ mod first_hour;
 mod fuzz_front_end;
 mod hostile;
 mod house;
+mod library_crate;
 mod pipeline_cache;
 mod scene_script;
 mod view_cli;

@@ -7,8 +7,8 @@ use crate::common;
 
 use common::gpu_context;
 use glint::bench::ferrari::intersect_torus_ferrari;
-use glint::bench::torus;
 use glint::bench::torus_gpu::{GpuTorusBench, GpuTorusSolver};
+use glint::bench::torus_rays;
 use glint::constants::T_MISS;
 use glint::cpu::torus::intersect_torus;
 
@@ -33,7 +33,7 @@ fn gpu_torus_kernels_match_their_cpu_twins() {
     for (rin, rout) in [(1.0f32, 0.4f32), (1.0, 1.5)] {
         // The benchmark's own rays, 1.5–4 bounding radii away (where Ferrari in f32 is
         // still mostly right, so its twins can be compared).
-        let rays = torus::rays(4096, rin as f64, rout as f64, 1.5, 4.0, 0x7025_B3AC);
+        let rays = torus_rays::rays(4096, rin as f64, rout as f64, 1.5, 4.0, 0x7025_B3AC);
         let hits = rays
             .iter()
             .filter(|r| intersect_torus(r.o, r.d, rin, rout, T_MISS) != T_MISS)

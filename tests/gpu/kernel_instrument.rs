@@ -2,7 +2,7 @@
 //! `glint render --dump-kernels` on lavapipe: a kernel known to spill reports scratch,
 //! the dumped SPIR-V is the SPIR-V the instrument compiles, and the register budgets of
 //! the GPU kernels over every scene; and the
-//! wavefront-split prototypes that `benches/wavefront_split/measure.py` compiles still
+//! wavefront-split prototypes that `tools/benches/wavefront_split/measure.py` compiles still
 //! validate.
 
 use sha2::{Digest, Sha256};
@@ -286,8 +286,8 @@ fn check_navi21_budgets() {
     }
 }
 
-/// The wavefront-split prototypes (`benches/wavefront_split/split.wgsl`, measured by
-/// `benches/wavefront_split/measure.py`: docs/journal/2026-12-02-wavefront-split-measured.md)
+/// The wavefront-split prototypes (`tools/benches/wavefront_split/split.wgsl`, measured by
+/// `tools/benches/wavefront_split/measure.py`: docs/journal/2026-12-02-wavefront-split-measured.md)
 /// still validate, appended to the render module as the script appends them, for no
 /// feature, every feature and each feature alone, with the hardware variant's mailboxes
 /// and with the last-item slot: a change to the tracer's functions that the prototypes
@@ -299,7 +299,7 @@ fn wavefront_split_prototypes_validate() {
     use glint::mailboxes::Mailboxes;
     use glint::pack::SceneFeatures;
 
-    let path = repo().join("benches/wavefront_split/split.wgsl");
+    let path = repo().join("tools/benches/wavefront_split/split.wgsl");
     let split = std::fs::read_to_string(&path).unwrap();
     let all = SceneFeatures::ALL
         .iter()

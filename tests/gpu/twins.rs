@@ -179,7 +179,7 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     (
         "shaders/bench/torus.wgsl",
         "bench_torus",
-        "the torus benchmark's kernel; on the CPU, src/bench/torus.rs loops over the \
+        "the torus benchmark's kernel; on the CPU, src/bin/glint/bench/torus.rs loops over the \
          rays calling the same solvers",
     ),
     (

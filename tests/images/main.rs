@@ -2,13 +2,13 @@
 //! scene, textures and their assets.
 //! One binary per tier (docs/testing.md) links glint once instead of once per file.
 
-// texture_gen and texture_support both include examples/texture_gen/patterns.rs (the
+// texture_gen and texture_support both include tools/examples/texture_gen/patterns.rs (the
 // gpu binary has texture_support alone); two copies of a few pure functions, no state.
 #![allow(clippy::duplicate_mod)]
 
 #[path = "../common/mod.rs"]
 mod common;
-#[path = "../../examples/texture_gen/mod.rs"]
+#[path = "../../tools/examples/texture_gen/mod.rs"]
 mod texture_gen;
 #[path = "../texture_support/mod.rs"]
 mod texture_support;

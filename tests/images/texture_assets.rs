@@ -1,4 +1,4 @@
-//! The committed textures are what `examples/make_textures.rs` makes: every PNG in
+//! The committed textures are what `tools/examples/make_textures.rs` makes: every PNG in
 //! `textures/` is regenerated in memory and compared byte for byte (the encoder and its
 //! settings are pinned by Cargo.lock and the generator). `GLINT_BLESS=1` (only `1`) rewrites
 //! the ones that differ, and the run then fails naming them: a blessing is not a pass.
@@ -39,7 +39,7 @@ fn committed_textures_are_reproduced_byte_for_byte() {
     }
     assert!(
         differing.is_empty(),
-        "textures/ differs from examples/make_textures.rs (run `cargo run --example \
+        "textures/ differs from tools/examples/make_textures.rs (run `cargo run --example \
          make_textures` and review the images):\n{}",
         differing.join("\n")
     );

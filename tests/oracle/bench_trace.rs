@@ -318,14 +318,3 @@ fn dump_rays_refuses_kinds_the_harness_cannot_trace() {
     let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert_eq!(left.len(), 1, "only the scene is left");
 }
-
-#[test]
-fn rates_keep_three_significant_digits_below_one() {
-    use glint::bench::trace::rate;
-    assert_eq!(rate(31.25), "31.250");
-    assert_eq!(rate(1.0), "1.000");
-    assert_eq!(rate(0.5), "0.500");
-    assert_eq!(rate(0.0123), "0.0123");
-    assert_eq!(rate(0.000965), "0.000965");
-    assert_eq!(rate(0.0), "0.000");
-}

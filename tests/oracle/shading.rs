@@ -260,8 +260,8 @@ fn light_on_a_surface_does_not_speckle() {
 /// POV-Ray is an exact oracle for A4 Phong, and its `smooth_triangle` (mesh2 with
 /// `normal_vectors`) interpolates vertex normals as glint does: the smooth torus of
 /// scenes/meshes/torus-povray.lua against POV-Ray's render of its twin
-/// benches/povray/torus.pov (checked in: tests/golden/povray-torus.png, made by
-/// benches/povray/torus-reference.sh), within the corpus bar of RMSE 0.03 (measured
+/// tools/benches/povray/torus.pov (checked in: tests/golden/povray-torus.png, made by
+/// tools/benches/povray/torus-reference.sh), within the corpus bar of RMSE 0.03 (measured
 /// 0.0081). The same mesh shaded flat, as glint drew every mesh before, is off by 0.032.
 #[test]
 fn smooth_torus_matches_povrays_smooth_triangles() {

@@ -52,7 +52,7 @@ enum ModuleKind {
     Probe,
     Bench,
     /// `glint view`'s present pass: one file, no prelude, no specialisation
-    /// (src/view/present.rs builds it as it is).
+    /// (src/bin/glint/view/present.rs builds it as it is).
     Present,
 }
 
