@@ -288,7 +288,7 @@ fn stub_table(lua: &Lua, lib: &str) -> mlua::Result<Table> {
 fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     ensure_live(lua)?;
     let a = Args::new(lua, "require", args);
-    let name = a.text(1, "module")?;
+    let name = a.file_name(1, "module")?;
     let prelude_dir = super::preludes::caller_module_dir(lua);
     if prelude_dir.is_none() {
         with_state(lua, |s| s.report.looks_pre2015 = true);
@@ -361,7 +361,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
 fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     ensure_live(lua)?;
     let a = Args::new(lua, "readobj", args);
-    let file = a.text(1, "path")?;
+    let file = a.file_name(1, "path")?;
     let found = with_state(lua, |s| {
         s.report.looks_pre2015 = true;
         s.folders.find(&s.read_policy, &file, "mesh file")
