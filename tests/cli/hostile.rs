@@ -2782,8 +2782,30 @@ fn parse_overflows_and_long_paths_say_where_and_why() {
     assert!(!ended.stderr.contains("panicked"), "{}", ended.stderr);
     assert!(ended.stderr.contains("d/scene.lua': "), "{}", ended.stderr);
     assert!(
-        ended.stderr.contains("No such file or directory"),
+        ended.stderr.contains("File name too long"),
         "{}",
         ended.stderr
     );
+}
+
+/// File names from Lua with bytes that are not UTF-8 are refused naming the argument,
+/// never mangled into another name.
+#[test]
+fn file_names_from_lua_that_are_not_utf8_are_refused_not_mangled() {
+    for (tag, scene) in [
+        ("mesh-bytes", "gr.mesh('m', 'a\\255.obj')\n"),
+        (
+            "texture-bytes",
+            "gr.material('m'):set_diffuse('t\\255.png')\n",
+        ),
+        ("require-bytes", "require('m\\255')\n"),
+        ("readobj-bytes", "readobj('a\\255.obj')\n"),
+    ] {
+        check(Case::new(
+            tag,
+            scene,
+            3,
+            &["scene.lua:1:", "a file name in UTF-8"],
+        ));
+    }
 }

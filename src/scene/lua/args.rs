@@ -255,6 +255,21 @@ impl<'a> Args<'a> {
         }
     }
 
+    /// A file name argument: a short string ([`Args::text`]) in UTF-8 without NUL bytes
+    /// (a name with other bytes would be mangled into another name, and a message
+    /// would name neither).
+    pub fn file_name(&self, n: usize, name: &str) -> mlua::Result<String> {
+        if let Value::String(s) = self.get(n) {
+            let bytes = s.as_bytes();
+            if bytes.len() <= MAX_TEXT_ARG
+                && (std::str::from_utf8(&bytes).is_err() || bytes.contains(&0))
+            {
+                return Err(self.bad(n, name, "a file name in UTF-8, without NUL bytes"));
+            }
+        }
+        self.text(n, name)
+    }
+
     /// A short string argument (at most [`MAX_TEXT_ARG`] bytes, refused before it is
     /// copied): file names, axes, orders.
     pub fn text(&self, n: usize, name: &str) -> mlua::Result<String> {

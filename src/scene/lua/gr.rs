@@ -239,7 +239,7 @@ fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
     let name = node_name(a)?;
     let id = match a.get(2) {
         Value::String(_) => {
-            let file = a.text(2, "file")?;
+            let file = a.file_name(2, "file")?;
             let found = with_state(a.lua, |s| {
                 s.folders.find(&s.read_policy, &file, "mesh file")
             });
@@ -819,13 +819,7 @@ fn check_render_shape(a: &Args) -> mlua::Result<()> {
 /// Argument 2 of `gr.render`, the output's name: UTF-8 (a name is never mangled into
 /// another), without NUL bytes.
 fn output_name(a: &Args) -> mlua::Result<PathBuf> {
-    if let Value::String(s) = a.get(2) {
-        let bytes = s.as_bytes();
-        if std::str::from_utf8(&bytes).is_err() || bytes.contains(&0) {
-            return Err(a.bad(2, "file", "a file name in UTF-8, without NUL bytes"));
-        }
-    }
-    Ok(PathBuf::from(a.text(2, "file")?))
+    Ok(PathBuf::from(a.file_name(2, "file")?))
 }
 
 /// Counts one render of `pixels` against the script's bounds (a reached bound is final).

@@ -65,7 +65,7 @@ pub(super) fn set_bump(a: &Args) -> mlua::Result<Edit> {
 /// file is one texture under any spelling of its path). Its texels are counted against
 /// the memory budget from the image's header, before it is decoded.
 fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
-    let file = a.text(n, name)?;
+    let file = a.file_name(n, name)?;
     let found = with_state(a.lua, |s| s.folders.find(&s.read_policy, &file, "texture"));
     let (path, canonical) = found.map_err(|e| a.bad_in(n, name, e))?;
     if let Some(id) = with_state(a.lua, |s| s.texture_cache.get(&canonical).copied()) {

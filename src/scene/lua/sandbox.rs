@@ -290,7 +290,7 @@ fn stub_table(lua: &Lua, lib: &str) -> mlua::Result<Table> {
 fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     ensure_live(lua)?;
     let a = Args::new(lua, "require", args);
-    let name = a.text(1, "module")?;
+    let name = a.file_name(1, "module")?;
     let prelude_dir = super::preludes::caller_module_dir(lua);
     if name == "readobj" {
         if prelude_dir.is_none() {
@@ -363,7 +363,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
 fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     ensure_live(lua)?;
     let a = Args::new(lua, "readobj", args);
-    let file = a.text(1, "path")?;
+    let file = a.file_name(1, "path")?;
     if super::preludes::caller_module_dir(lua).is_none() {
         super::era::strong(lua, "readobj, the old course's mesh reader,");
     }
