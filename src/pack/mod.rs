@@ -3,6 +3,7 @@
 //! `crate::accel`). Below this point there are no enums, only tags and indices.
 
 pub mod bounds;
+pub mod combinations;
 pub mod features;
 pub mod layout;
 mod lights;

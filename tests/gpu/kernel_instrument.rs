@@ -21,7 +21,7 @@ fn scratch_dir(name: &str) -> PathBuf {
     dir
 }
 
-fn glint(args: &[&str]) -> Output {
+pub(crate) fn glint(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_glint"))
         .args(args)
         .current_dir(repo())
@@ -29,7 +29,7 @@ fn glint(args: &[&str]) -> Output {
         .expect("glint runs")
 }
 
-fn text(out: &Output) -> String {
+pub(crate) fn text(out: &Output) -> String {
     format!(
         "status {:?}\nstdout:\n{}\nstderr:\n{}",
         out.status,
@@ -39,7 +39,7 @@ fn text(out: &Output) -> String {
 }
 
 /// The value of `"key": N` in one JSON line.
-fn number(line: &str, key: &str) -> Option<u64> {
+pub(crate) fn number(line: &str, key: &str) -> Option<u64> {
     let at = line.find(&format!("\"{key}\": "))? + key.len() + 4;
     let digits: String = line[at..]
         .chars()
@@ -49,7 +49,7 @@ fn number(line: &str, key: &str) -> Option<u64> {
 }
 
 /// The value of `"key": "text"` in one JSON line.
-fn string<'a>(line: &'a str, key: &str) -> Option<&'a str> {
+pub(crate) fn string<'a>(line: &'a str, key: &str) -> Option<&'a str> {
     let at = line.find(&format!("\"{key}\": \""))? + key.len() + 5;
     line[at..].split('"').next()
 }

@@ -27,6 +27,7 @@ mod gpu_textures;
 mod gpu_trace_forms;
 mod gpu_wavefront;
 mod gpu_wavefront_tree;
+mod kernel_budget_combinations;
 mod kernel_instrument;
 mod twins;
 mod twins_broken;

@@ -5,6 +5,8 @@
 
 use crate::kernels::occupancy::Family;
 use crate::kernels::{collect, measure, report, write_kernels, Wave};
+use glint::pack::combinations;
+use glint::pack::SceneFeatures;
 use clap::{Args, ValueEnum};
 use glint::gpu::shader::{all_feature_sets, Entry};
 use glint::gpu::KernelVariant;
@@ -20,8 +22,16 @@ pub enum KernelsFormat {
 #[derive(Args, Debug)]
 pub struct KernelsArgs {
     /// Scene scripts; a folder stands for every scene script under it.
-    #[arg(required_unless_present = "wgsl")]
+    #[arg(required_unless_present_any = ["wgsl", "features", "feature_combinations"])]
     pub scenes: Vec<PathBuf>,
+    /// A scene that is only a feature set (repeatable): names such as "mesh torus csg
+    /// refraction" (as `render --stats` names them after `features:`; `none` for none), its kernels compiled
+    /// as a scene with exactly those features would compile them.
+    #[arg(long, value_name = "NAMES", value_parser = combinations::parse)]
+    pub features: Vec<SceneFeatures>,
+    /// Every feature combination of the budget test (src/pack/combinations.rs).
+    #[arg(long)]
+    pub feature_combinations: bool,
     /// A WGSL module of one's own (repeatable): its `main` (or --entry) entry points,
     /// laid out as the render module's, beside the scenes' kernels.
     #[arg(long, value_name = "FILE")]
@@ -153,8 +163,13 @@ pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
         args.waves.clone()
     };
     let entries = (!args.entries.is_empty()).then_some(args.entries.as_slice());
+    let mut features = args.features.clone();
+    if args.feature_combinations {
+        features.extend(combinations::feature_combinations());
+    }
     let m = measure(
         &scenes,
+        &features,
         &args.wgsl,
         args.family,
         &waves,

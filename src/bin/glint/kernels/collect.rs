@@ -120,6 +120,27 @@ impl KernelSet {
         Ok(())
     }
 
+    /// Adds the kernels of a scene with exactly `features`, named `name` (no script: the
+    /// feature combinations of `glint kernels --features`): `entries` (None: every
+    /// render-module entry) that its render module has. No AA mode is its own, so none
+    /// is marked as dispatched.
+    pub fn add_features(
+        &mut self,
+        name: &str,
+        features: SceneFeatures,
+        entries: Option<&[Entry]>,
+        kernel: KernelConfig,
+        target: SpirvTarget,
+    ) -> Result<(), String> {
+        let all: Vec<Entry> = Entry::ALL.into_iter().filter(|e| e.is_render()).collect();
+        for &entry in entries.unwrap_or(&all) {
+            if entry.exists_in(kernel, features) {
+                self.add(name, features, entry, false, kernel, target)?;
+            }
+        }
+        Ok(())
+    }
+
     /// Adds a WGSL module of one's own (`--wgsl`): `entries` (None: `main`) of it, laid
     /// out as the render module's entries are.
     pub fn add_wgsl(

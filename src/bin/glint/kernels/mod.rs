@@ -14,6 +14,8 @@ pub mod stats;
 pub mod vulkan;
 pub mod wgsl_bounds;
 
+use glint::pack::combinations;
+use glint::pack::SceneFeatures;
 use collect::KernelSet;
 use occupancy::Family;
 use stats::KernelStats;
@@ -89,11 +91,13 @@ pub fn driver_env(family: Family) -> Result<Vec<(&'static str, String)>, String>
     ])
 }
 
-/// Collects the kernels of `scenes` and compiles each at every size of `waves` on the
-/// device (RADV's null device when `family` is set: its [`driver_env`] must be in the
-/// environment already).
+/// Collects the kernels of `scenes`, of the feature sets `combinations` (no script:
+/// [`combinations`]) and of the `wgsl` modules, and compiles each at every size of
+/// `waves` on the device (RADV's null device when `family` is set: its [`driver_env`]
+/// must be in the environment already).
 pub fn measure(
     scenes: &[PathBuf],
+    combinations: &[SceneFeatures],
     wgsl: &[PathBuf],
     family: Option<Family>,
     waves: &[Wave],
@@ -106,6 +110,10 @@ pub fn measure(
     let mut set = KernelSet::default();
     for scene in scenes {
         set.add_scene(scene, entries, config, target)?;
+    }
+    for &features in combinations {
+        let name = combinations::name(features);
+        set.add_features(&name, features, entries, config, target)?;
     }
     for file in wgsl {
         set.add_wgsl(file, entries, config, target)?;
