@@ -12,7 +12,6 @@ pub mod accel;
 pub mod bench;
 pub mod cli;
 pub mod constants;
-pub mod cpu;
 pub mod diff;
 pub mod farm;
 pub mod film;
@@ -29,5 +28,6 @@ pub mod script_driver;
 #[doc(hidden)]
 pub mod testing;
 pub mod tiling;
+pub mod tracer;
 pub mod view;
 pub mod write_policy;

@@ -2,8 +2,6 @@
 //! render and write the image atomically. Shared by the CLI, the benchmark and the tests.
 
 use crate::aa_map::{aa_samples_film, AaMapError};
-use crate::cpu::camera_media::fill_camera_media;
-use crate::cpu::render::{adaptive_leaf_counts, render, render_with_counters, RenderCounters};
 use crate::film::Film;
 use crate::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderInfo, GpuRenderOptions};
 use crate::image_io::{check_output_path, write_image, ImageIoError};
@@ -13,6 +11,10 @@ use crate::scene::flatten::FlatScene;
 use crate::scene::lua::{SceneError, ScriptReport};
 use crate::scene::{AaMode, DebugView, OptionOverrides, RenderRequest, SceneGraph};
 use crate::script_driver::{run_script, ScriptSettings};
+use crate::tracer::path::camera_media::fill_camera_media;
+use crate::tracer::sampling::render::{
+    adaptive_leaf_counts, render, render_with_counters, RenderCounters,
+};
 use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};

@@ -12,13 +12,13 @@
 
 use super::common::{load_scene, BenchArgs};
 use super::timing::fastest;
-use crate::cpu::render::render_with_counters;
 use crate::diff::diff_films;
 use crate::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderOptions};
 use crate::mailboxes::Mailboxes;
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::pipeline::pack_scene;
 use crate::scene::AaMode;
+use crate::tracer::sampling::render::render_with_counters;
 use std::time::Instant;
 
 /// Scenes of the comparison: the CS488 corpus' 2021+ family and glint's demo.
@@ -152,7 +152,7 @@ fn bench_scene(
         info: info_steady,
         ..
     } = gpu?;
-    let (t_cpu, cpu_film) = fastest(args.repeat, || crate::cpu::render(&packed, &|_, _| {}));
+    let (t_cpu, cpu_film) = fastest(args.repeat, || crate::tracer::render(&packed, &|_, _| {}));
     let (_, counters) = render_with_counters(&packed, &|_, _| {});
     let (report, _) = diff_films(&cpu_film, &gpu_film)?;
     let gpu_time = info_steady.gpu_time.unwrap_or(t_gpu);

@@ -1,5 +1,5 @@
 //! `glint bench --torus`: ray–torus intersections per second on the CPU for glint's
-//! solver (`cpu::torus`: rescaled, clipped quartic; derivative-split Newton–bisection)
+//! solver (`tracer::geometry::torus`: rescaled, clipped quartic; derivative-split Newton–bisection)
 //! against the textbook closed form (Ferrari via a resolvent cubic, Schwarze's
 //! Graphics Gems I solver, in f32 — here for the comparison only), each with its
 //! accuracy against an f64 oracle on the same rays: hit/miss disagreements (grazing rays
@@ -11,8 +11,8 @@ use super::ferrari::intersect_torus_ferrari;
 use super::timing::fastest;
 use super::torus_gpu::{GpuTorusBench, GpuTorusSolver};
 pub use super::torus_rays::{rays, TorusRay};
-use crate::cpu::torus::intersect_torus;
 use crate::gpu::GpuContext;
+use crate::tracer::geometry::torus::intersect_torus;
 use glam::DVec3;
 use rayon::prelude::*;
 

@@ -16,10 +16,10 @@ use super::trace_rays::{
     camera_rays, count_work, load_first_render, shadow_rays, summarise, trace_primary_into,
     trace_shadow_into, TraceSummary,
 };
-use crate::cpu::traverse::Hit;
 use crate::pack::PackedScene;
 use crate::pipeline::pack_scene;
 use crate::script_driver::ScriptSettings;
+use crate::tracer::traversal::traverse::Hit;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 

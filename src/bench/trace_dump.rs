@@ -20,11 +20,11 @@
 
 use super::trace_rays::{ItemNumbering, ShadowRay};
 use crate::constants::{KIND_CUBE, KIND_MESH, KIND_SPHERE, T_MISS};
-use crate::cpu::intersect::triangle_vertices;
-use crate::cpu::ray::Ray;
-use crate::cpu::traverse::Hit;
-use crate::cpu::traverse_mesh::instance_mesh;
 use crate::pack::PackedScene;
+use crate::tracer::base::ray::Ray;
+use crate::tracer::geometry::intersect::triangle_vertices;
+use crate::tracer::traversal::traverse::Hit;
+use crate::tracer::traversal::traverse_mesh::instance_mesh;
 use glam::Vec3;
 use std::io::Write;
 use std::path::Path;

@@ -9,7 +9,6 @@ use super::digest::render_digest;
 use super::spec::{task_index, FrameRange, Index, TileSpec};
 use super::split::tile_rect;
 use super::tile_file::{check_tile_path, read_tile_meta, write_tile, TileFileError, TileMeta};
-use crate::cpu::render::render_window;
 use crate::film::Film;
 use crate::gpu::{render_gpu, GpuRenderOptions};
 use crate::pipeline::{
@@ -20,6 +19,7 @@ use crate::scene::lua::FrameGlobals;
 use crate::scene::{RenderRequest, SceneGraph};
 use crate::script_driver::run_script;
 use crate::tiling::PixelRect;
+use crate::tracer::sampling::render::render_window;
 use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};

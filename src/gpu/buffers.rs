@@ -17,7 +17,7 @@ use std::borrow::Cow;
 use wgpu::util::DeviceExt;
 
 /// Per-dispatch uniform of the render entry point.
-// Mirror of shaders/layout.wgsl::GpuTile — change both.
+// Mirror of src/pack/layout.wgsl::GpuTile — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuTile {
@@ -38,13 +38,13 @@ pub struct GpuTile {
     /// [`ALL_STRATA`](crate::constants::ALL_STRATA): every stratum of each (a render).
     pub stratum: u32,
     /// The wavefront shadow pass's slice with CSG (WavefrontShape::shadow_slices): its
-    /// requests are slice × items … slice × items + items − 1 (shaders/wavefront.wgsl);
+    /// requests are slice × items … slice × items + items − 1 (src/tracer/wavefront/wavefront.wgsl);
     /// the args kernel's: the slices of a shadow pass (WavefrontShape::shadow_slices).
     pub slice: u32,
 }
 
 /// `GpuTile::sentinel`: the loop-limiter check runs a loop of this many iterations; it
-/// stops after one when Mesa's limiter has tripped (see `shaders/render.wgsl`).
+/// stops after one when Mesa's limiter has tripped (see `src/tracer/sampling/render.wgsl`).
 pub const LIMITER_SENTINEL: u32 = 2;
 
 /// The scene's buffers: the globals uniform (binding 0) and the tables.

@@ -1,11 +1,11 @@
 //! Per-ray lists in a storage buffer (`LISTS_IN_STORAGE`, the hardware kernel variant):
-//! the pending rays of the dielectric ray stack (`shaders/trace.wgsl`) and the CSG
-//! interval lists (`shaders/csg.wgsl`), which as private arrays are larger than the
+//! the pending rays of the dielectric ray stack (`src/tracer/path/trace.wgsl`) and the CSG
+//! interval lists (`src/tracer/geometry/csg.wgsl`), which as private arrays are larger than the
 //! 256 bytes a GPU compiler keeps in registers and so go to scratch memory (RADV for
 //! NAVI21: glass.lua's kernel 60 KiB of scratch a wave, scrabble.lua's 143 KiB; issue 38).
 //!
 //! Each tracing invocation of a dispatch owns one **slot**; word `k` of slot `s` is at
-//! `k · slots + s` of the `ray_lists` binding (`shaders/lists.wgsl::lane_word`), so that
+//! `k · slots + s` of the `ray_lists` binding (`src/gpu/lists.wgsl::lane_word`), so that
 //! the lanes of a wave reading the same word of their lists read neighbouring words. The
 //! binding holds exactly `slots · lane words` words, which is how the kernel learns
 //! `slots` (`arrayLength`). A slot's words are written before they are read by the
@@ -18,8 +18,8 @@
 //!   then the lists' starts and counts, `CSG_LIST_CAPACITY` each, from word
 //!   [`LaneLists::csg_at`].
 //!
-//! The CPU tracer keeps these lists in arrays of its own (`src/cpu/trace.rs`,
-//! `src/cpu/csg.rs::CsgStack`): where they live changes no step and no value.
+//! The CPU tracer keeps these lists in arrays of its own (`src/tracer/path/trace.rs`,
+//! `src/tracer/geometry/csg.rs::CsgStack`): where they live changes no step and no value.
 
 use super::kernel::KernelConfig;
 use crate::constants::{CSG_EVENT_CAPACITY, CSG_LIST_CAPACITY, MEDIUM_STACK_SIZE, RAY_STACK_SIZE};

@@ -1,4 +1,4 @@
-//! The GPU tracer: a WGSL mirror of [`crate::cpu`] (`shaders/*.wgsl`), specialised per
+//! The GPU tracer: a WGSL mirror of [`crate::tracer`] (`shaders/*.wgsl`), specialised per
 //! scene feature set and run on wgpu (Vulkan, Metal or DX12) in whole-frame passes. Device acquisition
 //! ([`GpuContext`]) is separate from the work ([`render_gpu`]) so tests pass their own.
 

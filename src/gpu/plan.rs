@@ -29,10 +29,10 @@ pub enum Mode {
     Adaptive {
         depth: u32,
     },
-    /// AA none or uniform AA through the wavefront kernels (`shaders/wavefront.wgsl`).
+    /// AA none or uniform AA through the wavefront kernels (`src/tracer/wavefront/wavefront.wgsl`).
     Wavefront(WavefrontShape),
     /// Adaptive AA with its corner and midpoint passes through the wavefront kernels
-    /// (`shaders/wavefront_lattice.wgsl`): the lattice, then the queues, in `samples`.
+    /// (`src/tracer/wavefront/wavefront_lattice.wgsl`): the lattice, then the queues, in `samples`.
     AdaptiveWavefront {
         depth: u32,
         shape: WavefrontShape,
@@ -40,7 +40,7 @@ pub enum Mode {
 }
 
 /// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
-/// vertex's light slots: `cpu::wavefront::light_points`), the generations a path may
+/// vertex's light slots: `tracer::wavefront::wavefront::light_points`), the generations a path may
 /// have (max_depth + 1 with mirrors or glass, else 1), the AA mode's strata, and whether
 /// paths branch (a tree: scenes with refraction).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,11 +53,11 @@ pub struct WavefrontShape {
     pub tree: bool,
     /// Dispatches of a chain's shadow pass a generation: 1, or with CSG (at most one
     /// invocation per list slot, one request each) the light points, each a slice of at
-    /// most a request per sample (`shaders/wavefront.wgsl::wavefront_shadow`). A tree's: 1.
+    /// most a request per sample (`src/tracer/wavefront/wavefront.wgsl::wavefront_shadow`). A tree's: 1.
     pub shadow_slices: u32,
 }
 
-/// Glass shadow rounds a tree's generation runs (`shaders/wavefront_tree.wgsl`): a leg
+/// Glass shadow rounds a tree's generation runs (`src/tracer/wavefront/wavefront_tree.wgsl`): a leg
 /// crosses at most MAX_SHADOW_CROSSINGS surfaces and is blocked at the next.
 pub const SHADOW_ROUNDS: u32 = MAX_SHADOW_CROSSINGS + 1;
 
@@ -70,9 +70,9 @@ impl WavefrontShape {
         self.uniform.map_or(1, |n| (n * n) as u64)
     }
 
-    /// vec4 entries of the queues a sample of a chunk takes (`shaders/wavefront.wgsl`'s
+    /// vec4 entries of the queues a sample of a chunk takes (`src/tracer/wavefront/wavefront.wgsl`'s
     /// regions): its record (2), two path queues (4 each), a hit (2), a vertex (2), its
-    /// light slots and shadow requests (L each). A tree's (`shaders/wavefront_tree.wgsl`):
+    /// light slots and shadow requests (L each). A tree's (`src/tracer/wavefront/wavefront_tree.wgsl`):
     /// the record, then per path of a generation (TREE_PATHS_PER_SAMPLE a sample) two
     /// path queues (5 each, with media and pending count), a hit, a vertex, the vertex
     /// tree (2 a vertex, TREE_VERTICES_PER_SAMPLE a sample), then per path L slots, L
@@ -208,13 +208,13 @@ pub struct BindingOffsets {
 }
 
 /// Byte offset of the wavefront's counters in `work_counts` and of its arguments in
-/// `work_args` under adaptive AA (`shaders/wavefront_lattice.wgsl`).
+/// `work_args` under adaptive AA (`src/tracer/wavefront/wavefront_lattice.wgsl`).
 pub const WAVEFRONT_WORK_BYTES: u64 = 4 * WAVEFRONT_WORK_BASE as u64;
 
 /// Where the wavefront's queues start in `samples` (bytes) for adaptive tiles of side
 /// `side` at depth `depth`: after the lattice, at a multiple of 256 bytes (the coarsest
 /// storage offset alignment WebGPU allows).
-// The same as shaders/wavefront_lattice.wgsl::lattice_queue_base.
+// The same as src/tracer/wavefront/wavefront_lattice.wgsl::lattice_queue_base.
 pub fn lattice_queue_bytes(side: u32, depth: u32) -> u64 {
     let width = side as u64 * (1u64 << depth) + 1;
     (width * width).div_ceil(16) * 16 * 16
@@ -228,7 +228,7 @@ pub enum Workgroups {
 }
 
 /// Byte offset of level `level`'s midpoint-pass arguments in the work-args buffer; the
-/// next level's decide-pass arguments follow (see shaders/adaptive.wgsl::adaptive_work_args).
+/// next level's decide-pass arguments follow (see src/tracer/sampling/adaptive.wgsl::adaptive_work_args).
 fn midpoint_args(level: u32) -> u64 {
     24 * level as u64
 }

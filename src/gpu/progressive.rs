@@ -1,6 +1,6 @@
 //! `glint view`'s device side: progressive uniform anti-aliasing on the device that also
 //! presents the window. The per-pixel sums live in one storage buffer ([`SumBuffer`])
-//! for the whole session: `view_sample` (shaders/progressive.wgsl) adds sample k of every pixel
+//! for the whole session: `view_sample` (src/tracer/sampling/progressive.wgsl) adds sample k of every pixel
 //! to it in frame k, the window's present pass reads it, and the CPU tracer's sums are
 //! uploaded into it when that tracer refines instead. Nothing is read back except for S
 //! (save) and, on software adapters, the loop limiter's flags, so a refining frame on a
@@ -16,7 +16,7 @@
 //! On software adapters the kernel checks Mesa's loop limiter (`ITERATION_GUARD`): a
 //! pixel whose sample tripped it keeps its sum and is flagged, and
 //! [`Progressive::trace_sample`] re-traces that sample on the CPU tracer
-//! (`crate::cpu::progressive::view_sample`, the kernel's twin) into the sum, as `glint
+//! (`crate::tracer::sampling::progressive::view_sample`, the kernel's twin) into the sum, as `glint
 //! render` re-renders its flagged pixels (`super::render`); so the view converges to the
 //! render's image there too.
 //!
@@ -43,9 +43,9 @@ use super::view_wavefront::{ViewBindings, ViewWavefront};
 use super::wavefront::view_wavefront_shape;
 use super::GpuError;
 use crate::constants::ALL_STRATA;
-use crate::cpu::progressive::view_sample;
 use crate::pack::{PackedGlobals, PackedScene};
 use crate::tiling::PixelRect;
+use crate::tracer::sampling::progressive::view_sample;
 use rayon::prelude::*;
 use std::sync::Arc;
 use wgpu::util::DeviceExt;

@@ -12,9 +12,9 @@
 //! - uniform n×n: `uniform_samples` (one invocation per (pixel, sample)), then
 //!   `uniform_resolve` sums each pixel's samples in the CPU's order;
 //! - adaptive: `adaptive_corners`, then for each level `adaptive_decide` and
-//!   `adaptive_midpoints`, then `adaptive_integrate` (see `shaders/adaptive.wgsl`); in
+//!   `adaptive_midpoints`, then `adaptive_integrate` (see `src/tracer/sampling/adaptive.wgsl`); in
 //!   the hardware variant the corner and midpoint passes run through the wavefront
-//!   kernels (`shaders/wavefront_lattice.wgsl`), as AA none does.
+//!   kernels (`src/tracer/wavefront/wavefront_lattice.wgsl`), as AA none does.
 //!
 //! On software adapters the kernels also check the limiter (`ITERATION_GUARD`) and flag
 //! the pixels a tripped invocation touched (a single very heavy ray can still trip it);
@@ -31,11 +31,11 @@ use super::plan::{AdapterBounds, Dispatch, FramePlan};
 use super::shader::Entry;
 use super::wavefront::wavefront_shape;
 use super::GpuError;
-use crate::cpu::render::render_pixel;
-use crate::cpu::traverse::NoCounters;
 use crate::film::Film;
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::tiling::{PixelRect, RenderProgress};
+use crate::tracer::sampling::render::render_pixel;
+use crate::tracer::traversal::traverse::NoCounters;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -102,7 +102,7 @@ pub struct GpuRender {
     pub film: Film,
     pub info: GpuRenderInfo,
     /// Adaptive AA's leaf squares per pixel, row-major (see
-    /// [`crate::cpu::render::adaptive_leaf_counts`]); meaningful with adaptive AA only.
+    /// [`crate::tracer::sampling::render::adaptive_leaf_counts`]); meaningful with adaptive AA only.
     pub leaf_counts: Vec<u32>,
     /// With [`GpuRenderOptions::pass_times`] on an adapter with timestamp queries: GPU
     /// time per kind of pass, in the order of the frame's first dispatch of each.

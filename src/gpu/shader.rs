@@ -1,5 +1,5 @@
-//! Specialised WGSL: the module source is the constants prelude plus the `shaders/*.wgsl`
-//! files, with every `// #if FEATURE` … `// #else` … `// #endif` block resolved for
+//! Specialised WGSL: the module source is the constants prelude plus the tracer's `.wgsl`
+//! files (each beside its Rust twin), with every `// #if FEATURE` … `// #else` … `// #endif` block resolved for
 //! exactly the scene's [`SceneFeatures`], so code for absent features never reaches naga
 //! (naga does not remove dead branches, gfx-rs/wgpu#5608). A condition is one feature name
 //! in upper case (`-` as `_`: `AREA_LIGHT`), or several joined by `|` (any of them),
@@ -8,12 +8,12 @@
 //! `WORKGROUP_SIZE` and `LINEAR_WORKGROUP_SIZE` constants, emitted after the prelude with
 //! the per-ray lists' layout, `src/gpu/lists.rs`) and
 //! its flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
-//! check, see `shaders/render.wgsl`), `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
+//! check, see `src/tracer/sampling/render.wgsl`), `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
 //! traversal's per-ray mailboxes, all of them or one item slot: see
-//! `shaders/traverse.wgsl`), `STORAGE_TABLES` (the scene's tables bound as read-only
-//! storage textures: see `shaders/layout.wgsl`), `LISTS_IN_STORAGE` (per-ray lists in
-//! a storage buffer: see `shaders/lists.wgsl`) and `CAMERA_RAY_IN_LOOP` (`trace_ray`'s
-//! camera ray is the first entry of its loop over rays: see `shaders/trace.wgsl`), the one
+//! `src/tracer/traversal/traverse.wgsl`), `STORAGE_TABLES` (the scene's tables bound as read-only
+//! storage textures: see `src/pack/layout.wgsl`), `LISTS_IN_STORAGE` (per-ray lists in
+//! a storage buffer: see `src/gpu/lists.wgsl`) and `CAMERA_RAY_IN_LOOP` (`trace_ray`'s
+//! camera ray is the first entry of its loop over rays: see `src/tracer/path/trace.wgsl`), the one
 //! flag that also depends on the features, since which form traces the camera ray once
 //! depends on whether the scene has secondary rays at all.
 
@@ -35,7 +35,7 @@ pub enum Entry {
     UniformSamples,
     UniformResolve,
     /// `adaptive_corners`, `adaptive_decide`, `adaptive_midpoints`, `adaptive_integrate`,
-    /// `adaptive_work_args`: adaptive AA's passes (`shaders/adaptive.wgsl`).
+    /// `adaptive_work_args`: adaptive AA's passes (`src/tracer/sampling/adaptive.wgsl`).
     AdaptiveCorners,
     AdaptiveDecide,
     AdaptiveMidpoints,
@@ -43,7 +43,7 @@ pub enum Entry {
     AdaptiveWorkArgs,
     /// `wavefront_camera`, `wavefront_closest`, `wavefront_shade`, `wavefront_args`,
     /// `wavefront_shadow`, `wavefront_gather`, `wavefront_resolve`: AA none's and uniform
-    /// AA's kernels in the wavefront form (`shaders/wavefront.wgsl`; only in modules with
+    /// AA's kernels in the wavefront form (`src/tracer/wavefront/wavefront.wgsl`; only in modules with
     /// [`wavefront_kernels`]).
     WavefrontCamera,
     WavefrontClosest,
@@ -54,25 +54,25 @@ pub enum Entry {
     WavefrontResolve,
     /// `wavefront_lattice_camera`, `wavefront_lattice_store`: adaptive AA's corner and
     /// midpoint passes through the wavefront kernels, their camera pass and the pass that
-    /// stores their samples into the lattice (`shaders/wavefront_lattice.wgsl`; only in
+    /// stores their samples into the lattice (`src/tracer/wavefront/wavefront_lattice.wgsl`; only in
     /// modules with [`wavefront_kernels`], which have no `AdaptiveCorners` nor
     /// `AdaptiveMidpoints`).
     WavefrontLatticeCamera,
     WavefrontLatticeStore,
     /// `wavefront_view_store`: `glint view`'s frame through the wavefront kernels, each
-    /// sample added to its pixel's sum (`shaders/progressive.wgsl`; only in modules with
+    /// sample added to its pixel's sum (`src/tracer/sampling/progressive.wgsl`; only in modules with
     /// [`wavefront_kernels`]).
     WavefrontViewStore,
     /// `wavefront_leg_closest`, `wavefront_crossing`, `wavefront_leg_args`,
     /// `wavefront_fold`: the glass shadow rounds and the fold of scenes with refraction
-    /// (`shaders/wavefront_tree.wgsl`; only in modules with [`wavefront_kernels`] and
+    /// (`src/tracer/wavefront/wavefront_tree.wgsl`; only in modules with [`wavefront_kernels`] and
     /// REFRACTION).
     WavefrontLegClosest,
     WavefrontCrossing,
     WavefrontLegArgs,
     WavefrontFold,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
-    /// (`shaders/progressive.wgsl`, dispatched by `gpu/progressive.rs`; not in modules
+    /// (`src/tracer/sampling/progressive.wgsl`, dispatched by `gpu/progressive.rs`; not in modules
     /// with [`wavefront_kernels`]).
     ViewSample,
     /// `probe`: test-only, traces rays from a buffer and reports hits.
@@ -291,82 +291,63 @@ const fn then<const N: usize, const M: usize>(passes: [Entry; N], last: Entry) -
     out
 }
 
+/// A shader file as (repository path, text), from its path under `src/`.
+macro_rules! wgsl {
+    ($path:literal) => {
+        (concat!("src/", $path), include_str!(concat!("../", $path)))
+    };
+}
+
 /// The shader files, in module order (WGSL does not care about order; readers do).
 const COMMON: &[(&str, &str)] = &[
-    ("layout.wgsl", include_str!("../../shaders/layout.wgsl")),
-    ("lists.wgsl", include_str!("../../shaders/lists.wgsl")),
-    ("rng.wgsl", include_str!("../../shaders/rng.wgsl")),
-    ("ray.wgsl", include_str!("../../shaders/ray.wgsl")),
-    ("math.wgsl", include_str!("../../shaders/math.wgsl")),
-    (
-        "intersect.wgsl",
-        include_str!("../../shaders/intersect.wgsl"),
-    ),
-    (
-        "cylinder_cone.wgsl",
-        include_str!("../../shaders/cylinder_cone.wgsl"),
-    ),
-    ("torus.wgsl", include_str!("../../shaders/torus.wgsl")),
-    ("uv.wgsl", include_str!("../../shaders/uv.wgsl")),
-    ("csg.wgsl", include_str!("../../shaders/csg.wgsl")),
-    ("hit.wgsl", include_str!("../../shaders/hit.wgsl")),
-    ("dda.wgsl", include_str!("../../shaders/dda.wgsl")),
-    (
-        "traverse_mesh.wgsl",
-        include_str!("../../shaders/traverse_mesh.wgsl"),
-    ),
-    ("traverse.wgsl", include_str!("../../shaders/traverse.wgsl")),
-    ("surface.wgsl", include_str!("../../shaders/surface.wgsl")),
-    ("shade.wgsl", include_str!("../../shaders/shade.wgsl")),
-    ("smooth.wgsl", include_str!("../../shaders/smooth.wgsl")),
-    (
-        "dielectric.wgsl",
-        include_str!("../../shaders/dielectric.wgsl"),
-    ),
-    ("texture.wgsl", include_str!("../../shaders/texture.wgsl")),
+    wgsl!("pack/layout.wgsl"),
+    wgsl!("gpu/lists.wgsl"),
+    wgsl!("tracer/base/rng.wgsl"),
+    wgsl!("tracer/base/ray.wgsl"),
+    wgsl!("tracer/base/math.wgsl"),
+    wgsl!("tracer/geometry/intersect.wgsl"),
+    wgsl!("tracer/geometry/cylinder_cone.wgsl"),
+    wgsl!("tracer/geometry/torus.wgsl"),
+    wgsl!("tracer/geometry/uv.wgsl"),
+    wgsl!("tracer/geometry/csg.wgsl"),
+    wgsl!("tracer/traversal/hit.wgsl"),
+    wgsl!("tracer/traversal/dda.wgsl"),
+    wgsl!("tracer/traversal/traverse_mesh.wgsl"),
+    wgsl!("tracer/traversal/traverse.wgsl"),
+    wgsl!("tracer/shading/surface.wgsl"),
+    wgsl!("tracer/shading/shade.wgsl"),
+    wgsl!("tracer/shading/smooth.wgsl"),
+    wgsl!("tracer/shading/dielectric.wgsl"),
+    wgsl!("tracer/shading/texture.wgsl"),
 ];
 const RENDER: &[(&str, &str)] = &[
-    ("trace.wgsl", include_str!("../../shaders/trace.wgsl")),
-    (
-        "pixel_sample.wgsl",
-        include_str!("../../shaders/pixel_sample.wgsl"),
-    ),
-    ("render.wgsl", include_str!("../../shaders/render.wgsl")),
-    ("adaptive.wgsl", include_str!("../../shaders/adaptive.wgsl")),
-    (
-        "progressive.wgsl",
-        include_str!("../../shaders/progressive.wgsl"),
-    ),
+    wgsl!("tracer/path/trace.wgsl"),
+    wgsl!("tracer/sampling/pixel_sample.wgsl"),
+    wgsl!("tracer/sampling/render.wgsl"),
+    wgsl!("tracer/sampling/adaptive.wgsl"),
+    wgsl!("tracer/sampling/progressive.wgsl"),
 ];
 /// Appended to the render module only where the kernel runs the wavefront kernels (so
 /// that the other modules are byte for byte what they were without them).
 const WAVEFRONT: &[(&str, &str)] = &[
-    (
-        "wavefront.wgsl",
-        include_str!("../../shaders/wavefront.wgsl"),
-    ),
-    (
-        "wavefront_lattice.wgsl",
-        include_str!("../../shaders/wavefront_lattice.wgsl"),
-    ),
+    wgsl!("tracer/wavefront/wavefront.wgsl"),
+    wgsl!("tracer/wavefront/wavefront_lattice.wgsl"),
 ];
 /// Appended after `WAVEFRONT` where the scene has refraction (paths that branch).
-const WAVEFRONT_TREE: &[(&str, &str)] = &[(
-    "wavefront_tree.wgsl",
-    include_str!("../../shaders/wavefront_tree.wgsl"),
-)];
-const PROBE: &[(&str, &str)] = &[("probe.wgsl", include_str!("../../shaders/probe.wgsl"))];
+const WAVEFRONT_TREE: &[(&str, &str)] = &[wgsl!("tracer/wavefront/wavefront_tree.wgsl")];
+const PROBE: &[(&str, &str)] = &[wgsl!("testing/probe.wgsl")];
 
 /// The common modules (scene layout, intersection, traversal, shading) specialised to
-/// `features`, with `extra` (name, text) appended: for kernels outside the tracer, such
-/// as the torus benchmark's.
+/// `features`, with `extra` (its path under `shaders/`, text) appended: for kernels
+/// outside the tracer, such as the torus benchmark's.
 pub fn assemble_common_with(features: SceneFeatures, extra: (&str, &str)) -> String {
     let kernel = KernelConfig::default();
     let mut out = wgsl_prelude() + &kernel_prelude(kernel);
-    for (name, text) in COMMON.iter().chain([&extra]) {
-        out += &format!("\n// ---- shaders/{name} ----\n");
-        out += &preprocess_with(name, text, features, kernel)
-            .unwrap_or_else(|e| panic!("shaders/{name}: {e} (a bug in the shader source)"));
+    let extra_path = format!("shaders/{}", extra.0);
+    for (path, text) in COMMON.iter().chain([&(extra_path.as_str(), extra.1)]) {
+        out += &format!("\n// ---- {path} ----\n");
+        out += &preprocess_with(path, text, features, kernel)
+            .unwrap_or_else(|e| panic!("{path}: {e} (a bug in the shader source)"));
     }
     out
 }
@@ -404,10 +385,10 @@ pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig
         .chain(if entry.is_render() { RENDER } else { PROBE })
         .chain(if wavefront { WAVEFRONT } else { &[] })
         .chain(if tree { WAVEFRONT_TREE } else { &[] });
-    for (name, text) in files {
-        out += &format!("\n// ---- shaders/{name} ----\n");
-        out += &preprocess_with(name, text, features, kernel)
-            .unwrap_or_else(|e| panic!("shaders/{name}: {e} (a bug in the shader source)"));
+    for (path, text) in files {
+        out += &format!("\n// ---- {path} ----\n");
+        out += &preprocess_with(path, text, features, kernel)
+            .unwrap_or_else(|e| panic!("{path}: {e} (a bug in the shader source)"));
     }
     out
 }
@@ -468,7 +449,7 @@ pub fn preprocess_with(
 
 /// Whether the render module of `kernel` for a scene with `features` has the wavefront
 /// kernels (`WAVEFRONT`): where the variant asks for them; with refraction (paths that
-/// branch) also the tree's (`shaders/wavefront_tree.wgsl`).
+/// branch) also the tree's (`src/tracer/wavefront/wavefront_tree.wgsl`).
 pub fn wavefront_kernels(kernel: KernelConfig, _features: SceneFeatures) -> bool {
     kernel.wavefront
 }

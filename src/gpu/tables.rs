@@ -1,7 +1,7 @@
 //! The packed scene's arrays as textures ("tables"): instances, triangles, materials,
 //! lights, cell starts and items, CSG programs, image texels, triangle UVs, mesh headers
 //! and triangle normals, each a 2-D texture 2^`TABLE_ROW_BITS` texels wide that the kernel reads with
-//! `textureLoad` (`shaders/layout.wgsl`: `cell_start_at`, `load_instance`, …). Element i
+//! `textureLoad` (`src/pack/layout.wgsl`: `cell_start_at`, `load_instance`, …). Element i
 //! of a one-word table is texel i; an element of a 16-byte-texel table is
 //! `*_TABLE_TEXELS` consecutive texels.
 //!
@@ -181,7 +181,7 @@ mod tests {
         use crate::constants::*;
         use crate::pack::layout::*;
         use std::mem::size_of;
-        // The WGSL loaders read exactly these texels per element (shaders/layout.wgsl).
+        // The WGSL loaders read exactly these texels per element (src/pack/layout.wgsl).
         assert_eq!(
             size_of::<PackedInstance>(),
             INSTANCE_TABLE_TEXELS as usize * 16

@@ -2,7 +2,7 @@
 //! `view_sample` is not in the module; with glass a tree's passes and fold before the
 //! store): per band, the camera pass
 //! takes the frame's stratum of each pixel, the generations trace the samples as a
-//! render's chunk does, and `wavefront_view_store` (`shaders/progressive.wgsl`) adds each
+//! render's chunk does, and `wavefront_view_store` (`src/tracer/sampling/progressive.wgsl`) adds each
 //! sample's colour to its pixel's sum as `view_sample` adds it, so the sums are the
 //! megakernel's bit for bit. The queues (`samples`), counters and indirect arguments are
 //! one band's, reused band after band; each dispatch has its own uniform record and bind

@@ -441,7 +441,7 @@ fn debug_aa_samples_maps_adaptive_leaf_counts() {
         ..Default::default()
     };
     let packed = common::load_packed(&scene, &overrides);
-    let leaves = glint::cpu::render::adaptive_leaf_counts(&packed);
+    let leaves = glint::tracer::sampling::render::adaptive_leaf_counts(&packed);
     let ramp = glint::aa_map::magma_ramp();
     let rgb = map.to_rgb8();
     for (k, &l) in leaves.iter().enumerate() {

@@ -386,7 +386,7 @@ fn absent_features_are_compiled_out() {
     }
 }
 
-/// The torus code (shaders/torus.wgsl and its dispatch arms) is in exactly the
+/// The torus code (src/tracer/geometry/torus.wgsl and its dispatch arms) is in exactly the
 /// specialisations with TORUS, and every specialisation set includes TORUS.
 #[test]
 fn torus_code_only_with_torus() {
@@ -464,7 +464,7 @@ fn shaders_define_no_constants() {
     }
 }
 
-/// The area-light code (shadow sampling in shaders/shade.wgsl and shaders/rng.wgsl) is in
+/// The area-light code (shadow sampling in src/tracer/shading/shade.wgsl and src/tracer/base/rng.wgsl) is in
 /// exactly the specialisations with AREA_LIGHT, which every_specialisation_validates
 /// covers.
 #[test]
@@ -485,7 +485,7 @@ fn area_light_code_only_with_area_lights() {
     }
 }
 
-/// The dielectric code (shaders/dielectric.wgsl, the transmitted push in trace.wgsl and
+/// The dielectric code (src/tracer/shading/dielectric.wgsl, the transmitted push in trace.wgsl and
 /// the shadow walk in shade.wgsl) is in exactly the specialisations with REFRACTION; the
 /// others keep any_hit shadows.
 #[test]
@@ -562,7 +562,7 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
     }
 }
 
-/// Smooth shading (shaders/smooth.wgsl, the triangle normals' loader, the interpolated
+/// Smooth shading (src/tracer/shading/smooth.wgsl, the triangle normals' loader, the interpolated
 /// normal in shade_hit and the probe, smooth refraction with REFRACTION) is compiled only into scenes with the SMOOTH
 /// feature (which packing sets only for meshes with vertex normals).
 #[test]
@@ -598,7 +598,7 @@ fn smooth_code_only_with_smooth_meshes() {
     }
 }
 
-/// The CSG code (shaders/csg.wgsl, the torus's interval search, the dispatch and surface
+/// The CSG code (src/tracer/geometry/csg.wgsl, the torus's interval search, the dispatch and surface
 /// arms) is in exactly the specialisations with CSG (and some primitive kind for its
 /// leaves), and absent from every other.
 #[test]

@@ -10,9 +10,9 @@
 
 use super::view_window::{View, Xvfb, WAIT};
 use crate::common::{gpu_context, load_packed, root};
-use glint::cpu::progressive::{accumulate_sample, film_of_sums};
 use glint::gpu::progressive::{Progressive, SumBuffer};
 use glint::scene::{AaMode, AaSamples, OptionOverrides};
+use glint::tracer::sampling::progressive::{accumulate_sample, film_of_sums};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
