@@ -95,7 +95,7 @@ pub const NO_TEXTURE: u32 = u32::MAX;
 
 /// The texture table at the start of `PackedScene::texels`: header i is the words
 /// The GPU keeps the packed scene's arrays in textures of 2^`TABLE_ROW_BITS` texels a
-/// row, read with `textureLoad` (src/gpu/tables.rs says why). 4 096 texels: every Vulkan, Metal and DX12 device
+/// row, read with `textureLoad` (src/gpu/upload/tables.rs says why). 4 096 texels: every Vulkan, Metal and DX12 device
 /// allows 2-D textures at least that wide.
 pub const TABLE_ROW_BITS: u32 = 12;
 /// 16-byte texels of one instance (`PackedInstance`, 112 bytes) in its table.
@@ -352,7 +352,7 @@ pub const WAVEFRONT_WORK_BASE: u32 = 64;
 pub const ALL_STRATA: u32 = u32::MAX;
 
 /// The wavefront kernels' constants, emitted after the prelude only in modules that have
-/// those kernels (`gpu::shader::wavefront_kernels`), so the others stay as they were.
+/// those kernels (`gpu::compile::shader::wavefront_kernels`), so the others stay as they were.
 const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = &[
     ("VERTEX_MISS", VERTEX_MISS),
     ("VERTEX_LIT", VERTEX_LIT),
@@ -456,7 +456,7 @@ pub const AA_STACK_SIZE: u32 = 3 * MAX_AA_DEPTH + 1;
 
 /// Largest side of the square GPU workgroup (`@workgroup_size(WORKGROUP_SIZE,
 /// WORKGROUP_SIZE)`): the GPU context chooses the largest power of two up to it that its
-/// adapter allows (`gpu::kernel::KernelConfig`) and emits it after the prelude.
+/// adapter allows (`gpu::compile::kernel::KernelConfig`) and emits it after the prelude.
 pub const WORKGROUP_SIZE: u32 = 8;
 /// Invocations per workgroup of the one-dimensional GPU kernels (one sample each) at the
 /// default side: WORKGROUP_SIZE².

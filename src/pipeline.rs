@@ -400,7 +400,7 @@ pub fn apply_kernel_settings(
         ctx.force_kernel_variant(variant);
     }
     if let Some(dir) = &settings.dump_kernels {
-        ctx.dump = Some(crate::gpu::dump::KernelDump::new(dir)?);
+        ctx.dump = Some(crate::gpu::device::dump::KernelDump::new(dir)?);
     }
     Ok(())
 }

@@ -61,7 +61,7 @@ pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
         if timed { "timestamp queries" } else { "wall time (the adapter has no timestamp queries)" }
     );
     if ctx.info.device_type == wgpu::DeviceType::Cpu {
-        println!("{}", crate::gpu::context::llvmpipe_threads_line());
+        println!("{}", crate::gpu::device::context::llvmpipe_threads_line());
     }
     println!(
         "\n## GPU vs CPU, {SIDE}×{SIDE} (fastest of {})",

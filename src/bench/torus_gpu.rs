@@ -7,8 +7,8 @@
 use super::ferrari::FERRARI_ZERO;
 use super::torus_rays::TorusRay;
 use crate::constants::LINEAR_WORKGROUP_SIZE;
-use crate::gpu::buffers::read_back;
-use crate::gpu::shader::{assemble_common_with, validate};
+use crate::gpu::compile::shader::{assemble_common_with, validate};
+use crate::gpu::upload::buffers::read_back;
 use crate::gpu::{GpuContext, GpuError};
 use crate::pack::SceneFeatures;
 use bytemuck::{Pod, Zeroable};

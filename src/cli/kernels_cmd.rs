@@ -3,7 +3,7 @@
 //! before anything loads a driver ([`set_driver_env`]); without it, a hardware device
 //! that reports compiler statistics is used.
 
-use crate::gpu::shader::{all_feature_sets, Entry};
+use crate::gpu::compile::shader::{all_feature_sets, Entry};
 use crate::gpu::KernelVariant;
 use crate::kernels::occupancy::Family;
 use crate::kernels::{collect, measure, report, write_kernels, Wave};

@@ -20,18 +20,18 @@
 //! the pixels a tripped invocation touched (a single very heavy ray can still trip it);
 //! those are re-rendered with the CPU tracer and counted in [`GpuRenderInfo`].
 
-use super::buffers::{take_mapped, upload_scene, LIMITER_SENTINEL};
-use super::context::GpuContext;
 use super::frame::Frame;
-use super::kernel::KernelConfig;
-use super::lists::LaneLists;
-use super::pipeline::{get_pipeline, CompiledPipeline};
-use super::pipeline_cache::CompileSummary;
 use super::plan::{AdapterBounds, Dispatch, FramePlan};
-use super::shader::Entry;
 use super::wavefront::wavefront_shape;
 use super::GpuError;
 use crate::film::Film;
+use crate::gpu::compile::kernel::KernelConfig;
+use crate::gpu::compile::lists::LaneLists;
+use crate::gpu::compile::shader::Entry;
+use crate::gpu::device::context::GpuContext;
+use crate::gpu::device::pipeline_cache::CompileSummary;
+use crate::gpu::pipeline::{get_pipeline, CompiledPipeline};
+use crate::gpu::upload::buffers::{take_mapped, upload_scene, LIMITER_SENTINEL};
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::tiling::{PixelRect, RenderProgress};
 use crate::tracer::sampling::render::render_pixel;
@@ -71,7 +71,7 @@ pub struct GpuRenderInfo {
 pub struct GpuRenderOptions<'a> {
     /// Called with (parts done, parts) as the frame's submits complete.
     pub progress: RenderProgress<'a>,
-    /// The loop limiter's sentinel ([`super::buffers::GpuTile::sentinel`]): a test hook;
+    /// The loop limiter's sentinel ([`crate::gpu::upload::buffers::GpuTile::sentinel`]): a test hook;
     /// tests pass more than the limit to trip the limiter on purpose and exercise the CPU
     /// fallback.
     #[doc(hidden)]
@@ -174,7 +174,7 @@ pub fn render_gpu(
         .iter()
         .map(|&e| get_pipeline(ctx, scene.features, e))
         .collect::<Result<Vec<Arc<CompiledPipeline>>, GpuError>>()?;
-    super::buffers::check_size(ctx, "per-chunk samples", plan.samples_len * 16)?;
+    crate::gpu::upload::buffers::check_size(ctx, "per-chunk samples", plan.samples_len * 16)?;
     let buffers = upload_scene(ctx, scene)?;
     // Dispatches part by part, and where each part's run ends.
     let mut dispatches: Vec<Dispatch> = Vec::new();

@@ -3,10 +3,10 @@
 //! twins of `tracer::wavefront::wavefront` and `tracer::wavefront::wavefront_lattice`), and the shape the frame plan
 //! sizes their queues and dispatches by.
 
-use super::kernel::KernelConfig;
-use super::plan::WavefrontShape;
-use super::shader::wavefront_kernels;
+use super::plan::shape::WavefrontShape;
 use crate::constants::{AA_ADAPTIVE, AA_NONE};
+use crate::gpu::compile::kernel::KernelConfig;
+use crate::gpu::compile::shader::wavefront_kernels;
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::tracer::wavefront::wavefront::light_points;
 

@@ -1,13 +1,13 @@
 //! The kernels a scene's renders would compile: each `gr.render` of the script flattened
 //! and packed as `glint render` does, its feature set specialising every render-module
 //! entry point in the chosen kernel variant, and each entry's SPIR-V built as wgpu 30
-//! hands it to Vulkan ([`crate::gpu::spirv`]). Identical SPIR-V (the same entry of
+//! hands it to Vulkan ([`crate::gpu::compile::spirv`]). Identical SPIR-V (the same entry of
 //! scenes with the same features) is kept once, with every scene that uses it.
 
-use crate::gpu::kernel::{KernelConfig, KernelVariant};
+use crate::gpu::compile::kernel::{KernelConfig, KernelVariant};
+use crate::gpu::compile::shader::{assemble_with, wavefront_kernels, Entry};
+use crate::gpu::compile::spirv::{entry_spirv, spirv_bytes, SpirvTarget};
 use crate::gpu::plan::Mode;
-use crate::gpu::shader::{assemble_with, wavefront_kernels, Entry};
-use crate::gpu::spirv::{entry_spirv, spirv_bytes, SpirvTarget};
 use crate::pack::SceneFeatures;
 use crate::pipeline::prepare_request;
 use crate::scene::OptionOverrides;

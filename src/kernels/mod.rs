@@ -96,11 +96,11 @@ pub fn measure(
     wgsl: &[PathBuf],
     family: Option<Family>,
     waves: &[Wave],
-    entries: Option<&[crate::gpu::shader::Entry]>,
+    entries: Option<&[crate::gpu::compile::shader::Entry]>,
     variant: crate::gpu::KernelVariant,
 ) -> Result<Measurement, String> {
     let device = vulkan::StatsDevice::open(family.is_some()).map_err(|e| e.to_string())?;
-    let target = crate::gpu::spirv::SpirvTarget::vulkan_1_3();
+    let target = crate::gpu::compile::spirv::SpirvTarget::vulkan_1_3();
     let config = collect::variant_config(variant);
     let mut set = KernelSet::default();
     for scene in scenes {
@@ -155,7 +155,7 @@ pub fn write_kernels(set: &KernelSet, dir: &Path) -> Result<(), String> {
     for k in &set.kernels {
         let stem = format!("{}-{}", k.entry.name(), &k.digest[..8]);
         let spv = dir.join(format!("{stem}.spv"));
-        std::fs::write(&spv, crate::gpu::spirv::spirv_bytes(&k.spirv))
+        std::fs::write(&spv, crate::gpu::compile::spirv::spirv_bytes(&k.spirv))
             .map_err(|e| format!("{}: {e}", spv.display()))?;
         let wgsl = dir.join(format!("{stem}.wgsl"));
         std::fs::write(&wgsl, &k.wgsl).map_err(|e| format!("{}: {e}", wgsl.display()))?;

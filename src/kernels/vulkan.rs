@@ -7,9 +7,9 @@
 //! Nothing is allocated, recorded or submitted.
 
 use super::stats::KernelStats;
-use crate::gpu::kernel::KernelConfig;
+use crate::gpu::compile::kernel::KernelConfig;
+use crate::gpu::compile::shader::Entry;
 use crate::gpu::pipeline::layout_entries;
-use crate::gpu::shader::Entry;
 use ash::vk;
 use std::ffi::CStr;
 

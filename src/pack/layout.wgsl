@@ -144,7 +144,7 @@ struct PackedGlobals {
     _pad2: u32,
 }
 
-// Mirror of src/gpu/buffers.rs::GpuTile — change both.
+// Mirror of src/gpu/upload/buffers.rs::GpuTile — change both.
 struct GpuTile {
     // Top-left pixel of the tile this dispatch renders.
     origin: vec2<u32>,
@@ -170,7 +170,7 @@ struct GpuTile {
 
 // The packed scene: the globals, and every array as a table: a texture 2^TABLE_ROW_BITS
 // texels wide read with textureLoad, since llvmpipe loads a storage buffer lane by lane
-// and a texel for all lanes at once (src/gpu/tables.rs; src/gpu/buffers.rs binds them,
+// and a texel for all lanes at once (src/gpu/upload/tables.rs; src/gpu/upload/buffers.rs binds them,
 // an empty array as one zeroed row). Elements of 16-byte-texel tables take *_TABLE_TEXELS
 // texels each; one-word tables hold a word a texel. On software adapters the tables are
 // bound as read-only storage textures (STORAGE_TABLES: llvmpipe's image load skips the
@@ -201,7 +201,7 @@ alias WordTable = texture_2d<u32>;
 // Corner normals of each triangle (same order as the triangles; used with SMOOTH).
 @group(0) @binding(24) var triangle_normal_table: QuadTable;
 
-// Where element i of a table lies (src/gpu/tables.rs lays them out row by row).
+// Where element i of a table lies (src/gpu/upload/tables.rs lays them out row by row).
 fn table_texel(i: u32) -> vec2<u32> {
     return vec2<u32>(i & ((1u << TABLE_ROW_BITS) - 1u), i >> TABLE_ROW_BITS);
 }

@@ -7,12 +7,12 @@ pub use crate::constants::{
     PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT,
     PROBE_SHADING_NORMAL as SHADING_NORMAL, PROBE_SHADOW_RAY as SHADOW_RAY,
 };
-use crate::gpu::buffers::{read_back, scene_entries, upload_scene};
-use crate::gpu::lists::LaneLists;
+use crate::gpu::compile::lists::LaneLists;
+use crate::gpu::compile::shader::Entry;
 use crate::gpu::pipeline::{
     get_pipeline, LISTS_BINDING, PROBE_RAYS_BINDING, PROBE_RESULTS_BINDING,
 };
-use crate::gpu::shader::Entry;
+use crate::gpu::upload::buffers::{read_back, scene_entries, upload_scene};
 use crate::gpu::{GpuContext, GpuError};
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{shadow_reach, Ray};
@@ -143,7 +143,7 @@ pub fn gpu_probe(
             binding: PROBE_RESULTS_BINDING,
             resource: results.as_entire_binding(),
         });
-        // One list slot per ray (src/gpu/lists.rs), where the kernel keeps lists in storage.
+        // One list slot per ray (src/gpu/compile/lists.rs), where the kernel keeps lists in storage.
         let words = LaneLists::of(scene.features, ctx.kernel).words().max(1) as u64;
         let lists = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("probe ray lists"),

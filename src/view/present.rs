@@ -3,7 +3,7 @@
 //! was presented (`--screenshot`: the surface texture copied back before it is shown).
 
 use crate::film::Film;
-use crate::gpu::progressive::SumBuffer;
+use crate::gpu::view::progressive::SumBuffer;
 use crate::gpu::GpuContext;
 use std::sync::Arc;
 use wgpu::util::DeviceExt;
@@ -239,7 +239,7 @@ impl SurfaceCopy {
     /// The copied pixels as a film (8-bit values over 255), or None if it failed.
     fn read(self, ctx: &GpuContext, format: wgpu::TextureFormat) -> Option<Film> {
         let size = u64::from(self.row) * u64::from(self.h);
-        let bytes = crate::gpu::buffers::read_back(ctx, &self.buffer, size).ok()?;
+        let bytes = crate::gpu::upload::buffers::read_back(ctx, &self.buffer, size).ok()?;
         let bgra = matches!(
             format,
             wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb

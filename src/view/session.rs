@@ -8,7 +8,7 @@ use super::load::{frames_to_converge, load_scene, LoadedScene};
 use super::present::{Presented, Presenter};
 use super::status::Status;
 use crate::film::Film;
-use crate::gpu::progressive::{Progressive, SumBuffer};
+use crate::gpu::view::progressive::{Progressive, SumBuffer};
 use crate::gpu::{GpuContext, GpuError};
 use crate::pack::{PackedGlobals, SceneFeatures};
 use crate::tracer::path::camera_media::fill_camera_media;

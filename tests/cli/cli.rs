@@ -705,7 +705,7 @@ fn info_names_the_kernel_variant_of_each_adapter() {
         .collect();
     assert!(adapters >= 1, "{text}");
     assert_eq!(kernels.len(), adapters, "{text}");
-    // Each adapter's texture side, which bounds the scene's tables (src/gpu/tables.rs).
+    // Each adapter's texture side, which bounds the scene's tables (src/gpu/upload/tables.rs).
     let sides = text
         .lines()
         .filter(|l| l.starts_with("  max 2-D texture side: ") && l.contains("texels each"))

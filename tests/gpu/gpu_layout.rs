@@ -2,8 +2,10 @@
 //! member names, order, offsets and sizes as the Rust Pod structs (asked of naga), and
 //! every shader specialisation parses and validates.
 
-use glint::gpu::buffers::GpuTile;
-use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
+use glint::gpu::compile::shader::{
+    all_feature_sets, assemble, assemble_with, preprocess, validate, Entry,
+};
+use glint::gpu::upload::buffers::GpuTile;
 use glint::gpu::{KernelConfig, KernelVariant};
 use glint::mailboxes::Mailboxes;
 use glint::pack::{
@@ -431,25 +433,31 @@ fn preprocessor_directives() {
 }
 
 /// The preludes are the only source of constants: no WGSL file defines its own (the
-/// tracer's from src/constants.rs; the benchmark kernel's, in shaders/bench/, from
-/// src/bench/).
+/// tracer's, under src/, from src/constants.rs; the benchmark kernel's, in shaders/bench/,
+/// from src/bench/).
 #[test]
 fn shaders_define_no_constants() {
-    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders"));
-    let mut files: Vec<_> = std::fs::read_dir(root)
-        .unwrap()
-        .map(|f| f.unwrap().path())
-        .collect();
-    files.extend(
-        std::fs::read_dir(root.join("bench"))
-            .unwrap()
-            .map(|f| f.unwrap().path()),
-    );
-    files.retain(|p| p.is_file());
-    assert!(
-        files.iter().any(|p| p.ends_with("bench/torus.wgsl")),
-        "{files:?}"
-    );
+    fn collect(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                collect(&path, out);
+            } else if path.extension().is_some_and(|e| e == "wgsl") {
+                out.push(path);
+            }
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    collect(&root.join("src"), &mut files);
+    collect(&root.join("shaders"), &mut files);
+    for expected in [
+        "bench/torus.wgsl",
+        "tracer/path/trace.wgsl",
+        "pack/layout.wgsl",
+    ] {
+        assert!(files.iter().any(|p| p.ends_with(expected)), "{files:?}");
+    }
     for path in files {
         let text = std::fs::read_to_string(&path).unwrap();
         for (i, line) in text.lines().enumerate() {

@@ -9,7 +9,7 @@
 use crate::common;
 
 use common::{gpu_context, packed_from_file};
-use glint::gpu::shader::{all_feature_sets, assemble_with, Entry};
+use glint::gpu::compile::shader::{all_feature_sets, assemble_with, Entry};
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelVariant};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaDepth, AaMode, AaSamples, OptionOverrides};

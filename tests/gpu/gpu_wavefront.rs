@@ -16,9 +16,11 @@ use crate::common;
 
 use common::{gpu_context, packed_from_file, packed_from_source};
 use glint::constants::{AA_ADAPTIVE, AA_UNIFORM};
-use glint::gpu::lists::LaneLists;
-use glint::gpu::progressive::{Progressive, SumBuffer};
-use glint::gpu::shader::{all_feature_sets, assemble_with, validate, wavefront_kernels, Entry};
+use glint::gpu::compile::lists::LaneLists;
+use glint::gpu::compile::shader::{
+    all_feature_sets, assemble_with, validate, wavefront_kernels, Entry,
+};
+use glint::gpu::view::progressive::{Progressive, SumBuffer};
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelVariant};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::bounded::AaSamples;

@@ -199,7 +199,7 @@ fn hardware_wavefront_view_sums_of_glass_are_view_samples() {
         let file = "scenes/glass.lua";
         let scene = packed_from_file(&common::root().join(file), &options).remove(0);
         assert!(scene.features.contains(SceneFeatures::REFRACTION));
-        assert!(!glint::gpu::shader::Entry::ViewSample.exists_in(hardware, scene.features));
+        assert!(!glint::gpu::compile::shader::Entry::ViewSample.exists_in(hardware, scene.features));
         let (wave, through_wavefront, _) = view_sums(&ctx, &scene, frames);
         assert!(through_wavefront, "{file}");
         ctx.kernel = glint::gpu::KernelConfig {
@@ -271,7 +271,7 @@ fn hardware_wavefront_renders_glass_the_same_every_run_over_several_chunks() {
                 .args(["--width", "96", "--height", "80", "--backend", "gpu"])
                 .args(["--kernel-variant", "hardware", "--stats"])
                 .args(&flags)
-                .env(glint::gpu::context::LLVMPIPE_THREADS_VAR, "16")
+                .env(glint::gpu::device::context::LLVMPIPE_THREADS_VAR, "16")
                 .output()
                 .expect("glint runs");
             let stderr = String::from_utf8_lossy(&status.stderr);

@@ -81,17 +81,17 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     (
         "src/pack/layout.wgsl",
         "table_at",
-        "reads the texel of a table element (src/gpu/tables.rs): the CPU indexes its slices",
+        "reads the texel of a table element (src/gpu/upload/tables.rs): the CPU indexes its slices",
     ),
     (
         "src/pack/layout.wgsl",
         "word_at",
-        "reads a word of a one-word table (src/gpu/tables.rs): the CPU indexes its slices",
+        "reads a word of a one-word table (src/gpu/upload/tables.rs): the CPU indexes its slices",
     ),
     (
         "src/pack/layout.wgsl",
         "table_texel",
-        "where a table element lies in its texture (src/gpu/tables.rs); the CPU has slices",
+        "where a table element lies in its texture (src/gpu/upload/tables.rs); the CPU has slices",
     ),
     (
         "src/pack/layout.wgsl",
@@ -175,7 +175,7 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "src/tracer/sampling/render.wgsl",
         "linear_index",
         "an invocation's index in a dispatch continued in y past the adapter's per-dimension \
-         limit (src/gpu/plan.rs plans it on the host); the CPU has no dispatches",
+         limit (src/gpu/plan/mod.rs plans it on the host); the CPU has no dispatches",
     ),
     (
         "shaders/bench/torus.wgsl",
@@ -184,49 +184,49 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          rays calling the same solvers",
     ),
     (
-        "src/gpu/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "begin_lane",
-        "claims the invocation's slot of the per-ray lists' storage buffer (src/gpu/lists.rs); the CPU's lists are arrays of its own",
+        "claims the invocation's slot of the per-ray lists' storage buffer (src/gpu/compile/lists.rs); the CPU's lists are arrays of its own",
     ),
     (
-        "src/gpu/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "lane_word",
-        "where a word of the invocation's list slot lies in the storage buffer (src/gpu/lists.rs); the CPU indexes its arrays",
+        "where a word of the invocation's list slot lies in the storage buffer (src/gpu/compile/lists.rs); the CPU indexes its arrays",
     ),
     (
-        "src/gpu/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "lane_f32",
         "reads a float of the invocation's list slot; the CPU indexes its arrays",
     ),
     (
-        "src/gpu/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "set_lane_f32",
         "writes a float of the invocation's list slot; the CPU indexes its arrays",
     ),
     (
-        "src/gpu/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "lane_vec3",
         "reads three floats of the invocation's list slot; the CPU indexes its arrays",
     ),
     (
-        "src/gpu/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "set_lane_vec3",
         "writes three floats of the invocation's list slot; the CPU indexes its arrays",
     ),
     (
         "src/tracer/path/trace.wgsl",
         "store_pending",
-        "stores a ray stack entry in a private array or the list slot (src/gpu/lists.rs); the CPU writes `stack[size]`",
+        "stores a ray stack entry in a private array or the list slot (src/gpu/compile/lists.rs); the CPU writes `stack[size]`",
     ),
     (
         "src/tracer/path/trace.wgsl",
         "load_pending",
-        "reads a ray stack entry from a private array or the list slot (src/gpu/lists.rs); the CPU reads `stack[size]`",
+        "reads a ray stack entry from a private array or the list slot (src/gpu/compile/lists.rs); the CPU reads `stack[size]`",
     ),
     (
         "src/tracer/geometry/csg.wgsl",
         "csg_t_at",
-        "reads CsgStack::t[k] from a private array or the list slot (src/gpu/lists.rs); the CPU indexes the array",
+        "reads CsgStack::t[k] from a private array or the list slot (src/gpu/compile/lists.rs); the CPU indexes the array",
     ),
     (
         "src/tracer/geometry/csg.wgsl",
@@ -266,7 +266,7 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "src/tracer/wavefront/wavefront_lattice.wgsl",
         "lattice_queue_base",
         "where the wavefront's queues start in the `samples` buffer, after the lattice (the \
-         GPU's buffer layout, as src/gpu/plan.rs::lattice_queue_bytes lays it out); the CPU's \
+         GPU's buffer layout, as src/gpu/plan/adaptive.rs::lattice_queue_bytes lays it out); the CPU's \
          lattice and batch are separate Vecs",
     ),
     (
@@ -337,7 +337,7 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     (
         "src/tracer/wavefront/wavefront.wgsl",
         "ask_shadow",
-        "one light point's step of wavefront_shade's light loop: the CPU's is the closure `ask` in src/tracer/wavefront/wavefront.rs::shade_entry",
+        "one light point's step of ask_light_shadows' loop: the CPU's is the closure `ask` in src/tracer/wavefront/wavefront.rs::ask_light_shadows",
     ),
     (
         "src/tracer/wavefront/wavefront.wgsl",
@@ -541,7 +541,7 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
 const MODULE_SCOPE: &[(&str, &str)] = &[
     (
         "PackedScene",
-        "the scene's tables (textures, src/gpu/tables.rs)",
+        "the scene's tables (textures, src/gpu/upload/tables.rs)",
     ),
     ("PackedGlobals", "the `globals` uniform"),
     ("AdaptiveTile", "the `tile` uniform"),
@@ -553,7 +553,7 @@ const MODULE_SCOPE: &[(&str, &str)] = &[
     ("SampleSource", "the `tile` uniform (a chunk's pixels)"),
     (
         "CsgStack",
-        "the csg_* private variables or the list slot (src/gpu/lists.rs)",
+        "the csg_* private variables or the list slot (src/gpu/compile/lists.rs)",
     ),
     ("MediumStack", "the `shading_media` private variable"),
     (
@@ -834,7 +834,7 @@ fn check_wgsl_functions(sources: &Sources, wgsl: &WgslModules, problems: &mut Ve
         .collect();
     for (file, name) in by_text.difference(&by_naga) {
         problems.push(format!(
-            "{file}: fn {name} is in no module naga parsed (is the file in src/gpu/shader.rs's lists?)"
+            "{file}: fn {name} is in no module naga parsed (is the file in src/gpu/compile/shader.rs's lists?)"
         ));
     }
     for (file, name) in by_naga.difference(&by_text) {

@@ -9,7 +9,7 @@
 //! texts given (so tests can feed edited copies), and parsed with naga; a function's
 //! calls are kept per configuration.
 
-use glint::gpu::shader::{assemble_common_with, assemble_with, preprocess_with, Entry};
+use glint::gpu::compile::shader::{assemble_common_with, assemble_with, preprocess_with, Entry};
 use glint::gpu::KernelConfig;
 use glint::mailboxes::Mailboxes;
 use glint::pack::SceneFeatures;

@@ -46,7 +46,7 @@ pub struct CsgHit {
 }
 
 /// One ray's evaluation state: the interval ends of every live list, stacked. (The GPU's
-/// hardware variant keeps the same arrays in a storage slot per ray, `src/gpu/lists.rs`;
+/// hardware variant keeps the same arrays in a storage slot per ray, `src/gpu/compile/lists.rs`;
 /// where they live changes no step.)
 #[derive(Clone, Debug)]
 // Mirror of the csg_* private variables of src/tracer/geometry/csg.wgsl — change both.

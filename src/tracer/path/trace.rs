@@ -75,7 +75,7 @@ pub fn trace_ray(
     note_texture_detail(scene, &first_shaded.s, counters);
     let camera_mirror = is_mirror(scene, first_shaded.s.material);
     // The GPU's hardware variant keeps the dielectric stack's entries in a storage slot
-    // per ray (src/gpu/lists.rs; store_pending, load_pending): the same entries in the
+    // per ray (src/gpu/compile/lists.rs; store_pending, load_pending): the same entries in the
     // same order, so the same steps.
     let mut stack = [first; RAY_STACK_SIZE as usize];
     let mut size = 0;

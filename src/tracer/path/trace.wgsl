@@ -109,7 +109,7 @@ fn load_pending(stack: ptr<function, RayStack>, k: u32) -> StackEntry {
 // #if CAMERA_RAY_IN_LOOP
 // #if !REFRACTION
 // In the hardware variant scenes with mirrors take the loop form too (CAMERA_RAY_IN_LOOP,
-// src/gpu/shader.rs): a hit before the loop inlines closest_hit and shade_hit a second
+// src/gpu/compile/shader.rs): a hit before the loop inlines closest_hit and shade_hit a second
 // time, which RADV compiled to twice the code and more spilled SGPRs (demo's main, wave64:
 // 39 KiB and 105, against 20 KiB and 50; docs/journal/2026-12-02-one-traversal-in-mirror-scenes.md). The loop's first turn takes
 // the steps the hit before the loop would, in the same order: 0 + 1 × colour is colour.

@@ -1,6 +1,6 @@
 // #if WAVEFRONT
 // glint view's frame tile.stratum in the hardware variant, after the wavefront kernels'
-// generations over the band (src/gpu/progressive.rs; the camera pass took stratum
+// generations over the band (src/gpu/view/progressive.rs; the camera pass took stratum
 // tile.stratum of each band pixel, sample k = band pixel k): the sample's colour added
 // to the pixel's running sum in `output` (the image's, row-major at the globals' width)
 // as view_sample adds it, so the sums are view_sample's bit for bit.
@@ -21,7 +21,7 @@ fn wavefront_view_store(@builtin(global_invocation_id) id: vec3<u32>, @builtin(n
     output[p] = vec4<f32>(total, f32(s + 1u));
 }
 // #else
-// glint view's progressive refinement (src/gpu/progressive.rs dispatches it): frame k
+// glint view's progressive refinement (src/gpu/view/progressive.rs dispatches it): frame k
 // adds sample k (tile.level) of each pixel's n×n jittered pattern to the pixel's running
 // sum in `output`, whose fourth component counts the samples; after n² frames the sum is
 // the one uniform_resolve forms (same samples, same order) and the view shows

@@ -33,7 +33,7 @@ fn uniform_sample(x: u32, y: u32, s: u32, n: u32, uniform: bool) -> vec3<f32> {
 }
 
 // Index of a one-dimensional kernel's invocation: a dispatch wider than the adapter's
-// workgroups per dimension continues in y (src/gpu/plan.rs::linear_workgroups).
+// workgroups per dimension continues in y (src/gpu/plan/mod.rs::linear_workgroups).
 fn linear_index(id: vec3<u32>, groups: vec3<u32>) -> u32 {
     return id.y * groups.x * LINEAR_WORKGROUP_SIZE + id.x;
 }

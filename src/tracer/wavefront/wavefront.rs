@@ -47,6 +47,7 @@ use crate::tracer::shading::shade::{
     add_stratum, ambient_term, area_light_mean, area_light_point, background, penumbra, phong_at,
     shadow_blocked, shadowed_term, unshadowed_term,
 };
+use crate::tracer::shading::surface::{Phong, Surface};
 use crate::tracer::shading::texture::camera_cone;
 use crate::tracer::traversal::hit::{Hit, TraversalCounters};
 use crate::tracer::traversal::traverse::closest_hit;
@@ -512,13 +513,7 @@ fn shade_entry(
     }
     let point = shading_point(scene, &entry, &hit);
     if entry.depth == 0 {
-        let mut watch = DetailWatch {
-            inner: counters,
-            seen: false,
-        };
-        note_texture_detail(scene, &point.s, &mut watch);
-        batch.samples.fine_detail[k] |= watch.seen;
-        batch.samples.camera_mirror[k] = is_mirror(scene, point.s.material);
+        note_sample_hints(scene, batch, k, &point.s, counters);
     }
     let (s, n) = (point.s, point.n);
     if let Some(colour) = point.uv_colour {
@@ -537,15 +532,61 @@ fn shade_entry(
         depth: entry.depth,
         ..batch.samples.seed[k]
     };
+    ask_light_shadows(scene, batch, i, &s, phong, n, v, seed);
+    let shaded = ShadedHit {
+        s,
+        facing: point.facing,
+        n,
+        colour: Vec3::ZERO,
+        ends: false,
+    };
+    push_next_paths(scene, batch, i, &entry, k, &shaded, &hit);
+}
+
+/// At a camera hit (depth 0) of sample `k`: its hints, the texture detail seen at `s`
+/// and whether the camera's surface is a mirror.
+// Mirror of src/tracer/wavefront/wavefront.wgsl::note_sample_hints — change both.
+fn note_sample_hints(
+    scene: &PackedScene,
+    batch: &mut Batch,
+    k: usize,
+    s: &Surface,
+    counters: &mut impl TraversalCounters,
+) {
+    let mut watch = DetailWatch {
+        inner: counters,
+        seen: false,
+    };
+    note_texture_detail(scene, s, &mut watch);
+    batch.samples.fine_detail[k] |= watch.seen;
+    batch.samples.camera_mirror[k] = is_mirror(scene, s.material);
+}
+
+/// Every light point of path `i`'s hit at `s` (an area light's strata from `seed`'s
+/// shadow streams), in slot order: for each facing it, its unshadowed term in its slot
+/// and a shadow request.
+// Mirror of src/tracer/wavefront/wavefront.wgsl::ask_light_shadows — change both.
+#[allow(clippy::too_many_arguments)]
+fn ask_light_shadows(
+    scene: &PackedScene,
+    batch: &mut Batch,
+    i: usize,
+    s: &Surface,
+    phong: Phong,
+    n: Vec3,
+    v: Vec3,
+    seed: SampleSeed,
+) {
     let first_slot = i * light_points(scene) as usize;
     let mut slot = 0;
     let ask = |position: Vec3, light: &crate::pack::PackedLight, slot: u32, batch: &mut Batch| {
-        if let Some(term) = unshadowed_term(scene, &s, phong, n, v, position, light) {
+        if let Some(term) = unshadowed_term(scene, s, phong, n, v, position, light) {
             batch.slots[first_slot + slot as usize] = term;
             batch.shadows.append_request(i as u32, slot, position);
         }
     };
-    for (index, light) in scene.lights[..g.num_lights as usize].iter().enumerate() {
+    let lights = &scene.lights[..scene.globals.num_lights as usize];
+    for (index, light) in lights.iter().enumerate() {
         if light.kind == LIGHT_AREA {
             let stream = shadow_stream(seed, index as u32);
             for stratum in 0..light.samples * light.samples {
@@ -558,21 +599,27 @@ fn shade_entry(
             slot += 1;
         }
     }
-    // The rays the hit spawns, pushed as `trace_ray` pushes them onto its stack, which
-    // holds the path's pending entries then (none in a chain: the ray popped before its
-    // hit was shaded): so the same rays are dropped where the stack is full, and each
-    // child's pending count is its index in that stack.
-    let shaded = ShadedHit {
-        s,
-        facing: point.facing,
-        n,
-        colour: Vec3::ZERO,
-        ends: false,
-    };
+}
+
+/// The rays path `i`'s hit (sample `k`) spawns, pushed as `trace_ray` pushes them onto
+/// its stack, which holds the path's pending entries then (none in a chain: the ray
+/// popped before its hit was shaded): so the same rays are dropped where the stack is
+/// full, and each child's pending count is its index in that stack. Each is appended to
+/// the next generation's queue, and in a tree linked as the vertex's child.
+// Mirror of src/tracer/wavefront/wavefront.wgsl::push_next_paths — change both.
+fn push_next_paths(
+    scene: &PackedScene,
+    batch: &mut Batch,
+    i: usize,
+    entry: &StackEntry,
+    k: usize,
+    shaded: &ShadedHit,
+    hit: &Hit,
+) {
     let pending = batch.paths.pending[i] as usize;
-    let mut stack = [entry; RAY_STACK_SIZE as usize];
+    let mut stack = [*entry; RAY_STACK_SIZE as usize];
     let mut size = pending;
-    push_secondary_rays(scene, &mut stack, &mut size, &entry, &shaded, &hit);
+    push_secondary_rays(scene, &mut stack, &mut size, entry, shaded, hit);
     for (q, child) in stack.iter().enumerate().take(size).skip(pending) {
         let j = batch.next.append_path(child, q as u32, k as u32);
         if batch.keeps_tree {

@@ -1,5 +1,5 @@
 // wavefront.wgsl — the wavefront form of trace_ray for scenes without refraction (every
-// path a chain), in the hardware kernel variant (WAVEFRONT: src/gpu/shader.rs): a chunk's
+// path a chain), in the hardware kernel variant (WAVEFRONT: src/gpu/compile/shader.rs): a chunk's
 // samples go through kernels joined by queues instead of one megakernel. Its samples:
 // AA none's pixel centres, uniform AA's n² jittered strata a pixel (wavefront_resolve
 // averages them after the last generation), or one stratum a pixel, tile.stratum (glint
@@ -359,20 +359,7 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
 // #endif
     }
     if entry.depth == 0u {
-        var flags = sample_flags(k);
-// #if TEXTURE
-        fine_detail_seen = false;
-        note_texture_detail(s);
-        if fine_detail_seen {
-            flags |= SAMPLE_FINE_DETAIL;
-        }
-// #endif
-// #if REFLECTION
-        if is_mirror(s.material) {
-            flags |= SAMPLE_CAMERA_MIRROR;
-        }
-// #endif
-        set_sample_flags(k, flags);
+        note_sample_hints(k, s);
     }
     if unlit {
         samples[vertex] = vec4<f32>(uv_colour, bitcast<f32>(VERTEX_UNLIT));
@@ -389,6 +376,35 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     let v = -ray.dir;
     let record = samples[2u * k + 1u];
     let seed = SampleSeed(bitcast<u32>(record.z), bitcast<u32>(record.w), entry.depth, (bitcast<u32>(record.y) & SAMPLE_MIRRORS_CORNERS) != 0u);
+    ask_light_shadows(i, s, phong, n, v, seed);
+    push_next_paths(i, entry, k, ShadedHit(s, facing, n, vec3<f32>(0.0), false), hit);
+}
+
+// At a camera hit (depth 0) of sample k: its hints in its record's flags, the texture
+// detail seen at `s` and whether the camera's surface is a mirror.
+// Mirror of src/tracer/wavefront/wavefront.rs::note_sample_hints — change both.
+fn note_sample_hints(k: u32, s: Surface) {
+    var flags = sample_flags(k);
+// #if TEXTURE
+    fine_detail_seen = false;
+    note_texture_detail(s);
+    if fine_detail_seen {
+        flags |= SAMPLE_FINE_DETAIL;
+    }
+// #endif
+// #if REFLECTION
+    if is_mirror(s.material) {
+        flags |= SAMPLE_CAMERA_MIRROR;
+    }
+// #endif
+    set_sample_flags(k, flags);
+}
+
+// Every light point of path i's hit at `s` (an area light's strata from `seed`'s shadow
+// streams), in slot order: its unshadowed term and, where it faces the point, a shadow
+// request (ask_shadow).
+// Mirror of src/tracer/wavefront/wavefront.rs::ask_light_shadows — change both.
+fn ask_light_shadows(i: u32, s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) {
     let points = light_points();
     var slot = i * points;
     for (var index = 0u; index < globals.num_lights; index++) {
@@ -412,15 +428,21 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
         ask_shadow(s, phong, n, v, light.position, light, slot, points);
         slot += 1u;
     }
+}
+
+// The rays path i's hit (sample k) spawns, appended to the next generation's queue: a
+// tree's through push_tree_children; without refraction at most the reflected ray,
+// pushed onto an empty stack as trace_ray's chain has it.
+// Mirror of src/tracer/wavefront/wavefront.rs::push_next_paths — change both.
+fn push_next_paths(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit: Hit) {
 // #if REFRACTION
-    push_tree_children(i, entry, k, ShadedHit(s, facing, n, vec3<f32>(0.0), false), hit);
+    push_tree_children(i, entry, k, shaded, hit);
 // #else
 // #if REFLECTION
-    // Without refraction a hit spawns at most its reflected ray, onto an empty stack as
-    // trace_ray's chain has it.
+    let g = tile.level;
+    let parity = g % 2u;
     var stack: RayStack;
     var size = 0u;
-    let shaded = ShadedHit(s, facing, n, vec3<f32>(0.0), false);
     push_secondary_rays(&stack, &size, entry, shaded, hit);
     if size > 0u {
         let at = atomicAdd(&work_counts[path_counter(g + 1u)], 1u);

@@ -12,7 +12,7 @@
 // lattice_queue_base(); its counters and indirect arguments from word
 // WAVEFRONT_WORK_BASE of work_counts and byte 4·WAVEFRONT_WORK_BASE of work_args, after
 // adaptive AA's levels'. The generations' dispatches bind `samples`, work_counts and
-// work_args from those offsets (src/gpu/plan.rs), so wavefront.wgsl indexes them from 0
+// work_args from those offsets (src/gpu/plan/adaptive.rs), so wavefront.wgsl indexes them from 0
 // as for AA none; the camera pass binds `samples` from the queues and work_counts whole
 // (it reads the level's count), the store pass both whole.
 // Mirror of src/tracer/wavefront/wavefront_lattice.rs — change both.
@@ -20,7 +20,7 @@
 // #if WAVEFRONT
 // Where the wavefront's queues start in `samples` (vec4 entries): after the tile's
 // lattice, at a multiple of 16 entries (256 bytes, the coarsest storage-binding offset
-// alignment WebGPU allows an adapter). src/gpu/plan.rs::lattice_queue_base is the same.
+// alignment WebGPU allows an adapter). src/gpu/plan/adaptive.rs::lattice_queue_bytes is the same.
 fn lattice_queue_base() -> u32 {
     let width = tile.side * adaptive_scale() + 1u;
     return (width * width + 15u) / 16u * 16u;

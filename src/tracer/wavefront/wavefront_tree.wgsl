@@ -1,6 +1,6 @@
 // wavefront_tree.wgsl — the wavefront kernels' pieces for scenes with refraction, where a
 // dielectric's hit spawns two rays and a sample's paths form a tree (appended to the
-// render module with wavefront.wgsl where src/gpu/shader.rs::wavefront_kernels holds and
+// render module with wavefront.wgsl where src/gpu/compile/shader.rs::wavefront_kernels holds and
 // the scene has REFRACTION):
 // - path entries carry their medium stack and their pending count P (the entries under
 //   them on trace_ray's stack when they would be popped): wavefront_shade pushes a hit's
@@ -212,7 +212,7 @@ fn set_tree_child(v: u32, place: u32, child: u32) {
 // rays are dropped where the stack is full, and each child's pending count is its index
 // in that stack. Each is appended to the next generation's queue and linked as the
 // vertex's child, where the queue and the tree have room (else the sample's guard flag).
-// Mirror of the tail of src/tracer/wavefront/wavefront.rs::shade_entry — change both.
+// Mirror of the tree's part of src/tracer/wavefront/wavefront.rs::push_next_paths — change both.
 fn push_tree_children(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit: Hit) {
     let g = tile.level;
     let parity = g % 2u;

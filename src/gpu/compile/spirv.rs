@@ -12,7 +12,7 @@
 //! and robustImageAccess are enabled (else `Restrict`), loop bounding forced, integer
 //! division checked, workgroup memory zeroed natively where the device can.
 
-use super::shader::Entry;
+use crate::gpu::compile::shader::Entry;
 use naga::back::spv;
 use naga::proc::{BoundsCheckPolicies, BoundsCheckPolicy};
 use std::collections::BTreeMap;
@@ -48,7 +48,7 @@ impl SpirvTarget {
     }
 }
 
-/// Whether glint's wgpu instance has `InstanceFlags::DEBUG` (`gpu::context` builds its
+/// Whether glint's wgpu instance has `InstanceFlags::DEBUG` (`gpu::device::context` builds its
 /// instance from the defaults and the environment, as here).
 pub fn instance_debug() -> bool {
     wgpu::InstanceFlags::default()
@@ -206,9 +206,9 @@ pub fn spirv_bytes(words: &[u32]) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gpu::kernel::{KernelConfig, KernelVariant};
+    use crate::gpu::compile::kernel::{KernelConfig, KernelVariant};
+    use crate::gpu::compile::shader::assemble_with;
     use crate::gpu::pipeline::layout_entries;
-    use crate::gpu::shader::assemble_with;
     use crate::pack::SceneFeatures;
 
     /// The render module's bindings are renumbered 0..n in binding order, as wgpu-hal

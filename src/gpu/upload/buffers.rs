@@ -1,16 +1,16 @@
 //! GPU buffers for a packed scene: every packed array as a table (a texture, see
-//! `super::tables`; never empty, since a binding may not be) and a uniform for
+//! `crate::gpu::upload::tables`; never empty, since a binding may not be) and a uniform for
 //! [`PackedGlobals`](crate::pack::PackedGlobals). Sizes are checked against the adapter's
 //! limits first, so an oversized scene is an error that names the array; [`check_size`]
 //! does the same for the frame's storage buffers.
 
-pub use super::bindings::SCENE_TABLE_BINDINGS;
-use super::context::GpuContext;
-use super::tables::{check_table, padded_texels, upload_table, SCENE_TABLE_FORMATS};
-use super::GpuError;
 use crate::constants::{
     TRIANGLE_NORMAL_TABLE_TEXELS, TRIANGLE_TABLE_TEXELS, TRIANGLE_UV_TABLE_TEXELS,
 };
+pub use crate::gpu::compile::bindings::SCENE_TABLE_BINDINGS;
+use crate::gpu::device::context::GpuContext;
+use crate::gpu::upload::tables::{check_table, padded_texels, upload_table, SCENE_TABLE_FORMATS};
+use crate::gpu::GpuError;
 use crate::pack::PackedScene;
 use bytemuck::{Pod, Zeroable};
 use std::borrow::Cow;

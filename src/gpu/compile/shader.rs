@@ -6,20 +6,20 @@
 //! optionally negated by a leading `!`.
 //! Besides the scene's features, the adapter's [`KernelConfig`]: the workgroup size (the
 //! `WORKGROUP_SIZE` and `LINEAR_WORKGROUP_SIZE` constants, emitted after the prelude with
-//! the per-ray lists' layout, `src/gpu/lists.rs`) and
+//! the per-ray lists' layout, `src/gpu/compile/lists.rs`) and
 //! its flags: `ITERATION_GUARD` (software adapters, whose loop limiter the render kernels
 //! check, see `src/tracer/sampling/render.wgsl`), `MAILBOXES` or `LAST_ITEM_MAILBOX` (the
 //! traversal's per-ray mailboxes, all of them or one item slot: see
 //! `src/tracer/traversal/traverse.wgsl`), `STORAGE_TABLES` (the scene's tables bound as read-only
 //! storage textures: see `src/pack/layout.wgsl`), `LISTS_IN_STORAGE` (per-ray lists in
-//! a storage buffer: see `src/gpu/lists.wgsl`) and `CAMERA_RAY_IN_LOOP` (`trace_ray`'s
+//! a storage buffer: see `src/gpu/compile/lists.wgsl`) and `CAMERA_RAY_IN_LOOP` (`trace_ray`'s
 //! camera ray is the first entry of its loop over rays: see `src/tracer/path/trace.wgsl`), the one
 //! flag that also depends on the features, since which form traces the camera ray once
 //! depends on whether the scene has secondary rays at all.
 
-use super::kernel::KernelConfig;
-use super::lists::LaneLists;
 use crate::constants::{wavefront_tree_wgsl_prelude, wavefront_wgsl_prelude, wgsl_prelude};
+use crate::gpu::compile::kernel::KernelConfig;
+use crate::gpu::compile::lists::LaneLists;
 use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
 
@@ -72,7 +72,7 @@ pub enum Entry {
     WavefrontLegArgs,
     WavefrontFold,
     /// `view_sample`: `glint view`'s progressive refinement, one sample a pixel
-    /// (`src/tracer/sampling/progressive.wgsl`, dispatched by `gpu/progressive.rs`; not in modules
+    /// (`src/tracer/sampling/progressive.wgsl`, dispatched by `gpu/view/progressive.rs`; not in modules
     /// with [`wavefront_kernels`]).
     ViewSample,
     /// `probe`: test-only, traces rays from a buffer and reports hits.
@@ -86,7 +86,7 @@ impl Entry {
     pub const WAVEFRONT: [Entry; 7] = then(Entry::CHAIN_PASSES, Entry::WavefrontResolve);
 
     /// `glint view`'s frame through the wavefront kernels: the camera pass, a
-    /// generation's five, then the store into the sums (`gpu/progressive.rs`'s pipelines).
+    /// generation's five, then the store into the sums (`gpu/view/progressive.rs`'s pipelines).
     pub const WAVEFRONT_VIEW: [Entry; 7] = then(Entry::CHAIN_PASSES, Entry::WavefrontViewStore);
 
     /// `glint view`'s frame through the wavefront kernels in scenes with refraction: the
@@ -294,14 +294,17 @@ const fn then<const N: usize, const M: usize>(passes: [Entry; N], last: Entry) -
 /// A shader file as (repository path, text), from its path under `src/`.
 macro_rules! wgsl {
     ($path:literal) => {
-        (concat!("src/", $path), include_str!(concat!("../", $path)))
+        (
+            concat!("src/", $path),
+            include_str!(concat!("../../", $path)),
+        )
     };
 }
 
 /// The shader files, in module order (WGSL does not care about order; readers do).
 const COMMON: &[(&str, &str)] = &[
     wgsl!("pack/layout.wgsl"),
-    wgsl!("gpu/lists.wgsl"),
+    wgsl!("gpu/compile/lists.wgsl"),
     wgsl!("tracer/base/rng.wgsl"),
     wgsl!("tracer/base/ray.wgsl"),
     wgsl!("tracer/base/math.wgsl"),
@@ -509,8 +512,11 @@ fn condition(text: &str, features: SceneFeatures, kernel: KernelConfig) -> Resul
 
 /// Parses and validates `source` with naga (no GPU needed); errors come formatted
 /// against the source, with the features named.
-pub fn validate(source: &str, features: SceneFeatures) -> Result<naga::Module, super::GpuError> {
-    let fail = |message: String| super::GpuError::Shader {
+pub fn validate(
+    source: &str,
+    features: SceneFeatures,
+) -> Result<naga::Module, crate::gpu::GpuError> {
+    let fail = |message: String| crate::gpu::GpuError::Shader {
         features: features.to_string(),
         message,
     };

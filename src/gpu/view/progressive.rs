@@ -7,8 +7,8 @@
 //! hardware GPU costs its dispatches and one present.
 //!
 //! The window is dispatched in full-width bands ([`view_bands`]), as many as the per-ray
-//! lists' slots need (`super::plan::slot_budget`, the rule `glint render`'s chunks
-//! follow): a kernel that keeps its lists in storage (`super::lists`, the hardware
+//! lists' slots need (`crate::gpu::plan::slot_budget`, the rule `glint render`'s chunks
+//! follow): a kernel that keeps its lists in storage (`crate::gpu::compile::lists`, the hardware
 //! variant) has a slot for each pixel of a band, so the view runs the same kernel variant
 //! as `glint render`, with no private arrays for a GPU compiler to put in scratch memory.
 //! Without lists in storage the window is one band, one dispatch.
@@ -17,7 +17,7 @@
 //! pixel whose sample tripped it keeps its sum and is flagged, and
 //! [`Progressive::trace_sample`] re-traces that sample on the CPU tracer
 //! (`crate::tracer::sampling::progressive::view_sample`, the kernel's twin) into the sum, as `glint
-//! render` re-renders its flagged pixels (`super::render`); so the view converges to the
+//! render` re-renders its flagged pixels (`crate::gpu::render`); so the view converges to the
 //! render's image there too.
 //!
 //! In the hardware variant the frames go through the wavefront kernels (with glass, a
@@ -27,22 +27,23 @@
 //! The view's own copy of the globals (camera moved, preview size) is a uniform written
 //! before each restart; the scene's tables are uploaded once per scene load.
 
-use super::buffers::{
-    read_back, scene_entries, upload_scene, GpuTile, SceneBuffers, LIMITER_SENTINEL,
-};
-use super::context::GpuContext;
-use super::frame::{binding, record_bytes, record_stride};
-use super::pipeline::{
+use crate::constants::ALL_STRATA;
+use crate::gpu::compile::shader::Entry;
+use crate::gpu::device::context::GpuContext;
+use crate::gpu::frame::{binding, record_bytes, record_stride};
+use crate::gpu::pipeline::{
     get_pipeline, CompiledPipeline, GUARD_BINDING, LISTS_BINDING, OUTPUT_BINDING, SAMPLES_BINDING,
     SPLIT_BINDING, TILE_BINDING, WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
 };
-use super::plan::{bands, slot_budget, AdapterBounds, Chunk};
-use super::render::adapter_bounds;
-use super::shader::Entry;
-use super::view_wavefront::{ViewBindings, ViewWavefront};
-use super::wavefront::view_wavefront_shape;
-use super::GpuError;
-use crate::constants::ALL_STRATA;
+use crate::gpu::plan::chunking::{bands, slot_budget};
+use crate::gpu::plan::{AdapterBounds, Chunk};
+use crate::gpu::render::adapter_bounds;
+use crate::gpu::upload::buffers::{
+    read_back, scene_entries, upload_scene, GpuTile, SceneBuffers, LIMITER_SENTINEL,
+};
+use crate::gpu::view::view_wavefront::{ViewBindings, ViewWavefront};
+use crate::gpu::wavefront::view_wavefront_shape;
+use crate::gpu::GpuError;
 use crate::pack::{PackedGlobals, PackedScene};
 use crate::tiling::PixelRect;
 use crate::tracer::sampling::progressive::view_sample;
@@ -62,7 +63,7 @@ pub struct SumBuffer {
 
 impl SumBuffer {
     pub fn new(ctx: &GpuContext, pixels: u64) -> Result<SumBuffer, GpuError> {
-        super::buffers::check_size(ctx, "view sums", pixels * SUM_BYTES)?;
+        crate::gpu::upload::buffers::check_size(ctx, "view sums", pixels * SUM_BYTES)?;
         use wgpu::BufferUsages as U;
         let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("view sums"),
@@ -137,7 +138,7 @@ pub struct Progressive {
     guard: wgpu::Buffer,
     /// The sums the samples are added to (a handle on the session's [`SumBuffer`]).
     sums: wgpu::Buffer,
-    /// The per-ray lists' slots (`super::lists`), as many as the full image's widest
+    /// The per-ray lists' slots (`crate::gpu::compile::lists`), as many as the full image's widest
     /// band has pixels (a preview's bands have no more); unbound where the kernel keeps
     /// its lists in private arrays.
     lists: wgpu::Buffer,
@@ -207,7 +208,7 @@ impl Progressive {
         let per_pixel = shape.map_or(1, |s| s.slots_per_sample());
         let lists_bytes = lists_bytes(&full_bands, lane_words, per_pixel);
         if lane_words > 0 {
-            super::buffers::check_size(ctx, "view per-ray lists", lists_bytes)?;
+            crate::gpu::upload::buffers::check_size(ctx, "view per-ray lists", lists_bytes)?;
         }
         use wgpu::BufferUsages as U;
         ctx.scoped("view setup", || {

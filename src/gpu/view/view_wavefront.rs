@@ -8,18 +8,20 @@
 //! one band's, reused band after band; each dispatch has its own uniform record and bind
 //! group, the records rewritten per frame (the stratum changes).
 
-use super::buffers::{scene_entries, SceneBuffers};
-use super::context::GpuContext;
-use super::frame::{binding, record_bytes, record_stride};
-use super::pipeline::{
+use crate::constants::ALL_STRATA;
+use crate::gpu::compile::shader::Entry;
+use crate::gpu::device::context::GpuContext;
+use crate::gpu::frame::{binding, record_bytes, record_stride};
+use crate::gpu::pipeline::{
     get_pipeline, CompiledPipeline, GUARD_BINDING, LISTS_BINDING, OUTPUT_BINDING, SAMPLES_BINDING,
     SPLIT_BINDING, TILE_BINDING, WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
 };
-use super::plan::Workgroups;
-use super::plan::{view_wavefront_dispatches, AdapterBounds, Chunk, Dispatch, WavefrontShape};
-use super::shader::Entry;
-use super::GpuError;
-use crate::constants::ALL_STRATA;
+use crate::gpu::plan::shape::WavefrontShape;
+use crate::gpu::plan::view::view_wavefront_dispatches;
+use crate::gpu::plan::Workgroups;
+use crate::gpu::plan::{AdapterBounds, Chunk, Dispatch};
+use crate::gpu::upload::buffers::{scene_entries, SceneBuffers};
+use crate::gpu::GpuError;
 use crate::pack::SceneFeatures;
 use std::sync::Arc;
 
@@ -68,7 +70,7 @@ impl ViewWavefront {
             .map(|&e| get_pipeline(ctx, features, e))
             .collect::<Result<Vec<_>, GpuError>>()?;
         let samples_bytes = shape.vec4s_per_sample() * band_pixels * 16;
-        super::buffers::check_size(ctx, "view wavefront queues", samples_bytes)?;
+        crate::gpu::upload::buffers::check_size(ctx, "view wavefront queues", samples_bytes)?;
         use wgpu::BufferUsages as U;
         let storage = U::STORAGE | U::COPY_DST;
         let buffer = |label, size: u64, usage| {

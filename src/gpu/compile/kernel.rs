@@ -4,8 +4,8 @@
 //! None of them changes an answer (the tests render and probe every variant against the
 //! CPU tracer); they change what the kernel costs on a given kind of device.
 
-use super::bindings::SCENE_TABLE_BINDINGS;
 use crate::constants::WORKGROUP_SIZE;
+use crate::gpu::compile::bindings::SCENE_TABLE_BINDINGS;
 use crate::mailboxes::Mailboxes;
 use std::fmt;
 
@@ -26,12 +26,12 @@ pub struct KernelConfig {
     pub storage_tables: bool,
     /// Whether the per-ray lists that do not fit registers (the dielectric ray stack, the
     /// CSG interval lists) live in a storage buffer, one slot per invocation
-    /// (`LISTS_IN_STORAGE`, `src/gpu/lists.rs`), rather than in private arrays, which a
+    /// (`LISTS_IN_STORAGE`, `src/gpu/compile/lists.rs`), rather than in private arrays, which a
     /// GPU compiler puts in scratch memory.
     pub lists_in_storage: bool,
     /// Whether `trace_ray` takes the camera ray as the first entry of its loop over rays in
     /// scenes with mirrors but no dielectrics too (`CAMERA_RAY_IN_LOOP`, which
-    /// `src/gpu/shader.rs` sets for those and for every scene with dielectrics), rather
+    /// `src/gpu/compile/shader.rs` sets for those and for every scene with dielectrics), rather
     /// than tracing and shading its hit before the loop. Either way the same steps run in
     /// the same order on the same values (the CPU twin's); the loop form inlines the
     /// traversal and shading once instead of twice.

@@ -13,9 +13,9 @@
 //! read 5.4 ns against 3.3 ns. Hardware GPUs read both through caches; textures were the
 //! usual place for traversal data in GPU ray tracers before storage buffers.
 
-use super::context::GpuContext;
-use super::GpuError;
 use crate::constants::TABLE_ROW_BITS;
+use crate::gpu::device::context::GpuContext;
+use crate::gpu::GpuError;
 use bytemuck::Pod;
 use std::mem::size_of;
 

@@ -1,13 +1,13 @@
 //! `glint render --dump-kernels DIR`: every pipeline a render creates, written as it is
 //! compiled — `ENTRY.wgsl` (the assembled module wgpu is given) and `ENTRY.spv` (the
-//! SPIR-V wgpu 30 hands a Vulkan driver for that entry, rebuilt by [`super::spirv`]).
+//! SPIR-V wgpu 30 hands a Vulkan driver for that entry, rebuilt by [`crate::gpu::compile::spirv`]).
 //! A later pipeline of the same entry (another `gr.render` of the script with other
 //! features) is written as `ENTRY-2.*`, `ENTRY-3.*`…; a pipeline already compiled on the
 //! context is not compiled, nor written, again.
 
-use super::shader::Entry;
-use super::spirv::{spirv_bytes, wgsl_to_spirv, SpirvTarget};
-use super::GpuError;
+use crate::gpu::compile::shader::Entry;
+use crate::gpu::compile::spirv::{spirv_bytes, wgsl_to_spirv, SpirvTarget};
+use crate::gpu::GpuError;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;

@@ -4,10 +4,10 @@
 //! platform has it) — unless `WGPU_BACKEND` names others; never GL by default: with no
 //! Vulkan driver wgpu would silently pick GL llvmpipe, whose output differs.
 
-use super::disk_cache::DiskCache;
-use super::kernel::{KernelConfig, KernelVariant};
-use super::pipeline_cache::PipelineCache;
-use super::GpuError;
+use crate::gpu::compile::kernel::{KernelConfig, KernelVariant};
+use crate::gpu::device::disk_cache::DiskCache;
+use crate::gpu::device::pipeline_cache::PipelineCache;
+use crate::gpu::GpuError;
 use std::sync::{Arc, Mutex};
 
 /// The environment variable that sets llvmpipe's (lavapipe's) worker threads.
@@ -66,12 +66,12 @@ pub struct GpuContext {
     /// Set by the device-lost callback; checked after every wait.
     pub(crate) lost: Arc<Mutex<Option<String>>>,
     pub(crate) pipelines: PipelineCache,
-    /// Compiled pipelines kept across runs (`super::disk_cache`).
+    /// Compiled pipelines kept across runs (`crate::gpu::device::disk_cache`).
     pub(crate) disk_cache: DiskCache,
-    /// Frame buffers kept between frames (`super::scratch`).
-    pub(crate) scratch: super::scratch::ScratchPool,
-    /// `--dump-kernels`: where each pipeline compiled on it is written (`super::dump`).
-    pub dump: Option<super::dump::KernelDump>,
+    /// Frame buffers kept between frames (`crate::gpu::device::scratch`).
+    pub(crate) scratch: crate::gpu::device::scratch::ScratchPool,
+    /// `--dump-kernels`: where each pipeline compiled on it is written (`crate::gpu::device::dump`).
+    pub dump: Option<crate::gpu::device::dump::KernelDump>,
 }
 
 /// One adapter, as `glint info` lists it.
@@ -87,7 +87,7 @@ pub struct AdapterSummary {
     pub max_compute_workgroups_per_dimension: u32,
     pub max_buffer_size: u64,
     /// Rows (and most columns) of a 2-D texture: the scene's tables are 4 096 texels wide
-    /// and at most this many rows (`gpu::tables`).
+    /// and at most this many rows (`gpu::upload::tables`).
     pub max_texture_dimension_2d: u32,
     /// The kernel variant glint would compile on it.
     pub kernel: KernelConfig,
@@ -140,7 +140,7 @@ impl GpuContext {
         self.kernel = KernelConfig::for_variant(variant, &self.limits);
     }
 
-    /// Bytes of frame buffers kept for the next frame (`super::scratch`).
+    /// Bytes of frame buffers kept for the next frame (`crate::gpu::device::scratch`).
     pub fn kept_frame_bytes(&self) -> u64 {
         self.scratch.kept_bytes()
     }
@@ -183,7 +183,7 @@ impl GpuContext {
     }
 
     /// A device on `adapter`, with timestamp queries where the adapter has them (for the
-    /// frame's GPU time) and pipeline caches where it has them (`super::disk_cache`).
+    /// frame's GPU time) and pipeline caches where it has them (`crate::gpu::device::disk_cache`).
     pub fn from_adapter(adapter: wgpu::Adapter) -> Result<GpuContext, GpuError> {
         let info = adapter.get_info();
         let limits = adapter.limits();

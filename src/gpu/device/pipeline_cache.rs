@@ -1,9 +1,9 @@
 //! The per-context cache of compiled pipelines (`PipelineCache`, held by `GpuContext`)
 //! and what it stores (`CompiledPipeline`); `pipeline` compiles and fills it.
 
-pub use super::disk_cache::DiskOutcome;
-use super::kernel::KernelConfig;
-use super::shader::Entry;
+use crate::gpu::compile::kernel::KernelConfig;
+use crate::gpu::compile::shader::Entry;
+pub use crate::gpu::device::disk_cache::DiskOutcome;
 use crate::pack::SceneFeatures;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -23,7 +23,7 @@ pub struct CompiledPipeline {
 }
 
 /// Where a pipeline's compile time went (`--stats` prints the sums), and what the
-/// on-disk cache of [`super::disk_cache`] did for it.
+/// on-disk cache of [`crate::gpu::device::disk_cache`] did for it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CompileSteps {
     /// Assembling the specialised WGSL.
@@ -86,15 +86,15 @@ impl CompileSummary {
 }
 
 /// Times the steps of a compile one after another.
-pub(super) struct Lap(Instant);
+pub(crate) struct Lap(Instant);
 
 impl Lap {
-    pub(super) fn start() -> Lap {
+    pub(crate) fn start() -> Lap {
         Lap(Instant::now())
     }
 
     /// Time since the start or the last `next`.
-    pub(super) fn next(&mut self) -> Duration {
+    pub(crate) fn next(&mut self) -> Duration {
         let now = Instant::now();
         std::mem::replace(&mut self.0, now).elapsed()
     }
@@ -104,8 +104,8 @@ impl Lap {
 /// shader modules by WGSL source (several entries share one module).
 #[derive(Default)]
 pub struct PipelineCache {
-    pub(super) map: Mutex<HashMap<PipelineKey, Arc<CompiledPipeline>>>,
-    pub(super) modules: Mutex<HashMap<String, wgpu::ShaderModule>>,
+    pub(crate) map: Mutex<HashMap<PipelineKey, Arc<CompiledPipeline>>>,
+    pub(crate) modules: Mutex<HashMap<String, wgpu::ShaderModule>>,
 }
 
 /// What a compiled pipeline is specialised for.

@@ -5,7 +5,7 @@
 //! NAVI21: glass.lua's kernel 60 KiB of scratch a wave, scrabble.lua's 143 KiB; issue 38).
 //!
 //! Each tracing invocation of a dispatch owns one **slot**; word `k` of slot `s` is at
-//! `k · slots + s` of the `ray_lists` binding (`src/gpu/lists.wgsl::lane_word`), so that
+//! `k · slots + s` of the `ray_lists` binding (`src/gpu/compile/lists.wgsl::lane_word`), so that
 //! the lanes of a wave reading the same word of their lists read neighbouring words. The
 //! binding holds exactly `slots · lane words` words, which is how the kernel learns
 //! `slots` (`arrayLength`). A slot's words are written before they are read by the
@@ -21,8 +21,8 @@
 //! The CPU tracer keeps these lists in arrays of its own (`src/tracer/path/trace.rs`,
 //! `src/tracer/geometry/csg.rs::CsgStack`): where they live changes no step and no value.
 
-use super::kernel::KernelConfig;
 use crate::constants::{CSG_EVENT_CAPACITY, CSG_LIST_CAPACITY, MEDIUM_STACK_SIZE, RAY_STACK_SIZE};
+use crate::gpu::compile::kernel::KernelConfig;
 use crate::pack::SceneFeatures;
 
 /// Words of one pending ray: origin 3, direction 3, weight 3, depth 1, cone 2, medium

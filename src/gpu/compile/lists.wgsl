@@ -4,7 +4,7 @@
 // compiler puts in scratch memory. Each tracing invocation owns one slot; word k of slot
 // s is at k · slots + s, so that the lanes of a wave reading the same word of their lists
 // read neighbouring words. The layout of a slot's LANE_LIST_WORDS words is
-// src/gpu/lists.rs's (the host plans as many slots as a dispatch has tracing
+// src/gpu/compile/lists.rs's (the host plans as many slots as a dispatch has tracing
 // invocations); the CPU keeps the same lists in arrays of its own.
 
 // #if LISTS_IN_STORAGE

@@ -19,9 +19,9 @@
 //! (`%LOCALAPPDATA%\glint` on Windows); `GLINT_PIPELINE_CACHE=off` turns it off. Deleting
 //! the folder clears it.
 
-use super::kernel::KernelConfig;
-use super::shader::Entry;
-use super::GpuError;
+use crate::gpu::compile::kernel::KernelConfig;
+use crate::gpu::compile::shader::Entry;
+use crate::gpu::GpuError;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
