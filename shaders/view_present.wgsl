@@ -1,5 +1,5 @@
 // glint view's presentation (src/bin/glint/view/present.rs): draws the progressive sums of
-// shaders/progressive.wgsl (or the CPU tracer's, uploaded) into the window's surface, each sum
+// src/tracer/sampling/progressive.wgsl (or the CPU tracer's, uploaded) into the window's surface, each sum
 // divided by its count, clamped to [0, 1], no gamma (as glint's PNGs: A4's convention),
 // each window pixel showing the film pixel under it (nearest; the film may be a
 // reduced-resolution preview while the camera moves). Not part of the tracer: no twin.

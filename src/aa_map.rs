@@ -1,7 +1,7 @@
 //! `glint render --debug aa-samples`: adaptive anti-aliasing's work per pixel as an image.
 //!
 //! The value mapped is the pixel's count of *leaf squares* (the squares its quadtree
-//! ended in; [`crate::cpu::render::adaptive_leaf_counts`], identical on the GPU): 1 where
+//! ended in; [`crate::tracer::sampling::render::adaptive_leaf_counts`], identical on the GPU): 1 where
 //! the pixel was not split, and each split adds 3, up to 4^aa_depth. A pixel with L
 //! leaves averaged 4·L corner colours, but adjacent leaves share corners, so it traced
 //! fewer distinct samples; leaves are what the split decisions produce, so they are what

@@ -9,12 +9,12 @@ pub const KIND_CONE: u32 = 3;
 pub const KIND_TORUS: u32 = 4;
 /// A CSG object (a grid item): `params` = (first entry, entry count) of its post-order
 /// program in `csg_program`, as exact small f32 integers; its leaves are instances after
-/// the grid items (see `cpu::csg`).
+/// the grid items (see `tracer::geometry::csg`).
 pub const KIND_CSG: u32 = 5;
 /// A mesh instance (a grid item): `params[0]` is the index of its mesh in
 /// `PackedScene::meshes` as an exact small f32 integer; the mesh's triangles, stored once
 /// in the mesh's own space, are traversed through the mesh's own grid (see
-/// `cpu::traverse_mesh`).
+/// `tracer::traversal::traverse_mesh`).
 pub const KIND_MESH: u32 = 6;
 /// Slots of the per-ray item mailbox (a direct-mapped cache of the scene-grid items a ray
 /// has tested): an item listed in several scene cells (a mesh instance, a large sphere) is
@@ -95,7 +95,7 @@ pub const NO_TEXTURE: u32 = u32::MAX;
 
 /// The texture table at the start of `PackedScene::texels`: header i is the words
 /// The GPU keeps the packed scene's arrays in textures of 2^`TABLE_ROW_BITS` texels a
-/// row, read with `textureLoad` (src/gpu/tables.rs says why). 4 096 texels: every Vulkan, Metal and DX12 device
+/// row, read with `textureLoad` (src/gpu/upload/tables.rs says why). 4 096 texels: every Vulkan, Metal and DX12 device
 /// allows 2-D textures at least that wide.
 pub const TABLE_ROW_BITS: u32 = 12;
 /// 16-byte texels of one instance (`PackedInstance`, 112 bytes) in its table.
@@ -171,7 +171,7 @@ pub const WALK_FULL: u32 = u32::MAX - 1;
 /// Capacity of the explicit secondary-ray stack (no recursion in either tracer).
 pub const RAY_STACK_SIZE: u32 = 16;
 /// Capacity of the GPU's ray stack when the scene has no dielectrics (only the primary
-/// ray, or later one reflected ray, is ever on it; see shaders/trace.wgsl::trace_ray).
+/// ray, or later one reflected ray, is ever on it; see src/tracer/path/trace.wgsl::trace_ray).
 pub const PRIMARY_RAY_STACK_SIZE: u32 = 1;
 /// Largest `max_depth` a scene may ask for.
 pub const MAX_TRACE_DEPTH: u32 = 64;
@@ -180,7 +180,7 @@ pub const MAX_TRACE_DEPTH: u32 = 64;
 pub const AIR_IOR: f32 = 1.0;
 /// Dielectrics nested deeper than this per ray (glass in water in …) are counted but not
 /// recorded: a ray inside them sees the index of the deepest recorded level (see
-/// `cpu::dielectric::medium_push`). 4 covers a bubble in glass in water with one to spare.
+/// `tracer::shading::dielectric::medium_push`). 4 covers a bubble in glass in water with one to spare.
 /// `PackedGlobals::camera_media` holds exactly this many indices.
 pub const MEDIUM_STACK_SIZE: u32 = 4;
 /// A shadow ray passes through at most this many dielectric surfaces; one more counts as
@@ -191,7 +191,7 @@ pub const MAX_SHADOW_CROSSINGS: u32 = 8;
 /// Secondary-ray origins move off the surface by this fraction of the magnitude of the
 /// coordinates that produced the hit point (2⁻¹⁷ ≈ 64 f32 ulps): the hit point's own
 /// rounding error scales with those magnitudes, so the offset is scale-free (a scene
-/// scaled by 1e-3 or 1e3 offsets proportionally) — see `cpu::ray::offset_ray`.
+/// scaled by 1e-3 or 1e3 offsets proportionally) — see `tracer::base::ray::offset_ray`.
 pub const OFFSET_RELATIVE: f32 = 1.0 / 131072.0;
 
 /// `enter_scene` stops short of the scene bounds by this fraction of the origin's largest
@@ -203,7 +203,7 @@ pub const ENTER_MARGIN_RELATIVE: f32 = 1.0 / 1048576.0;
 /// IEEE infinity (which WGSL does not guarantee) is ever needed.
 pub const SAFE_RCP_LIMIT: f32 = 1.0e30;
 
-/// Torus root finder (`cpu::torus`): Newton-with-bisection iterations per root at most.
+/// Torus root finder (`tracer::geometry::torus`): Newton-with-bisection iterations per root at most.
 /// Every root is bracketed in an interval of at most ~2 units (the bounding sphere's
 /// chord in units of rin + rout), so 24 halvings alone reach f32 precision; Newton
 /// usually stops after 3–6. Small, since lavapipe counts every loop iteration of an
@@ -328,13 +328,13 @@ pub fn wgsl_prelude() -> String {
     out
 }
 
-/// The wavefront kernels' vertex kinds (`cpu::wavefront::VertexKind`): what the gather
+/// The wavefront kernels' vertex kinds (`tracer::wavefront::wavefront::VertexKind`): what the gather
 /// pass does with a vertex — a miss's background, a lit point's ambient term and light
 /// slots, the UV debug view's colour.
 pub const VERTEX_MISS: u32 = 0;
 pub const VERTEX_LIT: u32 = 1;
 pub const VERTEX_UNLIT: u32 = 2;
-/// The wavefront kernels' sample-record flag bits (`cpu::wavefront::SampleRecords`'s
+/// The wavefront kernels' sample-record flag bits (`tracer::wavefront::wavefront::SampleRecords`'s
 /// `camera_mirror`, `fine_detail` and the seed's `mirrors_corners`).
 pub const SAMPLE_CAMERA_MIRROR: u32 = 1;
 pub const SAMPLE_FINE_DETAIL: u32 = 2;
@@ -345,14 +345,14 @@ pub const SAMPLE_NO_ROOM: u32 = 8;
 /// Under adaptive AA, the first word of `work_counts` the wavefront's counters take, and
 /// ×4 the first byte of `work_args` its indirect arguments take (256 bytes: after every
 /// level's of adaptive AA, at MAX_AA_DEPTH at most 6 counters and 144 bytes of arguments,
-/// and a storage-binding offset every adapter accepts): see shaders/wavefront_lattice.wgsl.
+/// and a storage-binding offset every adapter accepts): see src/tracer/wavefront/wavefront_lattice.wgsl.
 pub const WAVEFRONT_WORK_BASE: u32 = 64;
 /// `GpuTile::stratum` of a render's chunk: its samples are every stratum of each pixel
 /// (glint view's frames give the one stratum instead).
 pub const ALL_STRATA: u32 = u32::MAX;
 
 /// The wavefront kernels' constants, emitted after the prelude only in modules that have
-/// those kernels (`gpu::shader::wavefront_kernels`), so the others stay as they were.
+/// those kernels (`gpu::compile::shader::wavefront_kernels`), so the others stay as they were.
 const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = &[
     ("VERTEX_MISS", VERTEX_MISS),
     ("VERTEX_LIT", VERTEX_LIT),
@@ -375,7 +375,7 @@ pub fn wavefront_wgsl_prelude() -> String {
 }
 
 /// Paths a generation of the wavefront kernels may hold with refraction, per sample of
-/// the chunk (a tree's generation can be wider than the chunk: `shaders/wavefront_tree.wgsl`;
+/// the chunk (a tree's generation can be wider than the chunk: `src/tracer/wavefront/wavefront_tree.wgsl`;
 /// a child that finds no room sends its pixel to the CPU tracer).
 pub const TREE_PATHS_PER_SAMPLE: u32 = 4;
 /// Vertices the wavefront kernels' vertex tree holds with refraction, per sample of the
@@ -449,14 +449,14 @@ pub const AA_SPLIT_POINTS: u32 = 8;
 pub const MAX_AA_SAMPLES: u32 = 64;
 /// Square tile side, in pixels, for both tracers' work split.
 pub const TILE_SIZE: u32 = 16;
-/// Capacity of the CPU's per-pixel adaptive walk's square stack (src/cpu/render.rs): each
+/// Capacity of the CPU's per-pixel adaptive walk's square stack (src/tracer/sampling/render.rs): each
 /// split pops one square and pushes four, so depth d needs at most 3·d + 1 entries. (The
-/// lattice passes' integrate walk needs none: src/cpu/adaptive.rs::next_square.)
+/// lattice passes' integrate walk needs none: src/tracer/sampling/adaptive.rs::next_square.)
 pub const AA_STACK_SIZE: u32 = 3 * MAX_AA_DEPTH + 1;
 
 /// Largest side of the square GPU workgroup (`@workgroup_size(WORKGROUP_SIZE,
 /// WORKGROUP_SIZE)`): the GPU context chooses the largest power of two up to it that its
-/// adapter allows (`gpu::kernel::KernelConfig`) and emits it after the prelude.
+/// adapter allows (`gpu::compile::kernel::KernelConfig`) and emits it after the prelude.
 pub const WORKGROUP_SIZE: u32 = 8;
 /// Invocations per workgroup of the one-dimensional GPU kernels (one sample each) at the
 /// default side: WORKGROUP_SIZE².
@@ -488,7 +488,7 @@ pub const fn adaptive_tile_side(max_side: u32, lattice_side: u32, depth: u32) ->
     }
 }
 
-/// PCG hash constants (Jarzynski & Olano 2020), see `cpu::rng::pcg_hash`.
+/// PCG hash constants (Jarzynski & Olano 2020), see `tracer::base::rng::pcg_hash`.
 pub const PCG_MULTIPLIER: u32 = 747796405;
 pub const PCG_INCREMENT: u32 = 2891336453;
 pub const PCG_WORD_MULTIPLIER: u32 = 277803737;

@@ -20,7 +20,6 @@ pub mod accel;
 pub mod atomic_write;
 pub mod bench;
 pub mod constants;
-pub mod cpu;
 pub mod diff;
 pub mod display_path;
 pub mod farm;
@@ -37,4 +36,5 @@ pub mod script_driver;
 #[doc(hidden)]
 pub mod testing;
 pub mod tiling;
+pub mod tracer;
 pub mod write_policy;

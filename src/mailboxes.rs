@@ -4,7 +4,7 @@
 //!
 //! A mailbox remembers items (or a mesh's triangles) a ray has already tested, so that one
 //! listed in several grid cells is not tested again. Skipping a second test changes no
-//! answer (see `cpu::traverse::mailboxed`), only the work; which kind pays depends on the
+//! answer (see `tracer::traversal::traverse::mailboxed`), only the work; which kind pays depends on the
 //! device. On the CPU the full caches pay. On a software adapter (llvmpipe) a private
 //! array indexed at run time becomes per-lane scatters and gathers, which cost more than
 //! the tests they save; one slot is a plain scalar there, and on balance it pays

@@ -3,8 +3,6 @@
 //! advances. Shared by the command line, the benchmark, the tests and embedding programs.
 
 use crate::aa_map::{aa_samples_film, AaMapError};
-use crate::cpu::camera_media::{fill_camera_media, opaque_solid_around_eye};
-use crate::cpu::render::{adaptive_leaf_counts, render, render_with_counters, RenderCounters};
 use crate::film::Film;
 use crate::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderInfo, GpuRenderOptions};
 use crate::image_io::{check_output_path, write_image_with, ImageIoError, OutputTransfer};
@@ -14,6 +12,10 @@ use crate::scene::flatten::FlatScene;
 use crate::scene::lua::{SceneError, ScriptReport};
 use crate::scene::{AaMode, DebugView, OptionOverrides, RenderRequest, SceneGraph};
 use crate::script_driver::{run_script, ScriptSettings};
+use crate::tracer::path::camera_media::{fill_camera_media, opaque_solid_around_eye};
+use crate::tracer::sampling::render::{
+    adaptive_leaf_counts, render, render_with_counters, RenderCounters,
+};
 use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
@@ -459,7 +461,7 @@ pub fn apply_kernel_settings(
         ctx.force_kernel_variant(variant);
     }
     if let Some(dir) = &settings.dump_kernels {
-        ctx.dump = Some(crate::gpu::dump::KernelDump::new(dir)?);
+        ctx.dump = Some(crate::gpu::device::dump::KernelDump::new(dir)?);
     }
     Ok(())
 }

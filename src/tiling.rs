@@ -8,7 +8,7 @@
 pub type RenderProgress<'a> = &'a (dyn Fn(u64, u64) + Sync);
 
 /// One tile of the adaptive passes.
-// Mirror of the adaptive fields of shaders/layout.wgsl::GpuTile — change both.
+// Mirror of the adaptive fields of src/pack/layout.wgsl::GpuTile — change both.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AdaptiveTile {
     /// Top-left pixel.
@@ -23,7 +23,7 @@ pub struct AdaptiveTile {
 
 impl AdaptiveTile {
     /// Lattice steps per pixel: 2^d.
-    // Mirror of shaders/adaptive.wgsl::adaptive_scale — change both.
+    // Mirror of src/tracer/sampling/adaptive.wgsl::adaptive_scale — change both.
     pub fn scale(&self) -> u32 {
         1 << self.depth
     }
@@ -54,7 +54,7 @@ impl AdaptiveTile {
 }
 
 /// First split flag of level `level`: side²·(4^level − 1)/3 (level k has (side·2^k)²).
-// Mirror of shaders/adaptive.wgsl::split_offset — change both.
+// Mirror of src/tracer/sampling/adaptive.wgsl::split_offset — change both.
 pub fn split_offset(side: u32, level: u32) -> u32 {
     side * side * (((1u32 << (2 * level)) - 1) / 3)
 }

@@ -1,5 +1,5 @@
 // bench_torus.wgsl — the GPU half of `glint bench --torus` (src/bench/torus_gpu.rs):
-// one ray per invocation through glint's torus test (shaders/torus.wgsl) or the textbook
+// one ray per invocation through glint's torus test (src/tracer/geometry/torus.wgsl) or the textbook
 // Ferrari closed form below, twin of src/bench/ferrari.rs. Not part of the tracer; it is
 // appended to the common modules only by the benchmark.
 

@@ -2,7 +2,7 @@
 //! coefficients straight from the ray (Suffern, "Ray Tracing from the Ground Up", 19.4),
 //! solved in closed form by Ferrari's method through a resolvent cubic (Schwarze's
 //! solver, Graphics Gems I), in f32. The tracer never uses it: it is the accuracy and
-//! speed baseline glint's solver (`cpu::torus`) is measured against. Written without
+//! speed baseline glint's solver (`tracer::geometry::torus`) is measured against. Written without
 //! closures or out-parameters so that its WGSL twin (shaders/bench/torus.wgsl) can
 //! follow it step for step.
 

@@ -1,5 +1,5 @@
 //! The GPU rows of `glint bench --torus`: the same rays through glint's torus test
-//! (shaders/torus.wgsl, the tracer's own function) and through the textbook Ferrari
+//! (src/tracer/geometry/torus.wgsl, the tracer's own function) and through the textbook Ferrari
 //! solver (shaders/bench/torus.wgsl, twin of `bench::ferrari`), one ray per invocation.
 //! Timed from submit to completion (the rays are uploaded once, the results read back
 //! once, outside the timing), so the rate is the kernel's.
@@ -7,8 +7,8 @@
 use super::ferrari::FERRARI_ZERO;
 use super::torus_rays::TorusRay;
 use crate::constants::LINEAR_WORKGROUP_SIZE;
-use crate::gpu::buffers::read_back;
-use crate::gpu::shader::{assemble_common_with, validate};
+use crate::gpu::compile::shader::{assemble_common_with, validate};
+use crate::gpu::upload::buffers::read_back;
 use crate::gpu::{GpuContext, GpuError};
 use crate::pack::SceneFeatures;
 use bytemuck::{Pod, Zeroable};

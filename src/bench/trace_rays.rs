@@ -4,13 +4,13 @@
 //! counts and a checksum of the hit items.
 
 use crate::constants::{KIND_MESH, NO_ITEM, T_MISS};
-use crate::cpu::ray::{camera_ray, offset_ray, Ray};
-use crate::cpu::surface::surface_at;
-use crate::cpu::traverse::{any_hit, closest_hit, Counters, Hit, NoCounters};
-use crate::cpu::traverse_mesh::instance_mesh;
 use crate::pack::PackedScene;
 use crate::scene::flatten::{flatten, FlatScene};
 use crate::script_driver::{run_script, ScriptSettings};
+use crate::tracer::base::ray::{camera_ray, offset_ray, Ray};
+use crate::tracer::shading::surface::surface_at;
+use crate::tracer::traversal::traverse::{any_hit, closest_hit, Counters, Hit, NoCounters};
+use crate::tracer::traversal::traverse_mesh::instance_mesh;
 use glam::Vec3;
 use rayon::prelude::*;
 use std::path::Path;

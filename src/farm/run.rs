@@ -10,7 +10,6 @@ use super::spec::{task_index, FrameRange, Index, TileSpec};
 use super::split::tile_rect;
 use super::tile_file::{check_tile_path, write_tile, TileFileError, TileMeta};
 use super::tile_read::{TileFile, MAX_TILE_FILE_BYTES};
-use crate::cpu::render::render_window;
 use crate::film::Film;
 use crate::gpu::{render_gpu, GpuRenderOptions};
 use crate::pipeline::{
@@ -21,6 +20,7 @@ use crate::scene::lua::FrameGlobals;
 use crate::scene::{RenderRequest, SceneGraph};
 use crate::script_driver::run_script_bytes;
 use crate::tiling::PixelRect;
+use crate::tracer::sampling::render::render_window;
 use crate::write_policy::WritePolicy;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};

@@ -8,13 +8,13 @@
 //! Asked for per-pass times (`glint bench --gpu --passes`), each dispatch runs in a
 //! compute pass of its own between two timestamps of its own.
 
-use super::buffers::{scene_entries, GpuTile, SceneBuffers};
-use super::context::GpuContext;
-use super::pipeline::{
+use super::plan::{Dispatch, FramePlan, Workgroups};
+use crate::gpu::device::context::GpuContext;
+use crate::gpu::pipeline::{
     CompiledPipeline, GUARD_BINDING, LISTS_BINDING, OUTPUT_BINDING, SAMPLES_BINDING, SPLIT_BINDING,
     TILE_BINDING, WORK_ARGS_BINDING, WORK_COUNTS_BINDING, WORK_LIST_BINDING,
 };
-use super::plan::{Dispatch, FramePlan, Workgroups};
+use crate::gpu::upload::buffers::{scene_entries, GpuTile, SceneBuffers};
 use std::num::NonZeroU64;
 use std::sync::Arc;
 
@@ -49,7 +49,7 @@ pub struct Frame<'a> {
     work_args: wgpu::Buffer,
     samples: wgpu::Buffer,
     work_list: wgpu::Buffer,
-    /// The per-ray lists' slots (`super::lists`), bound where the kernel has them.
+    /// The per-ray lists' slots (`crate::gpu::compile::lists`), bound where the kernel has them.
     lists: wgpu::Buffer,
     pub blocks: Vec<Block>,
     /// Bytes of output, then of guard flags, then 8 per timestamp in `staging`.
@@ -194,7 +194,7 @@ impl<'a> Frame<'a> {
         use wgpu::BufferUsages as U;
         let storage = U::STORAGE | U::COPY_SRC | U::COPY_DST;
         let (blocks, output_bytes, guard_bytes) = blocks(ctx, plan);
-        // The large buffers come from the context's pool (`super::scratch`).
+        // The large buffers come from the context's pool (`crate::gpu::device::scratch`).
         let scratch = |size: u64, usage| ctx.scratch.take(&ctx.device, size, usage);
         let output = scratch(output_bytes, storage);
         let guard = scratch(guard_bytes, storage);

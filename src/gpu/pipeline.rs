@@ -4,18 +4,20 @@
 //! with `storage_tables`, as a read-only storage texture), so one layout serves every
 //! feature specialisation.
 
-use super::context::GpuContext;
-use super::kernel::KernelConfig;
-use super::shader::{assemble_with, validate, Entry};
-use super::GpuError;
+use crate::gpu::compile::kernel::KernelConfig;
+use crate::gpu::compile::shader::{assemble_with, validate, Entry};
+use crate::gpu::device::context::GpuContext;
+use crate::gpu::GpuError;
 use crate::pack::SceneFeatures;
 use std::sync::Arc;
 use std::time::Instant;
 
-pub use super::bindings::SCENE_TABLE_BINDINGS;
-use super::pipeline_cache::Lap;
-pub use super::pipeline_cache::{CompileSteps, CompileSummary, CompiledPipeline, PipelineCache};
-use super::tables::{table_layout_entry, SCENE_TABLE_FORMATS};
+pub use crate::gpu::compile::bindings::SCENE_TABLE_BINDINGS;
+use crate::gpu::device::pipeline_cache::Lap;
+pub use crate::gpu::device::pipeline_cache::{
+    CompileSteps, CompileSummary, CompiledPipeline, PipelineCache,
+};
+use crate::gpu::upload::tables::{table_layout_entry, SCENE_TABLE_FORMATS};
 /// Render entry: tile uniform and output buffer.
 pub const TILE_BINDING: u32 = 7;
 pub const OUTPUT_BINDING: u32 = 8;
@@ -32,7 +34,7 @@ pub const WORK_COUNTS_BINDING: u32 = 17;
 pub const WORK_LIST_BINDING: u32 = 18;
 pub const WORK_ARGS_BINDING: u32 = 19;
 /// Both modules, in kernels with `lists_in_storage`: the per-ray lists' slots
-/// (`src/gpu/lists.rs`).
+/// (`src/gpu/compile/lists.rs`).
 pub const LISTS_BINDING: u32 = 25;
 
 fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
@@ -157,7 +159,7 @@ pub fn get_pipeline(
     steps.assemble = lap.next();
     let module = shader_module(ctx, &source, features, &mut steps)?;
     let layout_of_entry = layout_entries(entry, kernel);
-    super::dump::dump_kernel(ctx.dump.as_ref(), entry, &source, &layout_of_entry)?;
+    crate::gpu::device::dump::dump_kernel(ctx.dump.as_ref(), entry, &source, &layout_of_entry)?;
     lap.next();
     let device = &ctx.device;
     let stored = ctx

@@ -12,30 +12,30 @@
 //! - uniform n×n: `uniform_samples` (one invocation per (pixel, sample)), then
 //!   `uniform_resolve` sums each pixel's samples in the CPU's order;
 //! - adaptive: `adaptive_corners`, then for each level `adaptive_decide` and
-//!   `adaptive_midpoints`, then `adaptive_integrate` (see `shaders/adaptive.wgsl`); in
+//!   `adaptive_midpoints`, then `adaptive_integrate` (see `src/tracer/sampling/adaptive.wgsl`); in
 //!   the hardware variant the corner and midpoint passes run through the wavefront
-//!   kernels (`shaders/wavefront_lattice.wgsl`), as AA none does.
+//!   kernels (`src/tracer/wavefront/wavefront_lattice.wgsl`), as AA none does.
 //!
 //! On software adapters the kernels also check the limiter (`ITERATION_GUARD`) and flag
 //! the pixels a tripped invocation touched (a single very heavy ray can still trip it);
 //! those are re-rendered with the CPU tracer and counted in [`GpuRenderInfo`].
 
-use super::buffers::{take_mapped, upload_scene, LIMITER_SENTINEL};
-use super::context::GpuContext;
 use super::frame::Frame;
-use super::kernel::KernelConfig;
-use super::lists::LaneLists;
-use super::pipeline::{get_pipeline, CompiledPipeline};
-use super::pipeline_cache::CompileSummary;
 use super::plan::{AdapterBounds, Dispatch, FramePlan};
-use super::shader::Entry;
 use super::wavefront::wavefront_shape;
 use super::GpuError;
-use crate::cpu::render::render_pixel;
-use crate::cpu::traverse::NoCounters;
 use crate::film::Film;
+use crate::gpu::compile::kernel::KernelConfig;
+use crate::gpu::compile::lists::LaneLists;
+use crate::gpu::compile::shader::Entry;
+use crate::gpu::device::context::GpuContext;
+use crate::gpu::device::pipeline_cache::CompileSummary;
+use crate::gpu::pipeline::{get_pipeline, CompiledPipeline};
+use crate::gpu::upload::buffers::{take_mapped, upload_scene, LIMITER_SENTINEL};
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::tiling::{PixelRect, RenderProgress};
+use crate::tracer::sampling::render::render_pixel;
+use crate::tracer::traversal::traverse::NoCounters;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -71,7 +71,7 @@ pub struct GpuRenderInfo {
 pub struct GpuRenderOptions<'a> {
     /// Called with (parts done, parts) as the frame's submits complete.
     pub progress: RenderProgress<'a>,
-    /// The loop limiter's sentinel ([`super::buffers::GpuTile::sentinel`]): a test hook;
+    /// The loop limiter's sentinel ([`crate::gpu::upload::buffers::GpuTile::sentinel`]): a test hook;
     /// tests pass more than the limit to trip the limiter on purpose and exercise the CPU
     /// fallback.
     #[doc(hidden)]
@@ -102,7 +102,7 @@ pub struct GpuRender {
     pub film: Film,
     pub info: GpuRenderInfo,
     /// Adaptive AA's leaf squares per pixel, row-major (see
-    /// [`crate::cpu::render::adaptive_leaf_counts`]); meaningful with adaptive AA only.
+    /// [`crate::tracer::sampling::render::adaptive_leaf_counts`]); meaningful with adaptive AA only.
     pub leaf_counts: Vec<u32>,
     /// With [`GpuRenderOptions::pass_times`] on an adapter with timestamp queries: GPU
     /// time per kind of pass, in the order of the frame's first dispatch of each.
@@ -174,7 +174,7 @@ pub fn render_gpu(
         .iter()
         .map(|&e| get_pipeline(ctx, scene.features, e))
         .collect::<Result<Vec<Arc<CompiledPipeline>>, GpuError>>()?;
-    super::buffers::check_size(ctx, "per-chunk samples", plan.samples_len * 16)?;
+    crate::gpu::upload::buffers::check_size(ctx, "per-chunk samples", plan.samples_len * 16)?;
     let buffers = upload_scene(ctx, scene)?;
     // Dispatches part by part, and where each part's run ends.
     let mut dispatches: Vec<Dispatch> = Vec::new();

@@ -1,19 +1,19 @@
 //! Whether a render runs AA none, uniform AA or adaptive AA's tracing passes through the
-//! wavefront kernels (`shaders/wavefront.wgsl` and `shaders/wavefront_lattice.wgsl`,
-//! twins of `cpu::wavefront` and `cpu::wavefront_lattice`), and the shape the frame plan
+//! wavefront kernels (`src/tracer/wavefront/wavefront.wgsl` and `src/tracer/wavefront/wavefront_lattice.wgsl`,
+//! twins of `tracer::wavefront::wavefront` and `tracer::wavefront::wavefront_lattice`), and the shape the frame plan
 //! sizes their queues and dispatches by.
 
-use super::kernel::KernelConfig;
-use super::plan::WavefrontShape;
-use super::shader::wavefront_kernels;
+use super::plan::shape::WavefrontShape;
 use crate::constants::{AA_ADAPTIVE, AA_NONE};
-use crate::cpu::wavefront::light_points;
+use crate::gpu::compile::kernel::KernelConfig;
+use crate::gpu::compile::shader::wavefront_kernels;
 use crate::pack::{PackedScene, SceneFeatures};
+use crate::tracer::wavefront::wavefront::light_points;
 
 /// The wavefront kernels' shape for `scene` under `kernel`, where `kernel` runs them for
 /// it (a variant with `wavefront`: [`wavefront_kernels`]): AA none, uniform AA and
 /// adaptive AA's corner and midpoint passes (with refraction a tree, whose vertex tree,
-/// glass shadow rounds and fold `shaders/wavefront_tree.wgsl` adds). None: the
+/// glass shadow rounds and fold `src/tracer/wavefront/wavefront_tree.wgsl` adds). None: the
 /// megakernels.
 pub fn wavefront_shape(kernel: KernelConfig, scene: &PackedScene) -> Option<WavefrontShape> {
     let g = &scene.globals;
@@ -53,7 +53,7 @@ fn shape(
         uniform,
         tree,
         // With CSG one shadow request per invocation and list slot: a slice per light
-        // point (shaders/wavefront.wgsl::wavefront_shadow).
+        // point (src/tracer/wavefront/wavefront.wgsl::wavefront_shadow).
         shadow_slices: if !tree && scene.features.contains(SceneFeatures::CSG) {
             light_points(scene)
         } else {

@@ -8,7 +8,7 @@ use bytemuck::{Pod, Zeroable};
 
 /// An analytic primitive instance: affine transforms as three rows of a 3×4 matrix.
 /// Normals go to world space through the transpose of `world_to_object`'s linear part.
-// Mirror of shaders/layout.wgsl::PackedInstance — change both.
+// Mirror of src/pack/layout.wgsl::PackedInstance — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct PackedInstance {
@@ -28,7 +28,7 @@ pub struct PackedInstance {
 /// A triangle of a mesh, in the mesh's space (flat shaded: the normal is the cross
 /// product of its edges); the material is its instance's. Nine packed floats (36
 /// bytes): the WGSL twin holds `array<f32, 3>` corners, which have no vec3 padding.
-// Mirror of shaders/layout.wgsl::PackedTriangle — change both.
+// Mirror of src/pack/layout.wgsl::PackedTriangle — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct PackedTriangle {
@@ -42,7 +42,7 @@ pub struct PackedTriangle {
 /// `first_cell..first_cell + dims product` of `cell_start` (whose entries index
 /// `cell_items` directly); its cell items are triangle numbers relative to
 /// `first_triangle`.
-// Mirror of shaders/layout.wgsl::PackedMesh — change both.
+// Mirror of src/pack/layout.wgsl::PackedMesh — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct PackedMesh {
@@ -64,7 +64,7 @@ pub struct PackedMesh {
 /// The UVs of a triangle's corners (p0, p1, p2), in a separate array parallel to the
 /// triangles (filled only when the scene has textures or bump maps, so untextured scenes
 /// keep the 48-byte triangles that traversal reads alone).
-// Mirror of shaders/layout.wgsl::PackedTriangleUv — change both.
+// Mirror of src/pack/layout.wgsl::PackedTriangleUv — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct PackedTriangleUv {
@@ -78,7 +78,7 @@ pub struct PackedTriangleUv {
 /// `scene::instancing` says), in an array parallel to the triangles, packed only in scenes with the SMOOTH feature
 /// (others keep the traversal's triangles alone); all zero on a flat triangle. Nine
 /// packed floats, like `PackedTriangle`.
-// Mirror of shaders/layout.wgsl::PackedTriangleNormals — change both.
+// Mirror of src/pack/layout.wgsl::PackedTriangleNormals — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct PackedTriangleNormals {
@@ -88,7 +88,7 @@ pub struct PackedTriangleNormals {
 }
 
 /// A4 Phong material plus the mirror colour, the dielectric's index and texture maps.
-// Mirror of shaders/layout.wgsl::PackedMaterial — change both.
+// Mirror of src/pack/layout.wgsl::PackedMaterial — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct PackedMaterial {
@@ -112,7 +112,7 @@ pub struct PackedMaterial {
 
 /// A light. Point lights use `position`; area lights (`LIGHT_AREA`) are the parallelogram
 /// centred at `position` with edges `edge_u`, `edge_v`, sampled n×n (`samples`).
-// Mirror of shaders/layout.wgsl::PackedLight — change both.
+// Mirror of src/pack/layout.wgsl::PackedLight — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct PackedLight {
@@ -132,7 +132,7 @@ pub struct PackedLight {
 }
 
 /// Per-render uniform: camera, image, options and grid header.
-// Mirror of shaders/layout.wgsl::PackedGlobals — change both.
+// Mirror of src/pack/layout.wgsl::PackedGlobals — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct PackedGlobals {
@@ -179,7 +179,7 @@ pub struct PackedGlobals {
     /// Adaptive anti-aliasing: deepest split.
     pub aa_depth: u32,
     /// How many dielectrics contain the eye (may exceed `MEDIUM_STACK_SIZE`, see
-    /// `cpu::dielectric::medium_push`); 0 without refraction.
+    /// `tracer::shading::dielectric::medium_push`); 0 without refraction.
     pub camera_media_count: u32,
     /// Their indices, outermost first: the medium stack primary rays start with.
     pub camera_media: [f32; MEDIUM_STACK_SIZE as usize],

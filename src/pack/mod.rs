@@ -42,7 +42,7 @@ pub struct PackedScene {
     /// the scene grid's cells first, then each mesh's (from `PackedMesh::first_cell`).
     pub cell_start: Vec<u32>,
     pub cell_items: Vec<u32>,
-    /// CSG programs, post-order (see `cpu::csg`); empty without CSG.
+    /// CSG programs, post-order (see `tracer::geometry::csg`); empty without CSG.
     pub csg_program: Vec<u32>,
     /// Texture table and texels (layout in [`texture`]); empty without textures.
     pub texels: Vec<u32>,

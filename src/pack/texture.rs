@@ -1,5 +1,5 @@
 //! The layout of `PackedScene::texels`, defined here once (both tracers read it through
-//! `cpu::texture` and `shaders/texture.wgsl`):
+//! `tracer::shading::texture` and `src/tracer/shading/texture.wgsl`):
 //!
 //! ```text
 //! word 4i + 0   offset (in words, from the start of texels) of level i's first texel
@@ -29,7 +29,7 @@ struct Level<'a> {
 }
 
 /// Number of levels of a `width`×`height` texture's chain: 1 + ⌊log2 max(w, h)⌋.
-// Mirror of shaders/texture.wgsl::texture_levels — change both.
+// Mirror of src/tracer/shading/texture.wgsl::texture_levels — change both.
 pub fn texture_levels(width: u32, height: u32) -> u32 {
     32 - width.max(height).max(1).leading_zeros()
 }

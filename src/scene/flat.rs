@@ -77,7 +77,7 @@ impl ObjectKind {
     }
 }
 
-/// The worst case of evaluating `program` (see `cpu::csg`): the most interval ends held
+/// The worst case of evaluating `program` (see `tracer::geometry::csg`): the most interval ends held
 /// at once (every live list plus the one being built, each at its most) and the most
 /// live lists. Both tracers evaluate in exactly this order, so these bound their use.
 pub fn csg_worst_case(program: &[CsgStep]) -> (u32, u32) {

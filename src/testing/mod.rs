@@ -1,5 +1,5 @@
 //! Test hooks: entry points that exist so the tests can look inside the tracers. They are
-//! not part of glint's API (a renderer calls [`crate::cpu`], [`crate::gpu`] and
+//! not part of glint's API (a renderer calls [`crate::tracer`], [`crate::gpu`] and
 //! [`crate::pipeline`]) and may change with the tests that use them.
 //!
 //! - [`probe`]: tier-3 kernel probes, the same rays traced by the GPU's and the CPU's
@@ -15,8 +15,8 @@
 pub mod probe;
 pub mod scratch;
 
-use crate::cpu::csg::{csg_evaluate, CsgStack};
 use crate::pack::PackedScene;
+use crate::tracer::geometry::csg::{csg_evaluate, CsgStack};
 use glam::Vec3;
 
 /// The inside intervals of CSG item `item` along `o + t·d` (world space) as
@@ -34,7 +34,8 @@ pub fn csg_interval_ends(scene: &PackedScene, item: u32, o: Vec3, d: Vec3) -> Ve
 /// texture detail at the pixel's scale), the hint that splits its squares down to
 /// AA_FINE_DETAIL_DEPTH whatever their contrast.
 pub fn adaptive_lattice_sample(scene: &PackedScene, fx: f32, fy: f32) -> (Vec3, bool) {
-    let mut counters = crate::cpu::traverse::NoCounters;
-    let (colour, hint) = crate::cpu::pixel_sample::lattice_sample(scene, fx, fy, &mut counters);
+    let mut counters = crate::tracer::traversal::traverse::NoCounters;
+    let (colour, hint) =
+        crate::tracer::sampling::pixel_sample::lattice_sample(scene, fx, fy, &mut counters);
     (colour, hint.fine_detail)
 }

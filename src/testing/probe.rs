@@ -7,24 +7,24 @@ pub use crate::constants::{
     PROBE_ANY_HIT as ANY_HIT, PROBE_CLOSEST_HIT as CLOSEST_HIT,
     PROBE_SHADING_NORMAL as SHADING_NORMAL, PROBE_SHADOW_RAY as SHADOW_RAY,
 };
-use crate::cpu::ray::{shadow_reach, Ray};
-use crate::cpu::shade::shadow_blocked;
-use crate::cpu::smooth::smooth_normal;
-use crate::cpu::surface::surface_at;
-use crate::cpu::traverse::{any_hit, closest_hit, NoCounters};
-use crate::gpu::buffers::{read_back, scene_entries, upload_scene};
-use crate::gpu::lists::LaneLists;
+use crate::gpu::compile::lists::LaneLists;
+use crate::gpu::compile::shader::Entry;
 use crate::gpu::pipeline::{
     get_pipeline, LISTS_BINDING, PROBE_RAYS_BINDING, PROBE_RESULTS_BINDING,
 };
-use crate::gpu::shader::Entry;
+use crate::gpu::upload::buffers::{read_back, scene_entries, upload_scene};
 use crate::gpu::{GpuContext, GpuError};
 use crate::pack::{PackedScene, SceneFeatures};
+use crate::tracer::base::ray::{shadow_reach, Ray};
+use crate::tracer::shading::shade::shadow_blocked;
+use crate::tracer::shading::smooth::smooth_normal;
+use crate::tracer::shading::surface::surface_at;
+use crate::tracer::traversal::traverse::{any_hit, closest_hit, NoCounters};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
 /// A probe ray.
-// Mirror of shaders/probe.wgsl::ProbeRay — change both.
+// Mirror of src/testing/probe.wgsl::ProbeRay — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct ProbeRay {
@@ -39,7 +39,7 @@ pub struct ProbeRay {
 }
 
 /// What a probe reports for one ray.
-// Mirror of shaders/probe.wgsl::ProbeResult — change both.
+// Mirror of src/testing/probe.wgsl::ProbeResult — change both.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct ProbeResult {
@@ -56,7 +56,7 @@ pub struct ProbeResult {
 }
 
 /// The CPU's answer for one probe ray.
-// Mirror of shaders/probe.wgsl::probe — change both.
+// Mirror of src/testing/probe.wgsl::probe — change both.
 pub fn cpu_probe(scene: &PackedScene, pr: &ProbeRay) -> ProbeResult {
     let ray = Ray {
         origin: Vec3::from(pr.origin),
@@ -143,7 +143,7 @@ pub fn gpu_probe(
             binding: PROBE_RESULTS_BINDING,
             resource: results.as_entire_binding(),
         });
-        // One list slot per ray (src/gpu/lists.rs), where the kernel keeps lists in storage.
+        // One list slot per ray (src/gpu/compile/lists.rs), where the kernel keeps lists in storage.
         let words = LaneLists::of(scene.features, ctx.kernel).words().max(1) as u64;
         let lists = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("probe ray lists"),

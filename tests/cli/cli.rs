@@ -443,7 +443,7 @@ fn debug_aa_samples_maps_adaptive_leaf_counts() {
         ..Default::default()
     };
     let packed = common::load_packed(&scene, &overrides);
-    let leaves = glint::cpu::render::adaptive_leaf_counts(&packed);
+    let leaves = glint::tracer::sampling::render::adaptive_leaf_counts(&packed);
     let ramp = glint::aa_map::magma_ramp();
     let rgb = map.to_rgb8();
     for (k, &l) in leaves.iter().enumerate() {
@@ -709,7 +709,7 @@ fn info_names_the_kernel_variant_of_each_adapter() {
         .collect();
     assert!(adapters >= 1, "{text}");
     assert_eq!(kernels.len(), adapters, "{text}");
-    // Each adapter's texture side, which bounds the scene's tables (src/gpu/tables.rs).
+    // Each adapter's texture side, which bounds the scene's tables (src/gpu/upload/tables.rs).
     let sides = text
         .lines()
         .filter(|l| l.starts_with("  max 2-D texture side: ") && l.contains("texels each"))

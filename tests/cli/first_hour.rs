@@ -322,7 +322,7 @@ fn bench_sweep_on_a_users_scene_leads_with_flags_to_paste() {
 
 #[test]
 fn the_budget_error_and_the_docs_name_sections_that_exist() {
-    let kernels = std::fs::read_to_string(root().join("src/cli/kernels_cmd.rs")).unwrap();
+    let kernels = std::fs::read_to_string(root().join("src/bin/glint/kernels_cmd.rs")).unwrap();
     assert!(kernels.contains("docs/gpu-kernels.md#register-budgets"));
     assert!(!kernels.contains("docs/gpu.md, \\\"Register budgets\\\""));
     let doc = std::fs::read_to_string(root().join("docs/gpu-kernels.md")).unwrap();

@@ -1,7 +1,9 @@
 //! The house rules, checked from the source text (no build of anything else needed):
 //! dependencies between the top-level modules of each crate of `src/` (the library, and
 //! the binary in `src/bin/glint/`) point one way, so do those between the files of every
-//! module folder at any depth, and no function in `src/` is longer than 100 lines.
+//! module folder at any depth, and no function in `src/` is longer than 100 lines, in Rust
+//! or WGSL; every WGSL file sits beside its Rust twin (`X.wgsl` beside `X.rs`), but for
+//! the few listed in [`WGSL_WITHOUT_RUST_BESIDE`].
 //! Test modules (`#[cfg(test)] mod tests` and what follows it) are not counted: tests may
 //! reach anywhere.
 
@@ -431,6 +433,77 @@ fn no_function_in_src_is_longer_than_the_limit() {
             "functions over {MAX_FUNCTION_LINES} lines in {root}/: {long:#?}"
         );
     }
+}
+
+/// `.wgsl` files of `dir` and its folders, as paths relative to `root` with `/`.
+fn wgsl_files(root: &Path, dir: &Path, out: &mut Vec<String>) {
+    for entry in std::fs::read_dir(dir).expect("read a source folder") {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            wgsl_files(root, &path, out);
+        } else if path.extension().is_some_and(|e| e == "wgsl") {
+            let relative = path.strip_prefix(root).unwrap().to_string_lossy();
+            out.push(relative.replace('\\', "/"));
+        }
+    }
+}
+
+/// Every WGSL file of the repository (under `src/` and `shaders/`), sorted.
+fn all_wgsl_files() -> Vec<String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for dir in ["src", "shaders"] {
+        wgsl_files(root, &root.join(dir), &mut files);
+    }
+    files.sort();
+    files
+}
+
+/// The WGSL files with no `X.rs` beside them, and why (sorted by path).
+const WGSL_WITHOUT_RUST_BESIDE: &[(&str, &str)] = &[
+    (
+        "shaders/bench/torus.wgsl",
+        "the torus benchmark's kernel, twin of src/bench/ferrari.rs, outside the library's tracer",
+    ),
+    (
+        "shaders/view_present.wgsl",
+        "glint view's present pass, which has no CPU twin (src/bin/glint/view/present.rs builds it)",
+    ),
+];
+
+#[test]
+fn every_wgsl_file_sits_beside_its_rust_twin() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let apart: Vec<String> = all_wgsl_files()
+        .into_iter()
+        .filter(|f| !root.join(f.replace(".wgsl", ".rs")).is_file())
+        .collect();
+    let listed: Vec<String> = WGSL_WITHOUT_RUST_BESIDE
+        .iter()
+        .map(|(f, _)| f.to_string())
+        .collect();
+    assert_eq!(
+        apart, listed,
+        "WGSL files without an X.rs beside them (left) vs WGSL_WITHOUT_RUST_BESIDE (right)"
+    );
+}
+
+#[test]
+fn no_wgsl_function_is_longer_than_the_limit() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let files: Vec<SourceFile> = all_wgsl_files()
+        .into_iter()
+        .map(|relative| SourceFile {
+            text: std::fs::read_to_string(root.join(&relative)).expect("read a WGSL file"),
+            relative,
+        })
+        .collect();
+    assert!(files.len() > 20, "too few WGSL files: {}", files.len());
+    let long = long_functions(&files);
+    assert!(
+        long.is_empty(),
+        "WGSL functions over {MAX_FUNCTION_LINES} lines: {long:#?}"
+    );
 }
 
 #[test]

@@ -790,7 +790,7 @@ fn films_of(scene: &Path, config: &ScriptConfig, w: u32, h: u32) -> Vec<(Film, R
             request.height = h;
             request.options.aa = AaMode::None;
             let packed = pack_scene(&flatten(&graph, &request).unwrap()).unwrap();
-            (glint::cpu::render(&packed, &|_, _| {}), request)
+            (glint::tracer::render(&packed, &|_, _| {}), request)
         })
         .collect()
 }

@@ -106,7 +106,7 @@ pub fn load_packed(path: &Path, overrides: &OptionOverrides) -> PackedScene {
 
 /// Renders on the CPU with the current rayon pool.
 pub fn render_cpu(scene: &PackedScene) -> Film {
-    glint::cpu::render(scene, &|_, _| {})
+    glint::tracer::render(scene, &|_, _| {})
 }
 
 /// Whether `GLINT_BLESS=1` asks the golden tests to rewrite their references. Only `1`
@@ -455,7 +455,7 @@ pub fn assert_gpu_matches_cpu(
         film: gpu, info, ..
     } = glint::gpu::render_gpu(ctx, scene, &Default::default())
         .unwrap_or_else(|e| panic!("{name}: {e}"));
-    let cpu = glint::cpu::render(scene, &|_, _| {});
+    let cpu = glint::tracer::render(scene, &|_, _| {});
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(dir);
     let report = glint::diff::assert_images_match(name, &gpu, &cpu, max_flip, 0.999, &out)
         .unwrap_or_else(|message| panic!("{message}"));

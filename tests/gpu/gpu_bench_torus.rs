@@ -10,7 +10,7 @@ use glint::bench::ferrari::intersect_torus_ferrari;
 use glint::bench::torus_gpu::{GpuTorusBench, GpuTorusSolver};
 use glint::bench::torus_rays;
 use glint::constants::T_MISS;
-use glint::cpu::torus::intersect_torus;
+use glint::tracer::geometry::torus::intersect_torus;
 
 /// Share of rays on which `a` and `b` agree: both miss, or both hit within `rel` of t.
 fn agreement(a: &[f32], b: &[f32], rel: f32) -> f64 {

@@ -180,7 +180,7 @@ fn probes_union_intersection_difference() {
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn probes_nested() {
     let Some(mut ctx) = gpu_context() else { return };
-    // The CSG lists as private arrays and in storage slots (src/gpu/lists.rs), whichever
+    // The CSG lists as private arrays and in storage slots (src/gpu/compile/lists.rs), whichever
     // the adapter chose.
     let chosen = ctx.kernel;
     for lists_in_storage in [chosen.lists_in_storage, !chosen.lists_in_storage] {

@@ -1,4 +1,4 @@
-//! The on-disk pipeline cache (`src/gpu/disk_cache.rs`) on a device: a second run
+//! The on-disk pipeline cache (`src/gpu/device/disk_cache.rs`) on a device: a second run
 //! reuses every file and writes nothing; a truncated, corrupted or foreign file is
 //! ignored (never trusted), the image is still byte for byte the uncached one, and the
 //! file is replaced by one that the next run reuses; runs on several threads at once
@@ -9,7 +9,7 @@
 use crate::common;
 
 use common::{gpu_context, packed_from_source};
-use glint::gpu::disk_cache::{encode, DiskCache, HEADER_LEN};
+use glint::gpu::device::disk_cache::{encode, DiskCache, HEADER_LEN};
 use glint::gpu::{render_gpu, GpuRenderInfo, GpuRenderOptions};
 use glint::pack::PackedScene;
 use glint::scene::{AaMode, OptionOverrides};

@@ -190,7 +190,7 @@ fn pass_times_cover_every_dispatch_and_change_no_pixel() {
 }
 
 /// A frame takes its large buffers from the context's pool and gives them back
-/// (`gpu::scratch`): the next frame of the same size reuses them instead of growing the
+/// (`gpu::device::scratch`): the next frame of the same size reuses them instead of growing the
 /// pool, and a frame on kept buffers that held another scene's lattice and flags renders
 /// the image a fresh context renders.
 #[test]

@@ -9,11 +9,11 @@ use crate::common;
 use common::{
     area_lit_floor_source, corpus, gpu_context, packed_from_file, packed_from_source, root,
 };
-use glint::cpu::render::adaptive_leaf_counts;
 use glint::diff::assert_images_match;
 use glint::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderOptions};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaMode, OptionOverrides};
+use glint::tracer::sampling::render::adaptive_leaf_counts;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -47,7 +47,7 @@ fn compare_render(ctx: &GpuContext, name: &str, scene: &PackedScene) -> GpuRende
     } = &render;
     let gpu_time = start.elapsed();
     let start = Instant::now();
-    let cpu = glint::cpu::render(scene, &|_, _| {});
+    let cpu = glint::tracer::render(scene, &|_, _| {});
     let cpu_time = start.elapsed();
     let report = assert_images_match(
         name,
@@ -312,7 +312,7 @@ fn loop_limit_guard_falls_back_to_the_cpu() {
             info.kernel.iteration_guard, info.cpu_fallback_pixels
         );
         assert_eq!(info.cpu_fallback_pixels, expected, "{aa:?}");
-        let cpu = glint::cpu::render(&scene, &|_, _| {});
+        let cpu = glint::tracer::render(&scene, &|_, _| {});
         assert_images_match(
             &format!("guard-{aa:?}"),
             &gpu,
@@ -509,7 +509,7 @@ fn area_light_matches() {
 /// a shelf's edge; inside a panel thinner than the shadow-ray bound; an area light in the
 /// ceiling's plane) at scales 1, 10⁻³ and 10³ leaves no pixel more than 16/255 darker
 /// than the light moved 0.01 off it (the CPU's limit, tests/oracle/shading.rs), and each
-/// matches the CPU's image (shaders/ray.wgsl::shadow_reach is the twin of the CPU's).
+/// matches the CPU's image (src/tracer/base/ray.wgsl::shadow_reach is the twin of the CPU's).
 #[test]
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn light_on_a_surface_does_not_speckle_on_the_gpu() {

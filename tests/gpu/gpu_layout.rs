@@ -2,8 +2,10 @@
 //! member names, order, offsets and sizes as the Rust Pod structs (asked of naga), and
 //! every shader specialisation parses and validates.
 
-use glint::gpu::buffers::GpuTile;
-use glint::gpu::shader::{all_feature_sets, assemble, assemble_with, preprocess, validate, Entry};
+use glint::gpu::compile::shader::{
+    all_feature_sets, assemble, assemble_with, preprocess, validate, Entry,
+};
+use glint::gpu::upload::buffers::GpuTile;
 use glint::gpu::{KernelConfig, KernelVariant};
 use glint::mailboxes::Mailboxes;
 use glint::pack::{
@@ -386,7 +388,7 @@ fn absent_features_are_compiled_out() {
     }
 }
 
-/// The torus code (shaders/torus.wgsl and its dispatch arms) is in exactly the
+/// The torus code (src/tracer/geometry/torus.wgsl and its dispatch arms) is in exactly the
 /// specialisations with TORUS, and every specialisation set includes TORUS.
 #[test]
 fn torus_code_only_with_torus() {
@@ -431,25 +433,31 @@ fn preprocessor_directives() {
 }
 
 /// The preludes are the only source of constants: no WGSL file defines its own (the
-/// tracer's from src/constants.rs; the benchmark kernel's, in shaders/bench/, from
-/// src/bench/).
+/// tracer's, under src/, from src/constants.rs; the benchmark kernel's, in shaders/bench/,
+/// from src/bench/).
 #[test]
 fn shaders_define_no_constants() {
-    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders"));
-    let mut files: Vec<_> = std::fs::read_dir(root)
-        .unwrap()
-        .map(|f| f.unwrap().path())
-        .collect();
-    files.extend(
-        std::fs::read_dir(root.join("bench"))
-            .unwrap()
-            .map(|f| f.unwrap().path()),
-    );
-    files.retain(|p| p.is_file());
-    assert!(
-        files.iter().any(|p| p.ends_with("bench/torus.wgsl")),
-        "{files:?}"
-    );
+    fn collect(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                collect(&path, out);
+            } else if path.extension().is_some_and(|e| e == "wgsl") {
+                out.push(path);
+            }
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    collect(&root.join("src"), &mut files);
+    collect(&root.join("shaders"), &mut files);
+    for expected in [
+        "bench/torus.wgsl",
+        "tracer/path/trace.wgsl",
+        "pack/layout.wgsl",
+    ] {
+        assert!(files.iter().any(|p| p.ends_with(expected)), "{files:?}");
+    }
     for path in files {
         let text = std::fs::read_to_string(&path).unwrap();
         for (i, line) in text.lines().enumerate() {
@@ -464,7 +472,7 @@ fn shaders_define_no_constants() {
     }
 }
 
-/// The area-light code (shadow sampling in shaders/shade.wgsl and shaders/rng.wgsl) is in
+/// The area-light code (shadow sampling in src/tracer/shading/shade.wgsl and src/tracer/base/rng.wgsl) is in
 /// exactly the specialisations with AREA_LIGHT, which every_specialisation_validates
 /// covers.
 #[test]
@@ -485,7 +493,7 @@ fn area_light_code_only_with_area_lights() {
     }
 }
 
-/// The dielectric code (shaders/dielectric.wgsl, the transmitted push in trace.wgsl and
+/// The dielectric code (src/tracer/shading/dielectric.wgsl, the transmitted push in trace.wgsl and
 /// the shadow walk in shade.wgsl) is in exactly the specialisations with REFRACTION; the
 /// others keep any_hit shadows.
 #[test]
@@ -562,7 +570,7 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
     }
 }
 
-/// Smooth shading (shaders/smooth.wgsl, the triangle normals' loader, the interpolated
+/// Smooth shading (src/tracer/shading/smooth.wgsl, the triangle normals' loader, the interpolated
 /// normal in shade_hit and the probe, smooth refraction with REFRACTION) is compiled only into scenes with the SMOOTH
 /// feature (which packing sets only for meshes with vertex normals).
 #[test]
@@ -598,7 +606,7 @@ fn smooth_code_only_with_smooth_meshes() {
     }
 }
 
-/// The CSG code (shaders/csg.wgsl, the torus's interval search, the dispatch and surface
+/// The CSG code (src/tracer/geometry/csg.wgsl, the torus's interval search, the dispatch and surface
 /// arms) is in exactly the specialisations with CSG (and some primitive kind for its
 /// leaves), and absent from every other.
 #[test]

@@ -1,5 +1,5 @@
 //! The per-ray lists in storage (`KernelConfig::lists_in_storage`, the hardware kernel
-//! variant: src/gpu/lists.rs): the dielectric ray stack and the CSG interval lists in a
+//! variant: src/gpu/compile/lists.rs): the dielectric ray stack and the CSG interval lists in a
 //! storage slot per tracing invocation render exactly what the private arrays render,
 //! and match the CPU tracer (tier 4), in every AA mode (each mode's tracing passes claim
 //! slots their own way: a chunk pixel, a sample, a lattice point of a pass).
@@ -7,8 +7,8 @@
 use crate::common;
 
 use common::{gpu_context, packed_from_file};
-use glint::gpu::lists::LaneLists;
-use glint::gpu::shader::{assemble_with, Entry};
+use glint::gpu::compile::lists::LaneLists;
+use glint::gpu::compile::shader::{assemble_with, Entry};
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaDepth, AaMode, OptionOverrides};

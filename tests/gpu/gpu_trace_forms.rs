@@ -1,5 +1,5 @@
 //! `trace_ray`'s two forms in scenes with mirrors but no dielectrics
-//! (`KernelConfig::camera_ray_in_loop`, `CAMERA_RAY_IN_LOOP` in shaders/trace.wgsl): the
+//! (`KernelConfig::camera_ray_in_loop`, `CAMERA_RAY_IN_LOOP` in src/tracer/path/trace.wgsl): the
 //! hardware variant takes the camera ray as the loop's first entry, so its kernels inline
 //! the traversal and shading once; the software variant traces and shades the camera
 //! ray's hit before the loop (llvmpipe's faster form). Both take the CPU twin's steps in
@@ -9,7 +9,7 @@
 use crate::common;
 
 use common::{gpu_context, packed_from_file};
-use glint::gpu::shader::{all_feature_sets, assemble_with, Entry};
+use glint::gpu::compile::shader::{all_feature_sets, assemble_with, Entry};
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelVariant};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaDepth, AaMode, AaSamples, OptionOverrides};
@@ -156,7 +156,7 @@ fn same_in_both_forms(ctx: &mut GpuContext, name: &str, scene: &PackedScene) {
         );
     }
     if scene.globals.aa_mode == glint::constants::AA_ADAPTIVE {
-        let cpu = glint::cpu::render::adaptive_leaf_counts(scene);
+        let cpu = glint::tracer::sampling::render::adaptive_leaf_counts(scene);
         let split = cpu.iter().filter(|&&l| l > 1).count();
         assert!(split > 0, "{name}: nothing split");
         assert!(

@@ -1,4 +1,4 @@
-//! The wavefront kernels (`shaders/wavefront.wgsl`, `KernelConfig::wavefront`: AA none and
+//! The wavefront kernels (`src/tracer/wavefront/wavefront.wgsl`, `KernelConfig::wavefront`: AA none and
 //! uniform AA in the hardware variant, scenes without refraction): naga validates them for
 //! every feature set that has them (where the megakernel entries they replace are gone),
 //! the software variant's modules never include them, and rendered on lavapipe with
@@ -6,24 +6,26 @@
 //! CPU tracer's, within the GPU parity tolerance) on scenes with mirrors (several
 //! generations), area lights, textures and bump maps, smooth meshes, tori, meshes in
 //! grids and CSG. Under adaptive AA the hardware variant traces the corner and midpoint
-//! passes through them (`shaders/wavefront_lattice.wgsl`), with the same lattice, and so
+//! passes through them (`src/tracer/wavefront/wavefront_lattice.wgsl`), with the same lattice, and so
 //! image, as the megakernel passes, bit for bit; `glint view`'s frames go through them
 //! too, with `view_sample`'s sums. With refraction AA none runs them with
-//! `shaders/wavefront_tree.wgsl`'s (whose scenes `gpu_wavefront_tree.rs` renders), and the
+//! `src/tracer/wavefront/wavefront_tree.wgsl`'s (whose scenes `gpu_wavefront_tree.rs` renders), and the
 //! other AA modes and the view keep their megakernels.
 
 use crate::common;
 
 use common::{gpu_context, packed_from_file, packed_from_source};
 use glint::constants::{AA_ADAPTIVE, AA_UNIFORM};
-use glint::cpu::wavefront::light_points;
-use glint::gpu::lists::LaneLists;
-use glint::gpu::progressive::{Progressive, SumBuffer};
-use glint::gpu::shader::{all_feature_sets, assemble_with, validate, wavefront_kernels, Entry};
+use glint::gpu::compile::lists::LaneLists;
+use glint::gpu::compile::shader::{
+    all_feature_sets, assemble_with, validate, wavefront_kernels, Entry,
+};
+use glint::gpu::view::progressive::{Progressive, SumBuffer};
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelVariant};
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::bounded::AaSamples;
 use glint::scene::{AaDepth, AaMode, OptionOverrides};
+use glint::tracer::wavefront::wavefront::light_points;
 
 /// Every feature set: the hardware variant's render module has the wavefront entry points
 /// (the renders' and the view's), valid under naga, exactly where the scene has no
@@ -45,9 +47,12 @@ fn wavefront_kernels_validate_where_they_exist() {
         let soft = assemble_with(features, Entry::Render, software);
         assert!(!soft.contains("wavefront"), "[{features}] software module");
         let hard = assemble_with(features, Entry::Render, hardware);
-        assert!(hard.contains("shaders/wavefront.wgsl"), "[{features}]");
+        assert!(
+            hard.contains("src/tracer/wavefront/wavefront.wgsl"),
+            "[{features}]"
+        );
         assert_eq!(
-            hard.contains("shaders/wavefront_tree.wgsl"),
+            hard.contains("src/tracer/wavefront/wavefront_tree.wgsl"),
             tree,
             "[{features}]"
         );
@@ -217,7 +222,7 @@ pub(crate) fn assert_wavefront_matches(ctx: &mut GpuContext, name: &str, scene: 
     // The pixels main's render took from the CPU tracer (at least its count of them).
     let cpu = match spoiled {
         0 => vec![[0; 3]; main.len()],
-        _ => bits(&glint::cpu::render::render(scene, &|_, _| {})),
+        _ => bits(&glint::tracer::sampling::render::render(scene, &|_, _| {})),
     };
     let taken = (0..main.len()).filter(|&p| main[p] == cpu[p]).count();
     assert!(

@@ -1,5 +1,5 @@
-//! The wavefront kernels of scenes with refraction (`shaders/wavefront_tree.wgsl` with
-//! `shaders/wavefront.wgsl`: pending counts, the vertex tree and its fold, glass shadow
+//! The wavefront kernels of scenes with refraction (`src/tracer/wavefront/wavefront_tree.wgsl` with
+//! `src/tracer/wavefront/wavefront.wgsl`: pending counts, the vertex tree and its fold, glass shadow
 //! rounds), rendered on lavapipe with the hardware variant: the megakernel `main`'s image
 //! bit for bit and the CPU's within the GPU parity tolerance
 //! (`gpu_wavefront::assert_wavefront_matches`), on the repository's glass scenes and on
@@ -114,7 +114,7 @@ fn hardware_wavefront_hands_pixels_without_room_to_the_cpu() {
         handed < 48,
         "the box's pixels spawn no rays: traced on the GPU"
     );
-    let cpu = glint::cpu::render::render(&scene, &|_, _| {});
+    let cpu = glint::tracer::sampling::render::render(&scene, &|_, _| {});
     let bits = |p: &[f32; 3]| p.map(f32::to_bits);
     let cpu_bits = render
         .film
@@ -199,7 +199,7 @@ fn hardware_wavefront_view_sums_of_glass_are_view_samples() {
         let file = "scenes/glass.lua";
         let scene = packed_from_file(&common::root().join(file), &options).remove(0);
         assert!(scene.features.contains(SceneFeatures::REFRACTION));
-        assert!(!glint::gpu::shader::Entry::ViewSample.exists_in(hardware, scene.features));
+        assert!(!glint::gpu::compile::shader::Entry::ViewSample.exists_in(hardware, scene.features));
         let (wave, through_wavefront, _) = view_sums(&ctx, &scene, frames);
         assert!(through_wavefront, "{file}");
         ctx.kernel = glint::gpu::KernelConfig {
@@ -271,7 +271,7 @@ fn hardware_wavefront_renders_glass_the_same_every_run_over_several_chunks() {
                 .args(["--width", "96", "--height", "80", "--backend", "gpu"])
                 .args(["--kernel-variant", "hardware", "--stats"])
                 .args(&flags)
-                .env(glint::gpu::context::LLVMPIPE_THREADS_VAR, "16")
+                .env(glint::gpu::device::context::LLVMPIPE_THREADS_VAR, "16")
                 .output()
                 .expect("glint runs");
             let stderr = String::from_utf8_lossy(&status.stderr);
@@ -294,7 +294,7 @@ fn hardware_wavefront_renders_glass_the_same_every_run_over_several_chunks() {
         }
         let gpu = glint::image_io::read_image(&dir.join(format!("{mode}-0.exr"))).unwrap();
         let scene = packed_from_file(&file, &options).remove(0);
-        let cpu = glint::cpu::render(&scene, &|_, _| {});
+        let cpu = glint::tracer::render(&scene, &|_, _| {});
         let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("gpu_wavefront");
         glint::diff::assert_images_match(
             &format!("glass AA {mode}"),

@@ -294,7 +294,7 @@ fn check_navi21_budgets() {
 /// call shows here rather than when someone next measures.
 #[test]
 fn wavefront_split_prototypes_validate() {
-    use glint::gpu::shader::{assemble_with, preprocess_with, validate, Entry};
+    use glint::gpu::compile::shader::{assemble_with, preprocess_with, validate, Entry};
     use glint::gpu::KernelConfig;
     use glint::mailboxes::Mailboxes;
     use glint::pack::SceneFeatures;

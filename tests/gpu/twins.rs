@@ -1,13 +1,14 @@
 //! The CPU tracer and its WGSL mirror are tied function by function with comments
-//! (`// Mirror of shaders/uv.wgsl::triangle_frame — change both.`); this test reads both
+//! (`// Mirror of src/tracer/geometry/uv.wgsl::triangle_frame — change both.`); this test reads both
 //! sides (no GPU: the comments as text, the WGSL through naga, the Rust through syn) and
 //! checks that the ties hold:
 //! - every twin comment names a file of the other side that exists, and a declaration in
 //!   it that exists (so renaming one twin without the other fails here);
 //! - pairing is symmetric: a one-to-one twin comment (`PATH::NAME` and nothing else) on
 //!   A naming B has a twin comment on B naming A (comments such as "the sample loop of
-//!   src/cpu/render.rs::render_pixel", for a part of a function, need only exist);
-//! - twins are paired file by file: a twin of `src/cpu/X.rs` is in `shaders/X.wgsl`;
+//!   src/tracer/sampling/render.rs::render_pixel", for a part of a function, need only exist);
+//! - twins are paired file by file: a twin of `X.rs` is in `X.wgsl` beside it (every
+//!   tracer file, `src/tracer/LAYER/X.rs`, and every other with such a `.wgsl`);
 //! - the WGSL functions the line reader sees are those naga sees in the modules;
 //! - paired functions take the same number of arguments, once the Rust side's module
 //!   state is set aside ([`MODULE_SCOPE`]: what WGSL reads from bindings or private
@@ -40,141 +41,141 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "shaders/view_present.wgsl",
         "present_fragment",
         "glint view's present pass: shows the progressive sums (sum / count, clamped) in the \
-         window; the CPU's image of the same sums is cpu::progressive::film_of_sums, which \
+         window; the CPU's image of the same sums is tracer::sampling::progressive::film_of_sums, which \
          tests/gpu/view.rs compares with the window",
     ),
     (
-        "shaders/ray.wgsl",
+        "src/tracer/base/ray.wgsl",
         "max_element",
         "glam's Vec3::max_element on the CPU",
     ),
     (
-        "shaders/ray.wgsl",
+        "src/tracer/base/ray.wgsl",
         "min_element",
         "glam's Vec3::min_element on the CPU",
     ),
     (
-        "shaders/ray.wgsl",
+        "src/tracer/base/ray.wgsl",
         "copysign",
         "Rust's f32::copysign on the CPU",
     ),
     (
-        "shaders/render.wgsl",
+        "src/tracer/sampling/render.wgsl",
         "block_pixel",
         "chooses which invocation of a workgroup traces which pixel of its square (the \
          order of llvmpipe's SIMD lanes); the CPU's pixels have no lanes, and the pixel's \
          value does not depend on it",
     ),
     (
-        "shaders/pixel_sample.wgsl",
+        "src/tracer/sampling/pixel_sample.wgsl",
         "encode_hint",
         "stores a SampleHint in the float fourth component of a lattice sample; the CPU's \
          lattice keeps its hints in a Vec<SampleHint>",
     ),
     (
-        "shaders/pixel_sample.wgsl",
+        "src/tracer/sampling/pixel_sample.wgsl",
         "decode_hint",
         "reads encode_hint's float back; the CPU's lattice keeps its hints in a \
          Vec<SampleHint>",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "table_at",
-        "reads the texel of a table element (src/gpu/tables.rs): the CPU indexes its slices",
+        "reads the texel of a table element (src/gpu/upload/tables.rs): the CPU indexes its slices",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "word_at",
-        "reads a word of a one-word table (src/gpu/tables.rs): the CPU indexes its slices",
+        "reads a word of a one-word table (src/gpu/upload/tables.rs): the CPU indexes its slices",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "table_texel",
-        "where a table element lies in its texture (src/gpu/tables.rs); the CPU has slices",
+        "where a table element lies in its texture (src/gpu/upload/tables.rs); the CPU has slices",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "cell_start_at",
         "reads `cell_start[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "cell_item_at",
         "reads `cell_items[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "load_instance",
         "reads `instances[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "instance_row",
         "one row of an instance's affine maps from the instance table (load_instance's helper)",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "load_mesh",
         "reads `meshes[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "csg_program_at",
         "reads `csg_program[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "texel_word",
         "reads `texels[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "load_material",
         "reads `materials[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "load_light",
         "reads `lights[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "load_triangle_uv",
         "reads `triangle_uvs[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/layout.wgsl",
+        "src/pack/layout.wgsl",
         "load_triangle_normals",
         "reads `triangle_normals[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "shaders/render.wgsl",
+        "src/tracer/sampling/render.wgsl",
         "loop_limiter_tripped",
         "detects lavapipe's loop limiter, which the CPU does not have",
     ),
     (
-        "shaders/adaptive.wgsl",
+        "src/tracer/sampling/adaptive.wgsl",
         "adaptive_work_args",
         "turns the GPU's per-level list lengths into indirect dispatch arguments; the CPU \
          walks the same lists directly, with no dispatch",
     ),
     (
-        "shaders/adaptive.wgsl",
+        "src/tracer/sampling/adaptive.wgsl",
         "indirect_workgroups",
         "workgroup counts of an indirect pass (adaptive_work_args' helper); the CPU has no \
          dispatches",
     ),
     (
-        "shaders/adaptive.wgsl",
+        "src/tracer/sampling/adaptive.wgsl",
         "store_indirect_pair",
         "writes two indirect passes' workgroup counts (adaptive_work_args' and \
          wavefront_args' helper); the CPU has no dispatches",
     ),
     (
-        "shaders/render.wgsl",
+        "src/tracer/sampling/render.wgsl",
         "linear_index",
         "an invocation's index in a dispatch continued in y past the adapter's per-dimension \
-         limit (src/gpu/plan.rs plans it on the host); the CPU has no dispatches",
+         limit (src/gpu/plan/mod.rs plans it on the host); the CPU has no dispatches",
     ),
     (
         "shaders/bench/torus.wgsl",
@@ -183,353 +184,353 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          rays calling the same solvers",
     ),
     (
-        "shaders/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "begin_lane",
-        "claims the invocation's slot of the per-ray lists' storage buffer (src/gpu/lists.rs); the CPU's lists are arrays of its own",
+        "claims the invocation's slot of the per-ray lists' storage buffer (src/gpu/compile/lists.rs); the CPU's lists are arrays of its own",
     ),
     (
-        "shaders/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "lane_word",
-        "where a word of the invocation's list slot lies in the storage buffer (src/gpu/lists.rs); the CPU indexes its arrays",
+        "where a word of the invocation's list slot lies in the storage buffer (src/gpu/compile/lists.rs); the CPU indexes its arrays",
     ),
     (
-        "shaders/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "lane_f32",
         "reads a float of the invocation's list slot; the CPU indexes its arrays",
     ),
     (
-        "shaders/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "set_lane_f32",
         "writes a float of the invocation's list slot; the CPU indexes its arrays",
     ),
     (
-        "shaders/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "lane_vec3",
         "reads three floats of the invocation's list slot; the CPU indexes its arrays",
     ),
     (
-        "shaders/lists.wgsl",
+        "src/gpu/compile/lists.wgsl",
         "set_lane_vec3",
         "writes three floats of the invocation's list slot; the CPU indexes its arrays",
     ),
     (
-        "shaders/trace.wgsl",
+        "src/tracer/path/trace.wgsl",
         "store_pending",
-        "stores a ray stack entry in a private array or the list slot (src/gpu/lists.rs); the CPU writes `stack[size]`",
+        "stores a ray stack entry in a private array or the list slot (src/gpu/compile/lists.rs); the CPU writes `stack[size]`",
     ),
     (
-        "shaders/trace.wgsl",
+        "src/tracer/path/trace.wgsl",
         "load_pending",
-        "reads a ray stack entry from a private array or the list slot (src/gpu/lists.rs); the CPU reads `stack[size]`",
+        "reads a ray stack entry from a private array or the list slot (src/gpu/compile/lists.rs); the CPU reads `stack[size]`",
     ),
     (
-        "shaders/csg.wgsl",
+        "src/tracer/geometry/csg.wgsl",
         "csg_t_at",
-        "reads CsgStack::t[k] from a private array or the list slot (src/gpu/lists.rs); the CPU indexes the array",
+        "reads CsgStack::t[k] from a private array or the list slot (src/gpu/compile/lists.rs); the CPU indexes the array",
     ),
     (
-        "shaders/csg.wgsl",
+        "src/tracer/geometry/csg.wgsl",
         "set_csg_t",
         "writes CsgStack::t[k] (see csg_t_at)",
     ),
     (
-        "shaders/csg.wgsl",
+        "src/tracer/geometry/csg.wgsl",
         "csg_tag_at",
         "reads CsgStack::tag[k] from a private array or the list slot; the CPU indexes the array",
     ),
     (
-        "shaders/csg.wgsl",
+        "src/tracer/geometry/csg.wgsl",
         "set_csg_tag",
         "writes CsgStack::tag[k] (see csg_tag_at)",
     ),
     (
-        "shaders/csg.wgsl",
+        "src/tracer/geometry/csg.wgsl",
         "csg_start_at",
         "reads CsgStack::list_start[l] from a private array or the list slot; the CPU indexes the array",
     ),
     (
-        "shaders/csg.wgsl",
+        "src/tracer/geometry/csg.wgsl",
         "set_csg_start",
         "writes CsgStack::list_start[l] (see csg_start_at)",
     ),
     (
-        "shaders/csg.wgsl",
+        "src/tracer/geometry/csg.wgsl",
         "csg_count_at",
         "reads CsgStack::list_count[l] from a private array or the list slot; the CPU indexes the array",
     ),
     (
-        "shaders/csg.wgsl",
+        "src/tracer/geometry/csg.wgsl",
         "set_csg_count",
         "writes CsgStack::list_count[l] (see csg_count_at)",
     ),    (
-        "shaders/wavefront_lattice.wgsl",
+        "src/tracer/wavefront/wavefront_lattice.wgsl",
         "lattice_queue_base",
         "where the wavefront's queues start in the `samples` buffer, after the lattice (the \
-         GPU's buffer layout, as src/gpu/plan.rs::lattice_queue_bytes lays it out); the CPU's \
+         GPU's buffer layout, as src/gpu/plan/adaptive.rs::lattice_queue_bytes lays it out); the CPU's \
          lattice and batch are separate Vecs",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "load_path",
         "reads path entry i of a queue from the `samples` buffer's region; the CPU's PathQueue::entry reads its Vecs",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "store_path",
         "writes path entry i of a queue into the `samples` buffer's region; the CPU's PathQueue::append pushes onto its Vecs",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "path_sample",
         "reads a path entry's sample index (the CPU's PathQueue::sample[i])",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "path_depth",
         "reads a path entry's depth (the CPU's PathQueue::depth[i])",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "sample_flags",
         "reads a sample record's flag bits; the CPU's SampleRecords keeps one Vec a flag",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "set_sample_flags",
         "writes a sample record's flag bits (see sample_flags)",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "path_counter",
         "which work_counts word counts a generation's paths; the CPU's queues are Vecs that know their length",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "shadow_counter",
         "which work_counts word counts a generation's shadow requests (see path_counter)",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "wavefront_paths",
         "where a path queue's region of `samples` starts; the CPU's queues are Vecs of their own",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "wavefront_hits",
         "where the hit queue's region of `samples` starts (see wavefront_paths)",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "wavefront_vertices",
         "where the vertex queue's region of `samples` starts (see wavefront_paths)",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "wavefront_slots",
         "where the light slots' region of `samples` starts (see wavefront_paths)",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "wavefront_shadows",
         "where the shadow requests' region of `samples` starts (see wavefront_paths)",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "ask_shadow",
-        "one light point's step of wavefront_shade's light loop: the CPU's is the closure `ask` in src/cpu/wavefront.rs::shade_entry",
+        "one light point's step of ask_light_shadows' loop: the CPU's is the closure `ask` in src/tracer/wavefront/wavefront.rs::ask_light_shadows",
     ),
     (
-        "shaders/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.wgsl",
         "wavefront_unshadowed_term",
-        "the CPU's src/cpu/shade.rs::unshadowed_term, which the CPU's point_light shares; the WGSL point_light keeps its own copy of these lines so that the software variant's module (no wavefront) stays byte for byte what it was",
+        "the CPU's src/tracer/shading/shade.rs::unshadowed_term, which the CPU's point_light shares; the WGSL point_light keeps its own copy of these lines so that the software variant's module (no wavefront) stays byte for byte what it was",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_capacity",
         "how many paths a tree's generation may hold in the `samples` buffer; the CPU's queues are Vecs that grow",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_paths",
         "where a tree's path queue's region of `samples` starts (see wavefront.wgsl's wavefront_paths)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_hits",
         "where a tree's hit queue's region of `samples` starts (see tree_paths)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_vertices",
         "where a tree's vertex queue's region of `samples` starts (see tree_paths)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_nodes",
         "where the vertex tree's region of `samples` starts (see tree_paths)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_slots",
         "where a tree's light slots' region of `samples` starts (see tree_paths)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_shadows",
         "where a tree's shadow requests' region of `samples` starts (see tree_paths)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_legs",
         "where a glass round's leg queue's region of `samples` starts (see tree_paths)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_leg_hits",
         "where a glass round's leg hits' region of `samples` starts (see tree_paths)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "leg_counter",
         "which work_counts word counts a round's legs; the CPU's LegQueue is a Vec that knows its length",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "vertex_base_counter",
         "which work_counts word holds a generation's first vertex (the CPU's Batch::vertex_base)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_generation_args",
         "where a tree's generation's indirect arguments lie in work_args; the CPU has no dispatches",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "leg_args",
         "where a round's indirect arguments lie in work_args; the CPU has no dispatches",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "store_leg_args",
         "writes a round's indirect workgroups (the CPU's round loop runs over its Vec)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "next_generation_room",
         "the paths a tree's next generation has room for in the `samples` buffer; the CPU's Vecs grow (a child without room sends its pixel to the CPU: src/gpu/render.rs::scatter)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "path_pending",
         "reads a path entry's pending count (the CPU's PathQueue::pending[i])",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "path_media",
         "reads a path entry's media (the CPU's PathQueue::media[i])",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "load_tree_path",
         "reads path entry i of a tree's queue (see wavefront.wgsl's load_path)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "store_tree_path",
         "writes path entry i of a tree's queue with its pending count (the CPU's PathQueue::store_path; see wavefront.wgsl's store_path)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_value",
         "reads a vertex's value (the CPU's VertexTree::value[v])",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_children",
         "reads a vertex's children (the CPU's VertexTree::children[v])",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "set_tree_value",
         "writes a vertex's value (the CPU's VertexTree::value[v] = …)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "set_tree_child",
         "writes a vertex's child link (the CPU's VertexTree::children[v][place] = …)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "clear_tree_children",
         "a vertex childless until shaded: the CPU's VertexTree::grow fills NO_CHILD",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "store_leg",
         "writes leg l of a round's queue (append_leg's store, and each request's first leg at its own index)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_camera_vertices",
         "where the camera vertices lie in the `samples` buffer (the CPU's batch compacts its samples: sample k's camera vertex is vertex k)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_camera_vertex",
         "reads a sample's camera vertex (the CPU's is vertex k: fold_samples passes k)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "set_tree_camera_vertex",
         "writes a sample's camera vertex (the GPU's lattice camera pass appends paths by atomicAdd and keeps records at the invocation; the CPU compacts)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "sample_without_room",
         "GPU queues only: a child without room hands the sample's pixels to the CPU tracer (the CPU's queues are Vecs that grow)",
     ),
     (
-        "shaders/wavefront_lattice.wgsl",
+        "src/tracer/wavefront/wavefront_lattice.wgsl",
         "guard_lattice_point",
         "GPU queues only: the pixels around a lattice point whose tree had no room go to the CPU tracer (adaptive.wgsl's trace_lattice_point guards the same pixels for the loop limiter)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "load_leg",
         "reads leg l of a round's queue (the CPU's LegQueue::load_leg)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "leg_request",
         "reads a leg's request (the CPU's LegQueue::request[l])",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "leg_hit",
         "reads a leg's closest hit from the `samples` buffer (the CPU's round keeps its hits in a Vec)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "request_target",
         "reads a shadow request's light point and its vertex's magnitude (the CPU's ShadowRequests::position[r] and magnitude[vertex])",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "shadow_leg_ray",
-        "the CPU's src/cpu/dielectric.rs::shadow_leg_ray, which the CPU's shadow_transmittance shares; dielectric.wgsl's shadow_transmittance keeps its own copy of these lines so that the software variant's module (no wavefront) stays byte for byte what it was",
+        "the CPU's src/tracer/shading/dielectric.rs::shadow_leg_ray, which the CPU's shadow_transmittance shares; dielectric.wgsl's shadow_transmittance keeps its own copy of these lines so that the software variant's module (no wavefront) stays byte for byte what it was",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "cross_shadow_surface",
-        "the CPU's src/cpu/dielectric.rs::cross_shadow_surface (see shadow_leg_ray)",
+        "the CPU's src/tracer/shading/dielectric.rs::cross_shadow_surface (see shadow_leg_ray)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_points",
         "reads the scene's light points from the `work_counts` word the camera pass wrote (the CPU's Batch::light_points)",
     ),
     (
-        "shaders/wavefront_tree.wgsl",
+        "src/tracer/wavefront/wavefront_tree.wgsl",
         "note_tree_points",
         "writes the scene's light points into a `work_counts` word for the later passes (the CPU's camera_pass keeps them in Batch::light_points)",
     ),
@@ -540,7 +541,7 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
 const MODULE_SCOPE: &[(&str, &str)] = &[
     (
         "PackedScene",
-        "the scene's tables (textures, src/gpu/tables.rs)",
+        "the scene's tables (textures, src/gpu/upload/tables.rs)",
     ),
     ("PackedGlobals", "the `globals` uniform"),
     ("AdaptiveTile", "the `tile` uniform"),
@@ -552,12 +553,12 @@ const MODULE_SCOPE: &[(&str, &str)] = &[
     ("SampleSource", "the `tile` uniform (a chunk's pixels)"),
     (
         "CsgStack",
-        "the csg_* private variables or the list slot (src/gpu/lists.rs)",
+        "the csg_* private variables or the list slot (src/gpu/compile/lists.rs)",
     ),
     ("MediumStack", "the `shading_media` private variable"),
     (
         "VertexTree",
-        "a tree's vertex tree in the `samples` storage buffer (shaders/wavefront_tree.wgsl)",
+        "a tree's vertex tree in the `samples` storage buffer (src/tracer/wavefront/wavefront_tree.wgsl)",
     ),
     (
         "ShadowRequests",
@@ -660,7 +661,7 @@ pub(super) fn check(texts: &[(String, String)]) -> Findings {
         } else {
             (item, *other)
         };
-        check_file_pairing(rust, wgsl, &mut found.problems);
+        check_file_pairing(rust, wgsl, &files, &mut found.problems);
         let naga_fn = wgsl_fns.functions.get(&wgsl.key);
         if let (true, Some(f)) = (rust.is_fn && wgsl.is_fn, naga_fn) {
             if !f.entry_point {
@@ -674,18 +675,21 @@ pub(super) fn check(texts: &[(String, String)]) -> Findings {
     found
 }
 
-/// A twin of `src/cpu/X.rs` is in `shaders/X.wgsl` (host-side data and helpers outside
-/// `src/cpu/` are mirrored in the shader file that reads them).
-fn check_file_pairing(rust: &Item, wgsl: &Item, problems: &mut Vec<String>) {
-    let Some(name) = rust
-        .file
-        .strip_prefix("src/cpu/")
-        .and_then(|f| f.strip_suffix(".rs"))
-    else {
+/// A twin of `DIR/X.rs` is in `DIR/X.wgsl` beside it, for every tracer file (under
+/// `src/tracer/`) and every other Rust file with a `.wgsl` of its stem beside it (host-side
+/// data and helpers without one are mirrored in the shader file that reads them).
+fn check_file_pairing(
+    rust: &Item,
+    wgsl: &Item,
+    wgsl_files: &HashSet<&str>,
+    problems: &mut Vec<String>,
+) {
+    let Some(stem) = rust.file.strip_suffix(".rs") else {
         return;
     };
-    let expected = format!("shaders/{name}.wgsl");
-    if wgsl.file != expected {
+    let expected = format!("{stem}.wgsl");
+    let paired = rust.file.starts_with("src/tracer/") || wgsl_files.contains(expected.as_str());
+    if paired && wgsl.file != expected {
         problems.push(format!(
             "{}:{} {} has its twin in {}, not in {expected}: twins are paired file by file",
             rust.file, rust.line, rust.key, wgsl.file
@@ -830,7 +834,7 @@ fn check_wgsl_functions(sources: &Sources, wgsl: &WgslModules, problems: &mut Ve
         .collect();
     for (file, name) in by_text.difference(&by_naga) {
         problems.push(format!(
-            "{file}: fn {name} is in no module naga parsed (is the file in src/gpu/shader.rs's lists?)"
+            "{file}: fn {name} is in no module naga parsed (is the file in src/gpu/compile/shader.rs's lists?)"
         ));
     }
     for (file, name) in by_naga.difference(&by_text) {

@@ -19,7 +19,7 @@ fn broken_ties_are_reported() {
     let texts = source_texts();
     let renamed = check(&edited(
         &texts,
-        "shaders/uv.wgsl",
+        "src/tracer/geometry/uv.wgsl",
         "fn triangle_frame(",
         "fn triangle_frame_renamed(",
     ));
@@ -27,7 +27,7 @@ fn broken_ties_are_reported() {
         renamed
             .problems
             .iter()
-            .any(|p| p.contains("shaders/uv.wgsl declares no triangle_frame")),
+            .any(|p| p.contains("src/tracer/geometry/uv.wgsl declares no triangle_frame")),
         "renaming a WGSL twin is not caught: {:?}",
         renamed.problems
     );
@@ -41,59 +41,58 @@ fn broken_ties_are_reported() {
     let extra = check(&edited(
         &edited(
             &texts,
-            "shaders/uv.wgsl",
+            "src/tracer/geometry/uv.wgsl",
             "fn triangle_frame(p0",
             "fn triangle_frame(extra: f32, p0",
         ),
-        "shaders/surface.wgsl",
+        "src/tracer/shading/surface.wgsl",
         "triangle_frame(p0, p1",
         "triangle_frame(0.0, p0, p1",
     ));
     assert!(
-        extra
-            .problems
-            .iter()
-            .any(|p| p.contains("triangle_frame passes 7 arguments but its twin shaders/uv.wgsl:")),
+        extra.problems.iter().any(|p| p.contains(
+            "triangle_frame passes 7 arguments but its twin src/tracer/geometry/uv.wgsl:"
+        )),
         "an extra WGSL parameter is not caught: {:?}",
         extra.problems
     );
     let one_sided = check(&edited(
         &texts,
-        "src/cpu/uv.rs",
-        "// Mirror of shaders/uv.wgsl::triangle_frame — change both.\n",
+        "src/tracer/geometry/uv.rs",
+        "// Mirror of src/tracer/geometry/uv.wgsl::triangle_frame — change both.\n",
         "",
     ));
     assert!(
         one_sided
             .problems
             .iter()
-            .any(|p| p.contains("names src/cpu/uv.rs::triangle_frame as its twin")),
+            .any(|p| p.contains("names src/tracer/geometry/uv.rs::triangle_frame as its twin")),
         "a one-sided twin comment is not caught: {:?}",
         one_sided.problems
     );
     // safe_rcp3's WGSL twin moved to intersect.wgsl, both comments following it.
-    let block = "// safe_rcp of each component.\n// Mirror of src/cpu/math.rs::safe_rcp3 — change both.\nfn safe_rcp3(v: vec3<f32>) -> vec3<f32> {\n    return vec3<f32>(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z));\n}\n";
-    let moved = edited(&texts, "shaders/math.wgsl", block, "");
+    let block = "// safe_rcp of each component.\n// Mirror of src/tracer/base/math.rs::safe_rcp3 — change both.\nfn safe_rcp3(v: vec3<f32>) -> vec3<f32> {\n    return vec3<f32>(safe_rcp(v.x), safe_rcp(v.y), safe_rcp(v.z));\n}\n";
+    let moved = edited(&texts, "src/tracer/base/math.wgsl", block, "");
     let moved = edited(
         &moved,
-        "shaders/intersect.wgsl",
+        "src/tracer/geometry/intersect.wgsl",
         "// #if SPHERE\n",
         &format!("{block}// #if SPHERE\n"),
     );
     let moved = check(&edited(
         &moved,
-        "src/cpu/math.rs",
-        "Mirror of shaders/math.wgsl::safe_rcp3",
-        "Mirror of shaders/intersect.wgsl::safe_rcp3",
+        "src/tracer/base/math.rs",
+        "Mirror of src/tracer/base/math.wgsl::safe_rcp3",
+        "Mirror of src/tracer/geometry/intersect.wgsl::safe_rcp3",
     ));
     assert_reported(
         &moved,
-        "safe_rcp3 has its twin in shaders/intersect.wgsl, not in shaders/math.wgsl",
+        "safe_rcp3 has its twin in src/tracer/geometry/intersect.wgsl, not in src/tracer/base/math.wgsl",
         "a twin in a file of another name",
     );
     let new_fn = check(&edited(
         &texts,
-        "shaders/uv.wgsl",
+        "src/tracer/geometry/uv.wgsl",
         "// #if SPHERE\n",
         "fn untwinned() {}\n// #if SPHERE\n",
     ));
@@ -124,41 +123,41 @@ fn broken_calls_are_reported() {
     let texts = source_texts();
     let wgsl_only = check(&edited(
         &texts,
-        "shaders/surface.wgsl",
+        "src/tracer/shading/surface.wgsl",
         "    var m = 0.0;\n",
         "    var m = safe_rcp(1.0);\n",
     ));
     assert_reported(
         &wgsl_only,
-        "affine_magnitude calls safe_rcp (twin of src/cpu/math.rs::safe_rcp), but its twin src/cpu/surface.rs:",
+        "affine_magnitude calls safe_rcp (twin of src/tracer/base/math.rs::safe_rcp), but its twin src/tracer/shading/surface.rs:",
         "a call added to a WGSL twin only",
     );
     let rust_only = check(&edited(
         &texts,
-        "src/cpu/uv.rs",
+        "src/tracer/geometry/uv.rs",
         "    let e1 = p[1] - p[0];\n",
         "    let e1 = p[1] - p[0] + super::math::safe_rcp3(normal);\n",
     ));
     assert_reported(
         &rust_only,
-        "triangle_frame calls src/cpu/math.rs::safe_rcp3 (twin of shaders' safe_rcp3), but its twin shaders/uv.wgsl:",
+        "triangle_frame calls src/tracer/base/math.rs::safe_rcp3 (twin of shaders' safe_rcp3), but its twin src/tracer/geometry/uv.wgsl:",
         "a call added to a Rust twin only",
     );
     let other_twin = check(&edited(
         &texts,
-        "shaders/intersect.wgsl",
+        "src/tracer/geometry/intersect.wgsl",
         "let interval = sphere_interval(o, d);",
         "let interval = box_interval(o, d);",
     ));
     for needle in [
-        "intersect_sphere calls box_interval (twin of src/cpu/intersect.rs::box_interval)",
-        "intersect_sphere calls src/cpu/intersect.rs::sphere_interval (twin of shaders' sphere_interval)",
+        "intersect_sphere calls box_interval (twin of src/tracer/geometry/intersect.rs::box_interval)",
+        "intersect_sphere calls src/tracer/geometry/intersect.rs::sphere_interval (twin of shaders' sphere_interval)",
     ] {
         assert_reported(&other_twin, needle, "a call of another twin");
     }
     let reordered = check(&edited(
         &texts,
-        "src/cpu/adaptive.rs",
+        "src/tracer/sampling/adaptive.rs",
         "    let k = lattice_index(&t, i, j);\n    let (colour, hint) = lattice_sample(scene, fx, fy, counters);\n",
         "    let (colour, hint) = lattice_sample(scene, fx, fy, counters);\n    let k = lattice_index(&t, i, j);\n",
     ));
@@ -169,13 +168,13 @@ fn broken_calls_are_reported() {
     );
     let renamed = check(&edited(
         &texts,
-        "src/cpu/uv.rs",
+        "src/tracer/geometry/uv.rs",
         "pub fn triangle_frame(",
         "pub fn triangle_frame_renamed(",
     ));
     assert_reported(
         &renamed,
-        "src/cpu/uv.rs declares no triangle_frame",
+        "src/tracer/geometry/uv.rs declares no triangle_frame",
         "a renamed Rust twin",
     );
 }

@@ -10,9 +10,9 @@
 
 use super::view_window::{View, Xvfb, WAIT};
 use crate::common::{gpu_context, load_packed, root};
-use glint::cpu::progressive::{accumulate_sample, film_of_sums};
-use glint::gpu::progressive::{Progressive, SumBuffer};
+use glint::gpu::view::progressive::{Progressive, SumBuffer};
 use glint::scene::{AaMode, AaSamples, OptionOverrides};
+use glint::tracer::sampling::progressive::{accumulate_sample, film_of_sums};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -593,7 +593,8 @@ fn lists_in_storage_give_the_same_sums_in_bands() {
                 lists_in_storage,
                 ..chosen.0
             };
-            let words = glint::gpu::lists::LaneLists::of(packed.features, ctx.kernel).words();
+            let words =
+                glint::gpu::compile::lists::LaneLists::of(packed.features, ctx.kernel).words();
             assert_eq!(words > 0, lists_in_storage, "{file}: {}", ctx.kernel);
             // Slots for 10 rows of the window: 4 bands.
             ctx.limits.max_storage_buffer_binding_size = match words {

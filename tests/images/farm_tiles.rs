@@ -5,10 +5,10 @@
 use crate::common;
 
 use common::tilings::{first_difference, join, tilings};
-use glint::cpu::render::render_window;
 use glint::film::Film;
 use glint::pack::PackedScene;
 use glint::scene::{AaDepth, AaMode, AaSamples, OptionOverrides};
+use glint::tracer::sampling::render::render_window;
 
 /// Odd sizes, so no tiling lines up with the CPU's own 16- or 8-pixel tiles.
 const W: u32 = 37;

@@ -9,14 +9,14 @@ use crate::texture_support;
 
 use common::{packed_from_source, render_cpu, temp_dir};
 use glam::{Vec2, Vec3};
-use glint::cpu::ray::Ray;
-use glint::cpu::surface::{surface_at, Surface};
-use glint::cpu::texture::{bump_normal, sample_texture};
-use glint::cpu::traverse::{closest_hit, NoCounters};
 use glint::pack::texture::pack_texels;
 use glint::pack::{PackedMaterial, PackedScene, SceneFeatures};
 use glint::scene::texture::Texture;
 use glint::scene::OptionOverrides;
+use glint::tracer::base::ray::Ray;
+use glint::tracer::shading::surface::{surface_at, Surface};
+use glint::tracer::shading::texture::{bump_normal, sample_texture};
+use glint::tracer::traversal::traverse::{closest_hit, NoCounters};
 use std::path::{Path, PathBuf};
 
 /// A texture packed from raw texels (for filtering tests).
@@ -159,8 +159,8 @@ fn a_minified_texture_shows_the_mean_of_the_texels_each_pixel_covers() {
 /// degenerate.
 #[test]
 fn the_footprint_of_a_pixel_on_a_parallel_quad_is_one_texel_everywhere() {
-    use glint::cpu::ray::camera_ray;
-    use glint::cpu::texture::{camera_cone, texture_footprint};
+    use glint::tracer::base::ray::camera_ray;
+    use glint::tracer::shading::texture::{camera_cone, texture_footprint};
     let source = "q = gr.mesh('q', {{0,0,0},{1,0,0},{1,1,0},{0,1,0}}, {{0,1,2,3}}, \
                                    {{0,0},{1,0},{1,1},{0,1}}) \
                   m = gr.material('m') m:set_diffuse('bumps.png') q:set_material(m) \

@@ -1,10 +1,10 @@
-//! The wavefront passes (`cpu::wavefront`) against the megakernel form (`trace_ray`) on
+//! The wavefront passes (`tracer::wavefront::wavefront`) against the megakernel form (`trace_ray`) on
 //! the CPU: every scene of scenes/ and the CS488 corpus without refraction, at a small
 //! size, renders to the same bits through both — AA none and uniform AA as whole films
 //! (with the traversal counters' totals: the same rays traced), adaptive AA as every
 //! point of the finest lattice (its colour and its hint), since the adaptive passes
 //! sample nothing but lattice points, and as adaptive tiles whose corner and midpoint
-//! passes go through the passes (`cpu::wavefront_lattice`, the GPU's hardware variant's
+//! passes go through the passes (`tracer::wavefront::wavefront_lattice`, the GPU's hardware variant's
 //! form).
 
 use crate::common;
@@ -12,20 +12,20 @@ use common::tree_scenes::{slab_scene, FULL_STACK_SCENE, UNDERWATER_SCENE};
 
 use glam::Vec3;
 use glint::constants::{MAX_SHADOW_CROSSINGS, RAY_STACK_SIZE};
-use glint::cpu::adaptive::{adaptive_tile, Lattice};
-use glint::cpu::dielectric::{shadow_transmittance, MediumStack};
-use glint::cpu::pixel_sample::lattice_sample;
-use glint::cpu::render::render_pixel;
-use glint::cpu::traverse::Counters;
-use glint::cpu::wavefront::{
-    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, next_generation,
-    render_film, shade_pass, trace_batch, Batch, SampleSource,
-};
-use glint::cpu::wavefront_lattice::adaptive_tile_wavefront;
 use glint::film::Film;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaDepth, AaMode, AaSamples, DebugView, OptionOverrides, TraceDepth};
 use glint::tiling::AdaptiveTile;
+use glint::tracer::sampling::adaptive::{adaptive_tile, Lattice};
+use glint::tracer::sampling::pixel_sample::lattice_sample;
+use glint::tracer::sampling::render::render_pixel;
+use glint::tracer::shading::dielectric::{shadow_transmittance, MediumStack};
+use glint::tracer::traversal::traverse::Counters;
+use glint::tracer::wavefront::wavefront::{
+    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, next_generation,
+    render_film, shade_pass, trace_batch, Batch, SampleSource,
+};
+use glint::tracer::wavefront::wavefront_lattice::adaptive_tile_wavefront;
 use std::path::{Path, PathBuf};
 
 const W: u32 = 20;
@@ -59,7 +59,7 @@ fn packed_where(path: &Path, aa: AaMode, debug: DebugView, refraction: bool) -> 
         .collect()
 }
 
-/// The megakernel form's film, pixel by pixel as `cpu::render` computes them.
+/// The megakernel form's film, pixel by pixel as `tracer::render` computes them.
 fn reference_film(scene: &PackedScene, counters: &mut Counters) -> Film {
     let g = &scene.globals;
     let mut film = Film::new(g.width, g.height);
@@ -454,7 +454,7 @@ fn passes_start_camera_rays_in_the_media_around_the_camera() {
 /// sums bit for bit.
 #[test]
 fn passes_sample_the_views_frames_as_view_sample_does() {
-    use glint::cpu::progressive::view_sample;
+    use glint::tracer::sampling::progressive::view_sample;
     let mut checked = 0;
     for path in common::own_scenes() {
         for scene in packed(&path, AaMode::Uniform, DebugView::None) {

@@ -1,15 +1,15 @@
-//! Adaptive anti-aliasing in passes over a per-tile lattice (`cpu::adaptive`) against the
-//! per-pixel reference walk (`cpu::render::adaptive_pixel`): the same decisions, samples
+//! Adaptive anti-aliasing in passes over a per-tile lattice (`tracer::sampling::adaptive`) against the
+//! per-pixel reference walk (`tracer::sampling::render::adaptive_pixel`): the same decisions, samples
 //! and summation order, so the images are identical bit for bit.
 
 use crate::common;
 
 use common::{corpus, packed_from_file, root};
 use glint::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH};
-use glint::cpu::render::{adaptive_leaf_counts, render_pixel};
-use glint::cpu::traverse::NoCounters;
 use glint::scene::{AaMode, OptionOverrides};
 use glint::testing::adaptive_lattice_sample;
+use glint::tracer::sampling::render::{adaptive_leaf_counts, render_pixel};
+use glint::tracer::traversal::traverse::NoCounters;
 
 fn check(file: &str, size: u32, depth: u32) {
     check_path(&corpus().join("a4-2021plus").join(file), size, depth, None);
@@ -28,7 +28,7 @@ fn check_path(path: &std::path::Path, size: u32, depth: u32, threshold: Option<f
         ..OptionOverrides::default()
     };
     let scene = packed_from_file(path, &overrides).remove(0);
-    let film = glint::cpu::render(&scene, &|_, _| {});
+    let film = glint::tracer::render(&scene, &|_, _| {});
     let leaves = adaptive_leaf_counts(&scene);
     let mut split = 0;
     for y in 0..size {
@@ -107,7 +107,7 @@ fn adaptive_scene(source: &str, threshold: f32, depth: u32) -> glint::pack::Pack
 #[test]
 fn lattice_points_on_a_pixel_aligned_edge_fall_on_both_sides() {
     let scene = pixel_aligned_edge(3);
-    let film = glint::cpu::render(&scene, &|_, _| {});
+    let film = glint::tracer::render(&scene, &|_, _| {});
     let column_error = |x: usize, exact: f32| {
         (0..64)
             .map(|y| (film.pixels[y * 16 + x][1] - exact).abs())
@@ -172,7 +172,7 @@ fn bar_between_corners() -> glint::pack::PackedScene {
 #[test]
 fn detail_between_a_pixels_corners_splits_it() {
     let scene = bar_between_corners();
-    let film = glint::cpu::render(&scene, &|_, _| {});
+    let film = glint::tracer::render(&scene, &|_, _| {});
     let leaves = adaptive_leaf_counts(&scene);
     for y in 0..16 {
         let at = |x: usize| y * 16 + x;
@@ -206,7 +206,7 @@ fn bar_inside_a_half() -> glint::pack::PackedScene {
 #[test]
 fn detail_between_a_squares_corners_splits_it_at_every_level() {
     let scene = bar_inside_a_half();
-    let film = glint::cpu::render(&scene, &|_, _| {});
+    let film = glint::tracer::render(&scene, &|_, _| {});
     let leaves = adaptive_leaf_counts(&scene);
     for y in 0..16 {
         let at = |x: usize| y * 16 + x;
@@ -252,7 +252,7 @@ fn item_edges_split_whatever_the_contrast() {
 fn assert_splits_only_at_the_middle_edge(
     scene: &glint::pack::PackedScene,
 ) -> (glint::film::Film, Vec<u32>) {
-    let film = glint::cpu::render(scene, &|_, _| {});
+    let film = glint::tracer::render(scene, &|_, _| {});
     let leaves = adaptive_leaf_counts(scene);
     for y in 0..64 {
         let at = |x: usize| y * 16 + x;
@@ -307,7 +307,7 @@ fn texture_detail_splits_down_to_the_fine_detail_depth() {
         ..OptionOverrides::default()
     };
     let scene = common::striped_quad(&dir, &overrides);
-    let film = glint::cpu::render(&scene, &|_, _| {});
+    let film = glint::tracer::render(&scene, &|_, _| {});
     let leaves = adaptive_leaf_counts(&scene);
     let deepest = 1 << (2 * AA_FINE_DETAIL_DEPTH);
     assert!(leaves.iter().all(|&l| l <= deepest), "{leaves:?}");

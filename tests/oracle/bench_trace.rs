@@ -152,7 +152,7 @@ fn hits_equal_brute_force_over_the_same_rays() {
     assert_eq!(expected.primary_rays, 48 * 40);
     assert!(expected.primary_hits > 0 && expected.primary_hits < expected.primary_rays);
     assert!(expected.shadow_occluded > 0 && expected.shadow_occluded < expected.shadow_rays);
-    let is_mesh = |h: &&glint::cpu::traverse::Hit| {
+    let is_mesh = |h: &&glint::tracer::traversal::traverse::Hit| {
         brute.instances[h.item as usize].kind == glint::constants::KIND_MESH
     };
     assert!(hits.iter().filter(|h| h.is_hit()).any(|h| !is_mesh(&h)));

@@ -9,11 +9,11 @@ use crate::oracle_support;
 
 use glam::{DMat4, DQuat, DVec3, Vec3};
 use glint::constants::{CSG_FLIP, CSG_INDEX_MASK, T_MISS};
-use glint::cpu::ray::Ray;
-use glint::cpu::traverse::{closest_hit, NoCounters};
 use glint::pack::{pack, PackedScene};
 use glint::scene::flatten::{CsgObject, CsgStep, FlatScene, Object, ObjectKind};
 use glint::scene::{Camera, CsgOp, Material, RenderOptions};
+use glint::tracer::base::ray::Ray;
+use glint::tracer::traversal::traverse::{closest_hit, NoCounters};
 use oracle_support::Rng;
 
 fn leaf(kind: ObjectKind, object_to_world: DMat4, material: usize) -> CsgStep {
@@ -701,7 +701,7 @@ fn check_normals(name: &str, tree: &Tree, seed: u64) {
         if !hit.is_hit() {
             continue;
         }
-        let s = glint::cpu::surface::surface_at(&packed, &ray, &hit);
+        let s = glint::tracer::shading::surface::surface_at(&packed, &ray, &hit);
         let (p, n) = (s.p.as_dvec3(), s.normal.as_dvec3());
         let own = ((hit.part & CSG_INDEX_MASK) - first_leaf) as usize;
         let edge = leaves.iter().enumerate().any(|(k, (kind, inv))| {

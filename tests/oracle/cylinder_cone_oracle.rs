@@ -12,16 +12,16 @@ use oracle_support::*;
 
 use glam::{DMat4, DVec3, Vec3};
 use glint::constants::T_MISS;
-use glint::cpu::cylinder_cone::{
-    cone_surface, cylinder_surface, intersect_cone, intersect_cylinder,
-};
-use glint::cpu::intersect::intersect_instance;
-use glint::cpu::ray::{offset_ray, Ray};
-use glint::cpu::surface::surface_at;
-use glint::cpu::traverse::Hit;
 use glint::pack::{pack, PackedScene};
 use glint::scene::flatten::{FlatScene, Object, ObjectKind};
 use glint::scene::{Camera, GridMode, Material, RenderOptions};
+use glint::tracer::base::ray::{offset_ray, Ray};
+use glint::tracer::geometry::cylinder_cone::{
+    cone_surface, cylinder_surface, intersect_cone, intersect_cylinder,
+};
+use glint::tracer::geometry::intersect::intersect_instance;
+use glint::tracer::shading::surface::surface_at;
+use glint::tracer::traversal::traverse::Hit;
 
 // ---------------------------------------------------------------------------------------
 // Seeded randomness (splitmix64), as in intersect_oracle.rs.

@@ -8,12 +8,12 @@ use crate::common;
 use common::{corpus, load_scenes, temp_dir, Rng};
 use glam::{DVec3, Vec3};
 use glint::constants::KIND_MESH;
-use glint::cpu::ray::{camera_ray, Ray};
-use glint::cpu::surface::surface_at;
-use glint::cpu::traverse::{any_hit, closest_hit, Counters, NoCounters};
 use glint::pack::{pack, PackedScene};
 use glint::scene::flatten::{FlatScene, Triangle};
 use glint::scene::{GridMode, OptionOverrides};
+use glint::tracer::base::ray::{camera_ray, Ray};
+use glint::tracer::shading::surface::surface_at;
+use glint::tracer::traversal::traverse::{any_hit, closest_hit, Counters, NoCounters};
 
 fn macho_cows(grid: GridMode) -> FlatScene {
     let overrides = OptionOverrides {

@@ -10,16 +10,16 @@ use oracle_support::*;
 
 use glam::{DMat4, DQuat, DVec3, Vec3};
 use glint::constants::T_MISS;
-use glint::cpu::intersect::{
-    intersect_box, intersect_instance, intersect_sphere, intersect_triangle, triangle_ray_setup,
-    triangle_vertices,
-};
-use glint::cpu::ray::{offset_ray, Ray};
-use glint::cpu::surface::surface_at;
-use glint::cpu::traverse::{closest_hit, Hit, NoCounters};
 use glint::pack::{pack, PackedScene};
 use glint::scene::flatten::{FlatScene, Object, ObjectKind, Triangle};
 use glint::scene::{Camera, GridMode, Material, RenderOptions};
+use glint::tracer::base::ray::{offset_ray, Ray};
+use glint::tracer::geometry::intersect::{
+    intersect_box, intersect_instance, intersect_sphere, intersect_triangle, triangle_ray_setup,
+    triangle_vertices,
+};
+use glint::tracer::shading::surface::surface_at;
+use glint::tracer::traversal::traverse::{closest_hit, Hit, NoCounters};
 
 // ---------------------------------------------------------------------------------------
 // Seeded randomness (splitmix64).

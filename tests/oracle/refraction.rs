@@ -10,22 +10,22 @@ use crate::common;
 use common::{failure_dir, load_scenes, render_cpu};
 use glam::{DMat4, DVec3, Vec3};
 use glint::constants::{AIR_IOR, MATERIAL_REFRACTIVE, MEDIUM_STACK_SIZE};
-use glint::cpu::camera_media::camera_media;
-use glint::cpu::dielectric::{
-    dielectric_interface, medium_ior, medium_pop, medium_push, normal_transmission,
-    refract_direction, schlick_reflectance, MediumStack,
-};
-use glint::cpu::ray::{offset_ray, Ray};
-use glint::cpu::rng::SampleSeed;
-use glint::cpu::shade::shade_phong;
-use glint::cpu::surface::surface_at;
-use glint::cpu::traverse::{closest_hit, NoCounters};
 use glint::diff::assert_images_match;
 use glint::film::Film;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::pipeline::pack_scene;
 use glint::scene::flatten::{FlatScene, Object, ObjectKind};
 use glint::scene::{AaMode, Background, Camera, Light, Material, OptionOverrides, RenderOptions};
+use glint::tracer::base::ray::{offset_ray, Ray};
+use glint::tracer::base::rng::SampleSeed;
+use glint::tracer::path::camera_media::camera_media;
+use glint::tracer::shading::dielectric::{
+    dielectric_interface, medium_ior, medium_pop, medium_push, normal_transmission,
+    refract_direction, schlick_reflectance, MediumStack,
+};
+use glint::tracer::shading::shade::shade_phong;
+use glint::tracer::shading::surface::surface_at;
+use glint::tracer::traversal::traverse::{closest_hit, NoCounters};
 
 fn glass(ior: f32) -> Material {
     Material {
@@ -713,7 +713,7 @@ fn bad_indices_are_errors_naming_the_argument() {
     );
 }
 
-/// A smooth glass mesh refracts by its interpolated normals (cpu::smooth::smooth_interface):
+/// A smooth glass mesh refracts by its interpolated normals (tracer::shading::smooth::smooth_interface):
 /// a 32 × 16 UV sphere of glass (index 1.5) with its exact vertex normals, seen against a
 /// vertical gradient, comes out much closer to the analytic glass sphere than the same
 /// mesh shaded flat, whose facets each refract the gradient their own way; at scales 10⁻³

@@ -8,17 +8,17 @@ use crate::common;
 
 use common::{failure_dir, load_scenes};
 use glam::{DMat4, DVec3, Vec3};
-use glint::cpu::ray::Ray;
-use glint::cpu::rng::SampleSeed;
-use glint::cpu::shade::phong_power;
-use glint::cpu::trace::trace_ray;
-use glint::cpu::traverse::NoCounters;
 use glint::diff::assert_images_match;
 use glint::pack::{pack, SceneFeatures};
 use glint::scene::flatten::{FlatScene, Object, ObjectKind};
 use glint::scene::{
     Background, Camera, Light, Material, OptionOverrides, RenderOptions, TraceDepth,
 };
+use glint::tracer::base::ray::Ray;
+use glint::tracer::base::rng::SampleSeed;
+use glint::tracer::path::trace::trace_ray;
+use glint::tracer::shading::shade::phong_power;
+use glint::tracer::traversal::traverse::NoCounters;
 
 fn sphere_scene(
     material: Material,
@@ -220,7 +220,7 @@ const MAX_LIGHT_ON_SURFACE_DARKER: f64 = 0.001;
 
 /// A point light in a ceiling's face (also through glass), on a shelf's edge, inside a
 /// panel thinner than rounding, and an area light in the ceiling's plane, at scales 1,
-/// 1e-3 and 1e3: shadow rays stop short of the light (`cpu::ray::shadow_reach`), so the
+/// 1e-3 and 1e3: shadow rays stop short of the light (`tracer::base::ray::shadow_reach`), so the
 /// surface through it does not decide pixel by pixel whether it blocks.
 #[test]
 fn light_on_a_surface_does_not_speckle() {
@@ -298,7 +298,7 @@ fn smooth_torus_matches_povrays_smooth_triangles() {
     assert!(flat > 2.0 * smooth, "flat {flat:.5} vs smooth {smooth:.5}");
 }
 
-/// The terminator rule (cpu::smooth::visible_normal) on a coarse smooth sphere (8 × 4
+/// The terminator rule (tracer::shading::smooth::visible_normal) on a coarse smooth sphere (8 × 4
 /// quads, so the interpolated normals of its silhouette triangles lean far behind their
 /// facets): lit from the eye, no pixel of it is black (an interpolated normal facing away
 /// from the viewer would leave its facet unlit); as a mirror (reflectance 0.9, nothing
@@ -368,9 +368,9 @@ fn smooth_silhouettes_are_neither_black_nor_see_inside() {
 /// normal.
 #[test]
 fn smooth_normals_interpolate_and_transform_at_every_scale() {
-    use glint::cpu::smooth::smooth_normal;
-    use glint::cpu::surface::surface_at;
-    use glint::cpu::traverse::closest_hit;
+    use glint::tracer::shading::smooth::smooth_normal;
+    use glint::tracer::shading::surface::surface_at;
+    use glint::tracer::traversal::traverse::closest_hit;
     let corners = [DVec3::ZERO, DVec3::X, DVec3::Y];
     let normals = [
         DVec3::new(1.0, -1.0, 1.0),

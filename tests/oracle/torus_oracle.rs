@@ -1,4 +1,4 @@
-//! Numerical stress test of the f32 ray–torus intersection (`cpu::torus`) against an f64
+//! Numerical stress test of the f32 ray–torus intersection (`tracer::geometry::torus`) against an f64
 //! oracle, in the style of `intersect_oracle.rs`: seeded tori at all scales (1e-3..1e4,
 //! log-uniform), tube ratios rout/rin from 0.02 to 2 (spindle tori included), random
 //! rotations and placements, rays from up to 1e4 sizes away, and the hard families:
@@ -23,13 +23,13 @@ use oracle_support::*;
 
 use glam::{DMat4, DVec3, Vec3};
 use glint::constants::T_MISS;
-use glint::cpu::intersect::intersect_instance;
-use glint::cpu::ray::offset_ray;
-use glint::cpu::surface::surface_at;
-use glint::cpu::traverse::Hit;
 use glint::pack::{pack, PackedInstance, PackedScene};
 use glint::scene::flatten::{FlatScene, Object, ObjectKind};
 use glint::scene::{Camera, GridMode, Material, RenderOptions};
+use glint::tracer::base::ray::offset_ray;
+use glint::tracer::geometry::intersect::intersect_instance;
+use glint::tracer::shading::surface::surface_at;
+use glint::tracer::traversal::traverse::Hit;
 
 // ---------------------------------------------------------------------------------------
 // The f64 oracle.
@@ -392,7 +392,7 @@ fn torus_rays_leaving_the_surface() {
             if t == T_MISS {
                 continue;
             }
-            let ray = glint::cpu::ray::Ray { origin: o, dir: d };
+            let ray = glint::tracer::base::ray::Ray { origin: o, dir: d };
             let hit = Hit {
                 t,
                 item: 0,

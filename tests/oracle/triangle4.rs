@@ -1,4 +1,4 @@
-//! The CPU's four-lane triangle test (`cpu::triangle4`) against the scalar watertight test
+//! The CPU's four-lane triangle test (`tracer::geometry::triangle4`) against the scalar watertight test
 //! it must equal: per lane the same hit or miss and the same t, bit for bit, on seeded
 //! random triangles at all scales, rays aimed at vertices and along shared edges (where
 //! the edge functions are zero and only their sign of zero differs between the two
@@ -10,11 +10,11 @@ use oracle_support::*;
 
 use glam::{DVec3, Vec3};
 use glint::constants::NO_ITEM;
-use glint::cpu::intersect::{intersect_triangle, triangle_vertices};
-use glint::cpu::triangle4::{
+use glint::pack::PackedTriangle;
+use glint::tracer::geometry::intersect::{intersect_triangle, triangle_vertices};
+use glint::tracer::geometry::triangle4::{
     intersect_triangles4, NearestTriangle, TriangleBatch, TriangleRays, LANES,
 };
-use glint::pack::PackedTriangle;
 
 fn packed(p: [DVec3; 3]) -> PackedTriangle {
     PackedTriangle {

@@ -8,7 +8,7 @@
 //!   builtins, which naga does not see as calls) is no step of either tracer;
 //! - a call to a Rust function whose twin comment is about part or a form of a WGSL
 //!   function (`triangle4.rs`'s four-lane triangle test: "Mirror of
-//!   shaders/intersect.wgsl::intersect_triangle on four triangles, one per lane") counts
+//!   src/tracer/geometry/intersect.wgsl::intersect_triangle on four triangles, one per lane") counts
 //!   as a call of that WGSL function: the CPU-only form of a step is that step;
 //! - WGSL calls under `ITERATION_GUARD` (lavapipe's loop-limiter check) are not read
 //!   (`wgsl_calls`): the CPU has no loop limiter.
@@ -290,7 +290,7 @@ pub fn first_calls(calls: &[(String, bool)], fixed_only: bool) -> Vec<String> {
 }
 
 /// Rust functions whose twin comment names a WGSL function but is about part of it, or
-/// a form of it ("Mirror of shaders/intersect.wgsl::intersect_triangle on four
+/// a form of it ("Mirror of src/tracer/geometry/intersect.wgsl::intersect_triangle on four
 /// triangles, one per lane — change both."): a call of one counts as a call of the WGSL
 /// function it names (a lane-wise form of a step is that step).
 pub fn partial_function_twins(items: &[Item]) -> Vec<(RustFn, String)> {

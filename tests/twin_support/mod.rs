@@ -88,11 +88,11 @@ pub fn parse_twin_ref(comment: &str, line: usize) -> Option<TwinRef> {
     })
 }
 
-/// Every `.rs` under `src/` and `.wgsl` under `shaders/` of `root`, as (repository path,
-/// text), sorted by path.
+/// Every `.rs` and `.wgsl` under `src/` and every `.wgsl` under `shaders/` of `root`, as
+/// (repository path, text), sorted by path.
 pub fn source_texts(root: &Path) -> Vec<(String, String)> {
     let mut files = Vec::new();
-    for (dir, ext) in [("src", "rs"), ("shaders", "wgsl")] {
+    for (dir, ext) in [("src", "rs"), ("src", "wgsl"), ("shaders", "wgsl")] {
         collect(&root.join(dir), ext, &mut files);
     }
     files.sort();

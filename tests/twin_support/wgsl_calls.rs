@@ -9,7 +9,7 @@
 //! texts given (so tests can feed edited copies), and parsed with naga; a function's
 //! calls are kept per configuration.
 
-use glint::gpu::shader::{assemble_common_with, assemble_with, preprocess_with, Entry};
+use glint::gpu::compile::shader::{assemble_common_with, assemble_with, preprocess_with, Entry};
 use glint::gpu::KernelConfig;
 use glint::mailboxes::Mailboxes;
 use glint::pack::SceneFeatures;
@@ -20,7 +20,7 @@ use std::sync::Mutex;
 /// One WGSL function as naga reads it.
 #[derive(Clone, Debug, Default)]
 pub struct WgslFunction {
-    /// The shader file that declares it (`shaders/…wgsl`).
+    /// The shader file that declares it (its repository path, `src/…/X.wgsl`).
     pub file: String,
     /// A `@compute` entry point (its arguments are builtins, not a call's).
     pub entry_point: bool,
@@ -56,8 +56,10 @@ enum ModuleKind {
     Present,
 }
 
-const BENCH_FILE: &str = "bench/torus.wgsl";
-const PRESENT_FILE: &str = "view_present.wgsl";
+/// The benchmark kernel, as `assemble_common_with` names it (its path under `shaders/`).
+const BENCH_NAME: &str = "bench/torus.wgsl";
+const BENCH_FILE: &str = "shaders/bench/torus.wgsl";
+const PRESENT_FILE: &str = "shaders/view_present.wgsl";
 
 /// Every scene feature.
 fn all_features() -> SceneFeatures {
@@ -114,10 +116,10 @@ fn layout(
     let source = match kind {
         ModuleKind::Render => assemble_with(features, Entry::Render, kernel),
         ModuleKind::Probe => assemble_with(features, Entry::Probe, kernel),
-        ModuleKind::Bench => assemble_common_with(features, (BENCH_FILE, "")),
+        ModuleKind::Bench => assemble_common_with(features, (BENCH_NAME, "")),
         ModuleKind::Present => return (String::new(), vec![PRESENT_FILE.to_string()]),
     };
-    let mut parts = source.split("\n// ---- shaders/");
+    let mut parts = source.split("\n// ---- ");
     let prelude = parts.next().unwrap_or_default().to_string();
     let files = parts
         .filter_map(|p| p.split_once(" ----").map(|(name, _)| name.to_string()))
@@ -127,7 +129,7 @@ fn layout(
 
 /// A file's text as the module includes it (the benchmark kernel behind its own prelude).
 fn module_text(name: &str, texts: &HashMap<&str, &str>) -> Option<String> {
-    let text = texts.get(format!("shaders/{name}").as_str())?;
+    let text = texts.get(name)?;
     Some(if name == BENCH_FILE {
         glint::bench::torus_gpu::bench_prelude() + text
     } else {
@@ -164,7 +166,7 @@ fn kept_lines(
 ) -> BTreeSet<(String, usize)> {
     let mut kept = BTreeSet::new();
     for name in files {
-        let Some(text) = tagged.get(&format!("shaders/{name}")) else {
+        let Some(text) = tagged.get(name) else {
             continue;
         };
         let Ok(out) = preprocess_with(name, text, features, kernel) else {
@@ -267,9 +269,9 @@ fn assemble(
     let (mut source, files) = layout(kind, features, kernel);
     let mut starts = Vec::new();
     for name in files {
-        let text = module_text(&name, texts).ok_or(format!("no file shaders/{name}"))?;
-        source += &format!("\n// ---- shaders/{name} ----\n");
-        starts.push((source.len(), format!("shaders/{name}")));
+        let text = module_text(&name, texts).ok_or(format!("no file {name}"))?;
+        source += &format!("\n// ---- {name} ----\n");
+        starts.push((source.len(), name.clone()));
         source += &preprocess_with(&name, &text, features, kernel)?;
     }
     Ok((source, starts))

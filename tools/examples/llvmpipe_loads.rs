@@ -230,7 +230,7 @@ fn main() {
 
 /// A `side`×`side` texture of `format` holding `words` (as many as it takes), as a view.
 fn texture_view(
-    ctx: &glint::gpu::context::GpuContext,
+    ctx: &glint::gpu::device::context::GpuContext,
     side: u32,
     format: wgpu::TextureFormat,
     words: &[u32],
@@ -249,7 +249,7 @@ fn texture_view(
 /// A texture of `dimension`, `[width, height]`, `format` and `usage` holding `words`, as a
 /// view.
 fn view_of(
-    ctx: &glint::gpu::context::GpuContext,
+    ctx: &glint::gpu::device::context::GpuContext,
     dimension: wgpu::TextureDimension,
     [width, height]: [u32; 2],
     format: wgpu::TextureFormat,

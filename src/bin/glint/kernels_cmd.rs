@@ -5,11 +5,11 @@
 
 use crate::kernels::occupancy::Family;
 use crate::kernels::{collect, measure, report, write_kernels, Wave};
+use clap::{Args, ValueEnum};
+use glint::gpu::compile::shader::{all_feature_sets, Entry};
+use glint::gpu::KernelVariant;
 use glint::pack::combinations;
 use glint::pack::SceneFeatures;
-use clap::{Args, ValueEnum};
-use glint::gpu::shader::{all_feature_sets, Entry};
-use glint::gpu::KernelVariant;
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

@@ -234,7 +234,7 @@ fn main() -> ExitCode {
     // More llvmpipe worker threads than cores, for lavapipe's load balance (a no-op on
     // other adapters; the user's own LP_NUM_THREADS wins).
     // SAFETY: as above, single-threaded and before any GPU instance.
-    unsafe { glint::gpu::context::set_default_llvmpipe_threads() };
+    unsafe { glint::gpu::device::context::set_default_llvmpipe_threads() };
     glint::image_io::remove_temp_files_on_signals();
     let cli = Cli::parse();
     if let Command::Kernels(args) = &cli.command {
@@ -250,7 +250,7 @@ fn main() -> ExitCode {
     ) {
         // A bad cache setting is the command line's mistake (exit code 2), found before
         // anything runs rather than when the first GPU pipeline is compiled.
-        if let Err(e) = glint::gpu::disk_cache::check_switch() {
+        if let Err(e) = glint::gpu::device::disk_cache::check_switch() {
             eprintln!("glint: error: {e}");
             return ExitCode::from(2);
         }
@@ -598,7 +598,7 @@ fn info() {
         println!(
             "  max 2-D texture side: {} (the scene's tables: up to {} M texels each)",
             a.max_texture_dimension_2d,
-            (glint::gpu::tables::TABLE_ROW * a.max_texture_dimension_2d as u64) >> 20
+            (glint::gpu::upload::tables::TABLE_ROW * a.max_texture_dimension_2d as u64) >> 20
         );
         println!(
             "  max invocations per workgroup: {}, max workgroups per dimension: {}",
@@ -606,7 +606,7 @@ fn info() {
         );
         println!("  glint's kernel on it: {}", a.kernel);
         if a.device_type == "Cpu" {
-            println!("  {}", glint::gpu::context::llvmpipe_threads_line());
+            println!("  {}", glint::gpu::device::context::llvmpipe_threads_line());
         }
     }
 }

@@ -1,5 +1,5 @@
 // glint's sphere and box instances for Embree's user geometry: the same f32 tests as
-// glint's src/cpu/intersect.rs (sphere_interval, intersect_sphere, box_interval,
+// glint's src/tracer/geometry/intersect.rs (sphere_interval, intersect_sphere, box_interval,
 // intersect_box, to_object_space), in the same order of operations, so that both tracers
 // find the same hits. The constants are glint's (src/constants.rs).
 #pragma once

@@ -22,7 +22,7 @@ and the NAVI21 budgets' verdict.
 `--drop FEATURE,...` resolves features as absent: a what-if (what the kernels cost
 without that feature's code), not a module any scene would get. The re-assembly with the
 dump's own flags must give the dump back byte for byte (checked: the script stops
-otherwise), so the `// #if` resolution here is glint's (src/gpu/shader.rs::
+otherwise), so the `// #if` resolution here is glint's (src/gpu/compile/shader.rs::
 preprocess_with). tests/gpu/kernel_instrument.rs keeps split.wgsl valid. About 2.5 s of
 one core a kernel and wave size.
 """
@@ -57,7 +57,7 @@ def condition(text, names):
 
 
 def preprocess(text, names):
-    """glint's `// #if` resolution (src/gpu/shader.rs::preprocess_with)."""
+    """glint's `// #if` resolution (src/gpu/compile/shader.rs::preprocess_with)."""
     stack = []
     out = []
     for line in text.splitlines():
@@ -89,7 +89,7 @@ def names_of(header):
         flags.add("STORAGE_TABLES")
     if "iteration guard" in kernel:
         flags.add("ITERATION_GUARD")
-    # (CAMERA_RAY_IN_LOOP as glint sets it: src/gpu/shader.rs::KERNEL_FLAGS.)
+    # (CAMERA_RAY_IN_LOOP as glint sets it: src/gpu/compile/shader.rs::KERNEL_FLAGS.)
     if "REFRACTION" in features or ("camera ray in loop" in kernel and "REFLECTION" in features):
         flags.add("CAMERA_RAY_IN_LOOP")
     if "any hit in one loop" in kernel:

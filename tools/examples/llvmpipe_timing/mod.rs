@@ -4,7 +4,7 @@
 //! its bindings given as (binding, resource) pairs, timed by the host clock around submit
 //! and wait, four times.
 
-use glint::gpu::context::GpuContext;
+use glint::gpu::device::context::GpuContext;
 use std::time::Instant;
 
 /// Invocations of every timed dispatch.

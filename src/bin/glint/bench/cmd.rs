@@ -15,14 +15,14 @@ use glam::{DVec3, Vec3};
 use glint::accel::aabb::Aabb;
 use glint::accel::grid::{Grid, DEFAULT_DENSITY, MESH_DEFAULT_DENSITY};
 use glint::bench::splitmix::SplitMix;
-use glint::cpu::intersect::triangle_vertices;
-use glint::cpu::ray::camera_ray;
-use glint::cpu::ray::Ray;
-use glint::cpu::traverse::{closest_hit, NoCounters};
 use glint::pack::PackedScene;
 use glint::pipeline::pack_scene;
 use glint::scene::flatten::{FlatScene, Triangle};
 use glint::scene::{Camera, GridMode, RenderOptions};
+use glint::tracer::base::ray::camera_ray;
+use glint::tracer::base::ray::Ray;
+use glint::tracer::geometry::intersect::triangle_vertices;
+use glint::tracer::traversal::traverse::{closest_hit, NoCounters};
 use rayon::prelude::*;
 use std::time::Duration;
 

@@ -12,13 +12,13 @@
 
 use super::common::{load_scene, BenchArgs};
 use super::timing::fastest;
-use glint::cpu::render::render_with_counters;
 use glint::diff::diff_films;
 use glint::gpu::{render_gpu, GpuContext, GpuRender, GpuRenderOptions};
 use glint::mailboxes::Mailboxes;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::pipeline::pack_scene;
 use glint::scene::AaMode;
+use glint::tracer::sampling::render::render_with_counters;
 use std::time::Instant;
 
 /// Scenes of the comparison: the CS488 corpus' 2021+ family and glint's demo.
@@ -61,7 +61,7 @@ pub fn bench_gpu(args: &BenchArgs) -> anyhow::Result<()> {
         if timed { "timestamp queries" } else { "wall time (the adapter has no timestamp queries)" }
     );
     if ctx.info.device_type == wgpu::DeviceType::Cpu {
-        println!("{}", glint::gpu::context::llvmpipe_threads_line());
+        println!("{}", glint::gpu::device::context::llvmpipe_threads_line());
     }
     println!(
         "\n## GPU vs CPU, {SIDE}×{SIDE} (fastest of {})",
@@ -152,7 +152,7 @@ fn bench_scene(
         info: info_steady,
         ..
     } = gpu?;
-    let (t_cpu, cpu_film) = fastest(args.repeat, || glint::cpu::render(&packed, &|_, _| {}));
+    let (t_cpu, cpu_film) = fastest(args.repeat, || glint::tracer::render(&packed, &|_, _| {}));
     let (_, counters) = render_with_counters(&packed, &|_, _| {});
     let (report, _) = diff_films(&cpu_film, &gpu_film)?;
     let gpu_time = info_steady.gpu_time.unwrap_or(t_gpu);

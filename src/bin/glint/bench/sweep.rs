@@ -261,7 +261,7 @@ fn time_cpu(scene: &FlatScene, repeat: usize) -> anyhow::Result<(Timing, Film)> 
             break;
         }
         let (core0, start) = (process_cpu_time(), Instant::now());
-        film = Some(glint::cpu::render(&packed, &|_, _| {}));
+        film = Some(glint::tracer::render(&packed, &|_, _| {}));
         let wall = start.elapsed();
         let core = process_cpu_time()
             .zip(core0)

@@ -1,5 +1,5 @@
 //! `glint bench --torus`: ray–torus intersections per second on the CPU for glint's
-//! solver (`cpu::torus`: rescaled, clipped quartic; derivative-split Newton–bisection)
+//! solver (`tracer::geometry::torus`: rescaled, clipped quartic; derivative-split Newton–bisection)
 //! against the textbook closed form (Ferrari via a resolvent cubic, Schwarze's
 //! Graphics Gems I solver, in f32 — here for the comparison only), each with its
 //! accuracy against an f64 oracle on the same rays: hit/miss disagreements (grazing rays
@@ -12,8 +12,8 @@ use glam::DVec3;
 use glint::bench::ferrari::intersect_torus_ferrari;
 use glint::bench::torus_gpu::{GpuTorusBench, GpuTorusSolver};
 pub use glint::bench::torus_rays::{rays, TorusRay};
-use glint::cpu::torus::intersect_torus;
 use glint::gpu::GpuContext;
+use glint::tracer::geometry::torus::intersect_torus;
 use rayon::prelude::*;
 
 /// f64 oracle: first sign change of the factored torus function along the bounding

@@ -16,10 +16,10 @@ use glint::bench::trace_rays::{
     camera_rays, count_work, load_first_render, shadow_rays, summarise, trace_primary_into,
     trace_shadow_into, TraceSummary,
 };
-use glint::cpu::traverse::Hit;
 use glint::pack::PackedScene;
 use glint::pipeline::pack_scene;
 use glint::script_driver::ScriptSettings;
+use glint::tracer::traversal::traverse::Hit;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 

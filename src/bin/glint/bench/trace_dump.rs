@@ -21,11 +21,11 @@
 use glam::Vec3;
 use glint::bench::trace_rays::{ItemNumbering, ShadowRay};
 use glint::constants::{KIND_CUBE, KIND_MESH, KIND_SPHERE, T_MISS};
-use glint::cpu::intersect::triangle_vertices;
-use glint::cpu::ray::Ray;
-use glint::cpu::traverse::Hit;
-use glint::cpu::traverse_mesh::instance_mesh;
 use glint::pack::PackedScene;
+use glint::tracer::base::ray::Ray;
+use glint::tracer::geometry::intersect::triangle_vertices;
+use glint::tracer::traversal::traverse::Hit;
+use glint::tracer::traversal::traverse_mesh::instance_mesh;
 use std::io::Write;
 use std::path::Path;
 

@@ -1,13 +1,13 @@
 //! The kernels a scene's renders would compile: each `gr.render` of the script flattened
 //! and packed as `glint render` does, its feature set specialising every render-module
 //! entry point in the chosen kernel variant, and each entry's SPIR-V built as wgpu 30
-//! hands it to Vulkan ([`glint::gpu::spirv`]). Identical SPIR-V (the same entry of
+//! hands it to Vulkan ([`glint::gpu::compile::spirv`]). Identical SPIR-V (the same entry of
 //! scenes with the same features) is kept once, with every scene that uses it.
 
-use glint::gpu::kernel::{KernelConfig, KernelVariant};
+use glint::gpu::compile::kernel::{KernelConfig, KernelVariant};
+use glint::gpu::compile::shader::{assemble_with, wavefront_kernels, Entry};
+use glint::gpu::compile::spirv::{entry_spirv, spirv_bytes, SpirvTarget};
 use glint::gpu::plan::Mode;
-use glint::gpu::shader::{assemble_with, wavefront_kernels, Entry};
-use glint::gpu::spirv::{entry_spirv, spirv_bytes, SpirvTarget};
 use glint::pack::SceneFeatures;
 use glint::pipeline::prepare_request;
 use glint::scene::OptionOverrides;

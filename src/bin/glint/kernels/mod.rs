@@ -14,9 +14,9 @@ pub mod stats;
 pub mod vulkan;
 pub mod wgsl_bounds;
 
+use collect::KernelSet;
 use glint::pack::combinations;
 use glint::pack::SceneFeatures;
-use collect::KernelSet;
 use occupancy::Family;
 use stats::KernelStats;
 use std::path::{Path, PathBuf};
@@ -101,11 +101,11 @@ pub fn measure(
     wgsl: &[PathBuf],
     family: Option<Family>,
     waves: &[Wave],
-    entries: Option<&[glint::gpu::shader::Entry]>,
+    entries: Option<&[glint::gpu::compile::shader::Entry]>,
     variant: glint::gpu::KernelVariant,
 ) -> Result<Measurement, String> {
     let device = vulkan::StatsDevice::open(family.is_some()).map_err(|e| e.to_string())?;
-    let target = glint::gpu::spirv::SpirvTarget::vulkan_1_3();
+    let target = glint::gpu::compile::spirv::SpirvTarget::vulkan_1_3();
     let config = collect::variant_config(variant);
     let mut set = KernelSet::default();
     for scene in scenes {
@@ -170,7 +170,7 @@ pub fn write_kernels(set: &KernelSet, dir: &Path) -> Result<(), String> {
     };
     for k in &set.kernels {
         let stem = format!("{}-{}", k.entry.name(), &k.digest[..8]);
-        let spirv = glint::gpu::spirv::spirv_bytes(&k.spirv);
+        let spirv = glint::gpu::compile::spirv::spirv_bytes(&k.spirv);
         write(&dir.join(format!("{stem}.spv")), &spirv)?;
         write(&dir.join(format!("{stem}.wgsl")), k.wgsl.as_bytes())?;
     }

@@ -8,9 +8,9 @@
 
 use super::stats::KernelStats;
 use ash::vk;
-use glint::gpu::kernel::KernelConfig;
+use glint::gpu::compile::kernel::KernelConfig;
+use glint::gpu::compile::shader::Entry;
 use glint::gpu::pipeline::layout_entries;
-use glint::gpu::shader::Entry;
 use std::ffi::CStr;
 
 /// A Vulkan device that compiles kernels and reports their statistics.

@@ -109,8 +109,8 @@ mod tests {
     /// Every kernel glint assembles passes, with room to spare.
     #[test]
     fn glint_s_own_kernels_are_well_within_the_bounds() {
-        use glint::gpu::kernel::KernelConfig;
-        use glint::gpu::shader::{assemble_with, Entry};
+        use glint::gpu::compile::kernel::KernelConfig;
+        use glint::gpu::compile::shader::{assemble_with, Entry};
         use glint::pack::SceneFeatures;
         let every = SceneFeatures::ALL
             .iter()

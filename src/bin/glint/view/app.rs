@@ -346,12 +346,13 @@ fn device_for_window(
     name: Option<&str>,
 ) -> Result<(GpuContext, wgpu::Surface<'static>), String> {
     let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-    desc.backends = glint::gpu::context::backends();
+    desc.backends = glint::gpu::device::context::backends();
     let instance = wgpu::Instance::new(desc);
     let surface = instance
         .create_surface(Arc::clone(window))
         .map_err(|e| format!("cannot make a surface for the window: {e}"))?;
-    let adapters = pollster::block_on(instance.enumerate_adapters(glint::gpu::context::backends()));
+    let adapters =
+        pollster::block_on(instance.enumerate_adapters(glint::gpu::device::context::backends()));
     let names: Vec<String> = adapters.iter().map(|a| a.get_info().name).collect();
     let mut usable: Vec<wgpu::Adapter> = adapters
         .into_iter()

@@ -3,7 +3,7 @@
 //! was presented (`--screenshot`: the surface texture copied back before it is shown).
 
 use glint::film::Film;
-use glint::gpu::progressive::SumBuffer;
+use glint::gpu::view::progressive::SumBuffer;
 use glint::gpu::GpuContext;
 use std::sync::Arc;
 use wgpu::util::DeviceExt;
@@ -255,7 +255,7 @@ impl SurfaceCopy {
     /// The copied pixels as a film (8-bit values over 255), or None if it failed.
     fn read(self, ctx: &GpuContext, format: wgpu::TextureFormat) -> Option<Film> {
         let size = u64::from(self.row) * u64::from(self.h);
-        let bytes = glint::gpu::buffers::read_back(ctx, &self.buffer, size).ok()?;
+        let bytes = glint::gpu::upload::buffers::read_back(ctx, &self.buffer, size).ok()?;
         let bgra = matches!(
             format,
             wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb

@@ -1,0 +1,116 @@
+//! The wavefront form's chunks and dispatches (AA none and uniform AA through the
+//! wavefront kernels), and a chain's generations, which adaptive AA's lattice passes and
+//! the view's frames run too: per generation closest, shade, args, shadow and gather.
+//! Trees (scenes with refraction) run `tree`'s generations instead.
+
+use super::chunking::{bands, row_pieces, slot_budget};
+use super::shape::WavefrontShape;
+use super::tree::tree_dispatches;
+use super::{AdapterBounds, BindingOffsets, Chunk, ChunkPasses, Dispatch, Workgroups};
+use crate::gpu::upload::buffers::GpuTile;
+use crate::tiling::PixelRect;
+
+/// The chunks of `window` through the wavefront kernels, and the samples array's vec4s:
+/// bands of at most `rows` rows whose queues (of every sample of every pixel) fit one
+/// binding and whose tracing invocations each have a list slot; where a tree's queues do
+/// not fit even one row, pieces of rows.
+pub(super) fn wavefront_chunks(
+    window: PixelRect,
+    shape: WavefrontShape,
+    bounds: AdapterBounds,
+    rows: u32,
+    parts: u32,
+) -> (Vec<Chunk>, u64, u64) {
+    let w = window.width() as u64;
+    let slots = slot_budget(bounds);
+    let per_pixel = shape.samples_per_pixel();
+    let pixel_bytes = per_pixel * shape.vec4s_per_sample() * 16;
+    let pixel_slots = per_pixel * shape.slots_per_sample();
+    let queue_rows = bounds.max_binding / (w * pixel_bytes);
+    let slot_rows = slots / (pixel_slots * w);
+    let rows = (queue_rows.min(slot_rows).clamp(1, u32::MAX as u64) as u32).min(rows);
+    let fit = (bounds.max_binding / pixel_bytes)
+        .min(slots / pixel_slots)
+        .max(1);
+    let chunks = if w > fit {
+        row_pieces(window, fit as u32)
+    } else {
+        bands(window, rows, parts)
+    };
+    let pixels = chunks.iter().map(|c| c.block_pixels()).max().unwrap_or(1);
+    (chunks, shape.vec4s_per_sample() * per_pixel * pixels, 1)
+}
+
+/// The dispatches of a chunk through the wavefront kernels ([`Entry::WAVEFRONT`]'s or,
+/// for a tree, [`Entry::WAVEFRONT_TREE`]'s indices): the camera pass starts the chunk
+/// (its counters cleared), the generations follow; under uniform AA the resolve pass
+/// ends it.
+///
+/// [`Entry::WAVEFRONT`]: crate::gpu::compile::shader::Entry::WAVEFRONT
+/// [`Entry::WAVEFRONT_TREE`]: crate::gpu::compile::shader::Entry::WAVEFRONT_TREE
+pub(super) fn wavefront_dispatches(p: &ChunkPasses, shape: WavefrontShape) -> Vec<Dispatch> {
+    let [w, h] = p.chunk.size;
+    let n = w * h * shape.samples_per_pixel() as u32;
+    let camera = Dispatch {
+        clears_work: true,
+        ..p.run(0, p.params(0, n), p.linear(n))
+    };
+    let (mut out, resolve) = match shape.tree {
+        true => (tree_dispatches(shape, camera, 1, camera.offsets), 10),
+        false => (wavefront_generations(shape, camera, 1, camera.offsets), 6),
+    };
+    if shape.uniform.is_some() {
+        out.push(p.run(resolve, p.params(0, n), p.square()));
+    }
+    out
+}
+
+/// The wavefront kernels' dispatches of a chunk after its `camera` pass (which they
+/// copy the chunk, items and stratum of): per generation g closest, shade, args, shadow,
+/// gather (entries `closest` … `closest` + 4 of the mode's list, bound at `offsets`) —
+/// generation 0's over the chunk's samples as the camera pass, later ones' and every
+/// shadow pass's as the args kernel wrote them (`generation_words` a generation from
+/// `offsets.work`: the next generation's, then this one's shadow pass, with CSG one
+/// dispatch a slice, `GpuTile::slice` telling it which).
+pub(super) fn wavefront_generations(
+    shape: WavefrontShape,
+    camera: Dispatch,
+    closest: usize,
+    offsets: BindingOffsets,
+) -> Vec<Dispatch> {
+    let mut out = vec![camera];
+    let args = |at: u64| Workgroups::Indirect(offsets.work + at);
+    for g in 0..shape.generations {
+        let pass = |entry: usize, workgroups: Workgroups| Dispatch {
+            entry: closest + entry,
+            params: GpuTile {
+                level: g,
+                ..camera.params
+            },
+            workgroups,
+            clears_work: false,
+            writes_args: false,
+            offsets,
+            ..camera
+        };
+        let paths = match g {
+            0 => camera.workgroups,
+            _ => args(shape.paths_args(g)),
+        };
+        out.push(pass(0, paths));
+        out.push(pass(1, paths));
+        let mut args_kernel = Dispatch {
+            writes_args: true,
+            ..pass(2, Workgroups::Direct(1, 1))
+        };
+        args_kernel.params.slice = shape.shadow_slices;
+        out.push(args_kernel);
+        for slice in 0..shape.shadow_slices {
+            let mut shadow = pass(3, args(shape.shadow_args(g, slice)));
+            shadow.params.slice = slice;
+            out.push(shadow);
+        }
+        out.push(pass(4, paths));
+    }
+    out
+}

@@ -1,0 +1,108 @@
+//! What sizes the wavefront kernels' queues and their indirect arguments
+//! ([`WavefrontShape`]): the vec4s a sample's queues take and where in `work_args` each
+//! generation's and each glass round's arguments lie. Chains and trees alike.
+
+use crate::constants::{MAX_SHADOW_CROSSINGS, TREE_PATHS_PER_SAMPLE, TREE_VERTICES_PER_SAMPLE};
+
+/// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
+/// vertex's light slots: `tracer::wavefront::wavefront::light_points`), the generations a path may
+/// have (max_depth + 1 with mirrors or glass, else 1), the AA mode's strata, and whether
+/// paths branch (a tree: scenes with refraction).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WavefrontShape {
+    pub light_points: u32,
+    pub generations: u32,
+    /// Uniform AA's n: a chunk's samples are n² strata a pixel, averaged by the resolve
+    /// pass. None: AA none, a pixel's centre, stored by the gather pass.
+    pub uniform: Option<u32>,
+    pub tree: bool,
+    /// Dispatches of a chain's shadow pass a generation: 1, or with CSG (at most one
+    /// invocation per list slot, one request each) the light points, each a slice of at
+    /// most a request per sample (`src/tracer/wavefront/wavefront.wgsl::wavefront_shadow`). A tree's: 1.
+    pub shadow_slices: u32,
+}
+
+/// Glass shadow rounds a tree's generation runs (`src/tracer/wavefront/wavefront_tree.wgsl`): a leg
+/// crosses at most MAX_SHADOW_CROSSINGS surfaces and is blocked at the next.
+pub const SHADOW_ROUNDS: u32 = MAX_SHADOW_CROSSINGS + 1;
+
+/// Words of work_args before a tree's generations' (round r's legs at 3r, r < 10).
+const TREE_ROUND_ARGS_WORDS: u64 = 30;
+
+impl WavefrontShape {
+    /// Samples a pixel: n² under uniform AA, else 1.
+    pub fn samples_per_pixel(self) -> u64 {
+        self.uniform.map_or(1, |n| (n * n) as u64)
+    }
+
+    /// vec4 entries of the queues a sample of a chunk takes (`src/tracer/wavefront/wavefront.wgsl`'s
+    /// regions): its record (2), two path queues (4 each), a hit (2), a vertex (2), its
+    /// light slots and shadow requests (L each). A tree's (`src/tracer/wavefront/wavefront_tree.wgsl`):
+    /// the record, then per path of a generation (TREE_PATHS_PER_SAMPLE a sample) two
+    /// path queues (5 each, with media and pending count), a hit, a vertex, the vertex
+    /// tree (2 a vertex, TREE_VERTICES_PER_SAMPLE a sample), then per path L slots, L
+    /// requests, two leg queues (3L each) and the legs' hits (2L).
+    pub fn vec4s_per_sample(self) -> u64 {
+        let l = self.light_points as u64;
+        if self.tree {
+            3 + (14 + 10 * l) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
+        } else {
+            14 + 2 * l
+        }
+    }
+
+    /// Tracing invocations (list slots) a wavefront dispatch may have per sample of the
+    /// chunk: a tree's generation holds up to TREE_PATHS_PER_SAMPLE paths a sample.
+    pub fn slots_per_sample(self) -> u64 {
+        if self.tree {
+            TREE_PATHS_PER_SAMPLE as u64
+        } else {
+            1
+        }
+    }
+
+    /// Byte offset in work_args of the indirect arguments of generation g's passes over
+    /// paths (g ≥ 1; written by generation g − 1's args kernel).
+    pub(super) fn paths_args(self, g: u32) -> u64 {
+        4 * (self.args_prefix_words() + self.generation_words() * (g as u64 - 1))
+    }
+
+    /// Byte offset of slice `slice` of generation g's shadow pass's arguments.
+    pub(super) fn shadow_args(self, g: u32, slice: u32) -> u64 {
+        4 * (3 + 3 * slice as u64) + self.paths_args(g + 1)
+    }
+
+    /// Words of work_args before the generations' (a tree's round arguments).
+    fn args_prefix_words(self) -> u64 {
+        if self.tree {
+            TREE_ROUND_ARGS_WORDS
+        } else {
+            0
+        }
+    }
+
+    /// Words of work_args a generation: the next generation's passes' 3, then 3 a
+    /// shadow slice.
+    fn generation_words(self) -> u64 {
+        3 + 3 * self.shadow_slices as u64
+    }
+
+    /// Byte offset of a tree's round r's leg arguments (the same words every generation).
+    pub(super) fn round_args(r: u32) -> u64 {
+        12 * r as u64
+    }
+
+    /// 24-byte levels of work_args (and 4-byte counters of work_counts) the kernels use:
+    /// a generation's 6 words (after a tree's round arguments); at least the counters
+    /// (5 for chains; a tree's 11: also three leg counters, two vertex bases and the
+    /// light points).
+    pub fn work_levels(self) -> u64 {
+        if self.tree {
+            (TREE_ROUND_ARGS_WORDS / 6 + self.generations as u64).max(11)
+        } else {
+            (self.generation_words() * self.generations as u64)
+                .div_ceil(6)
+                .max(5)
+        }
+    }
+}

@@ -1,0 +1,8 @@
+//! What a hit looks like: surface reconstruction, Phong shading with shadow rays,
+//! smooth normals, dielectrics and textures; built on the layers below.
+
+pub mod dielectric;
+pub mod shade;
+pub mod smooth;
+pub mod surface;
+pub mod texture;

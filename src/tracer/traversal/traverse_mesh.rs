@@ -1,0 +1,235 @@
+//! The second level: a mesh instance traversed through its mesh's own grid. The ray goes
+//! to the mesh's space through the instance's world→object rows (direction not
+//! normalised, so t carries over), enters the mesh's grid bounds and walks its cells
+//! (runs of empty cells in a loop of their own), testing the triangles listed there with
+//! the watertight test: on the CPU four at a time (`triangle4`: the same answers, bit for
+//! bit, as the WGSL twins' one by one).
+
+use super::dda::{dda_setup, dda_step, enter_mesh, mesh_grid, Dda};
+use super::hit::{Hit, TraversalCounters};
+use crate::constants::{NO_ITEM, TRIANGLE_MAILBOX_SIZE};
+use crate::pack::{PackedInstance, PackedMesh, PackedScene, PackedTriangle};
+use crate::tracer::base::ray::Ray;
+use crate::tracer::geometry::intersect::to_object_space;
+use crate::tracer::geometry::triangle4::{NearestTriangle, TriangleBatch, TriangleRays};
+
+/// The mesh of a `KIND_MESH` instance.
+// Mirror of src/tracer/traversal/traverse_mesh.wgsl::instance_mesh — change both.
+pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &PackedInstance) -> &'a PackedMesh {
+    &scene.meshes[inst.params[0] as usize]
+}
+
+/// The triangles a ray has tested in one mesh, as a direct-mapped cache of
+/// `TRIANGLE_MAILBOX_SIZE` slots (triangle number modulo the size: one compare, where a
+/// ring of the last n tested needs n). A triangle spans 3–4 cells of its mesh's grid on
+/// average, so a ray often meets it again in the next cell; testing it again would give
+/// the same answer (a miss stays a miss under the same or a smaller t_max, and a hit is
+/// not nearer than itself), so skipping it changes no result. Triangles are stored in
+/// Morton order, so the triangles near a ray have nearby numbers and seldom share a slot.
+/// Only `Mailboxes::Full` keeps one (`PackedScene::mailboxes`; the GPU's `MAILBOXES`
+/// variant); otherwise it remembers nothing.
+// Mirror of src/tracer/traversal/traverse_mesh.wgsl::TriangleMailbox — change both.
+pub struct TriangleMailbox {
+    triangles: [u32; TRIANGLE_MAILBOX_SIZE as usize],
+    slot_mask: Option<u32>,
+}
+
+impl TriangleMailbox {
+    /// An empty mailbox, kept as `scene.mailboxes` says (on the GPU the switch is the
+    /// module's `MAILBOXES` specialisation).
+    // Mirror of src/tracer/traversal/traverse_mesh.wgsl::triangle_mailbox_new — change both.
+    pub fn new(scene: &PackedScene) -> TriangleMailbox {
+        TriangleMailbox {
+            triangles: [NO_ITEM; TRIANGLE_MAILBOX_SIZE as usize],
+            slot_mask: scene.mailboxes.triangle_slot_mask(),
+        }
+    }
+
+    /// Whether `triangle` was tested already (as far as its slot remembers); if not, it
+    /// is now remembered in its slot.
+    // Mirror of src/tracer/traversal/traverse_mesh.wgsl::triangle_mailbox_seen — change both.
+    pub fn seen(&mut self, triangle: u32) -> bool {
+        if let Some(mask) = self.slot_mask {
+            // (The constant mask too, so the index needs no bounds check.)
+            let slot =
+                &mut self.triangles[(triangle & mask & (TRIANGLE_MAILBOX_SIZE - 1)) as usize];
+            if *slot == triangle {
+                return true;
+            }
+            *slot = triangle;
+        }
+        false
+    }
+}
+
+/// The items of cell `cell` of `cell_start`/`cell_items` as a slice (one bounds check per
+/// cell, none per item).
+fn cell_items(scene: &PackedScene, cell: usize) -> &[u32] {
+    let range = &scene.cell_start[cell..cell + 2];
+    &scene.cell_items[range[0] as usize..range[1] as usize]
+}
+
+/// Nearest hit in (0, t_max) with mesh instance `item` (`inst`): t, the barycentrics and
+/// the triangle as `part`; `Hit::MISS` (t = T_MISS) when nothing is hit.
+// Mirror of src/tracer/traversal/traverse_mesh.wgsl::intersect_mesh — change both.
+pub fn intersect_mesh(
+    scene: &PackedScene,
+    inst: &PackedInstance,
+    item: u32,
+    ray: &Ray,
+    t_max: f32,
+    counters: &mut impl TraversalCounters,
+) -> Hit {
+    let mesh = instance_mesh(scene, inst);
+    let (origin, dir) = to_object_space(inst, ray.origin, ray.dir);
+    let Some(entered) = enter_mesh(mesh, &Ray { origin, dir }, t_max) else {
+        return Hit::MISS;
+    };
+    let grid = mesh_grid(mesh);
+    let Some(mut dda) = dda_setup(&grid, &entered.ray, entered.inv_dir, entered.t_max) else {
+        return Hit::MISS;
+    };
+    let tri_rays = TriangleRays::new(entered.ray.origin, entered.ray.dir);
+    let triangles = mesh_triangles(scene, mesh);
+    let mut mailbox = TriangleMailbox::new(scene);
+    let mut best = NearestTriangle::none(entered.t_max);
+    while skip_empty_cells(scene, &mut dda, best.t, counters) {
+        let cell = dda.cell as usize;
+        counters.cell_visited();
+        let next = step_and_prefetch(scene, &mut dda);
+        // The cell's untested triangles in batches of four lanes, in list order.
+        let mut batch = TriangleBatch::EMPTY;
+        for &local in cell_items(scene, cell) {
+            if mailbox.seen(local) {
+                continue;
+            }
+            counters.item_tested();
+            if batch.push(local) {
+                batch.keep_nearest(&tri_rays, triangles, &mut best);
+            }
+        }
+        batch.keep_nearest(&tri_rays, triangles, &mut best);
+        // A hit inside this cell is final; so is leaving the grid or passing t_max.
+        match next {
+            Some(t_cell_exit) if best.t > t_cell_exit => {}
+            _ => break,
+        }
+    }
+    if !best.is_hit() {
+        return Hit::MISS;
+    }
+    Hit {
+        t: best.t + entered.t_moved,
+        item,
+        b1: best.b1,
+        b2: best.b2,
+        part: mesh.first_triangle + best.local,
+    }
+}
+
+/// Steps `dda` on past empty cells, from the cell it stands in, until one lists something
+/// (true) or the walk ends (false): it leaves the grid, passes t_exit, or leaves a cell
+/// past `t_stop` (a closest hit below `t_stop` is final there). The same cells and the same
+/// stop as testing each empty cell's nothing in the walk's loop, but in a loop small enough
+/// for the `Dda` to stay in registers (the full loop spills it to the stack).
+// Mirror of src/tracer/traversal/traverse_mesh.wgsl::skip_empty_cells — change both.
+#[inline(always)]
+fn skip_empty_cells(
+    scene: &PackedScene,
+    dda: &mut Dda,
+    t_stop: f32,
+    counters: &mut impl TraversalCounters,
+) -> bool {
+    loop {
+        let cell = dda.cell as usize;
+        let range = &scene.cell_start[cell..cell + 2];
+        if range[0] != range[1] {
+            return true;
+        }
+        counters.cell_visited();
+        match dda_step(dda) {
+            Some(t_cell_exit) if t_stop > t_cell_exit => {}
+            _ => return false,
+        }
+    }
+}
+
+/// Steps the DDA to the next cell (`dda_step`) before the current cell's triangles are
+/// tested, and asks the cache for the next cell's range meanwhile: in a large mesh that
+/// load misses the cache, and the tests of this cell hide its latency.
+#[inline(always)]
+fn step_and_prefetch(scene: &PackedScene, dda: &mut Dda) -> Option<f32> {
+    let next = dda_step(dda);
+    if next.is_some() {
+        // (No bounds check: the cell is inside the grid, and a prefetch of any address is
+        // harmless.)
+        prefetch(scene.cell_start.as_ptr().wrapping_add(dda.cell as usize));
+    }
+    next
+}
+
+/// A hint to fetch the cache line at `address` (no effect on results; none off x86-64).
+#[inline(always)]
+fn prefetch<T>(address: *const T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch never faults, whatever the address, and reads nothing into the
+    // program.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(address.cast::<i8>());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = address;
+}
+
+/// The mesh's triangles, indexed by the mesh-local numbers its cells list.
+fn mesh_triangles<'a>(scene: &'a PackedScene, mesh: &PackedMesh) -> &'a [PackedTriangle] {
+    let first = mesh.first_triangle as usize;
+    &scene.triangles[first..first + mesh.num_triangles as usize]
+}
+
+/// Whether any triangle of mesh instance `inst` is hit in (0, t_max) (shadow rays: stops
+/// at the first one found).
+// Mirror of src/tracer/traversal/traverse_mesh.wgsl::mesh_occludes — change both.
+pub fn mesh_occludes(
+    scene: &PackedScene,
+    inst: &PackedInstance,
+    ray: &Ray,
+    t_max: f32,
+    counters: &mut impl TraversalCounters,
+) -> bool {
+    let mesh = instance_mesh(scene, inst);
+    let (origin, dir) = to_object_space(inst, ray.origin, ray.dir);
+    let Some(entered) = enter_mesh(mesh, &Ray { origin, dir }, t_max) else {
+        return false;
+    };
+    let grid = mesh_grid(mesh);
+    let Some(mut dda) = dda_setup(&grid, &entered.ray, entered.inv_dir, entered.t_max) else {
+        return false;
+    };
+    let tri_rays = TriangleRays::new(entered.ray.origin, entered.ray.dir);
+    let triangles = mesh_triangles(scene, mesh);
+    let mut mailbox = TriangleMailbox::new(scene);
+    // (Any step the walk takes ends before t_exit ≤ t_max: t_max stops nothing.)
+    while skip_empty_cells(scene, &mut dda, entered.t_max, counters) {
+        let cell = dda.cell as usize;
+        counters.cell_visited();
+        let next = step_and_prefetch(scene, &mut dda);
+        let mut batch = TriangleBatch::EMPTY;
+        for &local in cell_items(scene, cell) {
+            if mailbox.seen(local) {
+                continue;
+            }
+            counters.item_tested();
+            if batch.push(local) && batch.any_hit(&tri_rays, triangles, entered.t_max) {
+                return true;
+            }
+        }
+        if batch.any_hit(&tri_rays, triangles, entered.t_max) {
+            return true;
+        }
+        if next.is_none() {
+            return false;
+        }
+    }
+    false
+}

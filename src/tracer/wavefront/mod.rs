@@ -1,0 +1,7 @@
+//! The wavefront form of `path`'s tracing: a batch of camera samples in passes over
+//! queues (chains; trees where dielectrics branch; adaptive AA's lattice through them);
+//! built on `sampling` and below.
+
+pub mod wavefront;
+pub mod wavefront_lattice;
+pub mod wavefront_tree;

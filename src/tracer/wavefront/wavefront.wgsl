@@ -1,0 +1,629 @@
+// wavefront.wgsl — the wavefront form of trace_ray for scenes without refraction (every
+// path a chain), in the hardware kernel variant (WAVEFRONT: src/gpu/compile/shader.rs): a chunk's
+// samples go through kernels joined by queues instead of one megakernel. Its samples:
+// AA none's pixel centres, uniform AA's n² jittered strata a pixel (wavefront_resolve
+// averages them after the last generation), or one stratum a pixel, tile.stratum (glint
+// view's frame; progressive.wgsl's wavefront_view_store adds it to the sums). Per chunk,
+// wavefront_camera fills generation 0's path queue; per generation g (tile.level)
+// wavefront_closest traces each path to its hit, wavefront_shade shades each hit without
+// tracing (its own term, one shadow request per light point facing it with the point's
+// unshadowed term in the vertex's slot, the reflected ray appended to generation g + 1's
+// queue), wavefront_args turns the counters into the indirect workgroup counts of the
+// shadow pass and of the next generation, wavefront_shadow traces each request (any hit)
+// and zeroes the slot of a blocked one, and wavefront_gather sums each vertex's colour in
+// shade_phong's order into its sample's colour (and, AA none, the chunk's output).
+// Queues are filled by atomicAdd in any order: every entry carries its sample, and every
+// sum runs in one invocation in the CPU's order, so the image is trace_ray's bit for bit.
+// The queues are structures of arrays in `samples` (render.wgsl; vec4 entries, regions
+// from tile.items = N, the chunk's samples, and L = light_points()):
+//   [0, 2N)            sample records: (colour, camera item), (mirrored item, flags, seed)
+//   [2N + 4Np, …)      path queue of parity p = g mod 2, 4 a path: (origin, sample),
+//                      (dir, depth), (weight, cone.x), (cone.y)
+//   [10N, 12N)         hits, 2 a path: (t, item, b1, b2), (part)
+//   [12N, 14N)         vertices, 2 a path: (own term, kind), (shadow origin, magnitude)
+//   [14N, 14N + LN)    light slots, L a path: the light point's term
+//   [14N + LN, …)      shadow requests (≤ LN): (light point position, slot index)
+// Counters in work_counts (adaptive.wgsl's binding): generation g's paths at g mod 3, its
+// shadow requests at 3 + g mod 2 (wavefront_args clears the ones the next generation
+// appends to); indirect arguments in work_args, 6 words a generation (with CSG 3 + 3L:
+// the shadow pass's slices, see wavefront_shadow).
+// Mirror of src/tracer/wavefront/wavefront.rs — change both.
+
+// #if WAVEFRONT
+// #if REFRACTION
+// With refraction (this module) paths are trees: the regions, the vertex tree, the glass
+// shadow rounds and the fold are wavefront_tree.wgsl's; the blocks under `#if REFRACTION`
+// below hand over to it. (The header above stays as chain modules compile it.)
+// #endif
+// The light points of the scene: one per point light, n² per n×n area light.
+// Mirror of src/tracer/wavefront/wavefront.rs::light_points — change both.
+fn light_points() -> u32 {
+    var points = 0u;
+    for (var i = 0u; i < globals.num_lights; i++) {
+// #if AREA_LIGHT
+        let light = load_light(i);
+        if light.kind == LIGHT_AREA {
+            points += light.samples * light.samples;
+            continue;
+        }
+// #endif
+        points += 1u;
+    }
+    return points;
+}
+
+fn wavefront_paths(parity: u32) -> u32 {
+// #if REFRACTION
+    // With refraction the regions are wavefront_tree.wgsl's: a generation may be wider
+    // than the chunk.
+    return tree_paths(parity);
+// #else
+    return 2u * tile.items + 4u * tile.items * parity;
+// #endif
+}
+
+fn wavefront_hits() -> u32 {
+// #if REFRACTION
+    return tree_hits();
+// #else
+    return 10u * tile.items;
+// #endif
+}
+
+fn wavefront_vertices() -> u32 {
+// #if REFRACTION
+    return tree_vertices();
+// #else
+    return 12u * tile.items;
+// #endif
+}
+
+fn wavefront_slots() -> u32 {
+// #if REFRACTION
+    return tree_slots();
+// #else
+    return 14u * tile.items;
+// #endif
+}
+
+fn wavefront_shadows(points: u32) -> u32 {
+// #if REFRACTION
+    return tree_shadows(points);
+// #else
+    return (14u + points) * tile.items;
+// #endif
+}
+
+// Generation g's path counter.
+fn path_counter(g: u32) -> u32 {
+    return g % 3u;
+}
+
+// Generation g's shadow-request counter.
+fn shadow_counter(g: u32) -> u32 {
+    return 3u + g % 2u;
+}
+
+fn load_path(parity: u32, i: u32) -> StackEntry {
+// #if REFRACTION
+    return load_tree_path(parity, i);
+// #else
+    let at = wavefront_paths(parity) + 4u * i;
+    let a = samples[at];
+    let b = samples[at + 1u];
+    let c = samples[at + 2u];
+    var entry: StackEntry;
+    entry.ray = Ray(a.xyz, b.xyz);
+    entry.weight = c.xyz;
+    entry.depth = bitcast<u32>(b.w);
+// #if TEXTURE|BUMP
+    entry.cone = vec2<f32>(c.w, samples[at + 3u].x);
+// #endif
+    return entry;
+// #endif
+}
+
+fn path_sample(parity: u32, i: u32) -> u32 {
+// #if REFRACTION
+    return bitcast<u32>(samples[wavefront_paths(parity) + 5u * i].w);
+// #else
+    return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i].w);
+// #endif
+}
+
+fn path_depth(parity: u32, i: u32) -> u32 {
+// #if REFRACTION
+    return bitcast<u32>(samples[wavefront_paths(parity) + 5u * i + 1u].w);
+// #else
+    return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i + 1u].w);
+// #endif
+}
+
+fn store_path(parity: u32, i: u32, entry: StackEntry, sample: u32) {
+// #if REFRACTION
+    // A camera ray: nothing under it on trace_ray's stack.
+    store_tree_path(parity, i, entry, 0u, sample);
+// #else
+    let at = wavefront_paths(parity) + 4u * i;
+    samples[at] = vec4<f32>(entry.ray.origin, bitcast<f32>(sample));
+    samples[at + 1u] = vec4<f32>(entry.ray.dir, bitcast<f32>(entry.depth));
+// #if TEXTURE|BUMP
+    samples[at + 2u] = vec4<f32>(entry.weight, entry.cone.x);
+    samples[at + 3u] = vec4<f32>(entry.cone.y, 0.0, 0.0, 0.0);
+// #else
+    samples[at + 2u] = vec4<f32>(entry.weight, 0.0);
+// #endif
+// #endif
+}
+
+fn sample_flags(k: u32) -> u32 {
+    return bitcast<u32>(samples[2u * k + 1u].y);
+}
+
+fn set_sample_flags(k: u32, flags: u32) {
+    samples[2u * k + 1u].y = bitcast<f32>(flags);
+}
+
+// The camera pass, sample k = idx of the chunk: in a render (tile.stratum = ALL_STRATA)
+// stratum k mod n² of chunk pixel k div n², in glint view's frame stratum tile.stratum of
+// chunk pixel k (pixels row-major over size, at stride size.x), n = globals.aa_samples
+// under uniform AA (jittered), 1 under AA none (the pixel's centre): its record, and its
+// camera ray as generation 0's path k.
+// Mirror of the Strata and Stratum sources of src/tracer/wavefront/wavefront.rs::camera_entry — change both.
+@compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
+fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let k = linear_index(id, groups);
+    if k == 0u {
+        atomicStore(&work_counts[path_counter(0u)], tile.items);
+// #if REFRACTION
+        note_tree_points(0u);
+// #endif
+    }
+    if k >= tile.items {
+        return;
+    }
+    let uniform = globals.aa_mode == AA_UNIFORM;
+    let n = select(1u, globals.aa_samples, uniform);
+    var p = k;
+    var s = tile.stratum;
+    if s == ALL_STRATA {
+        p = k / (n * n);
+        s = k % (n * n);
+    }
+    // src/tracer/sampling/render.rs::stratum_position (render.wgsl's uniform_sample).
+    let x = tile.origin.x + p % tile.size.x;
+    let y = tile.origin.y + p / tile.size.x;
+    let pixel = y * globals.width + x;
+    var jx = 0.5;
+    var jy = 0.5;
+    if uniform {
+        jx = random_unit(pixel, s, 0u);
+        jy = random_unit(pixel, s, 1u);
+    }
+    let fx = f32(x) + (f32(s % n) + jx) / f32(n);
+    let fy = f32(y) + (f32(s / n) + jy) / f32(n);
+    let seed = SampleSeed(pixel, s, 0u, false);
+    var flags = 0u;
+    if seed.mirrors_corners {
+        flags = SAMPLE_MIRRORS_CORNERS;
+    }
+    samples[2u * k] = vec4<f32>(0.0, 0.0, 0.0, bitcast<f32>(NO_ITEM));
+    samples[2u * k + 1u] = vec4<f32>(bitcast<f32>(NO_ITEM), bitcast<f32>(flags), bitcast<f32>(seed.pixel), bitcast<f32>(seed.sample));
+    let ray = camera_ray(fx, fy);
+    var entry: StackEntry;
+    entry.ray = ray;
+    entry.weight = vec3<f32>(1.0);
+    entry.depth = 0u;
+// #if TEXTURE|BUMP
+    entry.cone = camera_cone(ray);
+// #endif
+// #if REFRACTION
+    // Camera rays start in the media around the camera; path k is vertex k.
+    entry.media = camera_medium_stack();
+    set_tree_camera_vertex(k, k);
+// #endif
+    store_path(0u, k, entry, k);
+}
+
+// The closest pass's invocation for path idx of generation tile.level: its hit, and the
+// items a sample's hint keeps. Only the ray is live across closest_hit: the path's depth
+// and sample are read after the hit record is stored (a store the compiler cannot tell
+// apart from them, so it reloads them rather than keeping the first load's registers),
+// which keeps textures.lua's kernel within the traversal budget of 96 VGPRs on NAVI21
+// (112 in wave32, 104 in wave64 with the depth held through the traversal;
+// docs/journal/2026-12-02-textures-closest-kernel.md).
+// Mirror of src/tracer/wavefront/wavefront.rs::closest_entry — change both.
+@compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
+fn wavefront_closest(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    let g = tile.level;
+    if i >= atomicLoad(&work_counts[path_counter(g)]) {
+        return;
+    }
+    begin_lane(i);
+    let parity = g % 2u;
+    let hit = closest_hit(load_path(parity, i).ray, T_MISS);
+    let at = wavefront_hits() + 2u * i;
+    samples[at] = vec4<f32>(hit.t, bitcast<f32>(hit.item), hit.b1, hit.b2);
+    samples[at + 1u] = vec4<f32>(bitcast<f32>(hit.part), 0.0, 0.0, 0.0);
+    let depth = path_depth(parity, i);
+    let k = path_sample(parity, i);
+    if depth == 0u {
+        samples[2u * k].w = bitcast<f32>(hit.item);
+    }
+    if (sample_flags(k) & SAMPLE_CAMERA_MIRROR) != 0u && depth == 1u {
+        // The one ray a mirror spawns: what the camera sees in it.
+        samples[2u * k + 1u].x = bitcast<f32>(hit.item);
+    }
+}
+
+// point_light's A4 term before its shadow ray, (kd·N·L + ks·spec)·I·attenuation, in w 1;
+// w 0 where the light point is behind the surface (no shadow ray; the slot stays zero).
+// The CPU's point_light and shading pass share one function; the WGSL point_light keeps
+// its own copy of these lines, so that the software kernel (which has no wavefront) is
+// the same module it was.
+fn wavefront_unshadowed_term(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec4<f32> {
+    let m = load_material(s.material);
+    let to_light = position - s.p;
+    let distance = length(to_light);
+    let l = to_light / distance;
+    let n_dot_l = dot(n, l);
+    if !(n_dot_l > 0.0) {
+        return vec4<f32>(0.0);
+    }
+    let r = n * (2.0 * n_dot_l) - l;
+    let specular = phong_power(dot(r, v), m.shininess);
+    let c0 = light.falloff.x;
+    let c1 = light.falloff.y;
+    let c2 = light.falloff.z;
+    let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
+    return vec4<f32>((phong.kd * n_dot_l + phong.ks * specular) * light.colour * attenuation, 1.0);
+}
+
+// Light point `slot` of vertex i at `position`: its unshadowed term in the slot (zero
+// where it faces away) and, where it faces the point, a shadow request.
+fn ask_shadow(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, position: vec3<f32>, light: PackedLight, slot: u32, points: u32) {
+    let term = wavefront_unshadowed_term(s, phong, n, v, position, light);
+    samples[wavefront_slots() + slot] = vec4<f32>(term.xyz, 0.0);
+    if term.w != 0.0 {
+        let r = atomicAdd(&work_counts[shadow_counter(tile.level)], 1u);
+        samples[wavefront_shadows(points) + r] = vec4<f32>(position, bitcast<f32>(slot));
+    }
+}
+
+// The shade pass's invocation for path idx: a miss's background; a hit's own term, its
+// light slots and shadow requests, the reflected ray appended to the next generation's
+// queue, and at depth 0 the sample's hints.
+// Mirror of src/tracer/wavefront/wavefront.rs::shade_entry — change both.
+@compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
+fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    let g = tile.level;
+    if i >= atomicLoad(&work_counts[path_counter(g)]) {
+        return;
+    }
+    let parity = g % 2u;
+    let entry = load_path(parity, i);
+    let k = path_sample(parity, i);
+    let h = samples[wavefront_hits() + 2u * i];
+    let hit = Hit(h.x, bitcast<u32>(h.y), h.z, h.w, bitcast<u32>(samples[wavefront_hits() + 2u * i + 1u].x));
+    let vertex = wavefront_vertices() + 2u * i;
+// #if REFRACTION
+    // The ray stack push_secondary_rays fills is in this invocation's list slot.
+    begin_lane(i);
+    clear_tree_children(atomicLoad(&work_counts[vertex_base_counter(g)]) + i);
+// #endif
+    if !is_hit(hit) {
+        samples[vertex] = vec4<f32>(background(entry.ray.dir), bitcast<f32>(VERTEX_MISS));
+        return;
+    }
+    // trace.wgsl's shade_hit up to shade_phong (the CPU's shading_point).
+    let ray = entry.ray;
+    var s = surface_at(ray, hit);
+// #if TEXTURE|BUMP
+    s = with_footprint(s, ray.dir, entry.cone, hit.t);
+// #endif
+    var unlit = false;
+    var uv_colour = vec3<f32>(0.0);
+    var facing = s.normal;
+    var n = s.normal;
+// #if TEXTURE
+    // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
+    if globals.debug_view == DEBUG_VIEW_UV {
+        let uv = s.uv - floor(s.uv);
+        uv_colour = vec3<f32>(uv.x, uv.y, 0.0);
+        unlit = true;
+    }
+// #endif
+    if !unlit {
+        facing = facing_normal(s.normal, ray.dir);
+        n = facing;
+// #if SMOOTH
+        var shading = s;
+        shading.normal = smooth_normal(hit, s);
+        if dot(facing, s.normal) < 0.0 {
+            n = -shading.normal;
+        } else {
+            n = shading.normal;
+        }
+// #else
+        let shading = s;
+// #endif
+// #if BUMP
+        n = shading_normal(shading, n);
+// #endif
+// #if SMOOTH
+        if any(shading.normal != s.normal) {
+            n = visible_normal(n, facing, -ray.dir);
+        }
+// #endif
+    }
+    if entry.depth == 0u {
+        note_sample_hints(k, s);
+    }
+    if unlit {
+        samples[vertex] = vec4<f32>(uv_colour, bitcast<f32>(VERTEX_UNLIT));
+        return;
+    }
+    let m = load_material(s.material);
+    var phong = Phong(m.kd, m.ks);
+// #if TEXTURE
+    phong = surface_colours(m, s);
+// #endif
+    samples[vertex] = vec4<f32>(phong.kd * globals.ambient, bitcast<f32>(VERTEX_LIT));
+    let origin = offset_ray(s.p, n, s.magnitude);
+    samples[vertex + 1u] = vec4<f32>(origin, s.magnitude);
+    let v = -ray.dir;
+    let record = samples[2u * k + 1u];
+    let seed = SampleSeed(bitcast<u32>(record.z), bitcast<u32>(record.w), entry.depth, (bitcast<u32>(record.y) & SAMPLE_MIRRORS_CORNERS) != 0u);
+    ask_light_shadows(i, s, phong, n, v, seed);
+    push_next_paths(i, entry, k, ShadedHit(s, facing, n, vec3<f32>(0.0), false), hit);
+}
+
+// At a camera hit (depth 0) of sample k: its hints in its record's flags, the texture
+// detail seen at `s` and whether the camera's surface is a mirror.
+// Mirror of src/tracer/wavefront/wavefront.rs::note_sample_hints — change both.
+fn note_sample_hints(k: u32, s: Surface) {
+    var flags = sample_flags(k);
+// #if TEXTURE
+    fine_detail_seen = false;
+    note_texture_detail(s);
+    if fine_detail_seen {
+        flags |= SAMPLE_FINE_DETAIL;
+    }
+// #endif
+// #if REFLECTION
+    if is_mirror(s.material) {
+        flags |= SAMPLE_CAMERA_MIRROR;
+    }
+// #endif
+    set_sample_flags(k, flags);
+}
+
+// Every light point of path i's hit at `s` (an area light's strata from `seed`'s shadow
+// streams), in slot order: its unshadowed term and, where it faces the point, a shadow
+// request (ask_shadow).
+// Mirror of src/tracer/wavefront/wavefront.rs::ask_light_shadows — change both.
+fn ask_light_shadows(i: u32, s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) {
+    let points = light_points();
+    var slot = i * points;
+    for (var index = 0u; index < globals.num_lights; index++) {
+        let light = load_light(index);
+// #if AREA_LIGHT
+        if light.kind == LIGHT_AREA {
+            let kk = light.samples;
+            let scale = 1.0 / f32(kk);
+            let stream = shadow_stream(seed, index);
+            for (var stratum = 0u; stratum < kk * kk; stratum++) {
+                // shade.wgsl's area_light's point (the CPU's area_light_point).
+                let a = (f32(stratum % kk) + shadow_random(stream, stratum, 0u)) * scale - 0.5;
+                let b = (f32(stratum / kk) + shadow_random(stream, stratum, 1u)) * scale - 0.5;
+                let position = light.position + light.edge_u * a + light.edge_v * b;
+                ask_shadow(s, phong, n, v, position, light, slot, points);
+                slot += 1u;
+            }
+            continue;
+        }
+// #endif
+        ask_shadow(s, phong, n, v, light.position, light, slot, points);
+        slot += 1u;
+    }
+}
+
+// The rays path i's hit (sample k) spawns, appended to the next generation's queue: a
+// tree's through push_tree_children; without refraction at most the reflected ray,
+// pushed onto an empty stack as trace_ray's chain has it.
+// Mirror of src/tracer/wavefront/wavefront.rs::push_next_paths — change both.
+fn push_next_paths(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit: Hit) {
+// #if REFRACTION
+    push_tree_children(i, entry, k, shaded, hit);
+// #else
+// #if REFLECTION
+    let g = tile.level;
+    let parity = g % 2u;
+    var stack: RayStack;
+    var size = 0u;
+    push_secondary_rays(&stack, &size, entry, shaded, hit);
+    if size > 0u {
+        let at = atomicAdd(&work_counts[path_counter(g + 1u)], 1u);
+        store_path(1u - parity, at, load_pending(&stack, 0u), k);
+    }
+// #endif
+// #endif
+}
+
+// After generation tile.level's shade pass (one invocation): the indirect workgroups of
+// the next generation's passes (work_args[6g ..]) and of this generation's shadow pass
+// (work_args[6g + 3 ..]; with CSG a generation's words are 3 + 3L, its slices' from
+// 3 on, see wavefront_shadow), and the
+// counters of generation g − 1 cleared for generation g + 1.
+// Mirror of src/tracer/wavefront/wavefront.rs::next_generation — change both.
+@compute @workgroup_size(1)
+fn wavefront_args() {
+// #if REFRACTION
+    tree_generation_args_entry();
+// #else
+    let g = tile.level;
+    let next = indirect_workgroups(atomicLoad(&work_counts[path_counter(g + 1u)]));
+    let shadow_requests = atomicLoad(&work_counts[shadow_counter(g)]);
+// #if CSG
+    // One slice of at most N requests per light point (see wavefront_shadow): a
+    // generation's 3 + 3L words, the next generation's passes', then slice s's at 3 + 3s.
+    // The slices, L, from the host (tile.slice of this dispatch: plan.rs).
+    let slices = tile.slice;
+    let at = (3u + 3u * slices) * g;
+    let first = indirect_workgroups(min(shadow_requests, tile.items));
+    store_indirect_pair(at, next, first);
+    for (var s = 1u; s < slices; s++) {
+        let groups = indirect_workgroups(min(shadow_requests - min(shadow_requests, s * tile.items), tile.items));
+        work_args[at + 3u + 3u * s] = groups.x;
+        work_args[at + 4u + 3u * s] = groups.y;
+        work_args[at + 5u + 3u * s] = groups.z;
+    }
+// #else
+    store_indirect_pair(6u * g, next, indirect_workgroups(shadow_requests));
+// #endif
+    atomicStore(&work_counts[path_counter(g + 2u)], 0u);
+    atomicStore(&work_counts[shadow_counter(g + 1u)], 0u);
+// #endif
+}
+
+// The shadow pass: each shadow request of generation tile.level through shadow_request,
+// one a invocation. With CSG, whose interval lists take a slot of ray_lists per
+// invocation (one per sample of the chunk: N), the pass is L dispatches (slices, L the
+// light points: requests ≤ L·N) of at most N invocations, slice s's invocation idx taking
+// request s·N + idx and list slot idx. A grid-stride loop over requests idx, idx + N, …
+// instead spilled 8–10 SGPRs in wave64 around any_hit's own loops, without CSG 13
+// (docs/journal/2026-12-02-shadow-kernel-csg-registers.md).
+// Mirror of the loop of src/tracer/wavefront/wavefront.rs::shadow_pass — change both.
+@compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
+fn wavefront_shadow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let idx = linear_index(id, groups);
+// #if REFRACTION
+    // Through glass: each request's first leg, for the rounds (wavefront_tree.wgsl).
+    if idx >= atomicLoad(&work_counts[shadow_counter(tile.level)]) {
+        return;
+    }
+    start_shadow_leg(idx);
+// #else
+// #if CSG
+    let r = tile.slice * tile.items + idx;
+    if idx >= tile.items || r >= atomicLoad(&work_counts[shadow_counter(tile.level)]) {
+        return;
+    }
+    begin_lane(idx);
+    shadow_request(r);
+// #else
+    let count = atomicLoad(&work_counts[shadow_counter(tile.level)]);
+    if idx >= count {
+        return;
+    }
+    shadow_request(idx);
+// #endif
+// #endif
+}
+
+// Shadow request r: its slot's term × the transmittance (1, or 0 where blocked).
+// Mirror of src/tracer/wavefront/wavefront.rs::shadow_entry — change both.
+fn shadow_request(r: u32) {
+    let points = light_points();
+    let request = samples[wavefront_shadows(points) + r];
+    let slot = bitcast<u32>(request.w);
+    let vertex = samples[wavefront_vertices() + 2u * (slot / points) + 1u];
+    var transmittance = 1.0;
+    if shadow_blocked(vertex.xyz, request.xyz, vertex.w) {
+        transmittance = 0.0;
+    }
+    // shade.wgsl's point_light's last product (the CPU's shadowed_term).
+    var term = vec3<f32>(0.0);
+    if !(transmittance <= 0.0) {
+        term = samples[wavefront_slots() + slot].xyz * transmittance;
+    }
+    samples[wavefront_slots() + slot] = vec4<f32>(term, 0.0);
+}
+
+// The gather pass's invocation for path idx: its vertex's colour in shade_phong's order,
+// then into its sample's colour (the camera vertex's is the colour; a deeper one adds
+// weight × colour) and the chunk's output pixel.
+// Mirror of src/tracer/wavefront/wavefront.rs::gather_entry — change both.
+@compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
+fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
+    let i = linear_index(id, groups);
+    let g = tile.level;
+    if i >= atomicLoad(&work_counts[path_counter(g)]) {
+        return;
+    }
+    let parity = g % 2u;
+    let entry = load_path(parity, i);
+    let k = path_sample(parity, i);
+    let own = samples[wavefront_vertices() + 2u * i];
+    var colour = own.xyz;
+    if bitcast<u32>(own.w) == VERTEX_LIT {
+        let points = light_points();
+        var slot = wavefront_slots() + i * points;
+        for (var index = 0u; index < globals.num_lights; index++) {
+            let light = load_light(index);
+// #if AREA_LIGHT
+            if light.kind == LIGHT_AREA {
+                let kk = light.samples;
+                var sum = vec3<f32>(0.0);
+                var lit = 0u;
+                for (var stratum = 0u; stratum < kk * kk; stratum++) {
+                    let c = samples[slot].xyz;
+                    lit += select(0u, 1u, any(c != vec3<f32>(0.0)));
+                    sum += c;
+                    slot += 1u;
+                }
+                if entry.depth == 0u && lit > 0u && lit < kk * kk {
+                    set_sample_flags(k, sample_flags(k) | SAMPLE_FINE_DETAIL);
+                }
+                let scale = 1.0 / f32(kk);
+                colour += sum * (scale * scale);
+                continue;
+            }
+// #endif
+            colour += samples[slot].xyz;
+            slot += 1u;
+        }
+    }
+// #if REFRACTION
+    // A tree's values are summed by the fold, in trace_ray's pop order.
+    var value = colour;
+    if entry.depth != 0u {
+        value = entry.weight * colour;
+    }
+    set_tree_value(atomicLoad(&work_counts[vertex_base_counter(g)]) + i, value);
+// #else
+    var total = colour;
+    if entry.depth != 0u {
+        total = samples[2u * k].xyz + entry.weight * colour;
+    }
+    samples[2u * k] = vec4<f32>(total, samples[2u * k].w);
+    // A render under AA none: sample k is chunk pixel k (row-major over size, rows at
+    // stride side); uniform AA's pixels are wavefront_resolve's, adaptive AA's lattice
+    // points wavefront_lattice.wgsl's wavefront_lattice_store's, glint view's sums
+    // progressive.wgsl's wavefront_view_store's.
+    if globals.aa_mode == AA_NONE && tile.stratum == ALL_STRATA {
+        output[(k / tile.size.x) * tile.side + k % tile.size.x] = vec4<f32>(total, 1.0);
+    }
+// #endif
+}
+
+// Uniform AA, after the chunk's last generation: each chunk pixel's mean over its n²
+// samples' colours (pixel p's samples are p·n² … p·n² + n² − 1), summed in sample order
+// and divided by n² as render.wgsl's uniform_resolve does (the megakernel's image).
+// Mirror of src/tracer/wavefront/wavefront.rs::resolve_pixel — change both.
+@compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
+fn wavefront_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= tile.size.x || id.y >= tile.size.y {
+        return;
+    }
+    let nn = globals.aa_samples * globals.aa_samples;
+    let first = (id.y * tile.size.x + id.x) * nn;
+    var sum = vec3<f32>(0.0);
+    for (var s = 0u; s < nn; s++) {
+        sum += samples[2u * (first + s)].xyz;
+    }
+    output[id.y * tile.side + id.x] = vec4<f32>(sum / f32(nn), 1.0);
+}
+// #endif
