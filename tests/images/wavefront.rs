@@ -18,8 +18,8 @@ use glint::cpu::pixel_sample::lattice_sample;
 use glint::cpu::render::render_pixel;
 use glint::cpu::traverse::Counters;
 use glint::cpu::wavefront::{
-    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, next_generation,
-    render_film, shade_pass, trace_batch, Batch, SampleSource,
+    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, render_film, shade_pass,
+    trace_batch, wavefront_args, Batch, SampleSource,
 };
 use glint::cpu::wavefront_lattice::adaptive_tile_wavefront;
 use glint::film::Film;
@@ -349,7 +349,7 @@ fn trace_tree_batch(scene: &PackedScene, source: &SampleSource) -> (Batch, Reach
             .rounds
             .max(glass_shadow_pass(scene, &mut batch, &mut counters));
         gather_pass(scene, &mut batch, &mut counters);
-        if !next_generation(&mut batch) {
+        if !wavefront_args(&mut batch) {
             fold_pass(&mut batch);
             return (batch, reach);
         }
