@@ -15,7 +15,11 @@
 //!   variables instead of parameters);
 //! - paired functions call corresponding twins, in the same order where both call them
 //!   unconditionally (what is set aside, by rule, is in `twin_support::calls`);
-//! - every WGSL function has a twin, or is on [`WGSL_WITHOUT_TWIN`] with the reason.
+//! - every WGSL function has a twin, or is on [`WGSL_WITHOUT_TWIN`] with the reason;
+//! - twins have the same name: every WGSL function has a Rust function of its name (or
+//!   a member `Type::name` that it stands for as `type_name`), or is on
+//!   [`WGSL_WITHOUT_TWIN`] or [`WGSL_NAMED_APART`] with the reason, and a one-to-one pair
+//!   of function twins is named alike unless it is on [`WGSL_NAMED_APART`].
 
 use crate::twin_support;
 
@@ -477,7 +481,7 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     (
         "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_camera_vertex",
-        "reads a sample's camera vertex (the CPU's is vertex k: fold_samples passes k)",
+        "reads a sample's camera vertex (the CPU's is vertex k: wavefront_fold passes k)",
     ),
     (
         "src/tracer/wavefront/wavefront_tree.wgsl",
@@ -533,6 +537,84 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "src/tracer/wavefront/wavefront_tree.wgsl",
         "note_tree_points",
         "writes the scene's light points into a `work_counts` word for the later passes (the CPU's camera_pass keeps them in Batch::light_points)",
+    ),
+];
+
+/// WGSL functions whose Rust twin, or the Rust code they mirror part of, has another
+/// name, and why: no Rust function has the WGSL function's name (or, for a one-to-one
+/// pair, its twin is named otherwise).
+const WGSL_NAMED_APART: &[(&str, &str, &str)] = &[
+    (
+        "shaders/probe.wgsl",
+        "probe",
+        "the kernel probe's entry point; its Rust side, a test hook, is \
+         src/testing/probe.rs::cpu_probe beside gpu_probe, which names the tracer that answers",
+    ),
+    (
+        "src/tracer/sampling/adaptive.wgsl",
+        "adaptive_scale",
+        "src/tiling.rs::AdaptiveTile::scale, a method of the host's tile record (which \
+         WGSL reads from the `tile` uniform)",
+    ),
+    (
+        "src/tracer/sampling/progressive.wgsl",
+        "wavefront_view_store",
+        "the sum of src/tracer/sampling/progressive.rs::view_sample, the CPU's one form of a view \
+         frame's sample (the GPU's hardware variant stores the wavefront's sample into the \
+         sums in a pass of its own)",
+    ),
+    (
+        "src/tracer/traversal/traverse.wgsl",
+        "item_at",
+        "the `items` iterators of src/tracer/traversal/traverse.rs::closest_hit (a cell's items, or \
+         every item with the grid off), which WGSL indexes",
+    ),
+    (
+        "src/tracer/wavefront/wavefront.wgsl",
+        "wavefront_shadow",
+        "one invocation (with CSG: one per slice) of src/tracer/wavefront/wavefront.rs::shadow_pass's \
+         loop over shadow_request",
+    ),
+    (
+        "src/tracer/wavefront/wavefront_tree.wgsl",
+        "push_tree_children",
+        "the tail of src/tracer/wavefront/wavefront.rs::wavefront_shade with refraction (the children \
+         linked in the CPU's VertexTree where WGSL checks the queues' room)",
+    ),
+    (
+        "src/tracer/wavefront/wavefront_tree.wgsl",
+        "tree_generation_args_entry",
+        "src/tracer/wavefront/wavefront.rs::wavefront_args with refraction (the CPU's queues need no \
+         room cut or vertex base counter)",
+    ),
+    (
+        "src/tracer/wavefront/wavefront_tree.wgsl",
+        "start_shadow_leg",
+        "the first-leg loop of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds",
+    ),
+    (
+        "src/tracer/wavefront/wavefront_tree.wgsl",
+        "wavefront_leg_closest",
+        "the closest pass of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds's round loop \
+         (its entry: leg_closest_entry)",
+    ),
+    (
+        "src/tracer/wavefront/wavefront_tree.wgsl",
+        "wavefront_crossing",
+        "the crossing step of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds's round loop \
+         (its entry: crossing_entry)",
+    ),
+    (
+        "src/tracer/wavefront/wavefront_tree.wgsl",
+        "end_request",
+        "the slot product of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds (the CPU \
+         keeps each request's transmittance until the rounds end)",
+    ),
+    (
+        "src/tracer/wavefront/wavefront_tree.wgsl",
+        "wavefront_leg_args",
+        "the hand-over of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds's round loop \
+         (indirect arguments; the CPU's loop runs over its Vec)",
     ),
 ];
 
@@ -600,6 +682,18 @@ pub(super) struct Findings {
     ordered_calls: usize,
     /// Module configurations naga parsed.
     configurations: usize,
+    /// WGSL functions (outside shaders/bench) without a Rust function of their name, and
+    /// of those, how many a Rust member `Type::name` stands for (as `type_name`); with
+    /// the WGSL functions counted.
+    pub(super) named_apart: NameCount,
+}
+
+/// How many WGSL functions have no Rust function of their name.
+#[derive(Default)]
+pub(super) struct NameCount {
+    pub(super) functions: usize,
+    pub(super) without_same_name: usize,
+    pub(super) members: usize,
 }
 
 fn is_wgsl(file: &str) -> bool {
@@ -671,6 +765,7 @@ pub(super) fn check(texts: &[(String, String)]) -> Findings {
         }
     }
     check_untwinned(sources, &mut found.problems);
+    found.named_apart = check_names(sources, &mut found.problems);
     check_calls(sources, &rust, &wgsl, &mut found);
     found
 }
@@ -818,6 +913,89 @@ fn check_untwinned(sources: &Sources, problems: &mut Vec<String>) {
     }
 }
 
+/// `Type::name` as WGSL spells it: `type_name` (snake case, lower case).
+fn member_name(key: &str) -> Option<String> {
+    let (ty, member) = key.rsplit_once("::")?;
+    let ty = ty.rsplit("::").next().unwrap_or(ty);
+    let mut snake = String::new();
+    for (i, c) in ty.chars().enumerate() {
+        if c.is_uppercase() && i > 0 {
+            snake.push('_');
+        }
+        snake.extend(c.to_lowercase());
+    }
+    Some(format!("{snake}_{}", member.to_lowercase()))
+}
+
+/// Twins have the same name: each WGSL function has a Rust function of its name (or a
+/// member it stands for), or a listed reason; a one-to-one pair of function twins is
+/// named alike (a member as `type_name`) unless listed; every [`WGSL_NAMED_APART`] entry
+/// is needed. Returns the count of WGSL functions without a same-named Rust function.
+fn check_names(sources: &Sources, problems: &mut Vec<String>) -> NameCount {
+    let rust = sources.items.iter().filter(|i| !is_wgsl(&i.file));
+    let plain: HashSet<&str> = rust
+        .clone()
+        .filter(|i| i.is_fn)
+        .map(|i| i.key.rsplit("::").next().unwrap_or(&i.key))
+        .collect();
+    let members: HashSet<String> = rust.filter_map(|i| member_name(&i.key)).collect();
+    let apart: HashSet<(&str, &str)> = WGSL_NAMED_APART.iter().map(|(f, n, _)| (*f, *n)).collect();
+    let without: HashSet<(&str, &str)> =
+        WGSL_WITHOUT_TWIN.iter().map(|(f, n, _)| (*f, *n)).collect();
+    let mut count = NameCount::default();
+    let mut needed = HashSet::new();
+    let wgsl = sources
+        .items
+        .iter()
+        .filter(|i| is_wgsl(&i.file) && i.is_fn && !i.file.starts_with("shaders/bench/"));
+    for item in wgsl {
+        let at = (item.file.as_str(), item.key.as_str());
+        count.functions += 1;
+        let same_name = plain.contains(item.key.as_str());
+        let member = members.contains(&item.key);
+        count.without_same_name += usize::from(!same_name);
+        count.members += usize::from(!same_name && member);
+        let twin_named_otherwise = item.twin.as_ref().is_some_and(|t| {
+            let key = t.key.as_deref().unwrap_or("");
+            t.exact
+                && key.rsplit("::").next() != Some(item.key.as_str())
+                && member_name(key).as_deref() != Some(item.key.as_str())
+        });
+        if apart.contains(&at) {
+            needed.insert(at);
+        } else if twin_named_otherwise {
+            problems.push(format!(
+                "{}:{} fn {} is named otherwise than its twin {}: name them alike (a member \
+                 Type::name as type_name), or list it on WGSL_NAMED_APART (tests/gpu/twins.rs) \
+                 with the reason",
+                item.file,
+                item.line,
+                item.key,
+                item.twin.as_ref().unwrap().text
+            ));
+        } else if !(same_name || member || without.contains(&at)) {
+            problems.push(format!(
+                "{}:{} fn {} has no Rust function of its name (nor a member Type::name that \
+                 it stands for): name its twin alike, or list it on WGSL_NAMED_APART or \
+                 WGSL_WITHOUT_TWIN (tests/gpu/twins.rs) with the reason",
+                item.file, item.line, item.key
+            ));
+        }
+    }
+    for (file, name, _) in WGSL_NAMED_APART {
+        if !needed.contains(&(*file, *name)) {
+            problems.push(format!(
+                "WGSL_NAMED_APART lists {file}::{name}, which is not a WGSL function"
+            ));
+        } else if plain.contains(name) {
+            problems.push(format!(
+                "WGSL_NAMED_APART lists {file}::{name}, but a Rust function has its name"
+            ));
+        }
+    }
+    count
+}
+
 /// The functions the line reader found in `shaders/` are the functions naga found in the
 /// assembled modules, file for file (so neither reader misses one).
 fn check_wgsl_functions(sources: &Sources, wgsl: &WgslModules, problems: &mut Vec<String>) {
@@ -948,6 +1126,16 @@ fn rust_and_wgsl_twins_name_each_other() {
         found.partial,
         WGSL_WITHOUT_TWIN.len(),
         found.configurations
+    );
+    let names = &found.named_apart;
+    println!(
+        "by name, {} of {} WGSL functions outside shaders/bench have no Rust function of \
+         their name ({} of them a Rust member Type::name's, as type_name); {} on \
+         WGSL_NAMED_APART",
+        names.without_same_name,
+        names.functions,
+        names.members,
+        WGSL_NAMED_APART.len()
     );
     assert!(
         found.problems.is_empty(),

@@ -178,3 +178,57 @@ fn broken_calls_are_reported() {
         "a renamed Rust twin",
     );
 }
+
+/// Twins named apart are reported: a pair whose Rust side takes another name (both
+/// comments following it, so every tie still holds), and a WGSL function whose twin
+/// comment names part of a Rust function of another name.
+#[test]
+fn names_apart_are_reported() {
+    let texts = source_texts();
+    let renamed = edited(
+        &edited(
+            &edited(
+                &texts,
+                "src/tracer/wavefront/wavefront.rs",
+                "fn wavefront_gather(",
+                "fn gather_entry(",
+            ),
+            "src/tracer/wavefront/wavefront.rs",
+            "        wavefront_gather(scene, batch, i, counters);",
+            "        gather_entry(scene, batch, i, counters);",
+        ),
+        "src/tracer/wavefront/wavefront.wgsl",
+        "src/tracer/wavefront/wavefront.rs::wavefront_gather — change both.",
+        "src/tracer/wavefront/wavefront.rs::gather_entry — change both.",
+    );
+    let found = check(&renamed);
+    assert_reported(
+        &found,
+        "fn wavefront_gather is named otherwise than its twin src/tracer/wavefront/wavefront.rs::gather_entry",
+        "a pair of twins named apart",
+    );
+    assert_eq!(found.problems.len(), 1, "{:#?}", found.problems);
+    let partial = edited(
+        &edited(
+            &edited(
+                &texts,
+                "src/tracer/sampling/render.rs",
+                "// Mirror of src/tracer/sampling/render.wgsl::uniform_resolve — change both.\npub fn uniform_resolve(",
+                "pub fn mean_of_samples(",
+            ),
+            "src/tracer/sampling/render.rs",
+            "uniform_resolve(uniform_samples(",
+            "mean_of_samples(uniform_samples(",
+        ),
+        "src/tracer/sampling/render.wgsl",
+        "// Mirror of src/tracer/sampling/render.rs::uniform_resolve — change both.",
+        "// Mirror of the sum of src/tracer/sampling/render.rs::render_pixel — change both.",
+    );
+    let found = check(&partial);
+    assert_reported(
+        &found,
+        "fn uniform_resolve has no Rust function of its name",
+        "a WGSL function mirroring part of a Rust function of another name",
+    );
+    assert_eq!(found.problems.len(), 1, "{:#?}", found.problems);
+}

@@ -22,7 +22,7 @@ use glint::tracer::sampling::render::render_pixel;
 use glint::tracer::shading::dielectric::{shadow_transmittance, MediumStack};
 use glint::tracer::traversal::traverse::Counters;
 use glint::tracer::wavefront::wavefront::{
-    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, next_generation,
+    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, wavefront_args,
     render_film, shade_pass, trace_batch, Batch, SampleSource,
 };
 use glint::tracer::wavefront::wavefront_lattice::adaptive_tile_wavefront;
@@ -349,7 +349,7 @@ fn trace_tree_batch(scene: &PackedScene, source: &SampleSource) -> (Batch, Reach
             .rounds
             .max(glass_shadow_pass(scene, &mut batch, &mut counters));
         gather_pass(scene, &mut batch, &mut counters);
-        if !next_generation(&mut batch) {
+        if !wavefront_args(&mut batch) {
             fold_pass(&mut batch);
             return (batch, reach);
         }

@@ -64,7 +64,7 @@ pub fn trace_ray(
         weight: Vec3::ONE,
         depth: 0,
         cone: camera_cone(g, &primary),
-        media: camera_media_of(&scene.globals),
+        media: camera_medium_stack(&scene.globals),
     };
     let first_hit = closest_hit(scene, &primary, T_MISS, counters);
     counters.camera_hit(first_hit.item);
@@ -333,7 +333,7 @@ fn facing_normal(normal: Vec3, dir: Vec3) -> Vec3 {
 
 /// The media primary rays start in, as packing found them (`dielectric::camera_media`).
 // Mirror of src/tracer/path/trace.wgsl::camera_medium_stack — change both.
-pub(crate) fn camera_media_of(g: &crate::pack::PackedGlobals) -> MediumStack {
+pub(crate) fn camera_medium_stack(g: &crate::pack::PackedGlobals) -> MediumStack {
     MediumStack {
         iors: g.camera_media,
         count: g.camera_media_count,

@@ -357,7 +357,7 @@ fn facing_normal(normal: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
 
 // #if REFRACTION
 // The medium stack primary rays start with (the host found the media around the eye).
-// Mirror of src/tracer/path/trace.rs::camera_media_of — change both.
+// Mirror of src/tracer/path/trace.rs::camera_medium_stack — change both.
 fn camera_medium_stack() -> MediumStack {
     let c = globals.camera_media;
     return MediumStack(array<f32, MEDIUM_STACK_SIZE>(c.x, c.y, c.z, c.w), globals.camera_media_count);

@@ -165,16 +165,25 @@ fn adaptive_corners(
     idx: u32,
     counters: &mut impl TraversalCounters,
 ) {
-    let t = lat.tile;
+    let (i, j) = corner_to_trace(&lat.tile, idx);
+    trace_lattice_point(scene, lat, i, j, counters);
+}
+
+/// The lattice point that invocation `idx` of the corner pass traces (see
+/// [`adaptive_corners`]): pixel corner (idx mod (w+1), idx div (w+1)) for
+/// idx < (w+1)(h+1), after those the centre of pixel number idx − (w+1)(h+1). Both
+/// forms' corner passes take it: [`adaptive_corners`] here and the wavefront's
+/// `wavefront_lattice::corner_pass_point`. (In WGSL, adaptive.wgsl's adaptive_corners and
+/// wavefront_lattice.wgsl's corner_pass_point each keep a copy of these lines: a shared
+/// function would change the software variant's module.)
+pub(crate) fn corner_to_trace(t: &AdaptiveTile, idx: u32) -> (u32, u32) {
     let s = t.scale();
     let corners = (t.size[0] + 1) * (t.size[1] + 1);
-    let (i, j) = if idx < corners {
-        ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s)
-    } else {
-        let pixel = idx - corners;
-        square_centre(&t, 0, pixel % t.size[0], pixel / t.size[0])
-    };
-    trace_lattice_point(scene, lat, i, j, counters);
+    if idx < corners {
+        return ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s);
+    }
+    let pixel = idx - corners;
+    square_centre(t, 0, pixel % t.size[0], pixel / t.size[0])
 }
 
 /// The samples at the corners of square (a, b) of `level`: top-left, top-right,
@@ -283,6 +292,18 @@ fn adaptive_midpoints(
     idx: u32,
     counters: &mut impl TraversalCounters,
 ) {
+    if let Some((i, j)) = midpoint_to_trace(lat, level, idx) {
+        trace_lattice_point(scene, lat, i, j, counters);
+    }
+}
+
+/// The lattice point that invocation `idx` of level `level`'s midpoint pass traces (see
+/// [`adaptive_midpoints`]); None where another invocation traces it, or the child has no
+/// centre. Both forms' midpoint passes take it: [`adaptive_midpoints`] here and the
+/// wavefront's `wavefront_lattice::midpoint_pass_point`. (In WGSL, adaptive.wgsl's
+/// adaptive_midpoints and wavefront_lattice.wgsl's midpoint_pass_point each keep a copy
+/// of these lines: a shared function would change the software variant's module.)
+pub(crate) fn midpoint_to_trace(lat: &Lattice, level: u32, idx: u32) -> Option<(u32, u32)> {
     let t = lat.tile;
     let m = idx % AA_SPLIT_POINTS;
     let (a, b) = lat.split_square(level, idx / AA_SPLIT_POINTS);
@@ -290,7 +311,7 @@ fn adaptive_midpoints(
         || (m == 1 && a > 0 && lat.is_split(level, a - 1, b))
         || (m >= 4 && !square_has_centre(&t, level + 1))
     {
-        return;
+        return None;
     }
     let l = t.scale() >> level;
     let (h, q) = (l / 2, l / 4);
@@ -304,8 +325,8 @@ fn adaptive_midpoints(
         (q, h + q),
         (h + q, h + q),
     ];
-    let (i, j) = (a * l + offsets[m as usize].0, b * l + offsets[m as usize].1);
-    trace_lattice_point(scene, lat, i, j, counters);
+    let (ox, oy) = offsets[m as usize];
+    Some((a * l + ox, b * l + oy))
 }
 
 /// Colour of tile pixel (tx, ty) and its number of leaf squares: the area-weighted mean

@@ -158,14 +158,15 @@ pub fn lattice_sample(
     fy: f32,
     counters: &mut impl TraversalCounters,
 ) -> (Vec3, SampleHint) {
-    let (jx, jy, seed) = lattice_position(scene, fx, fy);
+    let (jx, jy, seed) = lattice_jitter(scene, fx, fy);
     hinted_sample(scene, jx, jy, seed, counters)
 }
 
 /// Where [`lattice_sample`] samples lattice point (fx, fy) (the point jittered), and its
 /// seed: the film position and seed the wavefront's camera pass takes too
-/// (`tracer::wavefront::wavefront`).
-pub(crate) fn lattice_position(scene: &PackedScene, fx: f32, fy: f32) -> (f32, f32, SampleSeed) {
+/// (`tracer::wavefront::wavefront`'s `SampleSource::Lattice`).
+// Mirror of src/tracer/sampling/pixel_sample.wgsl::lattice_jitter, which the WGSL lattice_sample does not call (it keeps its own copy of these lines, so that the software variant's module stays byte for byte what it was) — change both.
+pub(crate) fn lattice_jitter(scene: &PackedScene, fx: f32, fy: f32) -> (f32, f32, SampleSeed) {
     let seed = adaptive_seed(fx, fy);
     // A power of two: the products below are exact, so a fused multiply-add on the GPU
     // rounds the sums as these do.

@@ -100,7 +100,7 @@ struct JitteredPoint {
 // Where lattice_sample samples lattice point (fx, fy) (the point jittered, the same sums)
 // and its seed: what the wavefront's camera pass for adaptive AA takes
 // (wavefront_lattice.wgsl).
-// Mirror of the jittered point and seed of src/tracer/sampling/pixel_sample.rs::lattice_position — change both.
+// Mirror of src/tracer/sampling/pixel_sample.rs::lattice_jitter, which the CPU's lattice_sample calls too — change both.
 fn lattice_jitter(fx: f32, fy: f32) -> JitteredPoint {
     let seed = adaptive_seed(fx, fy);
     let width = AA_LATTICE_JITTER * ldexp(1.0, -i32(globals.aa_depth));

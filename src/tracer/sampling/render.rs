@@ -188,9 +188,30 @@ pub fn render_pixel(
     // (x + 0.5 exactly). One loop for both keeps one `sample` call site (see above).
     let uniform = g.aa_mode == AA_UNIFORM;
     let n = if uniform { g.aa_samples } else { 1 };
+    uniform_resolve(uniform_samples(scene, x, y, n, uniform, counters), n)
+}
+
+/// Pixel (x, y)'s n² samples ([`uniform_sample`] of strata 0 … n² − 1), in sample order:
+/// the GPU's first pass of uniform AA traces them one an invocation.
+// Mirror of shaders/render.wgsl::uniform_samples — change both.
+pub fn uniform_samples<'a, C: TraversalCounters>(
+    scene: &'a PackedScene,
+    x: u32,
+    y: u32,
+    n: u32,
+    uniform: bool,
+    counters: &'a mut C,
+) -> impl Iterator<Item = Vec3> + 'a {
+    (0..n * n).map(move |s| uniform_sample(scene, x, y, s, n, uniform, counters))
+}
+
+/// A pixel's mean of its n² `samples`, summed in sample order then divided by n² (the
+/// order every form sums in, so each gives this pixel bit for bit).
+// Mirror of shaders/render.wgsl::uniform_resolve — change both.
+pub fn uniform_resolve(samples: impl Iterator<Item = Vec3>, n: u32) -> Vec3 {
     let mut sum = Vec3::ZERO;
-    for s in 0..n * n {
-        sum += uniform_sample(scene, x, y, s, n, uniform, counters);
+    for colour in samples {
+        sum += colour;
     }
     sum / (n * n) as f32
 }

@@ -109,7 +109,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
 // Uniform AA, pass 1: sample (idx mod n², idx div n² as a tile pixel, row-major over the
 // tile's size) of the tile into samples[(pixel's row-major index at stride tile.side)·n²
 // + s].
-// Mirror of the sample loop of src/tracer/sampling/render.rs::render_pixel — change both.
+// Mirror of src/tracer/sampling/render.rs::uniform_samples — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn uniform_samples(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
@@ -133,7 +133,7 @@ fn uniform_samples(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
 }
 
 // Uniform AA, pass 2: each pixel's mean, summed in sample order as the CPU does.
-// Mirror of the sum of src/tracer/sampling/render.rs::render_pixel — change both.
+// Mirror of src/tracer/sampling/render.rs::uniform_resolve — change both.
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
 fn uniform_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= tile.size.x || id.y >= tile.size.y {

@@ -28,7 +28,7 @@
 //! frames), adaptive AA's lattice points (a sample's colour and [`SampleHint`]:
 //! [`trace_batch`]).
 
-use super::wavefront_tree::{fold_samples, glass_shadow_rounds, ShadowRequests, VertexTree};
+use super::wavefront_tree::{glass_shadow_rounds, wavefront_fold, ShadowRequests, VertexTree};
 use crate::constants::{
     AA_ADAPTIVE, AA_UNIFORM, LIGHT_AREA, MEDIUM_STACK_SIZE, NO_ITEM, RAY_STACK_SIZE, T_MISS,
 };
@@ -37,7 +37,7 @@ use crate::pack::{PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{camera_ray, offset_ray, Ray};
 use crate::tracer::base::rng::{shadow_stream, SampleSeed};
 use crate::tracer::path::trace::{
-    camera_media_of, is_mirror, note_texture_detail, push_secondary_rays, shading_point, ShadedHit,
+    camera_medium_stack, is_mirror, note_texture_detail, push_secondary_rays, shading_point, ShadedHit,
     StackEntry,
 };
 use crate::tracer::sampling::pixel_sample::{lattice_position, sample_item_key, SampleHint};
@@ -111,7 +111,7 @@ impl SampleSource<'_> {
             }
             SampleSource::Lattice { points } => {
                 let [fx, fy] = points[k];
-                lattice_position(scene, fx, fy)
+                lattice_jitter(scene, fx, fy)
             }
         }
     }
@@ -366,7 +366,7 @@ pub struct Batch {
     pub keeps_tree: bool,
 }
 
-/// The camera pass: every sample of `source` through [`camera_entry`] (the GPU's
+/// The camera pass: every sample of `source` through [`wavefront_camera`] (the GPU's
 /// `wavefront_camera`), into a batch sized for them.
 pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch) {
     let count = source.len();
@@ -390,11 +390,11 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
     s.fine_detail = vec![false; count];
     batch.paths.resize(count);
     for k in 0..count {
-        camera_entry(scene, source, batch, k);
+        wavefront_camera(scene, source, batch, k);
     }
     if batch.keeps_tree {
         // Camera rays start in the media around the camera (chains keep the placeholder).
-        batch.paths.media.fill(camera_media_of(&scene.globals));
+        batch.paths.media.fill(camera_medium_stack(&scene.globals));
     }
     start_generation(batch);
 }
@@ -402,7 +402,7 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
 /// The camera pass's invocation for sample `k` of `source`: its seed, and its camera ray
 /// as generation 0's path k.
 // Mirror of src/tracer/wavefront/wavefront.wgsl::wavefront_camera, which takes the Strata and Stratum sources (AA none's, uniform AA's, glint view's) only so far — change both.
-fn camera_entry(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k: usize) {
+fn wavefront_camera(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k: usize) {
     let g = &scene.globals;
     let (fx, fy, seed) = source.camera_sample(scene, k);
     batch.samples.seed[k] = seed;
@@ -448,7 +448,7 @@ fn start_generation(batch: &mut Batch) {
 /// The closest pass: each path's ray to its closest hit.
 pub fn closest_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for i in 0..batch.paths.len() {
-        closest_entry(scene, batch, i, counters);
+        wavefront_closest(scene, batch, i, counters);
     }
 }
 
@@ -457,7 +457,7 @@ pub fn closest_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl 
 /// stored before the hints, in the WGSL's order (which reads the depth after the store to
 /// keep it out of the traversal's registers).
 // Mirror of src/tracer/wavefront/wavefront.wgsl::wavefront_closest — change both.
-fn closest_entry(
+fn wavefront_closest(
     scene: &PackedScene,
     batch: &mut Batch,
     i: usize,
@@ -487,7 +487,7 @@ fn closest_entry(
 /// The shade pass: each hit shaded without tracing.
 pub fn shade_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for i in 0..batch.paths.len() {
-        shade_entry(scene, batch, i, counters);
+        wavefront_shade(scene, batch, i, counters);
     }
 }
 
@@ -496,7 +496,7 @@ pub fn shade_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl Tr
 /// reflected ray in the next generation's queue, and at depth 0 the sample's hints (the
 /// texture detail, whether the camera's surface is a mirror).
 // Mirror of src/tracer/wavefront/wavefront.wgsl::wavefront_shade — change both.
-fn shade_entry(
+fn wavefront_shade(
     scene: &PackedScene,
     batch: &mut Batch,
     i: usize,
@@ -648,14 +648,14 @@ impl<C: TraversalCounters> TraversalCounters for DetailWatch<'_, C> {
 // Mirror of the loop of src/tracer/wavefront/wavefront.wgsl::wavefront_shadow (one request an invocation, with CSG over slices) — change both.
 pub fn shadow_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for r in 0..batch.shadows.len() {
-        shadow_entry(scene, batch, r, counters);
+        shadow_request(scene, batch, r, counters);
     }
 }
 
 /// The shadow pass's invocation for request `r`: its slot's term × the transmittance
 /// (`shade::point_light`'s last product: 1 or, where the ray is blocked, zero).
 // Mirror of src/tracer/wavefront/wavefront.wgsl::shadow_request — change both.
-fn shadow_entry(
+fn shadow_request(
     scene: &PackedScene,
     batch: &mut Batch,
     r: usize,
@@ -695,15 +695,15 @@ pub fn glass_shadow_pass(
 }
 
 /// The fold pass (scenes with refraction, after the last generation): each sample's
-/// colour from its vertex tree ([`fold_samples`]).
+/// colour from its vertex tree ([`wavefront_fold`]).
 pub fn fold_pass(batch: &mut Batch) {
-    fold_samples(&batch.tree, &mut batch.samples.colour);
+    wavefront_fold(&batch.tree, &mut batch.samples.colour);
 }
 
 /// The gather pass: each vertex's colour into its sample's.
 pub fn gather_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl TraversalCounters) {
     for i in 0..batch.paths.len() {
-        gather_entry(scene, batch, i, counters);
+        wavefront_gather(scene, batch, i, counters);
     }
 }
 
@@ -713,7 +713,7 @@ pub fn gather_pass(scene: &PackedScene, batch: &mut Batch, counters: &mut impl T
 /// hint), then into the sample's colour: the camera vertex's is the colour, a deeper
 /// one's adds weight × colour (`trace_ray`'s order: generation order is its pop order).
 // Mirror of src/tracer/wavefront/wavefront.wgsl::wavefront_gather — change both.
-fn gather_entry(
+fn wavefront_gather(
     scene: &PackedScene,
     batch: &mut Batch,
     i: usize,
@@ -763,7 +763,7 @@ fn gather_entry(
 /// Ends a generation (the args kernel's job on the GPU): the next generation's paths
 /// become the current ones; false when there are none.
 // Mirror of src/tracer/wavefront/wavefront.wgsl::wavefront_args — change both.
-pub fn next_generation(batch: &mut Batch) -> bool {
+pub fn wavefront_args(batch: &mut Batch) -> bool {
     std::mem::swap(&mut batch.paths, &mut batch.next);
     if batch.paths.is_empty() {
         return false;
@@ -783,21 +783,33 @@ pub fn trace_batch(
 ) -> Batch {
     let mut batch = Batch::default();
     camera_pass(scene, source, &mut batch);
+    trace_generations(scene, &mut batch, counters);
+    batch
+}
+
+/// A batch that the camera pass started, through its generations: per generation the
+/// closest, shade, shadow and gather passes, until one spawns no ray; then, with
+/// refraction, the fold.
+pub fn trace_generations(
+    scene: &PackedScene,
+    batch: &mut Batch,
+    counters: &mut impl TraversalCounters,
+) {
     loop {
-        closest_pass(scene, &mut batch, counters);
-        shade_pass(scene, &mut batch, counters);
+        closest_pass(scene, batch, counters);
+        shade_pass(scene, batch, counters);
         if batch.keeps_tree {
             // Shadow rays pass through glass: rounds of legs (`wavefront_tree`).
-            glass_shadow_pass(scene, &mut batch, counters);
+            glass_shadow_pass(scene, batch, counters);
         } else {
-            shadow_pass(scene, &mut batch, counters);
+            shadow_pass(scene, batch, counters);
         }
-        gather_pass(scene, &mut batch, counters);
-        if !next_generation(&mut batch) {
+        gather_pass(scene, batch, counters);
+        if !wavefront_args(batch) {
             if batch.keeps_tree {
-                fold_pass(&mut batch);
+                fold_pass(batch);
             }
-            return batch;
+            return;
         }
     }
 }
@@ -829,7 +841,7 @@ pub fn render_film(
         };
         let batch = trace_batch(scene, &source, counters);
         for (p, &[x, y]) in chunk.iter().enumerate() {
-            film.set(x, y, resolve_pixel(scene, &batch, p).to_array());
+            film.set(x, y, wavefront_resolve(scene, &batch, p).to_array());
         }
     }
     film
@@ -839,7 +851,7 @@ pub fn render_film(
 /// none): its samples' colours (p·n² … p·n² + n² − 1) summed in sample order, divided by
 /// n² (`render::render_pixel`'s order).
 // Mirror of src/tracer/wavefront/wavefront.wgsl::wavefront_resolve — change both.
-pub fn resolve_pixel(scene: &PackedScene, batch: &Batch, p: usize) -> Vec3 {
+pub fn wavefront_resolve(scene: &PackedScene, batch: &Batch, p: usize) -> Vec3 {
     let g = &scene.globals;
     let n = if g.aa_mode == AA_UNIFORM {
         g.aa_samples
@@ -906,13 +918,13 @@ mod tests {
         batch.shadows.append_request(0, 2, Vec3::X);
         batch.next.append_path(&entry(1), 0, 0);
         batch.next.append_path(&entry(1), 0, 5);
-        assert!(next_generation(&mut batch));
+        assert!(wavefront_args(&mut batch));
         assert_eq!(batch.generations, 2);
         assert_eq!(batch.paths.sample, vec![0, 5]);
         assert_eq!(batch.slots, vec![Vec3::ZERO; 6]);
         assert_eq!(batch.hits.item, vec![NO_ITEM; 2]);
         assert!(batch.shadows.is_empty() && batch.next.is_empty());
-        assert!(!next_generation(&mut batch));
+        assert!(!wavefront_args(&mut batch));
     }
 
     /// `x × 1` keeps every bit of x (the shadow pass's unblocked product), −0.0, NaN and

@@ -169,7 +169,7 @@ fn set_sample_flags(k: u32, flags: u32) {
 // chunk pixel k (pixels row-major over size, at stride size.x), n = globals.aa_samples
 // under uniform AA (jittered), 1 under AA none (the pixel's centre): its record, and its
 // camera ray as generation 0's path k.
-// Mirror of the Strata and Stratum sources of src/tracer/wavefront/wavefront.rs::camera_entry — change both.
+// Mirror of the Strata and Stratum sources of src/tracer/wavefront/wavefront.rs::wavefront_camera — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let k = linear_index(id, groups);
@@ -232,7 +232,7 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
 // which keeps textures.lua's kernel within the traversal budget of 96 VGPRs on NAVI21
 // (112 in wave32, 104 in wave64 with the depth held through the traversal;
 // docs/journal/2026-12-02-textures-closest-kernel.md).
-// Mirror of src/tracer/wavefront/wavefront.rs::closest_entry — change both.
+// Mirror of src/tracer/wavefront/wavefront.rs::wavefront_closest — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_closest(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = linear_index(id, groups);
@@ -294,7 +294,7 @@ fn ask_shadow(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, position: ve
 // The shade pass's invocation for path idx: a miss's background; a hit's own term, its
 // light slots and shadow requests, the reflected ray appended to the next generation's
 // queue, and at depth 0 the sample's hints.
-// Mirror of src/tracer/wavefront/wavefront.rs::shade_entry — change both.
+// Mirror of src/tracer/wavefront/wavefront.rs::wavefront_shade — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = linear_index(id, groups);
@@ -457,7 +457,7 @@ fn push_next_paths(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit: Hi
 // (work_args[6g + 3 ..]; with CSG a generation's words are 3 + 3L, its slices' from
 // 3 on, see wavefront_shadow), and the
 // counters of generation g − 1 cleared for generation g + 1.
-// Mirror of src/tracer/wavefront/wavefront.rs::next_generation — change both.
+// Mirror of src/tracer/wavefront/wavefront.rs::wavefront_args — change both.
 @compute @workgroup_size(1)
 fn wavefront_args() {
 // #if REFRACTION
@@ -524,7 +524,7 @@ fn wavefront_shadow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
 }
 
 // Shadow request r: its slot's term × the transmittance (1, or 0 where blocked).
-// Mirror of src/tracer/wavefront/wavefront.rs::shadow_entry — change both.
+// Mirror of src/tracer/wavefront/wavefront.rs::shadow_request — change both.
 fn shadow_request(r: u32) {
     let points = light_points();
     let request = samples[wavefront_shadows(points) + r];
@@ -545,7 +545,7 @@ fn shadow_request(r: u32) {
 // The gather pass's invocation for path idx: its vertex's colour in shade_phong's order,
 // then into its sample's colour (the camera vertex's is the colour; a deeper one adds
 // weight × colour) and the chunk's output pixel.
-// Mirror of src/tracer/wavefront/wavefront.rs::gather_entry — change both.
+// Mirror of src/tracer/wavefront/wavefront.rs::wavefront_gather — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let i = linear_index(id, groups);
@@ -612,7 +612,7 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
 // Uniform AA, after the chunk's last generation: each chunk pixel's mean over its n²
 // samples' colours (pixel p's samples are p·n² … p·n² + n² − 1), summed in sample order
 // and divided by n² as render.wgsl's uniform_resolve does (the megakernel's image).
-// Mirror of src/tracer/wavefront/wavefront.rs::resolve_pixel — change both.
+// Mirror of src/tracer/wavefront/wavefront.rs::wavefront_resolve — change both.
 @compute @workgroup_size(WORKGROUP_SIZE, WORKGROUP_SIZE)
 fn wavefront_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= tile.size.x || id.y >= tile.size.y {

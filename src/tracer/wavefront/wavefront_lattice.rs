@@ -1,7 +1,7 @@
 //! Adaptive AA's tracing passes through the wavefront passes: the corner pass and each
 //! level's midpoint pass (the points [`adaptive`](crate::tracer::sampling::adaptive)'s `adaptive_corners`
 //! and `adaptive_midpoints` trace, enumerated alike) as a [`SampleSource::Lattice`]
-//! batch through [`trace_batch`], whose samples' colours and hints then go into their
+//! batch through the wavefront passes, whose samples' colours and hints then go into their
 //! lattice points: the lattice, and so the image, is the megakernel passes' bit for bit.
 //!
 //! On the GPU (`src/tracer/wavefront/wavefront_lattice.wgsl`, hardware kernel variant) the camera
@@ -10,11 +10,11 @@
 //! store pass's invocation idx writes sample idx into its point; here the batch holds the
 //! traced points alone, in invocation order. Neither order changes a bit.
 
-use super::wavefront::{trace_batch, Batch, SampleSource};
+use super::wavefront::{camera_pass, trace_generations, Batch, SampleSource};
 use crate::constants::AA_SPLIT_POINTS;
 use crate::pack::PackedScene;
 use crate::tracer::sampling::adaptive::{
-    adaptive_tile_passes, lattice_index, lattice_position, square_centre, square_has_centre,
+    adaptive_tile_passes, corner_to_trace, lattice_index, lattice_position, midpoint_to_trace,
     AdaptiveTile, Lattice,
 };
 use crate::tracer::traversal::traverse::TraversalCounters;
@@ -42,13 +42,7 @@ pub fn lattice_pass_len(lat: &Lattice, pass: u32) -> u32 {
 /// number idx − (w+1)(h+1).
 // Mirror of src/tracer/wavefront/wavefront_lattice.wgsl::corner_pass_point — change both.
 pub fn corner_pass_point(t: &AdaptiveTile, idx: u32) -> (u32, u32) {
-    let s = t.scale();
-    let corners = (t.size[0] + 1) * (t.size[1] + 1);
-    if idx < corners {
-        return ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s);
-    }
-    let pixel = idx - corners;
-    square_centre(t, 0, pixel % t.size[0], pixel / t.size[0])
+    corner_to_trace(t, idx)
 }
 
 /// The lattice point invocation `idx` of level `level`'s midpoint pass traces: point
@@ -58,29 +52,7 @@ pub fn corner_pass_point(t: &AdaptiveTile, idx: u32) -> (u32, u32) {
 /// traces, and for a child's centre at the deepest level.
 // Mirror of src/tracer/wavefront/wavefront_lattice.wgsl::midpoint_pass_point — change both.
 pub fn midpoint_pass_point(lat: &Lattice, level: u32, idx: u32) -> Option<(u32, u32)> {
-    let t = lat.tile;
-    let m = idx % AA_SPLIT_POINTS;
-    let (a, b) = lat.split_square(level, idx / AA_SPLIT_POINTS);
-    if (m == 0 && b > 0 && lat.is_split(level, a, b - 1))
-        || (m == 1 && a > 0 && lat.is_split(level, a - 1, b))
-        || (m >= 4 && !square_has_centre(&t, level + 1))
-    {
-        return None;
-    }
-    let l = t.scale() >> level;
-    let (h, q) = (l / 2, l / 4);
-    let offsets = [
-        (h, 0),
-        (0, h),
-        (l, h),
-        (h, l),
-        (q, q),
-        (h + q, q),
-        (q, h + q),
-        (h + q, h + q),
-    ];
-    let (ox, oy) = offsets[m as usize];
-    Some((a * l + ox, b * l + oy))
+    midpoint_to_trace(lat, level, idx)
 }
 
 /// The lattice point invocation `idx` of lattice pass `pass` (0: the corner pass, 1 + k:
@@ -94,16 +66,33 @@ pub fn lattice_pass_point(lat: &Lattice, pass: u32, idx: u32) -> Option<(u32, u3
 }
 
 /// Lattice pass `pass` through the wavefront passes: the camera pass over the points its
-/// invocations trace (at their lattice positions; the source jitters them as
-/// `lattice_sample` does), the generations ([`trace_batch`]), then each sample's colour
-/// and hint into its lattice point.
-// Mirror of the camera and store passes of src/tracer/wavefront/wavefront_lattice.wgsl::wavefront_lattice_camera — change both.
+/// invocations trace ([`wavefront_lattice_camera`]), the generations
+/// ([`trace_generations`]), then each sample's colour and hint into its lattice point
+/// ([`wavefront_lattice_store`]).
 pub fn trace_lattice_pass(
     scene: &PackedScene,
     lat: &mut Lattice,
     pass: u32,
     counters: &mut impl TraversalCounters,
 ) {
+    let mut batch = Batch::default();
+    let traced = wavefront_lattice_camera(scene, lat, pass, &mut batch);
+    trace_generations(scene, &mut batch, counters);
+    for (k, &(i, j)) in traced.iter().enumerate() {
+        wavefront_lattice_store(lat, &batch, k, i, j);
+    }
+}
+
+/// The camera pass of lattice pass `pass`: the lattice points its invocations trace, in
+/// invocation order, whose camera rays (at their lattice positions, jittered by the
+/// [`SampleSource::Lattice`] source as `lattice_sample` jitters them) start `batch`.
+// Mirror of shaders/wavefront_lattice.wgsl::wavefront_lattice_camera, the pass's invocations in one loop (the GPU's keep each sample's record at the invocation's index; here the batch holds the traced points alone) — change both.
+pub fn wavefront_lattice_camera(
+    scene: &PackedScene,
+    lat: &Lattice,
+    pass: u32,
+    batch: &mut Batch,
+) -> Vec<(u32, u32)> {
     let t = lat.tile;
     let traced: Vec<(u32, u32)> = (0..lattice_pass_len(lat, pass))
         .filter_map(|idx| lattice_pass_point(lat, pass, idx))
@@ -115,15 +104,13 @@ pub fn trace_lattice_pass(
             [fx, fy]
         })
         .collect();
-    let batch = trace_batch(scene, &SampleSource::Lattice { points: &points }, counters);
-    for (k, &(i, j)) in traced.iter().enumerate() {
-        lattice_store_entry(lat, &batch, k, i, j);
-    }
+    camera_pass(scene, &SampleSource::Lattice { points: &points }, batch);
+    traced
 }
 
 /// Sample `k` of `batch` into lattice point (i, j): its colour and its hint.
 // Mirror of the store of src/tracer/wavefront/wavefront_lattice.wgsl::wavefront_lattice_store — change both.
-fn lattice_store_entry(lat: &mut Lattice, batch: &Batch, k: usize, i: u32, j: u32) {
+fn wavefront_lattice_store(lat: &mut Lattice, batch: &Batch, k: usize, i: u32, j: u32) {
     let at = lattice_index(&lat.tile, i, j);
     lat.points[at] = batch.samples.colour[k];
     lat.hints[at] = batch.samples.hint(k);

@@ -95,7 +95,7 @@ fn lattice_pass_point(lattice_pass: u32, idx: u32) -> vec3<u32> {
 // position (lattice_jitter, lattice_sample's) appended to generation 0's queue, whose
 // counter the previous store pass (or the tile's start) cleared. `samples` is bound from
 // the queues.
-// Mirror of the camera pass of src/tracer/wavefront/wavefront_lattice.rs::trace_lattice_pass — change both.
+// Mirror of src/tracer/wavefront/wavefront_lattice.rs::wavefront_lattice_camera, one invocation of its loop — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_lattice_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
@@ -163,7 +163,7 @@ fn guard_lattice_point(i: u32, j: u32) {
 // its hint (encode_hint of the camera item's key, mixed with the mirrored item's, and
 // fine detail) into its lattice point. Invocation 0 clears the wavefront's counters for
 // the next lattice pass. `samples` is bound whole (the records from lattice_queue_base()).
-// Mirror of the store loop of src/tracer/wavefront/wavefront_lattice.rs::trace_lattice_pass — change both.
+// Mirror of src/tracer/wavefront/wavefront_lattice.rs::wavefront_lattice_store, with the GPU's counters and guard flags — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_lattice_store(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);

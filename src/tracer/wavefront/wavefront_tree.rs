@@ -62,7 +62,7 @@ impl VertexTree {
 /// The fold pass: each sample's colour (sample k's camera vertex is vertex k) from its
 /// vertex tree.
 // Mirror of src/tracer/wavefront/wavefront_tree.wgsl::wavefront_fold — change both.
-pub fn fold_samples(tree: &VertexTree, colours: &mut [Vec3]) {
+pub fn wavefront_fold(tree: &VertexTree, colours: &mut [Vec3]) {
     for (k, colour) in colours.iter_mut().enumerate() {
         *colour = fold_entry(tree, k as u32);
     }
@@ -283,7 +283,7 @@ mod tests {
         assert_ne!(pop_order, push_order);
         assert_eq!(fold_entry(&tree, 0), Vec3::splat(pop_order));
         let mut colours = [Vec3::NAN];
-        fold_samples(&tree, &mut colours);
+        wavefront_fold(&tree, &mut colours);
         assert_eq!(colours[0], Vec3::splat(pop_order));
     }
 }

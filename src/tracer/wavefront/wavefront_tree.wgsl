@@ -261,7 +261,7 @@ fn next_generation_room(next_base: u32) -> u32 {
 // refraction): the next generation's count cut to its room and its vertex base, the
 // indirect workgroups of its passes and of this generation's shadow pass and first
 // round (every request's first leg), the counters of generation g − 1 cleared for g + 1.
-// Mirror of src/tracer/wavefront/wavefront.rs::next_generation (a tree's) — change both.
+// Mirror of src/tracer/wavefront/wavefront.rs::wavefront_args (a tree's) — change both.
 fn tree_generation_args_entry() {
     let g = tile.level;
     let next_base = atomicLoad(&work_counts[vertex_base_counter(g)]) + atomicLoad(&work_counts[path_counter(g)]);
@@ -503,7 +503,7 @@ fn wavefront_leg_args() {
 // The fold pass (after the chunk's last generation), sample k = idx: its colour from its
 // vertex tree, into its record (for uniform AA's resolve and glint view's store, as
 // wavefront_gather leaves a chain's) and, a render under AA none, the chunk's output pixel.
-// Mirror of src/tracer/wavefront/wavefront_tree.rs::fold_samples — change both.
+// Mirror of src/tracer/wavefront/wavefront_tree.rs::wavefront_fold — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_fold(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let k = linear_index(id, groups);
