@@ -13,6 +13,7 @@ pub mod intersect;
 pub mod math;
 pub mod pixel_sample;
 pub mod progressive;
+pub mod queues;
 pub mod ray;
 pub mod render;
 pub mod rng;

@@ -14,9 +14,11 @@ use super::lists::LIST_BUDGET_BYTES;
 use super::shader::Entry;
 use crate::constants::{
     AA_ADAPTIVE, AA_SPLIT_POINTS, AA_UNIFORM, ALL_STRATA, GPU_FRAME_PARTS, MAX_SHADOW_CROSSINGS,
-    TREE_PATHS_PER_SAMPLE, TREE_VERTICES_PER_SAMPLE, WAVEFRONT_WORK_BASE,
+    WAVEFRONT_WORK_BASE,
 };
+use crate::cpu::queues::REGIONS;
 use crate::pack::PackedGlobals;
+use crate::queues::layout::{paths_per_sample, vec4s_per_sample, Form};
 use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
 
 /// The AA mode's passes.
@@ -70,30 +72,27 @@ impl WavefrontShape {
         self.uniform.map_or(1, |n| (n * n) as u64)
     }
 
-    /// vec4 entries of the queues a sample of a chunk takes (`shaders/wavefront.wgsl`'s
-    /// regions): its record (2), two path queues (4 each), a hit (2), a vertex (2), its
-    /// light slots and shadow requests (L each). A tree's (`shaders/wavefront_tree.wgsl`):
-    /// the record, then per path of a generation (TREE_PATHS_PER_SAMPLE a sample) two
-    /// path queues (5 each, with media and pending count), a hit, a vertex, the vertex
-    /// tree (2 a vertex, TREE_VERTICES_PER_SAMPLE a sample), then per path L slots, L
-    /// requests, two leg queues (3L each) and the legs' hits (2L).
-    pub fn vec4s_per_sample(self) -> u64 {
-        let l = self.light_points as u64;
+    /// The queues' layout: a tree's with refraction, else a chain's.
+    fn form(self) -> Form {
         if self.tree {
-            3 + (14 + 10 * l) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
+            Form::Tree
         } else {
-            14 + 2 * l
+            Form::Chain
         }
+    }
+
+    /// vec4 entries of the queues a sample of a chunk takes (the regions of
+    /// `cpu::queues::REGIONS`, laid out by `queues::layout`): its record, two path
+    /// queues, a hit, a vertex, its light slots and shadow requests (L each) per path a
+    /// generation may hold, and a tree's vertex tree, camera vertex and glass shadow legs.
+    pub fn vec4s_per_sample(self) -> u64 {
+        vec4s_per_sample(REGIONS, self.form(), self.light_points)
     }
 
     /// Tracing invocations (list slots) a wavefront dispatch may have per sample of the
     /// chunk: a tree's generation holds up to TREE_PATHS_PER_SAMPLE paths a sample.
     pub fn slots_per_sample(self) -> u64 {
-        if self.tree {
-            TREE_PATHS_PER_SAMPLE as u64
-        } else {
-            1
-        }
+        paths_per_sample(self.form())
     }
 
     /// Byte offset in work_args of the indirect arguments of generation g's passes over
@@ -865,6 +864,7 @@ pub fn linear_workgroups(items: u32, lanes: u32, max_workgroups: u32) -> (u32, u
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::constants::{TREE_PATHS_PER_SAMPLE, TREE_VERTICES_PER_SAMPLE};
 
     fn globals(w: u32, h: u32, aa_mode: u32) -> PackedGlobals {
         PackedGlobals {

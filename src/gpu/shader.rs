@@ -20,8 +20,11 @@
 use super::kernel::KernelConfig;
 use super::lists::LaneLists;
 use crate::constants::{wavefront_tree_wgsl_prelude, wavefront_wgsl_prelude, wgsl_prelude};
+use crate::cpu::queues::REGIONS;
 use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
+use crate::queues::layout::Form;
+use crate::queues::wgsl::queue_wgsl;
 
 /// Which compute entry point a pipeline is for. Every entry but `Probe` is in the render
 /// module (one source, one bind group layout).
@@ -398,6 +401,9 @@ pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig
     if tree {
         out += &wavefront_tree_wgsl_prelude();
     }
+    if wavefront {
+        out += &queue_accessors(features, kernel);
+    }
     out += &format!("// Specialised for features: {features}; kernel: {kernel}\n");
     let files = COMMON
         .iter()
@@ -410,6 +416,22 @@ pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig
             .unwrap_or_else(|e| panic!("shaders/{name}: {e} (a bug in the shader source)"));
     }
     out
+}
+
+/// The wavefront queues' accessors of a render module with the wavefront kernels for a
+/// scene with `features`: generated from their specification (`cpu::queues`; a tree's
+/// layout with refraction), with the fields whose `#if` condition the module has.
+pub fn queue_accessors(features: SceneFeatures, kernel: KernelConfig) -> String {
+    let form = if features.contains(SceneFeatures::REFRACTION) {
+        Form::Tree
+    } else {
+        Form::Chain
+    };
+    let present = |text: &str| {
+        condition(text, features, kernel)
+            .unwrap_or_else(|e| panic!("src/cpu/queues.rs: {e} (a bug in the specification)"))
+    };
+    queue_wgsl(REGIONS, form, &present)
 }
 
 /// Resolves the `// #if` blocks of one file (default kernel variant). Errors name the line

@@ -28,6 +28,7 @@ mod gpu_trace_forms;
 mod gpu_wavefront;
 mod gpu_wavefront_tree;
 mod kernel_instrument;
+mod queue_twins;
 mod twins;
 mod twins_broken;
 mod view;
