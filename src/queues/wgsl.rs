@@ -355,7 +355,7 @@ fn field_wgsl(region: &str, f: &QueueField, head: &str, at: &str) -> String {
             let value = if uint { "bitcast<f32>(value)" } else { "value" };
             let store = format!("{}.{} = {value};", word(w), "xyzw".as_bytes()[lane] as char);
             let test = if c == 0 {
-                format!("    if c == 0u {{\n")
+                "    if c == 0u {\n".to_string()
             } else if c + 1 < lanes.len() {
                 format!(" else if c == {c}u {{\n")
             } else {
