@@ -3,7 +3,7 @@
 //! after another, sized per sample of the chunk. A chain (no refraction) and a tree (with
 //! it: generations wider than the chunk, the vertex tree, the glass shadow legs) lay
 //! them out differently; `gpu::plan` sizes its buffers by [`vec4s_per_sample`] and the
-//! WGSL accessors ([`super::wgsl`]) index by [`Region::offset`].
+//! WGSL accessors (the generator beside this file) index by [`Region::offset`].
 
 use super::{QueueField, QueueRecord, TREE_CONDITION};
 use crate::constants::{TREE_PATHS_PER_SAMPLE, TREE_VERTICES_PER_SAMPLE};

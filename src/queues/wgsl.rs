@@ -264,7 +264,9 @@ fn region_wgsl(
         .iter()
         .map(|f| format!("{}: {}", f.name, f.wgsl))
         .collect();
-    out += &format!("fn write_{name}({head}, {}) {{\n{at}", args.join(", "));
+    out += &format!("fn write_{name}({head}, {})", args.join(", "));
+    out += " {\n";
+    out += &at;
     out += &store_words(&values, false);
     out += "}\n";
     // The same, at an entry's place found beforehand (`R_entry`): a kernel that finds it
@@ -274,7 +276,8 @@ fn region_wgsl(
         .trim_start_matches("let at = ")
         .trim_end_matches(';');
     out += &format!("fn {name}_entry({head}) -> u32 {{\n    return {at_expr};\n}}\n");
-    out += &format!("fn write_{name}_at(at: u32, {}) {{\n", args.join(", "));
+    out += &format!("fn write_{name}_at(at: u32, {})", args.join(", "));
+    out += " {\n";
     out += &store_words(&values, false);
     out += "}\n";
     if let Some(ty) = region.record.wgsl_struct {
@@ -342,13 +345,16 @@ fn field_wgsl(region: &str, f: &QueueField, head: &str, at: &str) -> String {
         "fn {region}_{name}({head}) -> {ty} {{\n{at}    return {};\n}}\n",
         read_field(f)
     );
-    out += &format!("fn set_{region}_{name}({head}, value: {ty}) {{\n{at}");
+    out += &format!("fn set_{region}_{name}({head}, value: {ty})");
+    out += " {\n";
+    out += at;
     out += &store_words(&[(f, "value".to_string())], true);
     out += "}\n";
     if let Some(scalar) = ty.strip_prefix("vec").and_then(|t| t.get(1..)) {
         let scalar = scalar.trim_start_matches('<').trim_end_matches('>');
-        out +=
-            &format!("fn set_{region}_{name}_component({head}, c: u32, value: {scalar}) {{\n{at}");
+        out += &format!("fn set_{region}_{name}_component({head}, c: u32, value: {scalar})");
+        out += " {\n";
+        out += at;
         let lanes = lanes(f);
         let uint = scalar == "u32";
         for (c, &(w, lane)) in lanes.iter().enumerate() {
@@ -357,11 +363,12 @@ fn field_wgsl(region: &str, f: &QueueField, head: &str, at: &str) -> String {
             let test = if c == 0 {
                 "    if c == 0u {\n".to_string()
             } else if c + 1 < lanes.len() {
-                format!(" else if c == {c}u {{\n")
+                format!(" else if c == {c}u") + " {\n"
             } else {
                 " else {\n".to_string()
             };
-            out += &format!("{test}        {store}\n    }}");
+            out += &format!("{test}        {store}");
+            out += "\n    }";
         }
         out += "\n}\n";
     }
@@ -399,10 +406,12 @@ fn word_setters(region: &str, fields: &[&QueueField], head: &str, at: &str) -> S
         let values: Vec<(&QueueField, String)> =
             touching.iter().map(|f| (*f, f.name.to_string())).collect();
         out += &format!(
-            "fn set_{region}_{}({head}, {}) {{\n{at}",
+            "fn set_{region}_{}({head}, {})",
             names.join("_"),
             args.join(", ")
         );
+        out += " {\n";
+        out += at;
         out += &store_words(&values, false);
         out += "}\n";
     }
