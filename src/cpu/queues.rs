@@ -251,7 +251,7 @@ mod tests {
         }
         let chain = queue_wgsl(REGIONS, Form::Chain, &|c| c != "TEXTURE|BUMP");
         assert!(!chain.contains("fn path_cone(") && !chain.contains("fn leg_queue("));
-        assert!(chain.contains("weight: vec3<f32>, cone: vec2<f32>)"));
+        assert!(chain.contains("weight: vec3<f32>, cone_unused: vec2<f32>)"));
         // Without a cone the chain's fourth path vec4 holds nothing and is not written.
         assert!(!chain.contains("samples[at + 3u] = vec4<f32>(cone.y"));
     }

@@ -9,7 +9,7 @@
 //!   component of a vector;
 //! - `set_R_F_G(…, i, f, g)`: a vec4 that holds whole fields F, G, … written at once;
 //! - `write_R(…, i, fields…)`: the whole entry, a vec4 a store, unused lanes zero (a
-//!   field the module lacks is still an argument, its lanes zero); `R_entry(…, i)` where
+//!   field the module lacks is still an argument, `F_unused`, its lanes zero); `R_entry(…, i)` where
 //!   entry i starts and `write_R_at(at, fields…)` the same write there;
 //! - `load_R(…, i)`: the entry as the record's WGSL struct, where it has one (`Hit`);
 //! - `path_capacity()`: the paths a generation may hold.
@@ -262,7 +262,10 @@ fn region_wgsl(
     // its lanes zero, and a vec4 only such fields take is not written.
     let args: Vec<String> = layout
         .iter()
-        .map(|f| format!("{}: {}", f.name, f.wgsl))
+        .map(|f| {
+            let unused = if fields.contains(f) { "" } else { "_unused" };
+            format!("{}{unused}: {}", f.name, f.wgsl)
+        })
         .collect();
     out += &format!("fn write_{name}({head}, {})", args.join(", "));
     out += " {\n";

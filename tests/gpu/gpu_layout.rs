@@ -547,9 +547,7 @@ fn texture_and_bump_code_only_with_textures_and_bump_maps() {
                     ".cone = camera_cone(primary)",
                     (texture || bump) && entry == Entry::Render,
                 ),
-                // StackEntry's member (the wavefront's generated write_path takes a
-                // cone argument in every module: src/queues/wgsl.rs).
-                ("\n    cone: vec2<f32>,\n", texture || bump),
+                ("cone: vec2<f32>,", texture || bump),
                 ("shading_normal(shading, n)", bump && entry == Entry::Render),
                 ("DEBUG_VIEW_UV {", texture && entry == Entry::Render),
             ];
