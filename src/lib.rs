@@ -31,6 +31,7 @@ pub mod mailboxes;
 pub mod pack;
 pub mod parity;
 pub mod pipeline;
+pub mod queues;
 pub mod scene;
 pub mod script_driver;
 #[doc(hidden)]

@@ -29,6 +29,7 @@ mod gpu_wavefront;
 mod gpu_wavefront_tree;
 mod kernel_budget_combinations;
 mod kernel_instrument;
+mod queue_twins;
 mod twins;
 mod twins_broken;
 mod view;

@@ -22,8 +22,8 @@ use glint::tracer::sampling::render::render_pixel;
 use glint::tracer::shading::dielectric::{shadow_transmittance, MediumStack};
 use glint::tracer::traversal::traverse::Counters;
 use glint::tracer::wavefront::wavefront::{
-    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, wavefront_args,
-    render_film, shade_pass, trace_batch, Batch, SampleSource,
+    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, render_film, shade_pass,
+    trace_batch, wavefront_args, Batch, SampleSource,
 };
 use glint::tracer::wavefront::wavefront_lattice::adaptive_tile_wavefront;
 use std::path::{Path, PathBuf};

@@ -22,6 +22,9 @@ use crate::gpu::compile::kernel::KernelConfig;
 use crate::gpu::compile::lists::LaneLists;
 use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
+use crate::queues::layout::Form;
+use crate::queues::wgsl::queue_wgsl;
+use crate::tracer::wavefront::queues::REGIONS;
 
 /// Which compute entry point a pipeline is for. Every entry but `Probe` is in the render
 /// module (one source, one bind group layout).
@@ -382,6 +385,9 @@ pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig
     if tree {
         out += &wavefront_tree_wgsl_prelude();
     }
+    if wavefront {
+        out += &queue_accessors(features, kernel);
+    }
     out += &format!("// Specialised for features: {features}; kernel: {kernel}\n");
     let files = COMMON
         .iter()
@@ -394,6 +400,23 @@ pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig
             .unwrap_or_else(|e| panic!("{path}: {e} (a bug in the shader source)"));
     }
     out
+}
+
+/// The wavefront queues' accessors of a render module with the wavefront kernels for a
+/// scene with `features`: generated from their specification (`tracer::wavefront::queues`; a tree's
+/// layout with refraction), with the fields whose `#if` condition the module has.
+pub fn queue_accessors(features: SceneFeatures, kernel: KernelConfig) -> String {
+    let form = if features.contains(SceneFeatures::REFRACTION) {
+        Form::Tree
+    } else {
+        Form::Chain
+    };
+    let present = |text: &str| {
+        condition(text, features, kernel).unwrap_or_else(|e| {
+            panic!("src/tracer/wavefront/queues.rs: {e} (a bug in the specification)")
+        })
+    };
+    queue_wgsl(REGIONS, form, &present)
 }
 
 /// Resolves the `// #if` blocks of one file (default kernel variant). Errors name the line

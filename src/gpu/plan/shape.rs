@@ -2,7 +2,9 @@
 //! ([`WavefrontShape`]): the vec4s a sample's queues take and where in `work_args` each
 //! generation's and each glass round's arguments lie. Chains and trees alike.
 
-use crate::constants::{MAX_SHADOW_CROSSINGS, TREE_PATHS_PER_SAMPLE, TREE_VERTICES_PER_SAMPLE};
+use crate::constants::MAX_SHADOW_CROSSINGS;
+use crate::queues::layout::{paths_per_sample, vec4s_per_sample, Form};
+use crate::tracer::wavefront::queues::REGIONS;
 
 /// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
 /// vertex's light slots: `tracer::wavefront::wavefront::light_points`), the generations a path may
@@ -35,30 +37,27 @@ impl WavefrontShape {
         self.uniform.map_or(1, |n| (n * n) as u64)
     }
 
-    /// vec4 entries of the queues a sample of a chunk takes (`src/tracer/wavefront/wavefront.wgsl`'s
-    /// regions): its record (2), two path queues (4 each), a hit (2), a vertex (2), its
-    /// light slots and shadow requests (L each). A tree's (`src/tracer/wavefront/wavefront_tree.wgsl`):
-    /// the record, then per path of a generation (TREE_PATHS_PER_SAMPLE a sample) two
-    /// path queues (5 each, with media and pending count), a hit, a vertex, the vertex
-    /// tree (2 a vertex, TREE_VERTICES_PER_SAMPLE a sample), then per path L slots, L
-    /// requests, two leg queues (3L each) and the legs' hits (2L).
-    pub fn vec4s_per_sample(self) -> u64 {
-        let l = self.light_points as u64;
+    /// The queues' layout: a tree's with refraction, else a chain's.
+    fn form(self) -> Form {
         if self.tree {
-            3 + (14 + 10 * l) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
+            Form::Tree
         } else {
-            14 + 2 * l
+            Form::Chain
         }
+    }
+
+    /// vec4 entries of the queues a sample of a chunk takes (the regions of
+    /// `tracer::wavefront::queues::REGIONS`, laid out by `queues::layout`): its record, two
+    /// path queues, a hit, a vertex, its light slots and shadow requests (L each) per path a
+    /// generation may hold, and a tree's vertex tree, camera vertex and glass shadow legs.
+    pub fn vec4s_per_sample(self) -> u64 {
+        vec4s_per_sample(REGIONS, self.form(), self.light_points)
     }
 
     /// Tracing invocations (list slots) a wavefront dispatch may have per sample of the
     /// chunk: a tree's generation holds up to TREE_PATHS_PER_SAMPLE paths a sample.
     pub fn slots_per_sample(self) -> u64 {
-        if self.tree {
-            TREE_PATHS_PER_SAMPLE as u64
-        } else {
-            1
-        }
+        paths_per_sample(self.form())
     }
 
     /// Byte offset in work_args of the indirect arguments of generation g's passes over

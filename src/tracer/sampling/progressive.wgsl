@@ -17,7 +17,7 @@ fn wavefront_view_store(@builtin(global_invocation_id) id: vec3<u32>, @builtin(n
     if s != 0u {
         before = output[p].xyz;
     }
-    let total = before + samples[2u * k].xyz;
+    let total = before + sample_colour(k);
     output[p] = vec4<f32>(total, f32(s + 1u));
 }
 // #else

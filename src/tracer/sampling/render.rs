@@ -193,7 +193,7 @@ pub fn render_pixel(
 
 /// Pixel (x, y)'s n² samples ([`uniform_sample`] of strata 0 … n² − 1), in sample order:
 /// the GPU's first pass of uniform AA traces them one an invocation.
-// Mirror of shaders/render.wgsl::uniform_samples — change both.
+// Mirror of src/tracer/sampling/render.wgsl::uniform_samples — change both.
 pub fn uniform_samples<'a, C: TraversalCounters>(
     scene: &'a PackedScene,
     x: u32,
@@ -207,7 +207,7 @@ pub fn uniform_samples<'a, C: TraversalCounters>(
 
 /// A pixel's mean of its n² `samples`, summed in sample order then divided by n² (the
 /// order every form sums in, so each gives this pixel bit for bit).
-// Mirror of shaders/render.wgsl::uniform_resolve — change both.
+// Mirror of src/tracer/sampling/render.wgsl::uniform_resolve — change both.
 pub fn uniform_resolve(samples: impl Iterator<Item = Vec3>, n: u32) -> Vec3 {
     let mut sum = Vec3::ZERO;
     for colour in samples {

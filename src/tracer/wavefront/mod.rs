@@ -2,6 +2,7 @@
 //! queues (chains; trees where dielectrics branch; adaptive AA's lattice through them);
 //! built on `sampling` and below.
 
+pub mod queues;
 pub mod wavefront;
 pub mod wavefront_lattice;
 pub mod wavefront_tree;

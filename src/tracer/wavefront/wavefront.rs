@@ -20,7 +20,7 @@
 //! sum runs in one invocation in the CPU's fixed order — no pass depends on the order of
 //! a queue, and the image is `trace_ray`'s bit for bit (tests/images/wavefront.rs). The
 //! queues are structures of arrays, one Vec a field, as the GPU lays them out in its
-//! storage buffers; a pass is a loop over one queue of a function of one entry (one GPU
+//! storage buffers (both from one specification: [`super::queues`]); a pass is a loop over one queue of a function of one entry (one GPU
 //! invocation). Design and measurements: docs/journal/2026-12-02-wavefront-split-measured.md.
 //!
 //! Sample sources ([`SampleSource`]): AA none's pixel centres and uniform AA's jittered
@@ -28,21 +28,26 @@
 //! frames), adaptive AA's lattice points (a sample's colour and [`SampleHint`]:
 //! [`trace_batch`]).
 
-use super::wavefront_tree::{glass_shadow_rounds, wavefront_fold, ShadowRequests, VertexTree};
+use super::queues::CHAIN_MEDIA;
+pub use super::queues::{
+    CameraVertices, HitQueue, LightSlots, PathQueue, SampleRecords, ShadowQueue, VertexKind,
+    VertexQueue, VertexTree,
+};
+use super::wavefront_tree::{glass_shadow_rounds, wavefront_fold, ShadowRequests};
 use crate::constants::{
-    AA_ADAPTIVE, AA_UNIFORM, LIGHT_AREA, MEDIUM_STACK_SIZE, NO_ITEM, RAY_STACK_SIZE, T_MISS,
+    AA_ADAPTIVE, AA_UNIFORM, LIGHT_AREA, RAY_STACK_SIZE, SAMPLE_CAMERA_MIRROR, SAMPLE_FINE_DETAIL,
+    SAMPLE_MIRRORS_CORNERS, T_MISS,
 };
 use crate::film::Film;
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{camera_ray, offset_ray, Ray};
 use crate::tracer::base::rng::{shadow_stream, SampleSeed};
 use crate::tracer::path::trace::{
-    camera_medium_stack, is_mirror, note_texture_detail, push_secondary_rays, shading_point, ShadedHit,
-    StackEntry,
+    camera_medium_stack, is_mirror, note_texture_detail, push_secondary_rays, shading_point,
+    ShadedHit, StackEntry,
 };
-use crate::tracer::sampling::pixel_sample::{lattice_position, sample_item_key, SampleHint};
+use crate::tracer::sampling::pixel_sample::{lattice_jitter, sample_item_key, SampleHint};
 use crate::tracer::sampling::render::stratum_position;
-use crate::tracer::shading::dielectric::MediumStack;
 use crate::tracer::shading::shade::{
     add_stratum, ambient_term, area_light_mean, area_light_point, background, penumbra, phong_at,
     shadow_blocked, shadowed_term, unshadowed_term,
@@ -51,7 +56,7 @@ use crate::tracer::shading::surface::{Phong, Surface};
 use crate::tracer::shading::texture::camera_cone;
 use crate::tracer::traversal::hit::{Hit, TraversalCounters};
 use crate::tracer::traversal::traverse::closest_hit;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// Where a batch's camera samples come from; sample k of the batch is the k-th of the
 /// source.
@@ -117,54 +122,32 @@ impl SampleSource<'_> {
     }
 }
 
-/// Per sample of the batch: its seed, its colour so far, and what its [`SampleHint`]
-/// keeps (the camera ray's item, the item seen in a camera-hit mirror, fine detail).
-#[derive(Clone, Debug, Default)]
-pub struct SampleRecords {
-    pub seed: Vec<SampleSeed>,
-    pub colour: Vec<Vec3>,
-    pub camera_item: Vec<u32>,
-    /// Whether the camera ray's first surface is a mirror (`trace::is_mirror`).
-    pub camera_mirror: Vec<bool>,
-    pub mirrored_item: Vec<u32>,
-    pub fine_detail: Vec<bool>,
-}
-
 impl SampleRecords {
     /// The [`SampleHint`] of sample `k`.
     pub fn hint(&self, k: usize) -> SampleHint {
         SampleHint {
-            fine_detail: self.fine_detail[k],
+            fine_detail: self.flags[k] & SAMPLE_FINE_DETAIL != 0,
             item: sample_item_key(self.camera_item[k], self.mirrored_item[k]),
         }
     }
-}
 
-/// A generation's paths: each entry a ray with its weight, depth, cone and sample.
-#[derive(Clone, Debug, Default)]
-pub struct PathQueue {
-    pub origin: Vec<Vec3>,
-    pub dir: Vec<Vec3>,
-    pub weight: Vec<Vec3>,
-    pub depth: Vec<u32>,
-    pub cone: Vec<Vec2>,
-    /// The media the ray travels in (scenes with refraction; a placeholder otherwise).
-    pub media: Vec<MediumStack>,
-    /// The entries under this one on `trace_ray`'s stack when it would be popped (its
-    /// index in that stack: see `wavefront_tree`); always 0 in a chain.
-    pub pending: Vec<u32>,
-    pub sample: Vec<u32>,
+    /// Sample `k`'s seed at a vertex of depth `depth`.
+    fn seed(&self, k: usize, depth: u32) -> SampleSeed {
+        SampleSeed {
+            pixel: self.seed_pixel[k],
+            sample: self.seed_sample[k],
+            depth,
+            mirrors_corners: self.flags[k] & SAMPLE_MIRRORS_CORNERS != 0,
+        }
+    }
+
+    /// Sets `flag` (a SAMPLE_* bit) of sample `k`.
+    fn set_flag(&mut self, k: usize, flag: u32) {
+        self.flags[k] |= flag;
+    }
 }
 
 impl PathQueue {
-    pub fn len(&self) -> usize {
-        self.sample.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.sample.is_empty()
-    }
-
     /// Appends `entry` of sample `sample`; its index (the GPU's `atomicAdd` on the
     /// queue's counter).
     fn append_path(&mut self, entry: &StackEntry, pending: u32, sample: u32) -> usize {
@@ -172,18 +155,6 @@ impl PathQueue {
         self.resize(i + 1);
         self.store_path(i, entry, pending, sample);
         i
-    }
-
-    /// Room for `len` entries.
-    fn resize(&mut self, len: usize) {
-        self.origin.resize(len, Vec3::ZERO);
-        self.dir.resize(len, Vec3::ZERO);
-        self.weight.resize(len, Vec3::ZERO);
-        self.depth.resize(len, 0);
-        self.cone.resize(len, Vec2::ZERO);
-        self.media.resize(len, chain_media());
-        self.pending.resize(len, 0);
-        self.sample.resize(len, 0);
     }
 
     /// Writes `entry` of sample `sample` as entry `i`.
@@ -211,117 +182,15 @@ impl PathQueue {
             media: self.media[i],
         }
     }
-
-    fn clear(&mut self) {
-        *self = PathQueue::default();
-    }
-}
-
-/// Each path's closest hit, at its path's index.
-#[derive(Clone, Debug, Default)]
-pub struct HitQueue {
-    pub t: Vec<f32>,
-    pub item: Vec<u32>,
-    pub b1: Vec<f32>,
-    pub b2: Vec<f32>,
-    pub part: Vec<u32>,
-}
-
-impl HitQueue {
-    /// Room for `len` hits (each written once by the closest pass).
-    fn reset(&mut self, len: usize) {
-        for field in [&mut self.t, &mut self.b1, &mut self.b2] {
-            field.clear();
-            field.resize(len, 0.0);
-        }
-        for field in [&mut self.item, &mut self.part] {
-            field.clear();
-            field.resize(len, NO_ITEM);
-        }
-    }
-
-    fn store_hit(&mut self, i: usize, hit: &Hit) {
-        (
-            self.t[i],
-            self.item[i],
-            self.b1[i],
-            self.b2[i],
-            self.part[i],
-        ) = (hit.t, hit.item, hit.b1, hit.b2, hit.part);
-    }
-
-    fn load_hit(&self, i: usize) -> Hit {
-        Hit {
-            t: self.t[i],
-            item: self.item[i],
-            b1: self.b1[i],
-            b2: self.b2[i],
-            part: self.part[i],
-        }
-    }
-}
-
-/// What the gather pass does with a vertex.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum VertexKind {
-    /// The ray hit nothing: its own term is the background.
-    #[default]
-    Miss,
-    /// Phong shading: the ambient term, then the light slots.
-    Lit,
-    /// The UV debug view: its own term is the colour, no lights.
-    Unlit,
-}
-
-/// Each path's shaded vertex, at its path's index: what it adds by itself, and where its
-/// shadow rays start.
-#[derive(Clone, Debug, Default)]
-pub struct VertexQueue {
-    pub kind: Vec<VertexKind>,
-    /// The ambient term, the background of a miss, or the UV debug view's colour.
-    pub own: Vec<Vec3>,
-    pub shadow_origin: Vec<Vec3>,
-    pub magnitude: Vec<f32>,
-}
-
-impl VertexQueue {
-    fn reset(&mut self, len: usize) {
-        self.kind.clear();
-        self.kind.resize(len, VertexKind::Miss);
-        for field in [&mut self.own, &mut self.shadow_origin] {
-            field.clear();
-            field.resize(len, Vec3::ZERO);
-        }
-        self.magnitude.clear();
-        self.magnitude.resize(len, 0.0);
-    }
-}
-
-/// The shadow rays the shade pass asks for: the vertex and the light slot each is for,
-/// and the light point it aims at.
-#[derive(Clone, Debug, Default)]
-pub struct ShadowQueue {
-    pub vertex: Vec<u32>,
-    pub slot: Vec<u32>,
-    pub position: Vec<Vec3>,
 }
 
 impl ShadowQueue {
-    pub fn len(&self) -> usize {
-        self.vertex.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.vertex.is_empty()
-    }
-
-    /// Appends a request; its index (the GPU's `atomicAdd`).
-    fn append_request(&mut self, vertex: u32, slot: u32, position: Vec3) -> usize {
+    /// Appends a request for light slot `slot` (vertex i's slot j is i·light_points +
+    /// j); its index (the GPU's `atomicAdd`).
+    fn append_request(&mut self, slot: u32, position: Vec3) -> usize {
         let r = self.len();
-        self.vertex.resize(r + 1, 0);
-        self.slot.resize(r + 1, 0);
-        self.position.resize(r + 1, Vec3::ZERO);
-        (self.vertex[r], self.slot[r], self.position[r]) = (vertex, slot, position);
+        self.resize(r + 1);
+        (self.slot[r], self.position[r]) = (slot, position);
         r
     }
 }
@@ -351,7 +220,7 @@ pub struct Batch {
     pub hits: HitQueue,
     pub vertices: VertexQueue,
     /// `light_points` slots a vertex: vertex i's slot j at i·light_points + j.
-    pub slots: Vec<Vec3>,
+    pub slots: LightSlots,
     pub light_points: u32,
     pub shadows: ShadowQueue,
     pub next: PathQueue,
@@ -361,6 +230,8 @@ pub struct Batch {
     /// fold (path i of the current generation is vertex `vertex_base` + i).
     pub tree: VertexTree,
     pub vertex_base: u32,
+    /// Scenes with refraction: each sample's camera vertex, where the fold starts.
+    pub camera_vertices: CameraVertices,
     /// Whether the batch keeps the tree (scenes with refraction) rather than adding
     /// each vertex's colour straight into its sample's (chains).
     pub keeps_tree: bool,
@@ -375,26 +246,16 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
         ..Batch::default()
     };
     batch.keeps_tree = scene.features.contains(SceneFeatures::REFRACTION);
-    let s = &mut batch.samples;
-    let unseeded = SampleSeed {
-        pixel: 0,
-        sample: 0,
-        depth: 0,
-        mirrors_corners: false,
-    };
-    s.seed = vec![unseeded; count];
-    s.colour = vec![Vec3::ZERO; count];
-    s.camera_item = vec![NO_ITEM; count];
-    s.camera_mirror = vec![false; count];
-    s.mirrored_item = vec![NO_ITEM; count];
-    s.fine_detail = vec![false; count];
+    batch.samples.resize(count);
     batch.paths.resize(count);
     for k in 0..count {
         wavefront_camera(scene, source, batch, k);
     }
     if batch.keeps_tree {
-        // Camera rays start in the media around the camera (chains keep the placeholder).
+        // Camera rays start in the media around the camera (chains keep the placeholder);
+        // sample k's camera ray is path k, vertex k.
         batch.paths.media.fill(camera_medium_stack(&scene.globals));
+        batch.camera_vertices.index = (0..count as u32).collect();
     }
     start_generation(batch);
 }
@@ -405,25 +266,20 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
 fn wavefront_camera(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k: usize) {
     let g = &scene.globals;
     let (fx, fy, seed) = source.camera_sample(scene, k);
-    batch.samples.seed[k] = seed;
+    let s = &mut batch.samples;
+    (s.seed_pixel[k], s.seed_sample[k]) = (seed.pixel, seed.sample);
+    if seed.mirrors_corners {
+        s.set_flag(k, SAMPLE_MIRRORS_CORNERS);
+    }
     let ray = camera_ray(g, fx, fy);
     let entry = StackEntry {
         ray,
         weight: Vec3::ONE,
         depth: 0,
         cone: camera_cone(g, &ray),
-        media: chain_media(),
+        media: CHAIN_MEDIA,
     };
     batch.paths.store_path(k, &entry, 0, k as u32);
-}
-
-/// The media every ray of a chain travels in: a placeholder (without refraction no
-/// shading step reads them; the WGSL StackEntry has no field for them then).
-fn chain_media() -> MediumStack {
-    MediumStack {
-        iors: [1.0; MEDIUM_STACK_SIZE as usize],
-        count: 0,
-    }
 }
 
 /// Sizes the per-path queues of the generation in `batch.paths` (the GPU sizes them for
@@ -433,15 +289,13 @@ fn start_generation(batch: &mut Batch) {
     batch.hits.reset(len);
     batch.vertices.reset(len);
     batch.slots.clear();
-    batch
-        .slots
-        .resize(len * batch.light_points as usize, Vec3::ZERO);
+    batch.slots.resize(len * batch.light_points as usize);
     batch.shadows = ShadowQueue::default();
     batch.next.clear();
     batch.generations += 1;
     if batch.keeps_tree {
         batch.vertex_base = batch.tree.len() as u32;
-        batch.tree.grow(len);
+        batch.tree.resize(batch.vertex_base as usize + len);
     }
 }
 
@@ -477,7 +331,7 @@ fn wavefront_closest(
         samples.camera_item[k] = hit.item;
         counters.camera_hit(hit.item);
     }
-    if samples.camera_mirror[k] && paths.depth[i] == 1 {
+    if samples.flags[k] & SAMPLE_CAMERA_MIRROR != 0 && paths.depth[i] == 1 {
         // The one ray a mirror spawns: what the camera sees in it.
         samples.mirrored_item[k] = hit.item;
         counters.mirror_hit(hit.item);
@@ -528,10 +382,7 @@ fn wavefront_shade(
     batch.vertices.shadow_origin[i] = origin;
     batch.vertices.magnitude[i] = s.magnitude;
     let v = -entry.ray.dir;
-    let seed = SampleSeed {
-        depth: entry.depth,
-        ..batch.samples.seed[k]
-    };
+    let seed = batch.samples.seed(k, entry.depth);
     ask_light_shadows(scene, batch, i, &s, phong, n, v, seed);
     let shaded = ShadedHit {
         s,
@@ -558,8 +409,12 @@ fn note_sample_hints(
         seen: false,
     };
     note_texture_detail(scene, s, &mut watch);
-    batch.samples.fine_detail[k] |= watch.seen;
-    batch.samples.camera_mirror[k] = is_mirror(scene, s.material);
+    if watch.seen {
+        batch.samples.set_flag(k, SAMPLE_FINE_DETAIL);
+    }
+    if is_mirror(scene, s.material) {
+        batch.samples.set_flag(k, SAMPLE_CAMERA_MIRROR);
+    }
 }
 
 /// Every light point of path `i`'s hit at `s` (an area light's strata from `seed`'s
@@ -581,8 +436,9 @@ fn ask_light_shadows(
     let mut slot = 0;
     let ask = |position: Vec3, light: &crate::pack::PackedLight, slot: u32, batch: &mut Batch| {
         if let Some(term) = unshadowed_term(scene, s, phong, n, v, position, light) {
-            batch.slots[first_slot + slot as usize] = term;
-            batch.shadows.append_request(i as u32, slot, position);
+            let slot = (first_slot + slot as usize) as u32;
+            batch.slots.term[slot as usize] = term;
+            batch.shadows.append_request(slot, position);
         }
     };
     let lights = &scene.lights[..scene.globals.num_lights as usize];
@@ -662,7 +518,8 @@ fn shadow_request(
     counters: &mut impl TraversalCounters,
 ) {
     let points = light_points(scene) as usize;
-    let i = batch.shadows.vertex[r] as usize;
+    let slot = batch.shadows.slot[r] as usize;
+    let i = slot / points;
     let origin = batch.vertices.shadow_origin[i];
     let magnitude = batch.vertices.magnitude[i];
     let position = batch.shadows.position[r];
@@ -671,8 +528,7 @@ fn shadow_request(
     } else {
         1.0
     };
-    let slot = i * points + batch.shadows.slot[r] as usize;
-    batch.slots[slot] = shadowed_term(batch.slots[slot], transmittance);
+    batch.slots.term[slot] = shadowed_term(batch.slots.term[slot], transmittance);
 }
 
 /// The shadow pass through glass (scenes with refraction): rounds of legs
@@ -683,7 +539,6 @@ pub fn glass_shadow_pass(
     counters: &mut impl TraversalCounters,
 ) -> u32 {
     let requests = ShadowRequests {
-        vertex: &batch.shadows.vertex,
         slot: &batch.shadows.slot,
         position: &batch.shadows.position,
         shadow_origin: &batch.vertices.shadow_origin,
@@ -691,13 +546,17 @@ pub fn glass_shadow_pass(
         media: &batch.paths.media,
         light_points: batch.light_points,
     };
-    glass_shadow_rounds(scene, &requests, &mut batch.slots, counters)
+    glass_shadow_rounds(scene, &requests, &mut batch.slots.term, counters)
 }
 
 /// The fold pass (scenes with refraction, after the last generation): each sample's
 /// colour from its vertex tree ([`wavefront_fold`]).
 pub fn fold_pass(batch: &mut Batch) {
-    wavefront_fold(&batch.tree, &mut batch.samples.colour);
+    wavefront_fold(
+        &batch.tree,
+        &batch.camera_vertices.index,
+        &mut batch.samples.colour,
+    );
 }
 
 /// The gather pass: each vertex's colour into its sample's.
@@ -723,7 +582,7 @@ fn wavefront_gather(
     let k = batch.paths.sample[i] as usize;
     let mut colour = batch.vertices.own[i];
     if batch.vertices.kind[i] == VertexKind::Lit {
-        let slots = &batch.slots[i * light_points(scene) as usize..];
+        let slots = &batch.slots.term[i * light_points(scene) as usize..];
         let mut slot = 0;
         for light in &scene.lights[..scene.globals.num_lights as usize] {
             if light.kind == LIGHT_AREA {
@@ -735,7 +594,7 @@ fn wavefront_gather(
                     slot += 1;
                 }
                 if penumbra(depth, lit, light.samples) {
-                    batch.samples.fine_detail[k] = true;
+                    batch.samples.set_flag(k, SAMPLE_FINE_DETAIL);
                     counters.partial_light();
                 }
                 colour += area_light_mean(sum, light.samples);
@@ -869,6 +728,8 @@ pub fn wavefront_resolve(scene: &PackedScene, batch: &Batch, p: usize) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::constants::NO_ITEM;
+    use glam::Vec2;
 
     fn entry(depth: u32) -> StackEntry {
         StackEntry {
@@ -898,9 +759,9 @@ mod tests {
         assert_eq!((q.depth[0], q.sample[0]), (0, 7));
         assert_eq!(q.cone[1], Vec2::new(0.25, 0.125));
         let mut s = ShadowQueue::default();
-        assert_eq!(s.append_request(4, 1, Vec3::X), 0);
-        assert_eq!(s.append_request(9, 0, Vec3::Y), 1);
-        assert_eq!((s.vertex[1], s.slot[1], s.position[1]), (9, 0, Vec3::Y));
+        assert_eq!(s.append_request(4, Vec3::X), 0);
+        assert_eq!(s.append_request(9, Vec3::Y), 1);
+        assert_eq!((s.slot[1], s.position[1]), (9, Vec3::Y));
     }
 
     /// A new generation takes the appended paths, sizes its hit, vertex and slot queues
@@ -914,14 +775,14 @@ mod tests {
         };
         batch.paths.append_path(&entry(0), 0, 0);
         start_generation(&mut batch);
-        batch.slots[2] = Vec3::ONE;
-        batch.shadows.append_request(0, 2, Vec3::X);
+        batch.slots.term[2] = Vec3::ONE;
+        batch.shadows.append_request(2, Vec3::X);
         batch.next.append_path(&entry(1), 0, 0);
         batch.next.append_path(&entry(1), 0, 5);
         assert!(wavefront_args(&mut batch));
         assert_eq!(batch.generations, 2);
         assert_eq!(batch.paths.sample, vec![0, 5]);
-        assert_eq!(batch.slots, vec![Vec3::ZERO; 6]);
+        assert_eq!(batch.slots.term, vec![Vec3::ZERO; 6]);
         assert_eq!(batch.hits.item, vec![NO_ITEM; 2]);
         assert!(batch.shadows.is_empty() && batch.next.is_empty());
         assert!(!wavefront_args(&mut batch));

@@ -14,15 +14,10 @@
 // shade_phong's order into its sample's colour (and, AA none, the chunk's output).
 // Queues are filled by atomicAdd in any order: every entry carries its sample, and every
 // sum runs in one invocation in the CPU's order, so the image is trace_ray's bit for bit.
-// The queues are structures of arrays in `samples` (render.wgsl; vec4 entries, regions
-// from tile.items = N, the chunk's samples, and L = light_points()):
-//   [0, 2N)            sample records: (colour, camera item), (mirrored item, flags, seed)
-//   [2N + 4Np, …)      path queue of parity p = g mod 2, 4 a path: (origin, sample),
-//                      (dir, depth), (weight, cone.x), (cone.y)
-//   [10N, 12N)         hits, 2 a path: (t, item, b1, b2), (part)
-//   [12N, 14N)         vertices, 2 a path: (own term, kind), (shadow origin, magnitude)
-//   [14N, 14N + LN)    light slots, L a path: the light point's term
-//   [14N + LN, …)      shadow requests (≤ LN): (light point position, slot index)
+// The queues are structures of arrays in `samples` (render.wgsl; vec4 entries), their
+// records and regions specified once in src/tracer/wavefront/queues.rs: the accessors this file reads
+// and writes them through (path_depth, write_hit, set_sample_flags, …) are generated from
+// it into the module (src/queues/wgsl.rs), as are their regions (src/queues/layout.rs).
 // Counters in work_counts (adaptive.wgsl's binding): generation g's paths at g mod 3, its
 // shadow requests at 3 + g mod 2 (wavefront_args clears the ones the next generation
 // appends to); indirect arguments in work_args, 6 words a generation (with CSG 3 + 3L:
@@ -52,48 +47,6 @@ fn light_points() -> u32 {
     return points;
 }
 
-fn wavefront_paths(parity: u32) -> u32 {
-// #if REFRACTION
-    // With refraction the regions are wavefront_tree.wgsl's: a generation may be wider
-    // than the chunk.
-    return tree_paths(parity);
-// #else
-    return 2u * tile.items + 4u * tile.items * parity;
-// #endif
-}
-
-fn wavefront_hits() -> u32 {
-// #if REFRACTION
-    return tree_hits();
-// #else
-    return 10u * tile.items;
-// #endif
-}
-
-fn wavefront_vertices() -> u32 {
-// #if REFRACTION
-    return tree_vertices();
-// #else
-    return 12u * tile.items;
-// #endif
-}
-
-fn wavefront_slots() -> u32 {
-// #if REFRACTION
-    return tree_slots();
-// #else
-    return 14u * tile.items;
-// #endif
-}
-
-fn wavefront_shadows(points: u32) -> u32 {
-// #if REFRACTION
-    return tree_shadows(points);
-// #else
-    return (14u + points) * tile.items;
-// #endif
-}
-
 // Generation g's path counter.
 fn path_counter(g: u32) -> u32 {
     return g % 3u;
@@ -104,64 +57,33 @@ fn shadow_counter(g: u32) -> u32 {
     return 3u + g % 2u;
 }
 
+// Path i of parity `parity` as trace_ray's stack holds it.
 fn load_path(parity: u32, i: u32) -> StackEntry {
-// #if REFRACTION
-    return load_tree_path(parity, i);
-// #else
-    let at = wavefront_paths(parity) + 4u * i;
-    let a = samples[at];
-    let b = samples[at + 1u];
-    let c = samples[at + 2u];
     var entry: StackEntry;
-    entry.ray = Ray(a.xyz, b.xyz);
-    entry.weight = c.xyz;
-    entry.depth = bitcast<u32>(b.w);
+    entry.ray = Ray(path_origin(parity, i), path_dir(parity, i));
+    entry.weight = path_weight(parity, i);
+    entry.depth = path_depth(parity, i);
 // #if TEXTURE|BUMP
-    entry.cone = vec2<f32>(c.w, samples[at + 3u].x);
+    entry.cone = path_cone(parity, i);
+// #endif
+// #if REFRACTION
+    entry.media = path_media(parity, i);
 // #endif
     return entry;
-// #endif
 }
 
-fn path_sample(parity: u32, i: u32) -> u32 {
-// #if REFRACTION
-    return bitcast<u32>(samples[wavefront_paths(parity) + 5u * i].w);
-// #else
-    return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i].w);
-// #endif
-}
-
-fn path_depth(parity: u32, i: u32) -> u32 {
-// #if REFRACTION
-    return bitcast<u32>(samples[wavefront_paths(parity) + 5u * i + 1u].w);
-// #else
-    return bitcast<u32>(samples[wavefront_paths(parity) + 4u * i + 1u].w);
-// #endif
-}
-
-fn store_path(parity: u32, i: u32, entry: StackEntry, sample: u32) {
-// #if REFRACTION
-    // A camera ray: nothing under it on trace_ray's stack.
-    store_tree_path(parity, i, entry, 0u, sample);
-// #else
-    let at = wavefront_paths(parity) + 4u * i;
-    samples[at] = vec4<f32>(entry.ray.origin, bitcast<f32>(sample));
-    samples[at + 1u] = vec4<f32>(entry.ray.dir, bitcast<f32>(entry.depth));
+// Writes `entry` of sample `sample` with pending count `pending` (a tree's: the entries
+// under it on trace_ray's stack) as path i.
+fn store_path(parity: u32, i: u32, entry: StackEntry, pending: u32, sample: u32) {
+    var cone = vec2<f32>(0.0);
 // #if TEXTURE|BUMP
-    samples[at + 2u] = vec4<f32>(entry.weight, entry.cone.x);
-    samples[at + 3u] = vec4<f32>(entry.cone.y, 0.0, 0.0, 0.0);
+    cone = entry.cone;
+// #endif
+// #if REFRACTION
+    write_path(parity, i, entry.ray.origin, sample, entry.ray.dir, entry.depth, entry.weight, cone, pending, entry.media);
 // #else
-    samples[at + 2u] = vec4<f32>(entry.weight, 0.0);
+    write_path(parity, i, entry.ray.origin, sample, entry.ray.dir, entry.depth, entry.weight, cone);
 // #endif
-// #endif
-}
-
-fn sample_flags(k: u32) -> u32 {
-    return bitcast<u32>(samples[2u * k + 1u].y);
-}
-
-fn set_sample_flags(k: u32, flags: u32) {
-    samples[2u * k + 1u].y = bitcast<f32>(flags);
 }
 
 // The camera pass, sample k = idx of the chunk: in a render (tile.stratum = ALL_STRATA)
@@ -207,8 +129,7 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     if seed.mirrors_corners {
         flags = SAMPLE_MIRRORS_CORNERS;
     }
-    samples[2u * k] = vec4<f32>(0.0, 0.0, 0.0, bitcast<f32>(NO_ITEM));
-    samples[2u * k + 1u] = vec4<f32>(bitcast<f32>(NO_ITEM), bitcast<f32>(flags), bitcast<f32>(seed.pixel), bitcast<f32>(seed.sample));
+    write_sample(k, vec3<f32>(0.0), NO_ITEM, NO_ITEM, flags, seed.pixel, seed.sample);
     let ray = camera_ray(fx, fy);
     var entry: StackEntry;
     entry.ray = ray;
@@ -220,9 +141,10 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
 // #if REFRACTION
     // Camera rays start in the media around the camera; path k is vertex k.
     entry.media = camera_medium_stack();
-    set_tree_camera_vertex(k, k);
+    write_camera_vertex(k, k);
 // #endif
-    store_path(0u, k, entry, k);
+    // A camera ray: nothing under it on trace_ray's stack.
+    store_path(0u, k, entry, 0u, k);
 }
 
 // The closest pass's invocation for path idx of generation tile.level: its hit, and the
@@ -243,17 +165,15 @@ fn wavefront_closest(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_
     begin_lane(i);
     let parity = g % 2u;
     let hit = closest_hit(load_path(parity, i).ray, T_MISS);
-    let at = wavefront_hits() + 2u * i;
-    samples[at] = vec4<f32>(hit.t, bitcast<f32>(hit.item), hit.b1, hit.b2);
-    samples[at + 1u] = vec4<f32>(bitcast<f32>(hit.part), 0.0, 0.0, 0.0);
+    write_hit(i, hit.t, hit.item, hit.b1, hit.b2, hit.part);
     let depth = path_depth(parity, i);
     let k = path_sample(parity, i);
     if depth == 0u {
-        samples[2u * k].w = bitcast<f32>(hit.item);
+        set_sample_camera_item(k, hit.item);
     }
     if (sample_flags(k) & SAMPLE_CAMERA_MIRROR) != 0u && depth == 1u {
         // The one ray a mirror spawns: what the camera sees in it.
-        samples[2u * k + 1u].x = bitcast<f32>(hit.item);
+        set_sample_mirrored_item(k, hit.item);
     }
 }
 
@@ -284,10 +204,10 @@ fn wavefront_unshadowed_term(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32
 // where it faces away) and, where it faces the point, a shadow request.
 fn ask_shadow(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, position: vec3<f32>, light: PackedLight, slot: u32, points: u32) {
     let term = wavefront_unshadowed_term(s, phong, n, v, position, light);
-    samples[wavefront_slots() + slot] = vec4<f32>(term.xyz, 0.0);
+    write_slot(slot, term.xyz);
     if term.w != 0.0 {
         let r = atomicAdd(&work_counts[shadow_counter(tile.level)], 1u);
-        samples[wavefront_shadows(points) + r] = vec4<f32>(position, bitcast<f32>(slot));
+        write_request(points, r, position, slot);
     }
 }
 
@@ -305,16 +225,14 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     let parity = g % 2u;
     let entry = load_path(parity, i);
     let k = path_sample(parity, i);
-    let h = samples[wavefront_hits() + 2u * i];
-    let hit = Hit(h.x, bitcast<u32>(h.y), h.z, h.w, bitcast<u32>(samples[wavefront_hits() + 2u * i + 1u].x));
-    let vertex = wavefront_vertices() + 2u * i;
+    let hit = load_hit(i);
 // #if REFRACTION
     // The ray stack push_secondary_rays fills is in this invocation's list slot.
     begin_lane(i);
-    clear_tree_children(atomicLoad(&work_counts[vertex_base_counter(g)]) + i);
+    set_node_children(atomicLoad(&work_counts[vertex_base_counter(g)]) + i, vec2<u32>(NO_CHILD));
 // #endif
     if !is_hit(hit) {
-        samples[vertex] = vec4<f32>(background(entry.ray.dir), bitcast<f32>(VERTEX_MISS));
+        set_vertex_own_kind(i, background(entry.ray.dir), VERTEX_MISS);
         return;
     }
     // trace.wgsl's shade_hit up to shade_phong (the CPU's shading_point).
@@ -362,7 +280,7 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
         note_sample_hints(k, s);
     }
     if unlit {
-        samples[vertex] = vec4<f32>(uv_colour, bitcast<f32>(VERTEX_UNLIT));
+        set_vertex_own_kind(i, uv_colour, VERTEX_UNLIT);
         return;
     }
     let m = load_material(s.material);
@@ -370,12 +288,11 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
 // #if TEXTURE
     phong = surface_colours(m, s);
 // #endif
-    samples[vertex] = vec4<f32>(phong.kd * globals.ambient, bitcast<f32>(VERTEX_LIT));
+    set_vertex_own_kind(i, phong.kd * globals.ambient, VERTEX_LIT);
     let origin = offset_ray(s.p, n, s.magnitude);
-    samples[vertex + 1u] = vec4<f32>(origin, s.magnitude);
+    set_vertex_shadow_origin_magnitude(i, origin, s.magnitude);
     let v = -ray.dir;
-    let record = samples[2u * k + 1u];
-    let seed = SampleSeed(bitcast<u32>(record.z), bitcast<u32>(record.w), entry.depth, (bitcast<u32>(record.y) & SAMPLE_MIRRORS_CORNERS) != 0u);
+    let seed = SampleSeed(sample_seed_pixel(k), sample_seed_sample(k), entry.depth, (sample_flags(k) & SAMPLE_MIRRORS_CORNERS) != 0u);
     ask_light_shadows(i, s, phong, n, v, seed);
     push_next_paths(i, entry, k, ShadedHit(s, facing, n, vec3<f32>(0.0), false), hit);
 }
@@ -446,7 +363,7 @@ fn push_next_paths(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit: Hi
     push_secondary_rays(&stack, &size, entry, shaded, hit);
     if size > 0u {
         let at = atomicAdd(&work_counts[path_counter(g + 1u)], 1u);
-        store_path(1u - parity, at, load_pending(&stack, 0u), k);
+        store_path(1u - parity, at, load_pending(&stack, 0u), 0u, k);
     }
 // #endif
 // #endif
@@ -527,19 +444,18 @@ fn wavefront_shadow(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
 // Mirror of src/tracer/wavefront/wavefront.rs::shadow_request — change both.
 fn shadow_request(r: u32) {
     let points = light_points();
-    let request = samples[wavefront_shadows(points) + r];
-    let slot = bitcast<u32>(request.w);
-    let vertex = samples[wavefront_vertices() + 2u * (slot / points) + 1u];
+    let slot = request_slot(points, r);
+    let i = slot / points;
     var transmittance = 1.0;
-    if shadow_blocked(vertex.xyz, request.xyz, vertex.w) {
+    if shadow_blocked(vertex_shadow_origin(i), request_position(points, r), vertex_magnitude(i)) {
         transmittance = 0.0;
     }
     // shade.wgsl's point_light's last product (the CPU's shadowed_term).
     var term = vec3<f32>(0.0);
     if !(transmittance <= 0.0) {
-        term = samples[wavefront_slots() + slot].xyz * transmittance;
+        term = slot_term(slot) * transmittance;
     }
-    samples[wavefront_slots() + slot] = vec4<f32>(term, 0.0);
+    write_slot(slot, term);
 }
 
 // The gather pass's invocation for path idx: its vertex's colour in shade_phong's order,
@@ -556,11 +472,10 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     let parity = g % 2u;
     let entry = load_path(parity, i);
     let k = path_sample(parity, i);
-    let own = samples[wavefront_vertices() + 2u * i];
-    var colour = own.xyz;
-    if bitcast<u32>(own.w) == VERTEX_LIT {
+    var colour = vertex_own(i);
+    if vertex_kind(i) == VERTEX_LIT {
         let points = light_points();
-        var slot = wavefront_slots() + i * points;
+        var slot = i * points;
         for (var index = 0u; index < globals.num_lights; index++) {
             let light = load_light(index);
 // #if AREA_LIGHT
@@ -569,7 +484,7 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
                 var sum = vec3<f32>(0.0);
                 var lit = 0u;
                 for (var stratum = 0u; stratum < kk * kk; stratum++) {
-                    let c = samples[slot].xyz;
+                    let c = slot_term(slot);
                     lit += select(0u, 1u, any(c != vec3<f32>(0.0)));
                     sum += c;
                     slot += 1u;
@@ -582,7 +497,7 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
                 continue;
             }
 // #endif
-            colour += samples[slot].xyz;
+            colour += slot_term(slot);
             slot += 1u;
         }
     }
@@ -592,13 +507,13 @@ fn wavefront_gather(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     if entry.depth != 0u {
         value = entry.weight * colour;
     }
-    set_tree_value(atomicLoad(&work_counts[vertex_base_counter(g)]) + i, value);
+    set_node_value(atomicLoad(&work_counts[vertex_base_counter(g)]) + i, value);
 // #else
     var total = colour;
     if entry.depth != 0u {
-        total = samples[2u * k].xyz + entry.weight * colour;
+        total = sample_colour(k) + entry.weight * colour;
     }
-    samples[2u * k] = vec4<f32>(total, samples[2u * k].w);
+    set_sample_colour(k, total);
     // A render under AA none: sample k is chunk pixel k (row-major over size, rows at
     // stride side); uniform AA's pixels are wavefront_resolve's, adaptive AA's lattice
     // points wavefront_lattice.wgsl's wavefront_lattice_store's, glint view's sums
@@ -622,7 +537,7 @@ fn wavefront_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     let first = (id.y * tile.size.x + id.x) * nn;
     var sum = vec3<f32>(0.0);
     for (var s = 0u; s < nn; s++) {
-        sum += samples[2u * (first + s)].xyz;
+        sum += sample_colour(first + s);
     }
     output[id.y * tile.side + id.x] = vec4<f32>(sum / f32(nn), 1.0);
 }

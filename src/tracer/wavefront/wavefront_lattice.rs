@@ -86,7 +86,7 @@ pub fn trace_lattice_pass(
 /// The camera pass of lattice pass `pass`: the lattice points its invocations trace, in
 /// invocation order, whose camera rays (at their lattice positions, jittered by the
 /// [`SampleSource::Lattice`] source as `lattice_sample` jitters them) start `batch`.
-// Mirror of shaders/wavefront_lattice.wgsl::wavefront_lattice_camera, the pass's invocations in one loop (the GPU's keep each sample's record at the invocation's index; here the batch holds the traced points alone) — change both.
+// Mirror of src/tracer/wavefront/wavefront_lattice.wgsl::wavefront_lattice_camera, the pass's invocations in one loop (the GPU's keep each sample's record at the invocation's index; here the batch holds the traced points alone) — change both.
 pub fn wavefront_lattice_camera(
     scene: &PackedScene,
     lat: &Lattice,

@@ -106,7 +106,7 @@ fn wavefront_lattice_camera(@builtin(global_invocation_id) id: vec3<u32>, @built
     }
     // The fold runs over this pass's invocations: none of a sample without a point.
     if idx < tile.items {
-        set_tree_camera_vertex(idx, NO_CHILD);
+        write_camera_vertex(idx, NO_CHILD);
     }
 // #endif
     if idx >= lattice_pass_len(lattice_pass) {
@@ -123,8 +123,7 @@ fn wavefront_lattice_camera(@builtin(global_invocation_id) id: vec3<u32>, @built
     if seed.mirrors_corners {
         flags = SAMPLE_MIRRORS_CORNERS;
     }
-    samples[2u * idx] = vec4<f32>(0.0, 0.0, 0.0, bitcast<f32>(NO_ITEM));
-    samples[2u * idx + 1u] = vec4<f32>(bitcast<f32>(NO_ITEM), bitcast<f32>(flags), bitcast<f32>(seed.pixel), bitcast<f32>(seed.sample));
+    write_sample(idx, vec3<f32>(0.0), NO_ITEM, NO_ITEM, flags, seed.pixel, seed.sample);
     let ray = camera_ray(jittered.position.x, jittered.position.y);
     var entry: StackEntry;
     entry.ray = ray;
@@ -139,9 +138,9 @@ fn wavefront_lattice_camera(@builtin(global_invocation_id) id: vec3<u32>, @built
 // #endif
     let at = atomicAdd(&work_counts[WAVEFRONT_WORK_BASE], 1u);
 // #if REFRACTION
-    set_tree_camera_vertex(idx, at);
+    write_camera_vertex(idx, at);
 // #endif
-    store_path(0u, at, entry, idx);
+    store_path(0u, at, entry, 0u, idx);
 }
 
 // #if REFRACTION
@@ -185,18 +184,19 @@ fn wavefront_lattice_store(@builtin(global_invocation_id) id: vec3<u32>, @builti
     if point.z == 0u {
         return;
     }
-    let record = lattice_queue_base() + 2u * idx;
-    let first = samples[record];
-    let second = samples[record + 1u];
-    let fine_detail = (bitcast<u32>(second.y) & SAMPLE_FINE_DETAIL) != 0u;
+    // `samples` bound whole: the queues, sample records first, start at
+    // lattice_queue_base(), a multiple of SAMPLE_STRIDE (the records' vec4s).
+    let k = lattice_queue_base() / SAMPLE_STRIDE + idx;
+    let flags = sample_flags(k);
+    let fine_detail = (flags & SAMPLE_FINE_DETAIL) != 0u;
 // #if REFRACTION
     // A tree without room for a child: every pixel whose closed square holds the point
     // goes to the CPU tracer (as trace_lattice_point's loop-limiter guard).
-    if (bitcast<u32>(second.y) & SAMPLE_NO_ROOM) != 0u {
+    if (flags & SAMPLE_NO_ROOM) != 0u {
         guard_lattice_point(point.x, point.y);
     }
 // #endif
-    let key = sample_item_key(bitcast<u32>(first.w), bitcast<u32>(second.x));
-    samples[lattice_index(point.x, point.y)] = vec4<f32>(first.xyz, encode_hint(SampleHint(fine_detail, key)));
+    let key = sample_item_key(sample_camera_item(k), sample_mirrored_item(k));
+    samples[lattice_index(point.x, point.y)] = vec4<f32>(sample_colour(k), encode_hint(SampleHint(fine_detail, key)));
 }
 // #endif

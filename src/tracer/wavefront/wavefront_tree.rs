@@ -21,6 +21,7 @@
 //! Design: docs/journal/2026-12-02-wavefront-split-measured.md; what was built:
 //! docs/journal/2026-12-02-wavefront-tree.md.
 
+pub use super::queues::{HitQueue, LegQueue, VertexTree};
 use crate::constants::{MAX_SHADOW_CROSSINGS, RAY_STACK_SIZE};
 use crate::pack::PackedScene;
 use crate::tracer::shading::dielectric::{
@@ -34,37 +35,14 @@ use glam::Vec3;
 /// A vertex without a child in that place.
 pub use crate::constants::NO_CHILD;
 
-/// Every vertex of a batch, generation after generation (generation g's path i is
-/// vertex ``tracer::wavefront::wavefront::Batch::vertex_base`` + i): its value and its children in push order.
-#[derive(Clone, Debug, Default)]
-pub struct VertexTree {
-    pub value: Vec<Vec3>,
-    pub children: Vec<[u32; 2]>,
-}
-
-impl VertexTree {
-    pub fn len(&self) -> usize {
-        self.value.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.value.is_empty()
-    }
-
-    /// Room for a generation of `len` more vertices, childless until shaded.
-    pub(crate) fn grow(&mut self, len: usize) {
-        let total = self.len() + len;
-        self.value.resize(total, Vec3::ZERO);
-        self.children.resize(total, [NO_CHILD; 2]);
-    }
-}
-
-/// The fold pass: each sample's colour (sample k's camera vertex is vertex k) from its
-/// vertex tree.
+/// The fold pass: each sample's colour from its vertex tree, from its camera vertex
+/// (`camera_vertices`; NO_CHILD: the sample traced nothing and keeps its colour).
 // Mirror of src/tracer/wavefront/wavefront_tree.wgsl::wavefront_fold — change both.
-pub fn wavefront_fold(tree: &VertexTree, colours: &mut [Vec3]) {
-    for (k, colour) in colours.iter_mut().enumerate() {
-        *colour = fold_entry(tree, k as u32);
+pub fn wavefront_fold(tree: &VertexTree, camera_vertices: &[u32], colours: &mut [Vec3]) {
+    for (colour, &vertex) in colours.iter_mut().zip(camera_vertices) {
+        if vertex != NO_CHILD {
+            *colour = fold_entry(tree, vertex);
+        }
     }
 }
 
@@ -104,35 +82,18 @@ fn push_children(
     }
 }
 
-/// The live legs of a glass shadow round: the request each continues, and its state
-/// (`dielectric::ShadowLeg`: start, transmittance so far, media) as structures of arrays.
-#[derive(Clone, Debug, Default)]
-pub struct LegQueue {
-    pub request: Vec<u32>,
-    pub start: Vec<Vec3>,
-    pub transmittance: Vec<f32>,
-    pub media: Vec<MediumStack>,
-}
-
 impl LegQueue {
-    pub fn len(&self) -> usize {
-        self.request.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.request.is_empty()
-    }
-
     /// Appends request `request`'s `leg`; its index (the GPU's `atomicAdd`).
     // Mirror of src/tracer/wavefront/wavefront_tree.wgsl::append_leg — change both.
     fn append_leg(&mut self, request: u32, leg: &ShadowLeg) -> usize {
         let l = self.len();
-        self.request.resize(l + 1, 0);
-        self.start.resize(l + 1, Vec3::ZERO);
-        self.transmittance.resize(l + 1, 0.0);
-        self.media.resize(l + 1, leg.media);
-        (self.request[l], self.start[l], self.transmittance[l]) =
-            (request, leg.start, leg.transmittance);
+        self.resize(l + 1);
+        (
+            self.request[l],
+            self.start[l],
+            self.transmittance[l],
+            self.media[l],
+        ) = (request, leg.start, leg.transmittance, leg.media);
         l
     }
 
@@ -145,11 +106,10 @@ impl LegQueue {
     }
 }
 
-/// What the glass shadow rounds read of a generation: per shadow request its vertex, its
-/// light slot and its light point; per vertex where its shadow rays start (origin, the
+/// What the glass shadow rounds read of a generation: per shadow request its light slot
+/// (its vertex is slot div light_points) and its light point; per vertex where its shadow rays start (origin, the
 /// surface's magnitude, the media around it). (`tracer::wavefront::wavefront`'s queues, borrowed.)
 pub struct ShadowRequests<'a> {
-    pub vertex: &'a [u32],
     pub slot: &'a [u32],
     pub position: &'a [Vec3],
     pub shadow_origin: &'a [Vec3],
@@ -157,6 +117,13 @@ pub struct ShadowRequests<'a> {
     pub media: &'a [MediumStack],
     /// Slots a vertex: vertex i's slot j is `slots[i·light_points + j]`.
     pub light_points: u32,
+}
+
+impl ShadowRequests<'_> {
+    /// The vertex request `r` is for.
+    fn vertex(&self, r: usize) -> usize {
+        (self.slot[r] / self.light_points) as usize
+    }
 }
 
 /// The glass shadow pass: every shadow request's first leg from its vertex's shadow
@@ -171,11 +138,11 @@ pub fn glass_shadow_rounds(
     slots: &mut [Vec3],
     counters: &mut impl TraversalCounters,
 ) -> u32 {
-    let count = requests.vertex.len();
+    let count = requests.slot.len();
     let mut transmittance = vec![0.0f32; count];
     let mut legs = LegQueue::default();
     for r in 0..count {
-        let i = requests.vertex[r] as usize;
+        let i = requests.vertex(r);
         let first = ShadowLeg {
             start: requests.shadow_origin[i],
             transmittance: 1.0,
@@ -189,17 +156,19 @@ pub fn glass_shadow_rounds(
             rounds <= MAX_SHADOW_CROSSINGS,
             "a leg past the last crossing"
         );
-        let hits: Vec<Hit> = (0..legs.len())
-            .map(|l| leg_closest_entry(scene, requests, &legs, l, counters))
-            .collect();
+        let mut hits = HitQueue::default();
+        hits.reset(legs.len());
+        for l in 0..legs.len() {
+            hits.store_hit(l, &leg_closest_entry(scene, requests, &legs, l, counters));
+        }
         let mut next = LegQueue::default();
-        for (l, hit) in hits.iter().enumerate() {
+        for l in 0..legs.len() {
             crossing_entry(
                 scene,
                 requests,
                 &legs,
                 l,
-                hit,
+                &hits.load_hit(l),
                 rounds,
                 &mut next,
                 &mut transmittance,
@@ -208,9 +177,8 @@ pub fn glass_shadow_rounds(
         legs = next;
         rounds += 1;
     }
-    let points = requests.light_points as usize;
     for (r, &t) in transmittance.iter().enumerate() {
-        let slot = requests.vertex[r] as usize * points + requests.slot[r] as usize;
+        let slot = requests.slot[r] as usize;
         slots[slot] = shadowed_term(slots[slot], t);
     }
     rounds
@@ -227,7 +195,7 @@ fn leg_closest_entry(
     counters: &mut impl TraversalCounters,
 ) -> Hit {
     let r = legs.request[l] as usize;
-    let magnitude = requests.magnitude[requests.vertex[r] as usize];
+    let magnitude = requests.magnitude[requests.vertex(r)];
     let (ray, reach) = shadow_leg_ray(&legs.load_leg(l), requests.position[r], magnitude);
     closest_hit(scene, &ray, reach, counters)
 }
@@ -253,7 +221,7 @@ fn crossing_entry(
         transmittance[r as usize] = leg.transmittance;
         return;
     }
-    let magnitude = requests.magnitude[requests.vertex[r as usize] as usize];
+    let magnitude = requests.magnitude[requests.vertex(r as usize)];
     let (ray, _) = shadow_leg_ray(&leg, requests.position[r as usize], magnitude);
     match cross_shadow_surface(scene, &ray, hit, crossing, &leg) {
         Some(beyond) => {
@@ -273,7 +241,7 @@ mod tests {
     #[test]
     fn fold_sums_in_pop_order() {
         let mut tree = VertexTree::default();
-        tree.grow(4);
+        tree.resize(4);
         // Vertex 0 pushed 1 (transmitted) then 2 (reflected); 2 pushed 3.
         tree.children[0] = [1, 2];
         tree.children[2] = [3, NO_CHILD];
@@ -283,7 +251,7 @@ mod tests {
         assert_ne!(pop_order, push_order);
         assert_eq!(fold_entry(&tree, 0), Vec3::splat(pop_order));
         let mut colours = [Vec3::NAN];
-        wavefront_fold(&tree, &mut colours);
+        wavefront_fold(&tree, &[0], &mut colours);
         assert_eq!(colours[0], Vec3::splat(pop_order));
     }
 }

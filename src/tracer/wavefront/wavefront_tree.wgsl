@@ -17,20 +17,14 @@
 //   wavefront_crossing (the opaque test, the normal-incidence transmission, the medium
 //   stack, the next leg appended; a request that ends multiplies its slot), with
 //   wavefront_leg_args between rounds.
-// Queues in `samples` (vec4 entries; N = tile.items samples, C = TREE_PATHS_PER_SAMPLE · N
-// paths a generation, L = light_points()):
-//   [0, 2N)                     sample records (as for chains)
-//   2N + 5C·p                   path queue of parity p, 5 a path: (origin, sample),
-//                               (dir, depth), (weight, cone.x), (cone.y, pending, media
-//                               count, 0), (media indices)
-//   2N + 10C                    hits, 2 a path;  2N + 12C: vertices, 2 a path
-//   2N + 14C                    the vertex tree, 2 a vertex (V = TREE_VERTICES_PER_SAMPLE
-//                               · N of them): (value, first child), (second child)
-//   2N + 14C + 2V               each sample's camera vertex (x; NO_CHILD: none), 1 a sample
-//   S = 3N + 14C + 2V           light slots, L a path;  S + LC: shadow requests
-//   S + 2LC + 3LC·p             legs of round parity p, 3 a leg: (start, transmittance),
-//                               (media indices), (media count, request)
-//   S + 8LC                     the round's leg hits, 2 a leg
+// Queues in `samples` (vec4 entries; N = tile.items samples, C = path_capacity() =
+// TREE_PATHS_PER_SAMPLE · N paths a generation, V = TREE_VERTICES_PER_SAMPLE · N
+// vertices, L = light points): per sample its record, then per path two path queues
+// (with media and pending count), a hit and a vertex, the vertex tree (V), each sample's
+// camera vertex (NO_CHILD: none), then per path L light slots, L shadow requests, two
+// leg queues of L legs and L leg hits. The records and the regions are specified once in
+// src/tracer/wavefront/queues.rs; their accessors (path_pending, write_leg, node_children, …) are
+// generated from it into the module (src/queues/wgsl.rs).
 // Counters in work_counts: as for chains (paths g mod 3, requests 3 + g mod 2), round r's
 // legs at 5 + r mod 3, generation g's vertex base at 8 + g mod 2, the scene's light
 // points at 10 (written by the camera pass, for the shadow pass and the rounds' kernels:
@@ -43,47 +37,6 @@
 // Mirror of src/tracer/wavefront/wavefront_tree.rs — change both.
 
 // #if REFRACTION
-// Paths one generation of the chunk may hold.
-fn tree_capacity() -> u32 {
-    return TREE_PATHS_PER_SAMPLE * tile.items;
-}
-
-fn tree_paths(parity: u32) -> u32 {
-    return 2u * tile.items + 5u * tree_capacity() * parity;
-}
-
-fn tree_hits() -> u32 {
-    return 2u * tile.items + 10u * tree_capacity();
-}
-
-fn tree_vertices() -> u32 {
-    return 2u * tile.items + 12u * tree_capacity();
-}
-
-fn tree_nodes() -> u32 {
-    return 2u * tile.items + 14u * tree_capacity();
-}
-
-fn tree_camera_vertices() -> u32 {
-    return tree_nodes() + 2u * TREE_VERTICES_PER_SAMPLE * tile.items;
-}
-
-fn tree_slots() -> u32 {
-    return tree_camera_vertices() + tile.items;
-}
-
-fn tree_shadows(points: u32) -> u32 {
-    return tree_slots() + points * tree_capacity();
-}
-
-fn tree_legs(parity: u32, points: u32) -> u32 {
-    return tree_slots() + (2u + 3u * parity) * points * tree_capacity();
-}
-
-fn tree_leg_hits(points: u32) -> u32 {
-    return tree_slots() + 8u * points * tree_capacity();
-}
-
 // The scene's light points into their counter (tree_points), by invocation 0 of a camera
 // pass (wavefront_camera, wavefront_lattice_camera), none of whose invocations reads it.
 // Not in the shadow pass, whose every invocation reads it (store_leg): there its other
@@ -121,92 +74,6 @@ fn leg_args(r: u32) -> u32 {
     return 3u * r;
 }
 
-fn path_pending(parity: u32, i: u32) -> u32 {
-    return bitcast<u32>(samples[tree_paths(parity) + 5u * i + 3u].y);
-}
-
-fn path_media(parity: u32, i: u32) -> MediumStack {
-    let at = tree_paths(parity) + 5u * i;
-    let m = samples[at + 4u];
-    return MediumStack(array<f32, MEDIUM_STACK_SIZE>(m.x, m.y, m.z, m.w), bitcast<u32>(samples[at + 3u].z));
-}
-
-// Path i of parity `parity` as trace_ray's stack holds it.
-fn load_tree_path(parity: u32, i: u32) -> StackEntry {
-    let at = tree_paths(parity) + 5u * i;
-    let a = samples[at];
-    let b = samples[at + 1u];
-    let c = samples[at + 2u];
-    var entry: StackEntry;
-    entry.ray = Ray(a.xyz, b.xyz);
-    entry.weight = c.xyz;
-    entry.depth = bitcast<u32>(b.w);
-// #if TEXTURE|BUMP
-    entry.cone = vec2<f32>(c.w, samples[at + 3u].x);
-// #endif
-    entry.media = path_media(parity, i);
-    return entry;
-}
-
-// Writes `entry` of sample `sample` with pending count `pending` as path i (the CPU's
-// PathQueue::store_path).
-fn store_tree_path(parity: u32, i: u32, entry: StackEntry, pending: u32, sample: u32) {
-    let at = tree_paths(parity) + 5u * i;
-    samples[at] = vec4<f32>(entry.ray.origin, bitcast<f32>(sample));
-    samples[at + 1u] = vec4<f32>(entry.ray.dir, bitcast<f32>(entry.depth));
-    var cone = vec2<f32>(0.0);
-// #if TEXTURE|BUMP
-    cone = entry.cone;
-// #endif
-    samples[at + 2u] = vec4<f32>(entry.weight, cone.x);
-    samples[at + 3u] = vec4<f32>(cone.y, bitcast<f32>(pending), bitcast<f32>(entry.media.count), 0.0);
-    var m = entry.media;
-    samples[at + 4u] = vec4<f32>(m.iors[0], m.iors[1], m.iors[2], m.iors[3]);
-}
-
-// Vertex v's value, and its children in push order.
-fn tree_value(v: u32) -> vec3<f32> {
-    return samples[tree_nodes() + 2u * v].xyz;
-}
-
-fn tree_children(v: u32) -> vec2<u32> {
-    let at = tree_nodes() + 2u * v;
-    return vec2<u32>(bitcast<u32>(samples[at].w), bitcast<u32>(samples[at + 1u].x));
-}
-
-fn set_tree_value(v: u32, value: vec3<f32>) {
-    let at = tree_nodes() + 2u * v;
-    samples[at] = vec4<f32>(value, samples[at].w);
-}
-
-// Sample k's camera vertex (the camera pass's path of it in generation 0, whose vertex
-// base is 0): k itself where the camera pass takes sample k as path k, the path its
-// atomicAdd gave it in adaptive AA's lattice camera; NO_CHILD where the sample traces
-// nothing (a lattice invocation without a point).
-fn tree_camera_vertex(k: u32) -> u32 {
-    return bitcast<u32>(samples[tree_camera_vertices() + k].x);
-}
-
-fn set_tree_camera_vertex(k: u32, vertex: u32) {
-    samples[tree_camera_vertices() + k] = vec4<f32>(bitcast<f32>(vertex), 0.0, 0.0, 0.0);
-}
-
-// A vertex childless until its shade step appends children.
-fn clear_tree_children(v: u32) {
-    let at = tree_nodes() + 2u * v;
-    samples[at].w = bitcast<f32>(NO_CHILD);
-    samples[at + 1u] = vec4<f32>(bitcast<f32>(NO_CHILD), 0.0, 0.0, 0.0);
-}
-
-fn set_tree_child(v: u32, place: u32, child: u32) {
-    let at = tree_nodes() + 2u * v;
-    if place == 0u {
-        samples[at].w = bitcast<f32>(child);
-    } else {
-        samples[at + 1u].x = bitcast<f32>(child);
-    }
-}
-
 // The rays the hit of path i (vertex base_g + i, sample k) spawns, pushed as trace_ray
 // pushes them onto its stack, which holds the path's pending entries then: so the same
 // rays are dropped where the stack is full, and each child's pending count is its index
@@ -230,8 +97,8 @@ fn push_tree_children(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit:
             sample_without_room(k);
             continue;
         }
-        store_tree_path(1u - parity, j, load_pending(&stack, q), q, k);
-        set_tree_child(base + i, q - pending, next_base + j);
+        store_path(1u - parity, j, load_pending(&stack, q), q, k);
+        set_node_children_component(base + i, q - pending, next_base + j);
     }
 }
 
@@ -254,7 +121,7 @@ fn sample_without_room(k: u32) {
 // Paths the next generation may hold when its vertices start at next_base: the queue's
 // capacity, or what the tree has left.
 fn next_generation_room(next_base: u32) -> u32 {
-    return min(tree_capacity(), TREE_VERTICES_PER_SAMPLE * tile.items - next_base);
+    return min(path_capacity(), TREE_VERTICES_PER_SAMPLE * tile.items - next_base);
 }
 
 // After generation tile.level's shade pass (one invocation, wavefront_args with
@@ -282,7 +149,7 @@ fn tree_generation_args_entry() {
 fn store_leg_args(r: u32, legs: u32) {
     var invocations = legs;
 // #if CSG
-    invocations = min(legs, tree_capacity());
+    invocations = min(legs, path_capacity());
 // #endif
     let groups = indirect_workgroups(invocations);
     let at = leg_args(r);
@@ -311,33 +178,17 @@ struct Crossed {
     blocked: bool,
 }
 
-// Writes request r's leg as leg l of round parity `parity`'s queue.
-fn store_leg(parity: u32, l: u32, r: u32, leg: ShadowLeg) {
-    let at = tree_legs(parity, tree_points()) + 3u * l;
-    var m = leg.media;
-    samples[at] = vec4<f32>(leg.start, leg.transmittance);
-    samples[at + 1u] = vec4<f32>(m.iors[0], m.iors[1], m.iors[2], m.iors[3]);
-    samples[at + 2u] = vec4<f32>(bitcast<f32>(m.count), bitcast<f32>(r), 0.0, 0.0);
-}
-
 // Appends request r's `leg` to the next round's queue (round tile.level + 1).
 // Mirror of src/tracer/wavefront/wavefront_tree.rs::LegQueue::append_leg — change both.
 fn append_leg(r: u32, leg: ShadowLeg) {
     let l = atomicAdd(&work_counts[leg_counter(tile.level + 1u)], 1u);
-    store_leg(1u - tile.level % 2u, l, r, leg);
+    write_leg(tree_points(), 1u - tile.level % 2u, l, leg.start, leg.transmittance, leg.media, r);
 }
 
 // Leg l of round parity `parity`'s queue (the CPU's LegQueue::load_leg).
 fn load_leg(parity: u32, l: u32) -> ShadowLeg {
-    let at = tree_legs(parity, tree_points()) + 3u * l;
-    let a = samples[at];
-    let m = samples[at + 1u];
-    let media = MediumStack(array<f32, MEDIUM_STACK_SIZE>(m.x, m.y, m.z, m.w), bitcast<u32>(samples[at + 2u].x));
-    return ShadowLeg(a.xyz, a.w, media);
-}
-
-fn leg_request(parity: u32, l: u32) -> u32 {
-    return bitcast<u32>(samples[tree_legs(parity, tree_points()) + 3u * l + 2u].y);
+    let points = tree_points();
+    return ShadowLeg(leg_start(points, parity, l), leg_transmittance(points, parity, l), leg_media(points, parity, l));
 }
 
 // The ray of `leg` toward a light at `position` and its reach (magnitude: the shaded
@@ -373,17 +224,15 @@ fn cross_shadow_surface(ray: Ray, hit: Hit, crossing: u32, leg: ShadowLeg) -> Cr
 // Mirror of the first-leg loop of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds — change both.
 fn start_shadow_leg(r: u32) {
     let points = tree_points();
-    let i = bitcast<u32>(samples[tree_shadows(points) + r].w) / points;
-    let origin = samples[tree_vertices() + 2u * i + 1u].xyz;
-    store_leg(0u, r, r, ShadowLeg(origin, 1.0, path_media(tile.level % 2u, i)));
+    let i = request_slot(points, r) / points;
+    write_leg(points, 0u, r, vertex_shadow_origin(i), 1.0, path_media(tile.level % 2u, i), r);
 }
 
 // Request r's light point and its vertex's magnitude.
 fn request_target(r: u32) -> vec4<f32> {
     let points = tree_points();
-    let request = samples[tree_shadows(points) + r];
-    let i = bitcast<u32>(request.w) / points;
-    return vec4<f32>(request.xyz, samples[tree_vertices() + 2u * i + 1u].w);
+    let i = request_slot(points, r) / points;
+    return vec4<f32>(request_position(points, r), vertex_magnitude(i));
 }
 
 // Round tile.level's closest pass: each live leg's ray to the first surface short of
@@ -400,7 +249,7 @@ fn wavefront_leg_closest(@builtin(global_invocation_id) id: vec3<u32>, @builtin(
     let idx = linear_index(id, groups);
 // #if CSG
     begin_lane(idx);
-    for (var l = idx; idx < tree_capacity() && l < atomicLoad(&work_counts[leg_counter(tile.level)]); l += tree_capacity()) {
+    for (var l = idx; idx < path_capacity() && l < atomicLoad(&work_counts[leg_counter(tile.level)]); l += path_capacity()) {
         leg_closest_entry(l);
     }
 // #else
@@ -418,13 +267,12 @@ fn leg_closest_entry(l: u32) {
     let parity = tile.level % 2u;
     // Where the hit goes, found before the traversal: one index live across it rather
     // than the light points and l (with CSG this spared RADV's last 2 spilled SGPRs in
-    // wave64).
-    let at = tree_leg_hits(tree_points()) + 2u * l;
-    let light = request_target(leg_request(parity, l));
+    // wave64; reading the light points again after it spilled 2 in scrabble.lua's).
+    let at = leg_hit_entry(tree_points(), l);
+    let light = request_target(leg_request(tree_points(), parity, l));
     let leg_ray = shadow_leg_ray(load_leg(parity, l), light.xyz, light.w);
     let hit = closest_hit(leg_ray.ray, leg_ray.reach);
-    samples[at] = vec4<f32>(hit.t, bitcast<f32>(hit.item), hit.b1, hit.b2);
-    samples[at + 1u] = vec4<f32>(bitcast<f32>(hit.part), 0.0, 0.0, 0.0);
+    write_leg_hit_at(at, hit.t, hit.item, hit.b1, hit.b2, hit.part);
 }
 
 // Round tile.level's crossing step, one leg an invocation.
@@ -435,25 +283,18 @@ fn wavefront_crossing(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     let count = atomicLoad(&work_counts[leg_counter(tile.level)]);
 // #if CSG
     // The closest pass's dispatch shape (at most C invocations).
-    if idx >= tree_capacity() {
+    if idx >= path_capacity() {
         return;
     }
-    for (var l = idx; l < count; l += tree_capacity()) {
-        crossing_entry(l, leg_hit(l), tile.level);
+    for (var l = idx; l < count; l += path_capacity()) {
+        crossing_entry(l, load_leg_hit(tree_points(), l), tile.level);
     }
 // #else
     if idx >= count {
         return;
     }
-    crossing_entry(idx, leg_hit(idx), tile.level);
+    crossing_entry(idx, load_leg_hit(tree_points(), idx), tile.level);
 // #endif
-}
-
-// Leg l's closest hit, as wavefront_leg_closest stored it.
-fn leg_hit(l: u32) -> Hit {
-    let at = tree_leg_hits(tree_points()) + 2u * l;
-    let h = samples[at];
-    return Hit(h.x, bitcast<u32>(h.y), h.z, h.w, bitcast<u32>(samples[at + 1u].x));
 }
 
 // Leg l's crossing `crossing`, whose closest hit is `hit`: a miss ends its request with
@@ -462,7 +303,7 @@ fn leg_hit(l: u32) -> Hit {
 // Mirror of src/tracer/wavefront/wavefront_tree.rs::crossing_entry — change both.
 fn crossing_entry(l: u32, hit: Hit, crossing: u32) {
     let parity = crossing % 2u;
-    let r = leg_request(parity, l);
+    let r = leg_request(tree_points(), parity, l);
     let leg = load_leg(parity, l);
     if !is_hit(hit) {
         end_request(r, leg.transmittance);
@@ -482,12 +323,12 @@ fn crossing_entry(l: u32, hit: Hit, crossing: u32) {
 // CPU's shadowed_term), once, when its last leg ends.
 // Mirror of the slot product of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds — change both.
 fn end_request(r: u32, transmittance: f32) {
-    let slot = tree_slots() + bitcast<u32>(samples[tree_shadows(tree_points()) + r].w);
+    let slot = request_slot(tree_points(), r);
     var term = vec3<f32>(0.0);
     if !(transmittance <= 0.0) {
-        term = samples[slot].xyz * transmittance;
+        term = slot_term(slot) * transmittance;
     }
-    samples[slot] = vec4<f32>(term, 0.0);
+    write_slot(slot, term);
 }
 
 // After round tile.level's crossing step (one invocation): the next round's indirect
@@ -510,12 +351,12 @@ fn wavefront_fold(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
     if k >= tile.items {
         return;
     }
-    let vertex = tree_camera_vertex(k);
+    let vertex = camera_vertex_index(k);
     if vertex == NO_CHILD {
         return;
     }
     let colour = fold_entry(vertex);
-    samples[2u * k] = vec4<f32>(colour, samples[2u * k].w);
+    set_sample_colour(k, colour);
     // A render under AA none: sample k is chunk pixel k (row-major over size, rows at
     // stride side).
     if globals.aa_mode == AA_NONE && tile.stratum == ALL_STRATA {
@@ -530,12 +371,12 @@ fn wavefront_fold(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wor
 fn fold_entry(k: u32) -> vec3<f32> {
     var stack: array<u32, RAY_STACK_SIZE>;
     var size = 0u;
-    var colour = tree_value(k);
+    var colour = node_value(k);
     push_children(k, &stack, &size);
     while size > 0u {
         size -= 1u;
         let vertex = stack[size];
-        colour += tree_value(vertex);
+        colour += node_value(vertex);
         push_children(vertex, &stack, &size);
     }
     return colour;
@@ -544,7 +385,7 @@ fn fold_entry(k: u32) -> vec3<f32> {
 // Pushes vertex's children onto the fold's stack in the order shade appended them.
 // Mirror of src/tracer/wavefront/wavefront_tree.rs::push_children — change both.
 fn push_children(vertex: u32, stack: ptr<function, array<u32, RAY_STACK_SIZE>>, size: ptr<function, u32>) {
-    let children = tree_children(vertex);
+    let children = node_children(vertex);
     for (var c = 0u; c < 2u; c++) {
         let child = children[c];
         if child != NO_CHILD {
