@@ -9,7 +9,9 @@
 //!   struct of the CPU wavefront has a `Vec` field of its own ([`queue_problems`]).
 
 use super::twins::source_texts;
-use glint::gpu::compile::shader::{all_feature_sets, assemble_with, queue_accessors, validate, Entry};
+use glint::gpu::compile::shader::{
+    all_feature_sets, assemble_with, queue_accessors, validate, Entry,
+};
 use glint::gpu::KernelConfig;
 use glint::pack::SceneFeatures;
 use glint::queues::layout::{in_layout, Form};
