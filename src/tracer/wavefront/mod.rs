@@ -3,6 +3,8 @@
 //! built on `sampling` and below.
 
 pub mod queues;
+// The chain's passes keep the name of their WGSL twin, wavefront.wgsl, beside them.
+#[allow(clippy::module_inception)]
 pub mod wavefront;
 pub mod wavefront_lattice;
 pub mod wavefront_tree;
