@@ -382,7 +382,7 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
 /// pair, its twin is named otherwise).
 const WGSL_NAMED_APART: &[(&str, &str, &str)] = &[
     (
-        "shaders/probe.wgsl",
+        "src/testing/probe.wgsl",
         "probe",
         "the kernel probe's entry point; its Rust side, a test hook, is \
          src/testing/probe.rs::cpu_probe beside gpu_probe, which names the tracer that answers",
