@@ -86,6 +86,26 @@ struct Ended {
     stderr: String,
 }
 
+/// Gives the child glint the default SIGINT and SIGTERM whatever this process inherited
+/// (a test run started in the background by a non-interactive shell, `cmd &`, has SIGINT
+/// ignored, a child inherits that, and glint rightly keeps an ignored signal ignored) and
+/// caps its address space at [`ADDRESS_SPACE_BYTES`].
+fn confine(command: &mut Command) {
+    // SAFETY: signal and setrlimit are async-signal-safe, as `pre_exec` requires.
+    unsafe {
+        command.pre_exec(|| {
+            libc::signal(libc::SIGINT, libc::SIG_DFL);
+            libc::signal(libc::SIGTERM, libc::SIG_DFL);
+            let cap = libc::rlimit {
+                rlim_cur: ADDRESS_SPACE_BYTES,
+                rlim_max: ADDRESS_SPACE_BYTES,
+            };
+            libc::setrlimit(libc::RLIMIT_AS, &cap);
+            Ok(())
+        });
+    }
+}
+
 /// Runs glint with `args` in `dir`, killing it after `limit`. `during` is called every
 /// few milliseconds with the child's pid while it runs (for signal tests).
 fn run_glint(
@@ -103,22 +123,7 @@ fn run_glint(
         .stdin(Stdio::null())
         .stdout(Stdio::null())
         .stderr(std::fs::File::create(&err_path).unwrap());
-    // The child gets the default SIGINT and SIGTERM whatever this process inherited: a
-    // test run started in the background by a non-interactive shell (`cmd &`) has SIGINT
-    // ignored, a child inherits that, and glint rightly keeps an ignored signal ignored.
-    // SAFETY: `signal` is async-signal-safe, as `pre_exec` requires.
-    unsafe {
-        command.pre_exec(|| {
-            libc::signal(libc::SIGINT, libc::SIG_DFL);
-            libc::signal(libc::SIGTERM, libc::SIG_DFL);
-            let cap = libc::rlimit {
-                rlim_cur: ADDRESS_SPACE_BYTES,
-                rlim_max: ADDRESS_SPACE_BYTES,
-            };
-            libc::setrlimit(libc::RLIMIT_AS, &cap);
-            Ok(())
-        });
-    }
+    confine(&mut command);
     let child = command.spawn().expect("glint starts");
     let pid = child.id() as i32;
     let start = Instant::now();
@@ -2352,19 +2357,7 @@ fn run_glint_env(
         .stdin(Stdio::null())
         .stdout(Stdio::null())
         .stderr(std::fs::File::create(&err_path).unwrap());
-    // SAFETY: signal and setrlimit are async-signal-safe, as `pre_exec` requires.
-    unsafe {
-        command.pre_exec(|| {
-            libc::signal(libc::SIGINT, libc::SIG_DFL);
-            libc::signal(libc::SIGTERM, libc::SIG_DFL);
-            let cap = libc::rlimit {
-                rlim_cur: ADDRESS_SPACE_BYTES,
-                rlim_max: ADDRESS_SPACE_BYTES,
-            };
-            libc::setrlimit(libc::RLIMIT_AS, &cap);
-            Ok(())
-        });
-    }
+    confine(&mut command);
     let pid = command.spawn().expect("glint starts").id() as i32;
     let start = Instant::now();
     let (mut status, mut hooked) = (0, true);
