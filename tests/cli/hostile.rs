@@ -632,6 +632,19 @@ fn sizes_and_counts_are_bounded() {
     }
 }
 
+/// A runner's hook that sends `sig` to the child as soon as a temporary file (`.tmp-`)
+/// appears in `dir`, and stops hooking then.
+fn signal_once_a_temp_file_exists(dir: &Path, sig: i32) -> impl FnMut(i32) -> bool + '_ {
+    move |pid| {
+        let temp = listing(dir).iter().any(|n| n.contains(".tmp-"));
+        if temp {
+            // SAFETY: signalling our own child.
+            unsafe { libc::kill(pid, sig) };
+        }
+        !temp
+    }
+}
+
 /// Renders a `side`×`side` empty image in a fresh case folder `tag` and sends `sig` as
 /// soon as the temporary image file exists; returns how glint ended, the folder, what it
 /// holds afterwards and the folder's guard, having checked that no temporary file is left.
@@ -642,14 +655,13 @@ fn signal_during_write(tag: &str, side: u32, sig: i32) -> (Ended, PathBuf, Vec<S
     let args: Vec<String> = ["render", "scene.lua", "--backend", "cpu"]
         .map(String::from)
         .to_vec();
-    let ended = run_glint(&args, &dir, &logs, Duration::from_secs(120), &mut |pid| {
-        let temp = listing(&dir).iter().any(|n| n.contains(".tmp-"));
-        if temp {
-            // SAFETY: signalling our own child.
-            unsafe { libc::kill(pid, sig) };
-        }
-        !temp
-    });
+    let ended = run_glint(
+        &args,
+        &dir,
+        &logs,
+        Duration::from_secs(120),
+        &mut signal_once_a_temp_file_exists(&dir, sig),
+    );
     let names = listing(&dir);
     assert!(
         !names.iter().any(|n| n.contains(".tmp-")),
@@ -2457,14 +2469,7 @@ fn a_signal_during_a_tile_write_leaves_nothing_behind() {
                 &[],
                 None,
                 Duration::from_secs(120),
-                &mut |pid| {
-                    let temp = listing(&dir).iter().any(|n| n.contains(".tmp-"));
-                    if temp {
-                        // SAFETY: signalling our own child.
-                        unsafe { libc::kill(pid, sig) };
-                    }
-                    !temp
-                },
+                &mut signal_once_a_temp_file_exists(&dir, sig),
             );
             let names = listing(&dir);
             assert!(
