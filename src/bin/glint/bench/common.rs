@@ -4,7 +4,7 @@
 use crate::script_args::ScriptArgs;
 use glint::pack::PackedScene;
 use glint::pipeline::pack_scene;
-use glint::scene::flatten::{flatten, FlatScene};
+use glint::scene::flatten::FlatScene;
 use glint::scene::GridMode;
 use glint::script_driver::{run_script, ScriptSettings};
 use std::path::PathBuf;
@@ -152,17 +152,7 @@ pub fn load_scene_with(
     height: u32,
     settings: &ScriptSettings,
 ) -> anyhow::Result<FlatScene> {
-    let mut scene = None;
-    run_script(path, settings, &mut |graph, request| {
-        if scene.is_none() {
-            let mut request = request.clone();
-            request.width = width;
-            request.height = height;
-            scene = Some(flatten(graph, &request)?);
-        }
-        Ok(())
-    })?;
-    scene.ok_or_else(|| anyhow::anyhow!("{} never calls gr.render", path.display()))
+    glint::bench::trace_rays::load_first_render(path, Some(width), Some(height), settings)
 }
 
 /// Height over width of the image a scene's (first) `gr.render` asks for.
