@@ -8,7 +8,7 @@ use crate::constants::{AA_ADAPTIVE, AA_NONE};
 use crate::gpu::compile::kernel::KernelConfig;
 use crate::gpu::compile::shader::wavefront_kernels;
 use crate::pack::{PackedScene, SceneFeatures};
-use crate::tracer::wavefront::wavefront::light_points;
+use crate::tracer::wavefront::batch::light_points;
 
 /// The wavefront kernels' shape for `scene` under `kernel`, where `kernel` runs them for
 /// it (a variant with `wavefront`: [`wavefront_kernels`]): AA none, uniform AA and
@@ -53,7 +53,7 @@ fn shape(
         uniform,
         tree,
         // With CSG one shadow request per invocation and list slot: a slice per light
-        // point (src/tracer/wavefront/wavefront.wgsl::wavefront_shadow).
+        // point (src/tracer/wavefront/wavefront_shadow.wgsl::wavefront_shadow).
         shadow_slices: if !tree && scene.features.contains(SceneFeatures::CSG) {
             light_points(scene)
         } else {

@@ -8,10 +8,13 @@
 //!   (`wgsl::queue_wgsl`, emitted into the render module as the constants' prelude is:
 //!   no `.wgsl` file holds them);
 //! - the regions of `samples` the queues take and the bytes a sample needs
-//!   (`layout`, which `gpu::plan` sizes its buffers by).
+//!   (`layout`, which `gpu::plan` sizes its buffers by);
+//! - the counters of their entries in `work_counts` (`counters`: the WGSL functions
+//!   naming a generation's word, and the words `gpu::plan` sizes `work_counts` by).
 //!
 //! A new field is one line in `tracer::wavefront::queues`. docs/architecture.md, "Queues", describes the layout.
 
+pub mod counters;
 pub mod layout;
 pub mod wgsl;
 

@@ -25,7 +25,7 @@ use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions, KernelConfig, KernelV
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::bounded::AaSamples;
 use glint::scene::{AaDepth, AaMode, OptionOverrides};
-use glint::tracer::wavefront::wavefront::light_points;
+use glint::tracer::wavefront::batch::light_points;
 
 /// Every feature set: the hardware variant's render module has the wavefront entry points
 /// (the renders' and the view's), valid under naga, exactly where the scene has no

@@ -14,18 +14,19 @@ use glint::gpu::compile::shader::{
 };
 use glint::gpu::KernelConfig;
 use glint::pack::SceneFeatures;
+use glint::queues::counters::counters_wgsl;
 use glint::queues::layout::{in_layout, Form};
 use glint::queues::wgsl::queue_wgsl;
-use glint::tracer::wavefront::queues::{LegQueue, REGIONS};
+use glint::tracer::wavefront::queues::{LegQueue, COUNTERS, REGIONS};
 use glint::tracer::wavefront::wavefront::Batch;
 use std::collections::BTreeSet;
 
-/// Every function the generator may emit (either layout, every field).
+/// Every function the generator may emit (either layout, every field, the counters).
 pub(super) fn generated_functions() -> BTreeSet<String> {
     [Form::Chain, Form::Tree]
         .iter()
         .flat_map(|&form| {
-            let text = queue_wgsl(REGIONS, form, &|_| true);
+            let text = queue_wgsl(REGIONS, form, &|_| true) + &counters_wgsl(COUNTERS, form);
             text.lines()
                 .filter_map(|l| l.strip_prefix("fn "))
                 .filter_map(|l| l.split_once('(').map(|(name, _)| name.to_string()))
@@ -47,9 +48,9 @@ pub(super) fn queue_problems(texts: &[(String, String)]) -> Vec<String> {
     let mut problems = Vec::new();
     for (path, text) in texts {
         let name = file_name(path);
-        let wgsl = name.ends_with(".wgsl")
-            && (name.starts_with("wavefront") || name == "progressive.wgsl");
-        let rust = path.starts_with("src/tracer/wavefront/") && name.starts_with("wavefront");
+        let in_wavefront = path.starts_with("src/tracer/wavefront/");
+        let wgsl = name.ends_with(".wgsl") && (in_wavefront || name == "progressive.wgsl");
+        let rust = in_wavefront && name.ends_with(".rs");
         for (number, line) in text.lines().enumerate() {
             let code = line.split("//").next().unwrap_or_default().trim();
             if wgsl && code.contains("samples[") && !code.contains("samples[lattice_index(") {
@@ -160,19 +161,19 @@ fn a_field_on_one_side_is_reported() {
         out
     };
     let wgsl = edit(
-        "wavefront.wgsl",
-        "// Generation g's path counter.",
-        "fn path_extra(parity: u32, i: u32) -> f32 {\n    return samples[path_queue(parity) + 4u * i + 3u].y;\n}\n\n// Generation g's path counter.",
+        "batch.wgsl",
+        "// Path i of parity `parity` as trace_ray's stack holds it.",
+        "fn path_extra(parity: u32, i: u32) -> f32 {\n    return samples[path_queue(parity) + 4u * i + 3u].y;\n}\n\n// Path i of parity `parity` as trace_ray's stack holds it.",
     );
     let problems = queue_problems(&wgsl);
     assert!(
         problems
             .iter()
-            .any(|p| p.contains("wavefront.wgsl") && p.contains("by hand")),
+            .any(|p| p.contains("batch.wgsl") && p.contains("by hand")),
         "a hand-written WGSL accessor is not reported: {problems:?}"
     );
     let rust = edit(
-        "wavefront.rs",
+        "batch.rs",
         "    pub light_points: u32,\n",
         "    pub light_points: u32,\n    pub extra: Vec<f32>,\n",
     );
@@ -180,7 +181,7 @@ fn a_field_on_one_side_is_reported() {
     assert!(
         problems
             .iter()
-            .any(|p| p.contains("wavefront.rs") && p.contains("pub extra: Vec<f32>,")),
+            .any(|p| p.contains("batch.rs") && p.contains("pub extra: Vec<f32>,")),
         "a hand-added CPU queue field is not reported: {problems:?}"
     );
 }

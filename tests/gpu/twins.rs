@@ -276,44 +276,14 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          lattice and batch are separate Vecs",
     ),
     (
-        "src/tracer/wavefront/wavefront.wgsl",
+        "src/tracer/wavefront/batch.wgsl",
         "load_path",
         "path entry i of a queue as trace_ray's stack holds it, from the generated accessors of its fields (path_origin, …); the CPU's is PathQueue::load_path, a method of one queue (the WGSL names the queue by its parity)",
     ),
     (
-        "src/tracer/wavefront/wavefront.wgsl",
+        "src/tracer/wavefront/batch.wgsl",
         "store_path",
         "writes path entry i of a queue through the generated write_path; the CPU's is PathQueue::store_path, a method of one queue (the WGSL names the queue by its parity)",
-    ),
-    (
-        "src/tracer/wavefront/wavefront.wgsl",
-        "path_counter",
-        "which work_counts word counts a generation's paths; the CPU's queues are Vecs that know their length",
-    ),
-    (
-        "src/tracer/wavefront/wavefront.wgsl",
-        "shadow_counter",
-        "which work_counts word counts a generation's shadow requests (see path_counter)",
-    ),
-    (
-        "src/tracer/wavefront/wavefront.wgsl",
-        "ask_shadow",
-        "one light point's step of ask_light_shadows' loop: the CPU's is the closure `ask` in src/tracer/wavefront/wavefront.rs::ask_light_shadows",
-    ),
-    (
-        "src/tracer/wavefront/wavefront.wgsl",
-        "wavefront_unshadowed_term",
-        "the CPU's src/tracer/shading/shade.rs::unshadowed_term, which the CPU's point_light shares; the WGSL point_light keeps its own copy of these lines so that the software variant's module (no wavefront) stays byte for byte what it was",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "leg_counter",
-        "which work_counts word counts a round's legs; the CPU's LegQueue is a Vec that knows its length",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "vertex_base_counter",
-        "which work_counts word holds a generation's first vertex (the CPU's Batch::vertex_base)",
     ),
     (
         "src/tracer/wavefront/wavefront_tree.wgsl",
@@ -349,21 +319,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "src/tracer/wavefront/wavefront_tree.wgsl",
         "load_leg",
         "reads leg l of a round's queue (the CPU's LegQueue::load_leg)",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "request_target",
-        "reads a shadow request's light point and its vertex's magnitude (the CPU's ShadowRequests::position[r] and magnitude[vertex])",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "shadow_leg_ray",
-        "the CPU's src/tracer/shading/dielectric.rs::shadow_leg_ray, which the CPU's shadow_transmittance shares; dielectric.wgsl's shadow_transmittance keeps its own copy of these lines so that the software variant's module (no wavefront) stays byte for byte what it was",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "cross_shadow_surface",
-        "the CPU's src/tracer/shading/dielectric.rs::cross_shadow_surface (see shadow_leg_ray)",
     ),
     (
         "src/tracer/wavefront/wavefront_tree.wgsl",
@@ -407,51 +362,10 @@ const WGSL_NAMED_APART: &[(&str, &str, &str)] = &[
          every item with the grid off), which WGSL indexes",
     ),
     (
-        "src/tracer/wavefront/wavefront.wgsl",
-        "wavefront_shadow",
-        "one invocation (with CSG: one per slice) of src/tracer/wavefront/wavefront.rs::shadow_pass's \
-         loop over shadow_request",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "push_tree_children",
-        "the tail of src/tracer/wavefront/wavefront.rs::wavefront_shade with refraction (the children \
-         linked in the CPU's VertexTree where WGSL checks the queues' room)",
-    ),
-    (
         "src/tracer/wavefront/wavefront_tree.wgsl",
         "tree_generation_args_entry",
         "src/tracer/wavefront/wavefront.rs::wavefront_args with refraction (the CPU's queues need no \
          room cut or vertex base counter)",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "start_shadow_leg",
-        "the first-leg loop of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "wavefront_leg_closest",
-        "the closest pass of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds's round loop \
-         (its entry: leg_closest_entry)",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "wavefront_crossing",
-        "the crossing step of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds's round loop \
-         (its entry: crossing_entry)",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "end_request",
-        "the slot product of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds (the CPU \
-         keeps each request's transmittance until the rounds end)",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "wavefront_leg_args",
-        "the hand-over of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds's round loop \
-         (indirect arguments; the CPU's loop runs over its Vec)",
     ),
 ];
 
@@ -480,16 +394,8 @@ const MODULE_SCOPE: &[(&str, &str)] = &[
         "a tree's vertex tree in the `samples` storage buffer (src/tracer/wavefront/wavefront_tree.wgsl)",
     ),
     (
-        "ShadowRequests",
-        "a tree's shadow requests, vertices and paths in the `samples` storage buffer",
-    ),
-    (
         "LegQueue",
         "a glass round's leg queues in the `samples` storage buffer and their `work_counts`",
-    ),
-    (
-        "[f32]",
-        "a tree's light slots in the `samples` storage buffer (the glass rounds' products)",
     ),
     ("[u32]", "the `texel_table` texture"),
     (

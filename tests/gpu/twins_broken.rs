@@ -189,22 +189,22 @@ fn names_apart_are_reported() {
         &edited(
             &edited(
                 &texts,
-                "src/tracer/wavefront/wavefront.rs",
+                "src/tracer/wavefront/wavefront_gather.rs",
                 "fn wavefront_gather(",
                 "fn gather_entry(",
             ),
-            "src/tracer/wavefront/wavefront.rs",
-            "        wavefront_gather(scene, batch, i, counters);",
-            "        gather_entry(scene, batch, i, counters);",
+            "src/tracer/wavefront/wavefront_gather.rs",
+            "    each_path(scene, batch, counters, wavefront_gather);",
+            "    each_path(scene, batch, counters, gather_entry);",
         ),
-        "src/tracer/wavefront/wavefront.wgsl",
-        "src/tracer/wavefront/wavefront.rs::wavefront_gather — change both.",
-        "src/tracer/wavefront/wavefront.rs::gather_entry — change both.",
+        "src/tracer/wavefront/wavefront_gather.wgsl",
+        "src/tracer/wavefront/wavefront_gather.rs::wavefront_gather — change both.",
+        "src/tracer/wavefront/wavefront_gather.rs::gather_entry — change both.",
     );
     let found = check(&renamed);
     assert_reported(
         &found,
-        "fn wavefront_gather is named otherwise than its twin src/tracer/wavefront/wavefront.rs::gather_entry",
+        "fn wavefront_gather is named otherwise than its twin src/tracer/wavefront/wavefront_gather.rs::gather_entry",
         "a pair of twins named apart",
     );
     assert_eq!(found.problems.len(), 1, "{:#?}", found.problems);

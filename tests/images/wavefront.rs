@@ -22,10 +22,12 @@ use glint::tracer::sampling::render::render_pixel;
 use glint::tracer::shading::dielectric::{shadow_transmittance, MediumStack};
 use glint::tracer::traversal::traverse::Counters;
 use glint::tracer::wavefront::wavefront::{
-    camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, render_film, shade_pass,
-    trace_batch, wavefront_args, Batch, SampleSource,
+    camera_pass, closest_pass, render_film, trace_batch, wavefront_args, Batch, SampleSource,
 };
+use glint::tracer::wavefront::wavefront_gather::{fold_pass, gather_pass};
 use glint::tracer::wavefront::wavefront_lattice::adaptive_tile_wavefront;
+use glint::tracer::wavefront::wavefront_shade::shade_pass;
+use glint::tracer::wavefront::wavefront_shadow::{glass_shadow_pass, shadow_pass};
 use std::path::{Path, PathBuf};
 
 const W: u32 = 20;
@@ -345,6 +347,7 @@ fn trace_tree_batch(scene: &PackedScene, source: &SampleSource) -> (Batch, Reach
             .max(batch.paths.pending.iter().copied().max().unwrap_or(0));
         closest_pass(scene, &mut batch, &mut counters);
         shade_pass(scene, &mut batch, &mut counters);
+        shadow_pass(scene, &mut batch, &mut counters);
         reach.rounds = reach
             .rounds
             .max(glass_shadow_pass(scene, &mut batch, &mut counters));

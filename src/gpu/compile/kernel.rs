@@ -45,11 +45,11 @@ pub struct KernelConfig {
     /// mesh walks masked beside every item test.
     pub any_hit_one_loop: bool,
     /// Whether AA none traces scenes through the wavefront kernels (`WAVEFRONT`,
-    /// `src/tracer/wavefront/wavefront.wgsl`: camera, closest hit, shading, shadow rays and gathering
+    /// `src/tracer/wavefront/*.wgsl`: camera, closest hit, shading, shadow rays and gathering
     /// as kernels of their own joined by queues; with refraction also the vertex tree,
     /// glass shadow rounds and the fold of `src/tracer/wavefront/wavefront_tree.wgsl`) rather than the
     /// megakernel `main` (which the module then lacks). The images are the same bit for
-    /// bit (the CPU twins are `tracer::wavefront::wavefront` and `tracer::wavefront::wavefront_tree`).
+    /// bit (the CPU twins are `tracer::wavefront`'s files beside them).
     pub wavefront: bool,
 }
 

@@ -22,9 +22,10 @@ use crate::gpu::compile::kernel::KernelConfig;
 use crate::gpu::compile::lists::LaneLists;
 use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
+use crate::queues::counters::counters_wgsl;
 use crate::queues::layout::Form;
 use crate::queues::wgsl::queue_wgsl;
-use crate::tracer::wavefront::queues::REGIONS;
+use crate::tracer::wavefront::queues::{COUNTERS, REGIONS};
 
 /// Which compute entry point a pipeline is for. Every entry but `Probe` is in the render
 /// module (one source, one bind group layout).
@@ -336,7 +337,11 @@ const RENDER: &[(&str, &str)] = &[
 /// Appended to the render module only where the kernel runs the wavefront kernels (so
 /// that the other modules are byte for byte what they were without them).
 const WAVEFRONT: &[(&str, &str)] = &[
+    wgsl!("tracer/wavefront/batch.wgsl"),
     wgsl!("tracer/wavefront/wavefront.wgsl"),
+    wgsl!("tracer/wavefront/wavefront_shade.wgsl"),
+    wgsl!("tracer/wavefront/wavefront_shadow.wgsl"),
+    wgsl!("tracer/wavefront/wavefront_gather.wgsl"),
     wgsl!("tracer/wavefront/wavefront_lattice.wgsl"),
 ];
 /// Appended after `WAVEFRONT` where the scene has refraction (paths that branch).
@@ -402,9 +407,10 @@ pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig
     out
 }
 
-/// The wavefront queues' accessors of a render module with the wavefront kernels for a
-/// scene with `features`: generated from their specification (`tracer::wavefront::queues`; a tree's
-/// layout with refraction), with the fields whose `#if` condition the module has.
+/// The wavefront queues' accessors and counters of a render module with the wavefront
+/// kernels for a scene with `features`: generated from their specification
+/// (`tracer::wavefront::queues`; a tree's layout with refraction), with the fields whose `#if`
+/// condition the module has.
 pub fn queue_accessors(features: SceneFeatures, kernel: KernelConfig) -> String {
     let form = if features.contains(SceneFeatures::REFRACTION) {
         Form::Tree
@@ -416,7 +422,7 @@ pub fn queue_accessors(features: SceneFeatures, kernel: KernelConfig) -> String 
             panic!("src/tracer/wavefront/queues.rs: {e} (a bug in the specification)")
         })
     };
-    queue_wgsl(REGIONS, form, &present)
+    queue_wgsl(REGIONS, form, &present) + &counters_wgsl(COUNTERS, form)
 }
 
 /// Resolves the `// #if` blocks of one file (default kernel variant). Errors name the line

@@ -3,11 +3,12 @@
 //! generation's and each glass round's arguments lie. Chains and trees alike.
 
 use crate::constants::MAX_SHADOW_CROSSINGS;
+use crate::queues::counters::counter_words;
 use crate::queues::layout::{paths_per_sample, vec4s_per_sample, Form};
-use crate::tracer::wavefront::queues::REGIONS;
+use crate::tracer::wavefront::queues::{COUNTERS, REGIONS};
 
 /// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
-/// vertex's light slots: `tracer::wavefront::wavefront::light_points`), the generations a path may
+/// vertex's light slots: `tracer::wavefront::batch::light_points`), the generations a path may
 /// have (max_depth + 1 with mirrors or glass, else 1), the AA mode's strata, and whether
 /// paths branch (a tree: scenes with refraction).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -20,7 +21,7 @@ pub struct WavefrontShape {
     pub tree: bool,
     /// Dispatches of a chain's shadow pass a generation: 1, or with CSG (at most one
     /// invocation per list slot, one request each) the light points, each a slice of at
-    /// most a request per sample (`src/tracer/wavefront/wavefront.wgsl::wavefront_shadow`). A tree's: 1.
+    /// most a request per sample (`src/tracer/wavefront/wavefront_shadow.wgsl::wavefront_shadow`). A tree's: 1.
     pub shadow_slices: u32,
 }
 
@@ -93,15 +94,16 @@ impl WavefrontShape {
 
     /// 24-byte levels of work_args (and 4-byte counters of work_counts) the kernels use:
     /// a generation's 6 words (after a tree's round arguments); at least the counters
-    /// (5 for chains; a tree's 11: also three leg counters, two vertex bases and the
-    /// light points).
+    /// (`tracer::wavefront::queues::COUNTERS`: 5 for chains; a tree's 11, also three leg
+    /// counters, two vertex bases and the light points).
     pub fn work_levels(self) -> u64 {
+        let counters = counter_words(COUNTERS, self.form()) as u64;
         if self.tree {
-            (TREE_ROUND_ARGS_WORDS / 6 + self.generations as u64).max(11)
+            (TREE_ROUND_ARGS_WORDS / 6 + self.generations as u64).max(counters)
         } else {
             (self.generation_words() * self.generations as u64)
                 .div_ceil(6)
-                .max(5)
+                .max(counters)
         }
     }
 }

@@ -38,7 +38,7 @@ pub struct GpuTile {
     /// [`ALL_STRATA`](crate::constants::ALL_STRATA): every stratum of each (a render).
     pub stratum: u32,
     /// The wavefront shadow pass's slice with CSG (WavefrontShape::shadow_slices): its
-    /// requests are slice × items … slice × items + items − 1 (src/tracer/wavefront/wavefront.wgsl);
+    /// requests are slice × items … slice × items + items − 1 (src/tracer/wavefront/wavefront_shadow.wgsl);
     /// the args kernel's: the slices of a shadow pass (WavefrontShape::shadow_slices).
     pub slice: u32,
 }

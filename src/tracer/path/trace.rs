@@ -266,8 +266,9 @@ fn shade_hit(
 
 /// A hit as shading sees it before any light: the surface (with its texture footprint),
 /// the normal facing the ray, the shading normal, and in the UV debug view the colour
-/// that ends the ray. [`shade_hit`] and the wavefront's shading pass (`tracer::wavefront::wavefront`)
+/// that ends the ray. [`shade_hit`] and the wavefront's shading pass (`tracer::wavefront::wavefront_shade`)
 /// both start here.
+// Mirror of src/tracer/path/trace.wgsl::ShadingPoint — change both.
 pub(crate) struct ShadingPoint {
     pub(crate) s: Surface,
     pub(crate) facing: Vec3,
@@ -277,6 +278,7 @@ pub(crate) struct ShadingPoint {
 }
 
 /// The [`ShadingPoint`] of the hit of `entry`'s ray.
+// Mirror of src/tracer/path/trace.wgsl::shading_point — change both.
 pub(crate) fn shading_point(scene: &PackedScene, entry: &StackEntry, hit: &Hit) -> ShadingPoint {
     let ray = entry.ray;
     let s = surface_at(scene, &ray, hit);

@@ -303,6 +303,34 @@ struct ShadedHit {
 // The hit of the ray of `entry`, shaded (see ShadedHit).
 // Mirror of src/tracer/path/trace.rs::shade_hit — change both.
 fn shade_hit(entry: StackEntry, hit: Hit, seed: SampleSeed) -> ShadedHit {
+    let point = shading_point(entry, hit);
+    if point.unlit {
+        return ShadedHit(point.s, point.facing, point.n, point.uv_colour, true);
+    }
+// #if REFRACTION
+    shading_media = entry.media;
+// #endif
+    var shade_seed = seed;
+    shade_seed.depth = entry.depth;
+    return ShadedHit(point.s, point.facing, point.n, shade_phong(point.s, point.n, -entry.ray.dir, shade_seed), false);
+}
+
+// A hit as shading sees it before any light: the surface (with its texture footprint),
+// the normal facing the ray, the shading normal, and in the UV debug view (`unlit`) the
+// colour that ends the ray. shade_hit and the wavefront's shade pass
+// (src/tracer/wavefront/wavefront_shade.wgsl) both start here.
+// Mirror of src/tracer/path/trace.rs::ShadingPoint — change both.
+struct ShadingPoint {
+    s: Surface,
+    facing: vec3<f32>,
+    n: vec3<f32>,
+    uv_colour: vec3<f32>,
+    unlit: bool,
+}
+
+// The ShadingPoint of the hit of `entry`'s ray.
+// Mirror of src/tracer/path/trace.rs::shading_point — change both.
+fn shading_point(entry: StackEntry, hit: Hit) -> ShadingPoint {
     let ray = entry.ray;
     var s = surface_at(ray, hit);
 // #if TEXTURE|BUMP
@@ -312,7 +340,7 @@ fn shade_hit(entry: StackEntry, hit: Hit, seed: SampleSeed) -> ShadedHit {
     // The UV debug view (pack turns on TEXTURE for it): (u mod 1, v mod 1, 0).
     if globals.debug_view == DEBUG_VIEW_UV {
         let uv = s.uv - floor(s.uv);
-        return ShadedHit(s, s.normal, s.normal, vec3<f32>(uv.x, uv.y, 0.0), true);
+        return ShadingPoint(s, s.normal, s.normal, vec3<f32>(uv.x, uv.y, 0.0), true);
     }
 // #endif
     let facing = facing_normal(s.normal, ray.dir);
@@ -337,12 +365,7 @@ fn shade_hit(entry: StackEntry, hit: Hit, seed: SampleSeed) -> ShadedHit {
         n = visible_normal(n, facing, -ray.dir);
     }
 // #endif
-// #if REFRACTION
-    shading_media = entry.media;
-// #endif
-    var shade_seed = seed;
-    shade_seed.depth = entry.depth;
-    return ShadedHit(s, facing, n, shade_phong(s, n, -ray.dir, shade_seed), false);
+    return ShadingPoint(s, facing, n, vec3<f32>(0.0), false);
 }
 
 // Two-sided shading: normal, negated where it faces away from a ray along dir. Secondary

@@ -222,6 +222,7 @@ pub fn shadow_transmittance(
 /// where its next leg starts, the transmittance so far, the media it travels in. Shared
 /// by [`shadow_transmittance`] and the wavefront's glass shadow rounds
 /// (`tracer::wavefront::wavefront_tree`), which keep one a request between rounds.
+// Mirror of src/tracer/shading/dielectric.wgsl::ShadowLeg — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct ShadowLeg {
     pub(crate) start: Vec3,
@@ -231,6 +232,7 @@ pub(crate) struct ShadowLeg {
 
 /// The ray of `leg` toward a light at `position` and how far it looks for a surface
 /// ([`shadow_reach`]; `magnitude`: the shaded surface's).
+// Mirror of src/tracer/shading/dielectric.wgsl::shadow_leg_ray — change both.
 pub(crate) fn shadow_leg_ray(leg: &ShadowLeg, position: Vec3, magnitude: f32) -> (Ray, f32) {
     let to_light = position - leg.start;
     let distance = to_light.length();
@@ -245,6 +247,7 @@ pub(crate) fn shadow_leg_ray(leg: &ShadowLeg, position: Vec3, magnitude: f32) ->
 /// `crossing` (0 for the first surface): the next leg, beyond the surface and dimmed by
 /// its [`normal_transmission`]; None where the surface blocks (opaque, or one crossing
 /// more than [`MAX_SHADOW_CROSSINGS`]).
+// Mirror of src/tracer/shading/dielectric.wgsl::cross_shadow_surface — change both.
 pub(crate) fn cross_shadow_surface(
     scene: &PackedScene,
     ray: &Ray,

@@ -160,28 +160,71 @@ var<private> shading_media: MediumStack;
 // shadow_reach (magnitude: the shaded surface's), just short of the light.
 // Mirror of src/tracer/shading/dielectric.rs::shadow_transmittance — change both.
 fn shadow_transmittance(origin: vec3<f32>, position: vec3<f32>, magnitude: f32) -> f32 {
-    var transmittance = 1.0;
-    var start = origin;
-    var current = shading_media;
+    var leg = ShadowLeg(origin, 1.0, shading_media);
     for (var crossing = 0u; crossing <= MAX_SHADOW_CROSSINGS; crossing++) {
-        let to_light = position - start;
-        let distance = length(to_light);
-        let ray = Ray(start, to_light / distance);
-        let hit = closest_hit(ray, shadow_reach(start, position, distance, magnitude));
+        let leg_ray = shadow_leg_ray(leg, position, magnitude);
+        let hit = closest_hit(leg_ray.ray, leg_ray.reach);
         if !is_hit(hit) {
-            return transmittance;
+            return leg.transmittance;
         }
-        let s = surface_at(ray, hit);
-        let m = load_material(s.material);
-        if (m.flags & MATERIAL_REFRACTIVE) == 0u || crossing == MAX_SHADOW_CROSSINGS {
+        let beyond = cross_shadow_surface(leg_ray.ray, hit, crossing, leg);
+        if beyond.blocked {
             return 0.0;
         }
-        let sides = surface_sides(ray.dir, s.normal, m.ior, current);
-        transmittance *= normal_transmission(sides.n1, sides.n2);
-        current = sides.beyond;
-        // Go on from just beyond the surface.
-        start = offset_ray(s.p, -sides.n, s.magnitude);
+        leg = beyond.leg;
     }
     return 0.0;
+}
+
+// A shadow ray's state between the dielectric surfaces it crosses on its way to a light:
+// where its next leg starts, the transmittance so far, the media it travels in. Shared by
+// shadow_transmittance and the wavefront's glass shadow rounds
+// (src/tracer/wavefront/wavefront_tree.wgsl), which keep one a request between rounds.
+// Mirror of src/tracer/shading/dielectric.rs::ShadowLeg — change both.
+struct ShadowLeg {
+    start: vec3<f32>,
+    transmittance: f32,
+    media: MediumStack,
+}
+
+// A leg's ray toward its light point and how far it looks (shadow_reach): the CPU's
+// (Ray, f32).
+struct LegRay {
+    ray: Ray,
+    reach: f32,
+}
+
+// What cross_shadow_surface returns: the next leg, or blocked (the CPU's None).
+struct Crossed {
+    leg: ShadowLeg,
+    blocked: bool,
+}
+
+// The ray of `leg` toward a light at `position` and how far it looks for a surface
+// (shadow_reach; magnitude: the shaded surface's).
+// Mirror of src/tracer/shading/dielectric.rs::shadow_leg_ray — change both.
+fn shadow_leg_ray(leg: ShadowLeg, position: vec3<f32>, magnitude: f32) -> LegRay {
+    let to_light = position - leg.start;
+    let distance = length(to_light);
+    let ray = Ray(leg.start, to_light / distance);
+    return LegRay(ray, shadow_reach(leg.start, position, distance, magnitude));
+}
+
+// The shadow ray of `leg` (`ray`) meets a surface at `hit`, its crossing number
+// `crossing` (0 for the first surface): the next leg, beyond the surface and dimmed by its
+// normal_transmission; blocked where the surface is opaque or the crossing is
+// MAX_SHADOW_CROSSINGS.
+// Mirror of src/tracer/shading/dielectric.rs::cross_shadow_surface — change both.
+fn cross_shadow_surface(ray: Ray, hit: Hit, crossing: u32, leg: ShadowLeg) -> Crossed {
+    let s = surface_at(ray, hit);
+    let m = load_material(s.material);
+    if (m.flags & MATERIAL_REFRACTIVE) == 0u || crossing == MAX_SHADOW_CROSSINGS {
+        return Crossed(leg, true);
+    }
+    let sides = surface_sides(ray.dir, s.normal, m.ior, leg.media);
+    let transmittance = leg.transmittance * normal_transmission(sides.n1, sides.n2);
+    // Go on from just beyond the surface.
+    let start = offset_ray(s.p, -sides.n, s.magnitude);
+    return Crossed(ShadowLeg(start, transmittance, sides.beyond), false);
 }
 // #endif

@@ -79,7 +79,7 @@ pub fn shade_phong(
 
 /// The Phong colours at `s`: its material's, or (in scenes with textures) its textures'
 /// at the UV. Shared by [`shade_phong`] and the wavefront's shading pass
-/// (`tracer::wavefront::wavefront`), so the two cannot drift apart.
+/// (`tracer::wavefront::wavefront_shade`), so the two cannot drift apart.
 pub(crate) fn phong_at(scene: &PackedScene, s: &Surface) -> Phong {
     let m = &scene.materials[s.material as usize];
     let mut phong = Phong {
@@ -133,9 +133,10 @@ fn point_light(
 /// [`point_light`]'s A4 term before its shadow ray, (kd·N·L + ks·spec)·I·attenuation,
 /// or None where the light point is behind the surface (N·L ≤ 0 or NaN: no shadow ray
 /// is asked for and the light adds zero). The wavefront's shading pass
-/// (`tracer::wavefront::wavefront`) computes the same term and leaves the shadow ray to its own pass;
+/// (`tracer::wavefront::wavefront_shade`) computes the same term and leaves the shadow ray to its own pass;
 /// the products are those of `point_light`'s one expression, left to right, so
 /// [`shadowed_term`] finishes them with the same bits.
+// Mirror of src/tracer/shading/shade.wgsl::unshadowed_term — change both.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn unshadowed_term(
     scene: &PackedScene,
@@ -164,6 +165,7 @@ pub(crate) fn unshadowed_term(
 /// A light point's term once its shadow ray is traced: zero where nothing gets through
 /// (`transmittance` ≤ 0: a blocked ray), else `term` × `transmittance` (1 without
 /// glass: the same bits as `term`, −0.0 and NaN included, since x·1 = x in IEEE 754).
+// Mirror of src/tracer/shading/shade.wgsl::shadowed_term — change both.
 pub(crate) fn shadowed_term(term: Vec3, transmittance: f32) -> Vec3 {
     if transmittance <= 0.0 {
         return Vec3::ZERO;

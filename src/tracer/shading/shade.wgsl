@@ -48,14 +48,9 @@ fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3
 // short of the light.
 // Mirror of src/tracer/shading/shade.rs::point_light — change both.
 fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec3<f32> {
-    let m = load_material(s.material);
-    let to_light = position - s.p;
-    let distance = length(to_light);
-    let l = to_light / distance;
-    let n_dot_l = dot(n, l);
-    // Lights behind the surface (as seen from the viewer's side) add nothing; the negated
-    // test also rejects NaN, like Rust's is_nan check.
-    if !(n_dot_l > 0.0) {
+    // Lights behind the surface (as seen from the viewer's side) add nothing.
+    let term = unshadowed_term(s, phong, n, v, position, light);
+    if term.w == 0.0 {
         return vec3<f32>(0.0);
     }
     // With dielectrics, light passes through glass, dimmed (see dielectric.wgsl).
@@ -67,8 +62,23 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
         transmittance = 0.0;
     }
 // #endif
-    if transmittance <= 0.0 {
-        return vec3<f32>(0.0);
+    return shadowed_term(term.xyz, transmittance);
+}
+
+// point_light's A4 term before its shadow ray, (kd·N·L + ks·spec)·I·attenuation, in w 1;
+// w 0 where the light point is behind the surface (N·L ≤ 0 or NaN: no shadow ray, the
+// light adds zero). The wavefront's shade pass (src/tracer/wavefront/wavefront_shade.wgsl)
+// computes the same term and leaves the shadow ray to its shadow pass, which finishes it
+// with shadowed_term as point_light does.
+// Mirror of src/tracer/shading/shade.rs::unshadowed_term — change both.
+fn unshadowed_term(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec4<f32> {
+    let m = load_material(s.material);
+    let to_light = position - s.p;
+    let distance = length(to_light);
+    let l = to_light / distance;
+    let n_dot_l = dot(n, l);
+    if !(n_dot_l > 0.0) {
+        return vec4<f32>(0.0);
     }
     let r = n * (2.0 * n_dot_l) - l;
     let specular = phong_power(dot(r, v), m.shininess);
@@ -76,7 +86,18 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
     let c1 = light.falloff.y;
     let c2 = light.falloff.z;
     let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
-    return (phong.kd * n_dot_l + phong.ks * specular) * light.colour * attenuation * transmittance;
+    return vec4<f32>((phong.kd * n_dot_l + phong.ks * specular) * light.colour * attenuation, 1.0);
+}
+
+// A light point's term once its shadow ray is traced: zero where nothing gets through
+// (transmittance ≤ 0: a blocked ray), else term × transmittance (point_light's last
+// product, and the wavefront's shadow pass's).
+// Mirror of src/tracer/shading/shade.rs::shadowed_term — change both.
+fn shadowed_term(term: vec3<f32>, transmittance: f32) -> vec3<f32> {
+    if transmittance <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    return term * transmittance;
 }
 
 // Whether anything blocks the shadow ray from origin to a light at position before

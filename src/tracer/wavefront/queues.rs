@@ -6,6 +6,7 @@
 use crate::constants::{
     MEDIUM_STACK_SIZE, NO_CHILD, NO_ITEM, VERTEX_LIT, VERTEX_MISS, VERTEX_UNLIT,
 };
+use crate::queues::counters::Counter;
 use crate::queues::layout::{Entries, Region};
 use crate::tracer::shading::dielectric::MediumStack;
 use crate::tracer::traversal::hit::Hit;
@@ -153,6 +154,44 @@ pub const REGIONS: &[Region] = &[
     ),
 ];
 
+/// The counters of the queues' entries in the GPU's `work_counts` (`crate::queues::counters`):
+/// a generation's paths (read, appended to, cleared: three words) and shadow requests;
+/// in a tree's layout a glass round's legs, a generation's first vertex in the vertex
+/// tree, and the scene's light points (written by the camera pass for the shadow pass
+/// and the rounds, whose regions lie after L-sized ones).
+pub const COUNTERS: &[Counter] = &[
+    Counter {
+        name: "path_counter",
+        first: 0,
+        ring: 3,
+        tree_only: false,
+    },
+    Counter {
+        name: "shadow_counter",
+        first: 3,
+        ring: 2,
+        tree_only: false,
+    },
+    Counter {
+        name: "leg_counter",
+        first: 5,
+        ring: 3,
+        tree_only: true,
+    },
+    Counter {
+        name: "vertex_base_counter",
+        first: 8,
+        ring: 2,
+        tree_only: true,
+    },
+    Counter {
+        name: "tree_points_word",
+        first: 10,
+        ring: 1,
+        tree_only: true,
+    },
+];
+
 impl HitQueue {
     pub fn store_hit(&mut self, i: usize, hit: &Hit) {
         (
@@ -254,6 +293,25 @@ mod tests {
         assert!(chain.contains("weight: vec3<f32>, cone_unused: vec2<f32>)"));
         // Without a cone the chain's fourth path vec4 holds nothing and is not written.
         assert!(!chain.contains("samples[at + 3u] = vec4<f32>(cone.y"));
+    }
+
+    /// The counters take distinct words, from word 0 without a gap: a chain's 5, a
+    /// tree's 11 (the args kernels clear and the plan sizes exactly these).
+    #[test]
+    fn counters_take_distinct_words() {
+        use crate::queues::counters::counter_words;
+        for form in [Form::Chain, Form::Tree] {
+            let mut words: Vec<u32> = COUNTERS
+                .iter()
+                .filter(|c| c.in_form(form))
+                .flat_map(|c| c.first..c.first + c.ring)
+                .collect();
+            words.sort();
+            let expected: Vec<u32> = (0..counter_words(COUNTERS, form)).collect();
+            assert_eq!(words, expected, "{form:?}");
+        }
+        assert_eq!(counter_words(COUNTERS, Form::Chain), 5);
+        assert_eq!(counter_words(COUNTERS, Form::Tree), 11);
     }
 
     /// The vertex kinds are the GPU's VERTEX_* words.

@@ -1,4 +1,4 @@
-//! The wavefront passes' pieces for scenes with refraction (`tracer::wavefront::wavefront`), where a
+//! The wavefront passes' pieces for scenes with refraction (`wavefront_shade`, `wavefront_shadow`, `wavefront_gather`), where a
 //! dielectric's hit spawns two rays and a sample's paths form a tree:
 //! - the vertex tree: each vertex's value (weight × its colour, weight × the background
 //!   on a miss; the camera vertex's colour as it is) and links to the children its shade
@@ -17,16 +17,17 @@
 //!
 //! Path entries carry their medium stack and their pending count (the entries under
 //! them on `trace_ray`'s stack: `PathQueue::pending`), so the shade pass pushes children
-//! where the stack would be and drops the rays `trace_ray` drops when it is full.
+//! where the stack would be and drops the rays `trace_ray` drops when it is full
+//! ([`push_tree_children`]).
 //! Design: docs/journal/2026-12-02-wavefront-split-measured.md; what was built:
 //! docs/journal/2026-12-02-wavefront-tree.md.
 
+use super::batch::{spawned_rays, Batch};
 pub use super::queues::{HitQueue, LegQueue, VertexTree};
 use crate::constants::{MAX_SHADOW_CROSSINGS, RAY_STACK_SIZE};
 use crate::pack::PackedScene;
-use crate::tracer::shading::dielectric::{
-    cross_shadow_surface, shadow_leg_ray, MediumStack, ShadowLeg,
-};
+use crate::tracer::path::trace::{ShadedHit, StackEntry};
+use crate::tracer::shading::dielectric::{cross_shadow_surface, shadow_leg_ray, ShadowLeg};
 use crate::tracer::shading::shade::shadowed_term;
 use crate::tracer::traversal::hit::{Hit, TraversalCounters};
 use crate::tracer::traversal::traverse::closest_hit;
@@ -82,19 +83,49 @@ fn push_children(
     }
 }
 
+/// The rays path `i`'s hit (vertex `vertex_base` + i, sample `k`) spawns, pushed as
+/// `trace_ray` pushes them onto its stack, which holds the path's pending entries then:
+/// so the same rays are dropped where the stack is full, and each child's pending count
+/// is its index in that stack. Each is appended to the next generation's queue and
+/// linked as the vertex's child (the GPU's queues may lack room: its twin).
+// Mirror of src/tracer/wavefront/wavefront_tree.wgsl::push_tree_children — change both.
+pub(super) fn push_tree_children(
+    scene: &PackedScene,
+    batch: &mut Batch,
+    i: usize,
+    entry: &StackEntry,
+    k: usize,
+    shaded: &ShadedHit,
+    hit: &Hit,
+) {
+    let pending = batch.paths.pending[i] as usize;
+    let (stack, size) = spawned_rays(scene, entry, shaded, hit, pending);
+    let base = batch.vertex_base as usize;
+    let next_base = base + batch.paths.len();
+    for (q, child) in stack.iter().enumerate().take(size).skip(pending) {
+        let j = batch.next.append_path(child, q as u32, k as u32);
+        batch.tree.children[base + i][q - pending] = (next_base + j) as u32;
+    }
+}
+
 impl LegQueue {
     /// Appends request `request`'s `leg`; its index (the GPU's `atomicAdd`).
     // Mirror of src/tracer/wavefront/wavefront_tree.wgsl::append_leg — change both.
     fn append_leg(&mut self, request: u32, leg: &ShadowLeg) -> usize {
         let l = self.len();
         self.resize(l + 1);
+        self.store_leg(l, request, leg);
+        l
+    }
+
+    /// Writes request `request`'s `leg` as leg `l`.
+    fn store_leg(&mut self, l: usize, request: u32, leg: &ShadowLeg) {
         (
             self.request[l],
             self.start[l],
             self.transmittance[l],
             self.media[l],
         ) = (request, leg.start, leg.transmittance, leg.media);
-        l
     }
 
     fn load_leg(&self, l: usize) -> ShadowLeg {
@@ -106,82 +137,66 @@ impl LegQueue {
     }
 }
 
-/// What the glass shadow rounds read of a generation: per shadow request its light slot
-/// (its vertex is slot div light_points) and its light point; per vertex where its shadow rays start (origin, the
-/// surface's magnitude, the media around it). (`tracer::wavefront::wavefront`'s queues, borrowed.)
-pub struct ShadowRequests<'a> {
-    pub slot: &'a [u32],
-    pub position: &'a [Vec3],
-    pub shadow_origin: &'a [Vec3],
-    pub magnitude: &'a [f32],
-    pub media: &'a [MediumStack],
-    /// Slots a vertex: vertex i's slot j is `slots[i·light_points + j]`.
-    pub light_points: u32,
+/// Shadow request `r`'s first leg (the shadow pass's invocation with refraction; round
+/// 0's leg r, `batch.legs` sized to the requests): from its vertex's shadow origin, in
+/// the media of the vertex's path.
+// Mirror of src/tracer/wavefront/wavefront_tree.wgsl::start_shadow_leg — change both.
+pub(super) fn start_shadow_leg(batch: &mut Batch, r: usize) {
+    let i = (batch.shadows.slot[r] / batch.light_points) as usize;
+    let first = ShadowLeg {
+        start: batch.vertices.shadow_origin[i],
+        transmittance: 1.0,
+        media: batch.paths.media[i],
+    };
+    batch.legs.store_leg(r, r as u32, &first);
 }
 
-impl ShadowRequests<'_> {
-    /// The vertex request `r` is for.
-    fn vertex(&self, r: usize) -> usize {
-        (self.slot[r] / self.light_points) as usize
-    }
+/// Request `r`'s light point and its vertex's magnitude.
+// Mirror of src/tracer/wavefront/wavefront_tree.wgsl::request_target — change both.
+fn request_target(batch: &Batch, r: usize) -> (Vec3, f32) {
+    let i = (batch.shadows.slot[r] / batch.light_points) as usize;
+    (batch.shadows.position[r], batch.vertices.magnitude[i])
 }
 
-/// The glass shadow pass: every shadow request's first leg from its vertex's shadow
-/// origin in the vertex's media, then rounds of [`leg_closest_entry`] and
-/// [`crossing_entry`] over the live legs until none is left (at most
+/// The glass shadow rounds, after the shadow pass started every request's first leg
+/// ([`start_shadow_leg`]): rounds of [`wavefront_leg_closest`] and
+/// [`wavefront_crossing`] over the live legs until none is left (at most
 /// MAX_SHADOW_CROSSINGS + 1: the crossing step blocks a leg at crossing
-/// MAX_SHADOW_CROSSINGS), then each request's slot × its transmittance. Returns the
-/// number of rounds.
+/// MAX_SHADOW_CROSSINGS), each request's slot × its transmittance once its last leg
+/// ends ([`end_request`]). Returns the number of rounds.
 pub fn glass_shadow_rounds(
     scene: &PackedScene,
-    requests: &ShadowRequests,
-    slots: &mut [Vec3],
+    batch: &mut Batch,
     counters: &mut impl TraversalCounters,
 ) -> u32 {
-    let count = requests.slot.len();
-    let mut transmittance = vec![0.0f32; count];
-    let mut legs = LegQueue::default();
-    for r in 0..count {
-        let i = requests.vertex(r);
-        let first = ShadowLeg {
-            start: requests.shadow_origin[i],
-            transmittance: 1.0,
-            media: requests.media[i],
-        };
-        legs.append_leg(r as u32, &first);
-    }
     let mut rounds = 0;
-    while !legs.is_empty() {
+    while !batch.legs.is_empty() {
         assert!(
             rounds <= MAX_SHADOW_CROSSINGS,
             "a leg past the last crossing"
         );
-        let mut hits = HitQueue::default();
-        hits.reset(legs.len());
-        for l in 0..legs.len() {
-            hits.store_hit(l, &leg_closest_entry(scene, requests, &legs, l, counters));
-        }
-        let mut next = LegQueue::default();
-        for l in 0..legs.len() {
-            crossing_entry(
-                scene,
-                requests,
-                &legs,
-                l,
-                &hits.load_hit(l),
-                rounds,
-                &mut next,
-                &mut transmittance,
-            );
-        }
-        legs = next;
+        let hits = wavefront_leg_closest(scene, batch, counters);
+        let next = wavefront_crossing(scene, batch, &hits, rounds);
+        wavefront_leg_args(batch, next);
         rounds += 1;
     }
-    for (r, &t) in transmittance.iter().enumerate() {
-        let slot = requests.slot[r] as usize;
-        slots[slot] = shadowed_term(slots[slot], t);
-    }
     rounds
+}
+
+/// A round's closest pass: each live leg's ray to the first surface short of its light
+/// point, the hits at the legs' indices.
+// Mirror of src/tracer/wavefront/wavefront_tree.wgsl::wavefront_leg_closest — change both.
+fn wavefront_leg_closest(
+    scene: &PackedScene,
+    batch: &Batch,
+    counters: &mut impl TraversalCounters,
+) -> HitQueue {
+    let mut hits = HitQueue::default();
+    hits.reset(batch.legs.len());
+    for l in 0..batch.legs.len() {
+        hits.store_hit(l, &leg_closest_entry(scene, batch, l, counters));
+    }
+    hits
 }
 
 /// The round's closest pass for leg `l`: its ray toward the request's light point, to
@@ -189,46 +204,72 @@ pub fn glass_shadow_rounds(
 // Mirror of src/tracer/wavefront/wavefront_tree.wgsl::leg_closest_entry — change both.
 fn leg_closest_entry(
     scene: &PackedScene,
-    requests: &ShadowRequests,
-    legs: &LegQueue,
+    batch: &Batch,
     l: usize,
     counters: &mut impl TraversalCounters,
 ) -> Hit {
-    let r = legs.request[l] as usize;
-    let magnitude = requests.magnitude[requests.vertex(r)];
-    let (ray, reach) = shadow_leg_ray(&legs.load_leg(l), requests.position[r], magnitude);
+    let (position, magnitude) = request_target(batch, batch.legs.request[l] as usize);
+    let (ray, reach) = shadow_leg_ray(&batch.legs.load_leg(l), position, magnitude);
     closest_hit(scene, &ray, reach, counters)
+}
+
+/// A round's crossing step (crossing `crossing`), each live leg with its closest hit
+/// in `hits`: the next round's legs.
+// Mirror of src/tracer/wavefront/wavefront_tree.wgsl::wavefront_crossing — change both.
+fn wavefront_crossing(
+    scene: &PackedScene,
+    batch: &mut Batch,
+    hits: &HitQueue,
+    crossing: u32,
+) -> LegQueue {
+    let mut next = LegQueue::default();
+    for l in 0..batch.legs.len() {
+        crossing_entry(scene, batch, l, &hits.load_hit(l), crossing, &mut next);
+    }
+    next
 }
 
 /// The round's crossing step for leg `l` (crossing `crossing`), whose closest hit is
 /// `hit`: a miss ends the request with the transmittance so far, an opaque surface (or
 /// the crossing after the last) with 0; glass appends the next leg to `next`.
 // Mirror of src/tracer/wavefront/wavefront_tree.wgsl::crossing_entry — change both.
-#[allow(clippy::too_many_arguments)]
 fn crossing_entry(
     scene: &PackedScene,
-    requests: &ShadowRequests,
-    legs: &LegQueue,
+    batch: &mut Batch,
     l: usize,
     hit: &Hit,
     crossing: u32,
     next: &mut LegQueue,
-    transmittance: &mut [f32],
 ) {
-    let r = legs.request[l];
-    let leg = legs.load_leg(l);
+    let r = batch.legs.request[l];
+    let leg = batch.legs.load_leg(l);
     if !hit.is_hit() {
-        transmittance[r as usize] = leg.transmittance;
+        end_request(batch, r as usize, leg.transmittance);
         return;
     }
-    let magnitude = requests.magnitude[requests.vertex(r as usize)];
-    let (ray, _) = shadow_leg_ray(&leg, requests.position[r as usize], magnitude);
+    let (position, magnitude) = request_target(batch, r as usize);
+    let (ray, _) = shadow_leg_ray(&leg, position, magnitude);
     match cross_shadow_surface(scene, &ray, hit, crossing, &leg) {
         Some(beyond) => {
             next.append_leg(r, &beyond);
         }
-        None => transmittance[r as usize] = 0.0,
+        None => end_request(batch, r as usize, 0.0),
     }
+}
+
+/// Request `r`'s slot × its transmittance (`shade::point_light`'s last product), once,
+/// when its last leg ends.
+// Mirror of src/tracer/wavefront/wavefront_tree.wgsl::end_request — change both.
+fn end_request(batch: &mut Batch, r: usize, transmittance: f32) {
+    let slot = batch.shadows.slot[r] as usize;
+    batch.slots.term[slot] = shadowed_term(batch.slots.term[slot], transmittance);
+}
+
+/// Ends a round (the leg args kernel's job on the GPU): the next round's legs become
+/// the live ones.
+// Mirror of src/tracer/wavefront/wavefront_tree.wgsl::wavefront_leg_args — change both.
+fn wavefront_leg_args(batch: &mut Batch, next: LegQueue) {
+    batch.legs = next;
 }
 
 #[cfg(test)]

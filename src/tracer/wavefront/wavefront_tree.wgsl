@@ -25,10 +25,11 @@
 // leg queues of L legs and L leg hits. The records and the regions are specified once in
 // src/tracer/wavefront/queues.rs; their accessors (path_pending, write_leg, node_children, …) are
 // generated from it into the module (src/queues/wgsl.rs).
-// Counters in work_counts: as for chains (paths g mod 3, requests 3 + g mod 2), round r's
-// legs at 5 + r mod 3, generation g's vertex base at 8 + g mod 2, the scene's light
-// points at 10 (written by the camera pass, for the shadow pass and the rounds' kernels:
-// their regions lie after L-sized ones). Indirect arguments in work_args: round r's
+// Counters in work_counts (generated from src/tracer/wavefront/queues.rs's COUNTERS): as
+// for chains (path_counter, shadow_counter), round r's legs (leg_counter), generation g's
+// vertex base (vertex_base_counter; its path i is vertex base + i), the scene's light
+// points (tree_points_word: written by the camera pass, for the shadow pass and the
+// rounds' kernels, whose regions lie after L-sized ones). Indirect arguments in work_args: round r's
 // legs at 3r (r < 10), generation g's pair (next paths, requests) at 30 + 6g.
 // Overflow: a generation holds at most C paths and the tree TREE_VERTICES_PER_SAMPLE · N
 // vertices. A child that finds no room is not appended and its sample's guard flag is set:
@@ -45,23 +46,13 @@
 // `base`: where the wavefront's counters start in work_counts as the pass binds it (the
 // lattice camera binds it whole: WAVEFRONT_WORK_BASE).
 fn note_tree_points(base: u32) {
-    atomicStore(&work_counts[base + 10u], light_points());
-}
-
-// Round r's leg counter.
-fn leg_counter(r: u32) -> u32 {
-    return 5u + r % 3u;
+    atomicStore(&work_counts[base + tree_points_word()], light_points());
 }
 
 // The scene's light points, as the camera pass noted them (note_tree_points; the CPU's
 // Batch::light_points, which its camera_pass notes).
 fn tree_points() -> u32 {
-    return atomicLoad(&work_counts[10u]);
-}
-
-// Generation g's vertex base (its path i is vertex base + i).
-fn vertex_base_counter(g: u32) -> u32 {
-    return 8u + g % 2u;
+    return atomicLoad(&work_counts[tree_points_word()]);
 }
 
 // Where generation g's indirect arguments lie in work_args (words).
@@ -79,7 +70,7 @@ fn leg_args(r: u32) -> u32 {
 // rays are dropped where the stack is full, and each child's pending count is its index
 // in that stack. Each is appended to the next generation's queue and linked as the
 // vertex's child, where the queue and the tree have room (else the sample's guard flag).
-// Mirror of the tree's part of src/tracer/wavefront/wavefront.rs::push_next_paths — change both.
+// Mirror of src/tracer/wavefront/wavefront_tree.rs::push_tree_children — change both.
 fn push_tree_children(i: u32, entry: StackEntry, k: u32, shaded: ShadedHit, hit: Hit) {
     let g = tile.level;
     let parity = g % 2u;
@@ -158,26 +149,6 @@ fn store_leg_args(r: u32, legs: u32) {
     work_args[at + 2u] = groups.z;
 }
 
-// A shadow ray's state between the dielectric surfaces it crosses (the CPU's
-// dielectric::ShadowLeg).
-struct ShadowLeg {
-    start: vec3<f32>,
-    transmittance: f32,
-    media: MediumStack,
-}
-
-// A leg's ray toward its light point and how far it looks (shadow_reach).
-struct LegRay {
-    ray: Ray,
-    reach: f32,
-}
-
-// What cross_shadow_surface returns: the next leg, or blocked.
-struct Crossed {
-    leg: ShadowLeg,
-    blocked: bool,
-}
-
 // Appends request r's `leg` to the next round's queue (round tile.level + 1).
 // Mirror of src/tracer/wavefront/wavefront_tree.rs::LegQueue::append_leg — change both.
 fn append_leg(r: u32, leg: ShadowLeg) {
@@ -191,37 +162,9 @@ fn load_leg(parity: u32, l: u32) -> ShadowLeg {
     return ShadowLeg(leg_start(points, parity, l), leg_transmittance(points, parity, l), leg_media(points, parity, l));
 }
 
-// The ray of `leg` toward a light at `position` and its reach (magnitude: the shaded
-// surface's): the CPU's dielectric::shadow_leg_ray, which its shadow_transmittance
-// shares; dielectric.wgsl's keeps its own lines, so the software variant's module stays
-// byte for byte what it was.
-fn shadow_leg_ray(leg: ShadowLeg, position: vec3<f32>, magnitude: f32) -> LegRay {
-    let to_light = position - leg.start;
-    let distance = length(to_light);
-    let ray = Ray(leg.start, to_light / distance);
-    return LegRay(ray, shadow_reach(leg.start, position, distance, magnitude));
-}
-
-// The leg's ray meets a surface at `hit`, its crossing number `crossing`: the next leg,
-// beyond the surface and dimmed by its normal_transmission; blocked where the surface is
-// opaque or the crossing is MAX_SHADOW_CROSSINGS (the CPU's
-// dielectric::cross_shadow_surface; see shadow_leg_ray).
-fn cross_shadow_surface(ray: Ray, hit: Hit, crossing: u32, leg: ShadowLeg) -> Crossed {
-    let s = surface_at(ray, hit);
-    let m = load_material(s.material);
-    if (m.flags & MATERIAL_REFRACTIVE) == 0u || crossing == MAX_SHADOW_CROSSINGS {
-        return Crossed(leg, true);
-    }
-    let sides = surface_sides(ray.dir, s.normal, m.ior, leg.media);
-    let transmittance = leg.transmittance * normal_transmission(sides.n1, sides.n2);
-    // Go on from just beyond the surface.
-    let start = offset_ray(s.p, -sides.n, s.magnitude);
-    return Crossed(ShadowLeg(start, transmittance, sides.beyond), false);
-}
-
 // Shadow request r's first leg (wavefront_shadow with refraction; round 0's leg r): from
 // its vertex's shadow origin, in the media of the vertex's path.
-// Mirror of the first-leg loop of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds — change both.
+// Mirror of src/tracer/wavefront/wavefront_tree.rs::start_shadow_leg — change both.
 fn start_shadow_leg(r: u32) {
     let points = tree_points();
     let i = request_slot(points, r) / points;
@@ -229,6 +172,7 @@ fn start_shadow_leg(r: u32) {
 }
 
 // Request r's light point and its vertex's magnitude.
+// Mirror of src/tracer/wavefront/wavefront_tree.rs::request_target — change both.
 fn request_target(r: u32) -> vec4<f32> {
     let points = tree_points();
     let i = request_slot(points, r) / points;
@@ -243,7 +187,7 @@ fn request_target(r: u32) -> vec4<f32> {
 // count nor an exec mask live across closest_hit, which in wave64 spilled 2 SGPRs
 // (csg.lua) and 10 (scrabble.lua) with the count and the return held
 // (docs/journal/2026-12-02-leg-closest-registers.md).
-// Mirror of the round loop's closest pass of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds — change both.
+// Mirror of src/tracer/wavefront/wavefront_tree.rs::wavefront_leg_closest — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_leg_closest(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
@@ -276,7 +220,7 @@ fn leg_closest_entry(l: u32) {
 }
 
 // Round tile.level's crossing step, one leg an invocation.
-// Mirror of the round loop's crossing step of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds — change both.
+// Mirror of src/tracer/wavefront/wavefront_tree.rs::wavefront_crossing — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_crossing(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let idx = linear_index(id, groups);
@@ -319,21 +263,17 @@ fn crossing_entry(l: u32, hit: Hit, crossing: u32) {
     append_leg(r, beyond.leg);
 }
 
-// Request r's slot × its transmittance (shade.wgsl's point_light's last product, the
-// CPU's shadowed_term), once, when its last leg ends.
-// Mirror of the slot product of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds — change both.
+// Request r's slot × its transmittance (shade.wgsl's shadowed_term: point_light's last
+// product), once, when its last leg ends.
+// Mirror of src/tracer/wavefront/wavefront_tree.rs::end_request — change both.
 fn end_request(r: u32, transmittance: f32) {
     let slot = request_slot(tree_points(), r);
-    var term = vec3<f32>(0.0);
-    if !(transmittance <= 0.0) {
-        term = slot_term(slot) * transmittance;
-    }
-    write_slot(slot, term);
+    write_slot(slot, shadowed_term(slot_term(slot), transmittance));
 }
 
 // After round tile.level's crossing step (one invocation): the next round's indirect
 // workgroups, and the counter of the round after it cleared.
-// Mirror of the round loop's hand-over of src/tracer/wavefront/wavefront_tree.rs::glass_shadow_rounds — change both.
+// Mirror of src/tracer/wavefront/wavefront_tree.rs::wavefront_leg_args — change both.
 @compute @workgroup_size(1)
 fn wavefront_leg_args() {
     let r = tile.level;
