@@ -317,8 +317,8 @@ fn shade_hit(entry: StackEntry, hit: Hit, seed: SampleSeed) -> ShadedHit {
 
 // A hit as shading sees it before any light: the surface (with its texture footprint),
 // the normal facing the ray, the shading normal, and in the UV debug view (`unlit`) the
-// colour that ends the ray. shade_hit and the wavefront's shade pass
-// (src/tracer/wavefront/wavefront_shade.wgsl) both start here.
+// colour that ends the ray. shade_hit and the hardware variant's shade pass both start
+// here.
 // Mirror of src/tracer/path/trace.rs::ShadingPoint — change both.
 struct ShadingPoint {
     s: Surface,

@@ -178,8 +178,8 @@ fn shadow_transmittance(origin: vec3<f32>, position: vec3<f32>, magnitude: f32) 
 
 // A shadow ray's state between the dielectric surfaces it crosses on its way to a light:
 // where its next leg starts, the transmittance so far, the media it travels in. Shared by
-// shadow_transmittance and the wavefront's glass shadow rounds
-// (src/tracer/wavefront/wavefront_tree.wgsl), which keep one a request between rounds.
+// shadow_transmittance and the hardware variant's glass shadow rounds, which keep one a
+// request between rounds.
 // Mirror of src/tracer/shading/dielectric.rs::ShadowLeg — change both.
 struct ShadowLeg {
     start: vec3<f32>,

@@ -67,9 +67,9 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
 
 // point_light's A4 term before its shadow ray, (kd·N·L + ks·spec)·I·attenuation, in w 1;
 // w 0 where the light point is behind the surface (N·L ≤ 0 or NaN: no shadow ray, the
-// light adds zero). The wavefront's shade pass (src/tracer/wavefront/wavefront_shade.wgsl)
-// computes the same term and leaves the shadow ray to its shadow pass, which finishes it
-// with shadowed_term as point_light does.
+// light adds zero). The hardware variant's shade pass computes the same term and leaves
+// the shadow ray to its shadow pass, which finishes it with shadowed_term as point_light
+// does (their Rust twins say where).
 // Mirror of src/tracer/shading/shade.rs::unshadowed_term — change both.
 fn unshadowed_term(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec4<f32> {
     let m = load_material(s.material);
@@ -91,7 +91,7 @@ fn unshadowed_term(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, positio
 
 // A light point's term once its shadow ray is traced: zero where nothing gets through
 // (transmittance ≤ 0: a blocked ray), else term × transmittance (point_light's last
-// product, and the wavefront's shadow pass's).
+// product, and the hardware variant's shadow pass's).
 // Mirror of src/tracer/shading/shade.rs::shadowed_term — change both.
 fn shadowed_term(term: vec3<f32>, transmittance: f32) -> vec3<f32> {
     if transmittance <= 0.0 {
