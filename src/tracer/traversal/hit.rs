@@ -1,4 +1,5 @@
-//! What a traversal returns (the nearest hit) and what it may count (`--stats`).
+//! What a traversal returns (the nearest hit), what it may count (`--stats`), and the
+//! direct-mapped slots both levels' mailboxes remember tested items in.
 
 use crate::constants::{NO_ITEM, T_MISS};
 
@@ -16,16 +17,19 @@ pub struct Hit {
     pub part: u32,
 }
 
-impl Hit {
-    // Mirror of src/tracer/traversal/hit.wgsl::hit_miss — change both.
-    pub const MISS: Hit = Hit {
+/// No hit: t = `T_MISS`, no item, no part.
+// Mirror of src/tracer/traversal/hit.wgsl::hit_miss — change both.
+pub const fn hit_miss() -> Hit {
+    Hit {
         t: T_MISS,
         item: NO_ITEM,
         b1: 0.0,
         b2: 0.0,
         part: NO_ITEM,
-    };
+    }
+}
 
+impl Hit {
     // Mirror of src/tracer/traversal/hit.wgsl::is_hit — change both.
     pub fn is_hit(&self) -> bool {
         self.item != NO_ITEM
@@ -73,4 +77,24 @@ impl TraversalCounters for Counters {
     fn item_tested(&mut self) {
         self.items_tested += 1;
     }
+}
+
+/// Whether `value` is in its slot of `slots` (value modulo the slots, masked by
+/// `slot_mask`; `None`: nothing is remembered); if not, it is now. The one step of both
+/// levels' mailboxes (`traverse::mailbox_seen`, `traverse_mesh::triangle_mailbox_seen`).
+#[inline(always)]
+pub fn seen_in_slot<const N: usize>(
+    slots: &mut [u32; N],
+    slot_mask: Option<u32>,
+    value: u32,
+) -> bool {
+    if let Some(mask) = slot_mask {
+        // (The constant mask too, so the index needs no bounds check.)
+        let slot = &mut slots[(value & mask) as usize & (N - 1)];
+        if *slot == value {
+            return true;
+        }
+        *slot = value;
+    }
+    false
 }

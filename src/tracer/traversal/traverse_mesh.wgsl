@@ -20,7 +20,7 @@ struct TriangleMailbox {
 // #endif
 }
 
-// Mirror of src/tracer/traversal/traverse_mesh.rs::TriangleMailbox::new — change both.
+// Mirror of src/tracer/traversal/traverse_mesh.rs::triangle_mailbox_new — change both.
 fn triangle_mailbox_new() -> TriangleMailbox {
     var mailbox: TriangleMailbox;
 // #if MAILBOXES
@@ -33,7 +33,7 @@ fn triangle_mailbox_new() -> TriangleMailbox {
 
 // Whether triangle was tested already (as far as its slot remembers); if not, it is now
 // remembered in its slot.
-// Mirror of src/tracer/traversal/traverse_mesh.rs::TriangleMailbox::seen — change both.
+// Mirror of src/tracer/traversal/traverse_mesh.rs::triangle_mailbox_seen — change both.
 fn triangle_mailbox_seen(mailbox: ptr<function, TriangleMailbox>, triangle: u32) -> bool {
 // #if MAILBOXES
     let slot = triangle & (TRIANGLE_MAILBOX_SIZE - 1u);
