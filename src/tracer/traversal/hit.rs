@@ -79,22 +79,34 @@ impl TraversalCounters for Counters {
     }
 }
 
-/// Whether `value` is in its slot of `slots` (value modulo the slots, masked by
-/// `slot_mask`; `None`: nothing is remembered); if not, it is now. The one step of both
-/// levels' mailboxes (`traverse::mailbox_seen`, `traverse_mesh::triangle_mailbox_seen`).
-#[inline(always)]
-pub fn seen_in_slot<const N: usize>(
-    slots: &mut [u32; N],
+/// The direct-mapped slots both levels' mailboxes remember tested items in
+/// (`traverse::Mailbox`, `traverse_mesh::TriangleMailbox`): N slots (a power of two), a
+/// value in slot `value & slot_mask` (`None`: nothing is remembered).
+pub struct Slots<const N: usize> {
+    slots: [u32; N],
     slot_mask: Option<u32>,
-    value: u32,
-) -> bool {
-    if let Some(mask) = slot_mask {
-        // (The constant mask too, so the index needs no bounds check.)
-        let slot = &mut slots[(value & mask) as usize & (N - 1)];
-        if *slot == value {
-            return true;
+}
+
+impl<const N: usize> Slots<N> {
+    /// Every slot empty (`NO_ITEM`).
+    pub fn new(slot_mask: Option<u32>) -> Slots<N> {
+        Slots {
+            slots: [NO_ITEM; N],
+            slot_mask,
         }
-        *slot = value;
     }
-    false
+
+    /// Whether `value` is in its slot; if not, it is now.
+    #[inline(always)]
+    pub fn seen(&mut self, value: u32) -> bool {
+        if let Some(mask) = self.slot_mask {
+            // (The constant mask too, so the index needs no bounds check.)
+            let slot = &mut self.slots[(value & mask) as usize & (N - 1)];
+            if *slot == value {
+                return true;
+            }
+            *slot = value;
+        }
+        false
+    }
 }

@@ -14,7 +14,7 @@
 
 use super::dda::{dda_setup, dda_step, scene_grid, Dda};
 pub use super::dda::{enter_scene, EnteredRay};
-use super::hit::seen_in_slot;
+use super::hit::Slots;
 pub use super::hit::{hit_miss, Counters, Hit, NoCounters, TraversalCounters};
 use super::traverse_mesh::{intersect_mesh, mesh_occludes};
 use crate::constants::{
@@ -35,19 +35,13 @@ use crate::tracer::geometry::intersect::intersect_instance;
 /// (`Off`: every item is tested in every cell that lists it). The answers are the same.
 /// (Free functions `mailbox_new`, `mailbox_seen`, as the WGSL twins are named.)
 // Mirror of src/tracer/traversal/traverse.wgsl::Mailbox — change both.
-pub struct Mailbox {
-    items: [u32; ITEM_MAILBOX_SIZE as usize],
-    slot_mask: Option<u32>,
-}
+pub struct Mailbox(Slots<{ ITEM_MAILBOX_SIZE as usize }>);
 
 /// An empty mailbox of the variant `scene.mailboxes` names (on the GPU the switch is the
 /// module's `MAILBOXES` or `LAST_ITEM_MAILBOX` specialisation).
 // Mirror of src/tracer/traversal/traverse.wgsl::mailbox_new — change both.
 pub fn mailbox_new(scene: &PackedScene) -> Mailbox {
-    Mailbox {
-        items: [NO_ITEM; ITEM_MAILBOX_SIZE as usize],
-        slot_mask: scene.mailboxes.item_slot_mask(),
-    }
+    Mailbox(Slots::new(scene.mailboxes.item_slot_mask()))
 }
 
 /// Whether `item` was tested already (as far as its slot remembers); if not, it is now
@@ -55,7 +49,7 @@ pub fn mailbox_new(scene: &PackedScene) -> Mailbox {
 // Mirror of src/tracer/traversal/traverse.wgsl::mailbox_seen — change both.
 #[inline(always)]
 pub fn mailbox_seen(mailbox: &mut Mailbox, item: u32) -> bool {
-    seen_in_slot(&mut mailbox.items, mailbox.slot_mask, item)
+    mailbox.0.seen(item)
 }
 
 /// Whether items of `kind` go through the mailbox: those whose answer is the nearest end
@@ -69,6 +63,21 @@ pub fn mailboxed(kind: u32) -> bool {
     kind != KIND_TORUS && kind != KIND_CSG
 }
 
+/// Item `item`, unless `mailbox` says it was tested already (None). The first step of
+/// `intersect_item` and `item_occludes` (which the WGSL twins each write out).
+#[inline(always)]
+fn untested_item<'a>(
+    scene: &'a PackedScene,
+    item: u32,
+    mailbox: &mut Mailbox,
+) -> Option<&'a PackedInstance> {
+    let inst = load_instance(scene, item);
+    if mailboxed(inst.kind) && mailbox_seen(mailbox, item) {
+        return None;
+    }
+    Some(inst)
+}
+
 /// Tests one item: its hit (t = T_MISS on a miss). An item in `mailbox` is a miss (its
 /// hit, if any, is already the best).
 // Mirror of src/tracer/traversal/traverse.wgsl::intersect_item — change both.
@@ -80,10 +89,9 @@ fn intersect_item(
     mailbox: &mut Mailbox,
     counters: &mut impl TraversalCounters,
 ) -> Hit {
-    let inst = load_instance(scene, item);
-    if mailboxed(inst.kind) && mailbox_seen(mailbox, item) {
+    let Some(inst) = untested_item(scene, item, mailbox) else {
         return hit_miss();
-    }
+    };
     if inst.kind == KIND_MESH {
         return intersect_mesh(scene, inst, item, ray, t_max, counters);
     }
@@ -457,10 +465,9 @@ fn item_occludes(
     mailbox: &mut Mailbox,
     counters: &mut impl TraversalCounters,
 ) -> bool {
-    let inst = load_instance(scene, item);
-    if mailboxed(inst.kind) && mailbox_seen(mailbox, item) {
+    let Some(inst) = untested_item(scene, item, mailbox) else {
         return false;
-    }
+    };
     if inst.kind == KIND_MESH {
         return mesh_occludes(scene, inst, ray, t_max, counters);
     }

@@ -6,8 +6,8 @@
 //! bit, as the WGSL twins' one by one).
 
 use super::dda::{dda_setup, dda_step, enter_mesh, mesh_grid, Dda, EnteredRay};
-use super::hit::{hit_miss, seen_in_slot, Hit, TraversalCounters};
-use crate::constants::{NO_ITEM, TRIANGLE_MAILBOX_SIZE};
+use super::hit::{hit_miss, Hit, Slots, TraversalCounters};
+use crate::constants::TRIANGLE_MAILBOX_SIZE;
 use crate::pack::{
     cell_item_at, cell_start_at, load_mesh, PackedInstance, PackedMesh, PackedScene, PackedTriangle,
 };
@@ -32,19 +32,13 @@ pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &PackedInstance) -> &'a P
 /// variant); otherwise it remembers nothing. (Free functions `triangle_mailbox_new`,
 /// `triangle_mailbox_seen`, as the WGSL twins are named.)
 // Mirror of src/tracer/traversal/traverse_mesh.wgsl::TriangleMailbox — change both.
-pub struct TriangleMailbox {
-    triangles: [u32; TRIANGLE_MAILBOX_SIZE as usize],
-    slot_mask: Option<u32>,
-}
+pub struct TriangleMailbox(Slots<{ TRIANGLE_MAILBOX_SIZE as usize }>);
 
 /// An empty mailbox, kept as `scene.mailboxes` says (on the GPU the switch is the module's
 /// `MAILBOXES` specialisation).
 // Mirror of src/tracer/traversal/traverse_mesh.wgsl::triangle_mailbox_new — change both.
 pub fn triangle_mailbox_new(scene: &PackedScene) -> TriangleMailbox {
-    TriangleMailbox {
-        triangles: [NO_ITEM; TRIANGLE_MAILBOX_SIZE as usize],
-        slot_mask: scene.mailboxes.triangle_slot_mask(),
-    }
+    TriangleMailbox(Slots::new(scene.mailboxes.triangle_slot_mask()))
 }
 
 /// Whether `triangle` was tested already (as far as its slot remembers); if not, it is
@@ -52,7 +46,7 @@ pub fn triangle_mailbox_new(scene: &PackedScene) -> TriangleMailbox {
 // Mirror of src/tracer/traversal/traverse_mesh.wgsl::triangle_mailbox_seen — change both.
 #[inline(always)]
 pub fn triangle_mailbox_seen(mailbox: &mut TriangleMailbox, triangle: u32) -> bool {
-    seen_in_slot(&mut mailbox.triangles, mailbox.slot_mask, triangle)
+    mailbox.0.seen(triangle)
 }
 
 /// A walk through a mesh instance's own grid: the ray in the mesh's space, entered into
