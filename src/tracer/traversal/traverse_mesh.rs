@@ -63,7 +63,9 @@ struct MeshWalk<'a> {
 
 /// The walk of mesh instance `inst` for `ray` in (0, t_max), standing in its first cell;
 /// None when the ray misses the mesh's grid. The set-up `intersect_mesh` and
-/// `mesh_occludes` share (in WGSL each keeps its lines: see traverse_mesh.wgsl).
+/// `mesh_occludes` share. (The WGSL twins each keep these lines: the same set-up as a WGSL
+/// function returning the walk as a struct made naga 30's SPIR-V writer panic, "Expression
+/// is not cached", in `glint kernels`.)
 #[inline(always)]
 fn mesh_walk_start<'a>(
     scene: &'a PackedScene,
