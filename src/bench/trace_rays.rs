@@ -9,7 +9,9 @@ use crate::scene::flatten::{flatten, FlatScene};
 use crate::script_driver::{run_script, ScriptSettings};
 use crate::tracer::base::ray::{camera_ray, offset_ray, Ray};
 use crate::tracer::shading::surface::surface_at;
-use crate::tracer::traversal::traverse::{any_hit, closest_hit, Counters, Hit, NoCounters};
+use crate::tracer::traversal::traverse::{
+    any_hit, closest_hit, hit_miss, Counters, Hit, NoCounters,
+};
 use crate::tracer::traversal::traverse_mesh::instance_mesh;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -111,7 +113,7 @@ pub fn camera_rays(scene: &PackedScene) -> Vec<Ray> {
 
 /// The nearest hit of each ray.
 pub fn trace_primary(scene: &PackedScene, rays: &[Ray]) -> Vec<Hit> {
-    let mut hits = vec![Hit::MISS; rays.len()];
+    let mut hits = vec![hit_miss(); rays.len()];
     trace_primary_into(scene, rays, &mut hits);
     hits
 }

@@ -1,8 +1,10 @@
 //! The `#[repr(C)]` Pod structs both tracers read. Each has a WGSL twin of the same name
 //! and field order (std430 storage layout: vec3 aligned to 16 bytes, so each `[f32; 3]`
 //! is followed by a 4-byte scalar). Sizes are asserted here; field offsets are checked
-//! against naga's layout of the WGSL twins by the layout test.
+//! against naga's layout of the WGSL twins by the layout test. Below the structs, the
+//! readers both tracers index the packed arrays through (`load_instance`, `cell_start_at`, …).
 
+use super::PackedScene;
 use crate::constants::MEDIUM_STACK_SIZE;
 use bytemuck::{Pod, Zeroable};
 
@@ -188,6 +190,58 @@ pub struct PackedGlobals {
     pub _pad0: u32,
     pub _pad1: u32,
     pub _pad2: u32,
+}
+
+// The readers of the packed arrays. The GPU reads each array from a table texture
+// (src/gpu/upload/tables.rs) through the WGSL twin of the reader; the CPU indexes the
+// slice. Both tracers go through the readers, so a step that reads the scene reads it
+// in the same place on both sides (tests/gpu/twins.rs compares their calls).
+
+/// `cell_start[i]`: where cell i's items begin in `cell_items` (cell i + 1's start ends
+/// them).
+// Mirror of src/pack/layout.wgsl::cell_start_at — change both.
+#[inline(always)]
+pub fn cell_start_at(scene: &PackedScene, i: u32) -> u32 {
+    scene.cell_start[i as usize]
+}
+
+/// `cell_items[i]`.
+// Mirror of src/pack/layout.wgsl::cell_item_at — change both.
+#[inline(always)]
+pub fn cell_item_at(scene: &PackedScene, i: u32) -> u32 {
+    scene.cell_items[i as usize]
+}
+
+/// `csg_program[i]`.
+// Mirror of src/pack/layout.wgsl::csg_program_at — change both.
+pub fn csg_program_at(scene: &PackedScene, i: u32) -> u32 {
+    scene.csg_program[i as usize]
+}
+
+/// `instances[i]`.
+// Mirror of src/pack/layout.wgsl::load_instance — change both.
+#[inline(always)]
+pub fn load_instance(scene: &PackedScene, i: u32) -> &PackedInstance {
+    &scene.instances[i as usize]
+}
+
+/// `meshes[i]`.
+// Mirror of src/pack/layout.wgsl::load_mesh — change both.
+#[inline(always)]
+pub fn load_mesh(scene: &PackedScene, i: u32) -> &PackedMesh {
+    &scene.meshes[i as usize]
+}
+
+/// `triangle_uvs[i]`.
+// Mirror of src/pack/layout.wgsl::load_triangle_uv — change both.
+pub fn load_triangle_uv(scene: &PackedScene, i: u32) -> &PackedTriangleUv {
+    &scene.triangle_uvs[i as usize]
+}
+
+/// `triangle_normals[i]`.
+// Mirror of src/pack/layout.wgsl::load_triangle_normals — change both.
+pub fn load_triangle_normals(scene: &PackedScene, i: u32) -> &PackedTriangleNormals {
+    &scene.triangle_normals[i as usize]
 }
 
 const _: () = assert!(std::mem::size_of::<PackedInstance>() == 112);

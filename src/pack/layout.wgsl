@@ -225,17 +225,20 @@ fn word_at(table: WordTable, i: u32) -> u32 {
 }
 
 // cell_start[i]: where cell i's items begin in cell_items (cell i + 1's start ends them).
+// Mirror of src/pack/layout.rs::cell_start_at — change both.
 fn cell_start_at(i: u32) -> u32 {
     return word_at(cell_start_table, i);
 }
 
 // cell_items[i].
+// Mirror of src/pack/layout.rs::cell_item_at — change both.
 fn cell_item_at(i: u32) -> u32 {
     return word_at(cell_items_table, i);
 }
 
 // #if CSG
 // csg_program[i].
+// Mirror of src/pack/layout.rs::csg_program_at — change both.
 fn csg_program_at(i: u32) -> u32 {
     return word_at(csg_program_table, i);
 }
@@ -294,6 +297,7 @@ fn load_light(i: u32) -> PackedLight {
 // #if MESH
 // #if TEXTURE|BUMP
 // triangle_uvs[i].
+// Mirror of src/pack/layout.rs::load_triangle_uv — change both.
 fn load_triangle_uv(i: u32) -> PackedTriangleUv {
     let base = i * TRIANGLE_UV_TABLE_TEXELS;
     let a = bitcast<vec4<f32>>(table_at(triangle_uv_table, base));
@@ -305,6 +309,7 @@ fn load_triangle_uv(i: u32) -> PackedTriangleUv {
 
 // #if SMOOTH
 // triangle_normals[i]: n0.xyz n1.x | n1.yz n2.xy | n2.z, as triangles are laid out.
+// Mirror of src/pack/layout.rs::load_triangle_normals — change both.
 fn load_triangle_normals(i: u32) -> PackedTriangleNormals {
     let base = i * TRIANGLE_NORMAL_TABLE_TEXELS;
     let a = bitcast<vec4<f32>>(table_at(triangle_normal_table, base));
@@ -319,6 +324,7 @@ fn load_triangle_normals(i: u32) -> PackedTriangleNormals {
 // #endif
 
 // instances[i].
+// Mirror of src/pack/layout.rs::load_instance — change both.
 fn load_instance(i: u32) -> PackedInstance {
     let base = i * INSTANCE_TABLE_TEXELS;
     let last = table_at(instance_table, base + 6u);
@@ -341,6 +347,7 @@ fn instance_row(i: u32) -> vec4<f32> {
 }
 
 // meshes[i].
+// Mirror of src/pack/layout.rs::load_mesh — change both.
 fn load_mesh(i: u32) -> PackedMesh {
     let base = i * MESH_TABLE_TEXELS;
     let t0 = table_at(mesh_table, base);

@@ -15,17 +15,18 @@
 pub mod probe;
 pub mod scratch;
 
+use crate::pack::load_instance;
 use crate::pack::PackedScene;
-use crate::tracer::geometry::csg::{csg_evaluate, CsgStack};
+use crate::tracer::geometry::csg::{csg_count_at, csg_evaluate, csg_t_at, csg_tag_at, CsgStack};
 use glam::Vec3;
 
 /// The inside intervals of CSG item `item` along `o + t·d` (world space) as
 /// (t, tag) ends — entering, leaving, entering… (not mirrored: the WGSL has no such function).
 pub fn csg_interval_ends(scene: &PackedScene, item: u32, o: Vec3, d: Vec3) -> Vec<(f32, u32)> {
     let mut stack = CsgStack::default();
-    csg_evaluate(&mut stack, scene, &scene.instances[item as usize], o, d);
-    (0..stack.list_count[0] as usize)
-        .map(|k| (stack.t[k], stack.tag[k]))
+    csg_evaluate(&mut stack, scene, load_instance(scene, item), o, d);
+    (0..csg_count_at(&stack, 0))
+        .map(|k| (csg_t_at(&stack, k), csg_tag_at(&stack, k)))
         .collect()
 }
 

@@ -101,33 +101,8 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     ),
     (
         "src/pack/layout.wgsl",
-        "cell_start_at",
-        "reads `cell_start[i]` from its table texture; the CPU indexes the slice",
-    ),
-    (
-        "src/pack/layout.wgsl",
-        "cell_item_at",
-        "reads `cell_items[i]` from its table texture; the CPU indexes the slice",
-    ),
-    (
-        "src/pack/layout.wgsl",
-        "load_instance",
-        "reads `instances[i]` from its table texture; the CPU indexes the slice",
-    ),
-    (
-        "src/pack/layout.wgsl",
         "instance_row",
         "one row of an instance's affine maps from the instance table (load_instance's helper)",
-    ),
-    (
-        "src/pack/layout.wgsl",
-        "load_mesh",
-        "reads `meshes[i]` from its table texture; the CPU indexes the slice",
-    ),
-    (
-        "src/pack/layout.wgsl",
-        "csg_program_at",
-        "reads `csg_program[i]` from its table texture; the CPU indexes the slice",
     ),
     (
         "src/pack/layout.wgsl",
@@ -143,16 +118,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "src/pack/layout.wgsl",
         "load_light",
         "reads `lights[i]` from its table texture; the CPU indexes the slice",
-    ),
-    (
-        "src/pack/layout.wgsl",
-        "load_triangle_uv",
-        "reads `triangle_uvs[i]` from its table texture; the CPU indexes the slice",
-    ),
-    (
-        "src/pack/layout.wgsl",
-        "load_triangle_normals",
-        "reads `triangle_normals[i]` from its table texture; the CPU indexes the slice",
     ),
     (
         "src/tracer/sampling/render.wgsl",
@@ -230,45 +195,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "reads a ray stack entry from a private array or the list slot (src/gpu/compile/lists.rs); the CPU reads `stack[size]`",
     ),
     (
-        "src/tracer/geometry/csg.wgsl",
-        "csg_t_at",
-        "reads CsgStack::t[k] from a private array or the list slot (src/gpu/compile/lists.rs); the CPU indexes the array",
-    ),
-    (
-        "src/tracer/geometry/csg.wgsl",
-        "set_csg_t",
-        "writes CsgStack::t[k] (see csg_t_at)",
-    ),
-    (
-        "src/tracer/geometry/csg.wgsl",
-        "csg_tag_at",
-        "reads CsgStack::tag[k] from a private array or the list slot; the CPU indexes the array",
-    ),
-    (
-        "src/tracer/geometry/csg.wgsl",
-        "set_csg_tag",
-        "writes CsgStack::tag[k] (see csg_tag_at)",
-    ),
-    (
-        "src/tracer/geometry/csg.wgsl",
-        "csg_start_at",
-        "reads CsgStack::list_start[l] from a private array or the list slot; the CPU indexes the array",
-    ),
-    (
-        "src/tracer/geometry/csg.wgsl",
-        "set_csg_start",
-        "writes CsgStack::list_start[l] (see csg_start_at)",
-    ),
-    (
-        "src/tracer/geometry/csg.wgsl",
-        "csg_count_at",
-        "reads CsgStack::list_count[l] from a private array or the list slot; the CPU indexes the array",
-    ),
-    (
-        "src/tracer/geometry/csg.wgsl",
-        "set_csg_count",
-        "writes CsgStack::list_count[l] (see csg_count_at)",
-    ),    (
         "src/tracer/wavefront/wavefront_lattice.wgsl",
         "lattice_queue_base",
         "where the wavefront's queues start in the `samples` buffer, after the lattice (the \
@@ -354,12 +280,6 @@ const WGSL_NAMED_APART: &[(&str, &str, &str)] = &[
         "the sum of src/tracer/sampling/progressive.rs::view_sample, the CPU's one form of a view \
          frame's sample (the GPU's hardware variant stores the wavefront's sample into the \
          sums in a pass of its own)",
-    ),
-    (
-        "src/tracer/traversal/traverse.wgsl",
-        "item_at",
-        "the `items` iterators of src/tracer/traversal/traverse.rs::closest_hit (a cell's items, or \
-         every item with the grid off), which WGSL indexes",
     ),
     (
         "src/tracer/wavefront/wavefront_tree.wgsl",

@@ -21,7 +21,7 @@ use glint::tracer::geometry::cylinder_cone::{
 };
 use glint::tracer::geometry::intersect::intersect_instance;
 use glint::tracer::shading::surface::surface_at;
-use glint::tracer::traversal::traverse::Hit;
+use glint::tracer::traversal::traverse::{hit_miss, Hit};
 
 // ---------------------------------------------------------------------------------------
 // Seeded randomness (splitmix64), as in intersect_oracle.rs.
@@ -533,7 +533,7 @@ fn leave_case(cone: bool, seed: u64, stats: &mut (usize, usize, Vec<String>)) {
         let hit = Hit {
             t,
             item: 0,
-            ..Hit::MISS
+            ..hit_miss()
         };
         let s = surface_at(&packed, &ray, &hit);
         let origin = offset_ray(s.p, s.normal, s.magnitude);

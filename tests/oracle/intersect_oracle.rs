@@ -19,7 +19,7 @@ use glint::tracer::geometry::intersect::{
     triangle_vertices,
 };
 use glint::tracer::shading::surface::surface_at;
-use glint::tracer::traversal::traverse::{closest_hit, Hit, NoCounters};
+use glint::tracer::traversal::traverse::{closest_hit, hit_miss, Hit, NoCounters};
 
 // ---------------------------------------------------------------------------------------
 // Seeded randomness (splitmix64).
@@ -409,7 +409,7 @@ fn leave_case(kind: ObjectKind, from_inside: bool, seed: u64, stats: &mut LeaveS
         let hit = Hit {
             t,
             item: 0,
-            ..Hit::MISS
+            ..hit_miss()
         };
         let s = surface_at(&packed, &ray, &hit);
         let n = if from_inside { -s.normal } else { s.normal };

@@ -29,7 +29,7 @@ use glint::scene::{Camera, GridMode, Material, RenderOptions};
 use glint::tracer::base::ray::offset_ray;
 use glint::tracer::geometry::intersect::intersect_instance;
 use glint::tracer::shading::surface::surface_at;
-use glint::tracer::traversal::traverse::Hit;
+use glint::tracer::traversal::traverse::{hit_miss, Hit};
 
 // ---------------------------------------------------------------------------------------
 // The f64 oracle.
@@ -396,7 +396,7 @@ fn torus_rays_leaving_the_surface() {
             let hit = Hit {
                 t,
                 item: 0,
-                ..Hit::MISS
+                ..hit_miss()
             };
             let s = surface_at(&packed, &ray, &hit);
             let n = s.normal.as_dvec3();

@@ -33,7 +33,7 @@ use crate::constants::{
     CSG_INTERSECTION, CSG_LEAF, CSG_LIST_CAPACITY, CSG_OP_SHIFT, CSG_T_LIMIT, KIND_CONE, KIND_CUBE,
     KIND_CYLINDER, KIND_SPHERE, KIND_TORUS, NO_ITEM, T_MISS,
 };
-use crate::pack::{PackedInstance, PackedScene};
+use crate::pack::{csg_program_at, load_instance, PackedInstance, PackedScene};
 use glam::{Vec3, Vec4};
 
 /// The nearest CSG hit: t (T_MISS on a miss) and the tag of the surface: leaf instance
@@ -71,6 +71,66 @@ impl Default for CsgStack {
     }
 }
 
+// The stack's accessors, one a field, each the twin of the WGSL accessor that reads or
+// writes the same entry in a private array or in the invocation's list slot
+// (src/gpu/compile/lists.rs): the evaluation below goes through them in the WGSL's order.
+
+/// t of interval end k.
+// Mirror of src/tracer/geometry/csg.wgsl::csg_t_at — change both.
+#[inline(always)]
+pub fn csg_t_at(stack: &CsgStack, k: u32) -> f32 {
+    stack.t[k as usize]
+}
+
+/// Sets t of interval end k.
+// Mirror of src/tracer/geometry/csg.wgsl::set_csg_t — change both.
+#[inline(always)]
+pub fn set_csg_t(stack: &mut CsgStack, k: u32, t: f32) {
+    stack.t[k as usize] = t;
+}
+
+/// Tag of interval end k.
+// Mirror of src/tracer/geometry/csg.wgsl::csg_tag_at — change both.
+#[inline(always)]
+pub fn csg_tag_at(stack: &CsgStack, k: u32) -> u32 {
+    stack.tag[k as usize]
+}
+
+/// Sets the tag of interval end k.
+// Mirror of src/tracer/geometry/csg.wgsl::set_csg_tag — change both.
+#[inline(always)]
+pub fn set_csg_tag(stack: &mut CsgStack, k: u32, tag: u32) {
+    stack.tag[k as usize] = tag;
+}
+
+/// First end of live list l.
+// Mirror of src/tracer/geometry/csg.wgsl::csg_start_at — change both.
+#[inline(always)]
+pub fn csg_start_at(stack: &CsgStack, l: u32) -> u32 {
+    stack.list_start[l as usize]
+}
+
+/// Sets the first end of live list l.
+// Mirror of src/tracer/geometry/csg.wgsl::set_csg_start — change both.
+#[inline(always)]
+pub fn set_csg_start(stack: &mut CsgStack, l: u32, start: u32) {
+    stack.list_start[l as usize] = start;
+}
+
+/// Ends of live list l.
+// Mirror of src/tracer/geometry/csg.wgsl::csg_count_at — change both.
+#[inline(always)]
+pub fn csg_count_at(stack: &CsgStack, l: u32) -> u32 {
+    stack.list_count[l as usize]
+}
+
+/// Sets the ends of live list l.
+// Mirror of src/tracer/geometry/csg.wgsl::set_csg_count — change both.
+#[inline(always)]
+pub fn set_csg_count(stack: &mut CsgStack, l: u32, count: u32) {
+    stack.list_count[l as usize] = count;
+}
+
 /// The inside intervals of `o + t·d` (world space) through a leaf instance, in world t:
 /// [x, y] and [z, w], each empty when its lo > hi, the second after the first.
 // Mirror of src/tracer/geometry/csg.wgsl::leaf_intervals — change both.
@@ -104,28 +164,28 @@ pub fn leaf_intervals(leaf: &PackedInstance, o: Vec3, d: Vec3) -> Vec4 {
 /// clamped to ±[`CSG_T_LIMIT`] (no NaN: a NaN interval fails lo ≤ hi and is dropped).
 // Mirror of src/tracer/geometry/csg.wgsl::csg_push_leaf — change both.
 pub fn csg_push_leaf(stack: &mut CsgStack, scene: &PackedScene, index: u32, o: Vec3, d: Vec3) {
-    let intervals = leaf_intervals(&scene.instances[index as usize], o, d);
+    let intervals = leaf_intervals(load_instance(scene, index), o, d);
     let mut start = 0;
     if stack.lists > 0 {
-        let top = (stack.lists - 1) as usize;
-        start = stack.list_start[top] + stack.list_count[top];
+        let top = stack.lists - 1;
+        start = csg_start_at(stack, top) + csg_count_at(stack, top);
     }
     let mut count = 0;
     for k in 0..2 {
         let lo = intervals[2 * k];
         let hi = intervals[2 * k + 1];
         if lo <= hi {
-            let at = (start + count) as usize;
-            stack.t[at] = lo.clamp(-CSG_T_LIMIT, CSG_T_LIMIT);
-            stack.tag[at] = index;
-            stack.t[at + 1] = hi.clamp(-CSG_T_LIMIT, CSG_T_LIMIT);
-            stack.tag[at + 1] = index;
+            let at = start + count;
+            set_csg_t(stack, at, lo.clamp(-CSG_T_LIMIT, CSG_T_LIMIT));
+            set_csg_tag(stack, at, index);
+            set_csg_t(stack, at + 1, hi.clamp(-CSG_T_LIMIT, CSG_T_LIMIT));
+            set_csg_tag(stack, at + 1, index);
             count += 2;
         }
     }
-    let top = stack.lists as usize;
-    stack.list_start[top] = start;
-    stack.list_count[top] = count;
+    let top = stack.lists;
+    set_csg_start(stack, top, start);
+    set_csg_count(stack, top, count);
     stack.lists += 1;
 }
 
@@ -148,12 +208,12 @@ pub fn csg_inside(op: u32, in_a: bool, in_b: bool) -> bool {
 /// (a's on a tie); a difference flips the tags of b's ends it emits.
 // Mirror of src/tracer/geometry/csg.wgsl::csg_combine — change both.
 pub fn csg_combine(stack: &mut CsgStack, op: u32, magnitude: f32) {
-    let a_list = (stack.lists - 2) as usize;
-    let b_list = (stack.lists - 1) as usize;
-    let a_start = stack.list_start[a_list];
-    let a_count = stack.list_count[a_list];
-    let b_start = stack.list_start[b_list];
-    let b_count = stack.list_count[b_list];
+    let a_list = stack.lists - 2;
+    let b_list = stack.lists - 1;
+    let a_start = csg_start_at(stack, a_list);
+    let a_count = csg_count_at(stack, a_list);
+    let b_start = csg_start_at(stack, b_list);
+    let b_count = csg_count_at(stack, b_list);
     // The result is built after b, then moved down to where a starts.
     let out = b_start + b_count;
     let b_flip = if op == CSG_DIFFERENCE { CSG_FLIP } else { 0 };
@@ -169,10 +229,10 @@ pub fn csg_combine(stack: &mut CsgStack, op: u32, magnitude: f32) {
         let mut ta = T_MISS;
         let mut tb = T_MISS;
         if take_a {
-            ta = stack.t[(a_start + ia) as usize];
+            ta = csg_t_at(stack, a_start + ia);
         }
         if take_b {
-            tb = stack.t[(b_start + ib) as usize];
+            tb = csg_t_at(stack, b_start + ib);
         }
         if take_a && take_b {
             let tolerance = CSG_COINCIDENT_RELATIVE * (magnitude + ta.abs().max(tb.abs()));
@@ -185,32 +245,31 @@ pub fn csg_combine(stack: &mut CsgStack, op: u32, magnitude: f32) {
         let mut t = ta;
         let mut tag = 0;
         if take_a {
-            tag = stack.tag[(a_start + ia) as usize];
+            tag = csg_tag_at(stack, a_start + ia);
             in_a = !in_a;
             ia += 1;
         }
         if take_b {
             if !take_a || tb < ta {
                 t = tb;
-                tag = stack.tag[(b_start + ib) as usize] ^ b_flip;
+                tag = csg_tag_at(stack, b_start + ib) ^ b_flip;
             }
             in_b = !in_b;
             ib += 1;
         }
         let now = csg_inside(op, in_a, in_b);
         if now != inside {
-            let at = (out + n) as usize;
-            stack.t[at] = t;
-            stack.tag[at] = tag;
+            set_csg_t(stack, out + n, t);
+            set_csg_tag(stack, out + n, tag);
             n += 1;
             inside = now;
         }
     }
     for k in 0..n {
-        stack.t[(a_start + k) as usize] = stack.t[(out + k) as usize];
-        stack.tag[(a_start + k) as usize] = stack.tag[(out + k) as usize];
+        set_csg_t(stack, a_start + k, csg_t_at(stack, out + k));
+        set_csg_tag(stack, a_start + k, csg_tag_at(stack, out + k));
     }
-    stack.list_count[a_list] = n;
+    set_csg_count(stack, a_list, n);
     stack.lists -= 1;
 }
 
@@ -230,7 +289,7 @@ pub fn csg_evaluate(
     let magnitude = o.abs().max_element();
     stack.lists = 0;
     for i in 0..len {
-        let entry = scene.csg_program[(start + i) as usize];
+        let entry = csg_program_at(scene, start + i);
         let op = entry >> CSG_OP_SHIFT;
         if op == CSG_LEAF {
             csg_push_leaf(stack, scene, entry & CSG_INDEX_MASK, o, d);
@@ -252,14 +311,14 @@ pub fn intersect_csg(
 ) -> CsgHit {
     let mut stack = CsgStack::default();
     csg_evaluate(&mut stack, scene, inst, o, d);
-    let count = stack.list_count[0];
-    for k in 0..count as usize {
-        let t = stack.t[k];
+    let count = csg_count_at(&stack, 0);
+    for k in 0..count {
+        let t = csg_t_at(&stack, k);
         if t > 0.0 {
             if t < t_max {
                 return CsgHit {
                     t,
-                    part: stack.tag[k],
+                    part: csg_tag_at(&stack, k),
                 };
             }
             break;

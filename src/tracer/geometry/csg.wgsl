@@ -33,6 +33,7 @@ var<private> csg_list_count: array<u32, CSG_LIST_CAPACITY>;
 var<private> csg_lists: u32;
 
 // t of interval end k.
+// Mirror of src/tracer/geometry/csg.rs::csg_t_at — change both.
 fn csg_t_at(k: u32) -> f32 {
 // #if LISTS_IN_STORAGE
     return lane_f32(CSG_STATE_AT + k);
@@ -41,6 +42,8 @@ fn csg_t_at(k: u32) -> f32 {
 // #endif
 }
 
+// Sets t of interval end k.
+// Mirror of src/tracer/geometry/csg.rs::set_csg_t — change both.
 fn set_csg_t(k: u32, t: f32) {
 // #if LISTS_IN_STORAGE
     set_lane_f32(CSG_STATE_AT + k, t);
@@ -50,6 +53,7 @@ fn set_csg_t(k: u32, t: f32) {
 }
 
 // Tag of interval end k.
+// Mirror of src/tracer/geometry/csg.rs::csg_tag_at — change both.
 fn csg_tag_at(k: u32) -> u32 {
 // #if LISTS_IN_STORAGE
     return ray_lists[lane_word(CSG_TAGS_AT + k)];
@@ -58,6 +62,8 @@ fn csg_tag_at(k: u32) -> u32 {
 // #endif
 }
 
+// Sets the tag of interval end k.
+// Mirror of src/tracer/geometry/csg.rs::set_csg_tag — change both.
 fn set_csg_tag(k: u32, tag: u32) {
 // #if LISTS_IN_STORAGE
     ray_lists[lane_word(CSG_TAGS_AT + k)] = tag;
@@ -67,6 +73,7 @@ fn set_csg_tag(k: u32, tag: u32) {
 }
 
 // First end of live list l.
+// Mirror of src/tracer/geometry/csg.rs::csg_start_at — change both.
 fn csg_start_at(l: u32) -> u32 {
 // #if LISTS_IN_STORAGE
     return ray_lists[lane_word(CSG_STARTS_AT + l)];
@@ -75,6 +82,8 @@ fn csg_start_at(l: u32) -> u32 {
 // #endif
 }
 
+// Sets the first end of live list l.
+// Mirror of src/tracer/geometry/csg.rs::set_csg_start — change both.
 fn set_csg_start(l: u32, start: u32) {
 // #if LISTS_IN_STORAGE
     ray_lists[lane_word(CSG_STARTS_AT + l)] = start;
@@ -84,6 +93,7 @@ fn set_csg_start(l: u32, start: u32) {
 }
 
 // Ends of live list l.
+// Mirror of src/tracer/geometry/csg.rs::csg_count_at — change both.
 fn csg_count_at(l: u32) -> u32 {
 // #if LISTS_IN_STORAGE
     return ray_lists[lane_word(CSG_COUNTS_AT + l)];
@@ -92,6 +102,8 @@ fn csg_count_at(l: u32) -> u32 {
 // #endif
 }
 
+// Sets the ends of live list l.
+// Mirror of src/tracer/geometry/csg.rs::set_csg_count — change both.
 fn set_csg_count(l: u32, count: u32) {
 // #if LISTS_IN_STORAGE
     ray_lists[lane_word(CSG_COUNTS_AT + l)] = count;

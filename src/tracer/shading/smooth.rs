@@ -23,7 +23,7 @@ use super::dielectric::{
 };
 use super::surface::Surface;
 use crate::constants::{KIND_MESH, SMOOTH_MIN_REFLECTION_COSINE};
-use crate::pack::PackedScene;
+use crate::pack::{load_instance, load_triangle_normals, PackedScene};
 use crate::tracer::traversal::hit::Hit;
 use glam::Vec3;
 
@@ -35,11 +35,11 @@ use glam::Vec3;
 /// normals cancel out (no direction).
 // Mirror of src/tracer/shading/smooth.wgsl::smooth_normal — change both.
 pub fn smooth_normal(scene: &PackedScene, hit: &Hit, s: &Surface) -> Vec3 {
-    let inst = &scene.instances[hit.item as usize];
+    let inst = load_instance(scene, hit.item);
     if inst.kind != KIND_MESH {
         return s.normal;
     }
-    let corners = &scene.triangle_normals[hit.part as usize];
+    let corners = load_triangle_normals(scene, hit.part);
     let n0 = Vec3::from(corners.n0);
     // Packing zeroes every corner of a flat triangle.
     if n0 == Vec3::ZERO {

@@ -6,7 +6,7 @@ use crate::constants::{
     CSG_FLIP, CSG_INDEX_MASK, KIND_CONE, KIND_CSG, KIND_CYLINDER, KIND_MESH, KIND_SPHERE,
     KIND_TORUS,
 };
-use crate::pack::{PackedInstance, PackedScene};
+use crate::pack::{load_instance, load_triangle_uv, PackedInstance, PackedScene};
 use crate::tracer::base::ray::Ray;
 use crate::tracer::geometry::cylinder_cone::{cone_surface, cylinder_surface};
 use crate::tracer::geometry::intersect::{to_object_space, triangle_vertices};
@@ -111,7 +111,7 @@ fn instance_surface(inst: &PackedInstance, ray: &Ray, t: f32) -> Surface {
 /// The surface at a hit: an analytic instance's, a CSG object's or a mesh triangle's.
 // Mirror of src/tracer/shading/surface.wgsl::surface_at — change both.
 pub fn surface_at(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
-    let inst = &scene.instances[hit.item as usize];
+    let inst = load_instance(scene, hit.item);
     if inst.kind == KIND_CSG {
         return csg_surface(scene, ray, hit);
     }
@@ -146,7 +146,7 @@ fn mesh_surface(scene: &PackedScene, inst: &PackedInstance, hit: &Hit) -> Surfac
     let (mut uv, mut dpdu, mut dpdv) = (Vec2::ZERO, Vec3::ZERO, Vec3::ZERO);
     // Triangle UVs are packed only for scenes that use them.
     if scene.features.uses_textures() {
-        let t = &scene.triangle_uvs[index];
+        let t = load_triangle_uv(scene, index as u32);
         let (uv0, uv1, uv2) = (Vec2::from(t.uv0), Vec2::from(t.uv1), Vec2::from(t.uv2));
         uv = uv0 * b0 + uv1 * hit.b1 + uv2 * hit.b2;
         (dpdu, dpdv) = triangle_frame([p0, p1, p2], [uv0, uv1, uv2], n_obj.normalize());
@@ -180,7 +180,7 @@ fn mesh_surface(scene: &PackedScene, inst: &PackedInstance, hit: &Hit) -> Surfac
 /// on a subtracted operand's surface, which bounds the result from the other side.
 // Mirror of src/tracer/shading/surface.wgsl::csg_surface — change both.
 fn csg_surface(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
-    let leaf = &scene.instances[(hit.part & CSG_INDEX_MASK) as usize];
+    let leaf = load_instance(scene, hit.part & CSG_INDEX_MASK);
     let mut s = instance_surface(leaf, ray, hit.t);
     if hit.part & CSG_FLIP != 0 {
         // (When Surface gains uv/dpdu/dpdv, they stay the leaf's; only the normal flips.)

@@ -1,4 +1,5 @@
-//! What a traversal returns (the nearest hit) and what it may count (`--stats`).
+//! What a traversal returns (the nearest hit), what it may count (`--stats`), and the
+//! direct-mapped slots both levels' mailboxes remember tested items in.
 
 use crate::constants::{NO_ITEM, T_MISS};
 
@@ -16,16 +17,19 @@ pub struct Hit {
     pub part: u32,
 }
 
-impl Hit {
-    // Mirror of src/tracer/traversal/hit.wgsl::hit_miss — change both.
-    pub const MISS: Hit = Hit {
+/// No hit: t = `T_MISS`, no item, no part.
+// Mirror of src/tracer/traversal/hit.wgsl::hit_miss — change both.
+pub const fn hit_miss() -> Hit {
+    Hit {
         t: T_MISS,
         item: NO_ITEM,
         b1: 0.0,
         b2: 0.0,
         part: NO_ITEM,
-    };
+    }
+}
 
+impl Hit {
     // Mirror of src/tracer/traversal/hit.wgsl::is_hit — change both.
     pub fn is_hit(&self) -> bool {
         self.item != NO_ITEM
@@ -72,5 +76,37 @@ impl TraversalCounters for Counters {
     }
     fn item_tested(&mut self) {
         self.items_tested += 1;
+    }
+}
+
+/// The direct-mapped slots both levels' mailboxes remember tested items in
+/// (`traverse::Mailbox`, `traverse_mesh::TriangleMailbox`): N slots (a power of two), a
+/// value in slot `value & slot_mask` (`None`: nothing is remembered).
+pub struct Slots<const N: usize> {
+    slots: [u32; N],
+    slot_mask: Option<u32>,
+}
+
+impl<const N: usize> Slots<N> {
+    /// Every slot empty (`NO_ITEM`).
+    pub fn new(slot_mask: Option<u32>) -> Slots<N> {
+        Slots {
+            slots: [NO_ITEM; N],
+            slot_mask,
+        }
+    }
+
+    /// Whether `value` is in its slot; if not, it is now.
+    #[inline(always)]
+    pub fn seen(&mut self, value: u32) -> bool {
+        if let Some(mask) = self.slot_mask {
+            // (The constant mask too, so the index needs no bounds check.)
+            let slot = &mut self.slots[(value & mask) as usize & (N - 1)];
+            if *slot == value {
+                return true;
+            }
+            *slot = value;
+        }
+        false
     }
 }

@@ -13,7 +13,8 @@ struct Hit {
     part: u32,
 }
 
-// Mirror of src/tracer/traversal/hit.rs::Hit::MISS — change both.
+// No hit: t = T_MISS, no item, no part.
+// Mirror of src/tracer/traversal/hit.rs::hit_miss — change both.
 fn hit_miss() -> Hit {
     return Hit(T_MISS, NO_ITEM, 0.0, 0.0, NO_ITEM);
 }

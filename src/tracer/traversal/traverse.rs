@@ -14,12 +14,15 @@
 
 use super::dda::{dda_setup, dda_step, scene_grid, Dda};
 pub use super::dda::{enter_scene, EnteredRay};
-pub use super::hit::{Counters, Hit, NoCounters, TraversalCounters};
+use super::hit::Slots;
+pub use super::hit::{hit_miss, Counters, Hit, NoCounters, TraversalCounters};
 use super::traverse_mesh::{intersect_mesh, mesh_occludes};
 use crate::constants::{
     ITEM_MAILBOX_SIZE, KIND_CSG, KIND_MESH, KIND_TORUS, NO_ITEM, T_MISS, WALK_FULL,
 };
-use crate::pack::{PackedInstance, PackedScene, SceneFeatures};
+use crate::pack::{
+    cell_item_at, cell_start_at, load_instance, PackedInstance, PackedScene, SceneFeatures,
+};
 use crate::tracer::base::ray::Ray;
 use crate::tracer::geometry::csg::intersect_csg;
 use crate::tracer::geometry::intersect::intersect_instance;
@@ -30,37 +33,23 @@ use crate::tracer::geometry::intersect::intersect_instance;
 /// variant, the twin of the GPU kernel's: all the slots (`Mailboxes::Full`), only the
 /// first, so the last item tested (`LastItem`: the GPU's `LAST_ITEM_MAILBOX`), or none
 /// (`Off`: every item is tested in every cell that lists it). The answers are the same.
+/// (Free functions `mailbox_new`, `mailbox_seen`, as the WGSL twins are named.)
 // Mirror of src/tracer/traversal/traverse.wgsl::Mailbox — change both.
-pub struct Mailbox {
-    items: [u32; ITEM_MAILBOX_SIZE as usize],
-    slot_mask: Option<u32>,
+pub struct Mailbox(Slots<{ ITEM_MAILBOX_SIZE as usize }>);
+
+/// An empty mailbox of the variant `scene.mailboxes` names (on the GPU the switch is the
+/// module's `MAILBOXES` or `LAST_ITEM_MAILBOX` specialisation).
+// Mirror of src/tracer/traversal/traverse.wgsl::mailbox_new — change both.
+pub fn mailbox_new(scene: &PackedScene) -> Mailbox {
+    Mailbox(Slots::new(scene.mailboxes.item_slot_mask()))
 }
 
-impl Mailbox {
-    /// An empty mailbox of the variant `scene.mailboxes` names (on the GPU the switch is
-    /// the module's `MAILBOXES` or `LAST_ITEM_MAILBOX` specialisation).
-    // Mirror of src/tracer/traversal/traverse.wgsl::mailbox_new — change both.
-    pub fn new(scene: &PackedScene) -> Mailbox {
-        Mailbox {
-            items: [NO_ITEM; ITEM_MAILBOX_SIZE as usize],
-            slot_mask: scene.mailboxes.item_slot_mask(),
-        }
-    }
-
-    /// Whether `item` was tested already (as far as its slot remembers); if not, it is
-    /// now remembered in its slot.
-    // Mirror of src/tracer/traversal/traverse.wgsl::mailbox_seen — change both.
-    pub fn seen(&mut self, item: u32) -> bool {
-        if let Some(mask) = self.slot_mask {
-            // (The constant mask too, so the index needs no bounds check.)
-            let slot = &mut self.items[(item & mask & (ITEM_MAILBOX_SIZE - 1)) as usize];
-            if *slot == item {
-                return true;
-            }
-            *slot = item;
-        }
-        false
-    }
+/// Whether `item` was tested already (as far as its slot remembers); if not, it is now
+/// remembered in its slot.
+// Mirror of src/tracer/traversal/traverse.wgsl::mailbox_seen — change both.
+#[inline(always)]
+pub fn mailbox_seen(mailbox: &mut Mailbox, item: u32) -> bool {
+    mailbox.0.seen(item)
 }
 
 /// Whether items of `kind` go through the mailbox: those whose answer is the nearest end
@@ -74,6 +63,21 @@ pub fn mailboxed(kind: u32) -> bool {
     kind != KIND_TORUS && kind != KIND_CSG
 }
 
+/// Item `item`, unless `mailbox` says it was tested already (None). The first step of
+/// `intersect_item` and `item_occludes` (which the WGSL twins each write out).
+#[inline(always)]
+fn untested_item<'a>(
+    scene: &'a PackedScene,
+    item: u32,
+    mailbox: &mut Mailbox,
+) -> Option<&'a PackedInstance> {
+    let inst = load_instance(scene, item);
+    if mailboxed(inst.kind) && mailbox_seen(mailbox, item) {
+        return None;
+    }
+    Some(inst)
+}
+
 /// Tests one item: its hit (t = T_MISS on a miss). An item in `mailbox` is a miss (its
 /// hit, if any, is already the best).
 // Mirror of src/tracer/traversal/traverse.wgsl::intersect_item — change both.
@@ -85,10 +89,9 @@ fn intersect_item(
     mailbox: &mut Mailbox,
     counters: &mut impl TraversalCounters,
 ) -> Hit {
-    let inst = &scene.instances[item as usize];
-    if mailboxed(inst.kind) && mailbox.seen(item) {
-        return Hit::MISS;
-    }
+    let Some(inst) = untested_item(scene, item, mailbox) else {
+        return hit_miss();
+    };
     if inst.kind == KIND_MESH {
         return intersect_mesh(scene, inst, item, ray, t_max, counters);
     }
@@ -115,37 +118,43 @@ fn intersect_primitive_item(
             t: h.t,
             item,
             part: h.part,
-            ..Hit::MISS
+            ..hit_miss()
         };
     }
     let t = intersect_instance(inst, ray.origin, ray.dir, t_max);
     Hit {
         t,
         item,
-        ..Hit::MISS
+        ..hit_miss()
     }
 }
 
-/// The items listed in scene cell `cell`.
-fn cell_items(scene: &PackedScene, cell: u32) -> impl Iterator<Item = u32> + '_ {
-    let range = scene.cell_start[cell as usize]..scene.cell_start[cell as usize + 1];
-    scene.cell_items[range.start as usize..range.end as usize]
-        .iter()
-        .copied()
+/// The i-th of the items a traversal step tests: a scene cell's item list
+/// (`cell_items[i]`, i from the cell's start), or with the grid off every item in turn
+/// (brute force). (The GPU makes the choice when the kernel is specialised: `GRID`.)
+// Mirror of src/tracer/traversal/traverse.wgsl::item_at — change both.
+#[inline(always)]
+fn item_at(scene: &PackedScene, i: u32) -> u32 {
+    if scene.globals.grid_enabled != 0 {
+        cell_item_at(scene, i)
+    } else {
+        i
+    }
 }
 
-/// Tests the items `items` and keeps the nearest hit below `best.t`.
+/// Tests the items `item_at(first..last)` and keeps the nearest hit below `best.t`.
 // Mirror of src/tracer/traversal/traverse.wgsl::test_items — change both.
 fn test_items(
     scene: &PackedScene,
-    items: impl Iterator<Item = u32>,
+    first: u32,
+    last: u32,
     ray: &Ray,
     best: &mut Hit,
     mailbox: &mut Mailbox,
     counters: &mut impl TraversalCounters,
 ) {
-    for item in items {
-        let h = intersect_item(scene, item, ray, best.t, mailbox, counters);
+    for i in first..last {
+        let h = intersect_item(scene, item_at(scene, i), ray, best.t, mailbox, counters);
         if h.t < best.t {
             *best = h;
         }
@@ -164,7 +173,7 @@ pub fn closest_hit(
 ) -> Hit {
     counters.traversal_started();
     let Some(entered) = enter_scene(&scene.globals, ray, t_max.min(T_MISS)) else {
-        return Hit::MISS;
+        return hit_miss();
     };
     let mut hit = closest_hit_inside(scene, &entered, counters);
     if hit.is_hit() {
@@ -183,29 +192,30 @@ fn closest_hit_inside(
     let (ray, t_max) = (&entered.ray, entered.t_max);
     let mut best = Hit {
         t: t_max,
-        ..Hit::MISS
+        ..hit_miss()
     };
-    let mut mailbox = Mailbox::new(scene);
+    let mut mailbox = mailbox_new(scene);
     let g = &scene.globals;
     if g.grid_enabled == 0 {
         counters.cell_visited();
         test_items(
             scene,
-            0..g.num_instances,
+            0,
+            g.num_instances,
             ray,
             &mut best,
             &mut mailbox,
             counters,
         );
-        return if best.is_hit() { best } else { Hit::MISS };
+        return if best.is_hit() { best } else { hit_miss() };
     }
     let grid = scene_grid(g);
     let Some(dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
-        return Hit::MISS;
+        return hit_miss();
     };
     if scene.features.contains(SceneFeatures::MESH) {
         let mut walk = scene_walk_start(scene, dda, counters);
-        let mut pending = PendingMeshes::new();
+        let mut pending = pending_meshes_new();
         loop {
             closest_walk(
                 scene,
@@ -217,7 +227,7 @@ fn closest_hit_inside(
                 counters,
             );
             best = walk_pending_meshes(scene, &pending, ray, best, counters);
-            pending = PendingMeshes::new();
+            pending = pending_meshes_new();
             if walk.done {
                 break;
             }
@@ -228,9 +238,11 @@ fn closest_hit_inside(
         let mut dda = dda;
         loop {
             counters.cell_visited();
+            let cell = dda.cell;
             test_items(
                 scene,
-                cell_items(scene, dda.cell),
+                cell_start_at(scene, cell),
+                cell_start_at(scene, cell + 1),
                 ray,
                 &mut best,
                 &mut mailbox,
@@ -246,7 +258,7 @@ fn closest_hit_inside(
     if best.is_hit() {
         best
     } else {
-        Hit::MISS
+        hit_miss()
     }
 }
 
@@ -259,39 +271,42 @@ struct PendingMeshes {
     count: u32,
 }
 
-impl PendingMeshes {
-    // Mirror of src/tracer/traversal/traverse.wgsl::pending_meshes_new — change both.
-    fn new() -> PendingMeshes {
-        PendingMeshes {
-            first: NO_ITEM,
-            second: NO_ITEM,
-            count: 0,
-        }
+/// None pending.
+// Mirror of src/tracer/traversal/traverse.wgsl::pending_meshes_new — change both.
+fn pending_meshes_new() -> PendingMeshes {
+    PendingMeshes {
+        first: NO_ITEM,
+        second: NO_ITEM,
+        count: 0,
     }
+}
 
-    // Mirror of src/tracer/traversal/traverse.wgsl::pending_meshes_full — change both.
-    fn full(&self) -> bool {
-        self.count == 2
+/// Whether two are pending (a third waits for them to be walked).
+// Mirror of src/tracer/traversal/traverse.wgsl::pending_meshes_full — change both.
+#[inline(always)]
+fn pending_meshes_full(pending: &PendingMeshes) -> bool {
+    pending.count == 2
+}
+
+/// Appends mesh instance `item` (not full).
+// Mirror of src/tracer/traversal/traverse.wgsl::pending_meshes_push — change both.
+#[inline(always)]
+fn pending_meshes_push(pending: &mut PendingMeshes, item: u32) {
+    if pending.count == 0 {
+        pending.first = item;
+    } else {
+        pending.second = item;
     }
+    pending.count += 1;
+}
 
-    // Mirror of src/tracer/traversal/traverse.wgsl::pending_meshes_push — change both.
-    fn push(&mut self, item: u32) {
-        if self.count == 0 {
-            self.first = item;
-        } else {
-            self.second = item;
-        }
-        self.count += 1;
-    }
-
-    /// The k-th pending instance (k < count).
-    // Mirror of src/tracer/traversal/traverse.wgsl::pending_meshes_item — change both.
-    fn item(&self, k: u32) -> u32 {
-        if k == 0 {
-            self.first
-        } else {
-            self.second
-        }
+/// The k-th pending instance (k < count).
+// Mirror of src/tracer/traversal/traverse.wgsl::pending_meshes_item — change both.
+fn pending_meshes_item(pending: &PendingMeshes, k: u32) -> u32 {
+    if k == 0 {
+        pending.first
+    } else {
+        pending.second
     }
 }
 
@@ -335,9 +350,9 @@ fn scene_walk_enter_cell(
     counters: &mut impl TraversalCounters,
 ) {
     counters.cell_visited();
-    let cell = walk.dda.cell as usize;
-    walk.next = scene.cell_start[cell];
-    walk.end = scene.cell_start[cell + 1];
+    let cell = walk.dda.cell;
+    walk.next = cell_start_at(scene, cell);
+    walk.end = cell_start_at(scene, cell + 1);
 }
 
 /// Takes the walk's next item (`walk.next < walk.end`): the item to test when it is an
@@ -352,17 +367,17 @@ fn scene_walk_take(
     mailbox: &mut Mailbox,
     pending: &mut PendingMeshes,
 ) -> u32 {
-    let item = scene.cell_items[walk.next as usize];
-    let kind = scene.instances[item as usize].kind;
-    if kind == KIND_MESH && pending.full() {
+    let item = cell_item_at(scene, walk.next);
+    let kind = load_instance(scene, item).kind;
+    if kind == KIND_MESH && pending_meshes_full(pending) {
         return WALK_FULL;
     }
     walk.next += 1;
-    if mailboxed(kind) && mailbox.seen(item) {
+    if mailboxed(kind) && mailbox_seen(mailbox, item) {
         return NO_ITEM;
     }
     if kind == KIND_MESH {
-        pending.push(item);
+        pending_meshes_push(pending, item);
         return NO_ITEM;
     }
     item
@@ -393,7 +408,7 @@ fn closest_walk(
             if item == NO_ITEM {
                 continue;
             }
-            let inst = &scene.instances[item as usize];
+            let inst = load_instance(scene, item);
             let h = intersect_primitive_item(scene, inst, item, ray, best.t, counters);
             if h.t < best.t {
                 *best = h;
@@ -429,8 +444,8 @@ fn walk_pending_meshes(
     counters: &mut impl TraversalCounters,
 ) -> Hit {
     for k in 0..pending.count {
-        let item = pending.item(k);
-        let inst = &scene.instances[item as usize];
+        let item = pending_meshes_item(pending, k);
+        let inst = load_instance(scene, item);
         let h = intersect_mesh(scene, inst, item, ray, best.t, counters);
         if h.t < best.t {
             best = h;
@@ -450,28 +465,28 @@ fn item_occludes(
     mailbox: &mut Mailbox,
     counters: &mut impl TraversalCounters,
 ) -> bool {
-    let inst = &scene.instances[item as usize];
-    if mailboxed(inst.kind) && mailbox.seen(item) {
+    let Some(inst) = untested_item(scene, item, mailbox) else {
         return false;
-    }
+    };
     if inst.kind == KIND_MESH {
         return mesh_occludes(scene, inst, ray, t_max, counters);
     }
     intersect_primitive_item(scene, inst, item, ray, t_max, counters).t < t_max
 }
 
-/// Whether any of `items` is hit in (0, t_max).
+/// Whether any of the items `item_at(first..last)` is hit in (0, t_max).
 // Mirror of src/tracer/traversal/traverse.wgsl::any_item_hit — change both.
 fn any_item_hit(
     scene: &PackedScene,
-    items: impl Iterator<Item = u32>,
+    first: u32,
+    last: u32,
     ray: &Ray,
     t_max: f32,
     mailbox: &mut Mailbox,
     counters: &mut impl TraversalCounters,
 ) -> bool {
-    for item in items {
-        if item_occludes(scene, item, ray, t_max, mailbox, counters) {
+    for i in first..last {
+        if item_occludes(scene, item_at(scene, i), ray, t_max, mailbox, counters) {
             return true;
         }
     }
@@ -502,12 +517,12 @@ fn any_hit_inside(
     counters: &mut impl TraversalCounters,
 ) -> bool {
     let (ray, t_max) = (&entered.ray, entered.t_max);
-    let mut mailbox = Mailbox::new(scene);
+    let mut mailbox = mailbox_new(scene);
     let g = &scene.globals;
     if g.grid_enabled == 0 {
         counters.cell_visited();
-        let items = 0..g.num_instances;
-        return any_item_hit(scene, items, ray, t_max, &mut mailbox, counters);
+        let items = g.num_instances;
+        return any_item_hit(scene, 0, items, ray, t_max, &mut mailbox, counters);
     }
     let grid = scene_grid(g);
     let Some(dda) = dda_setup(&grid, ray, entered.inv_dir, t_max) else {
@@ -519,8 +534,11 @@ fn any_hit_inside(
         let mut dda = dda;
         loop {
             counters.cell_visited();
-            let items = cell_items(scene, dda.cell);
-            if any_item_hit(scene, items, ray, t_max, &mut mailbox, counters) {
+            let (first, last) = (
+                cell_start_at(scene, dda.cell),
+                cell_start_at(scene, dda.cell + 1),
+            );
+            if any_item_hit(scene, first, last, ray, t_max, &mut mailbox, counters) {
                 return true;
             }
             if dda_step(&mut dda).is_none() {
@@ -529,7 +547,7 @@ fn any_hit_inside(
         }
     }
     let mut walk = scene_walk_start(scene, dda, counters);
-    let mut pending = PendingMeshes::new();
+    let mut pending = pending_meshes_new();
     loop {
         let occluded = occlusion_walk(
             scene,
@@ -543,7 +561,7 @@ fn any_hit_inside(
         if occluded || pending_meshes_occlude(scene, &pending, ray, t_max, counters) {
             return true;
         }
-        pending = PendingMeshes::new();
+        pending = pending_meshes_new();
         if walk.done {
             return false;
         }
@@ -575,7 +593,7 @@ fn occlusion_walk(
             if item == NO_ITEM {
                 continue;
             }
-            let inst = &scene.instances[item as usize];
+            let inst = load_instance(scene, item);
             if intersect_primitive_item(scene, inst, item, ray, t_max, counters).t < t_max {
                 return true;
             }
@@ -603,7 +621,7 @@ fn pending_meshes_occlude(
     counters: &mut impl TraversalCounters,
 ) -> bool {
     for k in 0..pending.count {
-        let inst = &scene.instances[pending.item(k) as usize];
+        let inst = load_instance(scene, pending_meshes_item(pending, k));
         if mesh_occludes(scene, inst, ray, t_max, counters) {
             return true;
         }

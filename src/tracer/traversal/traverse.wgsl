@@ -29,7 +29,7 @@ struct Mailbox {
 // #endif
 }
 
-// Mirror of src/tracer/traversal/traverse.rs::Mailbox::new — change both.
+// Mirror of src/tracer/traversal/traverse.rs::mailbox_new — change both.
 fn mailbox_new() -> Mailbox {
     var mailbox: Mailbox;
 // #if MAILBOXES
@@ -44,7 +44,7 @@ fn mailbox_new() -> Mailbox {
 
 // Whether item was tested already (as far as its slot remembers); if not, it is now
 // remembered in its slot.
-// Mirror of src/tracer/traversal/traverse.rs::Mailbox::seen — change both.
+// Mirror of src/tracer/traversal/traverse.rs::mailbox_seen — change both.
 fn mailbox_seen(mailbox: ptr<function, Mailbox>, item: u32) -> bool {
 // #if MAILBOXES
     let slot = item & (ITEM_MAILBOX_SIZE - 1u);
@@ -111,7 +111,7 @@ fn intersect_primitive_item(inst: PackedInstance, item: u32, ray: Ray, t_max: f3
 
 // The i-th of the items a traversal step tests: the grid cell's item list, or every item
 // in turn (brute force).
-// Mirror of the `items` iterators in src/tracer/traversal/traverse.rs::closest_hit — change both.
+// Mirror of src/tracer/traversal/traverse.rs::item_at — change both.
 fn item_at(i: u32) -> u32 {
 // #if GRID
     return cell_item_at(i);
@@ -309,17 +309,20 @@ struct PendingMeshes {
     count: u32,
 }
 
-// Mirror of src/tracer/traversal/traverse.rs::PendingMeshes::new — change both.
+// None pending.
+// Mirror of src/tracer/traversal/traverse.rs::pending_meshes_new — change both.
 fn pending_meshes_new() -> PendingMeshes {
     return PendingMeshes(NO_ITEM, NO_ITEM, 0u);
 }
 
-// Mirror of src/tracer/traversal/traverse.rs::PendingMeshes::full — change both.
+// Whether two are pending (a third waits for them to be walked).
+// Mirror of src/tracer/traversal/traverse.rs::pending_meshes_full — change both.
 fn pending_meshes_full(pending: PendingMeshes) -> bool {
     return pending.count == 2u;
 }
 
-// Mirror of src/tracer/traversal/traverse.rs::PendingMeshes::push — change both.
+// Appends mesh instance item (not full).
+// Mirror of src/tracer/traversal/traverse.rs::pending_meshes_push — change both.
 fn pending_meshes_push(pending: ptr<function, PendingMeshes>, item: u32) {
     if (*pending).count == 0u {
         (*pending).first = item;
@@ -330,7 +333,7 @@ fn pending_meshes_push(pending: ptr<function, PendingMeshes>, item: u32) {
 }
 
 // The k-th pending instance (k < count).
-// Mirror of src/tracer/traversal/traverse.rs::PendingMeshes::item — change both.
+// Mirror of src/tracer/traversal/traverse.rs::pending_meshes_item — change both.
 fn pending_meshes_item(pending: PendingMeshes, k: u32) -> u32 {
     return select(pending.second, pending.first, k == 0u);
 }

@@ -5,10 +5,12 @@
 //! the watertight test: on the CPU four at a time (`triangle4`: the same answers, bit for
 //! bit, as the WGSL twins' one by one).
 
-use super::dda::{dda_setup, dda_step, enter_mesh, mesh_grid, Dda};
-use super::hit::{Hit, TraversalCounters};
-use crate::constants::{NO_ITEM, TRIANGLE_MAILBOX_SIZE};
-use crate::pack::{PackedInstance, PackedMesh, PackedScene, PackedTriangle};
+use super::dda::{dda_setup, dda_step, enter_mesh, mesh_grid, Dda, EnteredRay};
+use super::hit::{hit_miss, Hit, Slots, TraversalCounters};
+use crate::constants::TRIANGLE_MAILBOX_SIZE;
+use crate::pack::{
+    cell_item_at, cell_start_at, load_mesh, PackedInstance, PackedMesh, PackedScene, PackedTriangle,
+};
 use crate::tracer::base::ray::Ray;
 use crate::tracer::geometry::intersect::to_object_space;
 use crate::tracer::geometry::triangle4::{NearestTriangle, TriangleBatch, TriangleRays};
@@ -16,7 +18,7 @@ use crate::tracer::geometry::triangle4::{NearestTriangle, TriangleBatch, Triangl
 /// The mesh of a `KIND_MESH` instance.
 // Mirror of src/tracer/traversal/traverse_mesh.wgsl::instance_mesh — change both.
 pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &PackedInstance) -> &'a PackedMesh {
-    &scene.meshes[inst.params[0] as usize]
+    load_mesh(scene, inst.params[0] as u32)
 }
 
 /// The triangles a ray has tested in one mesh, as a direct-mapped cache of
@@ -27,50 +29,93 @@ pub fn instance_mesh<'a>(scene: &'a PackedScene, inst: &PackedInstance) -> &'a P
 /// not nearer than itself), so skipping it changes no result. Triangles are stored in
 /// Morton order, so the triangles near a ray have nearby numbers and seldom share a slot.
 /// Only `Mailboxes::Full` keeps one (`PackedScene::mailboxes`; the GPU's `MAILBOXES`
-/// variant); otherwise it remembers nothing.
+/// variant); otherwise it remembers nothing. (Free functions `triangle_mailbox_new`,
+/// `triangle_mailbox_seen`, as the WGSL twins are named.)
 // Mirror of src/tracer/traversal/traverse_mesh.wgsl::TriangleMailbox — change both.
-pub struct TriangleMailbox {
-    triangles: [u32; TRIANGLE_MAILBOX_SIZE as usize],
-    slot_mask: Option<u32>,
+pub struct TriangleMailbox(Slots<{ TRIANGLE_MAILBOX_SIZE as usize }>);
+
+/// An empty mailbox, kept as `scene.mailboxes` says (on the GPU the switch is the module's
+/// `MAILBOXES` specialisation).
+// Mirror of src/tracer/traversal/traverse_mesh.wgsl::triangle_mailbox_new — change both.
+pub fn triangle_mailbox_new(scene: &PackedScene) -> TriangleMailbox {
+    TriangleMailbox(Slots::new(scene.mailboxes.triangle_slot_mask()))
 }
 
-impl TriangleMailbox {
-    /// An empty mailbox, kept as `scene.mailboxes` says (on the GPU the switch is the
-    /// module's `MAILBOXES` specialisation).
-    // Mirror of src/tracer/traversal/traverse_mesh.wgsl::triangle_mailbox_new — change both.
-    pub fn new(scene: &PackedScene) -> TriangleMailbox {
-        TriangleMailbox {
-            triangles: [NO_ITEM; TRIANGLE_MAILBOX_SIZE as usize],
-            slot_mask: scene.mailboxes.triangle_slot_mask(),
-        }
-    }
-
-    /// Whether `triangle` was tested already (as far as its slot remembers); if not, it
-    /// is now remembered in its slot.
-    // Mirror of src/tracer/traversal/traverse_mesh.wgsl::triangle_mailbox_seen — change both.
-    pub fn seen(&mut self, triangle: u32) -> bool {
-        if let Some(mask) = self.slot_mask {
-            // (The constant mask too, so the index needs no bounds check.)
-            let slot =
-                &mut self.triangles[(triangle & mask & (TRIANGLE_MAILBOX_SIZE - 1)) as usize];
-            if *slot == triangle {
-                return true;
-            }
-            *slot = triangle;
-        }
-        false
-    }
+/// Whether `triangle` was tested already (as far as its slot remembers); if not, it is
+/// now remembered in its slot.
+// Mirror of src/tracer/traversal/traverse_mesh.wgsl::triangle_mailbox_seen — change both.
+#[inline(always)]
+pub fn triangle_mailbox_seen(mailbox: &mut TriangleMailbox, triangle: u32) -> bool {
+    mailbox.0.seen(triangle)
 }
 
-/// The items of cell `cell` of `cell_start`/`cell_items` as a slice (one bounds check per
-/// cell, none per item).
-fn cell_items(scene: &PackedScene, cell: usize) -> &[u32] {
-    let range = &scene.cell_start[cell..cell + 2];
-    &scene.cell_items[range[0] as usize..range[1] as usize]
+/// A walk through a mesh instance's own grid: the ray in the mesh's space, entered into
+/// the grid's bounds, its DDA, the ray as the triangle tests take it, the mesh's
+/// triangles and the triangle mailbox.
+struct MeshWalk<'a> {
+    mesh: &'a PackedMesh,
+    entered: EnteredRay,
+    dda: Dda,
+    tri_rays: TriangleRays,
+    triangles: &'a [PackedTriangle],
+    mailbox: TriangleMailbox,
+}
+
+/// The walk of mesh instance `inst` for `ray` in (0, t_max), standing in its first cell;
+/// None when the ray misses the mesh's grid. The set-up `intersect_mesh` and
+/// `mesh_occludes` share. (The WGSL twins each keep these lines: the same set-up as a WGSL
+/// function returning the walk as a struct made naga 30's SPIR-V writer panic, "Expression
+/// is not cached", in `glint kernels`.)
+#[inline(always)]
+fn mesh_walk_start<'a>(
+    scene: &'a PackedScene,
+    inst: &PackedInstance,
+    ray: &Ray,
+    t_max: f32,
+) -> Option<MeshWalk<'a>> {
+    let mesh = instance_mesh(scene, inst);
+    let (origin, dir) = to_object_space(inst, ray.origin, ray.dir);
+    let entered = enter_mesh(mesh, &Ray { origin, dir }, t_max)?;
+    let grid = mesh_grid(mesh);
+    let dda = dda_setup(&grid, &entered.ray, entered.inv_dir, entered.t_max)?;
+    Some(MeshWalk {
+        mesh,
+        dda,
+        tri_rays: TriangleRays::new(entered.ray.origin, entered.ray.dir),
+        triangles: mesh_triangles(scene, mesh),
+        mailbox: triangle_mailbox_new(scene),
+        entered,
+    })
+}
+
+/// Tests the triangles cell `cell` lists that `mailbox` has not seen, in list order and
+/// in batches of four lanes: `test` takes each full batch, then the rest (perhaps none);
+/// the walk stops (true) where `test` says true.
+#[inline(always)]
+fn test_cell_triangles(
+    scene: &PackedScene,
+    cell: u32,
+    mailbox: &mut TriangleMailbox,
+    counters: &mut impl TraversalCounters,
+    mut test: impl FnMut(&mut TriangleBatch) -> bool,
+) -> bool {
+    let mut batch = TriangleBatch::EMPTY;
+    let end = cell_start_at(scene, cell + 1);
+    for i in cell_start_at(scene, cell)..end {
+        let local = cell_item_at(scene, i);
+        if triangle_mailbox_seen(mailbox, local) {
+            continue;
+        }
+        counters.item_tested();
+        if batch.push(local) && test(&mut batch) {
+            return true;
+        }
+    }
+    test(&mut batch)
 }
 
 /// Nearest hit in (0, t_max) with mesh instance `item` (`inst`): t, the barycentrics and
-/// the triangle as `part`; `Hit::MISS` (t = T_MISS) when nothing is hit.
+/// the triangle as `part`; `hit_miss()` (t = T_MISS) when nothing is hit.
 // Mirror of src/tracer/traversal/traverse_mesh.wgsl::intersect_mesh — change both.
 pub fn intersect_mesh(
     scene: &PackedScene,
@@ -80,35 +125,19 @@ pub fn intersect_mesh(
     t_max: f32,
     counters: &mut impl TraversalCounters,
 ) -> Hit {
-    let mesh = instance_mesh(scene, inst);
-    let (origin, dir) = to_object_space(inst, ray.origin, ray.dir);
-    let Some(entered) = enter_mesh(mesh, &Ray { origin, dir }, t_max) else {
-        return Hit::MISS;
+    let Some(mut walk) = mesh_walk_start(scene, inst, ray, t_max) else {
+        return hit_miss();
     };
-    let grid = mesh_grid(mesh);
-    let Some(mut dda) = dda_setup(&grid, &entered.ray, entered.inv_dir, entered.t_max) else {
-        return Hit::MISS;
-    };
-    let tri_rays = TriangleRays::new(entered.ray.origin, entered.ray.dir);
-    let triangles = mesh_triangles(scene, mesh);
-    let mut mailbox = TriangleMailbox::new(scene);
-    let mut best = NearestTriangle::none(entered.t_max);
-    while skip_empty_cells(scene, &mut dda, best.t, counters) {
-        let cell = dda.cell as usize;
+    let mut best = NearestTriangle::none(walk.entered.t_max);
+    while skip_empty_cells(scene, &mut walk.dda, best.t, counters) {
+        let cell = walk.dda.cell;
         counters.cell_visited();
-        let next = step_and_prefetch(scene, &mut dda);
-        // The cell's untested triangles in batches of four lanes, in list order.
-        let mut batch = TriangleBatch::EMPTY;
-        for &local in cell_items(scene, cell) {
-            if mailbox.seen(local) {
-                continue;
-            }
-            counters.item_tested();
-            if batch.push(local) {
-                batch.keep_nearest(&tri_rays, triangles, &mut best);
-            }
-        }
-        batch.keep_nearest(&tri_rays, triangles, &mut best);
+        let next = step_and_prefetch(scene, &mut walk.dda);
+        let (tri_rays, triangles) = (&walk.tri_rays, walk.triangles);
+        test_cell_triangles(scene, cell, &mut walk.mailbox, counters, |batch| {
+            batch.keep_nearest(tri_rays, triangles, &mut best);
+            false
+        });
         // A hit inside this cell is final; so is leaving the grid or passing t_max.
         match next {
             Some(t_cell_exit) if best.t > t_cell_exit => {}
@@ -116,14 +145,14 @@ pub fn intersect_mesh(
         }
     }
     if !best.is_hit() {
-        return Hit::MISS;
+        return hit_miss();
     }
     Hit {
-        t: best.t + entered.t_moved,
+        t: best.t + walk.entered.t_moved,
         item,
         b1: best.b1,
         b2: best.b2,
-        part: mesh.first_triangle + best.local,
+        part: walk.mesh.first_triangle + best.local,
     }
 }
 
@@ -141,9 +170,8 @@ fn skip_empty_cells(
     counters: &mut impl TraversalCounters,
 ) -> bool {
     loop {
-        let cell = dda.cell as usize;
-        let range = &scene.cell_start[cell..cell + 2];
-        if range[0] != range[1] {
+        let cell = dda.cell;
+        if cell_start_at(scene, cell) != cell_start_at(scene, cell + 1) {
             return true;
         }
         counters.cell_visited();
@@ -197,34 +225,20 @@ pub fn mesh_occludes(
     t_max: f32,
     counters: &mut impl TraversalCounters,
 ) -> bool {
-    let mesh = instance_mesh(scene, inst);
-    let (origin, dir) = to_object_space(inst, ray.origin, ray.dir);
-    let Some(entered) = enter_mesh(mesh, &Ray { origin, dir }, t_max) else {
+    let Some(mut walk) = mesh_walk_start(scene, inst, ray, t_max) else {
         return false;
     };
-    let grid = mesh_grid(mesh);
-    let Some(mut dda) = dda_setup(&grid, &entered.ray, entered.inv_dir, entered.t_max) else {
-        return false;
-    };
-    let tri_rays = TriangleRays::new(entered.ray.origin, entered.ray.dir);
-    let triangles = mesh_triangles(scene, mesh);
-    let mut mailbox = TriangleMailbox::new(scene);
+    let t_max = walk.entered.t_max;
     // (Any step the walk takes ends before t_exit ≤ t_max: t_max stops nothing.)
-    while skip_empty_cells(scene, &mut dda, entered.t_max, counters) {
-        let cell = dda.cell as usize;
+    while skip_empty_cells(scene, &mut walk.dda, t_max, counters) {
+        let cell = walk.dda.cell;
         counters.cell_visited();
-        let next = step_and_prefetch(scene, &mut dda);
-        let mut batch = TriangleBatch::EMPTY;
-        for &local in cell_items(scene, cell) {
-            if mailbox.seen(local) {
-                continue;
-            }
-            counters.item_tested();
-            if batch.push(local) && batch.any_hit(&tri_rays, triangles, entered.t_max) {
-                return true;
-            }
-        }
-        if batch.any_hit(&tri_rays, triangles, entered.t_max) {
+        let next = step_and_prefetch(scene, &mut walk.dda);
+        let (tri_rays, triangles) = (&walk.tri_rays, walk.triangles);
+        let hit = test_cell_triangles(scene, cell, &mut walk.mailbox, counters, |batch| {
+            batch.any_hit(tri_rays, triangles, t_max)
+        });
+        if hit {
             return true;
         }
         if next.is_none() {

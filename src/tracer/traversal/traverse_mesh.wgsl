@@ -20,7 +20,7 @@ struct TriangleMailbox {
 // #endif
 }
 
-// Mirror of src/tracer/traversal/traverse_mesh.rs::TriangleMailbox::new — change both.
+// Mirror of src/tracer/traversal/traverse_mesh.rs::triangle_mailbox_new — change both.
 fn triangle_mailbox_new() -> TriangleMailbox {
     var mailbox: TriangleMailbox;
 // #if MAILBOXES
@@ -33,7 +33,7 @@ fn triangle_mailbox_new() -> TriangleMailbox {
 
 // Whether triangle was tested already (as far as its slot remembers); if not, it is now
 // remembered in its slot.
-// Mirror of src/tracer/traversal/traverse_mesh.rs::TriangleMailbox::seen — change both.
+// Mirror of src/tracer/traversal/traverse_mesh.rs::triangle_mailbox_seen — change both.
 fn triangle_mailbox_seen(mailbox: ptr<function, TriangleMailbox>, triangle: u32) -> bool {
 // #if MAILBOXES
     let slot = triangle & (TRIANGLE_MAILBOX_SIZE - 1u);
@@ -75,7 +75,10 @@ fn skip_empty_cells(dda: ptr<function, Dda>, t_stop: f32) -> bool {
 }
 
 // Nearest hit in (0, t_max) with mesh instance `item` (inst): t, the barycentrics and the
-// triangle as part; hit_miss() (t = T_MISS) when nothing is hit.
+// triangle as part; hit_miss() (t = T_MISS) when nothing is hit. (Its set-up, the lines up
+// to the mailbox, is mesh_occludes's too; the CPU shares it, traverse_mesh.rs::
+// mesh_walk_start, but the same set-up as a WGSL function returning the walk as a struct
+// made naga 30's SPIR-V writer panic: each keeps its copy.)
 // Mirror of src/tracer/traversal/traverse_mesh.rs::intersect_mesh — change both.
 fn intersect_mesh(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit {
     let mesh = instance_mesh(inst);

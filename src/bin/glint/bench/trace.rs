@@ -19,7 +19,7 @@ use glint::bench::trace_rays::{
 use glint::pack::PackedScene;
 use glint::pipeline::pack_scene;
 use glint::script_driver::ScriptSettings;
-use glint::tracer::traversal::traverse::Hit;
+use glint::tracer::traversal::traverse::hit_miss;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -46,7 +46,7 @@ pub fn bench_trace(args: &TraceBenchArgs) -> anyhow::Result<()> {
     let primary = camera_rays(&packed);
     // The answers go to buffers written once before timing (as the Embree harness does),
     // so the timings hold no first-touch page faults.
-    let mut hits = vec![Hit::MISS; primary.len()];
+    let mut hits = vec![hit_miss(); primary.len()];
     let (t_primary, ()) = fastest(args.repeat, || {
         trace_primary_into(&packed, &primary, &mut hits)
     });
