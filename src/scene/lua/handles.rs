@@ -43,7 +43,7 @@ pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
             (
                 $name,
                 (|lua: &Lua, args: MultiValue| {
-                    super::ensure_live(lua)?;
+                    super::limits::ensure_live(lua)?;
                     let a = Args::method(lua, concat!("node:", $name), args);
                     a.receiver::<NodeHandle>("node")?;
                     $f(&a)?;
@@ -169,7 +169,7 @@ pub const MAX_CYCLE_CHECK_VISITS: u64 = 1 << 26;
 
 /// Bytes one `add_child` link holds: the child in the parent's list and the parent in
 /// the child's, with vector growth.
-const LINK_BYTES: u64 = super::grown(2 * std::mem::size_of::<NodeId>());
+const LINK_BYTES: u64 = super::budget::grown(2 * std::mem::size_of::<NodeId>());
 
 fn add_child(a: &Args) -> mlua::Result<()> {
     let parent = a.receiver::<NodeHandle>("node")?.0;
@@ -191,7 +191,7 @@ fn add_child(a: &Args) -> mlua::Result<()> {
         }
     });
     match check {
-        Ok(()) => super::charge(a, LINK_BYTES, "the child link")?,
+        Ok(()) => super::budget::charge(a, LINK_BYTES, "the child link")?,
         Err(Some((c, p))) => {
             return Err(a.bad_in(
                 1,
@@ -360,7 +360,7 @@ pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
             (
                 $name,
                 (|lua: &Lua, args: MultiValue| {
-                    super::ensure_live(lua)?;
+                    super::limits::ensure_live(lua)?;
                     let a = Args::method(lua, concat!("material:", $name), args);
                     let id = a.receiver::<MaterialHandle>("material")?.0;
                     let edit = $f(&a)?;
@@ -402,7 +402,7 @@ pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
 /// textures, bump map, reflection, refraction), so that one node's variant of a shared
 /// material (a dialect's per-node texture) leaves the others alone.
 fn copy_material(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
-    super::ensure_live(lua)?;
+    super::limits::ensure_live(lua)?;
     let a = Args::method(lua, "material:copy", args);
     let id = a.receiver::<MaterialHandle>("material")?.0;
     let at = super::args::location(lua);

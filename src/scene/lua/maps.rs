@@ -4,7 +4,9 @@
 //! per script.
 
 use super::args::Args;
-use super::{charge, memory_left, with_state};
+use super::budget::{charge, check_file_cost, memory_left};
+use super::limits::reach_limit;
+use super::with_state;
 use crate::scene::texture::{load_texture, texture_bytes, OVER_BUDGET};
 use crate::scene::{Material, TextureId};
 use mlua::Value;
@@ -72,13 +74,13 @@ fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
         return Ok(id);
     }
     // The file is held while it is decoded.
-    super::check_file_cost(a, &path, 1, "texture")?;
+    check_file_cost(a, &path, 1, "texture")?;
     // The file is held while it is decoded; the decoder counts the rest itself.
     let left = memory_left(a.lua).saturating_sub(std::fs::metadata(&path).map_or(0, |m| m.len()));
     let texture = load_texture(&path, left).map_err(|e| {
         if e.contains(OVER_BUDGET) {
             // The memory budget refused it: a reached limit, final as the others are.
-            super::reach_limit(a, format!("argument {n} ({name}): {e}"))
+            reach_limit(a, format!("argument {n} ({name}): {e}"))
         } else {
             a.bad_in(n, name, e)
         }
