@@ -528,9 +528,18 @@ fn library_files() -> Vec<(String, String)> {
     collect_rust_files(&root.join("src"), &mut paths);
     let mut relatives: Vec<String> = paths
         .iter()
-        .map(|p| p.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/"))
+        .map(|p| {
+            p.strip_prefix(root)
+                .unwrap()
+                .to_string_lossy()
+                .replace('\\', "/")
+        })
         .collect();
-    relatives.extend(all_wgsl_files().into_iter().filter(|f| f.starts_with("src/")));
+    relatives.extend(
+        all_wgsl_files()
+            .into_iter()
+            .filter(|f| f.starts_with("src/")),
+    );
     relatives.retain(|f| !f.starts_with("src/bin/"));
     relatives.sort();
     relatives
