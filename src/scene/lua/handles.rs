@@ -18,23 +18,38 @@ use crate::scene::{short_name, Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
 use mlua::{Lua, MetaMethod, MultiValue, UserData, UserDataFields, UserDataMethods, Value};
 
-impl UserData for NodeHandle {
-    fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
-        // Methods are looked up in a table the script may extend (`gr.extend_node`).
-        fields.add_meta_field_with(MetaMethod::Index, |lua| {
-            super::methods::index(lua, super::methods::Kind::Node)
-        });
-    }
+/// `UserData` for a handle into one of the graph's arenas (`$arena`: `nodes`,
+/// `materials`): its methods are looked up in a table the script may extend
+/// (`gr.extend_node`, `gr.extend_material`: `$kind`), and it prints as `$word 'name'`.
+macro_rules! arena_handle_userdata {
+    ($handle:ty, $kind:expr, $word:literal, $arena:ident) => {
+        impl UserData for $handle {
+            fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
+                fields.add_meta_field_with(MetaMethod::Index, |lua| {
+                    super::methods::index(lua, $kind)
+                });
+            }
 
-    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
-            let id = this.borrow::<NodeHandle>()?.0;
-            Ok(with_state(lua, |s| {
-                format!("node '{}'", short_name(&s.graph.nodes[id].name))
-            }))
-        });
-    }
+            fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
+                methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
+                    let id = this.borrow::<$handle>()?.0;
+                    Ok(with_state(lua, |s| {
+                        let name = short_name(&s.graph.$arena[id].name);
+                        format!(concat!($word, " '{}'"), name)
+                    }))
+                });
+            }
+        }
+    };
 }
+
+arena_handle_userdata!(NodeHandle, super::methods::Kind::Node, "node", nodes);
+arena_handle_userdata!(
+    MaterialHandle,
+    super::methods::Kind::Material,
+    "material",
+    materials
+);
 
 /// The built-in node methods.
 pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
@@ -332,24 +347,6 @@ fn set_material(a: &Args) -> mlua::Result<()> {
         Some(name) => Err(a.error(format!(
             "node '{name}' is a transform node; materials go on geometry nodes (gr.sphere, gr.cube, gr.mesh, …) and CSG nodes"
         ))),
-    }
-}
-
-impl UserData for MaterialHandle {
-    fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
-        // Methods are looked up in a table the script may extend (`gr.extend_material`).
-        fields.add_meta_field_with(MetaMethod::Index, |lua| {
-            super::methods::index(lua, super::methods::Kind::Material)
-        });
-    }
-
-    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
-            let id = this.borrow::<MaterialHandle>()?.0;
-            Ok(with_state(lua, |s| {
-                format!("material '{}'", short_name(&s.graph.materials[id].name))
-            }))
-        });
     }
 }
 

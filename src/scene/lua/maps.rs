@@ -20,27 +20,30 @@ pub const DEFAULT_BUMP_STRENGTH: f64 = 1.0;
 
 /// `m:set_diffuse(r, g, b)` / `m:set_diffuse(grey)` / `m:set_diffuse('img.png')`.
 pub(super) fn set_diffuse(a: &Args) -> mlua::Result<Edit> {
-    if let Value::String(_) = a.get(1) {
-        let id = texture(a, 1, "file")?;
-        return Ok(Box::new(move |m: &mut Material| m.diffuse_map = Some(id)));
-    }
-    let c = a.colour_args(1, true)?;
-    Ok(Box::new(move |m: &mut Material| {
-        m.kd = c;
-        m.diffuse_map = None;
-    }))
+    colour_or_map(a, |m| &mut m.kd, |m| &mut m.diffuse_map)
 }
 
 /// `m:set_specular(r, g, b)` / `m:set_specular(grey)` / `m:set_specular('img.png')`.
 pub(super) fn set_specular(a: &Args) -> mlua::Result<Edit> {
+    colour_or_map(a, |m| &mut m.ks, |m| &mut m.specular_map)
+}
+
+/// A colour's setter: an image file's name sets the material's `map` to the texture
+/// (the colour stays, unused), a colour (numbers, grey or a table) sets `colour` and
+/// clears the map.
+fn colour_or_map(
+    a: &Args,
+    colour: fn(&mut Material) -> &mut [f32; 3],
+    map: fn(&mut Material) -> &mut Option<TextureId>,
+) -> mlua::Result<Edit> {
     if let Value::String(_) = a.get(1) {
         let id = texture(a, 1, "file")?;
-        return Ok(Box::new(move |m: &mut Material| m.specular_map = Some(id)));
+        return Ok(Box::new(move |m: &mut Material| *map(m) = Some(id)));
     }
     let c = a.colour_args(1, true)?;
     Ok(Box::new(move |m: &mut Material| {
-        m.ks = c;
-        m.specular_map = None;
+        *colour(m) = c;
+        *map(m) = None;
     }))
 }
 

@@ -115,15 +115,7 @@ fn inline_mesh(a: &Args, name: &str) -> mlua::Result<Mesh> {
     for (f, face) in faces.sequence_values::<Value>().enumerate() {
         let face = face?;
         let Value::Table(t) = &face else {
-            return Err(a.bad_in(
-                3,
-                "faces",
-                format!(
-                    "element {} must be a table of vertex indices, got {}",
-                    f + 1,
-                    describe(a.lua, &face)
-                ),
-            ));
+            return Err(a.bad_element(3, "faces", f, "a table of vertex indices", &face));
         };
         let mut ids = Vec::new();
         for (c, idx) in t.sequence_values::<Value>().enumerate() {
@@ -185,15 +177,7 @@ fn inline_positions(a: &Args, verts: &mlua::Table, count: usize) -> mlua::Result
     for (i, v) in verts.sequence_values::<Value>().enumerate() {
         let v = v?;
         let Value::Table(t) = &v else {
-            return Err(a.bad_in(
-                2,
-                "vertices",
-                format!(
-                    "element {} must be a table of 3 numbers {{x, y, z}}, got {}",
-                    i + 1,
-                    describe(a.lua, &v)
-                ),
-            ));
+            return Err(a.bad_element(2, "vertices", i, "a table of 3 numbers {x, y, z}", &v));
         };
         let p = a.vec3_from(t, 2, "vertices").map_err(|_| {
             a.bad_in(
@@ -222,10 +206,13 @@ fn inline_normals(a: &Args, n: usize) -> mlua::Result<Option<Vec<DVec3>>> {
             Value::Table(t) => a.vec3_from(t, 5, "normals").ok(),
             _ => None,
         }) else {
-            return Err(bad(format!(
-                "must be a normal of 3 finite numbers {{x, y, z}}, got {}",
-                describe(a.lua, &v)
-            )));
+            return Err(a.bad_element(
+                5,
+                "normals",
+                i,
+                "a normal of 3 finite numbers {x, y, z}",
+                &v,
+            ));
         };
         let unit = crate::scene::obj::unit_or_zero(DVec3::from_array(p));
         if unit == DVec3::ZERO {
@@ -276,17 +263,8 @@ fn inline_uvs(a: &Args, n: usize) -> mlua::Result<Option<Vec<[f32; 2]>>> {
                 }
                 _ => None,
             };
-            let (u, v) = pair.ok_or_else(|| {
-                a.bad_in(
-                    4,
-                    "uvs",
-                    format!(
-                        "element {} must be a pair of numbers {{u, v}}, got {}",
-                        i + 1,
-                        describe(a.lua, &uv)
-                    ),
-                )
-            })?;
+            let (u, v) =
+                pair.ok_or_else(|| a.bad_element(4, "uvs", i, "a pair of numbers {u, v}", &uv))?;
             uvs.push([u as f32, v as f32]);
         }
         if uvs.len() != n {

@@ -259,17 +259,9 @@ fn render_with_lights(
             Value::UserData(ud) => ud.borrow::<LightHandle>().ok().map(|l| l.0.clone()),
             _ => None,
         };
-        lights.push(light.ok_or_else(|| {
-            a.bad_in(
-                10,
-                "lights",
-                format!(
-                    "element {} must be a light made by gr.light, got {}",
-                    i + 1,
-                    describe(lua, &v)
-                ),
-            )
-        })?);
+        lights.push(
+            light.ok_or_else(|| a.bad_element(10, "lights", i, "a light made by gr.light", &v))?,
+        );
     }
     let request = RenderRequest {
         output,
