@@ -239,15 +239,7 @@ fn disarm_signal_cleanup(armed: Armed) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn names(dir: &Path) -> Vec<String> {
-        let mut names: Vec<String> = fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
+    use crate::testing::scratch::file_names as names;
 
     /// Files other than images: the whole new file or the old one, never a partial one.
     #[test]

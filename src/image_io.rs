@@ -405,6 +405,7 @@ pub fn read_image_within(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::scratch::file_names;
     use std::fs;
 
     /// A fresh scratch directory per test, under the system temp dir.
@@ -425,15 +426,6 @@ mod tests {
         film
     }
 
-    fn dir_entries(dir: &Path) -> Vec<String> {
-        let mut names: Vec<String> = fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        names.sort();
-        names
-    }
-
     #[test]
     fn png_round_trip_is_byte_exact() {
         let dir = scratch("png");
@@ -445,7 +437,7 @@ mod tests {
         assert_eq!(back.to_rgb8(), film.to_rgb8());
         // Reading is exactly /255, no gamma.
         assert_eq!(back.pixels[0][0], f32::from(film.to_rgb8()[0]) / 255.0);
-        assert_eq!(dir_entries(&dir), vec!["out.png"]);
+        assert_eq!(file_names(&dir), vec!["out.png"]);
     }
 
     #[test]
@@ -457,7 +449,7 @@ mod tests {
         write_image(&film, &path).unwrap();
         let back = read_image(&path).unwrap();
         assert_eq!(back, film);
-        assert_eq!(dir_entries(&dir), vec!["out.EXR"]);
+        assert_eq!(file_names(&dir), vec!["out.EXR"]);
     }
 
     /// The same film gives the same EXR bytes every time (the determinism rule, for
@@ -496,7 +488,7 @@ mod tests {
         white.pixels.fill([1.0; 3]);
         write_image(&white, &path).unwrap();
         assert_eq!(read_image(&path).unwrap(), white);
-        assert_eq!(dir_entries(&dir), vec!["a.png"]);
+        assert_eq!(file_names(&dir), vec!["a.png"]);
     }
 
     #[test]
@@ -510,7 +502,7 @@ mod tests {
             "{err}"
         );
         assert!(!missing.exists());
-        assert!(dir_entries(&dir).is_empty());
+        assert!(file_names(&dir).is_empty());
     }
 
     #[test]
@@ -523,7 +515,7 @@ mod tests {
             assert!(msg.contains(".png") && msg.contains(".exr"), "{msg}");
             assert!(msg.contains(name), "{msg}");
         }
-        assert!(dir_entries(&dir).is_empty());
+        assert!(file_names(&dir).is_empty());
     }
 
     #[test]
@@ -535,7 +527,7 @@ mod tests {
         assert!(matches!(err, ImageIoError::MalformedFilm { .. }));
         // A zero-sized PNG is rejected by the encoder after the temp file exists.
         assert!(write_image(&Film::new(0, 0), &dir.join("y.png")).is_err());
-        assert!(dir_entries(&dir).is_empty());
+        assert!(file_names(&dir).is_empty());
     }
 
     #[test]

@@ -15,7 +15,7 @@ use std::time::Instant;
 pub use crate::gpu::compile::bindings::SCENE_TABLE_BINDINGS;
 use crate::gpu::device::pipeline_cache::Lap;
 pub use crate::gpu::device::pipeline_cache::{
-    CompileSteps, CompileSummary, CompiledPipeline, PipelineCache,
+    CompileSteps, CompileSummary, CompileTimes, CompiledPipeline, PipelineCache,
 };
 use crate::gpu::upload::tables::{table_layout_entry, SCENE_TABLE_FORMATS};
 /// Render entry: tile uniform and output buffer.
@@ -120,7 +120,7 @@ fn shader_module(
     let mut lap = Lap::start();
     // naga first: its messages point into the assembled source.
     validate(source, features)?;
-    steps.validate = lap.next();
+    steps.times.validate = lap.next();
     let module = ctx.scoped("shader compilation", || {
         ctx.device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -128,7 +128,7 @@ fn shader_module(
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             })
     })?;
-    steps.shader_module = lap.next();
+    steps.times.shader_module = lap.next();
     if let Ok(mut map) = ctx.pipelines.modules.lock() {
         map.insert(source.to_string(), module.clone());
     }
@@ -156,7 +156,7 @@ pub fn get_pipeline(
     let mut steps = CompileSteps::default();
     let mut lap = Lap::start();
     let source = assemble_with(features, entry, kernel);
-    steps.assemble = lap.next();
+    steps.times.assemble = lap.next();
     let module = shader_module(ctx, &source, features, &mut steps)?;
     let layout_of_entry = layout_entries(entry, kernel);
     crate::gpu::device::dump::dump_kernel(ctx.dump.as_ref(), entry, &source, &layout_of_entry)?;
@@ -165,7 +165,7 @@ pub fn get_pipeline(
     let stored = ctx
         .disk_cache
         .open(device, &ctx.info, &source, kernel, entry);
-    steps.cache_load = lap.next();
+    steps.times.cache_load = lap.next();
     let (pipeline, layout) = ctx.scoped("shader compilation", || {
         let layout = bind_group_layout(device, entry, kernel);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -181,13 +181,13 @@ pub fn get_pipeline(
             compilation_options: Default::default(),
             cache: stored.cache(),
         });
-        steps.pipeline = lap.next();
+        steps.times.pipeline = lap.next();
         (pipeline, layout)
     })?;
     // The error scope's wait belongs to the compile.
-    steps.pipeline += lap.next();
+    steps.times.pipeline += lap.next();
     steps.disk = ctx.disk_cache.keep(&stored);
-    steps.cache_store = lap.next();
+    steps.times.cache_store = lap.next();
     let compiled = Arc::new(CompiledPipeline {
         pipeline,
         layout,

@@ -213,18 +213,20 @@ mod tests {
         }
     }
 
+    /// A sphere (node 0) under `levels` nodes, node k (`level(k)`) over node k − 1.
+    fn stacked_over_a_sphere(levels: usize, level: impl Fn(usize) -> Node) -> SceneGraph {
+        let mut graph = SceneGraph::default();
+        graph.nodes.push(node("s", sphere(), vec![]));
+        graph.nodes.extend((1..=levels).map(level));
+        graph
+    }
+
     #[test]
     fn doubling_dag_is_counted_without_walking_it() {
         // n0 = sphere; n(k) has n(k-1) twice: 2^k spheres below n(k).
-        let mut graph = SceneGraph::default();
-        graph.nodes.push(node("s", sphere(), vec![]));
-        for k in 1..=60 {
-            graph.nodes.push(node(
-                &format!("n{k}"),
-                NodeKind::Transform,
-                vec![k - 1, k - 1],
-            ));
-        }
+        let graph = stacked_over_a_sphere(60, |k| {
+            node(&format!("n{k}"), NodeKind::Transform, vec![k - 1, k - 1])
+        });
         let c = scene_cost(&graph, 40).unwrap();
         assert_eq!(c.objects, 1 << 40);
         assert_eq!(c.paths, (1 << 41) - 1);
@@ -250,19 +252,18 @@ mod tests {
     #[test]
     fn shared_csg_trees_are_counted_once_per_node() {
         // c(k) = csg(c(k-1), c(k-1)): 2^k leaves; under one transform 10⁵ times.
-        let mut graph = SceneGraph::default();
-        graph.nodes.push(node("s", sphere(), vec![]));
-        for k in 1..=16 {
-            graph.nodes.push(node(
+        let mut graph = stacked_over_a_sphere(16, |k| {
+            let op = crate::scene::CsgOp::Union;
+            node(
                 "c",
                 NodeKind::Csg {
-                    op: crate::scene::CsgOp::Union,
+                    op,
                     a: k - 1,
                     b: k - 1,
                 },
                 vec![],
-            ));
-        }
+            )
+        });
         let top = graph.nodes.len();
         graph
             .nodes
@@ -275,13 +276,7 @@ mod tests {
 
     #[test]
     fn deep_chains_are_refused_even_when_shared() {
-        let mut graph = SceneGraph::default();
-        graph.nodes.push(node("leaf", sphere(), vec![]));
-        for k in 1..=300 {
-            graph
-                .nodes
-                .push(node("t", NodeKind::Transform, vec![k - 1]));
-        }
+        let graph = stacked_over_a_sphere(300, |k| node("t", NodeKind::Transform, vec![k - 1]));
         assert!(matches!(
             scene_cost(&graph, 300),
             Err(FlattenError::TooDeep { .. })

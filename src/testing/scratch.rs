@@ -43,6 +43,22 @@ impl Drop for TempDir {
     }
 }
 
+/// The names of the entries of `dir`, sorted: what a test expects a folder to hold
+/// (no temporary file left behind, no image half written).
+pub fn file_names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("read a scratch folder")
+        .map(|e| {
+            e.expect("read a folder entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    names.sort();
+    names
+}
+
 #[cfg(test)]
 mod tests {
     use super::temp_dir;

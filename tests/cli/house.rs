@@ -1,8 +1,9 @@
 //! The house rules, checked from the source text (no build of anything else needed):
 //! dependencies between the top-level modules of each crate of `src/` (the library, and
 //! the binary in `src/bin/glint/`) point one way, so do those between the files of every
-//! module folder at any depth, and no function in `src/` is longer than 100 lines, in Rust
-//! or WGSL; every WGSL file sits beside its Rust twin (`X.wgsl` beside `X.rs`), but for
+//! module folder at any depth, no function in `src/` is longer than 100 lines, in Rust
+//! or WGSL, and no file of the library (`src/` outside `src/bin/`) longer than 800; every
+//! WGSL file sits beside its Rust twin (`X.wgsl` beside `X.rs`), but for
 //! the few listed in [`WGSL_WITHOUT_RUST_BESIDE`].
 //! Test modules (`#[cfg(test)] mod tests` and what follows it) are not counted: tests may
 //! reach anywhere.
@@ -12,6 +13,9 @@ use std::path::{Path, PathBuf};
 
 /// The longest function the house allows, in lines from its `fn` line to its closing brace.
 const MAX_FUNCTION_LINES: usize = 100;
+
+/// The longest library file the house allows, in lines (Rust or WGSL, test module included).
+const MAX_LIBRARY_FILE_LINES: usize = 800;
 
 /// The source roots of the package's crates, each checked on its own (`crate::` names its
 /// own root): the library (`src/`, `src/bin/` left out) and the binary `glint`.
@@ -506,6 +510,62 @@ fn no_wgsl_function_is_longer_than_the_limit() {
     );
 }
 
+/// `(file, lines)` of every file of `files` (paths relative to the repository, with their
+/// text) longer than [`MAX_LIBRARY_FILE_LINES`].
+fn long_files(files: &[(String, String)]) -> Vec<(String, usize)> {
+    files
+        .iter()
+        .map(|(relative, text)| (relative.clone(), text.lines().count()))
+        .filter(|(_, lines)| *lines > MAX_LIBRARY_FILE_LINES)
+        .collect()
+}
+
+/// The library's Rust and WGSL files (`src/` outside `src/bin/`), whole, with their paths
+/// relative to the repository.
+fn library_files() -> Vec<(String, String)> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut paths = Vec::new();
+    collect_rust_files(&root.join("src"), &mut paths);
+    let mut relatives: Vec<String> = paths
+        .iter()
+        .map(|p| {
+            p.strip_prefix(root)
+                .unwrap()
+                .to_string_lossy()
+                .replace('\\', "/")
+        })
+        .collect();
+    relatives.extend(
+        all_wgsl_files()
+            .into_iter()
+            .filter(|f| f.starts_with("src/")),
+    );
+    relatives.retain(|f| !f.starts_with("src/bin/"));
+    relatives.sort();
+    relatives
+        .into_iter()
+        .map(|relative| {
+            let text = std::fs::read_to_string(root.join(&relative)).expect("read a source file");
+            (relative, text)
+        })
+        .collect()
+}
+
+#[test]
+fn no_library_file_is_longer_than_the_limit() {
+    let files = library_files();
+    assert!(
+        files.iter().any(|(f, _)| f.ends_with(".wgsl")) && files.len() > 100,
+        "too few library files: {}",
+        files.len()
+    );
+    let long = long_files(&files);
+    assert!(
+        long.is_empty(),
+        "library files over {MAX_LIBRARY_FILE_LINES} lines (split them by concern): {long:#?}"
+    );
+}
+
 #[test]
 fn the_checks_find_what_they_look_for() {
     // A cycle, a one-way chain, a grouped import and a long function, from text.
@@ -549,5 +609,15 @@ fn the_checks_find_what_they_look_for() {
     assert_eq!(
         without_test_module("a\n#[cfg(test)]\nmod tests {}\n"),
         "a\n"
+    );
+
+    let lines = |n: usize| "x\n".repeat(n);
+    let files = [
+        ("src/a.rs".to_string(), lines(MAX_LIBRARY_FILE_LINES)),
+        ("src/b.wgsl".to_string(), lines(MAX_LIBRARY_FILE_LINES + 1)),
+    ];
+    assert_eq!(
+        long_files(&files),
+        vec![("src/b.wgsl".to_string(), MAX_LIBRARY_FILE_LINES + 1)]
     );
 }

@@ -87,17 +87,28 @@ impl Entry {
     /// The wavefront kernels: the camera pass, a generation's five in the order it
     /// dispatches them, then uniform AA's resolve (AA none has no resolve): the plan's
     /// `Mode::Wavefront` pipelines.
-    pub const WAVEFRONT: [Entry; 7] = then(Entry::CHAIN_PASSES, Entry::WavefrontResolve);
+    pub const WAVEFRONT: [Entry; 7] = joined(&[
+        &[Entry::WavefrontCamera],
+        &Entry::CHAIN_GENERATION,
+        &[Entry::WavefrontResolve],
+    ]);
 
     /// `glint view`'s frame through the wavefront kernels: the camera pass, a
     /// generation's five, then the store into the sums (`gpu/view/progressive.rs`'s pipelines).
-    pub const WAVEFRONT_VIEW: [Entry; 7] = then(Entry::CHAIN_PASSES, Entry::WavefrontViewStore);
+    pub const WAVEFRONT_VIEW: [Entry; 7] = joined(&[
+        &[Entry::WavefrontCamera],
+        &Entry::CHAIN_GENERATION,
+        &[Entry::WavefrontViewStore],
+    ]);
 
     /// `glint view`'s frame through the wavefront kernels in scenes with refraction: the
     /// camera pass, a tree's generation's passes and its fold ([`Entry::WAVEFRONT_TREE`]'s
     /// before its resolve), then the store into the sums.
-    pub const WAVEFRONT_VIEW_TREE: [Entry; 11] =
-        then(Entry::TREE_PASSES, Entry::WavefrontViewStore);
+    pub const WAVEFRONT_VIEW_TREE: [Entry; 11] = joined(&[
+        &[Entry::WavefrontCamera],
+        &Entry::TREE_GENERATION,
+        &[Entry::WavefrontViewStore],
+    ]);
 
     /// The megakernel entries the wavefront kernels replace: not in modules with
     /// [`wavefront_kernels`].
@@ -114,62 +125,50 @@ impl Entry {
     /// `Mode::AdaptiveWavefront` pipelines: adaptive AA's small kernels, the lattice
     /// passes' camera pass, the generations' passes ([`Entry::WAVEFRONT`]'s after its
     /// camera pass) and the store pass.
-    pub const ADAPTIVE_WAVEFRONT: [Entry; 10] = [
-        Entry::AdaptiveDecide,
-        Entry::AdaptiveWorkArgs,
-        Entry::AdaptiveIntegrate,
-        Entry::WavefrontLatticeCamera,
-        Entry::WavefrontClosest,
-        Entry::WavefrontShade,
-        Entry::WavefrontArgs,
-        Entry::WavefrontShadow,
-        Entry::WavefrontGather,
-        Entry::WavefrontLatticeStore,
-    ];
+    pub const ADAPTIVE_WAVEFRONT: [Entry; 10] = joined(&[
+        &Entry::ADAPTIVE_STEPS,
+        &[Entry::WavefrontLatticeCamera],
+        &Entry::CHAIN_GENERATION,
+        &[Entry::WavefrontLatticeStore],
+    ]);
 
     /// The wavefront kernels in scenes with refraction (paths that branch), in the order
     /// a generation dispatches them after the camera pass (the shadow pass starting each
     /// request's first leg, then rounds of leg closest, crossing and leg args), then the
     /// fold after the last generation, then uniform AA's resolve (AA none has none): the
     /// plan's `Mode::Wavefront` pipelines for a tree.
-    pub const WAVEFRONT_TREE: [Entry; 11] = then(Entry::TREE_PASSES, Entry::WavefrontResolve);
-
-    /// A chain's camera pass and generation's passes, the start of every chain mode's
-    /// list (the last entry is the mode's own: uniform AA's resolve, the view's store).
-    const CHAIN_PASSES: [Entry; 6] = [
-        Entry::WavefrontCamera,
-        Entry::WavefrontClosest,
-        Entry::WavefrontShade,
-        Entry::WavefrontArgs,
-        Entry::WavefrontShadow,
-        Entry::WavefrontGather,
-    ];
-
-    /// A tree's camera pass, generation's passes and rounds, and fold: the start of
-    /// every tree mode's list.
-    const TREE_PASSES: [Entry; 10] = [
-        Entry::WavefrontCamera,
-        Entry::WavefrontClosest,
-        Entry::WavefrontShade,
-        Entry::WavefrontArgs,
-        Entry::WavefrontShadow,
-        Entry::WavefrontLegClosest,
-        Entry::WavefrontCrossing,
-        Entry::WavefrontLegArgs,
-        Entry::WavefrontGather,
-        Entry::WavefrontFold,
-    ];
+    pub const WAVEFRONT_TREE: [Entry; 11] = joined(&[
+        &[Entry::WavefrontCamera],
+        &Entry::TREE_GENERATION,
+        &[Entry::WavefrontResolve],
+    ]);
 
     /// Adaptive AA's passes through the wavefront kernels in scenes with refraction, in
     /// the plan's order of the `Mode::AdaptiveWavefront` pipelines for a tree: adaptive
     /// AA's small kernels, the lattice camera pass, a tree's generation's passes and its
     /// fold ([`Entry::WAVEFRONT_TREE`]'s between its camera pass and its resolve), the
     /// store pass.
-    pub const ADAPTIVE_WAVEFRONT_TREE: [Entry; 14] = [
-        Entry::AdaptiveDecide,
-        Entry::AdaptiveWorkArgs,
-        Entry::AdaptiveIntegrate,
-        Entry::WavefrontLatticeCamera,
+    pub const ADAPTIVE_WAVEFRONT_TREE: [Entry; 14] = joined(&[
+        &Entry::ADAPTIVE_STEPS,
+        &[Entry::WavefrontLatticeCamera],
+        &Entry::TREE_GENERATION,
+        &[Entry::WavefrontLatticeStore],
+    ]);
+
+    /// A chain's generation, in the order it dispatches its passes: what every chain
+    /// mode runs between its camera pass and its own last pass (uniform AA's resolve, the
+    /// view's store, the lattice's store).
+    const CHAIN_GENERATION: [Entry; 5] = [
+        Entry::WavefrontClosest,
+        Entry::WavefrontShade,
+        Entry::WavefrontArgs,
+        Entry::WavefrontShadow,
+        Entry::WavefrontGather,
+    ];
+
+    /// A tree's generation's passes and its fold, in the order they are dispatched: what
+    /// every tree mode runs between its camera pass and its own last pass.
+    const TREE_GENERATION: [Entry; 9] = [
         Entry::WavefrontClosest,
         Entry::WavefrontShade,
         Entry::WavefrontArgs,
@@ -179,7 +178,13 @@ impl Entry {
         Entry::WavefrontLegArgs,
         Entry::WavefrontGather,
         Entry::WavefrontFold,
-        Entry::WavefrontLatticeStore,
+    ];
+
+    /// Adaptive AA's small kernels, which start both adaptive wavefront modes' lists.
+    const ADAPTIVE_STEPS: [Entry; 3] = [
+        Entry::AdaptiveDecide,
+        Entry::AdaptiveWorkArgs,
+        Entry::AdaptiveIntegrate,
     ];
 
     /// Every entry point.
@@ -283,15 +288,22 @@ impl Entry {
     }
 }
 
-/// `passes` followed by `last` (a mode's pipeline list: its shared passes, then its own).
-const fn then<const N: usize, const M: usize>(passes: [Entry; N], last: Entry) -> [Entry; M] {
-    assert!(M == N + 1);
-    let mut out = [last; M];
-    let mut i = 0;
-    while i < N {
-        out[i] = passes[i];
-        i += 1;
+/// `parts` one after another, as one array (a mode's pipeline list, built from the
+/// passes it shares with other modes and its own); `M` must be their total length.
+const fn joined<const M: usize>(parts: &[&[Entry]]) -> [Entry; M] {
+    let mut out = [Entry::Probe; M];
+    let mut at = 0;
+    let mut p = 0;
+    while p < parts.len() {
+        let mut i = 0;
+        while i < parts[p].len() {
+            out[at] = parts[p][i];
+            at += 1;
+            i += 1;
+        }
+        p += 1;
     }
+    assert!(at == M);
     out
 }
 

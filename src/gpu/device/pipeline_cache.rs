@@ -22,10 +22,10 @@ pub struct CompiledPipeline {
     pub kernel: KernelConfig,
 }
 
-/// Where a pipeline's compile time went (`--stats` prints the sums), and what the
-/// on-disk cache of [`crate::gpu::device::disk_cache`] did for it.
+/// Where compile time went, step by step: one pipeline's ([`CompileSteps`]) or the sum
+/// over several ([`CompileSummary`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct CompileSteps {
+pub struct CompileTimes {
     /// Assembling the specialised WGSL.
     pub assemble: Duration,
     /// glint's own naga parse and validation (for errors that point into the source).
@@ -39,6 +39,24 @@ pub struct CompileSteps {
     pub pipeline: Duration,
     /// `get_data` and writing the cache file.
     pub cache_store: Duration,
+}
+
+impl std::ops::AddAssign for CompileTimes {
+    fn add_assign(&mut self, other: CompileTimes) {
+        self.assemble += other.assemble;
+        self.validate += other.validate;
+        self.cache_load += other.cache_load;
+        self.shader_module += other.shader_module;
+        self.pipeline += other.pipeline;
+        self.cache_store += other.cache_store;
+    }
+}
+
+/// Where a pipeline's compile time went (`--stats` prints the sums), and what the
+/// on-disk cache of [`crate::gpu::device::disk_cache`] did for it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CompileSteps {
+    pub times: CompileTimes,
     pub disk: DiskOutcome,
 }
 
@@ -46,12 +64,7 @@ pub struct CompileSteps {
 /// them (for `--stats`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CompileSummary {
-    pub assemble: Duration,
-    pub validate: Duration,
-    pub cache_load: Duration,
-    pub shader_module: Duration,
-    pub pipeline: Duration,
-    pub cache_store: Duration,
+    pub times: CompileTimes,
     /// Pipelines whose driver data came from a cache file.
     pub reused: u32,
     /// Pipelines whose data was written to a new file.
@@ -66,12 +79,7 @@ impl CompileSummary {
     pub fn of<'a>(steps: impl IntoIterator<Item = &'a CompileSteps>) -> CompileSummary {
         let mut sum = CompileSummary::default();
         for s in steps {
-            sum.assemble += s.assemble;
-            sum.validate += s.validate;
-            sum.cache_load += s.cache_load;
-            sum.shader_module += s.shader_module;
-            sum.pipeline += s.pipeline;
-            sum.cache_store += s.cache_store;
+            sum.times += s.times;
             match s.disk {
                 DiskOutcome::Reused => sum.reused += 1,
                 DiskOutcome::Written => sum.written += 1,

@@ -67,7 +67,6 @@ pub(super) fn adaptive_chunks(
 /// the previous level's split squares), the work-args pass and the midpoint pass, then
 /// the integrate pass.
 pub(super) fn adaptive_dispatches(p: &ChunkPasses, depth: u32) -> Vec<Dispatch> {
-    let [w, h] = p.chunk.size;
     // Every pixel corner, then every pixel centre (d ≥ 1).
     let first = p.chunk.adaptive_tile(depth).first_pass_len();
     let mut out = vec![Dispatch {
@@ -75,21 +74,35 @@ pub(super) fn adaptive_dispatches(p: &ChunkPasses, depth: u32) -> Vec<Dispatch> 
         ..p.run(0, p.params(0, first), p.linear(first))
     }];
     for level in 0..depth {
-        out.push(if level == 0 {
-            p.run(1, p.params(0, w * h), p.linear(w * h))
-        } else {
-            let args = Workgroups::Indirect(midpoint_args(level - 1) + 12);
-            p.run(1, p.params(level, 0), args)
-        });
-        out.push(Dispatch {
-            writes_args: true,
-            ..p.run(4, p.params(level, 0), Workgroups::Direct(1, 1))
-        });
+        out.extend(decide_and_work_args(p, level, [1, 4]));
         let args = Workgroups::Indirect(midpoint_args(level));
         out.push(p.run(2, p.params(level, 0), args));
     }
     out.push(p.run(3, p.params(0, 0), p.square()));
     out
+}
+
+/// What starts level `level` of a tile in both forms: the decide pass (entry `decide`
+/// of the mode's list; every pixel centre at level 0, else the previous level's split
+/// squares, at the arguments its work-args pass wrote) and the work-args pass (entry
+/// `work_args`), which writes the arguments of the level's midpoint pass.
+fn decide_and_work_args(
+    p: &ChunkPasses,
+    level: u32,
+    [decide, work_args]: [usize; 2],
+) -> [Dispatch; 2] {
+    let [w, h] = p.chunk.size;
+    let decide = if level == 0 {
+        p.run(decide, p.params(0, w * h), p.linear(w * h))
+    } else {
+        let args = Workgroups::Indirect(midpoint_args(level - 1) + 12);
+        p.run(decide, p.params(level, 0), args)
+    };
+    let work_args = Dispatch {
+        writes_args: true,
+        ..p.run(work_args, p.params(level, 0), Workgroups::Direct(1, 1))
+    };
+    [decide, work_args]
 }
 
 /// The dispatches of adaptive tile `c` through the wavefront kernels
@@ -133,16 +146,7 @@ pub(super) fn adaptive_wavefront_dispatches(
     let mut out = lattice_pass(0, p.linear(c.adaptive_tile(depth).first_pass_len()));
     out[0].clears_work = true;
     for level in 0..depth {
-        out.push(if level == 0 {
-            p.run(0, p.params(0, w * h), p.linear(w * h))
-        } else {
-            let args = Workgroups::Indirect(midpoint_args(level - 1) + 12);
-            p.run(0, p.params(level, 0), args)
-        });
-        out.push(Dispatch {
-            writes_args: true,
-            ..p.run(1, p.params(level, 0), Workgroups::Direct(1, 1))
-        });
+        out.extend(decide_and_work_args(p, level, [0, 1]));
         out.extend(lattice_pass(
             level + 1,
             Workgroups::Indirect(midpoint_args(level)),

@@ -7,7 +7,6 @@ use super::chunking::{bands, row_pieces, slot_budget};
 use super::shape::WavefrontShape;
 use super::tree::tree_dispatches;
 use super::{AdapterBounds, BindingOffsets, Chunk, ChunkPasses, Dispatch, Workgroups};
-use crate::gpu::upload::buffers::GpuTile;
 use crate::tiling::PixelRect;
 
 /// The chunks of `window` through the wavefront kernels, and the samples array's vec4s:
@@ -81,17 +80,8 @@ pub(super) fn wavefront_generations(
     let mut out = vec![camera];
     let args = |at: u64| Workgroups::Indirect(offsets.work + at);
     for g in 0..shape.generations {
-        let pass = |entry: usize, workgroups: Workgroups| Dispatch {
-            entry: closest + entry,
-            params: GpuTile {
-                level: g,
-                ..camera.params
-            },
-            workgroups,
-            clears_work: false,
-            writes_args: false,
-            offsets,
-            ..camera
+        let pass = |entry: usize, workgroups: Workgroups| {
+            camera.generation_pass(closest + entry, g, workgroups, offsets)
         };
         let paths = match g {
             0 => camera.workgroups,

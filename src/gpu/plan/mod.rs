@@ -107,6 +107,32 @@ pub struct Dispatch {
     pub offsets: BindingOffsets,
 }
 
+impl Dispatch {
+    /// A pass of the generations that follow this camera pass: the same chunk, items and
+    /// stratum, entry `entry` at level `level` (a generation, or a tree's glass round),
+    /// `workgroups` of it bound at `offsets`, clearing nothing and writing no arguments.
+    pub(super) fn generation_pass(
+        self,
+        entry: usize,
+        level: u32,
+        workgroups: Workgroups,
+        offsets: BindingOffsets,
+    ) -> Dispatch {
+        Dispatch {
+            entry,
+            params: GpuTile {
+                level,
+                ..self.params
+            },
+            workgroups,
+            clears_work: false,
+            writes_args: false,
+            offsets,
+            ..self
+        }
+    }
+}
+
 /// Where a dispatch binds the `samples` buffer and the work buffers (`work_counts`,
 /// `work_args`) from, in bytes: 0, or under adaptive AA through the wavefront kernels the
 /// queues after the lattice ([`lattice_queue_bytes`]) and the wavefront's counters and

@@ -5,7 +5,6 @@
 
 use super::shape::{WavefrontShape, SHADOW_ROUNDS};
 use super::{BindingOffsets, Dispatch, Workgroups};
-use crate::gpu::upload::buffers::GpuTile;
 
 /// A tree's generations after its `camera` pass (which they copy the chunk, items and
 /// stratum of): per generation g closest, shade, args, the shadow pass (each request's
@@ -23,17 +22,8 @@ pub(super) fn tree_dispatches(
 ) -> Vec<Dispatch> {
     let mut out = vec![camera];
     let args = |at: u64| Workgroups::Indirect(offsets.work + at);
-    let pass = |entry: usize, level: u32, workgroups: Workgroups| Dispatch {
-        entry: closest + entry,
-        params: GpuTile {
-            level,
-            ..camera.params
-        },
-        workgroups,
-        clears_work: false,
-        writes_args: false,
-        offsets,
-        ..camera
+    let pass = |entry: usize, level: u32, workgroups: Workgroups| {
+        camera.generation_pass(closest + entry, level, workgroups, offsets)
     };
     let writes_args = |d: Dispatch| Dispatch {
         writes_args: true,

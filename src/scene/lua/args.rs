@@ -245,6 +245,24 @@ impl<'a> Args<'a> {
         self.error(format!("argument {n} ({name}): {detail}"))
     }
 
+    /// Element `index` (from 0) of argument `n`'s table is not `what`: the error names the
+    /// element as Lua counts (from 1) and what it holds.
+    pub fn bad_element(
+        &self,
+        n: usize,
+        name: &str,
+        index: usize,
+        what: &str,
+        got: &Value,
+    ) -> mlua::Error {
+        let got = describe(self.lua, got);
+        self.bad_in(
+            n,
+            name,
+            format!("element {} must be {what}, got {got}", index + 1),
+        )
+    }
+
     pub fn string(&self, n: usize, name: &str) -> mlua::Result<String> {
         match self.get(n) {
             Value::String(s) => Ok(s.to_string_lossy()),
@@ -349,17 +367,8 @@ impl<'a> Args<'a> {
         let mut out = [0.0; 3];
         for (i, slot) in out.iter_mut().enumerate() {
             let v: Value = t.raw_get(i + 1)?;
-            *slot = finite(&v).ok_or_else(|| {
-                self.bad_in(
-                    n,
-                    name,
-                    format!(
-                        "element {} must be a finite number, got {}",
-                        i + 1,
-                        describe(self.lua, &v)
-                    ),
-                )
-            })?;
+            *slot =
+                finite(&v).ok_or_else(|| self.bad_element(n, name, i, "a finite number", &v))?;
         }
         Ok(out)
     }
@@ -391,22 +400,23 @@ impl<'a> Args<'a> {
     }
 
     pub fn node(&self, n: usize, name: &str) -> mlua::Result<NodeId> {
-        match self.get(n) {
-            Value::UserData(ud) => match ud.borrow::<NodeHandle>() {
-                Ok(h) => Ok(h.0),
-                Err(_) => Err(self.bad(n, name, "a node")),
-            },
-            _ => Err(self.bad(n, name, "a node")),
-        }
+        Ok(self.handle::<NodeHandle>(n, name, "a node")?.0)
     }
 
     pub fn material(&self, n: usize, name: &str) -> mlua::Result<MaterialId> {
+        Ok(self
+            .handle::<MaterialHandle>(n, name, "a material made by gr.material")?
+            .0)
+    }
+
+    /// Argument `n`, a handle of type `T`; else an error saying it must be `what`.
+    fn handle<T: 'static + Copy>(&self, n: usize, name: &str, what: &str) -> mlua::Result<T> {
         match self.get(n) {
-            Value::UserData(ud) => match ud.borrow::<MaterialHandle>() {
-                Ok(h) => Ok(h.0),
-                Err(_) => Err(self.bad(n, name, "a material made by gr.material")),
+            Value::UserData(ud) => match ud.borrow::<T>() {
+                Ok(h) => Ok(*h),
+                Err(_) => Err(self.bad(n, name, what)),
             },
-            _ => Err(self.bad(n, name, "a material made by gr.material")),
+            _ => Err(self.bad(n, name, what)),
         }
     }
 

@@ -18,23 +18,38 @@ use crate::scene::{short_name, Material, NodeId, NodeKind};
 use glam::{DMat4, DVec3};
 use mlua::{Lua, MetaMethod, MultiValue, UserData, UserDataFields, UserDataMethods, Value};
 
-impl UserData for NodeHandle {
-    fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
-        // Methods are looked up in a table the script may extend (`gr.extend_node`).
-        fields.add_meta_field_with(MetaMethod::Index, |lua| {
-            super::methods::index(lua, super::methods::Kind::Node)
-        });
-    }
+/// `UserData` for a handle into one of the graph's arenas (`$arena`: `nodes`,
+/// `materials`): its methods are looked up in a table the script may extend
+/// (`gr.extend_node`, `gr.extend_material`: `$kind`), and it prints as `$word 'name'`.
+macro_rules! arena_handle_userdata {
+    ($handle:ty, $kind:expr, $word:literal, $arena:ident) => {
+        impl UserData for $handle {
+            fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
+                fields.add_meta_field_with(MetaMethod::Index, |lua| {
+                    super::methods::index(lua, $kind)
+                });
+            }
 
-    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
-            let id = this.borrow::<NodeHandle>()?.0;
-            Ok(with_state(lua, |s| {
-                format!("node '{}'", short_name(&s.graph.nodes[id].name))
-            }))
-        });
-    }
+            fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
+                methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
+                    let id = this.borrow::<$handle>()?.0;
+                    Ok(with_state(lua, |s| {
+                        let name = short_name(&s.graph.$arena[id].name);
+                        format!(concat!($word, " '{}'"), name)
+                    }))
+                });
+            }
+        }
+    };
 }
+
+arena_handle_userdata!(NodeHandle, super::methods::Kind::Node, "node", nodes);
+arena_handle_userdata!(
+    MaterialHandle,
+    super::methods::Kind::Material,
+    "material",
+    materials
+);
 
 /// The built-in node methods.
 pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
@@ -43,7 +58,7 @@ pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
             (
                 $name,
                 (|lua: &Lua, args: MultiValue| {
-                    super::ensure_live(lua)?;
+                    super::limits::ensure_live(lua)?;
                     let a = Args::method(lua, concat!("node:", $name), args);
                     a.receiver::<NodeHandle>("node")?;
                     $f(&a)?;
@@ -169,7 +184,7 @@ pub const MAX_CYCLE_CHECK_VISITS: u64 = 1 << 26;
 
 /// Bytes one `add_child` link holds: the child in the parent's list and the parent in
 /// the child's, with vector growth.
-const LINK_BYTES: u64 = super::grown(2 * std::mem::size_of::<NodeId>());
+const LINK_BYTES: u64 = super::budget::grown(2 * std::mem::size_of::<NodeId>());
 
 fn add_child(a: &Args) -> mlua::Result<()> {
     let parent = a.receiver::<NodeHandle>("node")?.0;
@@ -191,7 +206,7 @@ fn add_child(a: &Args) -> mlua::Result<()> {
         }
     });
     match check {
-        Ok(()) => super::charge(a, LINK_BYTES, "the child link")?,
+        Ok(()) => super::budget::charge(a, LINK_BYTES, "the child link")?,
         Err(Some((c, p))) => {
             return Err(a.bad_in(
                 1,
@@ -335,24 +350,6 @@ fn set_material(a: &Args) -> mlua::Result<()> {
     }
 }
 
-impl UserData for MaterialHandle {
-    fn add_fields<F: UserDataFields<Self>>(fields: &mut F) {
-        // Methods are looked up in a table the script may extend (`gr.extend_material`).
-        fields.add_meta_field_with(MetaMethod::Index, |lua| {
-            super::methods::index(lua, super::methods::Kind::Material)
-        });
-    }
-
-    fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        methods.add_meta_function(MetaMethod::ToString, |lua, this: mlua::AnyUserData| {
-            let id = this.borrow::<MaterialHandle>()?.0;
-            Ok(with_state(lua, |s| {
-                format!("material '{}'", short_name(&s.graph.materials[id].name))
-            }))
-        });
-    }
-}
-
 /// The built-in material methods.
 pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
     macro_rules! method {
@@ -360,7 +357,7 @@ pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
             (
                 $name,
                 (|lua: &Lua, args: MultiValue| {
-                    super::ensure_live(lua)?;
+                    super::limits::ensure_live(lua)?;
                     let a = Args::method(lua, concat!("material:", $name), args);
                     let id = a.receiver::<MaterialHandle>("material")?.0;
                     let edit = $f(&a)?;
@@ -402,7 +399,7 @@ pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
 /// textures, bump map, reflection, refraction), so that one node's variant of a shared
 /// material (a dialect's per-node texture) leaves the others alone.
 fn copy_material(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
-    super::ensure_live(lua)?;
+    super::limits::ensure_live(lua)?;
     let a = Args::method(lua, "material:copy", args);
     let id = a.receiver::<MaterialHandle>("material")?.0;
     let at = super::args::location(lua);

@@ -4,7 +4,9 @@
 //! per script.
 
 use super::args::Args;
-use super::{charge, memory_left, with_state};
+use super::budget::{charge, check_file_cost, memory_left};
+use super::limits::reach_limit;
+use super::with_state;
 use crate::scene::texture::{load_texture, texture_bytes, OVER_BUDGET};
 use crate::scene::{Material, TextureId};
 use mlua::Value;
@@ -18,27 +20,30 @@ pub const DEFAULT_BUMP_STRENGTH: f64 = 1.0;
 
 /// `m:set_diffuse(r, g, b)` / `m:set_diffuse(grey)` / `m:set_diffuse('img.png')`.
 pub(super) fn set_diffuse(a: &Args) -> mlua::Result<Edit> {
-    if let Value::String(_) = a.get(1) {
-        let id = texture(a, 1, "file")?;
-        return Ok(Box::new(move |m: &mut Material| m.diffuse_map = Some(id)));
-    }
-    let c = a.colour_args(1, true)?;
-    Ok(Box::new(move |m: &mut Material| {
-        m.kd = c;
-        m.diffuse_map = None;
-    }))
+    colour_or_map(a, |m| &mut m.kd, |m| &mut m.diffuse_map)
 }
 
 /// `m:set_specular(r, g, b)` / `m:set_specular(grey)` / `m:set_specular('img.png')`.
 pub(super) fn set_specular(a: &Args) -> mlua::Result<Edit> {
+    colour_or_map(a, |m| &mut m.ks, |m| &mut m.specular_map)
+}
+
+/// A colour's setter: an image file's name sets the material's `map` to the texture
+/// (the colour stays, unused), a colour (numbers, grey or a table) sets `colour` and
+/// clears the map.
+fn colour_or_map(
+    a: &Args,
+    colour: fn(&mut Material) -> &mut [f32; 3],
+    map: fn(&mut Material) -> &mut Option<TextureId>,
+) -> mlua::Result<Edit> {
     if let Value::String(_) = a.get(1) {
         let id = texture(a, 1, "file")?;
-        return Ok(Box::new(move |m: &mut Material| m.specular_map = Some(id)));
+        return Ok(Box::new(move |m: &mut Material| *map(m) = Some(id)));
     }
     let c = a.colour_args(1, true)?;
     Ok(Box::new(move |m: &mut Material| {
-        m.ks = c;
-        m.specular_map = None;
+        *colour(m) = c;
+        *map(m) = None;
     }))
 }
 
@@ -72,13 +77,13 @@ fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
         return Ok(id);
     }
     // The file is held while it is decoded.
-    super::check_file_cost(a, &path, 1, "texture")?;
+    check_file_cost(a, &path, 1, "texture")?;
     // The file is held while it is decoded; the decoder counts the rest itself.
     let left = memory_left(a.lua).saturating_sub(std::fs::metadata(&path).map_or(0, |m| m.len()));
     let texture = load_texture(&path, left).map_err(|e| {
         if e.contains(OVER_BUDGET) {
             // The memory budget refused it: a reached limit, final as the others are.
-            super::reach_limit(a, format!("argument {n} ({name}): {e}"))
+            reach_limit(a, format!("argument {n} ({name}): {e}"))
         } else {
             a.bad_in(n, name, e)
         }

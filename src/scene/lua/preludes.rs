@@ -8,7 +8,9 @@
 //! also required by another prelude, runs once. Each prelude receives its path and its
 //! folder (canonical, absolute) as `...`. Errors inside a prelude name its file and line.
 
-use super::{with_state, SceneError, ScriptConfig};
+use super::config::ScriptConfig;
+use super::errors::SceneError;
+use super::with_state;
 use crate::scene::files::{read_regular, MAX_FILE_BYTES};
 use mlua::chunk::ChunkMode;
 use mlua::{Lua, Table, Value};

@@ -1,4 +1,5 @@
-//! The restricted Lua state scenes run in, and the compatibility globals.
+//! The restricted Lua state scenes run in, and the compatibility globals (the limits'
+//! record is `limits`).
 //!
 //! A scene is a program downloaded from a course page or a classmate: it gets base,
 //! table, string, math, utf8, coroutine and `os.clock/time/date`, nothing that touches
@@ -13,112 +14,18 @@
 //! the scene, and `readobj` as a built-in (their `readobj.lua` helper needed `io`).
 
 use super::args::{location, Args};
-use super::watchdog::ScriptClock;
-use super::{
-    charge, ensure_live, source_text, with_state, ScriptConfig, LOADED_KEY, SOURCE_BYTES_PER_BYTE,
+use super::budget::{charge, check_file_cost, lua_share};
+use super::config::ScriptConfig;
+use super::limits::{
+    end_thread, ensure_live, instruction_message, Limits, FREE_SCRIPT_TIME, NANOS_PER_INSTRUCTION,
 };
+use super::source::{source_text, SOURCE_BYTES_PER_BYTE};
+use super::watchdog::ScriptClock;
+use super::{with_state, LOADED_KEY};
 use crate::scene::files::{read_regular, MAX_FILE_BYTES};
 use crate::scene::obj::PARSE_BYTES_PER_BYTE;
 use mlua::chunk::ChunkMode;
 use mlua::{HookTriggers, Lua, LuaOptions, MultiValue, StdLib, Table, Value, VmState};
-use std::cell::Cell;
-use std::rc::Rc;
-
-/// What the hooks report, so the error can be classified after Lua unwinds (and cannot
-/// be hidden by a `pcall` in the script). Cheap to clone: the State holds a copy.
-#[derive(Clone, Default)]
-pub(crate) struct Limits {
-    /// The instruction-, time-, memory- or render-limit message, once a limit is
-    /// reached: from then on every `gr` call and every Lua instruction fails.
-    pub exceeded: Rc<Cell<Option<String>>>,
-    /// `file:line` where the hook last ran (memory errors carry no position).
-    pub last_location: Rc<Cell<Option<String>>>,
-    /// Instructions counted so far (the hook's steps, the weights of costly library
-    /// calls, and at least one per [`NANOS_PER_INSTRUCTION`] of script time).
-    pub count: Rc<Cell<u64>>,
-    /// The instruction limit.
-    pub instruction_limit: u64,
-}
-
-impl Limits {
-    /// The message of the limit reached, if one was.
-    pub fn reached(&self) -> Option<String> {
-        let m = self.exceeded.take();
-        self.exceeded.set(m.clone());
-        m
-    }
-
-    /// Records that a limit was reached (the first message is kept) and returns the
-    /// error to raise: the kept message.
-    pub fn reach(&self, message: String) -> mlua::Error {
-        let first = self.exceeded.take().unwrap_or(message);
-        self.exceeded.set(Some(first.clone()));
-        mlua::Error::RuntimeError(first)
-    }
-
-    /// Adds `weight` instructions for work done outside the VM (a library call that
-    /// loops in C); past the limit, the limit is reached at `at`.
-    pub fn tick(&self, weight: u64, at: impl FnOnce() -> String) -> mlua::Result<()> {
-        if let Some(m) = self.reached() {
-            return Err(mlua::Error::RuntimeError(m));
-        }
-        let count = self.count.get().saturating_add(weight);
-        self.count.set(count);
-        if count > self.instruction_limit {
-            return Err(self.reach(instruction_message(&at(), self.instruction_limit)));
-        }
-        Ok(())
-    }
-}
-
-/// Script time that counts as at least one instruction, beyond the first
-/// [`FREE_SCRIPT_TIME`]: steps of the hook that took longer (time spent in C library
-/// calls the hook cannot see) count as their time's worth, so that no script runs for
-/// long on the instruction limit's allowance (200 million instructions: at most 11 s of
-/// script time).
-pub(super) const NANOS_PER_INSTRUCTION: u128 = 50;
-
-/// Script time that is not turned into instructions (setting up, small scripts on a
-/// busy machine).
-pub(super) const FREE_SCRIPT_TIME: std::time::Duration = std::time::Duration::from_secs(1);
-
-fn instruction_message(at: &str, limit: u64) -> String {
-    format!("{at}: instruction limit of {limit} exceeded — runaway loop?")
-}
-
-/// The hook installed once a limit is reached: every instruction fails, so that no
-/// `pcall`, `xpcall` handler or coroutine can carry on (the first instruction outside
-/// a protected call ends the script). It raises a fixed message; the limit's own
-/// message is in [`Limits::exceeded`].
-unsafe extern "C-unwind" fn final_hook(
-    state: *mut mlua::ffi::lua_State,
-    _: *mut mlua::ffi::lua_Debug,
-) {
-    // SAFETY: called by Lua on a running state; lua_error does not return (it unwinds
-    // to the innermost protected call) and no Rust value with a destructor is live.
-    unsafe {
-        mlua::ffi::lua_pushstring(
-            state,
-            c"glint: a limit was reached; the script ends".as_ptr(),
-        );
-        mlua::ffi::lua_error(state);
-    }
-}
-
-/// Makes every instruction of the running Lua thread fail ([`final_hook`]).
-pub(super) fn end_thread(lua: &Lua) {
-    let thread = lua.current_thread();
-    // SAFETY: the running thread's state, valid while `thread` lives; lua_sethook may be
-    // called from inside a hook.
-    unsafe {
-        mlua::ffi::lua_sethook(
-            thread.state(),
-            Some(final_hook),
-            mlua::ffi::LUA_MASKCOUNT,
-            1,
-        );
-    }
-}
 
 /// Creates the Lua state with the safe libraries and the limits of `config`; `clock`
 /// says when the wall-clock limit has passed.
@@ -134,7 +41,7 @@ pub(super) fn new_lua(
         | StdLib::COROUTINE
         | StdLib::OS;
     let lua = Lua::new_with(libs, LuaOptions::default())?;
-    lua.set_memory_limit(super::lua_share(config.memory_limit as u64) as usize)?;
+    lua.set_memory_limit(lua_share(config.memory_limit as u64) as usize)?;
 
     // The hook runs every `step` instructions; a step of ~1/1000 of the limit keeps the
     // overshoot small and the hook cost negligible.
@@ -333,7 +240,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     }
     let (path, _) = found.map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
     // Counted before it is read: the text, Lua's copy while parsing, the chunk.
-    super::check_file_cost(&a, &path, SOURCE_BYTES_PER_BYTE, "module")?;
+    check_file_cost(&a, &path, SOURCE_BYTES_PER_BYTE, "module")?;
     let bytes = read_regular(&path, "module", MAX_FILE_BYTES)
         .map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
     charge(&a, bytes.len() as u64, &format!("module '{name}'"))?;
@@ -369,7 +276,7 @@ fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
     }
     let found = with_state(lua, |s| s.folders.find(&s.read_policy, &file, "mesh file"));
     let (path, _) = found.map_err(|e| a.error(e))?;
-    super::check_file_cost(&a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
+    check_file_cost(&a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
     let (verts, faces) = crate::scene::obj::read_obj_raw(&path).map_err(|e| a.error(e))?;
     let vt = lua.create_table_with_capacity(verts.len(), 0)?;
     for v in verts {

@@ -14,7 +14,7 @@
 //!   into every message and `load(s, '@/etc/passwd')` blames no other file.
 
 use super::args::location;
-use super::sandbox::Limits;
+use super::limits::Limits;
 use super::with_state;
 use mlua::{Function, Lua, MultiValue, Table, Value};
 
@@ -152,7 +152,7 @@ fn is_memory(e: &mlua::Error) -> bool {
 /// The memory limit reached at the caller's line (a caught memory error).
 pub(super) fn memory_limit_reached(lua: &Lua) -> mlua::Error {
     let mib = with_state(lua, |s| s.memory_limit) >> 20;
-    super::sandbox::end_thread(lua);
+    super::limits::end_thread(lua);
     limits(lua).reach(format!(
         "{}: the script went over the memory limit of {mib} MiB; --memory-limit MIB raises it",
         location(lua)

@@ -12,20 +12,8 @@ use super::*;
 /// store pass (bound whole); every tracing invocation has a list slot.
 #[test]
 fn adaptive_wavefront_tiles_hold_lattice_and_queues_and_run_every_lattice_pass() {
-    let shape = WavefrontShape {
-        light_points: 17,
-        generations: 3,
-        uniform: None,
-        tree: false,
-        shadow_slices: 1,
-    };
-    let words = 562;
-    let bounds = AdapterBounds {
-        wavefront: Some(shape),
-        max_binding: 16 << 20,
-        lane_list_words: words,
-        ..LAVAPIPE
-    };
+    let shape = wavefront_shape(17, 3, None, false);
+    let bounds = wavefront_bounds(shape, 16 << 20, SLOT_WORDS);
     let generations = shape.generations as usize;
     for depth in [1, 2, 3] {
         for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
@@ -53,7 +41,7 @@ fn adaptive_wavefront_tiles_hold_lattice_and_queues_and_run_every_lattice_pass()
                 assert_eq!(entry(&d[0]), Entry::WavefrontLatticeCamera);
                 let n = d[0].params.items as u64;
                 assert!(queues.samples / 16 + n * shape.vec4s_per_sample() <= plan.samples_len);
-                assert!(n * words as u64 <= plan.lists_len);
+                assert!(n * SLOT_WORDS as u64 <= plan.lists_len);
                 let cameras: Vec<usize> = (0..d.len())
                     .filter(|&i| entry(&d[i]) == Entry::WavefrontLatticeCamera)
                     .collect();
@@ -109,21 +97,9 @@ fn adaptive_wavefront_tiles_hold_lattice_and_queues_and_run_every_lattice_pass()
 /// invocations, then the store.
 #[test]
 fn adaptive_tree_tiles_run_the_trees_passes_and_fold_every_lattice_pass() {
-    let shape = WavefrontShape {
-        light_points: 5,
-        generations: 4,
-        uniform: None,
-        tree: true,
-        shadow_slices: 1,
-    };
-    let words = 562;
-    let bounds = AdapterBounds {
-        wavefront: Some(shape),
-        max_binding: 64 << 20,
-        lane_list_words: words,
-        ..LAVAPIPE
-    };
-    let per_generation = 5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+    let shape = wavefront_shape(5, 4, None, true);
+    let bounds = wavefront_bounds(shape, 64 << 20, SLOT_WORDS);
+    let per_generation = TREE_GENERATION_DISPATCHES;
     for depth in [1, 2] {
         let g = PackedGlobals {
             aa_depth: depth,
@@ -142,7 +118,7 @@ fn adaptive_tree_tiles_run_the_trees_passes_and_fold_every_lattice_pass() {
             let n = d[0].params.items as u64;
             assert!(queues / 16 + n * shape.vec4s_per_sample() <= plan.samples_len);
             let paths = n * TREE_PATHS_PER_SAMPLE as u64;
-            assert!(paths * words as u64 <= plan.lists_len, "slots");
+            assert!(paths * SLOT_WORDS as u64 <= plan.lists_len, "slots");
             let cameras: Vec<usize> = (0..d.len())
                 .filter(|&i| entry(&d[i]) == Entry::WavefrontLatticeCamera)
                 .collect();

@@ -89,20 +89,9 @@ fn assert_wavefront_bands(shape: WavefrontShape) {
 fn wavefront_uniform_bands_sample_every_stratum_then_resolve() {
     let words = 272u64;
     for n in [1, 2, 3, 4] {
-        let shape = WavefrontShape {
-            light_points: 5,
-            generations: 3,
-            uniform: Some(n),
-            tree: false,
-            shadow_slices: 1,
-        };
+        let shape = wavefront_shape(5, 3, Some(n), false);
         // (A row of 1920 pixels at 4×4 takes 30 720 slots: 32 MiB of lists.)
-        let bounds = AdapterBounds {
-            wavefront: Some(shape),
-            max_binding: 64 << 20,
-            lane_list_words: words as u32,
-            ..LAVAPIPE
-        };
+        let bounds = wavefront_bounds(shape, 64 << 20, words as u32);
         for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
             let g = PackedGlobals {
                 aa_samples: n,

@@ -36,6 +36,47 @@ pub(super) const LAVAPIPE: AdapterBounds = AdapterBounds {
     wavefront: None,
 };
 
+/// Words of a tracing invocation's list slot where a test keeps the lists in storage
+/// (scrabble's 562).
+pub(super) const SLOT_WORDS: u32 = 562;
+
+/// Dispatches of a tree's generation: closest, shade, args and shadow, SHADOW_ROUNDS
+/// rounds of leg closest and crossing with the leg args between them, then gather.
+pub(super) const TREE_GENERATION_DISPATCHES: usize =
+    5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+
+/// A wavefront shape with one shadow slice (no CSG): `light_points` a vertex,
+/// `generations` a path, uniform AA's n (None: AA none), a tree or a chain.
+pub(super) fn wavefront_shape(
+    light_points: u32,
+    generations: u32,
+    uniform: Option<u32>,
+    tree: bool,
+) -> WavefrontShape {
+    WavefrontShape {
+        light_points,
+        generations,
+        uniform,
+        tree,
+        shadow_slices: 1,
+    }
+}
+
+/// Lavapipe's bounds with the wavefront kernels of `shape`, bindings of `max_binding`
+/// bytes and list slots of `words` words.
+pub(super) fn wavefront_bounds(
+    shape: WavefrontShape,
+    max_binding: u64,
+    words: u32,
+) -> AdapterBounds {
+    AdapterBounds {
+        wavefront: Some(shape),
+        max_binding,
+        lane_list_words: words,
+        ..LAVAPIPE
+    }
+}
+
 /// Every pixel in exactly one chunk, every chunk in exactly one part.
 pub(super) fn assert_covers(plan: &FramePlan, w: u32, h: u32) {
     let mut seen = vec![0u8; (w * h) as usize];
@@ -104,7 +145,7 @@ fn scratch_fits_one_binding() {
 /// level), and the slots fit one binding; without lists the plan is as before.
 #[test]
 fn every_tracing_invocation_has_a_list_slot() {
-    let words = 562u64;
+    let words = SLOT_WORDS as u64;
     let bounds = AdapterBounds {
         lane_list_words: words as u32,
         ..LAVAPIPE

@@ -12,24 +12,12 @@ use super::*;
 /// after them.
 #[test]
 fn tree_bands_run_every_generation_every_round_and_the_fold() {
-    let shape = WavefrontShape {
-        light_points: 17,
-        generations: 9,
-        uniform: None,
-        tree: true,
-        shadow_slices: 1,
-    };
+    let shape = wavefront_shape(17, 9, None, true);
     assert_eq!(
         shape.vec4s_per_sample(),
         3 + (14 + 10 * 17) * TREE_PATHS_PER_SAMPLE as u64 + 2 * TREE_VERTICES_PER_SAMPLE as u64
     );
-    let words = 562;
-    let bounds = AdapterBounds {
-        wavefront: Some(shape),
-        max_binding: 16 << 20,
-        lane_list_words: words,
-        ..LAVAPIPE
-    };
+    let bounds = wavefront_bounds(shape, 16 << 20, SLOT_WORDS);
     // 1920 samples of 13.5 KiB are more than one 16 MiB binding: rows in pieces.
     for (w, h) in [(256, 256), (1920, 1080), (37, 5)] {
         let plan = FramePlan::new(&globals(w, h, 0), bounds);
@@ -43,9 +31,12 @@ fn tree_bands_run_every_generation_every_round_and_the_fold() {
         for (k, c) in plan.chunks.iter().enumerate() {
             assert!(shape.vec4s_per_sample() * c.block_pixels() <= plan.samples_len);
             let paths = TREE_PATHS_PER_SAMPLE as u64 * c.block_pixels();
-            assert!(paths * words as u64 <= plan.lists_len, "{w}×{h}: slots");
+            assert!(
+                paths * SLOT_WORDS as u64 <= plan.lists_len,
+                "{w}×{h}: slots"
+            );
             let d = plan.dispatches(k, 2, bounds);
-            let per_generation = 5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+            let per_generation = TREE_GENERATION_DISPATCHES;
             assert_eq!(d.len(), 2 + per_generation * shape.generations as usize);
             assert!(d[0].clears_work && d[0].entry == 0);
             let fold = d.last().unwrap();
@@ -104,20 +95,8 @@ fn tree_bands_run_every_generation_every_round_and_the_fold() {
 #[test]
 fn uniform_tree_bands_sample_every_stratum_then_fold_then_resolve() {
     let n = 2;
-    let shape = WavefrontShape {
-        light_points: 3,
-        generations: 9,
-        uniform: Some(n),
-        tree: true,
-        shadow_slices: 1,
-    };
-    let words = 562;
-    let bounds = AdapterBounds {
-        wavefront: Some(shape),
-        max_binding: 16 << 20,
-        lane_list_words: words,
-        ..LAVAPIPE
-    };
+    let shape = wavefront_shape(3, 9, Some(n), true);
+    let bounds = wavefront_bounds(shape, 16 << 20, SLOT_WORDS);
     let mut g = globals(200, 120, AA_UNIFORM);
     g.aa_samples = n;
     let plan = FramePlan::new(&g, bounds);
@@ -130,9 +109,9 @@ fn uniform_tree_bands_sample_every_stratum_then_fold_then_resolve() {
         let samples = c.block_pixels() * (n * n) as u64;
         assert!(shape.vec4s_per_sample() * samples <= plan.samples_len);
         let paths = TREE_PATHS_PER_SAMPLE as u64 * samples;
-        assert!(paths * words as u64 <= plan.lists_len, "slots");
+        assert!(paths * SLOT_WORDS as u64 <= plan.lists_len, "slots");
         let d = plan.dispatches(k, 2, bounds);
-        let per_generation = 5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+        let per_generation = TREE_GENERATION_DISPATCHES;
         assert_eq!(d.len(), 3 + per_generation * shape.generations as usize);
         assert_eq!(d[0].params.items as u64, samples);
         let (fold, resolve) = (d[d.len() - 2], d[d.len() - 1]);

@@ -7,13 +7,7 @@ use super::*;
 /// store over the same samples; every pass carries the frame's stratum.
 #[test]
 fn a_view_frame_samples_one_stratum_a_pixel_then_stores() {
-    let shape = WavefrontShape {
-        light_points: 3,
-        generations: 4,
-        uniform: Some(3),
-        tree: false,
-        shadow_slices: 1,
-    };
+    let shape = wavefront_shape(3, 4, Some(3), false);
     let band = bands(PixelRect::full(37, 5), 5, 1)[0];
     let d = view_wavefront_dispatches(band, shape, 7, 2, LAVAPIPE);
     assert_eq!(d.len(), 2 + 5 * shape.generations as usize);
@@ -52,16 +46,10 @@ fn a_view_frame_samples_one_stratum_a_pixel_then_stores() {
 /// (entries of `Entry::WAVEFRONT_VIEW_TREE`), every pass told the stratum.
 #[test]
 fn a_view_frame_of_a_tree_folds_then_stores() {
-    let shape = WavefrontShape {
-        light_points: 3,
-        generations: 4,
-        uniform: None,
-        tree: true,
-        shadow_slices: 1,
-    };
+    let shape = wavefront_shape(3, 4, None, true);
     let band = bands(PixelRect::full(37, 5), 5, 1)[0];
     let d = view_wavefront_dispatches(band, shape, 2, 2, LAVAPIPE);
-    let per_generation = 5 + 2 * SHADOW_ROUNDS as usize + SHADOW_ROUNDS as usize - 1;
+    let per_generation = TREE_GENERATION_DISPATCHES;
     assert_eq!(d.len(), 3 + per_generation * shape.generations as usize);
     let names: Vec<Entry> = d
         .iter()
