@@ -341,9 +341,11 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "GPU queues only: a child without room hands the sample's pixels to the CPU tracer (the CPU's queues are Vecs that grow)",
     ),
     (
-        "src/tracer/wavefront/wavefront_lattice.wgsl",
+        "src/tracer/sampling/adaptive.wgsl",
         "guard_lattice_point",
-        "GPU queues only: the pixels around a lattice point whose tree had no room go to the CPU tracer (adaptive.wgsl's trace_lattice_point guards the same pixels for the loop limiter)",
+        "flags the pixels around a lattice point whose sample the GPU could not trace \
+         (lavapipe's loop limiter, or a wavefront tree without room for a child) for the \
+         CPU tracer to re-render; the CPU traces every sample",
     ),
     (
         "src/tracer/wavefront/wavefront_tree.wgsl",
@@ -386,12 +388,6 @@ const WGSL_NAMED_APART: &[(&str, &str, &str)] = &[
         "probe",
         "the kernel probe's entry point; its Rust side, a test hook, is \
          src/testing/probe.rs::cpu_probe beside gpu_probe, which names the tracer that answers",
-    ),
-    (
-        "src/tracer/sampling/adaptive.wgsl",
-        "adaptive_scale",
-        "src/tiling.rs::AdaptiveTile::scale, a method of the host's tile record (which \
-         WGSL reads from the `tile` uniform)",
     ),
     (
         "src/tracer/sampling/progressive.wgsl",

@@ -16,7 +16,7 @@ use glint::film::Film;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaDepth, AaMode, AaSamples, DebugView, OptionOverrides, TraceDepth};
 use glint::tiling::AdaptiveTile;
-use glint::tracer::sampling::adaptive::{adaptive_tile, Lattice};
+use glint::tracer::sampling::adaptive::{adaptive_tile, adaptive_tile_passes, Lattice};
 use glint::tracer::sampling::pixel_sample::lattice_sample;
 use glint::tracer::sampling::render::render_pixel;
 use glint::tracer::shading::dielectric::{shadow_transmittance, MediumStack};
@@ -25,7 +25,7 @@ use glint::tracer::wavefront::wavefront::{
     camera_pass, closest_pass, fold_pass, gather_pass, glass_shadow_pass, render_film, shade_pass,
     trace_batch, wavefront_args, Batch, SampleSource,
 };
-use glint::tracer::wavefront::wavefront_lattice::adaptive_tile_wavefront;
+use glint::tracer::wavefront::wavefront_lattice::trace_lattice_pass;
 use std::path::{Path, PathBuf};
 
 const W: u32 = 20;
@@ -263,8 +263,10 @@ fn assert_adaptive_tiles_match(name: &str, scene: &PackedScene) {
             let mut wave = Lattice::new(tile);
             let expected =
                 adaptive_tile(scene, &mut mega, g.aa_threshold, &mut Counters::default());
-            let actual =
-                adaptive_tile_wavefront(scene, &mut wave, g.aa_threshold, &mut Counters::default());
+            let mut counters = Counters::default();
+            let actual = adaptive_tile_passes(&mut wave, g.aa_threshold, |lat, pass| {
+                trace_lattice_pass(scene, lat, pass, &mut counters)
+            });
             let at = format!("{name}: tile at ({tx}, {ty})");
             let point_bits = |l: &Lattice| -> Vec<[u32; 3]> {
                 l.points

@@ -53,7 +53,7 @@ pub(crate) fn lattice_index(tile: &AdaptiveTile, i: u32, j: u32) -> usize {
 /// the very position the per-pixel walk reaches by halving.
 // Mirror of src/tracer/sampling/adaptive.wgsl::lattice_position — change both.
 pub(crate) fn lattice_position(tile: &AdaptiveTile, i: u32, j: u32) -> (f32, f32) {
-    let s = tile.scale();
+    let s = tile.adaptive_scale();
     let scale = s as f32;
     (
         (tile.origin[0] + i / s) as f32 + (i % s) as f32 / scale,
@@ -104,7 +104,7 @@ impl Lattice {
         }
     }
     // Mirror of src/tracer/sampling/adaptive.wgsl::lattice_point — change both.
-    fn point(&self, i: u32, j: u32) -> Vec3 {
+    fn lattice_point(&self, i: u32, j: u32) -> Vec3 {
         self.points[lattice_index(&self.tile, i, j)]
     }
     // Mirror of src/tracer/sampling/adaptive.wgsl::point_hint — change both.
@@ -142,7 +142,7 @@ fn trace_lattice_point(
 /// Lattice point of the centre of square (a, b) of `level` (when [`square_has_centre`]).
 // Mirror of src/tracer/sampling/adaptive.wgsl::square_centre — change both.
 pub(crate) fn square_centre(tile: &AdaptiveTile, level: u32, a: u32, b: u32) -> (u32, u32) {
-    let l = tile.scale() >> level;
+    let l = tile.adaptive_scale() >> level;
     (a * l + l / 2, b * l + l / 2)
 }
 
@@ -173,11 +173,10 @@ fn adaptive_corners(
 /// [`adaptive_corners`]): pixel corner (idx mod (w+1), idx div (w+1)) for
 /// idx < (w+1)(h+1), after those the centre of pixel number idx − (w+1)(h+1). Both
 /// forms' corner passes take it: [`adaptive_corners`] here and the wavefront's
-/// `wavefront_lattice::corner_pass_point`. (In WGSL, adaptive.wgsl's adaptive_corners and
-/// wavefront_lattice.wgsl's corner_pass_point each keep a copy of these lines: a shared
-/// function would change the software variant's module.)
+/// `wavefront_lattice::lattice_pass_point`.
+// Mirror of src/tracer/sampling/adaptive.wgsl::corner_to_trace — change both.
 pub(crate) fn corner_to_trace(t: &AdaptiveTile, idx: u32) -> (u32, u32) {
-    let s = t.scale();
+    let s = t.adaptive_scale();
     let corners = (t.size[0] + 1) * (t.size[1] + 1);
     if idx < corners {
         return ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s);
@@ -190,13 +189,13 @@ pub(crate) fn corner_to_trace(t: &AdaptiveTile, idx: u32) -> (u32, u32) {
 /// bottom-left, bottom-right.
 // Mirror of src/tracer/sampling/adaptive.wgsl::square_corners — change both.
 fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
-    let l = lat.tile.scale() >> level;
+    let l = lat.tile.adaptive_scale() >> level;
     let (i, j) = (a * l, b * l);
     [
-        lat.point(i, j),
-        lat.point(i + l, j),
-        lat.point(i, j + l),
-        lat.point(i + l, j + l),
+        lat.lattice_point(i, j),
+        lat.lattice_point(i + l, j),
+        lat.lattice_point(i, j + l),
+        lat.lattice_point(i + l, j + l),
     ]
 }
 
@@ -205,7 +204,7 @@ fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
 /// hit different items.
 // Mirror of src/tracer/sampling/adaptive.wgsl::square_hints — change both.
 fn square_hints(lat: &Lattice, level: u32, a: u32, b: u32) -> SquareHints {
-    let l = lat.tile.scale() >> level;
+    let l = lat.tile.adaptive_scale() >> level;
     let (i, j) = (a * l, b * l);
     let first = lat.point_hint(i, j);
     let mut hints = SquareHints {
@@ -225,7 +224,7 @@ fn square_hints(lat: &Lattice, level: u32, a: u32, b: u32) -> SquareHints {
 fn square_contrast(lat: &Lattice, level: u32, a: u32, b: u32) -> f32 {
     let corners = square_corners(lat, level, a, b);
     let (ci, cj) = square_centre(&lat.tile, level, a, b);
-    square_contrast_of(&corners, lat.point(ci, cj))
+    square_contrast_of(&corners, lat.lattice_point(ci, cj))
 }
 
 /// Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
@@ -300,9 +299,8 @@ fn adaptive_midpoints(
 /// The lattice point that invocation `idx` of level `level`'s midpoint pass traces (see
 /// [`adaptive_midpoints`]); None where another invocation traces it, or the child has no
 /// centre. Both forms' midpoint passes take it: [`adaptive_midpoints`] here and the
-/// wavefront's `wavefront_lattice::midpoint_pass_point`. (In WGSL, adaptive.wgsl's
-/// adaptive_midpoints and wavefront_lattice.wgsl's midpoint_pass_point each keep a copy
-/// of these lines: a shared function would change the software variant's module.)
+/// wavefront's `wavefront_lattice::lattice_pass_point`.
+// Mirror of src/tracer/sampling/adaptive.wgsl::midpoint_to_trace — change both.
 pub(crate) fn midpoint_to_trace(lat: &Lattice, level: u32, idx: u32) -> Option<(u32, u32)> {
     let t = lat.tile;
     let m = idx % AA_SPLIT_POINTS;
@@ -313,7 +311,7 @@ pub(crate) fn midpoint_to_trace(lat: &Lattice, level: u32, idx: u32) -> Option<(
     {
         return None;
     }
-    let l = t.scale() >> level;
+    let l = t.adaptive_scale() >> level;
     let (h, q) = (l / 2, l / 4);
     let offsets = [
         (h, 0),
@@ -356,7 +354,7 @@ fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
         let area = side * side;
         if square_has_centre(&t, level) {
             let (ci, cj) = square_centre(&t, level, a, b);
-            sum += quincunx_mean(&c, lat.point(ci, cj)) * area;
+            sum += quincunx_mean(&c, lat.lattice_point(ci, cj)) * area;
         } else {
             sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
         }
@@ -562,7 +560,7 @@ mod tests {
             let side = 1.0 / (1u32 << level) as f32;
             if super::square_has_centre(&t, level) {
                 let (ci, cj) = super::square_centre(&t, level, a, b);
-                sum += super::quincunx_mean(&c, lat.point(ci, cj)) * (side * side);
+                sum += super::quincunx_mean(&c, lat.lattice_point(ci, cj)) * (side * side);
             } else {
                 sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * side * side);
             }

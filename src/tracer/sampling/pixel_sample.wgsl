@@ -74,42 +74,16 @@ fn hinted_sample(fx: f32, fy: f32, seed: SampleSeed) -> vec4<f32> {
     return vec4<f32>(colour, encode_hint(SampleHint(fine_detail_seen, key)));
 }
 
-// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact): the
-// point jittered, by hashes of its seed, within a square AA_LATTICE_JITTER steps of the
-// finest lattice (2^aa_depth per pixel) wide around it, then hinted_sample there with
-// the point's own seed. The jitter depends only on the point, so a point shared by
-// neighbouring squares, pixels or chunks is the same sample whichever pass traces it.
+// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact):
+// hinted_sample at the point's lattice_jitter (the point jittered, with its own seed), so
+// a point shared by neighbouring squares, pixels or chunks is the same sample whichever
+// pass traces it.
 // Mirror of src/tracer/sampling/pixel_sample.rs::lattice_sample — change both.
 fn lattice_sample(fx: f32, fy: f32) -> vec4<f32> {
-    let seed = adaptive_seed(fx, fy);
-    // A power of two: the products below are exact, so a fused multiply-add rounds the
-    // sums as the CPU's separate operations do.
-    let width = AA_LATTICE_JITTER * ldexp(1.0, -i32(globals.aa_depth));
-    let jx = (random_unit(seed.pixel, seed.sample, 0u) - 0.5) * width;
-    let jy = (random_unit(seed.pixel, seed.sample, 1u) - 0.5) * width;
-    return hinted_sample(fx + jx, fy + jy, seed);
+    let at = lattice_jitter(fx, fy);
+    return hinted_sample(at.fx, at.fy, at.seed);
 }
 
-// #if WAVEFRONT
-// Where lattice_sample samples a lattice point, and the seed it samples it with.
-struct JitteredPoint {
-    position: vec2<f32>,
-    seed: SampleSeed,
-}
-
-// Where lattice_sample samples lattice point (fx, fy) (the point jittered, the same sums)
-// and its seed: what the wavefront's camera pass for adaptive AA takes
-// (wavefront_lattice.wgsl).
-// Mirror of src/tracer/sampling/pixel_sample.rs::lattice_jitter, which the CPU's lattice_sample calls too — change both.
-fn lattice_jitter(fx: f32, fy: f32) -> JitteredPoint {
-    let seed = adaptive_seed(fx, fy);
-    let width = AA_LATTICE_JITTER * ldexp(1.0, -i32(globals.aa_depth));
-    let jx = (random_unit(seed.pixel, seed.sample, 0u) - 0.5) * width;
-    let jy = (random_unit(seed.pixel, seed.sample, 1u) - 0.5) * width;
-    return JitteredPoint(vec2<f32>(fx + jx, fy + jy), seed);
-}
-
-// #endif
 // Largest per-channel spread of a square's four corner samples and its centre sample:
 // what the split decision of adaptive AA weighs.
 // Mirror of src/tracer/sampling/pixel_sample.rs::square_contrast_of — change both.
