@@ -73,18 +73,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          value does not depend on it",
     ),
     (
-        "src/tracer/sampling/pixel_sample.wgsl",
-        "encode_hint",
-        "stores a SampleHint in the float fourth component of a lattice sample; the CPU's \
-         lattice keeps its hints in a Vec<SampleHint>",
-    ),
-    (
-        "src/tracer/sampling/pixel_sample.wgsl",
-        "decode_hint",
-        "reads encode_hint's float back; the CPU's lattice keeps its hints in a \
-         Vec<SampleHint>",
-    ),
-    (
         "src/pack/layout.wgsl",
         "table_at",
         "reads the texel of a table element (src/gpu/upload/tables.rs): the CPU indexes its slices",
@@ -269,13 +257,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "set_csg_count",
         "writes CsgStack::list_count[l] (see csg_count_at)",
     ),    (
-        "src/tracer/wavefront/wavefront_lattice.wgsl",
-        "lattice_queue_base",
-        "where the wavefront's queues start in the `samples` buffer, after the lattice (the \
-         GPU's buffer layout, as src/gpu/plan/adaptive.rs::lattice_queue_bytes lays it out); the CPU's \
-         lattice and batch are separate Vecs",
-    ),
-    (
         "src/tracer/wavefront/wavefront.wgsl",
         "load_path",
         "path entry i of a queue as trace_ray's stack holds it, from the generated accessors of its fields (path_origin, …); the CPU's is PathQueue::load_path, a method of one queue (the WGSL names the queue by its parity)",
@@ -388,13 +369,6 @@ const WGSL_NAMED_APART: &[(&str, &str, &str)] = &[
         "probe",
         "the kernel probe's entry point; its Rust side, a test hook, is \
          src/testing/probe.rs::cpu_probe beside gpu_probe, which names the tracer that answers",
-    ),
-    (
-        "src/tracer/sampling/progressive.wgsl",
-        "wavefront_view_store",
-        "the sum of src/tracer/sampling/progressive.rs::view_sample, the CPU's one form of a view \
-         frame's sample (the GPU's hardware variant stores the wavefront's sample into the \
-         sums in a pass of its own)",
     ),
     (
         "src/tracer/traversal/traverse.wgsl",

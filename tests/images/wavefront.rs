@@ -456,7 +456,7 @@ fn passes_start_camera_rays_in_the_media_around_the_camera() {
 /// sums bit for bit.
 #[test]
 fn passes_sample_the_views_frames_as_view_sample_does() {
-    use glint::tracer::sampling::progressive::view_sample;
+    use glint::tracer::sampling::progressive::{view_sample, wavefront_view_store};
     let mut checked = 0;
     for path in common::own_scenes() {
         for scene in packed(&path, AaMode::Uniform, DebugView::None) {
@@ -476,15 +476,8 @@ fn passes_sample_the_views_frames_as_view_sample_does() {
                 let batch = trace_batch(&scene, &source, &mut Counters::default());
                 for (k, &[x, y]) in pixels.iter().enumerate() {
                     expected[k] = view_sample(&scene, x, y, s, expected[k]);
-                    // view_sample's sum: from zero at s = 0.
-                    let before = if s == 0 {
-                        Vec3::ZERO
-                    } else {
-                        Vec3::from_slice(&actual[k][..3])
-                    };
-                    let total = before + batch.samples.colour[k];
-                    actual[k] = [total.x, total.y, total.z, (s + 1) as f32];
                 }
+                wavefront_view_store(&mut actual, s, &batch.samples.colour);
             }
             let bits = |sums: &[[f32; 4]]| -> Vec<[u32; 4]> {
                 sums.iter().map(|p| p.map(f32::to_bits)).collect()

@@ -29,9 +29,10 @@
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
 
 use super::pixel_sample::{
-    add_sample_hint, lattice_sample, quincunx_mean, square_contrast_of, SampleHint, SquareHints,
+    add_sample_hint, decode_hint, encode_hint, lattice_sample, quincunx_mean, square_contrast_of,
+    SampleHint, SquareHints,
 };
-use crate::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH, AA_SPLIT_POINTS, NO_ITEM};
+use crate::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH, AA_SPLIT_POINTS};
 use crate::pack::PackedScene;
 pub use crate::tiling::{split_offset, AdaptiveTile};
 use crate::tracer::traversal::traverse::TraversalCounters;
@@ -73,14 +74,14 @@ fn unpack_square(entry: u32) -> (u32, u32) {
     (entry & 0xffff, entry >> 16)
 }
 
-/// A tile's lattice colours and hints ([`lattice_sample`]; the GPU keeps the hint in the
-/// sample's fourth component, see src/tracer/sampling/pixel_sample.wgsl::encode_hint), split flags and, per
-/// level, the list of split squares (at the level's split-flag offset, [`split_offset`])
-/// and its length.
+/// A tile's lattice colours and hints ([`lattice_sample`]; each hint as
+/// [`encode_hint`] stores it, the GPU's lattice sample's fourth component), split flags
+/// and, per level, the list of split squares (at the level's split-flag offset,
+/// [`split_offset`]) and its length.
 pub struct Lattice {
     pub tile: AdaptiveTile,
     pub points: Vec<Vec3>,
-    pub hints: Vec<SampleHint>,
+    pub hints: Vec<f32>,
     pub split: Vec<u32>,
     pub work_list: Vec<u32>,
     pub work_counts: Vec<u32>,
@@ -91,13 +92,7 @@ impl Lattice {
         Lattice {
             tile,
             points: vec![Vec3::ZERO; tile.lattice_len()],
-            hints: vec![
-                SampleHint {
-                    fine_detail: false,
-                    item: NO_ITEM,
-                };
-                tile.lattice_len()
-            ],
+            hints: vec![0.0; tile.lattice_len()],
             split: vec![0; tile.split_len()],
             work_list: vec![0; tile.split_len()],
             work_counts: vec![0; tile.depth as usize],
@@ -109,7 +104,7 @@ impl Lattice {
     }
     // Mirror of src/tracer/sampling/adaptive.wgsl::point_hint — change both.
     fn point_hint(&self, i: u32, j: u32) -> SampleHint {
-        self.hints[lattice_index(&self.tile, i, j)]
+        decode_hint(self.hints[lattice_index(&self.tile, i, j)])
     }
     // Mirror of src/tracer/sampling/adaptive.wgsl::is_split — change both.
     pub(crate) fn is_split(&self, level: u32, a: u32, b: u32) -> bool {
@@ -136,7 +131,7 @@ fn trace_lattice_point(
     let k = lattice_index(&t, i, j);
     let (colour, hint) = lattice_sample(scene, fx, fy, counters);
     lat.points[k] = colour;
-    lat.hints[k] = hint;
+    lat.hints[k] = encode_hint(hint);
 }
 
 /// Lattice point of the centre of square (a, b) of `level` (when [`square_has_centre`]).

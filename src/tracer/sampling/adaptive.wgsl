@@ -171,7 +171,9 @@ fn lattice_position(i: u32, j: u32) -> vec2<f32> {
 // Mirror of src/tracer/sampling/adaptive.rs::trace_lattice_point — change both.
 fn trace_lattice_point(i: u32, j: u32) {
     let pos = lattice_position(i, j);
-    samples[lattice_index(i, j)] = lattice_sample(pos.x, pos.y);
+    let k = lattice_index(i, j);
+    let hinted = lattice_sample(pos.x, pos.y);
+    samples[k] = vec4<f32>(hinted.colour, encode_hint(hinted.hint));
 // #if ITERATION_GUARD
     if loop_limiter_tripped() {
         guard_lattice_point(i, j);

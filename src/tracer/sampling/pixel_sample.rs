@@ -43,6 +43,24 @@ pub(crate) fn item_key(item: u32) -> u32 {
     item & AA_ITEM_KEY_MASK
 }
 
+/// A hint as a lattice sample's fourth component, as both tracers' lattices keep it:
+/// ±(item + 1), negative for fine detail (an integer of at most 2^24, so the float is
+/// exact and [`decode_hint`] gives it back).
+// Mirror of src/tracer/sampling/pixel_sample.wgsl::encode_hint — change both.
+pub(crate) fn encode_hint(hint: SampleHint) -> f32 {
+    let sign = if hint.fine_detail { -1.0 } else { 1.0 };
+    sign * hint.item.wrapping_add(1) as f32
+}
+
+/// The hint [`encode_hint`] stored.
+// Mirror of src/tracer/sampling/pixel_sample.wgsl::decode_hint — change both.
+pub(crate) fn decode_hint(w: f32) -> SampleHint {
+    SampleHint {
+        fine_detail: w < 0.0,
+        item: (w.abs() as u32).wrapping_sub(1),
+    }
+}
+
 /// What the split decision of a square reads beside its samples' contrast: whether one of
 /// its samples saw fine detail, and whether they hit different items.
 // Mirror of src/tracer/sampling/pixel_sample.wgsl::SquareHints — change both.

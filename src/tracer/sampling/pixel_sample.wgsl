@@ -29,13 +29,21 @@ fn item_key(item: u32) -> u32 {
 
 // A hint as a lattice sample's fourth component: ±(item + 1), negative for fine detail (an
 // integer of at most 2^24, so the float is exact and decode_hint gives it back).
+// Mirror of src/tracer/sampling/pixel_sample.rs::encode_hint — change both.
 fn encode_hint(hint: SampleHint) -> f32 {
     return select(1.0, -1.0, hint.fine_detail) * f32(hint.item + 1u);
 }
 
 // The hint encode_hint stored in w.
+// Mirror of src/tracer/sampling/pixel_sample.rs::decode_hint — change both.
 fn decode_hint(w: f32) -> SampleHint {
     return SampleHint(w < 0.0, u32(abs(w)) - 1u);
+}
+
+// A sample's colour and its SampleHint.
+struct HintedSample {
+    colour: vec3<f32>,
+    hint: SampleHint,
 }
 
 // What the split decision of a square reads beside its samples' contrast: whether one of
@@ -63,15 +71,15 @@ fn sample_item_key(camera: u32, mirrored: u32) -> u32 {
     return item_key(camera ^ ((mirrored + 1u) * 0x9e3779b1u));
 }
 
-// sample, and in w its SampleHint (encode_hint). Adaptive AA's lattice samples.
+// sample, and its SampleHint. Adaptive AA's lattice samples.
 // Mirror of src/tracer/sampling/pixel_sample.rs::hinted_sample — change both.
-fn hinted_sample(fx: f32, fy: f32, seed: SampleSeed) -> vec4<f32> {
+fn hinted_sample(fx: f32, fy: f32, seed: SampleSeed) -> HintedSample {
     fine_detail_seen = false;
     camera_item = NO_ITEM;
     mirrored_item = NO_ITEM;
     let colour = sample(fx, fy, seed);
     let key = sample_item_key(camera_item, mirrored_item);
-    return vec4<f32>(colour, encode_hint(SampleHint(fine_detail_seen, key)));
+    return HintedSample(colour, SampleHint(fine_detail_seen, key));
 }
 
 // Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact):
@@ -79,7 +87,7 @@ fn hinted_sample(fx: f32, fy: f32, seed: SampleSeed) -> vec4<f32> {
 // a point shared by neighbouring squares, pixels or chunks is the same sample whichever
 // pass traces it.
 // Mirror of src/tracer/sampling/pixel_sample.rs::lattice_sample — change both.
-fn lattice_sample(fx: f32, fy: f32) -> vec4<f32> {
+fn lattice_sample(fx: f32, fy: f32) -> HintedSample {
     let at = lattice_jitter(fx, fy);
     return hinted_sample(at.fx, at.fy, at.seed);
 }

@@ -19,6 +19,7 @@ use crate::pack::PackedScene;
 use crate::tracer::sampling::adaptive::{
     corner_to_trace, lattice_index, lattice_position, midpoint_to_trace, Lattice,
 };
+use crate::tracer::sampling::pixel_sample::encode_hint;
 use crate::tracer::sampling::sample_source::SampleSource;
 use crate::tracer::traversal::traverse::TraversalCounters;
 
@@ -98,5 +99,5 @@ pub fn wavefront_lattice_camera(
 fn wavefront_lattice_store(lat: &mut Lattice, batch: &Batch, k: usize, i: u32, j: u32) {
     let at = lattice_index(&lat.tile, i, j);
     lat.points[at] = batch.samples.colour[k];
-    lat.hints[at] = batch.samples.hint(k);
+    lat.hints[at] = encode_hint(batch.samples.hint(k));
 }

@@ -20,7 +20,8 @@
 // #if WAVEFRONT
 // Where the wavefront's queues start in `samples` (vec4 entries): after the tile's
 // lattice, at a multiple of 16 entries (256 bytes, the coarsest storage-binding offset
-// alignment WebGPU allows an adapter). src/gpu/plan/adaptive.rs::lattice_queue_bytes is the same.
+// alignment WebGPU allows an adapter), where the plan binds them.
+// Mirror of src/gpu/plan/adaptive.rs::lattice_queue_base — change both.
 fn lattice_queue_base() -> u32 {
     let width = tile.side * adaptive_scale() + 1u;
     return (width * width + 15u) / 16u * 16u;
