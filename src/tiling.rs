@@ -24,12 +24,12 @@ pub struct AdaptiveTile {
 impl AdaptiveTile {
     /// Lattice steps per pixel: 2^d.
     // Mirror of src/tracer/sampling/adaptive.wgsl::adaptive_scale — change both.
-    pub fn scale(&self) -> u32 {
+    pub fn adaptive_scale(&self) -> u32 {
         1 << self.depth
     }
     /// Points per lattice row: side·2^d + 1.
     pub fn lattice_width(&self) -> u32 {
-        self.side * self.scale() + 1
+        self.side * self.adaptive_scale() + 1
     }
     /// Lattice points of the arrays.
     pub fn lattice_len(&self) -> usize {

@@ -73,18 +73,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
          value does not depend on it",
     ),
     (
-        "src/tracer/sampling/pixel_sample.wgsl",
-        "encode_hint",
-        "stores a SampleHint in the float fourth component of a lattice sample; the CPU's \
-         lattice keeps its hints in a Vec<SampleHint>",
-    ),
-    (
-        "src/tracer/sampling/pixel_sample.wgsl",
-        "decode_hint",
-        "reads encode_hint's float back; the CPU's lattice keeps its hints in a \
-         Vec<SampleHint>",
-    ),
-    (
         "src/pack/layout.wgsl",
         "table_at",
         "reads the texel of a table element (src/gpu/upload/tables.rs): the CPU indexes its slices",
@@ -195,13 +183,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "reads a ray stack entry from a private array or the list slot (src/gpu/compile/lists.rs); the CPU reads `stack[size]`",
     ),
     (
-        "src/tracer/wavefront/wavefront_lattice.wgsl",
-        "lattice_queue_base",
-        "where the wavefront's queues start in the `samples` buffer, after the lattice (the \
-         GPU's buffer layout, as src/gpu/plan/adaptive.rs::lattice_queue_bytes lays it out); the CPU's \
-         lattice and batch are separate Vecs",
-    ),
-    (
         "src/tracer/wavefront/batch.wgsl",
         "load_path",
         "path entry i of a queue as trace_ray's stack holds it, from the generated accessors of its fields (path_origin, …); the CPU's is PathQueue::load_path, a method of one queue (the WGSL names the queue by its parity)",
@@ -237,9 +218,11 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "GPU queues only: a child without room hands the sample's pixels to the CPU tracer (the CPU's queues are Vecs that grow)",
     ),
     (
-        "src/tracer/wavefront/wavefront_lattice.wgsl",
+        "src/tracer/sampling/adaptive.wgsl",
         "guard_lattice_point",
-        "GPU queues only: the pixels around a lattice point whose tree had no room go to the CPU tracer (adaptive.wgsl's trace_lattice_point guards the same pixels for the loop limiter)",
+        "flags the pixels around a lattice point whose sample the GPU could not trace \
+         (lavapipe's loop limiter, or a wavefront tree without room for a child) for the \
+         CPU tracer to re-render; the CPU traces every sample",
     ),
     (
         "src/tracer/wavefront/wavefront_tree.wgsl",
@@ -267,19 +250,6 @@ const WGSL_NAMED_APART: &[(&str, &str, &str)] = &[
         "probe",
         "the kernel probe's entry point; its Rust side, a test hook, is \
          src/testing/probe.rs::cpu_probe beside gpu_probe, which names the tracer that answers",
-    ),
-    (
-        "src/tracer/sampling/adaptive.wgsl",
-        "adaptive_scale",
-        "src/tiling.rs::AdaptiveTile::scale, a method of the host's tile record (which \
-         WGSL reads from the `tile` uniform)",
-    ),
-    (
-        "src/tracer/sampling/progressive.wgsl",
-        "wavefront_view_store",
-        "the sum of src/tracer/sampling/progressive.rs::view_sample, the CPU's one form of a view \
-         frame's sample (the GPU's hardware variant stores the wavefront's sample into the \
-         sums in a pass of its own)",
     ),
     (
         "src/tracer/wavefront/wavefront_tree.wgsl",

@@ -16,7 +16,7 @@ use glint::film::Film;
 use glint::pack::{PackedScene, SceneFeatures};
 use glint::scene::{AaDepth, AaMode, AaSamples, DebugView, OptionOverrides, TraceDepth};
 use glint::tiling::AdaptiveTile;
-use glint::tracer::sampling::adaptive::{adaptive_tile, Lattice};
+use glint::tracer::sampling::adaptive::{adaptive_tile, adaptive_tile_passes, Lattice};
 use glint::tracer::sampling::pixel_sample::lattice_sample;
 use glint::tracer::sampling::render::render_pixel;
 use glint::tracer::shading::dielectric::{shadow_transmittance, MediumStack};
@@ -25,7 +25,7 @@ use glint::tracer::wavefront::wavefront::{
     camera_pass, closest_pass, render_film, trace_batch, wavefront_args, Batch, SampleSource,
 };
 use glint::tracer::wavefront::wavefront_gather::{fold_pass, gather_pass};
-use glint::tracer::wavefront::wavefront_lattice::adaptive_tile_wavefront;
+use glint::tracer::wavefront::wavefront_lattice::trace_lattice_pass;
 use glint::tracer::wavefront::wavefront_shade::shade_pass;
 use glint::tracer::wavefront::wavefront_shadow::{glass_shadow_pass, shadow_pass};
 use std::path::{Path, PathBuf};
@@ -265,8 +265,10 @@ fn assert_adaptive_tiles_match(name: &str, scene: &PackedScene) {
             let mut wave = Lattice::new(tile);
             let expected =
                 adaptive_tile(scene, &mut mega, g.aa_threshold, &mut Counters::default());
-            let actual =
-                adaptive_tile_wavefront(scene, &mut wave, g.aa_threshold, &mut Counters::default());
+            let mut counters = Counters::default();
+            let actual = adaptive_tile_passes(&mut wave, g.aa_threshold, |lat, pass| {
+                trace_lattice_pass(scene, lat, pass, &mut counters)
+            });
             let at = format!("{name}: tile at ({tx}, {ty})");
             let point_bits = |l: &Lattice| -> Vec<[u32; 3]> {
                 l.points
@@ -457,7 +459,7 @@ fn passes_start_camera_rays_in_the_media_around_the_camera() {
 /// sums bit for bit.
 #[test]
 fn passes_sample_the_views_frames_as_view_sample_does() {
-    use glint::tracer::sampling::progressive::view_sample;
+    use glint::tracer::sampling::progressive::{view_sample, wavefront_view_store};
     let mut checked = 0;
     for path in common::own_scenes() {
         for scene in packed(&path, AaMode::Uniform, DebugView::None) {
@@ -477,15 +479,8 @@ fn passes_sample_the_views_frames_as_view_sample_does() {
                 let batch = trace_batch(&scene, &source, &mut Counters::default());
                 for (k, &[x, y]) in pixels.iter().enumerate() {
                     expected[k] = view_sample(&scene, x, y, s, expected[k]);
-                    // view_sample's sum: from zero at s = 0.
-                    let before = if s == 0 {
-                        Vec3::ZERO
-                    } else {
-                        Vec3::from_slice(&actual[k][..3])
-                    };
-                    let total = before + batch.samples.colour[k];
-                    actual[k] = [total.x, total.y, total.z, (s + 1) as f32];
                 }
+                wavefront_view_store(&mut actual, s, &batch.samples.colour);
             }
             let bits = |sums: &[[f32; 4]]| -> Vec<[u32; 4]> {
                 sums.iter().map(|p| p.map(f32::to_bits)).collect()

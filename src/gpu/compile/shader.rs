@@ -341,6 +341,7 @@ const COMMON: &[(&str, &str)] = &[
 ];
 const RENDER: &[(&str, &str)] = &[
     wgsl!("tracer/path/trace.wgsl"),
+    wgsl!("tracer/sampling/sample_source.wgsl"),
     wgsl!("tracer/sampling/pixel_sample.wgsl"),
     wgsl!("tracer/sampling/render.wgsl"),
     wgsl!("tracer/sampling/adaptive.wgsl"),

@@ -10,19 +10,29 @@ use super::shape::WavefrontShape;
 use super::tree::tree_dispatches;
 use super::{AdapterBounds, BindingOffsets, Chunk, ChunkPasses, Dispatch, Workgroups};
 use crate::constants::WAVEFRONT_WORK_BASE;
-use crate::tiling::{split_offset, PixelRect};
+use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
 
 /// Byte offset of the wavefront's counters in `work_counts` and of its arguments in
 /// `work_args` under adaptive AA (`src/tracer/wavefront/wavefront_lattice.wgsl`).
 pub const WAVEFRONT_WORK_BYTES: u64 = 4 * WAVEFRONT_WORK_BASE as u64;
 
-/// Where the wavefront's queues start in `samples` (bytes) for adaptive tiles of side
-/// `side` at depth `depth`: after the lattice, at a multiple of 256 bytes (the coarsest
+/// Where the wavefront's queues start in `samples` (vec4 entries) for adaptive tile
+/// `tile`: after its lattice, at a multiple of 16 entries (256 bytes, the coarsest
 /// storage offset alignment WebGPU allows).
-// The same as src/tracer/wavefront/wavefront_lattice.wgsl::lattice_queue_base.
+// Mirror of src/tracer/wavefront/wavefront_lattice.wgsl::lattice_queue_base — change both.
+pub fn lattice_queue_base(tile: &AdaptiveTile) -> u64 {
+    (tile.lattice_len() as u64).div_ceil(16) * 16
+}
+
+/// [`lattice_queue_base`] in bytes, for adaptive tiles of side `side` at depth `depth`.
 pub fn lattice_queue_bytes(side: u32, depth: u32) -> u64 {
-    let width = side as u64 * (1u64 << depth) + 1;
-    (width * width).div_ceil(16) * 16 * 16
+    let tile = AdaptiveTile {
+        origin: [0, 0],
+        size: [side, side],
+        side,
+        depth,
+    };
+    16 * lattice_queue_base(&tile)
 }
 
 /// Byte offset of level `level`'s midpoint-pass arguments in the work-args buffer; the

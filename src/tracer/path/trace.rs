@@ -7,7 +7,7 @@ use crate::constants::{
     AA_ADAPTIVE, AA_TEXTURE_DETAIL_SHARE, DEBUG_VIEW_UV, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE,
     RAY_STACK_SIZE, T_MISS,
 };
-use crate::pack::{PackedScene, SceneFeatures};
+use crate::pack::{PackedGlobals, PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{offset_ray, Ray};
 use crate::tracer::base::rng::SampleSeed;
 use crate::tracer::shading::dielectric::{dielectric_interface, MediumStack};
@@ -36,6 +36,20 @@ pub(crate) struct StackEntry {
     pub(crate) media: MediumStack,
 }
 
+/// The stack entry of camera ray `primary`: weight 1, depth 0, the camera's cone and the
+/// media around the camera. Every form starts its camera samples with it: `trace_ray`
+/// here, the GPU's wavefront camera passes too.
+// Mirror of src/tracer/path/trace.wgsl::camera_entry — change both.
+pub(crate) fn camera_entry(g: &PackedGlobals, primary: &Ray) -> StackEntry {
+    StackEntry {
+        ray: *primary,
+        weight: Vec3::ONE,
+        depth: 0,
+        cone: camera_cone(g, primary),
+        media: camera_medium_stack(g),
+    }
+}
+
 /// Colour seen along a primary ray, mirrors and dielectrics included (down to
 /// `max_depth` bounces or `min_weight` contribution). A dielectric pushes its transmitted
 /// ray, (1 − F) of the weight, then the reflected ray, whose weight is the mirror colour
@@ -59,13 +73,7 @@ pub fn trace_ray(
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let g = &scene.globals;
-    let first = StackEntry {
-        ray: primary,
-        weight: Vec3::ONE,
-        depth: 0,
-        cone: camera_cone(g, &primary),
-        media: camera_medium_stack(&scene.globals),
-    };
+    let first = camera_entry(g, &primary);
     let first_hit = closest_hit(scene, &primary, T_MISS, counters);
     counters.camera_hit(first_hit.item);
     if !first_hit.is_hit() {
@@ -335,7 +343,7 @@ fn facing_normal(normal: Vec3, dir: Vec3) -> Vec3 {
 
 /// The media primary rays start in, as packing found them (`dielectric::camera_media`).
 // Mirror of src/tracer/path/trace.wgsl::camera_medium_stack — change both.
-pub(crate) fn camera_medium_stack(g: &crate::pack::PackedGlobals) -> MediumStack {
+pub(crate) fn camera_medium_stack(g: &PackedGlobals) -> MediumStack {
     MediumStack {
         iors: g.camera_media,
         count: g.camera_media_count,

@@ -96,6 +96,24 @@ fn load_pending(stack: ptr<function, RayStack>, k: u32) -> StackEntry {
 }
 // #endif
 
+// The stack entry of camera ray `primary`: weight 1, depth 0, the camera's cone and the
+// media around the camera. Every kernel that starts camera samples takes it: trace_ray
+// here, the wavefront's camera passes (wavefront_camera, wavefront_lattice_camera).
+// Mirror of src/tracer/path/trace.rs::camera_entry — change both.
+fn camera_entry(primary: Ray) -> StackEntry {
+    var entry: StackEntry;
+    entry.ray = primary;
+    entry.weight = vec3<f32>(1.0);
+    entry.depth = 0u;
+// #if TEXTURE|BUMP
+    entry.cone = camera_cone(primary);
+// #endif
+// #if REFRACTION
+    entry.media = camera_medium_stack();
+// #endif
+    return entry;
+}
+
 // Colour seen along a primary ray, mirrors and dielectrics included (down to max_depth
 // bounces or min_weight contribution). A dielectric pushes its transmitted ray, (1 − F) of
 // the weight, then the reflected ray, whose weight is the mirror colour plus F (one ray:
@@ -117,16 +135,7 @@ fn load_pending(stack: ptr<function, RayStack>, k: u32) -> StackEntry {
 // #endif
 // Mirror of src/tracer/path/trace.rs::trace_ray — change both.
 fn trace_ray(primary: Ray, seed: SampleSeed) -> vec3<f32> {
-    var first: StackEntry;
-    first.ray = primary;
-    first.weight = vec3<f32>(1.0);
-    first.depth = 0u;
-// #if TEXTURE|BUMP
-    first.cone = camera_cone(primary);
-// #endif
-// #if REFRACTION
-    first.media = camera_medium_stack();
-// #endif
+    let first = camera_entry(primary);
 // #if CAMERA_RAY_IN_LOOP
 // #if REFRACTION
     // With dielectrics the kernel is large (and scenes with them tend to have many other

@@ -29,9 +29,10 @@
 //! each call is one invocation (one ray at most, for Mesa's loop limiter).
 
 use super::pixel_sample::{
-    add_sample_hint, lattice_sample, quincunx_mean, square_contrast_of, SampleHint, SquareHints,
+    add_sample_hint, decode_hint, encode_hint, lattice_sample, quincunx_mean, square_contrast_of,
+    SampleHint, SquareHints,
 };
-use crate::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH, AA_SPLIT_POINTS, NO_ITEM};
+use crate::constants::{AA_FINE_DETAIL_DEPTH, AA_ITEM_EDGE_DEPTH, AA_SPLIT_POINTS};
 use crate::pack::PackedScene;
 pub use crate::tiling::{split_offset, AdaptiveTile};
 use crate::tracer::traversal::traverse::TraversalCounters;
@@ -53,7 +54,7 @@ pub(crate) fn lattice_index(tile: &AdaptiveTile, i: u32, j: u32) -> usize {
 /// the very position the per-pixel walk reaches by halving.
 // Mirror of src/tracer/sampling/adaptive.wgsl::lattice_position — change both.
 pub(crate) fn lattice_position(tile: &AdaptiveTile, i: u32, j: u32) -> (f32, f32) {
-    let s = tile.scale();
+    let s = tile.adaptive_scale();
     let scale = s as f32;
     (
         (tile.origin[0] + i / s) as f32 + (i % s) as f32 / scale,
@@ -73,14 +74,14 @@ fn unpack_square(entry: u32) -> (u32, u32) {
     (entry & 0xffff, entry >> 16)
 }
 
-/// A tile's lattice colours and hints ([`lattice_sample`]; the GPU keeps the hint in the
-/// sample's fourth component, see src/tracer/sampling/pixel_sample.wgsl::encode_hint), split flags and, per
-/// level, the list of split squares (at the level's split-flag offset, [`split_offset`])
-/// and its length.
+/// A tile's lattice colours and hints ([`lattice_sample`]; each hint as
+/// [`encode_hint`] stores it, the GPU's lattice sample's fourth component), split flags
+/// and, per level, the list of split squares (at the level's split-flag offset,
+/// [`split_offset`]) and its length.
 pub struct Lattice {
     pub tile: AdaptiveTile,
     pub points: Vec<Vec3>,
-    pub hints: Vec<SampleHint>,
+    pub hints: Vec<f32>,
     pub split: Vec<u32>,
     pub work_list: Vec<u32>,
     pub work_counts: Vec<u32>,
@@ -91,25 +92,19 @@ impl Lattice {
         Lattice {
             tile,
             points: vec![Vec3::ZERO; tile.lattice_len()],
-            hints: vec![
-                SampleHint {
-                    fine_detail: false,
-                    item: NO_ITEM,
-                };
-                tile.lattice_len()
-            ],
+            hints: vec![0.0; tile.lattice_len()],
             split: vec![0; tile.split_len()],
             work_list: vec![0; tile.split_len()],
             work_counts: vec![0; tile.depth as usize],
         }
     }
     // Mirror of src/tracer/sampling/adaptive.wgsl::lattice_point — change both.
-    fn point(&self, i: u32, j: u32) -> Vec3 {
+    fn lattice_point(&self, i: u32, j: u32) -> Vec3 {
         self.points[lattice_index(&self.tile, i, j)]
     }
     // Mirror of src/tracer/sampling/adaptive.wgsl::point_hint — change both.
     fn point_hint(&self, i: u32, j: u32) -> SampleHint {
-        self.hints[lattice_index(&self.tile, i, j)]
+        decode_hint(self.hints[lattice_index(&self.tile, i, j)])
     }
     // Mirror of src/tracer/sampling/adaptive.wgsl::is_split — change both.
     pub(crate) fn is_split(&self, level: u32, a: u32, b: u32) -> bool {
@@ -136,13 +131,13 @@ fn trace_lattice_point(
     let k = lattice_index(&t, i, j);
     let (colour, hint) = lattice_sample(scene, fx, fy, counters);
     lat.points[k] = colour;
-    lat.hints[k] = hint;
+    lat.hints[k] = encode_hint(hint);
 }
 
 /// Lattice point of the centre of square (a, b) of `level` (when [`square_has_centre`]).
 // Mirror of src/tracer/sampling/adaptive.wgsl::square_centre — change both.
 pub(crate) fn square_centre(tile: &AdaptiveTile, level: u32, a: u32, b: u32) -> (u32, u32) {
-    let l = tile.scale() >> level;
+    let l = tile.adaptive_scale() >> level;
     (a * l + l / 2, b * l + l / 2)
 }
 
@@ -173,11 +168,10 @@ fn adaptive_corners(
 /// [`adaptive_corners`]): pixel corner (idx mod (w+1), idx div (w+1)) for
 /// idx < (w+1)(h+1), after those the centre of pixel number idx − (w+1)(h+1). Both
 /// forms' corner passes take it: [`adaptive_corners`] here and the wavefront's
-/// `wavefront_lattice::corner_pass_point`. (In WGSL, adaptive.wgsl's adaptive_corners and
-/// wavefront_lattice.wgsl's corner_pass_point each keep a copy of these lines: a shared
-/// function would change the software variant's module.)
+/// `wavefront_lattice::lattice_pass_point`.
+// Mirror of src/tracer/sampling/adaptive.wgsl::corner_to_trace — change both.
 pub(crate) fn corner_to_trace(t: &AdaptiveTile, idx: u32) -> (u32, u32) {
-    let s = t.scale();
+    let s = t.adaptive_scale();
     let corners = (t.size[0] + 1) * (t.size[1] + 1);
     if idx < corners {
         return ((idx % (t.size[0] + 1)) * s, (idx / (t.size[0] + 1)) * s);
@@ -190,13 +184,13 @@ pub(crate) fn corner_to_trace(t: &AdaptiveTile, idx: u32) -> (u32, u32) {
 /// bottom-left, bottom-right.
 // Mirror of src/tracer/sampling/adaptive.wgsl::square_corners — change both.
 fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
-    let l = lat.tile.scale() >> level;
+    let l = lat.tile.adaptive_scale() >> level;
     let (i, j) = (a * l, b * l);
     [
-        lat.point(i, j),
-        lat.point(i + l, j),
-        lat.point(i, j + l),
-        lat.point(i + l, j + l),
+        lat.lattice_point(i, j),
+        lat.lattice_point(i + l, j),
+        lat.lattice_point(i, j + l),
+        lat.lattice_point(i + l, j + l),
     ]
 }
 
@@ -205,7 +199,7 @@ fn square_corners(lat: &Lattice, level: u32, a: u32, b: u32) -> [Vec3; 4] {
 /// hit different items.
 // Mirror of src/tracer/sampling/adaptive.wgsl::square_hints — change both.
 fn square_hints(lat: &Lattice, level: u32, a: u32, b: u32) -> SquareHints {
-    let l = lat.tile.scale() >> level;
+    let l = lat.tile.adaptive_scale() >> level;
     let (i, j) = (a * l, b * l);
     let first = lat.point_hint(i, j);
     let mut hints = SquareHints {
@@ -225,7 +219,7 @@ fn square_hints(lat: &Lattice, level: u32, a: u32, b: u32) -> SquareHints {
 fn square_contrast(lat: &Lattice, level: u32, a: u32, b: u32) -> f32 {
     let corners = square_corners(lat, level, a, b);
     let (ci, cj) = square_centre(&lat.tile, level, a, b);
-    square_contrast_of(&corners, lat.point(ci, cj))
+    square_contrast_of(&corners, lat.lattice_point(ci, cj))
 }
 
 /// Whether a square of `level` whose samples' contrast is `spread` splits: the contrast
@@ -300,9 +294,8 @@ fn adaptive_midpoints(
 /// The lattice point that invocation `idx` of level `level`'s midpoint pass traces (see
 /// [`adaptive_midpoints`]); None where another invocation traces it, or the child has no
 /// centre. Both forms' midpoint passes take it: [`adaptive_midpoints`] here and the
-/// wavefront's `wavefront_lattice::midpoint_pass_point`. (In WGSL, adaptive.wgsl's
-/// adaptive_midpoints and wavefront_lattice.wgsl's midpoint_pass_point each keep a copy
-/// of these lines: a shared function would change the software variant's module.)
+/// wavefront's `wavefront_lattice::lattice_pass_point`.
+// Mirror of src/tracer/sampling/adaptive.wgsl::midpoint_to_trace — change both.
 pub(crate) fn midpoint_to_trace(lat: &Lattice, level: u32, idx: u32) -> Option<(u32, u32)> {
     let t = lat.tile;
     let m = idx % AA_SPLIT_POINTS;
@@ -313,7 +306,7 @@ pub(crate) fn midpoint_to_trace(lat: &Lattice, level: u32, idx: u32) -> Option<(
     {
         return None;
     }
-    let l = t.scale() >> level;
+    let l = t.adaptive_scale() >> level;
     let (h, q) = (l / 2, l / 4);
     let offsets = [
         (h, 0),
@@ -356,7 +349,7 @@ fn adaptive_integrate(lat: &Lattice, tx: u32, ty: u32) -> (Vec3, u32) {
         let area = side * side;
         if square_has_centre(&t, level) {
             let (ci, cj) = square_centre(&t, level, a, b);
-            sum += quincunx_mean(&c, lat.point(ci, cj)) * area;
+            sum += quincunx_mean(&c, lat.lattice_point(ci, cj)) * area;
         } else {
             sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * area);
         }
@@ -562,7 +555,7 @@ mod tests {
             let side = 1.0 / (1u32 << level) as f32;
             if super::square_has_centre(&t, level) {
                 let (ci, cj) = super::square_centre(&t, level, a, b);
-                sum += super::quincunx_mean(&c, lat.point(ci, cj)) * (side * side);
+                sum += super::quincunx_mean(&c, lat.lattice_point(ci, cj)) * (side * side);
             } else {
                 sum += (c[0] + c[1] + c[2] + c[3]) * (0.25 * side * side);
             }

@@ -26,7 +26,7 @@
 @group(0) @binding(19) var<storage, read_write> work_args: array<u32>;
 
 // Lattice steps per pixel: 2^d.
-// Mirror of src/tiling.rs::AdaptiveTile::scale — change both.
+// Mirror of src/tiling.rs::AdaptiveTile::adaptive_scale — change both.
 fn adaptive_scale() -> u32 {
     return 1u << globals.aa_depth;
 }
@@ -72,7 +72,7 @@ fn lattice_index(i: u32, j: u32) -> u32 {
 }
 
 // The sample at lattice point (i, j).
-// Mirror of src/tracer/sampling/adaptive.rs::Lattice::point — change both.
+// Mirror of src/tracer/sampling/adaptive.rs::Lattice::lattice_point — change both.
 fn lattice_point(i: u32, j: u32) -> vec3<f32> {
     return samples[lattice_index(i, j)].xyz;
 }
@@ -171,23 +171,34 @@ fn lattice_position(i: u32, j: u32) -> vec2<f32> {
 // Mirror of src/tracer/sampling/adaptive.rs::trace_lattice_point — change both.
 fn trace_lattice_point(i: u32, j: u32) {
     let pos = lattice_position(i, j);
-    samples[lattice_index(i, j)] = lattice_sample(pos.x, pos.y);
+    let k = lattice_index(i, j);
+    let hinted = lattice_sample(pos.x, pos.y);
+    samples[k] = vec4<f32>(hinted.colour, encode_hint(hinted.hint));
 // #if ITERATION_GUARD
-    // Every pixel whose closed square holds the point (straight-line code: after the
-    // limiter trips, loops run one iteration).
     if loop_limiter_tripped() {
-        let s = adaptive_scale();
-        let x_hi = min(i / s, tile.size.x - 1u);
-        let y_hi = min(j / s, tile.size.y - 1u);
-        let x_lo = select(x_hi, (i - 1u) / s, i > 0u);
-        let y_lo = select(y_hi, (j - 1u) / s, j > 0u);
-        guard[y_lo * tile.side + x_lo] = 1u;
-        guard[y_lo * tile.side + x_hi] = 1u;
-        guard[y_hi * tile.side + x_lo] = 1u;
-        guard[y_hi * tile.side + x_hi] = 1u;
+        guard_lattice_point(i, j);
     }
 // #endif
 }
+
+// #if ITERATION_GUARD|REFRACTION
+// The guard flags of every pixel whose closed square holds lattice point (i, j), whose
+// sample the GPU could not trace (lavapipe's loop limiter tripped in trace_lattice_point,
+// or a wavefront tree had no room for a child: wavefront_lattice.wgsl's store pass): the
+// host re-renders them on the CPU. Straight-line code: after the limiter trips, loops
+// run one iteration.
+fn guard_lattice_point(i: u32, j: u32) {
+    let s = adaptive_scale();
+    let x_hi = min(i / s, tile.size.x - 1u);
+    let y_hi = min(j / s, tile.size.y - 1u);
+    let x_lo = select(x_hi, (i - 1u) / s, i > 0u);
+    let y_lo = select(y_hi, (j - 1u) / s, j > 0u);
+    guard[y_lo * tile.side + x_lo] = 1u;
+    guard[y_lo * tile.side + x_hi] = 1u;
+    guard[y_hi * tile.side + x_lo] = 1u;
+    guard[y_hi * tile.side + x_hi] = 1u;
+}
+// #endif
 
 // #if !WAVEFRONT
 // Corner pass (tile.items = src/tiling.rs::AdaptiveTile::first_pass_len invocations):
@@ -200,19 +211,26 @@ fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
     if idx >= tile.items {
         return;
     }
-    let s = adaptive_scale();
-    let corners = (tile.size.x + 1u) * (tile.size.y + 1u);
     begin_lane(idx);
-    var point: vec2<u32>;
-    if idx < corners {
-        point = vec2<u32>((idx % (tile.size.x + 1u)) * s, (idx / (tile.size.x + 1u)) * s);
-    } else {
-        let pixel = idx - corners;
-        point = square_centre(0u, pixel % tile.size.x, pixel / tile.size.x);
-    }
+    let point = corner_to_trace(idx);
     trace_lattice_point(point.x, point.y);
 }
 // #endif
+
+// The lattice point that invocation idx of the corner pass traces (see adaptive_corners):
+// pixel corner (idx mod (w+1), idx div (w+1)) for idx < (w+1)(h+1), after those the
+// centre of pixel number idx − (w+1)(h+1). Both forms' corner passes take it:
+// adaptive_corners here and wavefront_lattice.wgsl's lattice_pass_point.
+// Mirror of src/tracer/sampling/adaptive.rs::corner_to_trace — change both.
+fn corner_to_trace(idx: u32) -> vec2<u32> {
+    let s = adaptive_scale();
+    let corners = (tile.size.x + 1u) * (tile.size.y + 1u);
+    if idx < corners {
+        return vec2<u32>((idx % (tile.size.x + 1u)) * s, (idx / (tile.size.x + 1u)) * s);
+    }
+    let pixel = idx - corners;
+    return square_centre(0u, pixel % tile.size.x, pixel / tile.size.x);
+}
 
 // Decide pass of tile.level: square (idx mod w, idx div w) at level 0, else child idx mod 4
 // (top-left, top-right, bottom-left, bottom-right) of entry idx div 4 of level − 1's
@@ -280,11 +298,8 @@ fn adaptive_work_args() {
 
 // #if !WAVEFRONT
 // Midpoint pass of tile.level: point idx mod AA_SPLIT_POINTS of entry idx div
-// AA_SPLIT_POINTS of the level's list — its top, left, right and bottom edge midpoints,
-// then the centres of its top-left, top-right, bottom-left and bottom-right children where
-// those have centres (square_has_centre); its own centre was traced with its corners. A
-// top (left) midpoint is the bottom (right) one of the square above (to the left); when
-// that one is split, it traces it.
+// AA_SPLIT_POINTS of the level's list (midpoint_to_trace), unless another invocation
+// traces it or the child has no centre.
 // Mirror of src/tracer/sampling/adaptive.rs::adaptive_midpoints — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -293,6 +308,25 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     if idx >= AA_SPLIT_POINTS * atomicLoad(&work_counts[level]) {
         return;
     }
+    let point = midpoint_to_trace(level, idx);
+    if point.z == 0u {
+        return;
+    }
+    begin_lane(idx);
+    trace_lattice_point(point.x, point.y);
+}
+// #endif
+
+// The lattice point that invocation idx of level `level`'s midpoint pass traces, in xy,
+// and in z whether it traces one: point idx mod AA_SPLIT_POINTS of entry idx div
+// AA_SPLIT_POINTS of the level's list — its top, left, right and bottom edge midpoints,
+// then the centres of its top-left, top-right, bottom-left and bottom-right children
+// where those have centres (square_has_centre); its own centre was traced with its
+// corners. A top (left) midpoint is the bottom (right) one of the square above (to the
+// left); when that one is split, it traces it. Both forms' midpoint passes take it:
+// adaptive_midpoints here and wavefront_lattice.wgsl's lattice_pass_point.
+// Mirror of src/tracer/sampling/adaptive.rs::midpoint_to_trace — change both.
+fn midpoint_to_trace(level: u32, idx: u32) -> vec3<u32> {
     let m = idx % AA_SPLIT_POINTS;
     let square = split_square(level, idx / AA_SPLIT_POINTS);
     let a = square.x;
@@ -301,7 +335,7 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     let left_traced = m == 1u && a > 0u && is_split(level, a - 1u, b);
     let no_centre = m >= 4u && !square_has_centre(level + 1u);
     if top_traced || left_traced || no_centre {
-        return;
+        return vec3<u32>(0u);
     }
     let l = adaptive_scale() >> level;
     let h = l / 2u;
@@ -311,10 +345,8 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
     let k = m - 4u;
     let ox = select(select(select(h, l, m == 2u), 0u, m == 1u), q + h * (k & 1u), m >= 4u);
     let oy = select(select(select(h, l, m == 3u), 0u, m == 0u), q + h * (k >> 1u), m >= 4u);
-    begin_lane(idx);
-    trace_lattice_point(a * l + ox, b * l + oy);
+    return vec3<u32>(a * l + ox, b * l + oy, 1u);
 }
-// #endif
 
 // Integrate pass: pixel (id.x, id.y)'s area-weighted mean over its quadtree, walked depth
 // first without a stack: a split square's children in the order bottom-right,

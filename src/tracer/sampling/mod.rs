@@ -6,3 +6,4 @@ pub mod adaptive;
 pub mod pixel_sample;
 pub mod progressive;
 pub mod render;
+pub mod sample_source;

@@ -2,10 +2,11 @@
 //! both build on: one camera sample's colour, the contrast of a square's corners and
 //! centre, and an unsplit square's colour.
 
-use crate::constants::{AA_CENTRE_WEIGHT, AA_ITEM_KEY_MASK, AA_LATTICE_JITTER, NO_ITEM};
+use super::sample_source::lattice_jitter;
+use crate::constants::{AA_CENTRE_WEIGHT, AA_ITEM_KEY_MASK, NO_ITEM};
 use crate::pack::PackedScene;
 use crate::tracer::base::ray::camera_ray;
-use crate::tracer::base::rng::{adaptive_seed, random_unit, SampleSeed};
+use crate::tracer::base::rng::SampleSeed;
 use crate::tracer::path::trace::trace_ray;
 use crate::tracer::traversal::traverse::TraversalCounters;
 use glam::Vec3;
@@ -40,6 +41,24 @@ pub struct SampleHint {
 // Mirror of src/tracer/sampling/pixel_sample.wgsl::item_key — change both.
 pub(crate) fn item_key(item: u32) -> u32 {
     item & AA_ITEM_KEY_MASK
+}
+
+/// A hint as a lattice sample's fourth component, as both tracers' lattices keep it:
+/// ±(item + 1), negative for fine detail (an integer of at most 2^24, so the float is
+/// exact and [`decode_hint`] gives it back).
+// Mirror of src/tracer/sampling/pixel_sample.wgsl::encode_hint — change both.
+pub(crate) fn encode_hint(hint: SampleHint) -> f32 {
+    let sign = if hint.fine_detail { -1.0 } else { 1.0 };
+    sign * hint.item.wrapping_add(1) as f32
+}
+
+/// The hint [`encode_hint`] stored.
+// Mirror of src/tracer/sampling/pixel_sample.wgsl::decode_hint — change both.
+pub(crate) fn decode_hint(w: f32) -> SampleHint {
+    SampleHint {
+        fine_detail: w < 0.0,
+        item: (w.abs() as u32).wrapping_sub(1),
+    }
 }
 
 /// What the split decision of a square reads beside its samples' contrast: whether one of
@@ -146,11 +165,10 @@ pub(crate) fn hinted_sample(
     (colour, hint)
 }
 
-/// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact): the
-/// point jittered, by hashes of its seed, within a square AA_LATTICE_JITTER steps of the
-/// finest lattice (2^aa_depth per pixel) wide around it, then [`hinted_sample`] there
-/// with the point's own seed. The jitter depends only on the point, so a point shared by
-/// neighbouring squares, pixels or chunks is the same sample whichever pass traces it.
+/// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact):
+/// [`hinted_sample`] at the point's [`lattice_jitter`] (the point jittered, with its own
+/// seed), so a point shared by neighbouring squares, pixels or chunks is the same sample
+/// whichever pass traces it.
 // Mirror of src/tracer/sampling/pixel_sample.wgsl::lattice_sample — change both.
 pub fn lattice_sample(
     scene: &PackedScene,
@@ -158,22 +176,8 @@ pub fn lattice_sample(
     fy: f32,
     counters: &mut impl TraversalCounters,
 ) -> (Vec3, SampleHint) {
-    let (jx, jy, seed) = lattice_jitter(scene, fx, fy);
-    hinted_sample(scene, jx, jy, seed, counters)
-}
-
-/// Where [`lattice_sample`] samples lattice point (fx, fy) (the point jittered), and its
-/// seed: the film position and seed the wavefront's camera pass takes too
-/// (`tracer::wavefront::wavefront`'s `SampleSource::Lattice`).
-// Mirror of src/tracer/sampling/pixel_sample.wgsl::lattice_jitter, which the WGSL lattice_sample does not call (it keeps its own copy of these lines, so that the software variant's module stays byte for byte what it was) — change both.
-pub(crate) fn lattice_jitter(scene: &PackedScene, fx: f32, fy: f32) -> (f32, f32, SampleSeed) {
-    let seed = adaptive_seed(fx, fy);
-    // A power of two: the products below are exact, so a fused multiply-add on the GPU
-    // rounds the sums as these do.
-    let width = AA_LATTICE_JITTER / (1u32 << scene.globals.aa_depth) as f32;
-    let jx = (random_unit(seed.pixel, seed.sample, 0) - 0.5) * width;
-    let jy = (random_unit(seed.pixel, seed.sample, 1) - 0.5) * width;
-    (fx + jx, fy + jy, seed)
+    let at = lattice_jitter(&scene.globals, fx, fy);
+    hinted_sample(scene, at.fx, at.fy, at.seed, counters)
 }
 
 /// Largest per-channel spread of a square's four corner samples and its centre sample:

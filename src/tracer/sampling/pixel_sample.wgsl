@@ -29,13 +29,21 @@ fn item_key(item: u32) -> u32 {
 
 // A hint as a lattice sample's fourth component: ±(item + 1), negative for fine detail (an
 // integer of at most 2^24, so the float is exact and decode_hint gives it back).
+// Mirror of src/tracer/sampling/pixel_sample.rs::encode_hint — change both.
 fn encode_hint(hint: SampleHint) -> f32 {
     return select(1.0, -1.0, hint.fine_detail) * f32(hint.item + 1u);
 }
 
 // The hint encode_hint stored in w.
+// Mirror of src/tracer/sampling/pixel_sample.rs::decode_hint — change both.
 fn decode_hint(w: f32) -> SampleHint {
     return SampleHint(w < 0.0, u32(abs(w)) - 1u);
+}
+
+// A sample's colour and its SampleHint.
+struct HintedSample {
+    colour: vec3<f32>,
+    hint: SampleHint,
 }
 
 // What the split decision of a square reads beside its samples' contrast: whether one of
@@ -63,53 +71,27 @@ fn sample_item_key(camera: u32, mirrored: u32) -> u32 {
     return item_key(camera ^ ((mirrored + 1u) * 0x9e3779b1u));
 }
 
-// sample, and in w its SampleHint (encode_hint). Adaptive AA's lattice samples.
+// sample, and its SampleHint. Adaptive AA's lattice samples.
 // Mirror of src/tracer/sampling/pixel_sample.rs::hinted_sample — change both.
-fn hinted_sample(fx: f32, fy: f32, seed: SampleSeed) -> vec4<f32> {
+fn hinted_sample(fx: f32, fy: f32, seed: SampleSeed) -> HintedSample {
     fine_detail_seen = false;
     camera_item = NO_ITEM;
     mirrored_item = NO_ITEM;
     let colour = sample(fx, fy, seed);
     let key = sample_item_key(camera_item, mirrored_item);
-    return vec4<f32>(colour, encode_hint(SampleHint(fine_detail_seen, key)));
+    return HintedSample(colour, SampleHint(fine_detail_seen, key));
 }
 
-// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact): the
-// point jittered, by hashes of its seed, within a square AA_LATTICE_JITTER steps of the
-// finest lattice (2^aa_depth per pixel) wide around it, then hinted_sample there with
-// the point's own seed. The jitter depends only on the point, so a point shared by
-// neighbouring squares, pixels or chunks is the same sample whichever pass traces it.
+// Adaptive AA's sample at lattice point (fx, fy), a dyadic film position (exact):
+// hinted_sample at the point's lattice_jitter (the point jittered, with its own seed), so
+// a point shared by neighbouring squares, pixels or chunks is the same sample whichever
+// pass traces it.
 // Mirror of src/tracer/sampling/pixel_sample.rs::lattice_sample — change both.
-fn lattice_sample(fx: f32, fy: f32) -> vec4<f32> {
-    let seed = adaptive_seed(fx, fy);
-    // A power of two: the products below are exact, so a fused multiply-add rounds the
-    // sums as the CPU's separate operations do.
-    let width = AA_LATTICE_JITTER * ldexp(1.0, -i32(globals.aa_depth));
-    let jx = (random_unit(seed.pixel, seed.sample, 0u) - 0.5) * width;
-    let jy = (random_unit(seed.pixel, seed.sample, 1u) - 0.5) * width;
-    return hinted_sample(fx + jx, fy + jy, seed);
+fn lattice_sample(fx: f32, fy: f32) -> HintedSample {
+    let at = lattice_jitter(fx, fy);
+    return hinted_sample(at.fx, at.fy, at.seed);
 }
 
-// #if WAVEFRONT
-// Where lattice_sample samples a lattice point, and the seed it samples it with.
-struct JitteredPoint {
-    position: vec2<f32>,
-    seed: SampleSeed,
-}
-
-// Where lattice_sample samples lattice point (fx, fy) (the point jittered, the same sums)
-// and its seed: what the wavefront's camera pass for adaptive AA takes
-// (wavefront_lattice.wgsl).
-// Mirror of src/tracer/sampling/pixel_sample.rs::lattice_jitter, which the CPU's lattice_sample calls too — change both.
-fn lattice_jitter(fx: f32, fy: f32) -> JitteredPoint {
-    let seed = adaptive_seed(fx, fy);
-    let width = AA_LATTICE_JITTER * ldexp(1.0, -i32(globals.aa_depth));
-    let jx = (random_unit(seed.pixel, seed.sample, 0u) - 0.5) * width;
-    let jy = (random_unit(seed.pixel, seed.sample, 1u) - 0.5) * width;
-    return JitteredPoint(vec2<f32>(fx + jx, fy + jy), seed);
-}
-
-// #endif
 // Largest per-channel spread of a square's four corner samples and its centre sample:
 // what the split decision of adaptive AA weighs.
 // Mirror of src/tracer/sampling/pixel_sample.rs::square_contrast_of — change both.

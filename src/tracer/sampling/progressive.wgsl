@@ -3,22 +3,16 @@
 // generations over the band (src/gpu/view/progressive.rs; the camera pass took stratum
 // tile.stratum of each band pixel, sample k = band pixel k): the sample's colour added
 // to the pixel's running sum in `output` (the image's, row-major at the globals' width)
-// as view_sample adds it, so the sums are view_sample's bit for bit.
-// Mirror of the sum of src/tracer/sampling/progressive.rs::view_sample — change both.
+// as view_sample adds it (add_view_sample), so the sums are view_sample's bit for bit.
+// Mirror of src/tracer/sampling/progressive.rs::wavefront_view_store, one invocation of its loop — change both.
 @compute @workgroup_size(LINEAR_WORKGROUP_SIZE)
 fn wavefront_view_store(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let k = linear_index(id, groups);
     if k >= tile.items {
         return;
     }
-    let s = tile.stratum;
     let p = (tile.origin.y + k / tile.size.x) * globals.width + tile.origin.x + k % tile.size.x;
-    var before = vec3<f32>(0.0);
-    if s != 0u {
-        before = output[p].xyz;
-    }
-    let total = before + sample_colour(k);
-    output[p] = vec4<f32>(total, f32(s + 1u));
+    output[p] = add_view_sample(output[p], tile.stratum, sample_colour(k));
 }
 // #else
 // glint view's progressive refinement (src/gpu/view/progressive.rs dispatches it): frame k
@@ -44,11 +38,7 @@ fn view_sample(@builtin(global_invocation_id) id: vec3<u32>) {
     let y = tile.origin.y + id.y;
     begin_lane(id.y * tile.side + id.x);
     let p = y * globals.width + x;
-    var before = vec3<f32>(0.0);
-    if s != 0u {
-        before = output[p].xyz;
-    }
-    let total = before + uniform_sample(x, y, s, n, uniform);
+    let colour = uniform_sample(x, y, s, n, uniform);
 // #if ITERATION_GUARD
     // A sample the limiter cut short is not added: the sum stays as it was, and the host
     // re-traces this sample on the CPU tracer into it (Progressive::trace_sample).
@@ -57,6 +47,18 @@ fn view_sample(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
 // #endif
-    output[p] = vec4<f32>(total, f32(s + 1u));
+    output[p] = add_view_sample(output[p], s, colour);
 }
 // #endif
+
+// A pixel's running sum with its sample s of colour `colour` added: from zero at s = 0
+// (whatever `sum` held), the count in the fourth component. Both view kernels
+// (view_sample, wavefront_view_store) add their samples with it.
+// Mirror of src/tracer/sampling/progressive.rs::add_view_sample — change both.
+fn add_view_sample(sum: vec4<f32>, s: u32, colour: vec3<f32>) -> vec4<f32> {
+    var before = vec3<f32>(0.0);
+    if s != 0u {
+        before = sum.xyz;
+    }
+    return vec4<f32>(before + colour, f32(s + 1u));
+}

@@ -7,6 +7,7 @@ use super::adaptive::{adaptive_tile, square_splits, Lattice};
 use super::pixel_sample::{
     lattice_sample, quincunx_mean, sample, square_contrast_of, square_hints_of, SampleHint,
 };
+use super::sample_source::stratum_position;
 use crate::constants::{
     adaptive_tile_side, AA_ADAPTIVE, AA_STACK_SIZE, AA_UNIFORM, CPU_ADAPTIVE_LATTICE_SIDE,
     TILE_SIZE,
@@ -15,7 +16,6 @@ use crate::film::Film;
 use crate::pack::PackedScene;
 pub use crate::tiling::RenderProgress;
 use crate::tiling::{AdaptiveTile, PixelRect};
-use crate::tracer::base::rng::{random_unit, SampleSeed};
 use crate::tracer::traversal::traverse::{Counters, NoCounters, TraversalCounters};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -216,8 +216,8 @@ pub fn uniform_resolve(samples: impl Iterator<Item = Vec3>, n: u32) -> Vec3 {
     sum / (n * n) as f32
 }
 
-/// Sample `s` of pixel (x, y) under n×n stratification: stratum (s mod n, s div n),
-/// jittered when `uniform`, else its centre.
+/// Sample `s` of pixel (x, y) under n×n stratification: the colour at its stratum's
+/// [`stratum_position`] (jittered when `uniform`, else the stratum's centre).
 // Mirror of src/tracer/sampling/render.wgsl::uniform_sample — change both.
 pub fn uniform_sample(
     scene: &PackedScene,
@@ -228,36 +228,8 @@ pub fn uniform_sample(
     uniform: bool,
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
-    let (fx, fy, seed) = stratum_position(scene, x, y, s, n, uniform);
-    sample(scene, fx, fy, seed, counters)
-}
-
-/// Where [`uniform_sample`] samples pixel (x, y)'s stratum `s` of n×n, and its seed: the
-/// film position and seed the wavefront's camera pass takes too (`tracer::wavefront::wavefront`).
-pub(crate) fn stratum_position(
-    scene: &PackedScene,
-    x: u32,
-    y: u32,
-    s: u32,
-    n: u32,
-    uniform: bool,
-) -> (f32, f32, SampleSeed) {
-    let pixel = y * scene.globals.width + x;
-    let (i, j) = (s % n, s / n);
-    let (jx, jy) = if uniform {
-        (random_unit(pixel, s, 0), random_unit(pixel, s, 1))
-    } else {
-        (0.5, 0.5)
-    };
-    let fx = x as f32 + (i as f32 + jx) / n as f32;
-    let fy = y as f32 + (j as f32 + jy) / n as f32;
-    let seed = SampleSeed {
-        pixel,
-        sample: s,
-        depth: 0,
-        mirrors_corners: false,
-    };
-    (fx, fy, seed)
+    let at = stratum_position(&scene.globals, [x, y], s, n, uniform);
+    sample(scene, at.fx, at.fy, at.seed, counters)
 }
 
 /// Per-render counters (only gathered when asked, see [`render_with_counters`]).

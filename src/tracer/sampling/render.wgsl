@@ -14,22 +14,12 @@
 // 1 where a tile pixel must be re-rendered on the CPU (loop_limiter_tripped).
 @group(0) @binding(13) var<storage, read_write> guard: array<u32>;
 
-// Sample s of pixel (x, y) under n×n stratification: stratum (s mod n, s div n),
-// jittered when `uniform`, else its centre.
+// Sample s of pixel (x, y) under n×n stratification: the colour at its stratum's
+// stratum_position (jittered when `uniform`, else the stratum's centre).
 // Mirror of src/tracer/sampling/render.rs::uniform_sample — change both.
 fn uniform_sample(x: u32, y: u32, s: u32, n: u32, uniform: bool) -> vec3<f32> {
-    let pixel = y * globals.width + x;
-    let i = s % n;
-    let j = s / n;
-    var jx = 0.5;
-    var jy = 0.5;
-    if uniform {
-        jx = random_unit(pixel, s, 0u);
-        jy = random_unit(pixel, s, 1u);
-    }
-    let fx = f32(x) + (f32(i) + jx) / f32(n);
-    let fy = f32(y) + (f32(j) + jy) / f32(n);
-    return sample(fx, fy, SampleSeed(pixel, s, 0u, false));
+    let at = stratum_position(x, y, s, n, uniform);
+    return sample(at.fx, at.fy, at.seed);
 }
 
 // Index of a one-dimensional kernel's invocation: a dispatch wider than the adapter's

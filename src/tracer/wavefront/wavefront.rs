@@ -49,76 +49,12 @@ use crate::pack::{PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{camera_ray, Ray};
 use crate::tracer::base::rng::SampleSeed;
 use crate::tracer::path::trace::{camera_medium_stack, StackEntry};
-use crate::tracer::sampling::pixel_sample::lattice_jitter;
-use crate::tracer::sampling::render::stratum_position;
+use crate::tracer::sampling::sample_source::CameraSample;
+pub use crate::tracer::sampling::sample_source::SampleSource;
 use crate::tracer::shading::texture::camera_cone;
 use crate::tracer::traversal::hit::TraversalCounters;
 use crate::tracer::traversal::traverse::closest_hit;
 use glam::Vec3;
-
-/// Where a batch's camera samples come from; sample k of the batch is the k-th of the
-/// source.
-#[derive(Clone, Copy, Debug)]
-pub enum SampleSource<'a> {
-    /// n×n strata of each pixel (x, y) of `pixels`, sample k being stratum k mod n² of
-    /// pixel k div n² (`render::uniform_sample`): AA none is n = 1 and not `uniform`
-    /// (each pixel's centre), uniform AA n = `aa_samples`, jittered.
-    Strata {
-        pixels: &'a [[u32; 2]],
-        n: u32,
-        uniform: bool,
-    },
-    /// Stratum `s` of the n×n strata of each pixel of `pixels`, sample k being pixel k
-    /// (jittered when `uniform`): `glint view`'s frame s (`progressive::view_sample`).
-    Stratum {
-        pixels: &'a [[u32; 2]],
-        n: u32,
-        uniform: bool,
-        s: u32,
-    },
-    /// Adaptive AA's lattice points (film positions before their jitter:
-    /// `pixel_sample::lattice_sample`).
-    Lattice { points: &'a [[f32; 2]] },
-}
-
-impl SampleSource<'_> {
-    /// The number of samples.
-    pub fn len(&self) -> usize {
-        match *self {
-            SampleSource::Strata { pixels, n, .. } => pixels.len() * (n * n) as usize,
-            SampleSource::Stratum { pixels, .. } => pixels.len(),
-            SampleSource::Lattice { points } => points.len(),
-        }
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Sample `k`'s film position and seed.
-    fn camera_sample(&self, scene: &PackedScene, k: usize) -> (f32, f32, SampleSeed) {
-        match *self {
-            SampleSource::Strata { pixels, n, uniform } => {
-                let per_pixel = (n * n) as usize;
-                let [x, y] = pixels[k / per_pixel];
-                stratum_position(scene, x, y, (k % per_pixel) as u32, n, uniform)
-            }
-            SampleSource::Stratum {
-                pixels,
-                n,
-                uniform,
-                s,
-            } => {
-                let [x, y] = pixels[k];
-                stratum_position(scene, x, y, s, n, uniform)
-            }
-            SampleSource::Lattice { points } => {
-                let [fx, fy] = points[k];
-                lattice_jitter(scene, fx, fy)
-            }
-        }
-    }
-}
 
 /// The camera pass: every sample of `source` through [`wavefront_camera`] (the GPU's
 /// `wavefront_camera`), into a batch sized for them.
@@ -148,7 +84,7 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
 // Mirror of src/tracer/wavefront/wavefront.wgsl::wavefront_camera, which takes the Strata and Stratum sources (AA none's, uniform AA's, glint view's) only so far — change both.
 fn wavefront_camera(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k: usize) {
     let g = &scene.globals;
-    let (fx, fy, seed) = source.camera_sample(scene, k);
+    let CameraSample { fx, fy, seed } = source.camera_sample(scene, k);
     let s = &mut batch.samples;
     (s.seed_pixel[k], s.seed_sample[k]) = (seed.pixel, seed.sample);
     if seed.mirrors_corners {

@@ -54,35 +54,17 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
         p = k / (n * n);
         s = k % (n * n);
     }
-    // src/tracer/sampling/render.rs::stratum_position (render.wgsl's uniform_sample).
-    let x = tile.origin.x + p % tile.size.x;
-    let y = tile.origin.y + p / tile.size.x;
-    let pixel = y * globals.width + x;
-    var jx = 0.5;
-    var jy = 0.5;
-    if uniform {
-        jx = random_unit(pixel, s, 0u);
-        jy = random_unit(pixel, s, 1u);
-    }
-    let fx = f32(x) + (f32(s % n) + jx) / f32(n);
-    let fy = f32(y) + (f32(s / n) + jy) / f32(n);
-    let seed = SampleSeed(pixel, s, 0u, false);
+    let stratum = stratum_position(tile.origin.x + p % tile.size.x, tile.origin.y + p / tile.size.x, s, n, uniform);
+    let seed = stratum.seed;
     var flags = 0u;
     if seed.mirrors_corners {
         flags = SAMPLE_MIRRORS_CORNERS;
     }
     write_sample(k, vec3<f32>(0.0), NO_ITEM, NO_ITEM, flags, seed.pixel, seed.sample);
-    let ray = camera_ray(fx, fy);
-    var entry: StackEntry;
-    entry.ray = ray;
-    entry.weight = vec3<f32>(1.0);
-    entry.depth = 0u;
-// #if TEXTURE|BUMP
-    entry.cone = camera_cone(ray);
-// #endif
+    // Camera rays start in the media around the camera (camera_entry).
+    let entry = camera_entry(camera_ray(stratum.fx, stratum.fy));
 // #if REFRACTION
-    // Camera rays start in the media around the camera; path k is vertex k.
-    entry.media = camera_medium_stack();
+    // Path k is vertex k.
     write_camera_vertex(k, k);
 // #endif
     // A camera ray: nothing under it on trace_ray's stack.

@@ -9,16 +9,19 @@
 //! generation 0's queue (an invocation whose point another traces appends none), and the
 //! store pass's invocation idx writes sample idx into its point; here the batch holds the
 //! traced points alone, in invocation order. Neither order changes a bit.
+//!
+//! `adaptive::adaptive_tile_passes` runs a tile's passes with [`trace_lattice_pass`] as its
+//! tracing pass: the pixels of `adaptive::adaptive_tile`, bit for bit.
 
-use super::wavefront::{camera_pass, trace_generations, Batch, SampleSource};
+use super::wavefront::{camera_pass, trace_generations, Batch};
 use crate::constants::AA_SPLIT_POINTS;
 use crate::pack::PackedScene;
 use crate::tracer::sampling::adaptive::{
-    adaptive_tile_passes, corner_to_trace, lattice_index, lattice_position, midpoint_to_trace,
-    AdaptiveTile, Lattice,
+    corner_to_trace, lattice_index, lattice_position, midpoint_to_trace, Lattice,
 };
+use crate::tracer::sampling::pixel_sample::encode_hint;
+use crate::tracer::sampling::sample_source::SampleSource;
 use crate::tracer::traversal::traverse::TraversalCounters;
-use glam::Vec3;
 
 /// The invocations of lattice pass `pass`: the corner pass's (corners, then centres at
 /// depth ≥ 1), or AA_SPLIT_POINTS per square on level pass − 1's list.
@@ -37,32 +40,15 @@ pub fn lattice_pass_len(lat: &Lattice, pass: u32) -> u32 {
     AA_SPLIT_POINTS * lat.work_counts[pass as usize - 1]
 }
 
-/// The lattice point invocation `idx` of the corner pass traces: pixel corner
-/// (idx mod (w+1), idx div (w+1)) for idx < (w+1)(h+1), after those the centre of pixel
-/// number idx − (w+1)(h+1).
-// Mirror of src/tracer/wavefront/wavefront_lattice.wgsl::corner_pass_point — change both.
-pub fn corner_pass_point(t: &AdaptiveTile, idx: u32) -> (u32, u32) {
-    corner_to_trace(t, idx)
-}
-
-/// The lattice point invocation `idx` of level `level`'s midpoint pass traces: point
-/// idx mod AA_SPLIT_POINTS of entry idx div AA_SPLIT_POINTS of the level's list (its top,
-/// left, right and bottom edge midpoints, then its children's centres where those have
-/// centres); None for a top (left) midpoint that the split square above (to the left)
-/// traces, and for a child's centre at the deepest level.
-// Mirror of src/tracer/wavefront/wavefront_lattice.wgsl::midpoint_pass_point — change both.
-pub fn midpoint_pass_point(lat: &Lattice, level: u32, idx: u32) -> Option<(u32, u32)> {
-    midpoint_to_trace(lat, level, idx)
-}
-
 /// The lattice point invocation `idx` of lattice pass `pass` (0: the corner pass, 1 + k:
-/// level k's midpoint pass) traces, if any.
+/// level k's midpoint pass) traces, if any: the megakernel passes' points
+/// (`adaptive::corner_to_trace`, `adaptive::midpoint_to_trace`).
 // Mirror of src/tracer/wavefront/wavefront_lattice.wgsl::lattice_pass_point — change both.
 pub fn lattice_pass_point(lat: &Lattice, pass: u32, idx: u32) -> Option<(u32, u32)> {
     if pass == 0 {
-        return Some(corner_pass_point(&lat.tile, idx));
+        return Some(corner_to_trace(&lat.tile, idx));
     }
-    midpoint_pass_point(lat, pass - 1, idx)
+    midpoint_to_trace(lat, pass - 1, idx)
 }
 
 /// Lattice pass `pass` through the wavefront passes: the camera pass over the points its
@@ -113,18 +99,5 @@ pub fn wavefront_lattice_camera(
 fn wavefront_lattice_store(lat: &mut Lattice, batch: &Batch, k: usize, i: u32, j: u32) {
     let at = lattice_index(&lat.tile, i, j);
     lat.points[at] = batch.samples.colour[k];
-    lat.hints[at] = batch.samples.hint(k);
-}
-
-/// [`adaptive_tile`](crate::tracer::sampling::adaptive::adaptive_tile) with its tracing passes through the
-/// wavefront passes ([`trace_lattice_pass`]): the same pixels, bit for bit.
-pub fn adaptive_tile_wavefront(
-    scene: &PackedScene,
-    lat: &mut Lattice,
-    threshold: f32,
-    counters: &mut impl TraversalCounters,
-) -> Vec<(Vec3, u32)> {
-    adaptive_tile_passes(lat, threshold, |lat, pass| {
-        trace_lattice_pass(scene, lat, pass, counters)
-    })
+    lat.hints[at] = encode_hint(batch.samples.hint(k));
 }

@@ -20,7 +20,8 @@
 // #if WAVEFRONT
 // Where the wavefront's queues start in `samples` (vec4 entries): after the tile's
 // lattice, at a multiple of 16 entries (256 bytes, the coarsest storage-binding offset
-// alignment WebGPU allows an adapter). src/gpu/plan/adaptive.rs::lattice_queue_bytes is the same.
+// alignment WebGPU allows an adapter), where the plan binds them.
+// Mirror of src/gpu/plan/adaptive.rs::lattice_queue_base — change both.
 fn lattice_queue_base() -> u32 {
     let width = tile.side * adaptive_scale() + 1u;
     return (width * width + 15u) / 16u * 16u;
@@ -38,56 +39,14 @@ fn lattice_pass_len(lattice_pass: u32) -> u32 {
     return AA_SPLIT_POINTS * atomicLoad(&work_counts[lattice_pass - 1u]);
 }
 
-// The lattice point invocation idx of the corner pass traces: pixel corner
-// (idx mod (w+1), idx div (w+1)) for idx < (w+1)(h+1), after those the centre of pixel
-// number idx − (w+1)(h+1) (adaptive_corners' points).
-// Mirror of src/tracer/wavefront/wavefront_lattice.rs::corner_pass_point — change both.
-fn corner_pass_point(idx: u32) -> vec2<u32> {
-    let s = adaptive_scale();
-    let corners = (tile.size.x + 1u) * (tile.size.y + 1u);
-    if idx < corners {
-        return vec2<u32>((idx % (tile.size.x + 1u)) * s, (idx / (tile.size.x + 1u)) * s);
-    }
-    let pixel = idx - corners;
-    return square_centre(0u, pixel % tile.size.x, pixel / tile.size.x);
-}
-
-// The lattice point invocation idx of level `level`'s midpoint pass traces, in xy, and in
-// z whether it traces one (adaptive_midpoints' points): point idx mod AA_SPLIT_POINTS of
-// entry idx div AA_SPLIT_POINTS of the level's list, its top, left, right and bottom edge
-// midpoints, then its children's centres where those have centres; none for a top (left)
-// midpoint that the split square above (to the left) traces.
-// Mirror of src/tracer/wavefront/wavefront_lattice.rs::midpoint_pass_point — change both.
-fn midpoint_pass_point(level: u32, idx: u32) -> vec3<u32> {
-    let m = idx % AA_SPLIT_POINTS;
-    let square = split_square(level, idx / AA_SPLIT_POINTS);
-    let a = square.x;
-    let b = square.y;
-    let top_traced = m == 0u && b > 0u && is_split(level, a, b - 1u);
-    let left_traced = m == 1u && a > 0u && is_split(level, a - 1u, b);
-    let no_centre = m >= 4u && !square_has_centre(level + 1u);
-    if top_traced || left_traced || no_centre {
-        return vec3<u32>(0u);
-    }
-    let l = adaptive_scale() >> level;
-    let h = l / 2u;
-    let q = l / 4u;
-    // Edges (h, 0), (0, h), (l, h), (h, l); child k = m − 4's centre
-    // (q + h·(k mod 2), q + h·(k div 2)).
-    let k = m - 4u;
-    let ox = select(select(select(h, l, m == 2u), 0u, m == 1u), q + h * (k & 1u), m >= 4u);
-    let oy = select(select(select(h, l, m == 3u), 0u, m == 0u), q + h * (k >> 1u), m >= 4u);
-    return vec3<u32>(a * l + ox, b * l + oy, 1u);
-}
-
 // The lattice point invocation idx of lattice pass `lattice_pass` traces (xy), and whether it
 // traces one (z).
 // Mirror of src/tracer/wavefront/wavefront_lattice.rs::lattice_pass_point — change both.
 fn lattice_pass_point(lattice_pass: u32, idx: u32) -> vec3<u32> {
     if lattice_pass == 0u {
-        return vec3<u32>(corner_pass_point(idx), 1u);
+        return vec3<u32>(corner_to_trace(idx), 1u);
     }
-    return midpoint_pass_point(lattice_pass - 1u, idx);
+    return midpoint_to_trace(lattice_pass - 1u, idx);
 }
 
 // The camera pass of lattice pass tile.level, sample idx: where its invocation traces a
@@ -124,39 +83,14 @@ fn wavefront_lattice_camera(@builtin(global_invocation_id) id: vec3<u32>, @built
         flags = SAMPLE_MIRRORS_CORNERS;
     }
     write_sample(idx, vec3<f32>(0.0), NO_ITEM, NO_ITEM, flags, seed.pixel, seed.sample);
-    let ray = camera_ray(jittered.position.x, jittered.position.y);
-    var entry: StackEntry;
-    entry.ray = ray;
-    entry.weight = vec3<f32>(1.0);
-    entry.depth = 0u;
-// #if TEXTURE|BUMP
-    entry.cone = camera_cone(ray);
-// #endif
-// #if REFRACTION
-    // Camera rays start in the media around the camera (a tree's camera pass).
-    entry.media = camera_medium_stack();
-// #endif
+    // Camera rays start in the media around the camera (camera_entry: a tree's).
+    let entry = camera_entry(camera_ray(jittered.fx, jittered.fy));
     let at = atomicAdd(&work_counts[WAVEFRONT_WORK_BASE], 1u);
 // #if REFRACTION
     write_camera_vertex(idx, at);
 // #endif
     store_path(0u, at, entry, 0u, idx);
 }
-
-// #if REFRACTION
-// The guard flags of every pixel whose closed square holds lattice point (i, j).
-fn guard_lattice_point(i: u32, j: u32) {
-    let s = adaptive_scale();
-    let x_hi = min(i / s, tile.size.x - 1u);
-    let y_hi = min(j / s, tile.size.y - 1u);
-    let x_lo = select(x_hi, (i - 1u) / s, i > 0u);
-    let y_lo = select(y_hi, (j - 1u) / s, j > 0u);
-    guard[y_lo * tile.side + x_lo] = 1u;
-    guard[y_lo * tile.side + x_hi] = 1u;
-    guard[y_hi * tile.side + x_lo] = 1u;
-    guard[y_hi * tile.side + x_hi] = 1u;
-}
-// #endif
 
 // The store pass of lattice pass tile.level, sample idx: the sample's colour and, in w,
 // its hint (encode_hint of the camera item's key, mixed with the mirrored item's, and
