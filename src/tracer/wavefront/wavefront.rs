@@ -47,7 +47,6 @@ use crate::constants::{
 use crate::film::Film;
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{camera_ray, Ray};
-use crate::tracer::base::rng::SampleSeed;
 use crate::tracer::path::trace::{camera_medium_stack, StackEntry};
 use crate::tracer::sampling::sample_source::CameraSample;
 pub use crate::tracer::sampling::sample_source::SampleSource;
