@@ -87,28 +87,18 @@ impl Entry {
     /// The wavefront kernels: the camera pass, a generation's five in the order it
     /// dispatches them, then uniform AA's resolve (AA none has no resolve): the plan's
     /// `Mode::Wavefront` pipelines.
-    pub const WAVEFRONT: [Entry; 7] = joined(&[
-        &[Entry::WavefrontCamera],
-        &Entry::CHAIN_GENERATION,
-        &[Entry::WavefrontResolve],
-    ]);
+    pub const WAVEFRONT: [Entry; 7] = banded(Entry::CHAIN_GENERATION, Entry::WavefrontResolve);
 
     /// `glint view`'s frame through the wavefront kernels: the camera pass, a
     /// generation's five, then the store into the sums (`gpu/view/progressive.rs`'s pipelines).
-    pub const WAVEFRONT_VIEW: [Entry; 7] = joined(&[
-        &[Entry::WavefrontCamera],
-        &Entry::CHAIN_GENERATION,
-        &[Entry::WavefrontViewStore],
-    ]);
+    pub const WAVEFRONT_VIEW: [Entry; 7] =
+        banded(Entry::CHAIN_GENERATION, Entry::WavefrontViewStore);
 
     /// `glint view`'s frame through the wavefront kernels in scenes with refraction: the
     /// camera pass, a tree's generation's passes and its fold ([`Entry::WAVEFRONT_TREE`]'s
     /// before its resolve), then the store into the sums.
-    pub const WAVEFRONT_VIEW_TREE: [Entry; 11] = joined(&[
-        &[Entry::WavefrontCamera],
-        &Entry::TREE_GENERATION,
-        &[Entry::WavefrontViewStore],
-    ]);
+    pub const WAVEFRONT_VIEW_TREE: [Entry; 11] =
+        banded(Entry::TREE_GENERATION, Entry::WavefrontViewStore);
 
     /// The megakernel entries the wavefront kernels replace: not in modules with
     /// [`wavefront_kernels`].
@@ -125,35 +115,21 @@ impl Entry {
     /// `Mode::AdaptiveWavefront` pipelines: adaptive AA's small kernels, the lattice
     /// passes' camera pass, the generations' passes ([`Entry::WAVEFRONT`]'s after its
     /// camera pass) and the store pass.
-    pub const ADAPTIVE_WAVEFRONT: [Entry; 10] = joined(&[
-        &Entry::ADAPTIVE_STEPS,
-        &[Entry::WavefrontLatticeCamera],
-        &Entry::CHAIN_GENERATION,
-        &[Entry::WavefrontLatticeStore],
-    ]);
+    pub const ADAPTIVE_WAVEFRONT: [Entry; 10] = lattice(Entry::CHAIN_GENERATION);
 
     /// The wavefront kernels in scenes with refraction (paths that branch), in the order
     /// a generation dispatches them after the camera pass (the shadow pass starting each
     /// request's first leg, then rounds of leg closest, crossing and leg args), then the
     /// fold after the last generation, then uniform AA's resolve (AA none has none): the
     /// plan's `Mode::Wavefront` pipelines for a tree.
-    pub const WAVEFRONT_TREE: [Entry; 11] = joined(&[
-        &[Entry::WavefrontCamera],
-        &Entry::TREE_GENERATION,
-        &[Entry::WavefrontResolve],
-    ]);
+    pub const WAVEFRONT_TREE: [Entry; 11] = banded(Entry::TREE_GENERATION, Entry::WavefrontResolve);
 
     /// Adaptive AA's passes through the wavefront kernels in scenes with refraction, in
     /// the plan's order of the `Mode::AdaptiveWavefront` pipelines for a tree: adaptive
     /// AA's small kernels, the lattice camera pass, a tree's generation's passes and its
     /// fold ([`Entry::WAVEFRONT_TREE`]'s between its camera pass and its resolve), the
     /// store pass.
-    pub const ADAPTIVE_WAVEFRONT_TREE: [Entry; 14] = joined(&[
-        &Entry::ADAPTIVE_STEPS,
-        &[Entry::WavefrontLatticeCamera],
-        &Entry::TREE_GENERATION,
-        &[Entry::WavefrontLatticeStore],
-    ]);
+    pub const ADAPTIVE_WAVEFRONT_TREE: [Entry; 14] = lattice(Entry::TREE_GENERATION);
 
     /// A chain's generation, in the order it dispatches its passes: what every chain
     /// mode runs between its camera pass and its own last pass (uniform AA's resolve, the
@@ -286,6 +262,23 @@ impl Entry {
             !(wavefront && replaced)
         }
     }
+}
+
+/// A band's pipelines through the wavefront kernels: the camera pass, the `generation`'s
+/// passes, then the mode's own `last` (uniform AA's resolve, the view's store).
+const fn banded<const N: usize, const M: usize>(generation: [Entry; N], last: Entry) -> [Entry; M] {
+    joined(&[&[Entry::WavefrontCamera], &generation, &[last]])
+}
+
+/// Adaptive AA's pipelines through the wavefront kernels: adaptive AA's small kernels,
+/// the lattice camera pass, the `generation`'s passes, the lattice store pass.
+const fn lattice<const N: usize, const M: usize>(generation: [Entry; N]) -> [Entry; M] {
+    joined(&[
+        &Entry::ADAPTIVE_STEPS,
+        &[Entry::WavefrontLatticeCamera],
+        &generation,
+        &[Entry::WavefrontLatticeStore],
+    ])
 }
 
 /// `parts` one after another, as one array (a mode's pipeline list, built from the

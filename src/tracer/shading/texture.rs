@@ -128,19 +128,35 @@ fn texture_lod(texels: &[u32], texture: u32, footprint: f32) -> f32 {
         .min((texture_levels(width, height) - 1) as f32)
 }
 
+/// The two mip levels around [`texture_lod`] of a footprint: `level` and the next, and
+/// how far towards the next to blend (0: `level` alone).
+struct MipBlend {
+    level: u32,
+    blend: f32,
+}
+
+/// The mip levels the filtered lookups blend for a footprint `footprint` wide (in uv).
+// Mirror of src/tracer/shading/texture.wgsl::mip_blend — change both.
+fn mip_blend(texels: &[u32], texture: u32, footprint: f32) -> MipBlend {
+    let lod = texture_lod(texels, texture, footprint);
+    let level = lod.floor();
+    MipBlend {
+        level: level as u32,
+        blend: lod - level,
+    }
+}
+
 /// Trilinear lookup of `texture` at `uv` for a footprint `footprint` wide (in uv): the
 /// bilinear lookups of the two levels around [`texture_lod`], blended.
 // Mirror of src/tracer/shading/texture.wgsl::sample_texture_filtered — change both.
 pub fn sample_texture_filtered(texels: &[u32], texture: u32, uv: Vec2, footprint: f32) -> Vec3 {
-    let lod = texture_lod(texels, texture, footprint);
-    let level = lod.floor();
-    let blend = lod - level;
-    let fine = sample_texture(texels, texture_level(texels, texture, level as u32), uv);
-    if blend <= 0.0 {
+    let mip = mip_blend(texels, texture, footprint);
+    let fine = sample_texture(texels, texture_level(texels, texture, mip.level), uv);
+    if mip.blend <= 0.0 {
         return fine;
     }
-    let coarse = sample_texture(texels, texture_level(texels, texture, level as u32 + 1), uv);
-    fine * (1.0 - blend) + coarse * blend
+    let coarse = sample_texture(texels, texture_level(texels, texture, mip.level + 1), uv);
+    fine * (1.0 - mip.blend) + coarse * mip.blend
 }
 
 /// The width, in uv, of the patch of surface `s` that one pixel covers, for a ray along
@@ -217,15 +233,13 @@ pub fn height_gradient(texels: &[u32], texture: u32, uv: Vec2) -> Vec2 {
 /// `footprint` (each level's differences one of its own texels apart).
 // Mirror of src/tracer/shading/texture.wgsl::filtered_height_gradient — change both.
 fn filtered_height_gradient(texels: &[u32], texture: u32, uv: Vec2, footprint: f32) -> Vec2 {
-    let lod = texture_lod(texels, texture, footprint);
-    let level = lod.floor();
-    let blend = lod - level;
-    let fine = height_gradient(texels, texture_level(texels, texture, level as u32), uv);
-    if blend <= 0.0 {
+    let mip = mip_blend(texels, texture, footprint);
+    let fine = height_gradient(texels, texture_level(texels, texture, mip.level), uv);
+    if mip.blend <= 0.0 {
         return fine;
     }
-    let coarse = height_gradient(texels, texture_level(texels, texture, level as u32 + 1), uv);
-    fine * (1.0 - blend) + coarse * blend
+    let coarse = height_gradient(texels, texture_level(texels, texture, mip.level + 1), uv);
+    fine * (1.0 - mip.blend) + coarse * mip.blend
 }
 
 /// The bumped normal of `s` for material `m` (`s.normal` tilted by the height gradient,

@@ -82,19 +82,32 @@ fn texture_lod(texture: u32, footprint: f32) -> f32 {
     return min(log2(spanned), f32(texture_levels(width, height) - 1u));
 }
 
+// The two mip levels around texture_lod of `footprint`: `level` and the next, and how
+// far towards the next to blend (0: `level` alone).
+struct MipBlend {
+    level: u32,
+    blend: f32,
+}
+
+// The mip levels the filtered lookups blend for a footprint `footprint` wide (in uv).
+// Mirror of src/tracer/shading/texture.rs::mip_blend — change both.
+fn mip_blend(texture: u32, footprint: f32) -> MipBlend {
+    let lod = texture_lod(texture, footprint);
+    let level = floor(lod);
+    return MipBlend(u32(level), lod - level);
+}
+
 // Trilinear lookup of `texture` at uv for a footprint `footprint` wide (in uv): the
 // bilinear lookups of the two levels around texture_lod, blended.
 // Mirror of src/tracer/shading/texture.rs::sample_texture_filtered — change both.
 fn sample_texture_filtered(texture: u32, uv: vec2<f32>, footprint: f32) -> vec3<f32> {
-    let lod = texture_lod(texture, footprint);
-    let level = floor(lod);
-    let blend = lod - level;
-    let fine = sample_texture(texture_level(texture, u32(level)), uv);
-    if blend <= 0.0 {
+    let mip = mip_blend(texture, footprint);
+    let fine = sample_texture(texture_level(texture, mip.level), uv);
+    if mip.blend <= 0.0 {
         return fine;
     }
-    let coarse = sample_texture(texture_level(texture, u32(level) + 1u), uv);
-    return fine * (1.0 - blend) + coarse * blend;
+    let coarse = sample_texture(texture_level(texture, mip.level + 1u), uv);
+    return fine * (1.0 - mip.blend) + coarse * mip.blend;
 }
 
 // The width, in uv, of the patch of surface s that one pixel covers, for a ray along the
@@ -164,15 +177,13 @@ fn height_gradient(texture: u32, uv: vec2<f32>) -> vec2<f32> {
 // (each level's differences one of its own texels apart).
 // Mirror of src/tracer/shading/texture.rs::filtered_height_gradient — change both.
 fn filtered_height_gradient(texture: u32, uv: vec2<f32>, footprint: f32) -> vec2<f32> {
-    let lod = texture_lod(texture, footprint);
-    let level = floor(lod);
-    let blend = lod - level;
-    let fine = height_gradient(texture_level(texture, u32(level)), uv);
-    if blend <= 0.0 {
+    let mip = mip_blend(texture, footprint);
+    let fine = height_gradient(texture_level(texture, mip.level), uv);
+    if mip.blend <= 0.0 {
         return fine;
     }
-    let coarse = height_gradient(texture_level(texture, u32(level) + 1u), uv);
-    return fine * (1.0 - blend) + coarse * blend;
+    let coarse = height_gradient(texture_level(texture, mip.level + 1u), uv);
+    return fine * (1.0 - mip.blend) + coarse * mip.blend;
 }
 
 // The bumped normal of s for material m (s.normal tilted by the height gradient);
