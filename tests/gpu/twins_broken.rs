@@ -163,7 +163,7 @@ fn broken_calls_are_reported() {
     ));
     assert_reported(
         &reordered,
-        "trace_lattice_point: twins called in another order: Rust [\"lattice_position\", \"lattice_sample\", \"lattice_index\"], WGSL [\"lattice_position\", \"lattice_index\", \"lattice_sample\"]",
+        "trace_lattice_point: twins called in another order: Rust [\"lattice_position\", \"lattice_sample\", \"lattice_index\", \"encode_hint\"], WGSL [\"lattice_position\", \"lattice_index\", \"lattice_sample\", \"encode_hint\"]",
         "twins called in another order",
     );
     let renamed = check(&edited(

@@ -9,7 +9,7 @@ use crate::constants::AA_UNIFORM;
 use crate::film::Film;
 use crate::pack::PackedScene;
 use crate::tracer::traversal::traverse::NoCounters;
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 use rayon::prelude::*;
 
 /// Adds sample `s` of every pixel of `scene` (its globals' size, camera and AA) to
@@ -34,21 +34,16 @@ pub fn view_sample(scene: &PackedScene, x: u32, y: u32, s: u32, sum: [f32; 4]) -
     let uniform = g.aa_mode == AA_UNIFORM;
     let n = if uniform { g.aa_samples } else { 1 };
     let colour = uniform_sample(scene, x, y, s, n, uniform, &mut NoCounters);
-    add_view_sample(sum, s, colour)
+    add_view_sample(Vec4::from(sum), s, colour).to_array()
 }
 
 /// A pixel's running `sum` with its sample `s` of colour `colour` added: from zero at
 /// s = 0 (whatever `sum` held), the count in the fourth component. Every form of a view
 /// frame adds its samples with it.
 // Mirror of src/tracer/sampling/progressive.wgsl::add_view_sample — change both.
-pub fn add_view_sample(sum: [f32; 4], s: u32, colour: Vec3) -> [f32; 4] {
-    let before = if s == 0 {
-        Vec3::ZERO
-    } else {
-        Vec3::new(sum[0], sum[1], sum[2])
-    };
-    let total = before + colour;
-    [total.x, total.y, total.z, (s + 1) as f32]
+pub fn add_view_sample(sum: Vec4, s: u32, colour: Vec3) -> Vec4 {
+    let before = if s == 0 { Vec3::ZERO } else { sum.truncate() };
+    (before + colour).extend((s + 1) as f32)
 }
 
 /// The store pass of a view frame through the wavefront form (`glint view`'s frame `s` in
@@ -57,7 +52,7 @@ pub fn add_view_sample(sum: [f32; 4], s: u32, colour: Vec3) -> [f32; 4] {
 // Mirror of src/tracer/sampling/progressive.wgsl::wavefront_view_store, its invocations in one loop — change both.
 pub fn wavefront_view_store(sums: &mut [[f32; 4]], s: u32, colours: &[Vec3]) {
     for (sum, &colour) in sums.iter_mut().zip(colours) {
-        *sum = add_view_sample(*sum, s, colour);
+        *sum = add_view_sample(Vec4::from(*sum), s, colour).to_array();
     }
 }
 
