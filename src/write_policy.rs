@@ -32,13 +32,16 @@ impl WritePolicy {
         let base = output_dir.map_or_else(|| PathBuf::from("."), Path::to_path_buf);
         let mut roots = Vec::new();
         for dir in std::iter::once(&base).chain(allow_write) {
-            let real = dir
-                .canonicalize()
-                .map_err(|e| format!("cannot write under '{}': {e}", dir.display()))?;
+            let real = dir.canonicalize().map_err(|e| {
+                format!(
+                    "cannot write under '{}': {e}",
+                    crate::display_path::shown(dir)
+                )
+            })?;
             if !real.is_dir() {
                 return Err(format!(
                     "cannot write under '{}': not a folder",
-                    dir.display()
+                    crate::display_path::shown(dir)
                 ));
             }
             roots.push(real);
@@ -49,7 +52,8 @@ impl WritePolicy {
     /// The path to write for the script-named output `name`, or why the script may not
     /// write it (the message names `name` and the flags that widen the rule).
     pub fn place(&self, name: &Path) -> Result<PathBuf, String> {
-        let refuse = |why: &str| format!("cannot write '{}': {why}", name.display());
+        let refuse =
+            |why: &str| format!("cannot write '{}': {why}", crate::display_path::shown(name));
         if name.as_os_str().is_empty() || name.file_name().is_none() {
             return Err(refuse("not a file name"));
         }
@@ -69,7 +73,11 @@ impl WritePolicy {
         let resolved = resolve(&self.roots[0], name);
         let dir = resolved.parent().unwrap_or(Path::new("/"));
         if !self.roots.iter().any(|root| dir.starts_with(root)) {
-            let roots: Vec<String> = self.roots.iter().map(|r| r.display().to_string()).collect();
+            let roots: Vec<String> = self
+                .roots
+                .iter()
+                .map(|r| crate::display_path::shown(r))
+                .collect();
             return Err(refuse(&format!(
                 "it is outside the folders this scene may write ({}); --output-dir DIR or --allow-write DIR allows another folder, -o FILE names the output",
                 roots.join(", ")

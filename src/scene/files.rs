@@ -144,14 +144,25 @@ pub fn open_checked(path: &Path, cap: u64) -> Result<(File, u64), Refusal> {
 /// [`open_checked`] for a scene's reads (recorded for `glint view`'s reload), with the
 /// refusal said as a message naming `what` and the path.
 pub fn open_regular(path: &Path, what: &str, cap: u64) -> Result<(File, u64), String> {
+    open_regular_within(path, what, cap, &|len| {
+        format!("it is {len} bytes, over the limit of {cap} bytes")
+    })
+}
+
+/// [`open_regular`] with a file over `cap` said by `over` (given its size in bytes): the
+/// cap's own reason (what is left of a memory budget, and the flag that raises it).
+pub fn open_regular_within(
+    path: &Path,
+    what: &str,
+    cap: u64,
+    over: &dyn Fn(u64) -> String,
+) -> Result<(File, u64), String> {
     note_read(path);
     let shown = shown(path);
     open_checked(path, cap).map_err(|refusal| match refusal {
         Refusal::Io(e) => format!("cannot read {what} '{shown}': {e}"),
         Refusal::NotRegular => format!("cannot read {what} '{shown}': not a regular file"),
-        Refusal::TooBig(len) => format!(
-            "cannot read {what} '{shown}': it is {len} bytes, over the limit of {cap} bytes"
-        ),
+        Refusal::TooBig(len) => format!("cannot read {what} '{shown}': {}", over(len)),
     })
 }
 
@@ -193,7 +204,19 @@ pub fn record_reads<T>(f: impl FnOnce() -> T) -> (T, Vec<PathBuf>) {
 /// Reads a whole regular file of at most `cap` bytes (see [`open_regular`]). A file that
 /// grows while being read is cut at `cap + 1` bytes and refused.
 pub fn read_regular(path: &Path, what: &str, cap: u64) -> Result<Vec<u8>, String> {
-    let (file, len) = open_regular(path, what, cap)?;
+    read_regular_within(path, what, cap, &|len| {
+        format!("it is {len} bytes, over the limit of {cap} bytes")
+    })
+}
+
+/// [`read_regular`] with a file over `cap` said by `over` (see [`open_regular_within`]).
+pub fn read_regular_within(
+    path: &Path,
+    what: &str,
+    cap: u64,
+    over: &dyn Fn(u64) -> String,
+) -> Result<Vec<u8>, String> {
+    let (file, len) = open_regular_within(path, what, cap, over)?;
     let mut bytes = Vec::new();
     bytes
         .try_reserve_exact(len as usize)

@@ -34,6 +34,7 @@ pub use gr::MAX_IMAGE_SIDE;
 use super::files::{open_regular, ReadPolicy, MAX_FILE_BYTES};
 use super::paths::SceneFolders;
 use super::{MeshId, NodeId, RenderRequest, SceneGraph, TransformOrder};
+use crate::display_path::shown_text;
 use mlua::chunk::ChunkMode;
 use mlua::Lua;
 use std::collections::HashMap;
@@ -213,7 +214,7 @@ pub fn run_scene_file(
     let source = String::from_utf8_lossy(&bytes);
     let base_dir = path.parent().unwrap_or(Path::new(""));
     run_scene_source(
-        &path.display().to_string(),
+        &crate::display_path::shown(path),
         &source,
         base_dir,
         config,
@@ -235,13 +236,17 @@ pub fn read_scene_bytes(path: &Path, memory_limit: usize) -> Result<Vec<u8>, Sce
     if len.saturating_mul(SOURCE_BYTES_PER_BYTE) > memory_limit as u64 {
         return Err(read_error(format!(
             "{}: the scene file is {} MiB; running it may take {SOURCE_BYTES_PER_BYTE}× that, over the memory limit of {} MiB; --memory-limit MIB raises it",
-            path.display(),
+            crate::display_path::shown(path),
             len.div_ceil(1 << 20),
             memory_limit >> 20
         )));
     }
-    let cannot =
-        |e: std::io::Error| read_error(format!("cannot read scene file '{}': {e}", path.display()));
+    let cannot = |e: std::io::Error| {
+        read_error(format!(
+            "cannot read scene file '{}': {e}",
+            crate::display_path::shown(path)
+        ))
+    };
     let mut bytes = Vec::new();
     bytes
         .try_reserve_exact(len as usize)
@@ -250,7 +255,7 @@ pub fn read_scene_bytes(path: &Path, memory_limit: usize) -> Result<Vec<u8>, Sce
     if bytes.len() as u64 > len {
         return Err(read_error(format!(
             "cannot read scene file '{}': it grew while being read",
-            path.display()
+            crate::display_path::shown(path)
         )));
     }
     Ok(bytes)
@@ -574,7 +579,7 @@ pub(crate) fn check_file_cost(
     if meta.is_file() && meta.len().saturating_mul(factor) > left {
         return Err(reach_limit(a, format!(
             "{what} '{}' is {} MiB; reading it may take up to {factor}× that, over the {} MiB left of the memory limit; --memory-limit MIB raises it",
-            path.display(),
+            crate::display_path::shown(path),
             meta.len().div_ceil(1 << 20),
             left >> 20
         )));
@@ -676,8 +681,10 @@ fn convert_error(
         }
     }
     match e {
+        // The script's own text (a token, an `error` argument) is escaped: a message
+        // stays one line and sends the terminal nothing.
         mlua::Error::SyntaxError { message, .. } => SceneError::Syntax {
-            message: message.clone(),
+            message: shown_text(message),
         },
         mlua::Error::MemoryError(_) => {
             // Lua's memory errors carry no position: take the traceback's innermost
@@ -698,7 +705,7 @@ fn convert_error(
             let (message, tb) = split_traceback(message);
             let traceback = traceback.or(tb);
             SceneError::Runtime {
-                message: with_location(message, traceback.as_deref()),
+                message: shown_text(&with_location(message, traceback.as_deref())),
                 traceback,
             }
         }
@@ -706,7 +713,7 @@ fn convert_error(
             let text = other.to_string();
             let (message, tb) = split_traceback(&text);
             SceneError::Runtime {
-                message: message.to_string(),
+                message: shown_text(message),
                 traceback: traceback.or(tb),
             }
         }

@@ -521,9 +521,16 @@ pub fn bench_sweep(args: &BenchArgs) -> anyhow::Result<()> {
         ),
         &[panel(&sweeps, Metric::Flip), panel(&sweeps, Metric::Rmse)],
     );
-    write_atomically(&args.plot, &svg)
-        .map_err(|e| anyhow::anyhow!("cannot write the plot {}: {e}", args.plot.display()))?;
-    println!("\nplot written to {}", args.plot.display());
+    write_atomically(&args.plot, &svg).map_err(|e| {
+        anyhow::anyhow!(
+            "cannot write the plot {}: {e}",
+            glint::display_path::shown(&args.plot)
+        )
+    })?;
+    println!(
+        "\nplot written to {}",
+        glint::display_path::shown(&args.plot)
+    );
     Ok(())
 }
 
