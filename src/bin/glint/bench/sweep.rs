@@ -521,16 +521,10 @@ pub fn bench_sweep(args: &BenchArgs) -> anyhow::Result<()> {
         ),
         &[panel(&sweeps, Metric::Flip), panel(&sweeps, Metric::Rmse)],
     );
-    write_atomically(&args.plot, &svg).map_err(|e| {
-        anyhow::anyhow!(
-            "cannot write the plot {}: {e}",
-            glint::display_path::shown(&args.plot)
-        )
-    })?;
-    println!(
-        "\nplot written to {}",
-        glint::display_path::shown(&args.plot)
-    );
+    let plot = glint::display_path::shown(&args.plot);
+    write_atomically(&args.plot, &svg)
+        .map_err(|e| anyhow::anyhow!("cannot write the plot {plot}: {e}"))?;
+    println!("\nplot written to {plot}");
     Ok(())
 }
 
