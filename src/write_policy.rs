@@ -39,10 +39,14 @@ impl WritePolicy {
                 )
             })?;
             if !real.is_dir() {
-                return Err(format!(
-                    "cannot write under '{}': not a folder",
-                    crate::display_path::shown(dir)
-                ));
+                let shown = crate::display_path::shown(dir);
+                return Err(match too_long_to_resolve(dir, &real) {
+                    Some(len) => format!(
+                        "cannot write under '{shown}': its absolute path is {len} bytes, over the system's limit of {} (PATH_MAX); the rules for what a scene may read and write work on absolute paths: run glint from a folder nearer the root",
+                        libc::PATH_MAX
+                    ),
+                    None => format!("cannot write under '{shown}': not a folder"),
+                });
             }
             roots.push(real);
         }
@@ -86,6 +90,14 @@ impl WritePolicy {
         check_replaceable(&resolved).map_err(|why| refuse(&why))?;
         Ok(shown)
     }
+}
+
+/// The length of `real`, the absolute path of the folder `dir`, when `dir` is a folder
+/// that only that length keeps the system from reaching by `real` (deep folders of long
+/// names: the system can resolve them, but not open a path over PATH_MAX).
+fn too_long_to_resolve(dir: &Path, real: &Path) -> Option<usize> {
+    let len = real.as_os_str().len();
+    (dir.is_dir() && len >= libc::PATH_MAX as usize).then_some(len)
 }
 
 /// `name` under `base` with `..` and symbolic links resolved as far as the path exists

@@ -28,6 +28,9 @@ pub const GLINT_ASSETS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/textures");
 #[derive(Clone, Debug, Default)]
 pub struct ReadPolicy {
     roots: Vec<PathBuf>,
+    /// The scene's folder when it could not be resolved (an absolute path over PATH_MAX),
+    /// with why: a refusal says so rather than only that the file is outside.
+    unresolved: Option<(PathBuf, String)>,
     /// The flag's wording for messages (`--allow-read DIR`).
     flag: &'static str,
 }
@@ -41,13 +44,26 @@ impl ReadPolicy {
         } else {
             scene_dir
         };
+        let unresolved = match scene_dir.canonicalize() {
+            Ok(real) if scene_dir.is_dir() && !real.is_dir() => Some((
+                scene_dir.to_path_buf(),
+                format!(
+                    "its absolute path is {} bytes, over the system's limit of {} (PATH_MAX)",
+                    real.as_os_str().len(),
+                    libc::PATH_MAX
+                ),
+            )),
+            Err(e) if scene_dir.is_dir() => Some((scene_dir.to_path_buf(), e.to_string())),
+            _ => None,
+        };
         let roots = [scene_dir, Path::new(GLINT_ASSETS)]
             .into_iter()
             .chain(extra.iter().map(PathBuf::as_path))
-            .filter_map(|d| d.canonicalize().ok())
+            .filter_map(|d| d.canonicalize().ok().filter(|real| real.is_dir()))
             .collect();
         ReadPolicy {
             roots,
+            unresolved,
             flag: "--allow-read DIR",
         }
     }
@@ -74,8 +90,17 @@ impl ReadPolicy {
                 .map_err(|e| format!("cannot read {what} '{}': {e}", shown(path)));
         }
         let roots: Vec<String> = self.roots.iter().map(|r| shown(r)).collect();
+        let unresolved = self
+            .unresolved
+            .as_ref()
+            .map_or_else(String::new, |(dir, why)| {
+                format!(
+                    " (the scene's folder '{}' is not among them: {why}; run glint nearer to it)",
+                    shown(dir)
+                )
+            });
         Err(format!(
-            "cannot read {what} '{}': it is outside the folders this scene may read ({}); {} allows another folder",
+            "cannot read {what} '{}': it is outside the folders this scene may read ({}){unresolved}; {} allows another folder",
             shown(path),
             roots.join(", "),
             self.flag

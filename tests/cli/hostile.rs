@@ -3121,3 +3121,37 @@ fn a_dangling_link_at_an_output_name_is_replaced() {
     }
     assert!(!dir.join("nowhere").exists());
 }
+
+/// Started in a folder whose absolute path is over PATH_MAX (22 folders of 200 bytes),
+/// glint says why it cannot work there — the read and write rules resolve absolute
+/// paths, which the system cannot open past 4 096 bytes — rather than that `.` is "not a
+/// folder". (Resolving through folder handles, so that such a scene could read its own
+/// mesh, is not built: docs/limits.md.)
+#[test]
+fn a_start_folder_past_path_max_is_said_as_such() {
+    let (dir, _logs, _root) = case_dir("deep-start");
+    let descend = format!(
+        "for i in $(seq 22); do mkdir {0} && cd -P {0} || exit 99; done\n\
+         printf \"gr.node('root')\\n\" > scene.lua",
+        "d".repeat(200)
+    );
+    let args = ["render", "scene.lua", "--backend", "cpu"];
+    let ended = run_glint_env(
+        &args,
+        &dir,
+        &[],
+        Some(&descend),
+        Duration::from_secs(20),
+        &mut |_| false,
+    );
+    ended_as(
+        "deep-start",
+        &ended,
+        2,
+        &[
+            "cannot write under '.'",
+            "over the system's limit of 4096 (PATH_MAX)",
+        ],
+        512,
+    );
+}
