@@ -144,8 +144,8 @@ pub fn diff_files(a: &Path, b: &Path) -> Result<(DiffReport, Film), DiffFilesErr
     let film_a = read_diff_input(a)?;
     let film_b = read_diff_input(b)?;
     diff_films(&film_a, &film_b).map_err(|error| DiffFilesError::Compare {
-        a: a.display().to_string(),
-        b: b.display().to_string(),
+        a: crate::display_path::shown(a),
+        b: crate::display_path::shown(b),
         error,
     })
 }
@@ -295,11 +295,14 @@ pub fn assert_images_match(
         outputs.push((out_dir.join(format!("{name}-heatmap.png")), heat_map));
     }
     if let Err(e) = std::fs::create_dir_all(out_dir) {
-        message.push_str(&format!("could not create {}: {e}\n", out_dir.display()));
+        message.push_str(&format!(
+            "could not create {}: {e}\n",
+            crate::display_path::shown(out_dir)
+        ));
     }
     for (path, film) in &outputs {
         match write_image(film, path) {
-            Ok(()) => message.push_str(&format!("wrote {}\n", path.display())),
+            Ok(()) => message.push_str(&format!("wrote {}\n", crate::display_path::shown(path))),
             Err(e) => message.push_str(&format!("could not write: {e}\n")),
         }
     }

@@ -30,16 +30,48 @@ fn escaped(path: &Path) -> String {
     let mut out = String::new();
     for chunk in path.as_os_str().as_bytes().utf8_chunks() {
         for c in chunk.valid().chars() {
-            match c {
-                '\n' => out.push_str("\\n"),
-                '\t' => out.push_str("\\t"),
-                '\r' => out.push_str("\\r"),
-                c if c.is_control() => out.push_str(&c.escape_unicode().to_string()),
-                c => out.push(c),
-            }
+            push_escaped(&mut out, c);
         }
         for b in chunk.invalid() {
             out.push_str(&format!("\\x{b:02x}"));
+        }
+    }
+    out
+}
+
+/// `c` as a message shows it: a control character (C0, DEL, C1) escaped.
+fn push_escaped(out: &mut String, c: char) {
+    match c {
+        '\n' => out.push_str("\\n"),
+        '\t' => out.push_str("\\t"),
+        '\r' => out.push_str("\\r"),
+        c if c.is_control() => out.push_str(&c.escape_unicode().to_string()),
+        c => out.push(c),
+    }
+}
+
+/// A string a script or a user gave (a node's name, an axis, a module's name, a Lua
+/// error's text) for a message: control characters escaped as [`shown`] escapes them,
+/// so that it stays on its line and sends the terminal nothing.
+pub fn shown_text(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        push_escaped(&mut out, c);
+    }
+    out
+}
+
+/// A whole message as glint prints it (`glint: error: …`, notes, the view's lines): the
+/// last guard before the terminal. Every control character is escaped but the line
+/// breaks and tabs of glint's own multi-line messages (a shader compiler's diagnostic, a table);
+/// paths and user strings inside it were escaped whole, line breaks too, by [`shown`]
+/// and [`shown_text`] where the message was made.
+pub fn for_terminal(message: &str) -> String {
+    let mut out = String::with_capacity(message.len());
+    for c in message.chars() {
+        match c {
+            '\n' | '\t' => out.push(c),
+            c => push_escaped(&mut out, c),
         }
     }
     out
@@ -65,5 +97,19 @@ mod tests {
             "{short}"
         );
         assert!(short.contains("(5241 characters left out)"), "{short}");
+    }
+
+    #[test]
+    fn user_strings_and_whole_messages_are_escaped_for_the_terminal() {
+        assert_eq!(
+            shown_text("n\nglint: x\u{1b}[31m"),
+            "n\\nglint: x\\u{1b}[31m"
+        );
+        assert_eq!(shown_text("plain name"), "plain name");
+        // A message keeps its own line breaks; every other control character goes.
+        assert_eq!(
+            for_terminal("a\u{1b}]0;title\u{7}\r\n  next\tline"),
+            "a\\u{1b}]0;title\\u{7}\\r\n  next\tline"
+        );
     }
 }

@@ -22,42 +22,52 @@ use crate::film::Film;
 /// Everything that can go wrong reading or writing an image; every message names the path.
 #[derive(Debug, Error)]
 pub enum ImageIoError {
-    #[error("cannot write {path}: unsupported extension (supported: {SUPPORTED_EXTENSIONS})")]
+    #[error(
+        "cannot write {}: unsupported extension (supported: {SUPPORTED_EXTENSIONS})",
+        crate::display_path::shown(path)
+    )]
     UnsupportedExtension { path: PathBuf },
-    #[error("cannot write {path}: the name is {len} bytes; with the temporary file's suffix ({TEMP_SUFFIX_MAX} bytes) it passes the file system's limit of {max} bytes per name")]
+    #[error("cannot write {}: the name is {len} bytes; with the temporary file's suffix ({TEMP_SUFFIX_MAX} bytes) it passes the file system's limit of {max} bytes per name", crate::display_path::shown(path))]
     NameTooLong {
         path: PathBuf,
         len: usize,
         max: usize,
     },
-    #[error("cannot write {path}: directory {dir} does not exist")]
+    #[error(
+        "cannot write {}: directory {} does not exist",
+        crate::display_path::shown(path),
+        crate::display_path::shown(dir)
+    )]
     MissingDirectory { path: PathBuf, dir: PathBuf },
-    #[error("cannot write {path}: film is {width}x{height} but holds {len} pixels")]
+    #[error(
+        "cannot write {}: film is {width}x{height} but holds {len} pixels",
+        crate::display_path::shown(path)
+    )]
     MalformedFilm {
         path: PathBuf,
         width: u32,
         height: u32,
         len: usize,
     },
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {}: {source}", crate::display_path::shown(path))]
     Io {
         path: PathBuf,
         #[source]
         source: std::io::Error,
     },
-    #[error("cannot read image {path}: {source}")]
+    #[error("cannot read image {}: {source}", crate::display_path::shown(path))]
     Read {
         path: PathBuf,
         #[source]
         source: std::io::Error,
     },
-    #[error("cannot encode {path}: {source}")]
+    #[error("cannot encode {}: {source}", crate::display_path::shown(path))]
     Encode {
         path: PathBuf,
         #[source]
         source: image::ImageError,
     },
-    #[error("cannot encode {path}: {source}")]
+    #[error("cannot encode {}: {source}", crate::display_path::shown(path))]
     EncodeExr {
         path: PathBuf,
         #[source]
@@ -66,7 +76,7 @@ pub enum ImageIoError {
     /// `message` names the path.
     #[error("{message}")]
     Unreadable { path: PathBuf, message: String },
-    #[error("cannot read image {path}: {source}")]
+    #[error("cannot read image {}: {source}", crate::display_path::shown(path))]
     Decode {
         path: PathBuf,
         #[source]
@@ -368,7 +378,10 @@ pub fn read_image_within(
 ) -> Result<Film, ImageIoError> {
     let unreadable = |message: String| ImageIoError::Unreadable {
         path: path.to_path_buf(),
-        message: format!("cannot read image {}: {message}", path.display()),
+        message: format!(
+            "cannot read image {}: {message}",
+            crate::display_path::shown(path)
+        ),
     };
     let bytes =
         crate::image_check::read_image_file(path).map_err(|message| ImageIoError::Unreadable {

@@ -23,6 +23,7 @@ pub mod constants;
 pub mod diff;
 pub mod display_path;
 pub mod farm;
+pub mod file_name;
 pub mod film;
 pub mod gpu;
 pub mod image_check;

@@ -56,12 +56,7 @@ pub struct ParityResult {
 
 /// `path` with `-tag` before its extension.
 pub fn tagged(path: &Path, tag: &str) -> PathBuf {
-    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
-    let name = match path.extension() {
-        Some(ext) => format!("{stem}-{tag}.{}", ext.to_string_lossy()),
-        None => format!("{stem}-{tag}"),
-    };
-    path.with_file_name(name)
+    crate::file_name::with_suffix(path, &format!("-{tag}"))
 }
 
 /// Renders one request on both tracers, writes the images and compares them.

@@ -110,7 +110,10 @@ pub fn acquire_gpu(
             Ok(ctx) => Ok(Some(ctx)),
             Err(e) => {
                 if explain {
-                    eprintln!("glint: note: rendering on the CPU ({e})");
+                    eprintln!(
+                        "glint: note: rendering on the CPU ({})",
+                        crate::display_path::for_terminal(&e.to_string())
+                    );
                 }
                 Ok(None)
             }
@@ -299,7 +302,7 @@ pub fn render_request(
             eprintln!(
                 "glint: note: {} pixels of {} re-rendered on the CPU: they passed the software adapter's loop limit (Mesa: 65 535 loop iterations per invocation)",
                 info.cpu_fallback_pixels,
-                request.output.display()
+                crate::display_path::shown(&request.output)
             );
         }
         return Ok(RenderedImage {
@@ -349,15 +352,7 @@ pub fn output_path(settings_output: Option<&Path>, script_output: &Path, index: 
     if index == 0 {
         return base.to_path_buf();
     }
-    let stem = base
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let name = match base.extension() {
-        Some(ext) => format!("{stem}-{}.{}", index + 1, ext.to_string_lossy()),
-        None => format!("{stem}-{}", index + 1),
-    };
-    base.with_file_name(name)
+    crate::file_name::with_suffix(base, &format!("-{}", index + 1))
 }
 
 /// The file the `index`-th render (0-based) writes: the user's `-o` (numbered after the
@@ -446,7 +441,7 @@ fn write_rendered(image: &RenderedImage, transfer: OutputTransfer) -> Result<(),
     if transfer != OutputTransfer::Linear && crate::image_io::is_float_output(&image.output) {
         eprintln!(
             "glint: note: {} is EXR, written linear (float): --output-transfer applies to PNG and JPEG",
-            image.output.display()
+            crate::display_path::shown(&image.output)
         );
     }
     write_image_with(&image.film, &image.output, transfer)

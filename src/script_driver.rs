@@ -81,7 +81,7 @@ pub fn run_script_bytes(
 ) -> Result<ScriptReport, SceneError> {
     let source = String::from_utf8_lossy(bytes);
     let base_dir = path.parent().unwrap_or(Path::new(""));
-    let name = path.display().to_string();
+    let name = crate::display_path::shown(path);
     run_scene_source(&name, &source, base_dir, &settings.config(), on_render)
 }
 

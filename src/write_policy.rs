@@ -32,14 +32,21 @@ impl WritePolicy {
         let base = output_dir.map_or_else(|| PathBuf::from("."), Path::to_path_buf);
         let mut roots = Vec::new();
         for dir in std::iter::once(&base).chain(allow_write) {
-            let real = dir
-                .canonicalize()
-                .map_err(|e| format!("cannot write under '{}': {e}", dir.display()))?;
+            let real = dir.canonicalize().map_err(|e| {
+                format!(
+                    "cannot write under '{}': {e}",
+                    crate::display_path::shown(dir)
+                )
+            })?;
             if !real.is_dir() {
-                return Err(format!(
-                    "cannot write under '{}': not a folder",
-                    dir.display()
-                ));
+                let shown = crate::display_path::shown(dir);
+                return Err(match too_long_to_resolve(dir, &real) {
+                    Some(len) => format!(
+                        "cannot write under '{shown}': its absolute path is {len} bytes, over the system's limit of {} (PATH_MAX); the rules for what a scene may read and write work on absolute paths: run glint from a folder nearer the root",
+                        libc::PATH_MAX
+                    ),
+                    None => format!("cannot write under '{shown}': not a folder"),
+                });
             }
             roots.push(real);
         }
@@ -49,7 +56,8 @@ impl WritePolicy {
     /// The path to write for the script-named output `name`, or why the script may not
     /// write it (the message names `name` and the flags that widen the rule).
     pub fn place(&self, name: &Path) -> Result<PathBuf, String> {
-        let refuse = |why: &str| format!("cannot write '{}': {why}", name.display());
+        let refuse =
+            |why: &str| format!("cannot write '{}': {why}", crate::display_path::shown(name));
         if name.as_os_str().is_empty() || name.file_name().is_none() {
             return Err(refuse("not a file name"));
         }
@@ -69,7 +77,11 @@ impl WritePolicy {
         let resolved = resolve(&self.roots[0], name);
         let dir = resolved.parent().unwrap_or(Path::new("/"));
         if !self.roots.iter().any(|root| dir.starts_with(root)) {
-            let roots: Vec<String> = self.roots.iter().map(|r| r.display().to_string()).collect();
+            let roots: Vec<String> = self
+                .roots
+                .iter()
+                .map(|r| crate::display_path::shown(r))
+                .collect();
             return Err(refuse(&format!(
                 "it is outside the folders this scene may write ({}); --output-dir DIR or --allow-write DIR allows another folder, -o FILE names the output",
                 roots.join(", ")
@@ -78,6 +90,14 @@ impl WritePolicy {
         check_replaceable(&resolved).map_err(|why| refuse(&why))?;
         Ok(shown)
     }
+}
+
+/// The length of `real`, the absolute path of the folder `dir`, when `dir` is a folder
+/// that only that length keeps the system from reaching by `real` (deep folders of long
+/// names: the system can resolve them, but not open a path over PATH_MAX).
+fn too_long_to_resolve(dir: &Path, real: &Path) -> Option<usize> {
+    let len = real.as_os_str().len();
+    (dir.is_dir() && len >= libc::PATH_MAX as usize).then_some(len)
 }
 
 /// `name` under `base` with `..` and symbolic links resolved as far as the path exists

@@ -99,7 +99,9 @@ pub fn load_first_render(
         }
         Ok(())
     })?;
-    scene.ok_or_else(|| anyhow::anyhow!("{} never calls gr.render", path.display()))
+    scene.ok_or_else(|| {
+        anyhow::anyhow!("{} never calls gr.render", crate::display_path::shown(path))
+    })
 }
 
 /// One ray per pixel through its centre, row by row.

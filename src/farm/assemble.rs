@@ -25,14 +25,19 @@ pub const ASSEMBLE_BYTES_PER_PIXEL: u64 = 32;
 pub enum AssembleError {
     #[error("no tiles given")]
     NoTiles,
-    #[error("{output}: the tiles are {tiles}; give an output of that format (.{ext})")]
+    #[error(
+        "{}: the tiles are {tiles}; give an output of that format (.{ext})",
+        crate::display_path::shown(output)
+    )]
     FormatMismatch {
         output: PathBuf,
         tiles: &'static str,
         ext: &'static str,
     },
     #[error(
-        "{tile} is {tile_format}, {first} {first_format}: the tiles of one image share a format"
+        "{} is {tile_format}, {} {first_format}: the tiles of one image share a format",
+        crate::display_path::shown(tile),
+        crate::display_path::shown(first)
     )]
     MixedFormats {
         tile: PathBuf,
@@ -42,14 +47,18 @@ pub enum AssembleError {
     },
     #[error("{0}")]
     Tile(#[from] TileFileError),
-    #[error("{tile} is from another render than {first}: digest {tile_digest:.12}… against {first_digest:.12}… (scene, options, tracer or glint version differ)")]
+    #[error("{} is from another render than {}: digest {tile_digest:.12}… against {first_digest:.12}… (scene, options, tracer or glint version differ)", crate::display_path::shown(tile), crate::display_path::shown(first))]
     Foreign {
         tile: PathBuf,
         first: PathBuf,
         tile_digest: String,
         first_digest: String,
     },
-    #[error("{tile} is a tile of a {tile_w}×{tile_h} image, {first} of a {first_w}×{first_h} one")]
+    #[error(
+        "{} is a tile of a {tile_w}×{tile_h} image, {} of a {first_w}×{first_h} one",
+        crate::display_path::shown(tile),
+        crate::display_path::shown(first)
+    )]
     SizeMismatch {
         tile: PathBuf,
         first: PathBuf,
@@ -58,7 +67,11 @@ pub enum AssembleError {
         first_w: u32,
         first_h: u32,
     },
-    #[error("{a} and {b} overlap: pixels {overlap} (x0,x1,y0,y1) are in both")]
+    #[error(
+        "{} and {} overlap: pixels {overlap} (x0,x1,y0,y1) are in both",
+        crate::display_path::shown(a),
+        crate::display_path::shown(b)
+    )]
     Overlap {
         a: PathBuf,
         b: PathBuf,
@@ -71,7 +84,7 @@ pub enum AssembleError {
         /// The missing tiles of the split, when the tiles name one (`, missing: tile 3/8 …`).
         named: String,
     },
-    #[error("{first}: assembling its {w}×{h} image from {count} tiles may take {need_mib} MiB (the tiles' files, the image, decoding the largest tile), over the memory limit of {limit_mib} MiB; --memory-limit MIB raises it")]
+    #[error("{}: assembling its {w}×{h} image from {count} tiles may take {need_mib} MiB (the tiles' files, the image, decoding the largest tile), over the memory limit of {limit_mib} MiB; --memory-limit MIB raises it", crate::display_path::shown(first))]
     OverBudget {
         first: PathBuf,
         w: u32,
@@ -141,9 +154,20 @@ pub fn assemble(tiles: &[PathBuf], output: &Path, budget: u64) -> Result<(), Ass
 fn read_tiles(paths: &[PathBuf], budget: u64) -> Result<Vec<TileFile>, AssembleError> {
     let mut held = 0u64;
     let mut tiles = Vec::with_capacity(paths.len());
-    for path in paths {
-        let cap = MAX_TILE_FILE_BYTES.min(budget.saturating_sub(held));
-        let tile = TileFile::open(path, cap)?;
+    for (index, path) in paths.iter().enumerate() {
+        let left = budget.saturating_sub(held);
+        let tile = if left < MAX_TILE_FILE_BYTES {
+            // The budget, not the tile file cap, is what this file would pass.
+            let over = |len: u64| {
+                format!(
+                    "it is {len} bytes; with the {index} tiles read before it ({held} bytes) that passes the memory limit of {} MiB; --memory-limit MIB raises it",
+                    budget >> 20
+                )
+            };
+            TileFile::open_within(path, left, &over)?
+        } else {
+            TileFile::open(path, MAX_TILE_FILE_BYTES)?
+        };
         held += tile.file_len();
         tiles.push(tile);
     }

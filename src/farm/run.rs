@@ -10,6 +10,7 @@ use super::spec::{task_index, FrameRange, Index, TileSpec};
 use super::split::tile_rect;
 use super::tile_file::{check_tile_path, write_tile, TileFileError, TileMeta};
 use super::tile_read::{TileFile, MAX_TILE_FILE_BYTES};
+use crate::file_name::with_suffix;
 use crate::film::Film;
 use crate::gpu::{render_gpu, GpuRenderOptions};
 use crate::pipeline::{
@@ -156,19 +157,6 @@ pub fn frame_jobs(
             Err("--frame auto picks a frame of --frames A-B; give --frames too".into())
         }
     }
-}
-
-/// `path` with `suffix` put before its extension (`out.png` + `-0001` → `out-0001.png`).
-pub fn with_suffix(path: &Path, suffix: &str) -> PathBuf {
-    let stem = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let name = match path.extension() {
-        Some(ext) => format!("{stem}{suffix}.{}", ext.to_string_lossy()),
-        None => format!("{stem}{suffix}"),
-    };
-    path.with_file_name(name)
 }
 
 /// The suffix of tile `i` of `n`: `-tile-03-of-16`.
@@ -424,7 +412,7 @@ fn render_bounds(
                 eprintln!(
                     "glint: note: {} pixels of {} re-rendered on the CPU: they passed the software adapter's loop limit",
                     r.info.cpu_fallback_pixels,
-                    output.display()
+                    crate::display_path::shown(output)
                 );
             }
             Ok(r.film)
@@ -438,11 +426,8 @@ mod tests {
 
     #[test]
     fn outputs_are_numbered_and_tiled() {
-        let p = with_suffix(Path::new("dir/out.png"), "-0007");
-        assert_eq!(p, PathBuf::from("dir/out-0007.png"));
         assert_eq!(tile_suffix(3, 16), "-tile-03-of-16");
         assert_eq!(tile_suffix(0, 1), "-tile-0-of-1");
-        assert_eq!(with_suffix(Path::new("x"), "-1"), PathBuf::from("x-1"));
     }
 
     #[test]

@@ -60,19 +60,22 @@ impl TileFormat {
 /// Why a tile file cannot be written or read; each names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum TileFileError {
-    #[error("{path}: tiles are written as PNG or EXR; give a .png or .exr output")]
+    #[error(
+        "{}: tiles are written as PNG or EXR; give a .png or .exr output",
+        crate::display_path::shown(path)
+    )]
     NotTileFormat { path: PathBuf },
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {}: {source}", crate::display_path::shown(path))]
     Write {
         path: PathBuf,
         #[source]
         source: std::io::Error,
     },
-    #[error("cannot read tile {path}: {message}")]
+    #[error("cannot read tile {}: {message}", crate::display_path::shown(path))]
     Read { path: PathBuf, message: String },
-    #[error("{path} is not a glint tile: {message}")]
+    #[error("{} is not a glint tile: {message}", crate::display_path::shown(path))]
     NotATile { path: PathBuf, message: String },
-    #[error("{path}: its pixels do not match the digest in its record ({KEY_PIXELS}): the tile was changed or damaged after it was written, or its record is another tile's; render it again")]
+    #[error("{}: its pixels do not match the digest in its record ({KEY_PIXELS}): the tile was changed or damaged after it was written, or its record is another tile's; render it again", crate::display_path::shown(path))]
     Changed { path: PathBuf },
 }
 

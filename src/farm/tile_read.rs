@@ -1,6 +1,6 @@
 //! Tiles read as untrusted input: they come back from other machines, and a farm's node
 //! can be broken or hostile. Each file is opened once, as the regular file it is
-//! ([`read_regular`]: a FIFO or a device refused without blocking, its size checked
+//! ([`crate::scene::files::read_regular`]: a FIFO or a device refused without blocking, its size checked
 //! before it is read), and everything after works on the bytes read: the format told
 //! by content, the record parsed and checked — a full size glint could render, bounds
 //! inside it matching the pixels, an `I/N` label whose tile of the split has exactly
@@ -16,7 +16,7 @@ use super::tile_file::{
     KEY_PIXELS, KEY_TILE, KEY_VERSION,
 };
 use crate::film::Film;
-use crate::scene::files::read_regular;
+use crate::scene::files::read_regular_within;
 use crate::scene::flatten::MAX_PIXELS;
 use crate::scene::lua::MAX_IMAGE_SIDE;
 use std::io::Cursor;
@@ -51,12 +51,24 @@ impl TileFile {
     /// Reads the tile at `path` (a regular file of at most `max_bytes`) and checks its
     /// record.
     pub fn open(path: &Path, max_bytes: u64) -> Result<TileFile, TileFileError> {
+        TileFile::open_within(path, max_bytes, &|len| {
+            format!("it is {len} bytes, over the limit of {max_bytes} bytes")
+        })
+    }
+
+    /// [`TileFile::open`] with a file over `max_bytes` said by `over` (given its size):
+    /// `assemble`'s budget names what is left of `--memory-limit`.
+    pub fn open_within(
+        path: &Path,
+        max_bytes: u64,
+        over: &dyn Fn(u64) -> String,
+    ) -> Result<TileFile, TileFileError> {
         let format = format_of(path)?;
         let read_err = |message: String| TileFileError::Read {
             path: path.to_path_buf(),
             message,
         };
-        let bytes = read_regular(path, "tile", max_bytes).map_err(read_err)?;
+        let bytes = read_regular_within(path, "tile", max_bytes, over).map_err(read_err)?;
         let by_content = crate::image_check::sniff(&bytes);
         let (expected, name) = match format {
             TileFormat::Png => (image::ImageFormat::Png, "a PNG"),

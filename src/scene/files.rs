@@ -28,6 +28,9 @@ pub const GLINT_ASSETS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/textures");
 #[derive(Clone, Debug, Default)]
 pub struct ReadPolicy {
     roots: Vec<PathBuf>,
+    /// The scene's folder when it could not be resolved (an absolute path over PATH_MAX),
+    /// with why: a refusal says so rather than only that the file is outside.
+    unresolved: Option<(PathBuf, String)>,
     /// The flag's wording for messages (`--allow-read DIR`).
     flag: &'static str,
 }
@@ -41,13 +44,26 @@ impl ReadPolicy {
         } else {
             scene_dir
         };
+        let unresolved = match scene_dir.canonicalize() {
+            Ok(real) if scene_dir.is_dir() && !real.is_dir() => Some((
+                scene_dir.to_path_buf(),
+                format!(
+                    "its absolute path is {} bytes, over the system's limit of {} (PATH_MAX)",
+                    real.as_os_str().len(),
+                    libc::PATH_MAX
+                ),
+            )),
+            Err(e) if scene_dir.is_dir() => Some((scene_dir.to_path_buf(), e.to_string())),
+            _ => None,
+        };
         let roots = [scene_dir, Path::new(GLINT_ASSETS)]
             .into_iter()
             .chain(extra.iter().map(PathBuf::as_path))
-            .filter_map(|d| d.canonicalize().ok())
+            .filter_map(|d| d.canonicalize().ok().filter(|real| real.is_dir()))
             .collect();
         ReadPolicy {
             roots,
+            unresolved,
             flag: "--allow-read DIR",
         }
     }
@@ -74,8 +90,17 @@ impl ReadPolicy {
                 .map_err(|e| format!("cannot read {what} '{}': {e}", shown(path)));
         }
         let roots: Vec<String> = self.roots.iter().map(|r| shown(r)).collect();
+        let unresolved = self
+            .unresolved
+            .as_ref()
+            .map_or_else(String::new, |(dir, why)| {
+                format!(
+                    " (the scene's folder '{}' is not among them: {why}; run glint nearer to it)",
+                    shown(dir)
+                )
+            });
         Err(format!(
-            "cannot read {what} '{}': it is outside the folders this scene may read ({}); {} allows another folder",
+            "cannot read {what} '{}': it is outside the folders this scene may read ({}){unresolved}; {} allows another folder",
             shown(path),
             roots.join(", "),
             self.flag
@@ -144,14 +169,25 @@ pub fn open_checked(path: &Path, cap: u64) -> Result<(File, u64), Refusal> {
 /// [`open_checked`] for a scene's reads (recorded for `glint view`'s reload), with the
 /// refusal said as a message naming `what` and the path.
 pub fn open_regular(path: &Path, what: &str, cap: u64) -> Result<(File, u64), String> {
+    open_regular_within(path, what, cap, &|len| {
+        format!("it is {len} bytes, over the limit of {cap} bytes")
+    })
+}
+
+/// [`open_regular`] with a file over `cap` said by `over` (given its size in bytes): the
+/// cap's own reason (what is left of a memory budget, and the flag that raises it).
+pub fn open_regular_within(
+    path: &Path,
+    what: &str,
+    cap: u64,
+    over: &dyn Fn(u64) -> String,
+) -> Result<(File, u64), String> {
     note_read(path);
     let shown = shown(path);
     open_checked(path, cap).map_err(|refusal| match refusal {
         Refusal::Io(e) => format!("cannot read {what} '{shown}': {e}"),
         Refusal::NotRegular => format!("cannot read {what} '{shown}': not a regular file"),
-        Refusal::TooBig(len) => format!(
-            "cannot read {what} '{shown}': it is {len} bytes, over the limit of {cap} bytes"
-        ),
+        Refusal::TooBig(len) => format!("cannot read {what} '{shown}': {}", over(len)),
     })
 }
 
@@ -193,7 +229,19 @@ pub fn record_reads<T>(f: impl FnOnce() -> T) -> (T, Vec<PathBuf>) {
 /// Reads a whole regular file of at most `cap` bytes (see [`open_regular`]). A file that
 /// grows while being read is cut at `cap + 1` bytes and refused.
 pub fn read_regular(path: &Path, what: &str, cap: u64) -> Result<Vec<u8>, String> {
-    let (file, len) = open_regular(path, what, cap)?;
+    read_regular_within(path, what, cap, &|len| {
+        format!("it is {len} bytes, over the limit of {cap} bytes")
+    })
+}
+
+/// [`read_regular`] with a file over `cap` said by `over` (see [`open_regular_within`]).
+pub fn read_regular_within(
+    path: &Path,
+    what: &str,
+    cap: u64,
+    over: &dyn Fn(u64) -> String,
+) -> Result<Vec<u8>, String> {
+    let (file, len) = open_regular_within(path, what, cap, over)?;
     let mut bytes = Vec::new();
     bytes
         .try_reserve_exact(len as usize)

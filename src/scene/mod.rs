@@ -2,17 +2,25 @@
 //! requests that `gr.render` issues. Everything here lives above `pack`: the tracers
 //! never see these types, only the packed arrays made from them.
 
-/// At most [`SHORT_NAME_BYTES`] of a node or material name, for messages: a name may be
-/// hundreds of MiB (it is counted against the budget), its quotes in errors are not.
+/// At most [`SHORT_NAME_BYTES`] of a node or material name, for messages: a name may
+/// be hundreds of MiB (it is counted against the budget), its quotes in errors are not;
+/// its control characters escaped ([`crate::display_path::shown_text`]: a name holding a
+/// newline or a terminal escape stays on its line and sends the terminal nothing).
 pub fn short_name(name: &str) -> std::borrow::Cow<'_, str> {
-    if name.len() <= SHORT_NAME_BYTES {
+    let cut = if name.len() <= SHORT_NAME_BYTES {
+        name
+    } else {
+        let mut end = SHORT_NAME_BYTES;
+        while !name.is_char_boundary(end) {
+            end -= 1;
+        }
+        &name[..end]
+    };
+    let ellipsis = if cut.len() < name.len() { "…" } else { "" };
+    if ellipsis.is_empty() && !cut.chars().any(char::is_control) {
         return name.into();
     }
-    let mut end = SHORT_NAME_BYTES;
-    while !name.is_char_boundary(end) {
-        end -= 1;
-    }
-    format!("{}…", &name[..end]).into()
+    format!("{}{ellipsis}", crate::display_path::shown_text(cut)).into()
 }
 
 /// Longest name quoted whole by [`short_name`].

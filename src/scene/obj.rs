@@ -22,12 +22,18 @@ pub enum ObjError {
     #[error("{message}")]
     Read { message: String },
     /// The file is not OBJ text (NUL bytes: a binary file, or UTF-16 text).
-    #[error("mesh file '{}' is not an OBJ text file (it holds NUL bytes: a binary or UTF-16 file?)", path.display())]
+    #[error(
+        "mesh file '{}' is not an OBJ text file (it holds NUL bytes: a binary or UTF-16 file?)",
+        crate::display_path::shown(path)
+    )]
     NotText { path: PathBuf },
     /// The file parsed but holds no face: there is nothing to render.
-    #[error("mesh file '{}' has no faces ('f' lines): there is nothing to render", path.display())]
+    #[error(
+        "mesh file '{}' has no faces ('f' lines): there is nothing to render",
+        crate::display_path::shown(path)
+    )]
     NoFaces { path: PathBuf },
-    #[error("{}:{line}: {message}", path.display())]
+    #[error("{}:{line}: {message}", crate::display_path::shown(path))]
     Parse {
         path: PathBuf,
         line: usize,

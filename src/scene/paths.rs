@@ -76,7 +76,7 @@ impl SceneFolders {
         let near = allowed
             .iter()
             .find_map(|(_, base)| case_near_miss(policy, base, rel))
-            .map(|p| format!("; did you mean '{}'?", p.display()))
+            .map(|p| format!("; did you mean '{}'?", crate::display_path::shown(&p)))
             .unwrap_or_default();
         if allowed.len() == 1 {
             let error = policy.check(&first.0, what).err().unwrap_or_default();
@@ -84,8 +84,8 @@ impl SceneFolders {
         }
         Err(format!(
             "cannot read {what} '{written}': no such file beside the scene ('{}') nor from the folder glint was started in ('{}'){near}",
-            allowed[0].0.display(),
-            allowed[1].0.display()
+            crate::display_path::shown(&allowed[0].0),
+            crate::display_path::shown(&allowed[1].0)
         ))
     }
 }

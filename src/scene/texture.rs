@@ -52,10 +52,15 @@ pub fn load_texture(path: &Path, max_bytes: u64) -> Result<Texture, String> {
     let format = texture_format(&bytes).ok_or_else(|| {
         format!(
             "cannot decode texture '{}': not a PNG or JPEG image (by its content); textures are PNG or JPEG",
-            path.display()
+            crate::display_path::shown(path)
         )
     })?;
-    let cannot = |e: image::ImageError| format!("cannot decode texture '{}': {e}", path.display());
+    let cannot = |e: image::ImageError| {
+        format!(
+            "cannot decode texture '{}': {e}",
+            crate::display_path::shown(path)
+        )
+    };
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(MAX_TEXTURE_SIDE);
     limits.max_image_height = Some(MAX_TEXTURE_SIDE);
@@ -70,7 +75,7 @@ pub fn load_texture(path: &Path, max_bytes: u64) -> Result<Texture, String> {
     if width == 0 || height == 0 || width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
         return Err(format!(
             "texture '{}' is {width}×{height}; sides must be from 1 to {MAX_TEXTURE_SIDE}",
-            path.display()
+            crate::display_path::shown(path)
         ));
     }
     if format == image::ImageFormat::Jpeg {
@@ -108,7 +113,7 @@ pub const OVER_BUDGET: &str = "left of the memory limit";
 fn over_budget(path: &Path, what: &str, max_bytes: u64) -> String {
     format!(
         "texture '{}': {what} is over the {} MiB {OVER_BUDGET} (--memory-limit MIB)",
-        path.display(),
+        crate::display_path::shown(path),
         max_bytes >> 20
     )
 }
@@ -122,7 +127,7 @@ fn check_jpeg_length(path: &Path, len: u64, width: u32, height: u32) -> Result<(
     if len < minimum {
         return Err(format!(
             "texture '{}' claims {width}×{height} pixels in a {len}-byte JPEG (at least {minimum} bytes are needed): the file is truncated or not what its header says",
-            path.display()
+            crate::display_path::shown(path)
         ));
     }
     Ok(())

@@ -322,18 +322,38 @@ fn saving_a_module_the_script_required_shows_the_change() {
     view.wait_line(&view.stderr, 0, "reloaded scene.lua", WAIT);
 }
 
+/// A view of the red module scene in `dir` on the GPU tracer, with `extra` arguments,
+/// once its red image shows: the view, its window, that image and the script's text.
+fn red_view(x: &Xvfb, dir: &Path, extra: &[&str]) -> (View, String, image::RgbImage, String) {
+    write_module_scene(dir, "{0.9, 0.1, 0.1}");
+    let mut args = vec!["scene.lua", "--backend", "gpu", "--aa", "none"];
+    args.extend(extra);
+    let mut view = View::start(x, dir, &args);
+    let window = view.window(x, "glint view");
+    view.wait_line(&view.stderr, 0, "image complete", WAIT);
+    wait_for_centre(x, &window, |c| c[0] > 150, RELOAD_LIMIT);
+    let before = x.capture(&window);
+    let good = std::fs::read_to_string(dir.join("scene.lua")).unwrap();
+    (view, window, before, good)
+}
+
+/// Writes the script `good` back (its eye moved, so that it is a change) and waits for
+/// the reload.
+fn fix_and_reload(dir: &Path, view: &View, good: &str) {
+    std::fs::write(
+        dir.join("scene.lua"),
+        good.replace("{0, 0, 10}, {0, 0, -1}", "{0, 0, 12}, {0, 0, -1}"),
+    )
+    .unwrap();
+    view.wait_line(&view.stderr, 0, "reloaded scene.lua", RELOAD_LIMIT);
+}
+
 #[test]
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn a_broken_edit_keeps_the_image_and_shows_the_error() {
     let x = Xvfb::start();
     let dir = temp_dir("broken");
-    write_module_scene(&dir, "{0.9, 0.1, 0.1}");
-    let mut view = View::start(&x, &dir, &["scene.lua", "--backend", "gpu", "--aa", "none"]);
-    let window = view.window(&x, "glint view");
-    view.wait_line(&view.stderr, 0, "image complete", WAIT);
-    wait_for_centre(&x, &window, |c| c[0] > 150, RELOAD_LIMIT);
-    let before = x.capture(&window);
-    let good = std::fs::read_to_string(dir.join("scene.lua")).unwrap();
+    let (view, window, before, good) = red_view(&x, &dir, &[]);
     std::fs::write(
         dir.join("scene.lua"),
         good.replace("ball:scale(3, 3, 3)", "ball:scale(3, 3)"),
@@ -355,12 +375,7 @@ fn a_broken_edit_keeps_the_image_and_shows_the_error() {
         "the last good image stays"
     );
     // Fixing the file brings the view back.
-    std::fs::write(
-        dir.join("scene.lua"),
-        good.replace("{0, 0, 10}, {0, 0, -1}", "{0, 0, 12}, {0, 0, -1}"),
-    )
-    .unwrap();
-    view.wait_line(&view.stderr, 0, "reloaded scene.lua", RELOAD_LIMIT);
+    fix_and_reload(&dir, &view, &good);
     let deadline = Instant::now() + RELOAD_LIMIT;
     while x.window_name(&window).contains("ERROR") {
         assert!(
@@ -369,6 +384,32 @@ fn a_broken_edit_keeps_the_image_and_shows_the_error() {
         );
         std::thread::sleep(Duration::from_millis(100));
     }
+}
+
+/// A reload to an image larger than the adapter can hold (2²⁷ pixels: their sums are
+/// 2 GiB, over a storage binding's limit) says so, naming the limit and suggesting
+/// `--backend cpu`, and keeps showing the last good image; a reload back recovers.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn a_reload_past_the_adapters_limits_says_so_and_keeps_the_image() {
+    let x = Xvfb::start();
+    let dir = temp_dir("reload-too-large");
+    let (view, window, before, good) = red_view(&x, &dir, &["--memory-limit", "16384"]);
+    let huge = good.replace("'scene.png', 64, 48", "'scene.png', 65536, 2048");
+    assert_ne!(huge, good);
+    std::fs::write(dir.join("scene.lua"), huge).unwrap();
+    let (_, error) = view.wait_line(&view.stderr, 0, "glint view: error:", RELOAD_LIMIT);
+    assert!(
+        error.contains("view sums") && error.contains("--backend cpu"),
+        "the error names the limit and the way out: {error}"
+    );
+    assert!(x.window_name(&window).contains("ERROR"));
+    assert_eq!(
+        max_difference(&before, &x.capture(&window)),
+        0,
+        "the last good image stays"
+    );
+    fix_and_reload(&dir, &view, &good);
 }
 
 #[test]

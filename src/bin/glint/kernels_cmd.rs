@@ -142,7 +142,13 @@ pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
         if s.is_dir() {
             let found = collect::scenes_under(s);
             if found.is_empty() {
-                return Err((format!("{}: no scene scripts under it", s.display()), 2));
+                return Err((
+                    format!(
+                        "{}: no scene scripts under it",
+                        glint::display_path::shown(s)
+                    ),
+                    2,
+                ));
             }
             scenes.extend(found);
         } else {
@@ -152,17 +158,16 @@ pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
     if let Some(message) = entry_missing_from_variant(args) {
         return Err((message, 2));
     }
-    // A module of one's own that cannot be read, or that naga could not take, is a bad
-    // argument, found before any device is opened.
-    for file in &args.wgsl {
-        collect::read_wgsl(file).map_err(|e| (e, 2))?;
-    }
+    let entries = (!args.entries.is_empty()).then_some(args.entries.as_slice());
+    // A module of one's own that cannot be read, or that naga refuses (a syntax or a
+    // validation error), is a bad argument, found before any device is opened.
+    let own = crate::kernels::own_modules(&args.wgsl, entries, args.kernel_variant)
+        .map_err(|e| (e, 2))?;
     let waves = if args.waves.is_empty() {
         vec![Wave::Required(64), Wave::Required(32)]
     } else {
         args.waves.clone()
     };
-    let entries = (!args.entries.is_empty()).then_some(args.entries.as_slice());
     let mut features = args.features.clone();
     if args.feature_combinations {
         features.extend(combinations::feature_combinations());
@@ -170,7 +175,7 @@ pub fn run_kernels(args: &KernelsArgs) -> Result<(), (String, u8)> {
     let m = measure(
         &scenes,
         &features,
-        &args.wgsl,
+        own,
         args.family,
         &waves,
         entries,

@@ -15,6 +15,7 @@ mod stats;
 mod view;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use glint::display_path::for_terminal;
 use glint::scene::flatten::MAX_PIXELS;
 use glint::scene::lua::MAX_IMAGE_SIDE;
 use glint::scene::options::{parse_background, parse_debug_view, parse_grid_mode, parse_shading};
@@ -240,7 +241,7 @@ fn main() -> ExitCode {
     if let Command::Kernels(args) = &cli.command {
         // SAFETY: still single-threaded (signal handlers only), and no Vulkan loader yet.
         if let Err(message) = unsafe { kernels_cmd::set_driver_env(args) } {
-            eprintln!("glint: error: {message}");
+            eprintln!("glint: error: {}", for_terminal(&message));
             return ExitCode::from(5);
         }
     }
@@ -251,7 +252,7 @@ fn main() -> ExitCode {
         // A bad cache setting is the command line's mistake (exit code 2), found before
         // anything runs rather than when the first GPU pipeline is compiled.
         if let Err(e) = glint::gpu::device::disk_cache::check_switch() {
-            eprintln!("glint: error: {e}");
+            eprintln!("glint: error: {}", for_terminal(&e.to_string()));
             return ExitCode::from(2);
         }
     }
@@ -277,7 +278,10 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err((message, code)) => {
             // A script can make its message any size: at most a few KiB reach the terminal.
-            eprintln!("glint: error: {}", glint::scene::lua::cap_message(&message));
+            eprintln!(
+                "glint: error: {}",
+                for_terminal(&glint::scene::lua::cap_message(&message))
+            );
             ExitCode::from(code)
         }
     }
@@ -414,7 +418,7 @@ fn render_farm(
     if !run.reads_frame && args.farm.frames.is_some() {
         eprintln!(
             "glint: note: {} never reads `frame` or `clock`: every frame of --frames is the same image",
-            args.scene.display()
+            glint::display_path::shown(&args.scene)
         );
     }
     no_render_outcome(args, run.renders)
@@ -430,15 +434,15 @@ fn no_render_outcome(args: &RenderArgs, renders: usize) -> Result<(), (String, u
         Some(out) => Err((
             format!(
                 "{} never called gr.render, so -o {} was not written (gr.render(root, file, width, height, …) renders; docs/scene-language.md)",
-                args.scene.display(),
-                out.display()
+                glint::display_path::shown(&args.scene),
+                glint::display_path::shown(out)
             ),
             3,
         )),
         None => {
             eprintln!(
                 "glint: note: {} never called gr.render; nothing written",
-                args.scene.display()
+                glint::display_path::shown(&args.scene)
             );
             Ok(())
         }
@@ -490,7 +494,7 @@ fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
             return Err((
                 format!(
                     "-o {}: glint writes images by their extension: {}",
-                    out.display(),
+                    glint::display_path::shown(out),
                     glint::image_io::SUPPORTED_EXTENSIONS
                 ),
                 2,
@@ -501,7 +505,10 @@ fn check_render_args(args: &RenderArgs) -> Result<(), (String, u8)> {
         .chain(args.output_dir.iter().map(|d| ("--output-dir", d)));
     for (flag, dir) in folders {
         if !dir.is_dir() {
-            return Err((format!("{flag} {}: not a folder", dir.display()), 2));
+            return Err((
+                format!("{flag} {}: not a folder", glint::display_path::shown(dir)),
+                2,
+            ));
         }
     }
     Ok(())
@@ -546,15 +553,15 @@ fn render_both(
     let result = glint::parity::run_scene_both(scene, settings, parity, &mut |r| {
         println!(
             "{} vs {}: CPU {:.3} s, GPU {:.3} s (GPU/CPU {:.2})",
-            r.cpu_output.display(),
-            r.gpu_output.display(),
+            glint::display_path::shown(&r.cpu_output),
+            glint::display_path::shown(&r.gpu_output),
             r.cpu_time.as_secs_f64(),
             r.gpu_time.as_secs_f64(),
             r.gpu_time.as_secs_f64() / r.cpu_time.as_secs_f64()
         );
         println!("{}", r.report);
         if let Some(h) = &r.heatmap {
-            println!("heat map: {}", h.display());
+            println!("heat map: {}", glint::display_path::shown(h));
         }
         println!(
             "{}: {:.3}% of pixels within {:.1}/255 (needed: {:.3}%)",

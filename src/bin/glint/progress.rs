@@ -48,6 +48,6 @@ fn progress_bar(output: &Path) -> indicatif::ProgressBar {
             .expect("valid template")
             .progress_chars("=> "),
     );
-    bar.set_message(format!("rendering {}", output.display()));
+    bar.set_message(format!("rendering {}", glint::display_path::shown(output)));
     bar
 }

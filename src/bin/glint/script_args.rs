@@ -55,12 +55,18 @@ impl ScriptArgs {
     ) -> Result<ScriptSettings, String> {
         for dir in &self.allow_read {
             if !dir.is_dir() {
-                return Err(format!("--allow-read {}: not a folder", dir.display()));
+                return Err(format!(
+                    "--allow-read {}: not a folder",
+                    glint::display_path::shown(dir)
+                ));
             }
         }
         for file in &self.prelude {
             if !file.is_file() {
-                return Err(format!("--prelude {}: not a file", file.display()));
+                return Err(format!(
+                    "--prelude {}: not a file",
+                    glint::display_path::shown(file)
+                ));
             }
         }
         Ok(ScriptSettings {

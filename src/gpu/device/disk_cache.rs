@@ -104,7 +104,10 @@ static NOTED: AtomicBool = AtomicBool::new(false);
 
 fn note_once(message: impl FnOnce() -> String) {
     if !NOTED.swap(true, Ordering::Relaxed) {
-        eprintln!("glint: note: {}", message());
+        eprintln!(
+            "glint: note: {}",
+            crate::display_path::for_terminal(&message())
+        );
     }
 }
 
@@ -237,7 +240,7 @@ impl DiskCache {
             note_once(|| {
                 format!(
                     "ignored the pipeline cache file {} ({why}); it is rewritten",
-                    path.display()
+                    crate::display_path::shown(&path)
                 )
             });
         }
@@ -277,7 +280,7 @@ impl DiskCache {
                 note_once(|| {
                     format!(
                         "cannot write the pipeline cache file {}: {e}; compiled pipelines are not kept ({CACHE_SWITCH_VAR}=off silences this)",
-                        path.display()
+                        crate::display_path::shown(path)
                     )
                 });
                 DiskOutcome::WriteFailed

@@ -23,7 +23,7 @@ impl KernelDump {
     /// A dump into `dir`, created if missing.
     pub fn new(dir: &Path) -> Result<KernelDump, GpuError> {
         crate::atomic_write::create_dir_all_clearly(dir).map_err(|e| GpuError::Dump {
-            path: dir.display().to_string(),
+            path: crate::display_path::shown(dir),
             message: e.to_string(),
         })?;
         Ok(KernelDump {
@@ -48,7 +48,7 @@ impl KernelDump {
 /// ([`crate::atomic_write`]), so that a failed write leaves no half-written kernel.
 fn write_whole(path: &Path, bytes: &[u8]) -> Result<(), GpuError> {
     let fail = |e: std::io::Error| GpuError::Dump {
-        path: path.display().to_string(),
+        path: crate::display_path::shown(path),
         message: e.to_string(),
     };
     use std::io::Write;

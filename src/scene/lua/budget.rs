@@ -45,7 +45,7 @@ pub(crate) fn check_file_cost(a: &Args, path: &Path, factor: u64, what: &str) ->
     if meta.is_file() && meta.len().saturating_mul(factor) > left {
         return Err(reach_limit(a, format!(
             "{what} '{}' is {} MiB; reading it may take up to {factor}× that, over the {} MiB left of the memory limit; --memory-limit MIB raises it",
-            path.display(),
+            crate::display_path::shown(path),
             meta.len().div_ceil(1 << 20),
             left >> 20
         )));

@@ -73,8 +73,10 @@ pub(super) fn convert_error(
         }
     }
     match e {
+        // The script's own text (a token, an `error` argument) is escaped: a message
+        // stays one line and sends the terminal nothing.
         mlua::Error::SyntaxError { message, .. } => SceneError::Syntax {
-            message: message.clone(),
+            message: crate::display_path::shown_text(message),
         },
         mlua::Error::MemoryError(_) => {
             // Lua's memory errors carry no position: take the traceback's innermost
@@ -95,7 +97,10 @@ pub(super) fn convert_error(
             let (message, tb) = split_traceback(message);
             let traceback = traceback.or(tb);
             SceneError::Runtime {
-                message: with_location(message, traceback.as_deref()),
+                message: crate::display_path::shown_text(&with_location(
+                    message,
+                    traceback.as_deref(),
+                )),
                 traceback,
             }
         }
@@ -103,7 +108,7 @@ pub(super) fn convert_error(
             let text = other.to_string();
             let (message, tb) = split_traceback(&text);
             SceneError::Runtime {
-                message: message.to_string(),
+                message: crate::display_path::shown_text(message),
                 traceback: traceback.or(tb),
             }
         }

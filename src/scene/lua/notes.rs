@@ -62,7 +62,10 @@ pub(crate) fn advise(lua: &mlua::Lua, at: String, topic: &str, message: String) 
 /// and records them in the script's report.
 pub(crate) fn flush(s: &mut super::State) {
     for message in std::mem::take(&mut s.notes.pending_advice) {
-        eprintln!("glint: note: {message}");
+        eprintln!(
+            "glint: note: {}",
+            crate::display_path::for_terminal(&message)
+        );
         s.report.advice.push(message);
     }
     let pending = std::mem::take(&mut s.notes.pending);
@@ -70,7 +73,10 @@ pub(crate) fn flush(s: &mut super::State) {
         return;
     }
     for message in pending {
-        eprintln!("glint: note: {message}");
+        eprintln!(
+            "glint: note: {}",
+            crate::display_path::for_terminal(&message)
+        );
         s.report.notes.push(message);
     }
 }

@@ -37,9 +37,12 @@ pub(super) fn read_all(paths: &[PathBuf]) -> Result<Vec<Prelude>, SceneError> {
                 message,
             };
             let source = read_regular(path, "prelude", MAX_FILE_BYTES).map_err(fail)?;
-            let canonical = path
-                .canonicalize()
-                .map_err(|e| fail(format!("cannot read prelude '{}': {e}", path.display())))?;
+            let canonical = path.canonicalize().map_err(|e| {
+                fail(format!(
+                    "cannot read prelude '{}': {e}",
+                    crate::display_path::shown(path)
+                ))
+            })?;
             let folder = canonical
                 .parent()
                 .map_or_else(|| PathBuf::from("/"), Path::to_path_buf);
@@ -83,20 +86,25 @@ fn too_wide(folder: &Path, start: Option<&Path>, home: Option<&Path>) -> bool {
 pub(super) fn run_all(lua: &Lua, preludes: &[Prelude]) -> mlua::Result<()> {
     let loaded: Table = lua.named_registry_value(super::LOADED_KEY)?;
     for prelude in preludes {
-        let key = prelude.canonical.display().to_string();
+        let key = prelude.canonical.to_string_lossy().into_owned();
         if !loaded.raw_get::<Value>(key.as_str())?.is_nil() {
             continue;
         }
-        let chunk = format!("@{}", prelude.path.display());
+        let shown = crate::display_path::shown(&prelude.path);
+        let chunk = format!("@{shown}");
         with_state(lua, |s| {
             s.module_dirs.insert(chunk.clone(), prelude.folder.clone());
         });
+        // Nesting past Lua's parser is said at the prelude's own file and line.
+        let left = super::memory_left(lua) as usize;
         lua.load(&prelude.source[..])
             .set_name(chunk)
             .set_mode(ChunkMode::Text)
+            .into_function()
+            .map_err(|e| super::deep_nesting::locate(e, &prelude.source, &shown, left))?
             .call::<()>((
-                prelude.path.display().to_string(),
-                prelude.folder.display().to_string(),
+                prelude.path.to_string_lossy().into_owned(),
+                prelude.folder.to_string_lossy().into_owned(),
             ))?;
         loaded.raw_set(key, true)?;
     }

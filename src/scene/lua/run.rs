@@ -27,7 +27,7 @@ pub fn run_scene_file(
     let source = String::from_utf8_lossy(&bytes);
     let base_dir = path.parent().unwrap_or(Path::new(""));
     run_scene_source(
-        &path.display().to_string(),
+        &crate::display_path::shown(path),
         &source,
         base_dir,
         config,

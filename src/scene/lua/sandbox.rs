@@ -229,7 +229,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     // A prelude's modules are cached by canonical path (another folder's module of the
     // same name is another module); the scene's by name, as before.
     let key = match (&prelude_dir, &found) {
-        (Some(_), Ok((_, canonical))) => canonical.display().to_string(),
+        (Some(_), Ok((_, canonical))) => canonical.to_string_lossy().into_owned(),
         _ => name.clone(),
     };
     if prelude_dir.is_some() {
@@ -245,16 +245,21 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
         .map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
     charge(&a, bytes.len() as u64, &format!("module '{name}'"))?;
     let text = String::from_utf8_lossy(&bytes);
-    let source = source_text(&path.display().to_string(), &text).map_err(|e| a.error(e))?;
-    let chunk = format!("@{}", path.display());
+    let shown = crate::display_path::shown(&path);
+    let source = source_text(&shown, &text).map_err(|e| a.error(e))?;
+    let chunk = format!("@{shown}");
     if let Some(dir) = &prelude_dir {
         super::preludes::adopt_module(lua, &chunk, dir);
     }
+    // Nesting past Lua's parser is said at the module's own file and line.
+    let left = super::memory_left(lua) as usize;
     let value: Value = lua
         .load(source)
         .set_name(chunk)
         .set_mode(ChunkMode::Text)
-        .call((name.as_str(), path.display().to_string()))?;
+        .into_function()
+        .map_err(|e| super::deep_nesting::locate(e, source.as_bytes(), &shown, left))?
+        .call((name.as_str(), path.to_string_lossy().into_owned()))?;
     let value = if value.is_nil() {
         Value::Boolean(true)
     } else {

@@ -19,13 +19,17 @@ pub fn read_scene_bytes(path: &Path, memory_limit: usize) -> Result<Vec<u8>, Sce
     if len.saturating_mul(SOURCE_BYTES_PER_BYTE) > memory_limit as u64 {
         return Err(read_error(format!(
             "{}: the scene file is {} MiB; running it may take {SOURCE_BYTES_PER_BYTE}× that, over the memory limit of {} MiB; --memory-limit MIB raises it",
-            path.display(),
+            crate::display_path::shown(path),
             len.div_ceil(1 << 20),
             memory_limit >> 20
         )));
     }
-    let cannot =
-        |e: std::io::Error| read_error(format!("cannot read scene file '{}': {e}", path.display()));
+    let cannot = |e: std::io::Error| {
+        read_error(format!(
+            "cannot read scene file '{}': {e}",
+            crate::display_path::shown(path)
+        ))
+    };
     let mut bytes = Vec::new();
     bytes
         .try_reserve_exact(len as usize)
@@ -34,7 +38,7 @@ pub fn read_scene_bytes(path: &Path, memory_limit: usize) -> Result<Vec<u8>, Sce
     if bytes.len() as u64 > len {
         return Err(read_error(format!(
             "cannot read scene file '{}': it grew while being read",
-            path.display()
+            crate::display_path::shown(path)
         )));
     }
     Ok(bytes)

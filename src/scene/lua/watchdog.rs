@@ -159,7 +159,10 @@ fn watch(shared: &Shared, limit: Duration, hard_exit: bool, name: &str) {
                 .clone();
             match noted {
                 // The hook raised it, but the script keeps catching it.
-                Some(message) => eprintln!("glint: error: {}", super::errors::cap_message(&message)),
+                Some(message) => eprintln!(
+                    "glint: error: {}",
+                    crate::display_path::for_terminal(&super::errors::cap_message(&message))
+                ),
                 None => eprintln!(
                     "glint: error: {name}: script time limit of {} s exceeded (the script is stuck where it cannot be interrupted, e.g. in a string pattern or a load reader); --script-timeout SECONDS raises the limit",
                     limit.as_secs_f64()

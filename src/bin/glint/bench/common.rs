@@ -162,7 +162,9 @@ pub fn scene_aspect(path: &std::path::Path, settings: &ScriptSettings) -> anyhow
         aspect.get_or_insert(f64::from(request.height) / f64::from(request.width));
         Ok(())
     })?;
-    aspect.ok_or_else(|| anyhow::anyhow!("{} never calls gr.render", path.display()))
+    aspect.ok_or_else(|| {
+        anyhow::anyhow!("{} never calls gr.render", glint::display_path::shown(path))
+    })
 }
 
 pub fn with_grid(scene: &FlatScene, grid: GridMode) -> anyhow::Result<PackedScene> {

@@ -521,9 +521,10 @@ pub fn bench_sweep(args: &BenchArgs) -> anyhow::Result<()> {
         ),
         &[panel(&sweeps, Metric::Flip), panel(&sweeps, Metric::Rmse)],
     );
+    let plot = glint::display_path::shown(&args.plot);
     write_atomically(&args.plot, &svg)
-        .map_err(|e| anyhow::anyhow!("cannot write the plot {}: {e}", args.plot.display()))?;
-    println!("\nplot written to {}", args.plot.display());
+        .map_err(|e| anyhow::anyhow!("cannot write the plot {plot}: {e}"))?;
+    println!("\nplot written to {plot}");
     Ok(())
 }
 

@@ -78,7 +78,10 @@ pub fn bench_trace(args: &TraceBenchArgs) -> anyhow::Result<()> {
     }
     if let Some(path) = &args.dump_rays {
         write_trace_dump(path, &packed, &primary, &hits, &shadow, &occluded)?;
-        println!("rays and geometry written to {}", path.display());
+        println!(
+            "rays and geometry written to {}",
+            glint::display_path::shown(path)
+        );
     }
     Ok(())
 }

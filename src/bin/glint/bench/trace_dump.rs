@@ -60,7 +60,7 @@ pub fn write_trace_dump(
     glint::image_io::write_via_temp(path, |file| {
         write_to(file, scene, primary, hits, shadow, occluded)
     })
-    .map_err(|e| e.context(format!("cannot write {}", path.display())))
+    .map_err(|e| e.context(format!("cannot write {}", glint::display_path::shown(path))))
 }
 
 fn write_to(

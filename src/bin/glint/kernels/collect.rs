@@ -53,7 +53,7 @@ pub fn scene_renders(scene: &Path) -> Result<Vec<(SceneFeatures, Mode)>, String>
         Ok(())
     };
     run_script(scene, &ScriptSettings::default(), &mut on_render)
-        .map_err(|e| format!("{}: {e}", scene.display()))?;
+        .map_err(|e| format!("{}: {e}", glint::display_path::shown(scene)))?;
     Ok(renders)
 }
 
@@ -235,7 +235,7 @@ pub fn read_wgsl(file: &Path) -> Result<String, String> {
 
 /// A scene as the tables name it: its path as given.
 fn scene_name(scene: &Path) -> String {
-    scene.display().to_string()
+    glint::display_path::shown(scene)
 }
 
 /// Every scene script under `dir` (recursively, `.lua` files that call `gr.render`

@@ -81,7 +81,7 @@ pub fn driver_env(family: Family) -> Result<Vec<(&'static str, String)>, String>
             dirs.join(", ")
         )
     })?;
-    let icd = icd.display().to_string();
+    let icd = icd.to_string_lossy().into_owned();
     Ok(vec![
         ("RADV_FORCE_FAMILY", family.name.to_string()),
         ("VK_DRIVER_FILES", icd.clone()),
@@ -91,14 +91,16 @@ pub fn driver_env(family: Family) -> Result<Vec<(&'static str, String)>, String>
     ])
 }
 
-/// Collects the kernels of `scenes`, of the feature sets `combinations` (no script:
-/// [`combinations`]) and of the `wgsl` modules, and compiles each at every size of
+/// Collects the kernels of `scenes` and of the feature sets `combinations` (no script:
+/// [`combinations`]), then takes the `own` modules' kernels (compiled already by
+/// [`own_modules`], so that a module naga refuses is a bad argument found before any
+/// device opens), and compiles each at every size of
 /// `waves` on the device (RADV's null device when `family` is set: its [`driver_env`]
 /// must be in the environment already).
 pub fn measure(
     scenes: &[PathBuf],
     combinations: &[SceneFeatures],
-    wgsl: &[PathBuf],
+    own: KernelSet,
     family: Option<Family>,
     waves: &[Wave],
     entries: Option<&[glint::gpu::compile::shader::Entry]>,
@@ -115,9 +117,8 @@ pub fn measure(
         let name = combinations::name(features);
         set.add_features(&name, features, entries, config, target)?;
     }
-    for file in wgsl {
-        set.add_wgsl(file, entries, config, target)?;
-    }
+    // Last, and never merged with a scene's kernel of the same entry and features.
+    set.kernels.extend(own.kernels);
     let mut compiled = Vec::new();
     for (index, k) in set.kernels.iter().enumerate() {
         for &wave in waves {
@@ -157,16 +158,33 @@ pub fn measure(
     })
 }
 
+/// The kernels of `--wgsl` modules of one's own: each read as every file glint reads,
+/// held to [`wgsl_bounds`] and compiled to SPIR-V (parsed and validated by naga) for
+/// `entries` of `variant`; an error names the file (and naga's line and column).
+pub fn own_modules(
+    wgsl: &[PathBuf],
+    entries: Option<&[glint::gpu::compile::shader::Entry]>,
+    variant: glint::gpu::KernelVariant,
+) -> Result<KernelSet, String> {
+    let target = glint::gpu::compile::spirv::SpirvTarget::vulkan_1_3();
+    let config = collect::variant_config(variant);
+    let mut own = KernelSet::default();
+    for file in wgsl {
+        own.add_wgsl(file, entries, config, target)?;
+    }
+    Ok(own)
+}
+
 /// Writes each distinct kernel as `ENTRY-DIGEST8.spv` and `.wgsl` under `dir` (what
 /// `--spirv-dir` asks for, to feed other tools).
 pub fn write_kernels(set: &KernelSet, dir: &Path) -> Result<(), String> {
     use std::io::Write;
     glint::atomic_write::create_dir_all_clearly(dir)
-        .map_err(|e| format!("{}: {e}", dir.display()))?;
+        .map_err(|e| format!("{}: {e}", glint::display_path::shown(dir)))?;
     // Each file whole or not at all, through an exclusive temporary file.
     let write = |path: &Path, bytes: &[u8]| {
         glint::atomic_write::write_via_temp(path, |file| file.write_all(bytes))
-            .map_err(|e| format!("{}: {e}", path.display()))
+            .map_err(|e| format!("{}: {e}", glint::display_path::shown(path)))
     };
     for k in &set.kernels {
         let stem = format!("{}-{}", k.entry.name(), &k.digest[..8]);

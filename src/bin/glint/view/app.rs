@@ -11,6 +11,7 @@ use super::present::Presenter;
 use super::session::{Session, TracerKind};
 use super::status::title;
 use super::watch::WatchList;
+use glint::display_path::for_terminal;
 use glint::gpu::GpuContext;
 use std::sync::Arc;
 use winit::application::ApplicationHandler;
@@ -147,7 +148,7 @@ impl App {
                     if let Err(e) = glint::image_io::write_image(&film, &path) {
                         return self.fail(event_loop, e.to_string(), 4);
                     }
-                    eprintln!("glint view: wrote {}", path.display());
+                    eprintln!("glint view: wrote {}", glint::display_path::shown(&path));
                 }
                 event_loop.exit();
             }
@@ -179,10 +180,10 @@ impl App {
                     let (spp, goal) = s.samples();
                     eprintln!(
                         "glint view: wrote {} ({spp}/{goal} samples a pixel)",
-                        path.display()
+                        glint::display_path::shown(&path)
                     );
                 }
-                Err(e) => eprintln!("glint view: error: cannot save: {e}"),
+                Err(e) => eprintln!("glint view: error: cannot save: {}", for_terminal(&e)),
             },
             Action::ToggleTracer => {
                 let next = match s.tracer {
@@ -231,7 +232,7 @@ impl App {
                 self.watch.set(&files);
             }
             Err(e) => {
-                eprintln!("glint view: error: {e}");
+                eprintln!("glint view: error: {}", for_terminal(&e));
                 s.error = Some(e);
                 self.watch.add(&files);
             }

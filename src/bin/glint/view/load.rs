@@ -91,7 +91,7 @@ pub fn load_scene(
         Ok(_) => first.ok_or_else(|| {
             format!(
                 "{}: the script never called gr.render: nothing to show",
-                path.display()
+                glint::display_path::shown(path)
             )
         }),
     };

@@ -9,15 +9,12 @@ use std::path::{Path, PathBuf};
 
 /// `name` with `-view-NNNN` (k + 1, at least four digits) before its extension.
 pub fn numbered(name: &Path, k: usize) -> PathBuf {
-    let stem = name
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "view".into());
-    let file = match name.extension() {
-        Some(ext) => format!("{stem}-view-{:04}.{}", k + 1, ext.to_string_lossy()),
-        None => format!("{stem}-view-{:04}.png", k + 1),
-    };
-    name.with_file_name(file)
+    let numbered = format!("-view-{:04}", k + 1);
+    match (name.file_stem(), name.extension()) {
+        (None, _) => name.with_file_name(format!("view{numbered}.png")),
+        (Some(_), None) => glint::file_name::with_suffix(name, &format!("{numbered}.png")),
+        (Some(_), Some(_)) => glint::file_name::with_suffix(name, &numbered),
+    }
 }
 
 /// The path of the `k`-th save (0-based) of a view whose script names `script_output`.

@@ -139,7 +139,7 @@ impl Session {
     pub fn scene_name(&self) -> String {
         let p = &self.config.scene;
         p.file_name().map_or_else(
-            || p.display().to_string(),
+            || glint::display_path::shown(p),
             |n| n.to_string_lossy().into_owned(),
         )
     }
