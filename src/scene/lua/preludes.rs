@@ -96,7 +96,7 @@ pub(super) fn run_all(lua: &Lua, preludes: &[Prelude]) -> mlua::Result<()> {
             s.module_dirs.insert(chunk.clone(), prelude.folder.clone());
         });
         // Nesting past Lua's parser is said at the prelude's own file and line.
-        let left = super::memory_left(lua) as usize;
+        let left = super::budget::memory_left(lua) as usize;
         lua.load(&prelude.source[..])
             .set_name(chunk)
             .set_mode(ChunkMode::Text)

@@ -252,7 +252,7 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
         super::preludes::adopt_module(lua, &chunk, dir);
     }
     // Nesting past Lua's parser is said at the module's own file and line.
-    let left = super::memory_left(lua) as usize;
+    let left = super::budget::memory_left(lua) as usize;
     let value: Value = lua
         .load(source)
         .set_name(chunk)
