@@ -218,6 +218,20 @@ pub fn csg_program_at(scene: &PackedScene, i: u32) -> u32 {
     scene.csg_program[i as usize]
 }
 
+/// `materials[i]`.
+// Mirror of src/pack/layout.wgsl::load_material — change both.
+#[inline(always)]
+pub fn load_material(scene: &PackedScene, i: u32) -> &PackedMaterial {
+    &scene.materials[i as usize]
+}
+
+/// `lights[i]`.
+// Mirror of src/pack/layout.wgsl::load_light — change both.
+#[inline(always)]
+pub fn load_light(scene: &PackedScene, i: u32) -> &PackedLight {
+    &scene.lights[i as usize]
+}
+
 /// `instances[i]`.
 // Mirror of src/pack/layout.wgsl::load_instance — change both.
 #[inline(always)]

@@ -252,6 +252,7 @@ fn texel_word(i: u32) -> u32 {
 // #endif
 
 // materials[i].
+// Mirror of src/pack/layout.rs::load_material — change both.
 fn load_material(i: u32) -> PackedMaterial {
     let base = i * MATERIAL_TABLE_TEXELS;
     let t0 = table_at(material_table, base);
@@ -273,6 +274,7 @@ fn load_material(i: u32) -> PackedMaterial {
 }
 
 // lights[i].
+// Mirror of src/pack/layout.rs::load_light — change both.
 fn load_light(i: u32) -> PackedLight {
     let base = i * LIGHT_TABLE_TEXELS;
     let t0 = table_at(light_table, base);

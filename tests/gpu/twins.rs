@@ -98,16 +98,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "reads `texels[i]` from its table texture; the CPU indexes the slice",
     ),
     (
-        "src/pack/layout.wgsl",
-        "load_material",
-        "reads `materials[i]` from its table texture; the CPU indexes the slice",
-    ),
-    (
-        "src/pack/layout.wgsl",
-        "load_light",
-        "reads `lights[i]` from its table texture; the CPU indexes the slice",
-    ),
-    (
         "src/tracer/sampling/render.wgsl",
         "loop_limiter_tripped",
         "detects lavapipe's loop limiter, which the CPU does not have",

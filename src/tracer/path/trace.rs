@@ -7,6 +7,7 @@ use crate::constants::{
     AA_ADAPTIVE, AA_TEXTURE_DETAIL_SHARE, DEBUG_VIEW_UV, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE,
     RAY_STACK_SIZE, T_MISS,
 };
+use crate::pack::layout::load_material;
 use crate::pack::{PackedGlobals, PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{offset_ray, Ray};
 use crate::tracer::base::rng::SampleSeed;
@@ -125,7 +126,7 @@ pub fn trace_ray(
 /// whose paths part ways everywhere: docs/journal/2026-11-30-item-edges-split.md.)
 // Mirror of src/tracer/path/trace.wgsl::is_mirror — change both.
 pub(crate) fn is_mirror(scene: &PackedScene, material: u32) -> bool {
-    let flags = scene.materials[material as usize].flags;
+    let flags = load_material(scene, material).flags;
     flags & MATERIAL_REFLECTIVE != 0 && flags & MATERIAL_REFRACTIVE == 0
 }
 
@@ -163,7 +164,7 @@ pub(crate) fn push_secondary_rays(
     let ray = entry.ray;
     let ShadedHit { s, facing, n, .. } = *shaded;
     let cone = cone_at(entry.cone, hit.t);
-    let m = &scene.materials[s.material as usize];
+    let m = load_material(scene, s.material);
     let mut reflectance = if m.flags & MATERIAL_REFLECTIVE != 0 {
         Vec3::from(m.reflection)
     } else {

@@ -17,6 +17,7 @@
 
 use super::surface::surface_at;
 use crate::constants::{AIR_IOR, MATERIAL_REFRACTIVE, MAX_SHADOW_CROSSINGS, MEDIUM_STACK_SIZE};
+use crate::pack::layout::load_material;
 use crate::pack::PackedScene;
 use crate::tracer::base::ray::{offset_ray, shadow_reach, Ray};
 use crate::tracer::traversal::hit::Hit;
@@ -256,7 +257,7 @@ pub(crate) fn cross_shadow_surface(
     leg: &ShadowLeg,
 ) -> Option<ShadowLeg> {
     let s = surface_at(scene, ray, hit);
-    let m = &scene.materials[s.material as usize];
+    let m = load_material(scene, s.material);
     if m.flags & MATERIAL_REFRACTIVE == 0 || crossing == MAX_SHADOW_CROSSINGS {
         return None;
     }

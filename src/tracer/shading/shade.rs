@@ -4,6 +4,7 @@ use super::dielectric::{shadow_transmittance, MediumStack};
 use super::surface::{Phong, Surface};
 use super::texture::surface_colours;
 use crate::constants::LIGHT_AREA;
+use crate::pack::layout::{load_light, load_material};
 use crate::pack::{PackedGlobals, PackedLight, PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{offset_ray, shadow_reach, Ray};
 use crate::tracer::base::rng::{shadow_random, shadow_stream, SampleSeed, ShadowStream};
@@ -41,10 +42,8 @@ pub fn shade_phong(
     let phong = phong_at(scene, s);
     let mut colour = ambient_term(scene, phong);
     let origin = offset_ray(s.p, n, s.magnitude);
-    for (index, light) in scene.lights[..scene.globals.num_lights as usize]
-        .iter()
-        .enumerate()
-    {
+    for index in 0..scene.globals.num_lights as usize {
+        let light = load_light(scene, index as u32);
         if light.kind == LIGHT_AREA {
             colour += area_light(
                 scene,
@@ -81,7 +80,7 @@ pub fn shade_phong(
 /// at the UV. Shared by [`shade_phong`] and the wavefront's shading pass
 /// (`tracer::wavefront::wavefront_shade`), so the two cannot drift apart.
 pub(crate) fn phong_at(scene: &PackedScene, s: &Surface) -> Phong {
-    let m = &scene.materials[s.material as usize];
+    let m = load_material(scene, s.material);
     let mut phong = Phong {
         kd: Vec3::from(m.kd),
         ks: Vec3::from(m.ks),
@@ -147,7 +146,7 @@ pub(crate) fn unshadowed_term(
     position: Vec3,
     light: &PackedLight,
 ) -> Option<Vec3> {
-    let m = &scene.materials[s.material as usize];
+    let m = load_material(scene, s.material);
     let to_light = position - s.p;
     let distance = to_light.length();
     let l = to_light / distance;

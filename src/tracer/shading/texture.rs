@@ -42,6 +42,7 @@ use crate::constants::{
     BUMP_MIN_FRAME_SINE, LUMINANCE_B, LUMINANCE_G, LUMINANCE_R, NO_TEXTURE,
     TEXTURE_FOOTPRINT_MIN_COSINE, TEXTURE_HEADER_WORDS,
 };
+use crate::pack::layout::load_material;
 use crate::pack::{texture_levels, PackedGlobals, PackedMaterial, PackedScene};
 use crate::tracer::base::ray::Ray;
 use glam::{Vec2, Vec3};
@@ -274,7 +275,7 @@ pub fn bump_normal(texels: &[u32], m: &PackedMaterial, s: &Surface) -> Vec3 {
 /// `s.normal` bumped and turned to `n`'s side.
 // Mirror of src/tracer/shading/texture.wgsl::shading_normal — change both.
 pub fn shading_normal(scene: &PackedScene, s: &Surface, n: Vec3) -> Vec3 {
-    let m = &scene.materials[s.material as usize];
+    let m = load_material(scene, s.material);
     if m.bump_texture == NO_TEXTURE {
         return n;
     }
@@ -292,7 +293,7 @@ pub fn shading_normal(scene: &PackedScene, s: &Surface, n: Vec3) -> Vec3 {
 /// detail that a pixel's few samples alias (`trace::note_texture_detail`).
 // Mirror of src/tracer/shading/texture.wgsl::texture_detail — change both.
 pub fn texture_detail(scene: &PackedScene, s: &Surface) -> f32 {
-    let m = &scene.materials[s.material as usize];
+    let m = load_material(scene, s.material);
     if m.diffuse_texture == NO_TEXTURE {
         return 0.0;
     }

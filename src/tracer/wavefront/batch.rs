@@ -12,6 +12,7 @@ pub use super::queues::{
     VertexKind, VertexQueue, VertexTree,
 };
 use crate::constants::{LIGHT_AREA, RAY_STACK_SIZE, SAMPLE_FINE_DETAIL, SAMPLE_MIRRORS_CORNERS};
+use crate::pack::layout::load_light;
 use crate::pack::PackedScene;
 use crate::tracer::base::ray::Ray;
 use crate::tracer::base::rng::SampleSeed;
@@ -97,8 +98,8 @@ impl ShadowQueue {
 /// vertex is light point j, lights in order, an area light's strata in stratum order.
 // Mirror of src/tracer/wavefront/batch.wgsl::light_points — change both.
 pub fn light_points(scene: &PackedScene) -> u32 {
-    scene.lights[..scene.globals.num_lights as usize]
-        .iter()
+    (0..scene.globals.num_lights)
+        .map(|index| load_light(scene, index))
         .map(|light| {
             if light.kind == LIGHT_AREA {
                 light.samples * light.samples

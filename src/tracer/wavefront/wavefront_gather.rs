@@ -6,6 +6,7 @@
 use super::batch::{each_path, light_points, Batch, VertexKind};
 use super::wavefront_tree::wavefront_fold;
 use crate::constants::{LIGHT_AREA, SAMPLE_FINE_DETAIL};
+use crate::pack::layout::load_light;
 use crate::pack::PackedScene;
 use crate::tracer::shading::shade::{add_stratum, area_light_mean, penumbra};
 use crate::tracer::traversal::hit::TraversalCounters;
@@ -34,7 +35,8 @@ fn wavefront_gather(
     if batch.vertices.kind[i] == VertexKind::Lit {
         let slots = &batch.slots.term[i * light_points(scene) as usize..];
         let mut slot = 0;
-        for light in &scene.lights[..scene.globals.num_lights as usize] {
+        for index in 0..scene.globals.num_lights {
+            let light = load_light(scene, index);
             if light.kind == LIGHT_AREA {
                 let strata = light.samples * light.samples;
                 let mut sum = Vec3::ZERO;

@@ -8,6 +8,7 @@
 use super::batch::{each_path, light_points, spawned_rays, Batch, VertexKind};
 use super::wavefront_tree::push_tree_children;
 use crate::constants::{LIGHT_AREA, SAMPLE_CAMERA_MIRROR, SAMPLE_FINE_DETAIL};
+use crate::pack::layout::load_light;
 use crate::pack::{PackedLight, PackedScene};
 use crate::tracer::base::ray::offset_ray;
 use crate::tracer::base::rng::{shadow_stream, SampleSeed};
@@ -127,8 +128,8 @@ fn ask_light_shadows(
 ) {
     let points = light_points(scene);
     let mut slot = i as u32 * points;
-    let lights = &scene.lights[..scene.globals.num_lights as usize];
-    for (index, light) in lights.iter().enumerate() {
+    for index in 0..scene.globals.num_lights as usize {
+        let light = load_light(scene, index as u32);
         if light.kind == LIGHT_AREA {
             let stream = shadow_stream(seed, index as u32);
             for stratum in 0..light.samples * light.samples {
