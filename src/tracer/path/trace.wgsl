@@ -98,7 +98,7 @@ fn load_pending(stack: ptr<function, RayStack>, k: u32) -> StackEntry {
 
 // The stack entry of camera ray `primary`: weight 1, depth 0, the camera's cone and the
 // media around the camera. Every kernel that starts camera samples takes it: trace_ray
-// here, the wavefront's camera passes (wavefront_camera, wavefront_lattice_camera).
+// here, the hardware variant's camera kernels too.
 // Mirror of src/tracer/path/trace.rs::camera_entry — change both.
 fn camera_entry(primary: Ray) -> StackEntry {
     var entry: StackEntry;

@@ -184,7 +184,7 @@ fn trace_lattice_point(i: u32, j: u32) {
 // #if ITERATION_GUARD|REFRACTION
 // The guard flags of every pixel whose closed square holds lattice point (i, j), whose
 // sample the GPU could not trace (lavapipe's loop limiter tripped in trace_lattice_point,
-// or a wavefront tree had no room for a child: wavefront_lattice.wgsl's store pass): the
+// or a tree of the hardware variant's queues had no room for a child: its lattice store pass): the
 // host re-renders them on the CPU. Straight-line code: after the limiter trips, loops
 // run one iteration.
 fn guard_lattice_point(i: u32, j: u32) {
@@ -220,7 +220,7 @@ fn adaptive_corners(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
 // The lattice point that invocation idx of the corner pass traces (see adaptive_corners):
 // pixel corner (idx mod (w+1), idx div (w+1)) for idx < (w+1)(h+1), after those the
 // centre of pixel number idx − (w+1)(h+1). Both forms' corner passes take it:
-// adaptive_corners here and wavefront_lattice.wgsl's lattice_pass_point.
+// adaptive_corners here and the hardware variant's lattice passes (lattice_pass_point).
 // Mirror of src/tracer/sampling/adaptive.rs::corner_to_trace — change both.
 fn corner_to_trace(idx: u32) -> vec2<u32> {
     let s = adaptive_scale();
@@ -324,7 +324,7 @@ fn adaptive_midpoints(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num
 // where those have centres (square_has_centre); its own centre was traced with its
 // corners. A top (left) midpoint is the bottom (right) one of the square above (to the
 // left); when that one is split, it traces it. Both forms' midpoint passes take it:
-// adaptive_midpoints here and wavefront_lattice.wgsl's lattice_pass_point.
+// adaptive_midpoints here and the hardware variant's lattice passes (lattice_pass_point).
 // Mirror of src/tracer/sampling/adaptive.rs::midpoint_to_trace — change both.
 fn midpoint_to_trace(level: u32, idx: u32) -> vec3<u32> {
     let m = idx % AA_SPLIT_POINTS;

@@ -53,7 +53,7 @@ fn view_sample(@builtin(global_invocation_id) id: vec3<u32>) {
 
 // A pixel's running sum with its sample s of colour `colour` added: from zero at s = 0
 // (whatever `sum` held), the count in the fourth component. Both view kernels
-// (view_sample, wavefront_view_store) add their samples with it.
+// (view_sample, and the hardware variant's store pass) add their samples with it.
 // Mirror of src/tracer/sampling/progressive.rs::add_view_sample — change both.
 fn add_view_sample(sum: vec4<f32>, s: u32, colour: vec3<f32>) -> vec4<f32> {
     var before = vec3<f32>(0.0);

@@ -6,8 +6,8 @@
 // here, and every kernel that starts camera samples takes it: the megakernels
 // (render.wgsl's uniform_sample for main, uniform_samples and progressive.wgsl's
 // view_sample; pixel_sample.wgsl's lattice_sample for adaptive_corners and
-// adaptive_midpoints) and the wavefront's camera passes (wavefront.wgsl's
-// wavefront_camera, wavefront_lattice.wgsl's wavefront_lattice_camera).
+// adaptive_midpoints) and the hardware variant's camera kernels (its strata's and its
+// lattice passes').
 
 // A camera sample: its film position (fx, fy) in pixels and its seed.
 // Mirror of src/tracer/sampling/sample_source.rs::CameraSample — change both.
