@@ -219,109 +219,119 @@ pub const TORUS_BOUND_MARGIN: f32 = 1.0 / 64.0;
 /// 2π (angles around an axis → u in [0, 1)).
 pub const TWO_PI: f32 = std::f32::consts::TAU;
 
+/// `[("NAME", NAME), …]`: constants as the WGSL prelude declares them, under their Rust
+/// names, each name written once.
+macro_rules! by_name {
+    ($($name:ident),* $(,)?) => {
+        &[$((stringify!($name), $name)),*]
+    };
+}
+
+/// `f32::MAX` under the name the shaders use for it (apart from `T_MISS`, which is what
+/// a miss's distance is).
+const F32_MAX: f32 = f32::MAX;
+
 /// The u32 constants the WGSL prelude declares, by name.
-const WGSL_U32S: &[(&str, u32)] = &[
-    ("KIND_SPHERE", KIND_SPHERE),
-    ("KIND_CUBE", KIND_CUBE),
-    ("KIND_CYLINDER", KIND_CYLINDER),
-    ("KIND_CONE", KIND_CONE),
-    ("KIND_TORUS", KIND_TORUS),
-    ("KIND_CSG", KIND_CSG),
-    ("KIND_MESH", KIND_MESH),
-    ("ITEM_MAILBOX_SIZE", ITEM_MAILBOX_SIZE),
-    ("TRIANGLE_MAILBOX_SIZE", TRIANGLE_MAILBOX_SIZE),
-    ("DDA_STEPS_BITS", DDA_STEPS_BITS),
-    ("DDA_STEPS_MASK", DDA_STEPS_MASK),
-    ("CSG_OP_SHIFT", CSG_OP_SHIFT),
-    ("CSG_INDEX_MASK", CSG_INDEX_MASK),
-    ("CSG_LEAF", CSG_LEAF),
-    ("CSG_UNION", CSG_UNION),
-    ("CSG_INTERSECTION", CSG_INTERSECTION),
-    ("CSG_DIFFERENCE", CSG_DIFFERENCE),
-    ("CSG_FLIP", CSG_FLIP),
-    ("CSG_MAX_DEPTH", CSG_MAX_DEPTH),
-    ("CSG_EVENT_CAPACITY", CSG_EVENT_CAPACITY),
-    ("CSG_LIST_CAPACITY", CSG_LIST_CAPACITY),
-    ("LIGHT_POINT", LIGHT_POINT),
-    ("LIGHT_AREA", LIGHT_AREA),
-    ("MAX_SHADOW_SAMPLES", MAX_SHADOW_SAMPLES),
-    ("SHADOW_DIMENSION_BASE", SHADOW_DIMENSION_BASE),
-    ("MATERIAL_REFLECTIVE", MATERIAL_REFLECTIVE),
-    ("MATERIAL_REFRACTIVE", MATERIAL_REFRACTIVE),
-    ("NO_TEXTURE", NO_TEXTURE),
-    ("TEXTURE_HEADER_WORDS", TEXTURE_HEADER_WORDS),
-    ("TABLE_ROW_BITS", TABLE_ROW_BITS),
-    ("INSTANCE_TABLE_TEXELS", INSTANCE_TABLE_TEXELS),
-    ("MESH_TABLE_TEXELS", MESH_TABLE_TEXELS),
-    ("TRIANGLE_TABLE_TEXELS", TRIANGLE_TABLE_TEXELS),
-    ("MATERIAL_TABLE_TEXELS", MATERIAL_TABLE_TEXELS),
-    ("LIGHT_TABLE_TEXELS", LIGHT_TABLE_TEXELS),
-    ("TRIANGLE_UV_TABLE_TEXELS", TRIANGLE_UV_TABLE_TEXELS),
-    ("TRIANGLE_NORMAL_TABLE_TEXELS", TRIANGLE_NORMAL_TABLE_TEXELS),
-    ("DEBUG_VIEW_NONE", DEBUG_VIEW_NONE),
-    ("DEBUG_VIEW_UV", DEBUG_VIEW_UV),
-    ("AA_NONE", AA_NONE),
-    ("AA_UNIFORM", AA_UNIFORM),
-    ("AA_ADAPTIVE", AA_ADAPTIVE),
-    ("NO_ITEM", NO_ITEM),
-    ("WALK_FULL", WALK_FULL),
-    ("RAY_STACK_SIZE", RAY_STACK_SIZE),
-    ("PRIMARY_RAY_STACK_SIZE", PRIMARY_RAY_STACK_SIZE),
-    ("MAX_TRACE_DEPTH", MAX_TRACE_DEPTH),
-    ("MEDIUM_STACK_SIZE", MEDIUM_STACK_SIZE),
-    ("MAX_SHADOW_CROSSINGS", MAX_SHADOW_CROSSINGS),
-    ("MAX_AA_DEPTH", MAX_AA_DEPTH),
-    ("AA_FINE_DETAIL_DEPTH", AA_FINE_DETAIL_DEPTH),
-    ("AA_ITEM_EDGE_DEPTH", AA_ITEM_EDGE_DEPTH),
-    ("AA_ITEM_KEY_MASK", AA_ITEM_KEY_MASK),
-    ("AA_SPLIT_POINTS", AA_SPLIT_POINTS),
-    ("MAX_AA_SAMPLES", MAX_AA_SAMPLES),
-    ("TILE_SIZE", TILE_SIZE),
-    ("GPU_INDIRECT_MAX_WORKGROUPS", GPU_INDIRECT_MAX_WORKGROUPS),
-    ("PCG_MULTIPLIER", PCG_MULTIPLIER),
-    ("PROBE_CLOSEST_HIT", PROBE_CLOSEST_HIT),
-    ("PROBE_ANY_HIT", PROBE_ANY_HIT),
-    ("PROBE_SHADOW_RAY", PROBE_SHADOW_RAY),
-    ("PROBE_SHADING_NORMAL", PROBE_SHADING_NORMAL),
-    ("PCG_INCREMENT", PCG_INCREMENT),
-    ("PCG_WORD_MULTIPLIER", PCG_WORD_MULTIPLIER),
-    ("TORUS_NEWTON_ITERATIONS", TORUS_NEWTON_ITERATIONS),
+const WGSL_U32S: &[(&str, u32)] = by_name![
+    KIND_SPHERE,
+    KIND_CUBE,
+    KIND_CYLINDER,
+    KIND_CONE,
+    KIND_TORUS,
+    KIND_CSG,
+    KIND_MESH,
+    ITEM_MAILBOX_SIZE,
+    TRIANGLE_MAILBOX_SIZE,
+    DDA_STEPS_BITS,
+    DDA_STEPS_MASK,
+    CSG_OP_SHIFT,
+    CSG_INDEX_MASK,
+    CSG_LEAF,
+    CSG_UNION,
+    CSG_INTERSECTION,
+    CSG_DIFFERENCE,
+    CSG_FLIP,
+    CSG_MAX_DEPTH,
+    CSG_EVENT_CAPACITY,
+    CSG_LIST_CAPACITY,
+    LIGHT_POINT,
+    LIGHT_AREA,
+    MAX_SHADOW_SAMPLES,
+    SHADOW_DIMENSION_BASE,
+    MATERIAL_REFLECTIVE,
+    MATERIAL_REFRACTIVE,
+    NO_TEXTURE,
+    TEXTURE_HEADER_WORDS,
+    TABLE_ROW_BITS,
+    INSTANCE_TABLE_TEXELS,
+    MESH_TABLE_TEXELS,
+    TRIANGLE_TABLE_TEXELS,
+    MATERIAL_TABLE_TEXELS,
+    LIGHT_TABLE_TEXELS,
+    TRIANGLE_UV_TABLE_TEXELS,
+    TRIANGLE_NORMAL_TABLE_TEXELS,
+    DEBUG_VIEW_NONE,
+    DEBUG_VIEW_UV,
+    AA_NONE,
+    AA_UNIFORM,
+    AA_ADAPTIVE,
+    NO_ITEM,
+    WALK_FULL,
+    RAY_STACK_SIZE,
+    PRIMARY_RAY_STACK_SIZE,
+    MAX_TRACE_DEPTH,
+    MEDIUM_STACK_SIZE,
+    MAX_SHADOW_CROSSINGS,
+    MAX_AA_DEPTH,
+    AA_FINE_DETAIL_DEPTH,
+    AA_ITEM_EDGE_DEPTH,
+    AA_ITEM_KEY_MASK,
+    AA_SPLIT_POINTS,
+    MAX_AA_SAMPLES,
+    TILE_SIZE,
+    GPU_INDIRECT_MAX_WORKGROUPS,
+    PCG_MULTIPLIER,
+    PROBE_CLOSEST_HIT,
+    PROBE_ANY_HIT,
+    PROBE_SHADOW_RAY,
+    PROBE_SHADING_NORMAL,
+    PCG_INCREMENT,
+    PCG_WORD_MULTIPLIER,
+    TORUS_NEWTON_ITERATIONS,
 ];
 
 /// The f32 constants the WGSL prelude declares, by name.
-const WGSL_F32S: &[(&str, f32)] = &[
-    ("T_MISS", T_MISS),
-    ("F32_MAX", f32::MAX),
-    ("OFFSET_RELATIVE", OFFSET_RELATIVE),
-    ("TEXTURE_FOOTPRINT_MIN_COSINE", TEXTURE_FOOTPRINT_MIN_COSINE),
-    ("ENTER_MARGIN_RELATIVE", ENTER_MARGIN_RELATIVE),
-    ("F32_MIN_POSITIVE", F32_MIN_POSITIVE),
-    ("SAFE_RCP_LIMIT", SAFE_RCP_LIMIT),
-    ("TWO_PI", TWO_PI),
-    ("AIR_IOR", AIR_IOR),
-    ("BUMP_MIN_FRAME_SINE", BUMP_MIN_FRAME_SINE),
-    ("SMOOTH_MIN_REFLECTION_COSINE", SMOOTH_MIN_REFLECTION_COSINE),
-    ("LUMINANCE_R", LUMINANCE_R),
-    ("LUMINANCE_G", LUMINANCE_G),
-    ("LUMINANCE_B", LUMINANCE_B),
-    ("RANDOM_UNIT_SCALE", RANDOM_UNIT_SCALE),
-    ("AA_LATTICE_JITTER", AA_LATTICE_JITTER),
-    ("AA_TEXTURE_DETAIL_SHARE", AA_TEXTURE_DETAIL_SHARE),
-    ("AA_CENTRE_WEIGHT", AA_CENTRE_WEIGHT),
-    ("TORUS_ROOT_TOLERANCE", TORUS_ROOT_TOLERANCE),
-    ("TORUS_BOUND_MARGIN", TORUS_BOUND_MARGIN),
-    ("CSG_COINCIDENT_RELATIVE", CSG_COINCIDENT_RELATIVE),
-    ("CSG_T_LIMIT", CSG_T_LIMIT),
-    ("TRIANGLE_FRAME_MIN_UV_SINE", TRIANGLE_FRAME_MIN_UV_SINE),
-    ("TRIANGLE_FRAME_AXIS_SWITCH", TRIANGLE_FRAME_AXIS_SWITCH),
+const WGSL_F32S: &[(&str, f32)] = by_name![
+    T_MISS,
+    F32_MAX,
+    OFFSET_RELATIVE,
+    TEXTURE_FOOTPRINT_MIN_COSINE,
+    ENTER_MARGIN_RELATIVE,
+    F32_MIN_POSITIVE,
+    SAFE_RCP_LIMIT,
+    TWO_PI,
+    AIR_IOR,
+    BUMP_MIN_FRAME_SINE,
+    SMOOTH_MIN_REFLECTION_COSINE,
+    LUMINANCE_R,
+    LUMINANCE_G,
+    LUMINANCE_B,
+    RANDOM_UNIT_SCALE,
+    AA_LATTICE_JITTER,
+    AA_TEXTURE_DETAIL_SHARE,
+    AA_CENTRE_WEIGHT,
+    TORUS_ROOT_TOLERANCE,
+    TORUS_BOUND_MARGIN,
+    CSG_COINCIDENT_RELATIVE,
+    CSG_T_LIMIT,
+    TRIANGLE_FRAME_MIN_UV_SINE,
+    TRIANGLE_FRAME_AXIS_SWITCH,
 ];
 
 /// WGSL `const` declarations for every constant above (the GPU tracer's prelude).
 pub fn wgsl_prelude() -> String {
     let mut out = String::from("// Generated from src/constants.rs — do not edit.\n");
-    for (name, value) in WGSL_U32S {
-        out += &format!("const {name}: u32 = {value}u;\n");
-    }
+    out += &u32_declarations(WGSL_U32S);
     for (name, value) in WGSL_F32S {
         out += &format!("const {name}: f32 = {value:e};\n");
     }
@@ -353,25 +363,29 @@ pub const ALL_STRATA: u32 = u32::MAX;
 
 /// The wavefront kernels' constants, emitted after the prelude only in modules that have
 /// those kernels (`gpu::compile::shader::wavefront_kernels`), so the others stay as they were.
-const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = &[
-    ("VERTEX_MISS", VERTEX_MISS),
-    ("VERTEX_LIT", VERTEX_LIT),
-    ("VERTEX_UNLIT", VERTEX_UNLIT),
-    ("SAMPLE_CAMERA_MIRROR", SAMPLE_CAMERA_MIRROR),
-    ("SAMPLE_FINE_DETAIL", SAMPLE_FINE_DETAIL),
-    ("SAMPLE_MIRRORS_CORNERS", SAMPLE_MIRRORS_CORNERS),
-    ("SAMPLE_NO_ROOM", SAMPLE_NO_ROOM),
-    ("WAVEFRONT_WORK_BASE", WAVEFRONT_WORK_BASE),
-    ("ALL_STRATA", ALL_STRATA),
+const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = by_name![
+    VERTEX_MISS,
+    VERTEX_LIT,
+    VERTEX_UNLIT,
+    SAMPLE_CAMERA_MIRROR,
+    SAMPLE_FINE_DETAIL,
+    SAMPLE_MIRRORS_CORNERS,
+    SAMPLE_NO_ROOM,
+    WAVEFRONT_WORK_BASE,
+    ALL_STRATA,
 ];
 
 /// The WGSL constants of the wavefront kernels.
 pub fn wavefront_wgsl_prelude() -> String {
-    let mut out = String::new();
-    for (name, value) in WAVEFRONT_WGSL_U32S {
-        out += &format!("const {name}: u32 = {value}u;\n");
-    }
-    out
+    u32_declarations(WAVEFRONT_WGSL_U32S)
+}
+
+/// WGSL `const` declarations of u32 constants, one a line.
+fn u32_declarations(constants: &[(&str, u32)]) -> String {
+    constants
+        .iter()
+        .map(|(name, value)| format!("const {name}: u32 = {value}u;\n"))
+        .collect()
 }
 
 /// Paths a generation of the wavefront kernels may hold with refraction, per sample of
@@ -388,9 +402,11 @@ pub const NO_CHILD: u32 = u32::MAX;
 /// The WGSL constants of the wavefront kernels for scenes with refraction, emitted after
 /// [`wavefront_wgsl_prelude`] only in those modules.
 pub fn wavefront_tree_wgsl_prelude() -> String {
-    format!(
-        "const TREE_PATHS_PER_SAMPLE: u32 = {TREE_PATHS_PER_SAMPLE}u;\nconst TREE_VERTICES_PER_SAMPLE: u32 = {TREE_VERTICES_PER_SAMPLE}u;\nconst NO_CHILD: u32 = {NO_CHILD}u;\n"
-    )
+    u32_declarations(by_name![
+        TREE_PATHS_PER_SAMPLE,
+        TREE_VERTICES_PER_SAMPLE,
+        NO_CHILD
+    ])
 }
 
 /// Deepest adaptive anti-aliasing split accepted (`aa_depth`).

@@ -7,41 +7,38 @@ use std::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub struct SceneFeatures(pub u32);
 
-impl SceneFeatures {
-    pub const SPHERE: SceneFeatures = SceneFeatures(1 << 0);
-    pub const CUBE: SceneFeatures = SceneFeatures(1 << 1);
-    pub const MESH: SceneFeatures = SceneFeatures(1 << 2);
-    pub const REFLECTION: SceneFeatures = SceneFeatures(1 << 3);
-    pub const GRID: SceneFeatures = SceneFeatures(1 << 4);
-    pub const CYLINDER: SceneFeatures = SceneFeatures(1 << 5);
-    pub const CONE: SceneFeatures = SceneFeatures(1 << 6);
-    pub const TORUS: SceneFeatures = SceneFeatures(1 << 7);
-    pub const AREA_LIGHT: SceneFeatures = SceneFeatures(1 << 8);
-    pub const CSG: SceneFeatures = SceneFeatures(1 << 9);
-    pub const REFRACTION: SceneFeatures = SceneFeatures(1 << 10);
-    pub const TEXTURE: SceneFeatures = SceneFeatures(1 << 11);
-    pub const BUMP: SceneFeatures = SceneFeatures(1 << 12);
+/// The features' flags (`SceneFeatures::NAME`, bit n) and [`SceneFeatures::ALL`], their
+/// names in display order (bit order), from one line a feature.
+macro_rules! scene_features {
+    ($($(#[$doc:meta])* $flag:ident = $bit:literal, $name:literal;)*) => {
+        impl SceneFeatures {
+            $($(#[$doc])* pub const $flag: SceneFeatures = SceneFeatures(1 << $bit);)*
+
+            /// Every feature with its name, in display order.
+            pub const ALL: &'static [(SceneFeatures, &'static str)] = &[$((Self::$flag, $name)),*];
+        }
+    };
+}
+
+scene_features! {
+    SPHERE = 0, "sphere";
+    CUBE = 1, "cube";
+    MESH = 2, "mesh";
+    REFLECTION = 3, "reflection";
+    GRID = 4, "grid";
+    CYLINDER = 5, "cylinder";
+    CONE = 6, "cone";
+    TORUS = 7, "torus";
+    AREA_LIGHT = 8, "area-light";
+    CSG = 9, "csg";
+    REFRACTION = 10, "refraction";
+    TEXTURE = 11, "texture";
+    BUMP = 12, "bump";
     /// A mesh triangle with vertex normals (and `shading` not `'flat'`): smooth shading.
-    pub const SMOOTH: SceneFeatures = SceneFeatures(1 << 13);
+    SMOOTH = 13, "smooth";
+}
 
-    /// Every feature with its name, in display order.
-    pub const ALL: &'static [(SceneFeatures, &'static str)] = &[
-        (Self::SPHERE, "sphere"),
-        (Self::CUBE, "cube"),
-        (Self::MESH, "mesh"),
-        (Self::REFLECTION, "reflection"),
-        (Self::GRID, "grid"),
-        (Self::CYLINDER, "cylinder"),
-        (Self::CONE, "cone"),
-        (Self::TORUS, "torus"),
-        (Self::AREA_LIGHT, "area-light"),
-        (Self::CSG, "csg"),
-        (Self::REFRACTION, "refraction"),
-        (Self::TEXTURE, "texture"),
-        (Self::BUMP, "bump"),
-        (Self::SMOOTH, "smooth"),
-    ];
-
+impl SceneFeatures {
     pub const fn empty() -> SceneFeatures {
         SceneFeatures(0)
     }

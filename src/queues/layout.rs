@@ -56,6 +56,19 @@ pub struct Extent {
 }
 
 impl Extent {
+    /// `n` entries of the kind `entries` counts, none of the others.
+    fn of(entries: Entries, n: u64) -> Extent {
+        let mut extent = Extent::default();
+        let count = match entries {
+            Entries::Samples => &mut extent.samples,
+            Entries::Paths => &mut extent.paths,
+            Entries::TreeVertices => &mut extent.tree_vertices,
+            Entries::PathLightPoints => &mut extent.light_points,
+        };
+        *count = n;
+        extent
+    }
+
     fn add(self, other: Extent) -> Extent {
         Extent {
             samples: self.samples + other.samples,
@@ -145,25 +158,7 @@ impl Region {
 
     /// One copy's size.
     pub fn copy_size(&self, form: Form) -> Extent {
-        let n = stride(&self.record, form) as u64;
-        match self.entries {
-            Entries::Samples => Extent {
-                samples: n,
-                ..Extent::default()
-            },
-            Entries::Paths => Extent {
-                paths: n,
-                ..Extent::default()
-            },
-            Entries::TreeVertices => Extent {
-                tree_vertices: n,
-                ..Extent::default()
-            },
-            Entries::PathLightPoints => Extent {
-                light_points: n,
-                ..Extent::default()
-            },
-        }
+        Extent::of(self.entries, stride(&self.record, form) as u64)
     }
 
     /// Where the region starts in `form`'s layout of `regions` (its first copy).

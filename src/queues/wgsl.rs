@@ -18,39 +18,40 @@ use super::layout::{in_layout, lanes, stride, Extent, Form, Region};
 use super::QueueField;
 
 /// A WGSL type a field may have: its components (whether each is a u32, stored bit-cast)
-/// as a value's parts, and how a value is built from them.
+/// as a value's parts, and how a value is built from them where a constructor over the
+/// parts in order (a scalar: its one part) does not do.
 struct WgslType {
     name: &'static str,
     parts: &'static [(&'static str, bool)],
-    build: fn(&[String]) -> String,
+    custom_build: Option<fn(&[String]) -> String>,
+}
+
+impl WgslType {
+    /// A type whose value is its constructor over its parts (a scalar: its one part).
+    const fn plain(name: &'static str, parts: &'static [(&'static str, bool)]) -> WgslType {
+        WgslType {
+            name,
+            parts,
+            custom_build: None,
+        }
+    }
+
+    /// The expression building a value from its parts' expressions.
+    fn build(&self, parts: &[String]) -> String {
+        match (self.custom_build, parts) {
+            (Some(build), _) => build(parts),
+            (None, [scalar]) => scalar.clone(),
+            (None, _) => format!("{}({})", self.name, parts.join(", ")),
+        }
+    }
 }
 
 const TYPES: &[WgslType] = &[
-    WgslType {
-        name: "f32",
-        parts: &[("", false)],
-        build: |c| c[0].clone(),
-    },
-    WgslType {
-        name: "u32",
-        parts: &[("", true)],
-        build: |c| c[0].clone(),
-    },
-    WgslType {
-        name: "vec2<f32>",
-        parts: &[(".x", false), (".y", false)],
-        build: |c| format!("vec2<f32>({})", c.join(", ")),
-    },
-    WgslType {
-        name: "vec3<f32>",
-        parts: &[(".x", false), (".y", false), (".z", false)],
-        build: |c| format!("vec3<f32>({})", c.join(", ")),
-    },
-    WgslType {
-        name: "vec2<u32>",
-        parts: &[(".x", true), (".y", true)],
-        build: |c| format!("vec2<u32>({})", c.join(", ")),
-    },
+    WgslType::plain("f32", &[("", false)]),
+    WgslType::plain("u32", &[("", true)]),
+    WgslType::plain("vec2<f32>", &[(".x", false), (".y", false)]),
+    WgslType::plain("vec3<f32>", &[(".x", false), (".y", false), (".z", false)]),
+    WgslType::plain("vec2<u32>", &[(".x", true), (".y", true)]),
     WgslType {
         name: "MediumStack",
         parts: &[
@@ -60,13 +61,13 @@ const TYPES: &[WgslType] = &[
             (".iors[3]", false),
             (".count", true),
         ],
-        build: |c| {
+        custom_build: Some(|c| {
             format!(
                 "MediumStack(array<f32, MEDIUM_STACK_SIZE>({}), {})",
                 c[..4].join(", "),
                 c[4]
             )
-        },
+        }),
     },
 ];
 
@@ -126,7 +127,7 @@ fn read_field(field: &QueueField) -> String {
         .zip(ty.parts)
         .map(|(&(w, lane), &(_, uint))| read_lane(w, lane, uint))
         .collect();
-    (ty.build)(&parts)
+    ty.build(&parts)
 }
 
 /// The vec4 `w` with `value`'s lanes of `field`s set and its other lanes `other(lane)`;

@@ -176,23 +176,16 @@ impl fmt::Display for KernelConfig {
             self.linear_workgroup_size()
         )?;
         write!(f, ", {}", self.mailboxes)?;
-        if self.iteration_guard {
-            write!(f, ", iteration guard")?;
-        }
-        if self.storage_tables {
-            write!(f, ", storage-texture tables")?;
-        }
-        if self.lists_in_storage {
-            write!(f, ", ray lists in storage")?;
-        }
-        if self.camera_ray_in_loop {
-            write!(f, ", camera ray in loop")?;
-        }
-        if self.any_hit_one_loop {
-            write!(f, ", any hit in one loop")?;
-        }
-        if self.wavefront {
-            write!(f, ", wavefront")?;
+        let switches = [
+            (self.iteration_guard, "iteration guard"),
+            (self.storage_tables, "storage-texture tables"),
+            (self.lists_in_storage, "ray lists in storage"),
+            (self.camera_ray_in_loop, "camera ray in loop"),
+            (self.any_hit_one_loop, "any hit in one loop"),
+            (self.wavefront, "wavefront"),
+        ];
+        for (_, name) in switches.iter().filter(|(on, _)| *on) {
+            write!(f, ", {name}")?;
         }
         Ok(())
     }

@@ -51,21 +51,43 @@ arena_handle_userdata!(
     materials
 );
 
+/// What every built-in method does around its body: stops a script past its limits,
+/// reads the arguments as `func` (`node:scale`), runs `body` (which checks the
+/// receiver), notes arguments it left unused and returns the receiver, so calls chain.
+fn builtin_method(
+    lua: &Lua,
+    func: &str,
+    args: MultiValue,
+    body: impl FnOnce(&Args) -> mlua::Result<()>,
+) -> mlua::Result<Value> {
+    super::limits::ensure_live(lua)?;
+    let a = Args::method(lua, func, args);
+    body(&a)?;
+    super::notes::check_extra_arguments(&a);
+    Ok(a.receiver_value())
+}
+
+/// A built-in method as its table entry `(name, Method)`: `$kind:$name` run through
+/// [`builtin_method`], `$body` given the Lua state and the arguments.
+macro_rules! builtin {
+    ($kind:literal, $name:literal, |$lua:ident, $a:ident| $body:block) => {
+        (
+            $name,
+            (|$lua: &Lua, args: MultiValue| {
+                builtin_method($lua, concat!($kind, ":", $name), args, |$a| $body)
+            }) as Method,
+        )
+    };
+}
+
 /// The built-in node methods.
 pub(super) fn node_methods() -> Vec<(&'static str, Method)> {
     macro_rules! method {
         ($name:literal, $f:expr) => {
-            (
-                $name,
-                (|lua: &Lua, args: MultiValue| {
-                    super::limits::ensure_live(lua)?;
-                    let a = Args::method(lua, concat!("node:", $name), args);
-                    a.receiver::<NodeHandle>("node")?;
-                    $f(&a)?;
-                    super::notes::check_extra_arguments(&a);
-                    Ok(a.receiver_value())
-                }) as Method,
-            )
+            builtin!("node", $name, |_lua, a| {
+                a.receiver::<NodeHandle>("node")?;
+                $f(a)
+            })
         };
     }
     vec![
@@ -354,18 +376,12 @@ fn set_material(a: &Args) -> mlua::Result<()> {
 pub(super) fn material_methods() -> Vec<(&'static str, Method)> {
     macro_rules! method {
         ($name:literal, $f:expr) => {
-            (
-                $name,
-                (|lua: &Lua, args: MultiValue| {
-                    super::limits::ensure_live(lua)?;
-                    let a = Args::method(lua, concat!("material:", $name), args);
-                    let id = a.receiver::<MaterialHandle>("material")?.0;
-                    let edit = $f(&a)?;
-                    with_state(lua, |s| edit(&mut s.graph.materials[id]));
-                    super::notes::check_extra_arguments(&a);
-                    Ok(a.receiver_value())
-                }) as Method,
-            )
+            builtin!("material", $name, |lua, a| {
+                let id = a.receiver::<MaterialHandle>("material")?.0;
+                let edit = $f(a)?;
+                with_state(lua, |s| edit(&mut s.graph.materials[id]));
+                Ok(())
+            })
         };
     }
     vec![
