@@ -254,8 +254,7 @@ mod tests {
     #[test]
     fn write_via_temp_renames_on_success_and_cleans_up_on_failure() {
         use std::io::Write;
-        let dir = crate::testing::scratch::temp_dir("atomic-write");
-        let target = dir.join("dump.bin");
+        let (dir, target) = crate::testing::scratch::temp_file("atomic-write", "dump.bin");
         write_via_temp(&target, |file| file.write_all(b"old")).unwrap();
         let failed: std::io::Result<()> = write_via_temp(&target, |file| {
             file.write_all(b"half")?;

@@ -138,16 +138,17 @@ impl ReadPolicy {
     /// it: walked from opened folders, judged by where it lies, and the file opened from
     /// its own folder's handle (`O_NOFOLLOW`: nothing swapped in after the walk is
     /// followed) as every reader opens ([`open_checked`]: regular files only, never
-    /// blocking). The size is not capped here: [`Opened::read`] caps it. Recorded for
-    /// `glint view`'s reload.
+    /// blocking). The size is not capped here: [`Opened::read`] caps it. A path inside
+    /// is recorded for `glint view`'s reload, found or not.
     pub fn open(&self, path: &Path, what: &str) -> Result<Opened, String> {
-        note_read(path);
         let cannot =
             |e: &dyn std::fmt::Display| format!("cannot read {what} '{}': {e}", shown(path));
         let walked = folder_walk::walk(path, true).map_err(|e| cannot(&e))?;
         if !folder_walk::lies_within(&walked.folder, &self.ids()) {
             return Err(self.outside(path, what));
         }
+        // Inside: watched by `glint view` whether or not it exists (creating it reloads).
+        note_read(path);
         if let Some(e) = &walked.failed {
             return Err(cannot(e));
         }
@@ -253,7 +254,7 @@ thread_local! {
 }
 
 /// Adds `path` to the read log when one is recording (every file a scene reads, found
-/// or not, goes through [`open_regular`]).
+/// or not, goes through [`open_regular`] or [`ReadPolicy::open`]).
 fn note_read(path: &Path) {
     READ_LOG.with(|log| {
         if let Some(paths) = log.borrow_mut().as_mut() {
@@ -271,7 +272,7 @@ fn note_read(path: &Path) {
 }
 
 /// Runs `f` and returns its value with every file it tried to read through
-/// [`open_regular`] on this thread (the script, preludes, modules, meshes, textures;
+/// [`open_regular`] or [`ReadPolicy::open`] on this thread (the script, preludes, modules, meshes, textures;
 /// missing ones too, so that creating one can be noticed), in first-read order: what
 /// `glint view` watches for live reload. The scene's reads all happen on the thread that
 /// runs its script.

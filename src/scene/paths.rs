@@ -144,8 +144,7 @@ mod tests {
 
     #[test]
     fn the_start_folder_counts_only_above_the_scene_and_never_root_or_home() {
-        let dir = crate::testing::scratch::temp_dir("paths-start");
-        let me = dir.join("h/me");
+        let (_dir, me) = crate::testing::scratch::temp_file("paths-start", "h/me");
         let (a4, assets, other) = (me.join("a4"), me.join("a4/Assets"), me.join("other"));
         std::fs::create_dir_all(&assets).unwrap();
         std::fs::create_dir_all(&other).unwrap();

@@ -154,8 +154,7 @@ mod tests {
 
     #[test]
     fn missing_and_undecodable_files_name_the_path() {
-        let dir = crate::testing::scratch::temp_dir("texture");
-        let missing = dir.join("missing.png");
+        let (dir, missing) = crate::testing::scratch::temp_file("texture", "missing.png");
         let e = load_texture(&missing, u64::MAX).unwrap_err();
         assert!(
             e.starts_with("cannot read texture '") && e.contains("missing.png"),
