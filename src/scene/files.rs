@@ -272,10 +272,10 @@ fn note_read(path: &Path) {
 }
 
 /// Runs `f` and returns its value with every file it tried to read through
-/// [`open_regular`] or [`ReadPolicy::open`] on this thread (the script, preludes, modules, meshes, textures;
-/// missing ones too, so that creating one can be noticed), in first-read order: what
-/// `glint view` watches for live reload. The scene's reads all happen on the thread that
-/// runs its script.
+/// [`open_regular`] or [`ReadPolicy::open`] on this thread (the script, preludes,
+/// modules, meshes, textures; missing ones too, so that creating one can be noticed),
+/// in first-read order: what `glint view` watches for live reload. The scene's reads all
+/// happen on the thread that runs its script.
 pub fn record_reads<T>(f: impl FnOnce() -> T) -> (T, Vec<PathBuf>) {
     let outer = READ_LOG.with(|log| log.replace(Some(Vec::new())));
     let value = f();
