@@ -8,12 +8,14 @@
 //! `.NAME.tmp-PID-RANDOM` (64 random bits), so that anyone who can write the folder (a
 //! shared farm folder, `/tmp`) cannot plant a link there and have glint write through it
 //! into another file; the rename replaces a link at the destination itself, never its
-//! target.
+//! target. Creating, renaming and removing happen in the destination's folder opened once
+//! as a handle (`openat`, `renameat`, `unlinkat`), whatever the length of its path.
 
-use std::ffi::OsString;
-use std::fs::{self, File, OpenOptions};
-use std::os::unix::fs::OpenOptionsExt;
-use std::path::{Path, PathBuf};
+use crate::folder_walk;
+use std::ffi::{CString, OsStr, OsString};
+use std::fs::{self, File};
+use std::os::fd::{AsRawFd, OwnedFd, RawFd};
+use std::path::Path;
 use std::sync::atomic::{AtomicPtr, Ordering};
 
 /// Most bytes the temporary name adds to the output's: `.` before it and
@@ -48,42 +50,40 @@ pub fn write_via_temp_with<E>(
         _ => Path::new("."),
     };
     let name = path.file_name().unwrap_or_default();
-    let (mut file, temp, armed) = create_temp(dir, name).map_err(&io_error)?;
+    // Everything below happens in the opened folder (`openat`, `renameat`, `unlinkat`),
+    // so the path's length beyond the folder never matters (a folder past PATH_MAX).
+    let folder = folder_walk::open_folder(dir).map_err(&io_error)?;
+    let (mut file, temp, armed) = create_temp(&folder, name).map_err(&io_error)?;
     let result = write(&mut file)
         .and_then(|()| file.sync_all().map_err(&io_error))
         .and_then(|()| {
             drop(file);
-            fs::rename(&temp, path).map_err(&io_error)
+            folder_walk::rename_in(&folder, &temp, name).map_err(&io_error)
         });
     if result.is_err() {
-        let _ = fs::remove_file(&temp);
+        let _ = folder_walk::remove_in(&folder, &temp);
     }
     disarm_signal_cleanup(armed);
     result
 }
 
-/// A new file in `dir` named `.NAME.tmp-PID-RANDOM`, created exclusively, with the
-/// signal clean-up armed for it.
-fn create_temp(dir: &Path, name: &std::ffi::OsStr) -> std::io::Result<(File, PathBuf, Armed)> {
+/// A new file in `folder` named `.NAME.tmp-PID-RANDOM`, created exclusively, with the
+/// signal clean-up armed for it; returns the file and its name.
+fn create_temp(folder: &OwnedFd, name: &OsStr) -> std::io::Result<(File, OsString, Armed)> {
     let mut last = std::io::Error::from(std::io::ErrorKind::AlreadyExists);
     for _ in 0..CREATE_ATTEMPTS {
-        let mut temp_name = OsString::from(".");
-        temp_name.push(name);
-        temp_name.push(format!(
+        let mut temp = OsString::from(".");
+        temp.push(name);
+        temp.push(format!(
             ".tmp-{}-{:016x}",
             std::process::id(),
             random_u64()?
         ));
-        let temp = dir.join(temp_name);
         // Armed before the file exists, so that no signal can strand it; a name that
         // turns out taken is disarmed before anything else happens.
-        let armed = arm_signal_cleanup(&temp);
-        let opened = OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .custom_flags(libc::O_NOFOLLOW | libc::O_CLOEXEC)
-            .open(&temp);
-        match opened {
+        let armed = arm_signal_cleanup(folder, &temp);
+        let flags = libc::O_WRONLY | libc::O_CREAT | libc::O_EXCL;
+        match folder_walk::open_in(folder, &temp, flags, 0o666) {
             Ok(file) => return Ok((file, temp, armed)),
             Err(e) => {
                 disarm_signal_cleanup(armed);
@@ -136,14 +136,20 @@ pub fn create_dir_all_clearly(dir: &Path) -> std::io::Result<()> {
 /// still removes its file on errors, only not on signals.
 const SIGNAL_SLOTS: usize = 32;
 
-/// The temporary files being written, as C strings, for the signal handler (null: a free
-/// slot). Each string is leaked (a few bytes per file written) so that a handler running
-/// on another thread can never read freed memory.
-static SIGNAL_TEMPS: [AtomicPtr<libc::c_char>; SIGNAL_SLOTS] =
+/// A temporary file being written, for the signal handler: its name in an open folder.
+struct TempEntry {
+    folder: RawFd,
+    name: CString,
+}
+
+/// The temporary files being written, for the signal handler (null: a free slot). Each
+/// entry is leaked (a few bytes per file written) so that a handler running on another
+/// thread can never read freed memory.
+static SIGNAL_TEMPS: [AtomicPtr<TempEntry>; SIGNAL_SLOTS] =
     [const { AtomicPtr::new(std::ptr::null_mut()) }; SIGNAL_SLOTS];
 
-/// A slot holding a temporary file's name (None: none was free).
-type Armed = Option<(usize, *mut libc::c_char)>;
+/// A slot holding a temporary file's entry (None: none was free).
+type Armed = Option<(usize, *mut TempEntry)>;
 
 /// Makes every signal that ends a process by default while a file is written (SIGINT,
 /// SIGTERM, SIGHUP, SIGQUIT, SIGABRT (also raised when an allocation fails), SIGUSR1,
@@ -195,10 +201,10 @@ pub fn remove_temp_files_on_signals() {
 extern "C" fn on_signal(sig: libc::c_int) {
     for slot in &SIGNAL_TEMPS {
         let temp = slot.load(Ordering::SeqCst);
-        // SAFETY: `temp` is null or a leaked, NUL-terminated string; unlink is
-        // async-signal-safe.
-        if !temp.is_null() {
-            unsafe { libc::unlink(temp) };
+        // SAFETY: `temp` is null or a leaked entry, never freed; unlinkat is
+        // async-signal-safe. (The folder is open while its entry is armed.)
+        if let Some(entry) = unsafe { temp.as_ref() } {
+            unsafe { libc::unlinkat(entry.folder, entry.name.as_ptr(), 0) };
         }
     }
     // SAFETY: signal and raise are async-signal-safe.
@@ -208,11 +214,14 @@ extern "C" fn on_signal(sig: libc::c_int) {
     }
 }
 
-/// Puts `temp` in a free slot of the signal handler's list.
-fn arm_signal_cleanup(temp: &Path) -> Armed {
+/// Puts `temp` in `folder` in a free slot of the signal handler's list.
+fn arm_signal_cleanup(folder: &OwnedFd, temp: &OsStr) -> Armed {
     use std::os::unix::ffi::OsStrExt;
-    let c = std::ffi::CString::new(temp.as_os_str().as_bytes()).ok()?;
-    let ptr = c.into_raw();
+    let name = CString::new(temp.as_bytes()).ok()?;
+    let ptr = Box::into_raw(Box::new(TempEntry {
+        folder: folder.as_raw_fd(),
+        name,
+    }));
     SIGNAL_TEMPS.iter().enumerate().find_map(|(i, slot)| {
         slot.compare_exchange(
             std::ptr::null_mut(),
@@ -245,8 +254,7 @@ mod tests {
     #[test]
     fn write_via_temp_renames_on_success_and_cleans_up_on_failure() {
         use std::io::Write;
-        let dir = crate::testing::scratch::temp_dir("atomic-write");
-        let target = dir.join("dump.bin");
+        let (dir, target) = crate::testing::scratch::temp_file("atomic-write", "dump.bin");
         write_via_temp(&target, |file| file.write_all(b"old")).unwrap();
         let failed: std::io::Result<()> = write_via_temp(&target, |file| {
             file.write_all(b"half")?;
@@ -263,10 +271,11 @@ mod tests {
         let dir = crate::testing::scratch::temp_dir("atomic-names");
         let mut seen = Vec::new();
         for _ in 0..2 {
-            let (file, temp, armed) = create_temp(&dir, "a.png".as_ref()).unwrap();
+            let folder = folder_walk::open_folder(&dir).unwrap();
+            let (file, temp, armed) = create_temp(&folder, "a.png".as_ref()).unwrap();
             drop(file);
             disarm_signal_cleanup(armed);
-            let name = temp.file_name().unwrap().to_string_lossy().into_owned();
+            let name = temp.to_string_lossy().into_owned();
             assert!(name.starts_with(".a.png.tmp-"), "{name}");
             assert!(name.len() <= "a.png".len() + TEMP_SUFFIX_MAX, "{name}");
             seen.push(name);

@@ -25,6 +25,7 @@ pub mod display_path;
 pub mod farm;
 pub mod file_name;
 pub mod film;
+pub mod folder_walk;
 pub mod gpu;
 pub mod image_check;
 pub mod image_io;

@@ -6,51 +6,58 @@
 //! `--output-dir DIR`) or a folder given by `--allow-write DIR`; and it may replace only
 //! a regular, writable image file (PNG or EXR by content), never a link, a device, a
 //! read-only file or a file of another kind. An output given on the command line (`-o`)
-//! is the user's choice and is not checked here.
+//! is the user's choice and is not checked here. Names are walked from opened folder
+//! handles ([`crate::folder_walk`]), never resolved to absolute paths, so an output
+//! folder deeper than PATH_MAX is judged as any other.
 
+use crate::folder_walk::{self, FileId};
+use std::ffi::OsStr;
 use std::io::Read;
+use std::os::fd::OwnedFd;
 use std::path::{Component, Path, PathBuf};
 
 /// The first bytes of the image files glint writes (PNG, OpenEXR): only such a file may
 /// be replaced by a script-named output.
 const IMAGE_MAGICS: [&[u8]; 2] = [b"\x89PNG\r\n\x1a\n", b"\x76\x2f\x31\x01"];
 
-/// The folders script-named outputs may go to, as canonical paths.
+/// The folders script-named outputs may go to, each as its identity (device and inode):
+/// an output is judged by walking its name from opened folder handles
+/// ([`crate::folder_walk`]), never by its absolute spelling, so an output folder deeper
+/// than PATH_MAX is written as any other.
 #[derive(Clone, Debug)]
 pub struct WritePolicy {
     /// The folder relative names are taken from (`--output-dir`, else the current one),
     /// as the user gave it (for the names printed).
     base: PathBuf,
-    /// Canonical folders an output may lie under: the base, then `--allow-write`'s.
-    roots: Vec<PathBuf>,
+    /// Folders an output may lie under: the base, then `--allow-write`'s.
+    roots: Vec<FileId>,
+    /// Those folders' canonical paths where the system can give them (else as given),
+    /// for messages.
+    shown: Vec<PathBuf>,
 }
 
 impl WritePolicy {
     /// The rule for `output_dir` (None: the current folder) and the `allow_write`
-    /// folders; a folder that cannot be resolved is an error naming it.
+    /// folders; a folder that cannot be opened is an error naming it.
     pub fn new(output_dir: Option<&Path>, allow_write: &[PathBuf]) -> Result<WritePolicy, String> {
         let base = output_dir.map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-        let mut roots = Vec::new();
+        let (mut roots, mut shown) = (Vec::new(), Vec::new());
         for dir in std::iter::once(&base).chain(allow_write) {
-            let real = dir.canonicalize().map_err(|e| {
+            let cannot = |why: &dyn std::fmt::Display| {
                 format!(
-                    "cannot write under '{}': {e}",
+                    "cannot write under '{}': {why}",
                     crate::display_path::shown(dir)
                 )
+            };
+            let folder = folder_walk::open_folder(dir).map_err(|e| match e.raw_os_error() {
+                Some(libc::ENOTDIR) => cannot(&"not a folder"),
+                _ => cannot(&e),
             })?;
-            if !real.is_dir() {
-                let shown = crate::display_path::shown(dir);
-                return Err(match too_long_to_resolve(dir, &real) {
-                    Some(len) => format!(
-                        "cannot write under '{shown}': its absolute path is {len} bytes, over the system's limit of {} (PATH_MAX); the rules for what a scene may read and write work on absolute paths: run glint from a folder nearer the root",
-                        libc::PATH_MAX
-                    ),
-                    None => format!("cannot write under '{shown}': not a folder"),
-                });
-            }
-            roots.push(real);
+            roots.push(FileId::of_fd(&folder).map_err(|e| cannot(&e))?);
+            let real = dir.canonicalize().ok().filter(|real| real.is_dir());
+            shown.push(real.unwrap_or_else(|| dir.clone()));
         }
-        Ok(WritePolicy { base, roots })
+        Ok(WritePolicy { base, roots, shown })
     }
 
     /// The path to write for the script-named output `name`, or why the script may not
@@ -69,16 +76,19 @@ impl WritePolicy {
                 "a scene's output name must be relative (to the current folder, or --output-dir DIR); -o FILE on the command line writes anywhere",
             ));
         }
-        let shown = if self.base == Path::new(".") {
-            name.to_path_buf()
-        } else {
-            self.base.join(name)
+        let path = self.base.join(name);
+        // The last name is kept as written: a link there is refused, not followed.
+        let walked = folder_walk::walk(&path, false).map_err(|e| refuse(&e.to_string()))?;
+        // The folder the output goes in: the walk's, or, where the name is an existing
+        // folder, the one above it.
+        let within = match walked.rest.is_empty() {
+            false => folder_walk::lies_within(&walked.folder, &self.roots),
+            true => folder_walk::open_parent(&walked.folder)
+                .is_ok_and(|up| folder_walk::lies_within(&up, &self.roots)),
         };
-        let resolved = resolve(&self.roots[0], name);
-        let dir = resolved.parent().unwrap_or(Path::new("/"));
-        if !self.roots.iter().any(|root| dir.starts_with(root)) {
+        if !within {
             let roots: Vec<String> = self
-                .roots
+                .shown
                 .iter()
                 .map(|r| crate::display_path::shown(r))
                 .collect();
@@ -87,71 +97,44 @@ impl WritePolicy {
                 roots.join(", ")
             )));
         }
-        check_replaceable(&resolved).map_err(|why| refuse(&why))?;
-        Ok(shown)
-    }
-}
-
-/// The length of `real`, the absolute path of the folder `dir`, when `dir` is a folder
-/// that only that length keeps the system from reaching by `real` (deep folders of long
-/// names: the system can resolve them, but not open a path over PATH_MAX).
-fn too_long_to_resolve(dir: &Path, real: &Path) -> Option<usize> {
-    let len = real.as_os_str().len();
-    (dir.is_dir() && len >= libc::PATH_MAX as usize).then_some(len)
-}
-
-/// `name` under `base` with `..` and symbolic links resolved as far as the path exists
-/// (the last component is kept as written: a link there is refused, not followed).
-fn resolve(base: &Path, name: &Path) -> PathBuf {
-    let mut out = base.to_path_buf();
-    let parts: Vec<Component> = name.components().collect();
-    for (i, component) in parts.iter().enumerate() {
-        match component {
-            Component::ParentDir => {
-                out.pop();
-            }
-            Component::Normal(part) => {
-                out.push(part);
-                if i + 1 < parts.len() {
-                    if let Ok(real) = out.canonicalize() {
-                        out = real;
-                    }
-                }
-            }
-            _ => {}
+        if walked.rest.is_empty() {
+            return Err(refuse("it exists and is not a regular file"));
         }
+        if let Some(leaf) = walked.leaf() {
+            check_replaceable(&walked.folder, leaf).map_err(|why| refuse(&why))?;
+        }
+        Ok(if self.base == Path::new(".") {
+            name.to_path_buf()
+        } else {
+            path
+        })
     }
-    out
 }
 
-/// Whether an existing file at `path` may be replaced: a regular file (not a link),
-/// writable by its mode and by this process, that holds a PNG or EXR image.
-fn check_replaceable(path: &Path) -> Result<(), String> {
-    use std::os::unix::ffi::OsStrExt;
-    use std::os::unix::fs::PermissionsExt;
-    let Ok(meta) = std::fs::symlink_metadata(path) else {
-        return Ok(());
-    };
-    if meta.file_type().is_symlink() {
-        return Err("it is a symbolic link; a scene replaces only image files".into());
+/// Whether the existing entry `name` in `folder` may be replaced: a regular file (not a
+/// link), writable by its mode and by this process, that holds a PNG or EXR image.
+fn check_replaceable(folder: &OwnedFd, name: &OsStr) -> Result<(), String> {
+    let st = folder_walk::stat_in(folder, name)
+        .map_err(|e| format!("it exists and cannot be examined: {e}"))?;
+    match st.st_mode & libc::S_IFMT {
+        libc::S_IFLNK => {
+            return Err("it is a symbolic link; a scene replaces only image files".into())
+        }
+        libc::S_IFREG => {}
+        _ => return Err("it exists and is not a regular file".into()),
     }
-    if !meta.is_file() {
-        return Err("it exists and is not a regular file".into());
-    }
-    let writable_mode = meta.permissions().mode() & 0o222 != 0;
-    let c = std::ffi::CString::new(path.as_os_str().as_bytes()).map_err(|e| e.to_string())?;
-    // SAFETY: a valid NUL-terminated path; access only reads it.
-    let writable = writable_mode && unsafe { libc::access(c.as_ptr(), libc::W_OK) } == 0;
-    if !writable {
+    if st.st_mode & 0o222 == 0 || !folder_walk::writable_in(folder, name) {
         return Err("it exists and is read-only".into());
     }
     let mut head = [0u8; 8];
     // Opened as every reader opens (never blocking: the file may have been replaced by
-    // a FIFO since it was looked at).
-    let (mut file, _) = crate::scene::files::open_checked(path, u64::MAX).map_err(|r| match r {
-        crate::scene::files::Refusal::Io(e) => format!("it exists and cannot be examined: {e}"),
-        _ => "it exists and is not a regular file".to_string(),
-    })?;
+    // a FIFO since it was looked at; `open_in` never follows a link swapped in).
+    let flags = libc::O_RDONLY | libc::O_NONBLOCK | libc::O_NOCTTY;
+    let mut file = folder_walk::open_in(folder, name, flags, 0)
+        .map_err(|e| format!("it exists and cannot be examined: {e}"))?;
+    if !file.metadata().is_ok_and(|m| m.is_file()) {
+        return Err("it exists and is not a regular file".to_string());
+    }
     let n = file
         .read(&mut head)
         .map_err(|e| format!("it exists and cannot be examined: {e}"))?;

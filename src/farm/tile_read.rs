@@ -328,8 +328,7 @@ mod tests {
 
     #[test]
     fn a_tile_round_trips_its_pixels_and_record() {
-        let dir = crate::testing::scratch::temp_dir("farm-tile-file");
-        let path = dir.join("t.png");
+        let (dir, path) = crate::testing::scratch::temp_file("farm-tile-file", "t.png");
         // Tile 3 of 4 of a 10×7 image (a 2×2 grid): columns 5..10, rows 3..7.
         let mut film = Film::new(5, 4);
         film.set(2, 1, [1.0, 0.5, 0.25]);

@@ -2,9 +2,10 @@
 //! scene cannot abuse them: regular files only (a FIFO would block, `/dev/zero` would
 //! never end), at most a size cap, and only under the folders the scene may read — its
 //! own folder, glint's own assets ([`GLINT_ASSETS`]) and those given by `--allow-read` —
-//! after resolving `..` and symbolic
-//! links, in the spirit of POV-Ray's I/O restrictions. A refusal names the path and the
-//! flag that widens the rule.
+//! after resolving `..` and symbolic links, in the spirit of POV-Ray's I/O restrictions.
+//! Paths are walked from opened folder handles ([`crate::folder_walk`]) and the file is
+//! opened from its folder's handle, so a scene in a folder deeper than PATH_MAX reads
+//! beside it as any other. A refusal names the path and the flag that widens the rule.
 
 use std::fs::{File, OpenOptions};
 use std::io::Read;
@@ -12,6 +13,7 @@ use std::os::unix::fs::OpenOptionsExt;
 use std::path::{Path, PathBuf};
 
 use crate::display_path::shown;
+use crate::folder_walk::{self, FileId};
 
 /// Largest file a scene may read (a mesh, texture or module), in bytes.
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
@@ -24,15 +26,65 @@ pub const MAX_EXCERPT_CHARS: usize = 24;
 /// as POV-Ray's library path is.
 pub const GLINT_ASSETS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/textures");
 
-/// The folders a scene may read from, as canonical paths.
+/// The folders a scene may read from, each as its identity (device and inode): a path is
+/// judged by walking it from opened folder handles ([`crate::folder_walk`]), never by
+/// its absolute spelling, so a scene in a folder deeper than PATH_MAX reads its
+/// siblings as any other scene does.
 #[derive(Clone, Debug, Default)]
 pub struct ReadPolicy {
-    roots: Vec<PathBuf>,
-    /// The scene's folder when it could not be resolved (an absolute path over PATH_MAX),
-    /// with why: a refusal says so rather than only that the file is outside.
-    unresolved: Option<(PathBuf, String)>,
+    roots: Vec<Root>,
     /// The flag's wording for messages (`--allow-read DIR`).
     flag: &'static str,
+}
+
+/// A readable folder.
+#[derive(Clone, Debug)]
+struct Root {
+    /// Its canonical path where the system can give one (else the path as given), for
+    /// messages.
+    shown: PathBuf,
+    id: FileId,
+}
+
+impl Root {
+    /// The folder `dir` as a root, if it is a folder that can be opened.
+    fn of(dir: &Path) -> Option<Root> {
+        let id = FileId::of_fd(&folder_walk::open_folder(dir).ok()?).ok()?;
+        let shown = dir
+            .canonicalize()
+            .ok()
+            .filter(|real| real.is_dir())
+            .unwrap_or_else(|| dir.to_path_buf());
+        Some(Root { shown, id })
+    }
+}
+
+/// A file a scene may read, opened: checked to be a regular file; its size is checked
+/// against the cap when it is read ([`Opened::read`]), so that a caller can first weigh
+/// it against a memory budget.
+#[derive(Debug)]
+pub struct Opened {
+    /// The path as tried (for messages).
+    pub path: PathBuf,
+    pub file: File,
+    pub len: u64,
+    /// The file under any spelling of its path.
+    pub id: FileId,
+}
+
+impl Opened {
+    /// The whole file, refused (saying `what` it is) when over `cap` bytes or when it
+    /// grows past `cap` while read.
+    pub fn read(self, what: &str, cap: u64) -> Result<Vec<u8>, String> {
+        if self.len > cap {
+            return Err(format!(
+                "cannot read {what} '{}': it is {} bytes, over the limit of {cap} bytes",
+                shown(&self.path),
+                self.len
+            ));
+        }
+        read_capped(self.file, self.len, &self.path, what, cap)
+    }
 }
 
 impl ReadPolicy {
@@ -44,26 +96,13 @@ impl ReadPolicy {
         } else {
             scene_dir
         };
-        let unresolved = match scene_dir.canonicalize() {
-            Ok(real) if scene_dir.is_dir() && !real.is_dir() => Some((
-                scene_dir.to_path_buf(),
-                format!(
-                    "its absolute path is {} bytes, over the system's limit of {} (PATH_MAX)",
-                    real.as_os_str().len(),
-                    libc::PATH_MAX
-                ),
-            )),
-            Err(e) if scene_dir.is_dir() => Some((scene_dir.to_path_buf(), e.to_string())),
-            _ => None,
-        };
         let roots = [scene_dir, Path::new(GLINT_ASSETS)]
             .into_iter()
             .chain(extra.iter().map(PathBuf::as_path))
-            .filter_map(|d| d.canonicalize().ok().filter(|real| real.is_dir()))
+            .filter_map(Root::of)
             .collect();
         ReadPolicy {
             roots,
-            unresolved,
             flag: "--allow-read DIR",
         }
     }
@@ -71,66 +110,78 @@ impl ReadPolicy {
     /// This policy and the folder `dir` (a prelude reading its own folder's modules).
     pub fn with_root(&self, dir: &Path) -> ReadPolicy {
         let mut wider = self.clone();
-        wider.roots.extend(dir.canonicalize().ok());
+        wider.roots.extend(Root::of(dir));
         wider
+    }
+
+    fn ids(&self) -> Vec<FileId> {
+        self.roots.iter().map(|r| r.id).collect()
     }
 
     /// Whether `path` lies inside a folder the scene may read (whether or not it exists).
     pub fn allows(&self, path: &Path) -> bool {
-        let resolved = resolve(path);
-        self.roots.iter().any(|root| resolved.starts_with(root))
+        folder_walk::walk(path, true)
+            .is_ok_and(|w| folder_walk::lies_within(&w.folder, &self.ids()))
     }
 
-    /// The canonical form of `path` if the scene may read it, else why not.
-    pub fn check(&self, path: &Path, what: &str) -> Result<PathBuf, String> {
-        if self.allows(path) {
-            // Inside: now a missing file may be reported as such.
-            return path
-                .canonicalize()
-                .map_err(|e| format!("cannot read {what} '{}': {e}", shown(path)));
+    /// Whether `path` lies inside a folder the scene may read and names something there
+    /// (a file, or anything that stops the walk other than a missing name).
+    pub fn present(&self, path: &Path) -> bool {
+        folder_walk::walk(path, true).is_ok_and(|w| {
+            folder_walk::lies_within(&w.folder, &self.ids())
+                && w.failed
+                    .is_none_or(|e| e.kind() != std::io::ErrorKind::NotFound)
+        })
+    }
+
+    /// Opens `path` (relative to the current folder, or absolute) if the scene may read
+    /// it: walked from opened folders, judged by where it lies, and the file opened from
+    /// its own folder's handle (`O_NOFOLLOW`: nothing swapped in after the walk is
+    /// followed) as every reader opens ([`open_checked`]: regular files only, never
+    /// blocking). The size is not capped here: [`Opened::read`] caps it. A path inside
+    /// is recorded for `glint view`'s reload, found or not.
+    pub fn open(&self, path: &Path, what: &str) -> Result<Opened, String> {
+        let cannot =
+            |e: &dyn std::fmt::Display| format!("cannot read {what} '{}': {e}", shown(path));
+        let walked = folder_walk::walk(path, true).map_err(|e| cannot(&e))?;
+        if !folder_walk::lies_within(&walked.folder, &self.ids()) {
+            return Err(self.outside(path, what));
         }
-        let roots: Vec<String> = self.roots.iter().map(|r| shown(r)).collect();
-        let unresolved = self
-            .unresolved
-            .as_ref()
-            .map_or_else(String::new, |(dir, why)| {
-                format!(
-                    " (the scene's folder '{}' is not among them: {why}; run glint nearer to it)",
-                    shown(dir)
-                )
-            });
-        Err(format!(
-            "cannot read {what} '{}': it is outside the folders this scene may read ({}){unresolved}; {} allows another folder",
+        // Inside: watched by `glint view` whether or not it exists (creating it reloads).
+        note_read(path);
+        if let Some(e) = &walked.failed {
+            return Err(cannot(e));
+        }
+        let Some(leaf) = walked.leaf() else {
+            return Err(cannot(&"not a regular file"));
+        };
+        let flags = libc::O_RDONLY | libc::O_NONBLOCK | libc::O_NOCTTY;
+        let refused = folder_walk::open_in(&walked.folder, leaf, flags, 0)
+            .map_err(Refusal::Io)
+            .and_then(|file| regular(file, u64::MAX));
+        let (file, len) = refused.map_err(|r| match r {
+            Refusal::Io(e) => cannot(&e),
+            _ => cannot(&"not a regular file"),
+        })?;
+        let id = FileId::of(&file).map_err(|e| cannot(&e))?;
+        Ok(Opened {
+            path: path.to_path_buf(),
+            file,
+            len,
+            id,
+        })
+    }
+
+    /// The refusal of `path`, outside every folder the scene may read.
+    fn outside(&self, path: &Path, what: &str) -> String {
+        let roots: Vec<String> = self.roots.iter().map(|r| shown(&r.shown)).collect();
+        format!(
+            "cannot read {what} '{}': it is outside the folders this scene may read ({}); {} allows another folder",
             shown(path),
             roots.join(", "),
             self.flag
-        ))
+        )
     }
-}
-
-/// `path` made absolute with `..` and symbolic links resolved as far as it exists, and
-/// taken as written beyond that, so that a path outside the allowed folders is refused
-/// the same way whether or not its file exists (no probing for files by the error).
-fn resolve(path: &Path) -> PathBuf {
-    use std::path::Component;
-    let mut out = std::env::current_dir().unwrap_or_default();
-    for component in path.components() {
-        match component {
-            Component::Prefix(p) => out = PathBuf::from(p.as_os_str()),
-            Component::RootDir => out = PathBuf::from("/"),
-            Component::CurDir => {}
-            Component::ParentDir => {
-                out.pop();
-            }
-            Component::Normal(name) => {
-                out.push(name);
-                if let Ok(real) = out.canonicalize() {
-                    out = real;
-                }
-            }
-        }
-    }
-    out
 }
 
 /// Why [`open_checked`] refused a file.
@@ -156,6 +207,12 @@ pub fn open_checked(path: &Path, cap: u64) -> Result<(File, u64), Refusal> {
         .custom_flags(libc::O_NONBLOCK | libc::O_NOCTTY)
         .open(path)
         .map_err(Refusal::Io)?;
+    regular(file, cap)
+}
+
+/// `file` and its size if the opened handle is a regular file of at most `cap` bytes
+/// (`fstat`: what was opened, not what the name holds now).
+fn regular(file: File, cap: u64) -> Result<(File, u64), Refusal> {
     let meta = file.metadata().map_err(Refusal::Io)?;
     if !meta.is_file() {
         return Err(Refusal::NotRegular);
@@ -197,7 +254,7 @@ thread_local! {
 }
 
 /// Adds `path` to the read log when one is recording (every file a scene reads, found
-/// or not, goes through [`open_regular`]).
+/// or not, goes through [`open_regular`] or [`ReadPolicy::open`]).
 fn note_read(path: &Path) {
     READ_LOG.with(|log| {
         if let Some(paths) = log.borrow_mut().as_mut() {
@@ -215,10 +272,10 @@ fn note_read(path: &Path) {
 }
 
 /// Runs `f` and returns its value with every file it tried to read through
-/// [`open_regular`] on this thread (the script, preludes, modules, meshes, textures;
-/// missing ones too, so that creating one can be noticed), in first-read order: what
-/// `glint view` watches for live reload. The scene's reads all happen on the thread that
-/// runs its script.
+/// [`open_regular`] or [`ReadPolicy::open`] on this thread (the script, preludes,
+/// modules, meshes, textures; missing ones too, so that creating one can be noticed),
+/// in first-read order: what `glint view` watches for live reload. The scene's reads all
+/// happen on the thread that runs its script.
 pub fn record_reads<T>(f: impl FnOnce() -> T) -> (T, Vec<PathBuf>) {
     let outer = READ_LOG.with(|log| log.replace(Some(Vec::new())));
     let value = f();
@@ -242,6 +299,12 @@ pub fn read_regular_within(
     over: &dyn Fn(u64) -> String,
 ) -> Result<Vec<u8>, String> {
     let (file, len) = open_regular_within(path, what, cap, over)?;
+    read_capped(file, len, path, what, cap)
+}
+
+/// Reads the opened regular `file` of `len` bytes (`path` and `what` for messages), cut
+/// at `cap + 1` bytes and refused if it grew past `cap` while being read.
+fn read_capped(file: File, len: u64, path: &Path, what: &str, cap: u64) -> Result<Vec<u8>, String> {
     let mut bytes = Vec::new();
     bytes
         .try_reserve_exact(len as usize)
@@ -302,17 +365,17 @@ mod tests {
         std::fs::write(dir.join("secret.txt"), b"x").unwrap();
         let policy = ReadPolicy::new(&dir.join("scene"), &[]);
         assert!(policy
-            .check(&dir.join("scene/tex/../tex/a.png"), "texture")
+            .open(&dir.join("scene/tex/../tex/a.png"), "texture")
             .is_ok());
         let e = policy
-            .check(&dir.join("scene/../secret.txt"), "mesh")
+            .open(&dir.join("scene/../secret.txt"), "mesh")
             .unwrap_err();
         assert!(
             e.contains("outside the folders") && e.contains("--allow-read"),
             "{e}"
         );
         let wide = ReadPolicy::new(&dir.join("scene"), std::slice::from_ref(&dir));
-        assert!(wide.check(&dir.join("secret.txt"), "mesh").is_ok());
+        assert!(wide.open(&dir.join("secret.txt"), "mesh").is_ok());
         let _ = std::fs::remove_dir_all(&dir);
     }
 

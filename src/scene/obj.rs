@@ -8,7 +8,7 @@
 //! corners (fan-triangulated). Grouping, smoothing groups (`s`), material and line
 //! statements are ignored, as are statements this renderer has no use for.
 
-use super::files::{excerpt, read_regular, MAX_FILE_BYTES};
+use super::files::{excerpt, read_regular, Opened, MAX_FILE_BYTES};
 use super::Mesh;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -62,8 +62,15 @@ pub const PARSE_BYTES_PER_BYTE: u64 = 24;
 
 /// Reads and parses an OBJ file into a triangle mesh named `name`.
 pub fn load_obj(path: &Path, name: &str) -> Result<Mesh, ObjError> {
-    let text = read(path)?;
-    parse_obj(&text, path, name)
+    let bytes = read_regular(path, "mesh file", MAX_FILE_BYTES)
+        .map_err(|message| ObjError::Read { message })?;
+    parse_obj(&text(bytes, path)?, path, name)
+}
+
+/// [`load_obj`] for a file the scene's read rule opened ([`ReadPolicy::open`](super::files::ReadPolicy::open)).
+pub fn load_opened_obj(file: Opened, name: &str) -> Result<Mesh, ObjError> {
+    let path = file.path.clone();
+    parse_obj(&opened_text(file)?, &path, name)
 }
 
 /// Parses OBJ text; `path` is only used in error messages.
@@ -78,9 +85,10 @@ pub type RawObj = (Vec<[f64; 3]>, Vec<Vec<u32>>);
 /// Reads an OBJ file as plain tables, for the Lua `readobj` built-in: vertex positions and
 /// polygons with 0-based position indices (texture and normal indices dropped), exactly
 /// the shape of the inline `gr.mesh(name, verts, faces)` form.
-pub fn read_obj_raw(path: &Path) -> Result<RawObj, ObjError> {
-    let text = read(path)?;
-    let parsed = parse(&text, path)?;
+pub fn read_obj_raw(file: Opened) -> Result<RawObj, ObjError> {
+    let path = file.path.clone();
+    let text = opened_text(file)?;
+    let parsed = parse(&text, &path)?;
     let faces = parsed
         .faces
         .into_iter()
@@ -89,10 +97,17 @@ pub fn read_obj_raw(path: &Path) -> Result<RawObj, ObjError> {
     Ok((parsed.positions, faces))
 }
 
-/// Reads a mesh file: a regular file of at most [`MAX_FILE_BYTES`], OBJ text.
-fn read(path: &Path) -> Result<String, ObjError> {
-    let bytes = read_regular(path, "mesh file", MAX_FILE_BYTES)
+/// Reads an opened mesh file: at most [`MAX_FILE_BYTES`], OBJ text.
+fn opened_text(file: Opened) -> Result<String, ObjError> {
+    let path = file.path.clone();
+    let bytes = file
+        .read("mesh file", MAX_FILE_BYTES)
         .map_err(|message| ObjError::Read { message })?;
+    text(bytes, &path)
+}
+
+/// A mesh file's bytes as OBJ text (`path` for messages).
+fn text(bytes: Vec<u8>, path: &Path) -> Result<String, ObjError> {
     if bytes.contains(&0) {
         return Err(ObjError::NotText {
             path: path.to_path_buf(),
@@ -477,10 +492,11 @@ mod tests {
         let p = dir.join("q.obj");
         std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1/1/1 2/2/2 3/3/3 4/4/4\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\n").ok();
         // Forward references (elements defined after the face) are accepted.
-        let (v, f) = read_obj_raw(&p).unwrap();
+        let policy = crate::scene::files::ReadPolicy::new(&dir, &[]);
+        let (v, f) = read_obj_raw(policy.open(&p, "mesh file").unwrap()).unwrap();
         assert_eq!((v.len(), f.len()), (4, 1));
         std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap();
-        let (v, f) = read_obj_raw(&p).unwrap();
+        let (v, f) = read_obj_raw(policy.open(&p, "mesh file").unwrap()).unwrap();
         assert_eq!(v.len(), 4);
         assert_eq!(f, vec![vec![0, 1, 2, 3]]);
         std::fs::remove_dir_all(&dir).ok();

@@ -5,7 +5,8 @@
 //! found in neither names both paths tried, and a case-only near miss (`eevee.obj` for
 //! `Eevee.obj`, which worked on the author's macOS disk) is offered.
 
-use super::files::ReadPolicy;
+use super::files::{Opened, ReadPolicy};
+use crate::folder_walk::{self, FileId};
 use std::path::{Component, Path, PathBuf};
 
 /// The folders relative paths resolve against.
@@ -26,14 +27,10 @@ impl SceneFolders {
         } else {
             scene_dir
         };
-        let home = std::env::var_os("HOME").and_then(|h| Path::new(&h).canonicalize().ok());
-        let start = match (
-            std::env::current_dir().and_then(|d| d.canonicalize()),
-            scene_dir.canonicalize(),
-        ) {
-            (Ok(start), Ok(scene)) => start_folder(&start, &scene, home.as_deref()),
-            _ => None,
-        };
+        let home = std::env::var_os("HOME").map(PathBuf::from);
+        let start = std::env::current_dir()
+            .ok()
+            .filter(|_| start_counts(Path::new("."), scene_dir, home.as_deref()));
         SceneFolders {
             scene: scene_dir.to_path_buf(),
             start,
@@ -45,14 +42,9 @@ impl SceneFolders {
         self.start.iter().cloned().collect()
     }
 
-    /// The file `written` (as the scene wrote it) names: the path to read it at and its
-    /// canonical form, or why it cannot be read (`what`: "mesh file", "texture", …).
-    pub fn find(
-        &self,
-        policy: &ReadPolicy,
-        written: &str,
-        what: &str,
-    ) -> Result<(PathBuf, PathBuf), String> {
+    /// The file `written` (as the scene wrote it) names, opened (see
+    /// [`ReadPolicy::open`]), or why it cannot be read (`what`: "mesh file", "texture", …).
+    pub fn find(&self, policy: &ReadPolicy, written: &str, what: &str) -> Result<Opened, String> {
         let rel = Path::new(written);
         let mut tried = vec![(self.scene.join(rel), self.scene.clone())];
         if let Some(start) = &self.start {
@@ -64,13 +56,11 @@ impl SceneFolders {
             tried.iter().filter(|(p, _)| policy.allows(p)).collect();
         let Some(first) = allowed.first() else {
             // Outside every readable folder: refused as such, whether or not it exists.
-            return policy
-                .check(&tried[0].0, what)
-                .map(|c| (tried[0].0.clone(), c));
+            return policy.open(&tried[0].0, what);
         };
         for (path, _) in &allowed {
-            if std::fs::symlink_metadata(path).is_ok() {
-                return policy.check(path, what).map(|c| (path.clone(), c));
+            if policy.present(path) {
+                return policy.open(path, what);
             }
         }
         let near = allowed
@@ -79,7 +69,7 @@ impl SceneFolders {
             .map(|p| format!("; did you mean '{}'?", crate::display_path::shown(&p)))
             .unwrap_or_default();
         if allowed.len() == 1 {
-            let error = policy.check(&first.0, what).err().unwrap_or_default();
+            let error = policy.open(&first.0, what).err().unwrap_or_default();
             return Err(error + &near);
         }
         Err(format!(
@@ -90,13 +80,24 @@ impl SceneFolders {
     }
 }
 
-/// The start folder `start` as a second folder for a scene in `scene` (both canonical):
-/// only when the scene lies below it, and never the filesystem's root or the home folder
-/// `home` (a scene anywhere below those would gain the whole disk or every file of the
-/// user; the course's layout is an assignment folder).
-fn start_folder(start: &Path, scene: &Path, home: Option<&Path>) -> Option<PathBuf> {
-    let too_wide = start.parent().is_none() || Some(start) == home;
-    (scene.starts_with(start) && scene != start && !too_wide).then(|| start.to_path_buf())
+/// Whether the start folder `start` counts as a second folder for a scene in `scene`:
+/// only when the scene lies below it, and never when it is the filesystem's root or the
+/// home folder `home` (a scene anywhere below those would gain the whole disk or every
+/// file of the user; the course's layout is an assignment folder). Judged by the
+/// folders' identities, not their absolute paths (which may be past PATH_MAX).
+fn start_counts(start: &Path, scene: &Path, home: Option<&Path>) -> bool {
+    let id = |p: &Path| {
+        folder_walk::open_folder(p)
+            .and_then(|fd| FileId::of_fd(&fd))
+            .ok()
+    };
+    let (Ok(scene_fd), Some(start_id)) = (folder_walk::open_folder(scene), id(start)) else {
+        return false;
+    };
+    let too_wide = Some(start_id) == id(Path::new("/")) || Some(start_id) == home.and_then(id);
+    !too_wide
+        && FileId::of_fd(&scene_fd).is_ok_and(|scene_id| scene_id != start_id)
+        && folder_walk::lies_within(&scene_fd, &[start_id])
 }
 
 /// `rel` under `base` with each component that does not exist replaced by the one entry
@@ -143,13 +144,16 @@ mod tests {
 
     #[test]
     fn the_start_folder_counts_only_above_the_scene_and_never_root_or_home() {
-        let (a4, home) = (Path::new("/h/me/a4"), Some(Path::new("/h/me")));
-        let assets = Path::new("/h/me/a4/Assets");
-        assert_eq!(start_folder(a4, assets, home), Some(a4.to_path_buf()));
-        assert_eq!(start_folder(a4, a4, home), None, "the scene's own folder");
-        assert_eq!(start_folder(a4, Path::new("/h/me/other"), home), None);
-        assert_eq!(start_folder(Path::new("/h/me"), assets, home), None, "home");
-        assert_eq!(start_folder(Path::new("/"), assets, home), None, "root");
+        let (_dir, me) = crate::testing::scratch::temp_file("paths-start", "h/me");
+        let (a4, assets, other) = (me.join("a4"), me.join("a4/Assets"), me.join("other"));
+        std::fs::create_dir_all(&assets).unwrap();
+        std::fs::create_dir_all(&other).unwrap();
+        let home = Some(me.as_path());
+        assert!(start_counts(&a4, &assets, home));
+        assert!(!start_counts(&a4, &a4, home), "the scene's own folder");
+        assert!(!start_counts(&a4, &other, home));
+        assert!(!start_counts(&me, &assets, home), "home");
+        assert!(!start_counts(Path::new("/"), &assets, home), "root");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! stored (8-bit RGBA, no gamma decoding): the scene language's colours are linear values
 //! written as computed, so a texture on a fully lit matte surface reproduces itself.
 
-use super::files::{read_regular, MAX_FILE_BYTES};
+use super::files::{read_regular, Opened, MAX_FILE_BYTES};
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
@@ -48,8 +48,23 @@ pub fn texture_format(bytes: &[u8]) -> Option<image::ImageFormat> {
 /// be long enough to hold the pixels its header claims (a 700-byte file claiming
 /// 8000×8000 is a truncated or forged one). Errors name the path and what went wrong.
 pub fn load_texture(path: &Path, max_bytes: u64) -> Result<Texture, String> {
-    let bytes = read_regular(path, "texture", MAX_FILE_BYTES)?;
-    let format = texture_format(&bytes).ok_or_else(|| {
+    decode_texture(
+        path,
+        &read_regular(path, "texture", MAX_FILE_BYTES)?,
+        max_bytes,
+    )
+}
+
+/// [`load_texture`] for a file the scene's read rule opened
+/// ([`ReadPolicy::open`](super::files::ReadPolicy::open)).
+pub fn load_opened_texture(file: Opened, max_bytes: u64) -> Result<Texture, String> {
+    let path = file.path.clone();
+    decode_texture(&path, &file.read("texture", MAX_FILE_BYTES)?, max_bytes)
+}
+
+/// Decodes the bytes of the texture file `path` (see [`load_texture`]).
+fn decode_texture(path: &Path, bytes: &[u8], max_bytes: u64) -> Result<Texture, String> {
+    let format = texture_format(bytes).ok_or_else(|| {
         format!(
             "cannot decode texture '{}': not a PNG or JPEG image (by its content); textures are PNG or JPEG",
             crate::display_path::shown(path)
@@ -65,7 +80,7 @@ pub fn load_texture(path: &Path, max_bytes: u64) -> Result<Texture, String> {
     limits.max_image_width = Some(MAX_TEXTURE_SIDE);
     limits.max_image_height = Some(MAX_TEXTURE_SIDE);
     limits.max_alloc = Some(max_bytes);
-    let mut reader = image::ImageReader::with_format(Cursor::new(&bytes[..]), format);
+    let mut reader = image::ImageReader::with_format(Cursor::new(bytes), format);
     reader.limits(limits.clone());
     let decoder = reader.into_decoder().map_err(|e| match e {
         image::ImageError::Limits(_) => over_budget(path, "its header", max_bytes),
@@ -139,8 +154,7 @@ mod tests {
 
     #[test]
     fn missing_and_undecodable_files_name_the_path() {
-        let dir = crate::testing::scratch::temp_dir("texture");
-        let missing = dir.join("missing.png");
+        let (dir, missing) = crate::testing::scratch::temp_file("texture", "missing.png");
         let e = load_texture(&missing, u64::MAX).unwrap_err();
         assert!(
             e.starts_with("cannot read texture '") && e.contains("missing.png"),

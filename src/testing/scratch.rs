@@ -18,6 +18,14 @@ pub fn temp_dir(tag: &str) -> TempDir {
     TempDir(dir)
 }
 
+/// A fresh scratch folder ([`temp_dir`]) and the path of a file `name` in it (not yet
+/// created): the start of most tests of a reader or a writer.
+pub fn temp_file(tag: &str, name: &str) -> (TempDir, PathBuf) {
+    let dir = temp_dir(tag);
+    let path = dir.join(name);
+    (dir, path)
+}
+
 /// A test's scratch folder ([`temp_dir`]); derefs to its path, removed on drop unless the
 /// thread is panicking.
 pub struct TempDir(PathBuf);

@@ -3122,36 +3122,246 @@ fn a_dangling_link_at_an_output_name_is_replaced() {
     assert!(!dir.join("nowhere").exists());
 }
 
-/// Started in a folder whose absolute path is over PATH_MAX (22 folders of 200 bytes),
-/// glint says why it cannot work there — the read and write rules resolve absolute
-/// paths, which the system cannot open past 4 096 bytes — rather than that `.` is "not a
-/// folder". (Resolving through folder handles, so that such a scene could read its own
-/// mesh, is not built: docs/limits.md.)
-#[test]
-fn a_start_folder_past_path_max_is_said_as_such() {
-    let (dir, _logs, _root) = case_dir("deep-start");
-    let descend = format!(
-        "for i in $(seq 22); do mkdir {0} && cd -P {0} || exit 99; done\n\
-         printf \"gr.node('root')\\n\" > scene.lua",
-        "d".repeat(200)
-    );
+/// How many folders of [`DEEP_NAME`] a deep case nests: 22 of 201 bytes, 4 422 bytes
+/// below the case's folder, past PATH_MAX (4 096) whatever the scratch folder's path.
+const DEEP_LEVELS: usize = 22;
+
+fn deep_name() -> String {
+    "d".repeat(200)
+}
+
+/// A shell line that creates (`mkdir -p`) and enters the deep folder one level at a time
+/// (each `cd` short, the whole path past PATH_MAX), failing with 99 if it cannot.
+fn descend_deep() -> String {
+    format!(
+        "for i in $(seq {DEEP_LEVELS}); do mkdir -p {0} && cd -P {0} || exit 99; done",
+        deep_name()
+    )
+}
+
+/// Runs `script` in the deep folder below `dir` (entered as [`descend_deep`] does) and
+/// returns its standard output: how the test writes and reads files there, independently
+/// of glint's own folder walk.
+fn in_deep(dir: &Path, script: &str) -> Vec<u8> {
+    let out = Command::new("sh")
+        .arg("-c")
+        .arg(format!("{}\n{script}", descend_deep()))
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{script}: {:?}", out);
+    out.stdout
+}
+
+/// A textured square: a mesh file with texture coordinates and a PNG, both read by name.
+const DEEP_OBJ: &str =
+    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
+
+/// A scene reading `mesh` and `texture` and writing `out.png`.
+fn deep_scene(mesh: &str, texture: &str) -> String {
+    format!(
+        "root = gr.node('root')\nlocal m = gr.mesh('m', '{mesh}')\nlocal mat = gr.material({{1, 1, 1}}, {{0, 0, 0}}, 1)\nmat:set_diffuse('{texture}')\nm:set_material(mat)\nroot:add_child(m)\ngr.render(root, 'out.png', 16, 16, {{0,0,3}}, {{0,0,-1}}, {{0,1,0}}, 50, {{0.2,0.2,0.2}}, {{gr.light({{0,0,5}}, {{1,1,1}}, {{1,0,0}})}}, {{aa='none'}})\n"
+    )
+}
+
+/// A PNG whose texels differ (so that a wrong texture shows in the image).
+fn gradient_png() -> Vec<u8> {
+    let mut bytes = Vec::new();
+    image::RgbImage::from_fn(4, 4, |x, y| image::Rgb([60 * x as u8, 60 * y as u8, 90]))
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .unwrap();
+    bytes
+}
+
+/// The image the deep scenes must make: the same scene rendered in a shallow folder.
+fn shallow_reference(root: &Path) -> Vec<u8> {
+    let dir = root.join("shallow");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("scene.lua"), deep_scene("m.obj", "t.png")).unwrap();
+    std::fs::write(dir.join("m.obj"), DEEP_OBJ).unwrap();
+    std::fs::write(dir.join("t.png"), gradient_png()).unwrap();
     let args = ["render", "scene.lua", "--backend", "cpu"];
-    let ended = run_glint_env(
-        &args,
+    let ended = run_glint_env(&args, &dir, &[], None, Duration::from_secs(30), &mut |_| {
+        false
+    });
+    ended_as("shallow", &ended, 0, &[], BUDGET_MIB + OVERHEAD_MIB);
+    std::fs::read(dir.join("out.png")).unwrap()
+}
+
+/// Runs `script` in `dir` (after `prefix`, a shell line) with the scene, the mesh and
+/// the texture given to it as `$1`, `$2` and its standard input.
+fn write_scene_files(dir: &Path, prefix: &str, script: &str, scene: &str) {
+    use std::io::Write;
+    let mut writer = Command::new("sh")
+        .arg("-c")
+        .arg(format!("{prefix}\n{script}"))
+        .arg("sh")
+        .arg(scene)
+        .arg(DEEP_OBJ)
+        .current_dir(dir)
+        .stdin(Stdio::piped())
+        .spawn()
+        .unwrap();
+    writer
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(&gradient_png())
+        .unwrap();
+    assert!(writer.wait().unwrap().success(), "{script}");
+}
+
+/// Started in a folder whose absolute path is over PATH_MAX (22 folders of 200 bytes),
+/// a scene reads its mesh and its texture beside it and writes its image, its tiles and
+/// `assemble`'s output there, each the image the same scene makes in a shallow folder,
+/// with nothing else left behind: the read and write rules walk folder handles, never
+/// absolute paths.
+#[test]
+fn a_scene_past_path_max_reads_its_mesh_and_texture_and_writes_beside_it() {
+    let (dir, _logs, root) = case_dir("deep-start");
+    let reference = shallow_reference(&root);
+    write_scene_files(
         &dir,
-        &[],
-        Some(&descend),
-        Duration::from_secs(20),
-        &mut |_| false,
+        &descend_deep(),
+        "printf '%s' \"$1\" > scene.lua && printf '%s' \"$2\" > m.obj && cat > t.png",
+        &deep_scene("m.obj", "t.png"),
     );
-    ended_as(
-        "deep-start",
-        &ended,
-        2,
+    let runs: [&[&str]; 4] = [
+        &["render", "scene.lua", "--backend", "cpu"],
+        &["render", "scene.lua", "--backend", "cpu", "--tile", "0/2"],
+        &["render", "scene.lua", "--backend", "cpu", "--tile", "1/2"],
         &[
-            "cannot write under '.'",
-            "over the system's limit of 4096 (PATH_MAX)",
+            "assemble",
+            "-o",
+            "all.png",
+            "out-tile-0-of-2.png",
+            "out-tile-1-of-2.png",
         ],
-        512,
+    ];
+    for args in runs {
+        let ended = run_glint_env(
+            args,
+            &dir,
+            &[],
+            Some(&descend_deep()),
+            Duration::from_secs(30),
+            &mut |_| false,
+        );
+        ended_as(&args.join(" "), &ended, 0, &[], BUDGET_MIB + OVERHEAD_MIB);
+    }
+    let listing = String::from_utf8(in_deep(&dir, "ls -A")).unwrap();
+    assert_eq!(
+        listing.lines().collect::<Vec<_>>(),
+        [
+            "all.png",
+            "m.obj",
+            "out-tile-0-of-2.png",
+            "out-tile-1-of-2.png",
+            "out.png",
+            "scene.lua",
+            "t.png"
+        ],
+        "files left behind or missing"
     );
+    assert_eq!(in_deep(&dir, "cat out.png"), reference, "the render");
+    let assembled = image::load_from_memory(&in_deep(&dir, "cat all.png")).unwrap();
+    let whole = image::load_from_memory(&reference).unwrap();
+    assert_eq!(assembled.to_rgb8(), whole.to_rgb8(), "the assembled tiles");
+}
+
+/// Started in a shallow folder, a scene named by a relative path (4 090 bytes: the system
+/// opens it) whose absolute path is past PATH_MAX reads its mesh and its texture, the
+/// texture by a name whose path from the start folder is itself past PATH_MAX
+/// (`tex/../tex/../tex/t.png`, which only a walk from folder handles opens).
+#[test]
+fn a_scene_whose_absolute_path_is_past_path_max_reads_beside_it() {
+    let (dir, _logs, root) = case_dir("deep-relative");
+    let reference = shallow_reference(&root);
+    let mut relative = vec![deep_name(); 20];
+    relative.push("e".repeat(60));
+    let relative = relative.join("/");
+    let texture = "tex/../tex/../tex/t.png";
+    let scene = format!("{relative}/scene.lua");
+    assert!(scene.len() < libc::PATH_MAX as usize);
+    assert!(dir.join(&scene).as_os_str().len() > libc::PATH_MAX as usize);
+    assert!(relative.len() + 1 + texture.len() > libc::PATH_MAX as usize);
+    // (Each name the shell opens is under PATH_MAX; `cd` there would not be.)
+    write_scene_files(
+        &dir,
+        &format!("mkdir -p {relative}/tex || exit 99"),
+        &format!(
+            "printf '%s' \"$1\" > {relative}/scene.lua && printf '%s' \"$2\" > {relative}/m.obj && cat > {relative}/tex/t.png"
+        ),
+        &deep_scene("m.obj", texture),
+    );
+    let args = ["render", scene.as_str(), "--backend", "cpu"];
+    let ended = run_glint_env(&args, &dir, &[], None, Duration::from_secs(30), &mut |_| {
+        false
+    });
+    ended_as("deep-relative", &ended, 0, &[], BUDGET_MIB + OVERHEAD_MIB);
+    assert_eq!(std::fs::read(dir.join("out.png")).unwrap(), reference);
+}
+
+/// In a folder past PATH_MAX the sandbox holds as anywhere: a symbolic link to a file
+/// outside, `..` out of it, and an output through a link to a folder outside are
+/// refused, naming the flag; nothing is written outside.
+#[test]
+fn a_folder_past_path_max_still_refuses_links_and_dots_out_of_it() {
+    let (dir, _logs, _root) = case_dir("deep-escape");
+    std::fs::write(dir.join("secret.obj"), DEEP_OBJ).unwrap();
+    std::fs::create_dir(dir.join("elsewhere")).unwrap();
+    let up = vec![".."; DEEP_LEVELS].join("/");
+    let outside = dir.display().to_string();
+    for (tag, scene, needle) in [
+        (
+            "deep-link-out",
+            deep_scene("link.obj", "t.png"),
+            "link.obj': it is outside the folders this scene may read",
+        ),
+        (
+            "deep-dots-out",
+            deep_scene(&format!("{up}/secret.obj"), "t.png"),
+            "secret.obj': it is outside the folders this scene may read",
+        ),
+        (
+            "deep-write-out",
+            deep_scene("m.obj", "t.png").replace("'out.png'", "'away/out.png'"),
+            "cannot write 'away/out.png': it is outside the folders this scene may write",
+        ),
+    ] {
+        write_scene_files(
+            &dir,
+            &descend_deep(),
+            &format!(
+                "printf '%s' \"$1\" > scene.lua && printf '%s' \"$2\" > m.obj && cat > t.png && ln -sfn '{outside}/secret.obj' link.obj && ln -sfn '{outside}/elsewhere' away"
+            ),
+            &scene,
+        );
+        let args = ["render", "scene.lua", "--backend", "cpu"];
+        let ended = run_glint_env(
+            &args,
+            &dir,
+            &[],
+            Some(&descend_deep()),
+            Duration::from_secs(30),
+            &mut |_| false,
+        );
+        ended_as(
+            tag,
+            &ended,
+            3,
+            &[needle, "--allow-"],
+            BUDGET_MIB + OVERHEAD_MIB,
+        );
+        assert!(listing(&dir.join("elsewhere")).is_empty(), "{tag}");
+        let left = String::from_utf8(in_deep(&dir, "ls -A")).unwrap();
+        assert_eq!(
+            left.lines().collect::<Vec<_>>(),
+            ["away", "link.obj", "m.obj", "scene.lua", "t.png"],
+            "{tag}"
+        );
+    }
 }

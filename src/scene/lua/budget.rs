@@ -5,8 +5,8 @@
 use super::args::Args;
 use super::limits::reach_limit;
 use super::with_state;
+use crate::scene::files::Opened;
 use mlua::Lua;
-use std::path::Path;
 
 /// How much of the budget one byte of the Lua heap takes: Lua counts the bytes it asks
 /// for, the C allocator adds a header and rounds each block up (a short string of 25
@@ -37,16 +37,18 @@ pub(crate) fn memory_left(lua: &Lua) -> u64 {
 /// Refuses to read the file at `path` when holding it while it is parsed or decoded
 /// (`factor` bytes per byte of file) would not fit the memory budget left. A file that
 /// cannot be examined passes here: reading it then reports why.
-pub(crate) fn check_file_cost(a: &Args, path: &Path, factor: u64, what: &str) -> mlua::Result<()> {
-    let Ok(meta) = std::fs::metadata(path) else {
-        return Ok(());
-    };
+pub(crate) fn check_file_cost(
+    a: &Args,
+    file: &Opened,
+    factor: u64,
+    what: &str,
+) -> mlua::Result<()> {
     let left = memory_left(a.lua);
-    if meta.is_file() && meta.len().saturating_mul(factor) > left {
+    if file.len.saturating_mul(factor) > left {
         return Err(reach_limit(a, format!(
             "{what} '{}' is {} MiB; reading it may take up to {factor}× that, over the {} MiB left of the memory limit; --memory-limit MIB raises it",
-            crate::display_path::shown(path),
-            meta.len().div_ceil(1 << 20),
+            crate::display_path::shown(&file.path),
+            file.len.div_ceil(1 << 20),
             left >> 20
         )));
     }

@@ -7,7 +7,7 @@ use super::args::Args;
 use super::budget::{charge, check_file_cost, memory_left};
 use super::limits::reach_limit;
 use super::with_state;
-use crate::scene::texture::{load_texture, texture_bytes, OVER_BUDGET};
+use crate::scene::texture::{load_opened_texture, texture_bytes, OVER_BUDGET};
 use crate::scene::{Material, TextureId};
 use mlua::Value;
 use std::sync::Arc;
@@ -72,15 +72,16 @@ pub(super) fn set_bump(a: &Args) -> mlua::Result<Edit> {
 fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
     let file = a.file_name(n, name)?;
     let found = with_state(a.lua, |s| s.folders.find(&s.read_policy, &file, "texture"));
-    let (path, canonical) = found.map_err(|e| a.bad_in(n, name, e))?;
-    if let Some(id) = with_state(a.lua, |s| s.texture_cache.get(&canonical).copied()) {
+    let opened = found.map_err(|e| a.bad_in(n, name, e))?;
+    let key = opened.id;
+    if let Some(id) = with_state(a.lua, |s| s.texture_cache.get(&key).copied()) {
         return Ok(id);
     }
     // The file is held while it is decoded.
-    check_file_cost(a, &path, 1, "texture")?;
+    check_file_cost(a, &opened, 1, "texture")?;
     // The file is held while it is decoded; the decoder counts the rest itself.
-    let left = memory_left(a.lua).saturating_sub(std::fs::metadata(&path).map_or(0, |m| m.len()));
-    let texture = load_texture(&path, left).map_err(|e| {
+    let left = memory_left(a.lua).saturating_sub(opened.len);
+    let texture = load_opened_texture(opened, left).map_err(|e| {
         if e.contains(OVER_BUDGET) {
             // The memory budget refused it: a reached limit, final as the others are.
             reach_limit(a, format!("argument {n} ({name}): {e}"))
@@ -96,7 +97,7 @@ fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
     Ok(with_state(a.lua, |s| {
         s.graph.textures.push(Arc::new(texture));
         let id = s.graph.textures.len() - 1;
-        s.texture_cache.insert(canonical, id);
+        s.texture_cache.insert(key, id);
         id
     }))
 }

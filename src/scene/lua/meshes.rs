@@ -21,17 +21,19 @@ pub(super) fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
             let found = with_state(a.lua, |s| {
                 s.folders.find(&s.read_policy, &file, "mesh file")
             });
-            let (path, canonical) = found.map_err(|e| a.error(e))?;
-            match with_state(a.lua, |s| s.mesh_cache.get(&canonical).copied()) {
+            let opened = found.map_err(|e| a.error(e))?;
+            let key = opened.id;
+            match with_state(a.lua, |s| s.mesh_cache.get(&key).copied()) {
                 Some(id) => id,
                 None => {
-                    check_file_cost(a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
-                    let mesh = crate::scene::obj::load_obj(&path, &name).map_err(|e| a.error(e))?;
+                    check_file_cost(a, &opened, PARSE_BYTES_PER_BYTE, "mesh file")?;
+                    let mesh = crate::scene::obj::load_opened_obj(opened, &name)
+                        .map_err(|e| a.error(e))?;
                     charge(a, mesh_bytes(&mesh), &format!("mesh file '{file}'"))?;
                     with_state(a.lua, |s| {
                         s.graph.meshes.push(mesh);
                         let id = s.graph.meshes.len() - 1;
-                        s.mesh_cache.insert(canonical, id);
+                        s.mesh_cache.insert(key, id);
                         id
                     })
                 }

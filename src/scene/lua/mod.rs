@@ -80,12 +80,12 @@ pub(crate) struct State {
     /// The folders the scene may read.
     pub read_policy: ReadPolicy,
     pub report: ScriptReport,
-    /// Mesh files already loaded (by canonical path), so instancing a file twice, under
-    /// any spelling of its path, shares the triangles.
-    pub mesh_cache: HashMap<PathBuf, MeshId>,
-    /// Image files already loaded (by canonical path), so materials naming the same
-    /// file share its texels.
-    pub texture_cache: HashMap<PathBuf, crate::scene::TextureId>,
+    /// Mesh files already loaded (by identity: device and inode), so instancing a file
+    /// twice, under any spelling of its path, shares the triangles.
+    pub mesh_cache: HashMap<crate::folder_walk::FileId, MeshId>,
+    /// Image files already loaded (by identity), so materials naming the same file share
+    /// its texels.
+    pub texture_cache: HashMap<crate::folder_walk::FileId, crate::scene::TextureId>,
     /// The caller's render error, kept whole (Lua can only carry a string of it).
     pub render_error: Option<(String, anyhow::Error)>,
     /// The memory budget ([`ScriptConfig::memory_limit`]).

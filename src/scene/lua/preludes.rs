@@ -4,25 +4,30 @@
 //!
 //! A prelude's folder is readable (its own modules and assets). Its `require` calls look
 //! for modules beside it (a folder of preludes can share helpers), not beside the scene,
-//! and what it loads is cached by canonical path, so a file given twice, or given and
+//! and what it loads is cached by identity (device and inode), so a file given twice, or given and
 //! also required by another prelude, runs once. Each prelude receives its path and its
-//! folder (canonical, absolute) as `...`. Errors inside a prelude name its file and line.
+//! folder (canonical and absolute where the system can give it) as `...`. Errors inside a
+//! prelude name its file and line.
 
 use super::config::ScriptConfig;
 use super::errors::SceneError;
 use super::with_state;
+use crate::folder_walk::{self, FileId};
 use crate::scene::files::{read_regular, MAX_FILE_BYTES};
 use mlua::chunk::ChunkMode;
 use mlua::{Lua, Table, Value};
+use std::os::fd::OwnedFd;
 use std::path::{Path, PathBuf};
 
 /// A prelude read before the script starts.
 pub(super) struct Prelude {
     /// As given (messages name it so).
     path: PathBuf,
-    /// Canonical: the key that keeps it from running twice.
-    canonical: PathBuf,
-    /// Its canonical folder: readable, and where its `require` looks.
+    /// Its identity: the key that keeps it from running twice (as the modules of
+    /// preludes are keyed).
+    key: String,
+    /// Its folder (canonical where the system can give one): readable, and where its
+    /// `require` looks.
     folder: PathBuf,
     source: Vec<u8>,
 }
@@ -37,18 +42,26 @@ pub(super) fn read_all(paths: &[PathBuf]) -> Result<Vec<Prelude>, SceneError> {
                 message,
             };
             let source = read_regular(path, "prelude", MAX_FILE_BYTES).map_err(fail)?;
-            let canonical = path.canonicalize().map_err(|e| {
-                fail(format!(
-                    "cannot read prelude '{}': {e}",
-                    crate::display_path::shown(path)
-                ))
-            })?;
-            let folder = canonical
-                .parent()
-                .map_or_else(|| PathBuf::from("/"), Path::to_path_buf);
+            // Canonical where the system can give it; else (a folder past PATH_MAX) as
+            // given, which the rules judge by the folder itself.
+            let folder = match path.canonicalize() {
+                Ok(canonical) if canonical.is_file() => canonical.parent().map(Path::to_path_buf),
+                _ => path.parent().map(Path::to_path_buf),
+            };
+            let folder = folder
+                .filter(|f| !f.as_os_str().is_empty())
+                .unwrap_or_else(|| PathBuf::from("."));
+            let key = crate::folder_walk::FileId::of_path(path)
+                .map_err(|e| {
+                    fail(format!(
+                        "cannot read prelude '{}': {e}",
+                        crate::display_path::shown(path)
+                    ))
+                })?
+                .key();
             Ok(Prelude {
                 path: path.clone(),
-                canonical,
+                key,
                 folder,
                 source,
             })
@@ -60,34 +73,43 @@ pub(super) fn read_all(paths: &[PathBuf]) -> Result<Vec<Prelude>, SceneError> {
 /// that are not too wide ([`too_wide`]: such a prelude reads its own folder, for its
 /// modules, but the scene gains nothing from it).
 pub(super) fn readable(config: &ScriptConfig, preludes: &[Prelude]) -> Vec<PathBuf> {
-    let home = std::env::var_os("HOME").and_then(|h| Path::new(&h).canonicalize().ok());
-    let start = std::env::current_dir().and_then(|d| d.canonicalize()).ok();
+    let home = std::env::var_os("HOME").map(PathBuf::from);
     let mut folders = config.allow_read.clone();
     folders.extend(
         preludes
             .iter()
-            .filter(|p| !too_wide(&p.folder, start.as_deref(), home.as_deref()))
+            .filter(|p| !too_wide(&p.folder, Path::new("."), home.as_deref()))
             .map(|p| p.folder.clone()),
     );
     folders
 }
 
-/// Whether a prelude's (canonical) `folder` would open too much to a scene: the
-/// filesystem's root, the home folder `home` or a folder above it, or a folder above the
-/// start folder `start` (the rule the start folder follows: `--prelude ~/dialect.lua`
-/// must not make every file of the user readable to a downloaded scene).
-fn too_wide(folder: &Path, start: Option<&Path>, home: Option<&Path>) -> bool {
-    folder.parent().is_none()
-        || home.is_some_and(|home| home.starts_with(folder))
-        || start.is_some_and(|start| start.starts_with(folder) && start != folder)
+/// Whether a prelude's `folder` would open too much to a scene: the filesystem's root,
+/// the home folder `home` or a folder above it, or a folder above the start folder
+/// `start` (the rule the start folder follows: `--prelude ~/dialect.lua` must not make
+/// every file of the user readable to a downloaded scene). Judged by the folders'
+/// identities ([`folder_walk::lies_within`]), not their absolute paths.
+fn too_wide(folder: &Path, start: &Path, home: Option<&Path>) -> bool {
+    let open = |p: &Path| folder_walk::open_folder(p).ok();
+    let id = |fd: &OwnedFd| FileId::of_fd(fd).ok();
+    let Some(folder_id) = open(folder).as_ref().and_then(id) else {
+        return false; // Not a folder: nothing under it is readable anyway.
+    };
+    let root = open(Path::new("/")).as_ref().and_then(id);
+    let holds =
+        |inner: &Path| open(inner).is_some_and(|fd| folder_walk::lies_within(&fd, &[folder_id]));
+    let start_id = open(start).as_ref().and_then(id);
+    Some(folder_id) == root
+        || home.is_some_and(holds)
+        || (holds(start) && start_id != Some(folder_id))
 }
 
 /// Runs the preludes in order (each at most once), before the scene.
 pub(super) fn run_all(lua: &Lua, preludes: &[Prelude]) -> mlua::Result<()> {
     let loaded: Table = lua.named_registry_value(super::LOADED_KEY)?;
     for prelude in preludes {
-        let key = prelude.canonical.to_string_lossy().into_owned();
-        if !loaded.raw_get::<Value>(key.as_str())?.is_nil() {
+        let key = prelude.key.as_str();
+        if !loaded.raw_get::<Value>(key)?.is_nil() {
             continue;
         }
         let shown = crate::display_path::shown(&prelude.path);
@@ -132,24 +154,25 @@ pub(super) fn adopt_module(lua: &Lua, chunk: &str, dir: &Path) {
 #[cfg(test)]
 mod tests {
     use super::too_wide;
+    use crate::testing::scratch::temp_dir as glint_scratch;
     use std::path::Path;
 
     #[test]
     fn root_home_and_folders_above_the_start_are_too_wide_for_a_scene() {
-        let (start, home) = (Some(Path::new("/h/me/a4")), Some(Path::new("/h/me")));
-        assert!(too_wide(Path::new("/"), start, home), "root");
-        assert!(too_wide(Path::new("/h/me"), start, home), "home");
-        assert!(too_wide(Path::new("/h"), start, home), "above home");
-        let outside = (Some(Path::new("/srv/a4")), home);
-        assert!(
-            too_wide(Path::new("/srv"), outside.0, outside.1),
-            "above start"
-        );
-        assert!(
-            !too_wide(Path::new("/h/me/a4"), start, home),
-            "the start folder"
-        );
-        assert!(!too_wide(Path::new("/h/me/dialects"), start, home));
-        assert!(!too_wide(Path::new("/h/me/a4/dialects"), start, home));
+        let dir = glint_scratch("preludes-wide");
+        let (h, me) = (dir.join("h"), dir.join("h/me"));
+        let (a4, srv, srv_a4) = (me.join("a4"), dir.join("srv"), dir.join("srv/a4"));
+        let (dialects, inner) = (me.join("dialects"), me.join("a4/dialects"));
+        for d in [&a4, &srv_a4, &dialects, &inner] {
+            std::fs::create_dir_all(d).unwrap();
+        }
+        let home = Some(me.as_path());
+        assert!(too_wide(Path::new("/"), &a4, home), "root");
+        assert!(too_wide(&me, &a4, home), "home");
+        assert!(too_wide(&h, &a4, home), "above home");
+        assert!(too_wide(&srv, &srv_a4, home), "above start");
+        assert!(!too_wide(&a4, &a4, home), "the start folder");
+        assert!(!too_wide(&dialects, &a4, home));
+        assert!(!too_wide(&inner, &a4, home));
     }
 }

@@ -22,7 +22,7 @@ use super::limits::{
 use super::source::{source_text, SOURCE_BYTES_PER_BYTE};
 use super::watchdog::ScriptClock;
 use super::{with_state, LOADED_KEY};
-use crate::scene::files::{read_regular, MAX_FILE_BYTES};
+use crate::scene::files::MAX_FILE_BYTES;
 use crate::scene::obj::PARSE_BYTES_PER_BYTE;
 use mlua::chunk::ChunkMode;
 use mlua::{HookTriggers, Lua, LuaOptions, MultiValue, StdLib, Table, Value, VmState};
@@ -193,7 +193,7 @@ fn stub_table(lua: &Lua, lib: &str) -> mlua::Result<Table> {
 /// `require(name)`: `readobj` is built in; anything else is `name.lua` (dots as folder
 /// separators) beside the scene, run once in the same environment and cached. Called
 /// from a prelude (or a module of one), it looks beside the prelude instead, and caches
-/// by canonical path (see `preludes`).
+/// by the file's identity (see `preludes`).
 fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     ensure_live(lua)?;
     let a = Args::new(lua, "require", args);
@@ -217,19 +217,16 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
     let found = with_state(lua, |s| match &prelude_dir {
         // A prelude's modules are beside it: its folder is readable to it even where
         // the scene may not read it (a prelude in the home folder).
-        Some(dir) => {
-            let path = dir.join(&file);
-            s.read_policy
-                .with_root(dir)
-                .check(&path, "module")
-                .map(|c| (path, c))
-        }
+        Some(dir) => s
+            .read_policy
+            .with_root(dir)
+            .open(&dir.join(&file), "module"),
         None => s.folders.find(&s.read_policy, &file, "module"),
     });
-    // A prelude's modules are cached by canonical path (another folder's module of the
+    // A prelude's modules are cached by identity (another folder's module of the
     // same name is another module); the scene's by name, as before.
     let key = match (&prelude_dir, &found) {
-        (Some(_), Ok((_, canonical))) => canonical.to_string_lossy().into_owned(),
+        (Some(_), Ok(opened)) => opened.id.key(),
         _ => name.clone(),
     };
     if prelude_dir.is_some() {
@@ -238,10 +235,12 @@ fn require(lua: &Lua, args: MultiValue) -> mlua::Result<Value> {
             return Ok(cached);
         }
     }
-    let (path, _) = found.map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
+    let opened = found.map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
+    let path = opened.path.clone();
     // Counted before it is read: the text, Lua's copy while parsing, the chunk.
-    check_file_cost(&a, &path, SOURCE_BYTES_PER_BYTE, "module")?;
-    let bytes = read_regular(&path, "module", MAX_FILE_BYTES)
+    check_file_cost(&a, &opened, SOURCE_BYTES_PER_BYTE, "module")?;
+    let bytes = opened
+        .read("module", MAX_FILE_BYTES)
         .map_err(|e| a.error(format!("module '{name}' not found: {e}")))?;
     charge(&a, bytes.len() as u64, &format!("module '{name}'"))?;
     let text = String::from_utf8_lossy(&bytes);
@@ -280,9 +279,9 @@ fn readobj(lua: &Lua, args: MultiValue) -> mlua::Result<(Table, Table)> {
         super::era::strong(lua, "readobj, the old course's mesh reader,");
     }
     let found = with_state(lua, |s| s.folders.find(&s.read_policy, &file, "mesh file"));
-    let (path, _) = found.map_err(|e| a.error(e))?;
-    check_file_cost(&a, &path, PARSE_BYTES_PER_BYTE, "mesh file")?;
-    let (verts, faces) = crate::scene::obj::read_obj_raw(&path).map_err(|e| a.error(e))?;
+    let opened = found.map_err(|e| a.error(e))?;
+    check_file_cost(&a, &opened, PARSE_BYTES_PER_BYTE, "mesh file")?;
+    let (verts, faces) = crate::scene::obj::read_obj_raw(opened).map_err(|e| a.error(e))?;
     let vt = lua.create_table_with_capacity(verts.len(), 0)?;
     for v in verts {
         vt.raw_push(lua.create_sequence_from(v)?)?;
