@@ -144,12 +144,14 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     (
         "src/tracer/path/trace.wgsl",
         "store_pending",
-        "stores a ray stack entry in a private array or the list slot (src/gpu/compile/lists.rs); the CPU writes `stack[size]`",
+        "stores a ray stack entry in a private array or the list slot (src/gpu/compile/lists.rs); the CPU writes `stack[size]` \
+         (a Rust twin would not be one: trace_ray's loop form stores the camera entry, a step the CPU's form has not)",
     ),
     (
         "src/tracer/path/trace.wgsl",
         "load_pending",
-        "reads a ray stack entry from a private array or the list slot (src/gpu/compile/lists.rs); the CPU reads `stack[size]`",
+        "reads a ray stack entry from a private array or the list slot (src/gpu/compile/lists.rs); the CPU reads `stack[size]` \
+         (the wavefront's push_next_paths and push_tree_children read through it too, and their CPU twins index the stack)",
     ),
     (
         "src/tracer/wavefront/batch.wgsl",
