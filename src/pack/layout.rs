@@ -194,28 +194,47 @@ pub struct PackedGlobals {
 
 // The readers of the packed arrays. The GPU reads each array from a table texture
 // (src/gpu/upload/tables.rs) through the WGSL twin of the reader; the CPU indexes the
-// slice. Both tracers go through the readers, so a step that reads the scene reads it
+// slice (a one-word array through `word_at`, as the WGSL reads a one-word table). Both tracers go through the readers, so a step that reads the scene reads it
 // in the same place on both sides (tests/gpu/twins.rs compares their calls).
+
+/// A one-word table: the packed arrays of `u32` (`cell_start`, `cell_items`,
+/// `csg_program`, `texels`), which the GPU holds a word a texel (the WGSL's `WordTable`).
+pub type WordTable = [u32];
+
+/// Word i of a one-word table.
+// Mirror of src/pack/layout.wgsl::word_at — change both.
+#[inline(always)]
+pub fn word_at(table: &WordTable, i: u32) -> u32 {
+    table[i as usize]
+}
 
 /// `cell_start[i]`: where cell i's items begin in `cell_items` (cell i + 1's start ends
 /// them).
 // Mirror of src/pack/layout.wgsl::cell_start_at — change both.
 #[inline(always)]
 pub fn cell_start_at(scene: &PackedScene, i: u32) -> u32 {
-    scene.cell_start[i as usize]
+    word_at(&scene.cell_start, i)
 }
 
 /// `cell_items[i]`.
 // Mirror of src/pack/layout.wgsl::cell_item_at — change both.
 #[inline(always)]
 pub fn cell_item_at(scene: &PackedScene, i: u32) -> u32 {
-    scene.cell_items[i as usize]
+    word_at(&scene.cell_items, i)
 }
 
 /// `csg_program[i]`.
 // Mirror of src/pack/layout.wgsl::csg_program_at — change both.
 pub fn csg_program_at(scene: &PackedScene, i: u32) -> u32 {
-    scene.csg_program[i as usize]
+    word_at(&scene.csg_program, i)
+}
+
+/// `texels[i]`: a word of the texture table or of a texture's texels (the texture lookups
+/// take the scene's `texels`, or a texture's own, as a slice).
+// Mirror of src/pack/layout.wgsl::texel_word — change both.
+#[inline(always)]
+pub fn texel_word(texels: &[u32], i: u32) -> u32 {
+    word_at(texels, i)
 }
 
 /// `materials[i]`.

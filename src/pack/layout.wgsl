@@ -216,6 +216,7 @@ fn table_at(table: QuadTable, i: u32) -> vec4<u32> {
 }
 
 // Word i of a one-word table.
+// Mirror of src/pack/layout.rs::word_at — change both.
 fn word_at(table: WordTable, i: u32) -> u32 {
 // #if STORAGE_TABLES
     return textureLoad(table, table_texel(i)).x;
@@ -246,6 +247,7 @@ fn csg_program_at(i: u32) -> u32 {
 
 // #if TEXTURE|BUMP
 // texels[i]: a word of the texture table or of a texture's texels.
+// Mirror of src/pack/layout.rs::texel_word — change both.
 fn texel_word(i: u32) -> u32 {
     return word_at(texel_table, i);
 }
@@ -328,24 +330,24 @@ fn load_triangle_normals(i: u32) -> PackedTriangleNormals {
 // instances[i].
 // Mirror of src/pack/layout.rs::load_instance — change both.
 fn load_instance(i: u32) -> PackedInstance {
+    // Texels 0–5: the rows of the two affine maps, as floats; texel 6: the rest.
     let base = i * INSTANCE_TABLE_TEXELS;
     let last = table_at(instance_table, base + 6u);
     return PackedInstance(
         array<vec4<f32>, 3>(
-            instance_row(base), instance_row(base + 1u), instance_row(base + 2u),
+            bitcast<vec4<f32>>(table_at(instance_table, base)),
+            bitcast<vec4<f32>>(table_at(instance_table, base + 1u)),
+            bitcast<vec4<f32>>(table_at(instance_table, base + 2u)),
         ),
         array<vec4<f32>, 3>(
-            instance_row(base + 3u), instance_row(base + 4u), instance_row(base + 5u),
+            bitcast<vec4<f32>>(table_at(instance_table, base + 3u)),
+            bitcast<vec4<f32>>(table_at(instance_table, base + 4u)),
+            bitcast<vec4<f32>>(table_at(instance_table, base + 5u)),
         ),
         last.x,
         last.y,
         bitcast<vec2<f32>>(last.zw),
     );
-}
-
-// Texel i of the instance table as floats (a row of an instance's affine maps).
-fn instance_row(i: u32) -> vec4<f32> {
-    return bitcast<vec4<f32>>(table_at(instance_table, i));
 }
 
 // meshes[i].

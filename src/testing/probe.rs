@@ -55,9 +55,10 @@ pub struct ProbeResult {
     pub _pad1: u32,
 }
 
-/// The CPU's answer for one probe ray.
+/// The CPU's answer for one probe ray (the `probe` entry point's invocation for it;
+/// [`gpu_probe`] asks the GPU for many).
 // Mirror of src/testing/probe.wgsl::probe — change both.
-pub fn cpu_probe(scene: &PackedScene, pr: &ProbeRay) -> ProbeResult {
+pub fn probe(scene: &PackedScene, pr: &ProbeRay) -> ProbeResult {
     let ray = Ray {
         origin: Vec3::from(pr.origin),
         dir: Vec3::from(pr.dir),

@@ -31,7 +31,7 @@ struct ProbeResult {
 @group(0) @binding(9) var<storage, read> probe_rays: array<ProbeRay>;
 @group(0) @binding(10) var<storage, read_write> probe_results: array<ProbeResult>;
 
-// Mirror of src/testing/probe.rs::cpu_probe — change both.
+// Mirror of src/testing/probe.rs::probe — change both.
 @compute @workgroup_size(WORKGROUP_SIZE * WORKGROUP_SIZE)
 fn probe(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = id.x;

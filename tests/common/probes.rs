@@ -8,7 +8,7 @@ use glam::DVec3;
 use glint::constants::T_MISS;
 use glint::gpu::GpuContext;
 use glint::pack::PackedScene;
-use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay, ProbeResult};
+use glint::testing::probe::{gpu_probe, probe, ProbeRay, ProbeResult};
 
 pub const RAYS: usize = 4096;
 
@@ -77,7 +77,7 @@ pub fn check(ctx: &GpuContext, name: &str, scene: &PackedScene, ray_seed: u64) {
     let (mut worst_dt, mut worst_dn) = (0.0f32, 0.0f32);
     let mut first_bad = None;
     for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
-        let c = cpu_probe(scene, ray);
+        let c = probe(scene, ray);
         hits += c.hit as usize;
         let (ok, dt, dn) = agree(g, &c);
         if ok {

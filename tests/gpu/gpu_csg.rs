@@ -15,7 +15,7 @@ use glint::diff::assert_images_match;
 use glint::gpu::{render_gpu, GpuContext, GpuRenderOptions};
 use glint::pack::{pack, PackedScene, SceneFeatures};
 use glint::scene::{GridMode, OptionOverrides};
-use glint::testing::probe::{cpu_probe, gpu_probe};
+use glint::testing::probe::{gpu_probe, probe};
 use std::fmt::Write;
 
 /// Lua statements making a random primitive (any kind CSG takes) of size about 1 near the
@@ -122,7 +122,7 @@ fn check_all(ctx: &GpuContext, name: &str, scene: &PackedScene, ray_seed: u64) {
     let (mut worst_dt, mut worst_dn) = (0.0f32, 0.0f32);
     let mut bad = Vec::new();
     for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
-        let c = cpu_probe(scene, ray);
+        let c = probe(scene, ray);
         hits += c.hit as usize;
         if c.hit == 1 && c.part != glint::constants::NO_ITEM {
             csg_hits += 1;

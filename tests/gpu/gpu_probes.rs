@@ -187,7 +187,7 @@ fn probes_instanced_meshes() {
     use common::probes::{agree, random_rays};
     use glint::constants::{PROBE_ANY_HIT, T_MISS};
     use glint::gpu::{KernelConfig, KernelVariant};
-    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
+    use glint::testing::probe::{gpu_probe, probe, ProbeRay};
     let Some(mut ctx) = gpu_context() else { return };
     let chosen = ctx.kernel;
     let mut kernels = vec![chosen];
@@ -208,7 +208,7 @@ fn probes_instanced_meshes() {
             }
         }
         s.mailboxes = Mailboxes::Full;
-        let with_mailboxes: Vec<_> = rays.iter().map(|r| cpu_probe(&s, r)).collect();
+        let with_mailboxes: Vec<_> = rays.iter().map(|r| probe(&s, r)).collect();
         for (kernel, mailboxes) in kernels.iter().flat_map(|k| Mailboxes::ALL.map(|m| (*k, m))) {
             ctx.kernel = KernelConfig {
                 mailboxes,
@@ -219,7 +219,7 @@ fn probes_instanced_meshes() {
             let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
             let (mut hits, mut worst_dt) = (0, 0.0f32);
             for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
-                let c = cpu_probe(&s, ray);
+                let c = probe(&s, ray);
                 assert_eq!(
                     format!("{c:?}"),
                     format!("{:?}", with_mailboxes[i]),
@@ -229,13 +229,13 @@ fn probes_instanced_meshes() {
                 if ray.mode == PROBE_ANY_HIT {
                     assert_eq!(g.hit, c.hit, "{name}: any-hit ray {i} {ray:?}");
                     if ray.t_max == f32::INFINITY {
-                        let closest = cpu_probe(&s, &ProbeRay { mode: 0, ..*ray });
+                        let closest = probe(&s, &ProbeRay { mode: 0, ..*ray });
                         assert_eq!(c.hit, closest.hit, "{name}: any-hit ray {i} past T_MISS");
                     }
                     continue;
                 }
                 if ray.t_max == f32::INFINITY {
-                    let below_t_miss = cpu_probe(
+                    let below_t_miss = probe(
                         &s,
                         &ProbeRay {
                             t_max: T_MISS,
@@ -271,7 +271,7 @@ fn probes_instanced_meshes() {
 fn probes_smooth_normals() {
     use common::probes::{agree, random_rays};
     use glint::constants::PROBE_SHADING_NORMAL;
-    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
+    use glint::testing::probe::{gpu_probe, probe, ProbeRay};
     let Some(ctx) = gpu_context() else { return };
     let mut rng = Rng(37);
     let (around, tube) = (24, 12);
@@ -338,7 +338,7 @@ fn probes_smooth_normals() {
     let gpu = gpu_probe(&ctx, &scene, &rays).unwrap_or_else(|e| panic!("{e}"));
     let (mut hits, mut bent, mut worst_dn) = (0, 0, 0.0f32);
     for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
-        let c = cpu_probe(&scene, ray);
+        let c = probe(&scene, ray);
         let (ok, _, dn) = agree(g, &c);
         assert!(
             ok && g.part == c.part,
@@ -346,7 +346,7 @@ fn probes_smooth_normals() {
         );
         hits += c.hit;
         worst_dn = worst_dn.max(dn);
-        let geometric = cpu_probe(&scene, &ProbeRay { mode: 0, ..*ray });
+        let geometric = probe(&scene, &ProbeRay { mode: 0, ..*ray });
         let dot: f32 = (0..3).map(|k| c.normal[k] * geometric.normal[k]).sum();
         bent += (c.hit == 1 && dot < 0.9999) as u32;
     }
@@ -370,7 +370,7 @@ fn probes_smooth_normals() {
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn probes_rays_past_many_mesh_instances() {
     use glint::constants::{PROBE_ANY_HIT, T_MISS};
-    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
+    use glint::testing::probe::{gpu_probe, probe, ProbeRay};
     let Some(mut ctx) = gpu_context() else { return };
     let mut s =
         packed_from_source(&common::stacked_frames_source(), &grid(GridMode::Auto)).remove(0);
@@ -383,7 +383,7 @@ fn probes_rays_past_many_mesh_instances() {
             dir: [0.0, 0.0, -1.0],
             mode: 0,
         };
-        let t = cpu_probe(&s, &ray).t;
+        let t = probe(&s, &ray).t;
         rays.push(ray);
         for t_max in [0.5 * t, 1.001 * t] {
             rays.push(ProbeRay {
@@ -406,7 +406,7 @@ fn probes_rays_past_many_mesh_instances() {
         let mut items = std::collections::BTreeSet::new();
         let (mut blocked, mut hits) = (0, 0);
         for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
-            let c = cpu_probe(&s, ray);
+            let c = probe(&s, ray);
             if ray.mode == PROBE_ANY_HIT {
                 assert_eq!(g.hit, c.hit, "{form}: any-hit ray {i} {ray:?}");
                 blocked += c.hit;
@@ -436,7 +436,7 @@ fn probes_rays_past_many_mesh_instances() {
 #[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
 fn probes_shadow_rays_to_a_light_in_a_face() {
     use common::light_on_surface::{light_on_surface_scene, LightOnSurface};
-    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay, SHADOW_RAY};
+    use glint::testing::probe::{gpu_probe, probe, ProbeRay, SHADOW_RAY};
     let Some(ctx) = gpu_context() else { return };
     let room = light_on_surface_scene(LightOnSurface::Face, 0.0);
     for s in [1.0, 1e-3, 1e3] {
@@ -464,7 +464,7 @@ fn probes_shadow_rays_to_a_light_in_a_face() {
         let gpu = gpu_probe(&ctx, &scene, &rays).unwrap_or_else(|e| panic!("{e}"));
         let (mut agreeing, mut blocked) = (0, 0);
         for (ray, g) in rays.iter().zip(&gpu) {
-            let c = cpu_probe(&scene, ray);
+            let c = probe(&scene, ray);
             blocked += c.hit as usize;
             agreeing += (g.hit == c.hit && (g.t - c.t).abs() <= 1e-5 * c.t) as usize;
         }
@@ -551,7 +551,7 @@ fn row_scene(axis: usize, count: usize, mesh: bool) -> String {
 fn probes_walks_across_the_largest_grids() {
     use glint::accel::grid::MAX_AXIS_CELLS;
     use glint::constants::{PROBE_ANY_HIT, T_MISS};
-    use glint::testing::probe::{cpu_probe, gpu_probe, ProbeRay};
+    use glint::testing::probe::{gpu_probe, probe, ProbeRay};
     let Some(mut ctx) = gpu_context() else { return };
     let count = 2000;
     for axis in 0..3 {
@@ -595,7 +595,7 @@ fn probes_walks_across_the_largest_grids() {
                 s.mailboxes = mailboxes;
                 let gpu = gpu_probe(&ctx, &s, &rays).unwrap_or_else(|e| panic!("{name}: {e}"));
                 for (i, (ray, g)) in rays.iter().zip(&gpu).enumerate() {
-                    let c = cpu_probe(&s, ray);
+                    let c = probe(&s, ray);
                     let what = format!(
                         "{name}, {mailboxes}, any hit in one loop {any_hit_one_loop}, ray {i} \
                          {ray:?}: gpu {g:?} cpu {c:?}"

@@ -1,9 +1,7 @@
 //! `glint kernels` (the kernel instrument, docs/gpu.md) on RADV's null device, and
 //! `glint render --dump-kernels` on lavapipe: a kernel known to spill reports scratch,
 //! the dumped SPIR-V is the SPIR-V the instrument compiles, and the register budgets of
-//! the GPU kernels over every scene; and the
-//! wavefront-split prototypes that `tools/benches/wavefront_split/measure.py` compiles still
-//! validate.
+//! the GPU kernels over every scene.
 
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
@@ -284,45 +282,4 @@ fn check_navi21_budgets() {
             );
         }
     }
-}
-
-/// The wavefront-split prototypes (`tools/benches/wavefront_split/split.wgsl`, measured by
-/// `tools/benches/wavefront_split/measure.py`: docs/journal/2026-12-02-wavefront-split-measured.md)
-/// still validate, appended to the render module as the script appends them, for no
-/// feature, every feature and each feature alone, with the hardware variant's mailboxes
-/// and with the last-item slot: a change to the tracer's functions that the prototypes
-/// call shows here rather than when someone next measures.
-#[test]
-fn wavefront_split_prototypes_validate() {
-    use glint::gpu::compile::shader::{assemble_with, preprocess_with, validate, Entry};
-    use glint::gpu::KernelConfig;
-    use glint::mailboxes::Mailboxes;
-    use glint::pack::SceneFeatures;
-
-    let path = repo().join("tools/benches/wavefront_split/split.wgsl");
-    let split = std::fs::read_to_string(&path).unwrap();
-    let all = SceneFeatures::ALL
-        .iter()
-        .fold(SceneFeatures::empty(), |mut set, (f, _)| {
-            set.insert(*f);
-            set
-        });
-    let mut sets = vec![SceneFeatures::empty(), all];
-    sets.extend(SceneFeatures::ALL.iter().map(|(f, _)| *f));
-    let hardware = KernelConfig::default();
-    let last_item = KernelConfig {
-        mailboxes: Mailboxes::LastItem,
-        ..hardware
-    };
-    let mut failures = Vec::new();
-    for features in sets {
-        for kernel in [hardware, last_item] {
-            let mut source = assemble_with(features, Entry::Render, kernel);
-            source += &preprocess_with("split.wgsl", &split, features, kernel).unwrap();
-            if let Err(e) = validate(&source, features) {
-                failures.push(format!("[{features}] {kernel}:\n{e}"));
-            }
-        }
-    }
-    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }

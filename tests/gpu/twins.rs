@@ -79,34 +79,13 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     ),
     (
         "src/pack/layout.wgsl",
-        "word_at",
-        "reads a word of a one-word table (src/gpu/upload/tables.rs): the CPU indexes its slices",
-    ),
-    (
-        "src/pack/layout.wgsl",
         "table_texel",
         "where a table element lies in its texture (src/gpu/upload/tables.rs); the CPU has slices",
-    ),
-    (
-        "src/pack/layout.wgsl",
-        "instance_row",
-        "one row of an instance's affine maps from the instance table (load_instance's helper)",
-    ),
-    (
-        "src/pack/layout.wgsl",
-        "texel_word",
-        "reads `texels[i]` from its table texture; the CPU indexes the slice",
     ),
     (
         "src/tracer/sampling/render.wgsl",
         "loop_limiter_tripped",
         "detects lavapipe's loop limiter, which the CPU does not have",
-    ),
-    (
-        "src/tracer/sampling/adaptive.wgsl",
-        "adaptive_work_args",
-        "turns the GPU's per-level list lengths into indirect dispatch arguments; the CPU \
-         walks the same lists directly, with no dispatch",
     ),
     (
         "src/tracer/sampling/adaptive.wgsl",
@@ -165,12 +144,14 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     (
         "src/tracer/path/trace.wgsl",
         "store_pending",
-        "stores a ray stack entry in a private array or the list slot (src/gpu/compile/lists.rs); the CPU writes `stack[size]`",
+        "stores a ray stack entry in a private array or the list slot (src/gpu/compile/lists.rs); the CPU writes `stack[size]` \
+         (a Rust twin would not be one: trace_ray's loop form stores the camera entry, a step the CPU's form has not)",
     ),
     (
         "src/tracer/path/trace.wgsl",
         "load_pending",
-        "reads a ray stack entry from a private array or the list slot (src/gpu/compile/lists.rs); the CPU reads `stack[size]`",
+        "reads a ray stack entry from a private array or the list slot (src/gpu/compile/lists.rs); the CPU reads `stack[size]` \
+         (the wavefront's push_next_paths and push_tree_children read through it too, and their CPU twins index the stack)",
     ),
     (
         "src/tracer/wavefront/batch.wgsl",
@@ -234,20 +215,12 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
 /// WGSL functions whose Rust twin, or the Rust code they mirror part of, has another
 /// name, and why: no Rust function has the WGSL function's name (or, for a one-to-one
 /// pair, its twin is named otherwise).
-const WGSL_NAMED_APART: &[(&str, &str, &str)] = &[
-    (
-        "src/testing/probe.wgsl",
-        "probe",
-        "the kernel probe's entry point; its Rust side, a test hook, is \
-         src/testing/probe.rs::cpu_probe beside gpu_probe, which names the tracer that answers",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "tree_generation_args_entry",
-        "src/tracer/wavefront/wavefront.rs::wavefront_args with refraction (the CPU's queues need no \
+const WGSL_NAMED_APART: &[(&str, &str, &str)] = &[(
+    "src/tracer/wavefront/wavefront_tree.wgsl",
+    "tree_generation_args_entry",
+    "src/tracer/wavefront/wavefront.rs::wavefront_args with refraction (the CPU's queues need no \
          room cut or vertex base counter)",
-    ),
-];
+)];
 
 /// Types of Rust parameters that a WGSL twin reads from module scope instead (unless the
 /// twin takes a parameter of that type too), and where.

@@ -1049,7 +1049,7 @@ fn csg_scene_is_scale_invariant() {
         let results: Vec<_> = probe
             .rays
             .iter()
-            .map(|r| glint::testing::probe::cpu_probe(&packed, r))
+            .map(|r| glint::testing::probe::probe(&packed, r))
             .collect();
         let hits = results.iter().filter(|r| r.hit == 1).count();
         assert_eq!(

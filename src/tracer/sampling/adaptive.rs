@@ -15,7 +15,8 @@
 //!    saw fine detail (a penumbra, or texture detail at the pixel's scale) or, above
 //!    AA_ITEM_EDGE_DEPTH, whose camera rays hit different items (or a mirror that shows
 //!    different items; each lattice sample keeps that hint with its colour), appending it
-//!    to level k's list of split squares; then [`adaptive_midpoints`] traces the four
+//!    to level k's list of split squares; [`adaptive_work_args`] sizes the passes over
+//!    that list, and then [`adaptive_midpoints`] traces the four
 //!    edge midpoints of each square on that list (one shared with a split neighbour is
 //!    traced by one of the two only) and, below level d − 1, its four children's
 //!    centres (its own centre was traced before). Work is over the lists, so idle
@@ -77,7 +78,8 @@ fn unpack_square(entry: u32) -> (u32, u32) {
 /// A tile's lattice colours and hints ([`lattice_sample`]; each hint as
 /// [`encode_hint`] stores it, the GPU's lattice sample's fourth component), split flags
 /// and, per level, the list of split squares (at the level's split-flag offset,
-/// [`split_offset`]) and its length.
+/// [`split_offset`]), its length and the sizes of the passes over it
+/// ([`adaptive_work_args`]).
 pub struct Lattice {
     pub tile: AdaptiveTile,
     pub points: Vec<Vec3>,
@@ -85,6 +87,16 @@ pub struct Lattice {
     pub split: Vec<u32>,
     pub work_list: Vec<u32>,
     pub work_counts: Vec<u32>,
+    pub work_args: Vec<WorkArgs>,
+}
+
+/// The sizes of the two passes over a level's list of split squares, in invocations:
+/// the level's midpoint pass and the next level's decide pass. (The GPU's `work_args`
+/// holds them as the workgroups of indirect dispatches.)
+#[derive(Clone, Copy, Debug, Default)]
+pub struct WorkArgs {
+    pub midpoints: u32,
+    pub children: u32,
 }
 
 impl Lattice {
@@ -96,6 +108,7 @@ impl Lattice {
             split: vec![0; tile.split_len()],
             work_list: vec![0; tile.split_len()],
             work_counts: vec![0; tile.depth as usize],
+            work_args: vec![WorkArgs::default(); tile.depth as usize],
         }
     }
     // Mirror of src/tracer/sampling/adaptive.wgsl::lattice_point — change both.
@@ -271,6 +284,20 @@ fn adaptive_decide(lat: &mut Lattice, level: u32, idx: u32, threshold: f32) {
     }
 }
 
+/// After the decide pass of `level`, the sizes of the passes over its list of split
+/// squares ([`WorkArgs`]): the midpoint pass (AA_SPLIT_POINTS invocations a square) and
+/// the next level's decide pass (4 children a square). The GPU's twin writes them as the
+/// indirect dispatch arguments of those passes, in workgroups; the CPU's passes loop over
+/// the invocations.
+// Mirror of src/tracer/sampling/adaptive.wgsl::adaptive_work_args — change both.
+fn adaptive_work_args(lat: &mut Lattice, level: u32) {
+    let n = lat.work_counts[level as usize];
+    lat.work_args[level as usize] = WorkArgs {
+        midpoints: AA_SPLIT_POINTS * n,
+        children: 4 * n,
+    };
+}
+
 /// Invocation `idx` of the midpoint pass of `level`: point idx mod AA_SPLIT_POINTS of
 /// entry idx div AA_SPLIT_POINTS of level's split list — its top, left, right and bottom
 /// edge midpoints, then the centres of its top-left, top-right, bottom-left and
@@ -393,7 +420,7 @@ pub fn adaptive_tile(
             }
         } else {
             let level = pass - 1;
-            for idx in 0..AA_SPLIT_POINTS * lat.work_counts[level as usize] {
+            for idx in 0..lat.work_args[level as usize].midpoints {
                 adaptive_midpoints(scene, lat, level, idx, counters);
             }
         }
@@ -416,11 +443,12 @@ pub fn adaptive_tile_passes(
         let squares = if level == 0 {
             w * h
         } else {
-            4 * lat.work_counts[level as usize - 1]
+            lat.work_args[level as usize - 1].children
         };
         for idx in 0..squares {
             adaptive_decide(lat, level, idx, threshold);
         }
+        adaptive_work_args(lat, level);
         trace_pass(lat, level + 1);
     }
     let mut out = Vec::with_capacity((w * h) as usize);

@@ -288,6 +288,7 @@ fn store_indirect_pair(at: u32, first: vec3<u32>, second: vec3<u32>) {
 // After the decide pass of tile.level (one invocation): the indirect arguments of the
 // midpoint pass over the level's list (AA_SPLIT_POINTS per square) and of the next
 // level's decide pass (4 children per square), at work_args[6·level ..].
+// Mirror of src/tracer/sampling/adaptive.rs::adaptive_work_args — change both.
 @compute @workgroup_size(1)
 fn adaptive_work_args() {
     let n = atomicLoad(&work_counts[tile.level]);

@@ -42,7 +42,7 @@ use crate::constants::{
     BUMP_MIN_FRAME_SINE, LUMINANCE_B, LUMINANCE_G, LUMINANCE_R, NO_TEXTURE,
     TEXTURE_FOOTPRINT_MIN_COSINE, TEXTURE_HEADER_WORDS,
 };
-use crate::pack::layout::load_material;
+use crate::pack::layout::{load_material, texel_word};
 use crate::pack::{texture_levels, PackedGlobals, PackedMaterial, PackedScene};
 use crate::tracer::base::ray::Ray;
 use glam::{Vec2, Vec3};
@@ -51,10 +51,10 @@ use glam::{Vec2, Vec3};
 /// in [0, 1], as stored (/255, no gamma).
 // Mirror of src/tracer/shading/texture.wgsl::texel — change both.
 fn texel(texels: &[u32], texture: u32, x: u32, y: u32) -> Vec3 {
-    let header = (texture * TEXTURE_HEADER_WORDS) as usize;
-    let offset = texels[header];
-    let width = texels[header + 1];
-    let word = texels[(offset + y * width + x) as usize];
+    let header = texture * TEXTURE_HEADER_WORDS;
+    let offset = texel_word(texels, header);
+    let width = texel_word(texels, header + 1);
+    let word = texel_word(texels, offset + y * width + x);
     Vec3::new(
         (word & 0xff) as f32,
         ((word >> 8) & 0xff) as f32,
@@ -78,9 +78,9 @@ fn wrap_unit(t: f32) -> f32 {
 /// texel centres are).
 // Mirror of src/tracer/shading/texture.wgsl::sample_texture — change both.
 pub fn sample_texture(texels: &[u32], texture: u32, uv: Vec2) -> Vec3 {
-    let header = (texture * TEXTURE_HEADER_WORDS) as usize;
-    let width = texels[header + 1];
-    let height = texels[header + 2];
+    let header = texture * TEXTURE_HEADER_WORDS;
+    let width = texel_word(texels, header + 1);
+    let height = texel_word(texels, header + 2);
     // Continuous texel coordinates: centres at half-integers, v = 0 at the bottom row.
     let x = wrap_unit(uv.x) * width as f32 - 0.5;
     let y = (1.0 - wrap_unit(uv.y)) * height as f32 - 0.5;
@@ -106,7 +106,7 @@ fn texture_level(texels: &[u32], texture: u32, level: u32) -> u32 {
     if level == 0 {
         texture
     } else {
-        texels[(texture * TEXTURE_HEADER_WORDS + 3) as usize] + level - 1
+        texel_word(texels, texture * TEXTURE_HEADER_WORDS + 3) + level - 1
     }
 }
 
@@ -115,9 +115,9 @@ fn texture_level(texels: &[u32], texture: u32, level: u32) -> u32 {
 /// to the coarsest level.
 // Mirror of src/tracer/shading/texture.wgsl::texture_lod — change both.
 fn texture_lod(texels: &[u32], texture: u32, footprint: f32) -> f32 {
-    let header = (texture * TEXTURE_HEADER_WORDS) as usize;
-    let width = texels[header + 1];
-    let height = texels[header + 2];
+    let header = texture * TEXTURE_HEADER_WORDS;
+    let width = texel_word(texels, header + 1);
+    let height = texel_word(texels, header + 2);
     let spanned = footprint * (width as f32 * height as f32).sqrt();
     // The negated test also rejects NaN.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -218,9 +218,9 @@ fn texture_height(texels: &[u32], texture: u32, uv: Vec2) -> f32 {
 /// apart (so per unit of u and v: the difference over two texels times size/2).
 // Mirror of src/tracer/shading/texture.wgsl::height_gradient — change both.
 pub fn height_gradient(texels: &[u32], texture: u32, uv: Vec2) -> Vec2 {
-    let header = (texture * TEXTURE_HEADER_WORDS) as usize;
-    let width = texels[header + 1] as f32;
-    let height = texels[header + 2] as f32;
+    let header = texture * TEXTURE_HEADER_WORDS;
+    let width = texel_word(texels, header + 1) as f32;
+    let height = texel_word(texels, header + 2) as f32;
     let du = Vec2::new(1.0 / width, 0.0);
     let dv = Vec2::new(0.0, 1.0 / height);
     let h_u = (texture_height(texels, texture, uv + du) - texture_height(texels, texture, uv - du))
