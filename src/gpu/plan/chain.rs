@@ -7,7 +7,7 @@
 use super::chunking::{bands, row_pieces, slot_budget};
 use super::shape::WavefrontShape;
 use super::tree::tree_generations;
-use super::{AdapterBounds, BindingOffsets, Chunk, ChunkPasses, Dispatch, Workgroups};
+use super::{AdapterBounds, BindingOffsets, Chunk, ChunkPasses, Dispatch, Generations, Workgroups};
 use crate::tiling::PixelRect;
 
 /// The chunks of `window` through the wavefront kernels, and the samples array's vec4s:
@@ -60,38 +60,6 @@ pub(super) fn wavefront_dispatches(p: &ChunkPasses, shape: WavefrontShape) -> Ve
         out.push(p.run(resolve, p.params(0, n), p.square()));
     }
     out
-}
-
-/// The passes of the generations that follow a camera pass: entries from `closest` on
-/// of the mode's list, bound at `offsets`, copying the camera pass's chunk, items and
-/// stratum.
-#[derive(Clone, Copy)]
-pub(super) struct Generations {
-    pub(super) camera: Dispatch,
-    pub(super) closest: usize,
-    pub(super) offsets: BindingOffsets,
-}
-
-impl Generations {
-    /// Entry `closest` + `entry` at level `level` (a generation, or a tree's glass round).
-    pub(super) fn pass(self, entry: usize, level: u32, workgroups: Workgroups) -> Dispatch {
-        self.camera
-            .generation_pass(self.closest + entry, level, workgroups, self.offsets)
-    }
-
-    /// The indirect workgroups an args kernel wrote at byte `at` of its `work_args`.
-    pub(super) fn args(self, at: u64) -> Workgroups {
-        Workgroups::Indirect(self.offsets.work + at)
-    }
-
-    /// The workgroups of generation g's passes over paths: generation 0's over the
-    /// samples as the camera pass, later ones' as the args kernel wrote them.
-    pub(super) fn paths(self, shape: WavefrontShape, g: u32) -> Workgroups {
-        match g {
-            0 => self.camera.workgroups,
-            _ => self.args(shape.paths_args(g)),
-        }
-    }
 }
 
 /// A `camera` pass, then its generations' dispatches (entries from `closest` on, bound at

@@ -3,9 +3,8 @@
 //! shadow rounds between its shadow pass and its gather, then the fold of the vertex
 //! tree into the samples.
 
-use super::chain::Generations;
 use super::shape::{WavefrontShape, SHADOW_ROUNDS};
-use super::{Dispatch, Workgroups};
+use super::{Dispatch, Generations, Workgroups};
 
 /// A tree's generations after its camera pass: per generation g closest, shade, args, the
 /// shadow pass (each request's first leg), then SHADOW_ROUNDS rounds of leg closest and
