@@ -33,7 +33,6 @@ pub mod mailboxes;
 pub mod pack;
 pub mod parity;
 pub mod pipeline;
-pub mod queues;
 pub mod scene;
 pub mod script_driver;
 #[doc(hidden)]

@@ -14,9 +14,9 @@ use glint::gpu::compile::shader::{
 };
 use glint::gpu::KernelConfig;
 use glint::pack::SceneFeatures;
-use glint::queues::counters::counters_wgsl;
-use glint::queues::layout::{in_layout, Form};
-use glint::queues::wgsl::queue_wgsl;
+use glint::tracer::wavefront::queues::counters::counters_wgsl;
+use glint::tracer::wavefront::queues::layout::{in_layout, Form};
+use glint::tracer::wavefront::queues::wgsl::queue_wgsl;
 use glint::tracer::wavefront::queues::{LegQueue, COUNTERS, REGIONS};
 use glint::tracer::wavefront::wavefront::Batch;
 use std::collections::BTreeSet;

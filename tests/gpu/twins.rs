@@ -165,16 +165,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
     ),
     (
         "src/tracer/wavefront/wavefront_tree.wgsl",
-        "tree_generation_args",
-        "where a tree's generation's indirect arguments lie in work_args; the CPU has no dispatches",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "leg_args",
-        "where a round's indirect arguments lie in work_args; the CPU has no dispatches",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
         "store_leg_args",
         "writes a round's indirect workgroups (the CPU's round loop runs over its Vec)",
     ),
@@ -189,6 +179,16 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "GPU queues only: a child without room hands the sample's pixels to the CPU tracer (the CPU's queues are Vecs that grow)",
     ),
     (
+        "src/tracer/wavefront/wavefront_tree.wgsl",
+        "tree_points",
+        "reads the scene's light points from the `work_counts` word the camera pass wrote (the CPU's Batch::light_points)",
+    ),
+    (
+        "src/tracer/wavefront/wavefront_tree.wgsl",
+        "note_tree_points",
+        "writes the scene's light points into a `work_counts` word for the later passes (the CPU's camera_pass keeps them in Batch::light_points)",
+    ),
+    (
         "src/tracer/sampling/adaptive.wgsl",
         "guard_lattice_point",
         "flags the pixels around a lattice point whose sample the GPU could not trace \
@@ -199,16 +199,6 @@ const WGSL_WITHOUT_TWIN: &[(&str, &str, &str)] = &[
         "src/tracer/wavefront/wavefront_tree.wgsl",
         "load_leg",
         "reads leg l of a round's queue (the CPU's LegQueue::load_leg)",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "tree_points",
-        "reads the scene's light points from the `work_counts` word the camera pass wrote (the CPU's Batch::light_points)",
-    ),
-    (
-        "src/tracer/wavefront/wavefront_tree.wgsl",
-        "note_tree_points",
-        "writes the scene's light points into a `work_counts` word for the later passes (the CPU's camera_pass keeps them in Batch::light_points)",
     ),
 ];
 

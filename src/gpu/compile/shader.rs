@@ -22,9 +22,9 @@ use crate::gpu::compile::kernel::KernelConfig;
 use crate::gpu::compile::lists::LaneLists;
 use crate::mailboxes::Mailboxes;
 use crate::pack::SceneFeatures;
-use crate::queues::counters::counters_wgsl;
-use crate::queues::layout::Form;
-use crate::queues::wgsl::queue_wgsl;
+use crate::tracer::wavefront::queues::counters::counters_wgsl;
+use crate::tracer::wavefront::queues::layout::Form;
+use crate::tracer::wavefront::queues::wgsl::queue_wgsl;
 use crate::tracer::wavefront::queues::{COUNTERS, REGIONS};
 
 /// Which compute entry point a pipeline is for. Every entry but `Probe` is in the render

@@ -4,10 +4,9 @@
 //! through the megakernels, or with its corner and midpoint passes through the wavefront
 //! kernels (the lattice, then the queues, in `samples`).
 
-use super::chain::wavefront_generations;
+use super::chain::generation_dispatches;
 use super::chunking::{adaptive_side, adaptive_slots, squares};
 use super::shape::WavefrontShape;
-use super::tree::tree_dispatches;
 use super::{AdapterBounds, BindingOffsets, Chunk, ChunkPasses, Dispatch, Workgroups};
 use crate::constants::WAVEFRONT_WORK_BASE;
 use crate::tiling::{split_offset, AdaptiveTile, PixelRect};
@@ -146,10 +145,7 @@ pub(super) fn adaptive_wavefront_dispatches(
             ..p.run(3, p.params(pass, n), points)
         };
         // A tree: its rounds and fold between the generations and the store.
-        let (mut out, store) = match shape.tree {
-            true => (tree_dispatches(shape, camera, 4, generation), 13),
-            false => (wavefront_generations(shape, camera, 4, generation), 9),
-        };
+        let (mut out, store) = generation_dispatches(shape, camera, 4, generation);
         out.push(p.run(store, p.params(pass, n), points));
         out
     };

@@ -1,12 +1,13 @@
 //! The wavefront form's chunks and dispatches (AA none and uniform AA through the
 //! wavefront kernels), and a chain's generations, which adaptive AA's lattice passes and
 //! the view's frames run too: per generation closest, shade, args, shadow and gather.
-//! Trees (scenes with refraction) run `tree`'s generations instead.
+//! Trees (scenes with refraction) run `tree`'s generations instead
+//! ([`generation_dispatches`] picks).
 
 use super::chunking::{bands, row_pieces, slot_budget};
 use super::shape::WavefrontShape;
-use super::tree::tree_dispatches;
-use super::{AdapterBounds, BindingOffsets, Chunk, ChunkPasses, Dispatch, Workgroups};
+use super::tree::tree_generations;
+use super::{AdapterBounds, BindingOffsets, Chunk, ChunkPasses, Dispatch, Generations, Workgroups};
 use crate::tiling::PixelRect;
 
 /// The chunks of `window` through the wavefront kernels, and the samples array's vec4s:
@@ -54,39 +55,48 @@ pub(super) fn wavefront_dispatches(p: &ChunkPasses, shape: WavefrontShape) -> Ve
         clears_work: true,
         ..p.run(0, p.params(0, n), p.linear(n))
     };
-    let (mut out, resolve) = match shape.tree {
-        true => (tree_dispatches(shape, camera, 1, camera.offsets), 10),
-        false => (wavefront_generations(shape, camera, 1, camera.offsets), 6),
-    };
+    let (mut out, resolve) = generation_dispatches(shape, camera, 1, camera.offsets);
     if shape.uniform.is_some() {
         out.push(p.run(resolve, p.params(0, n), p.square()));
     }
     out
 }
 
-/// The wavefront kernels' dispatches of a chunk after its `camera` pass (which they
-/// copy the chunk, items and stratum of): per generation g closest, shade, args, shadow,
-/// gather (entries `closest` … `closest` + 4 of the mode's list, bound at `offsets`) —
-/// generation 0's over the chunk's samples as the camera pass, later ones' and every
-/// shadow pass's as the args kernel wrote them (`generation_words` a generation from
-/// `offsets.work`: the next generation's, then this one's shadow pass, with CSG one
-/// dispatch a slice, `GpuTile::slice` telling it which).
-pub(super) fn wavefront_generations(
+/// A `camera` pass, then its generations' dispatches (entries from `closest` on, bound at
+/// `offsets`): a chain's ([`chain_generations`]) or, with refraction, a tree's (its glass
+/// rounds and fold too: [`tree_generations`]); and the entry that follows them (the
+/// resolve or store pass: 5 after `closest` for a chain, 9 for a tree).
+pub(super) fn generation_dispatches(
     shape: WavefrontShape,
     camera: Dispatch,
     closest: usize,
     offsets: BindingOffsets,
-) -> Vec<Dispatch> {
+) -> (Vec<Dispatch>, usize) {
+    let generations = Generations {
+        camera,
+        closest,
+        offsets,
+    };
     let mut out = vec![camera];
-    let args = |at: u64| Workgroups::Indirect(offsets.work + at);
+    if shape.tree {
+        out.extend(tree_generations(shape, generations));
+        (out, closest + 9)
+    } else {
+        out.extend(chain_generations(shape, generations));
+        (out, closest + 5)
+    }
+}
+
+/// A chain's generations: per generation g closest, shade, args, shadow, gather (entries
+/// `closest` … `closest` + 4) — generation 0's over the chunk's samples as the camera
+/// pass, later ones' and every shadow pass's as the args kernel wrote them
+/// (`generation_words` a generation from `offsets.work`: the next generation's, then this
+/// one's shadow pass, with CSG one dispatch a slice, `GpuTile::slice` telling it which).
+fn chain_generations(shape: WavefrontShape, generations: Generations) -> Vec<Dispatch> {
+    let mut out = Vec::new();
     for g in 0..shape.generations {
-        let pass = |entry: usize, workgroups: Workgroups| {
-            camera.generation_pass(closest + entry, g, workgroups, offsets)
-        };
-        let paths = match g {
-            0 => camera.workgroups,
-            _ => args(shape.paths_args(g)),
-        };
+        let pass = |entry: usize, workgroups: Workgroups| generations.pass(entry, g, workgroups);
+        let paths = generations.paths(shape, g);
         out.push(pass(0, paths));
         out.push(pass(1, paths));
         let mut args_kernel = Dispatch {
@@ -96,7 +106,7 @@ pub(super) fn wavefront_generations(
         args_kernel.params.slice = shape.shadow_slices;
         out.push(args_kernel);
         for slice in 0..shape.shadow_slices {
-            let mut shadow = pass(3, args(shape.shadow_args(g, slice)));
+            let mut shadow = pass(3, generations.args(shape.shadow_args(g, slice)));
             shadow.params.slice = slice;
             out.push(shadow);
         }

@@ -133,6 +133,38 @@ impl Dispatch {
     }
 }
 
+/// The passes of the generations that follow a camera pass: entries from `closest` on
+/// of the mode's list, bound at `offsets`, copying the camera pass's chunk, items and
+/// stratum.
+#[derive(Clone, Copy)]
+pub(super) struct Generations {
+    pub(super) camera: Dispatch,
+    pub(super) closest: usize,
+    pub(super) offsets: BindingOffsets,
+}
+
+impl Generations {
+    /// Entry `closest` + `entry` at level `level` (a generation, or a tree's glass round).
+    pub(super) fn pass(self, entry: usize, level: u32, workgroups: Workgroups) -> Dispatch {
+        self.camera
+            .generation_pass(self.closest + entry, level, workgroups, self.offsets)
+    }
+
+    /// The indirect workgroups an args kernel wrote at byte `at` of its `work_args`.
+    pub(super) fn args(self, at: u64) -> Workgroups {
+        Workgroups::Indirect(self.offsets.work + at)
+    }
+
+    /// The workgroups of generation g's passes over paths: generation 0's over the
+    /// samples as the camera pass, later ones' as the args kernel wrote them.
+    pub(super) fn paths(self, shape: WavefrontShape, g: u32) -> Workgroups {
+        match g {
+            0 => self.camera.workgroups,
+            _ => self.args(shape.paths_args(g)),
+        }
+    }
+}
+
 /// Where a dispatch binds the `samples` buffer and the work buffers (`work_counts`,
 /// `work_args`) from, in bytes: 0, or under adaptive AA through the wavefront kernels the
 /// queues after the lattice ([`lattice_queue_bytes`]) and the wavefront's counters and

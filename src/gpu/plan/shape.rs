@@ -3,8 +3,8 @@
 //! generation's and each glass round's arguments lie. Chains and trees alike.
 
 use crate::constants::MAX_SHADOW_CROSSINGS;
-use crate::queues::counters::counter_words;
-use crate::queues::layout::{paths_per_sample, vec4s_per_sample, Form};
+use crate::tracer::wavefront::queues::counters::{counter_words, leg_args, tree_generation_args};
+use crate::tracer::wavefront::queues::layout::{paths_per_sample, vec4s_per_sample, Form};
 use crate::tracer::wavefront::queues::{COUNTERS, REGIONS};
 
 /// What sizes the wavefront kernels' queues and dispatches: the scene's light points (a
@@ -28,9 +28,6 @@ pub struct WavefrontShape {
 /// Glass shadow rounds a tree's generation runs (`src/tracer/wavefront/wavefront_tree.wgsl`): a leg
 /// crosses at most MAX_SHADOW_CROSSINGS surfaces and is blocked at the next.
 pub const SHADOW_ROUNDS: u32 = MAX_SHADOW_CROSSINGS + 1;
-
-/// Words of work_args before a tree's generations' (round r's legs at 3r, r < 10).
-const TREE_ROUND_ARGS_WORDS: u64 = 30;
 
 impl WavefrontShape {
     /// Samples a pixel: n² under uniform AA, else 1.
@@ -64,21 +61,15 @@ impl WavefrontShape {
     /// Byte offset in work_args of the indirect arguments of generation g's passes over
     /// paths (g ≥ 1; written by generation g − 1's args kernel).
     pub(super) fn paths_args(self, g: u32) -> u64 {
-        4 * (self.args_prefix_words() + self.generation_words() * (g as u64 - 1))
+        if self.tree {
+            return 4 * tree_generation_args(g - 1) as u64;
+        }
+        4 * self.generation_words() * (g as u64 - 1)
     }
 
     /// Byte offset of slice `slice` of generation g's shadow pass's arguments.
     pub(super) fn shadow_args(self, g: u32, slice: u32) -> u64 {
         4 * (3 + 3 * slice as u64) + self.paths_args(g + 1)
-    }
-
-    /// Words of work_args before the generations' (a tree's round arguments).
-    fn args_prefix_words(self) -> u64 {
-        if self.tree {
-            TREE_ROUND_ARGS_WORDS
-        } else {
-            0
-        }
     }
 
     /// Words of work_args a generation: the next generation's passes' 3, then 3 a
@@ -89,7 +80,7 @@ impl WavefrontShape {
 
     /// Byte offset of a tree's round r's leg arguments (the same words every generation).
     pub(super) fn round_args(r: u32) -> u64 {
-        12 * r as u64
+        4 * leg_args(r) as u64
     }
 
     /// 24-byte levels of work_args (and 4-byte counters of work_counts) the kernels use:
@@ -99,7 +90,7 @@ impl WavefrontShape {
     pub fn work_levels(self) -> u64 {
         let counters = counter_words(COUNTERS, self.form()) as u64;
         if self.tree {
-            (TREE_ROUND_ARGS_WORDS / 6 + self.generations as u64).max(counters)
+            (tree_generation_args(self.generations) as u64 / 6).max(counters)
         } else {
             (self.generation_words() * self.generations as u64)
                 .div_ceil(6)

@@ -2,9 +2,8 @@
 //! (the frame's stratum), the generations (a chain's or a tree's), then the store into
 //! the progressive sums.
 
-use super::chain::wavefront_generations;
+use super::chain::generation_dispatches;
 use super::shape::WavefrontShape;
-use super::tree::tree_dispatches;
 use super::{linear_workgroups, AdapterBounds, BindingOffsets, Chunk, Dispatch, Workgroups};
 use crate::gpu::upload::buffers::GpuTile;
 
@@ -41,10 +40,7 @@ pub fn view_wavefront_dispatches(
         offsets: BindingOffsets::default(),
     };
     // A tree: its rounds and fold before the store.
-    let (mut out, store) = match shape.tree {
-        true => (tree_dispatches(shape, camera, 1, camera.offsets), 10),
-        false => (wavefront_generations(shape, camera, 1, camera.offsets), 6),
-    };
+    let (mut out, store) = generation_dispatches(shape, camera, 1, camera.offsets);
     out.push(Dispatch {
         entry: store,
         clears_work: false,

@@ -22,6 +22,20 @@ pub fn phong_power(base: f32, exponent: f32) -> f32 {
     }
 }
 
+/// A shaded point as its lights see it: the surface, its Phong colours, the normal facing
+/// the viewer and the direction to the viewer (what each light point's term reads).
+// Mirror of src/tracer/shading/shade.wgsl::LitPoint — change both.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LitPoint {
+    pub(crate) s: Surface,
+    /// The Phong colours at `s` ([`phong_at`]).
+    pub(crate) phong: Phong,
+    /// The shading normal, facing the viewer.
+    pub(crate) n: Vec3,
+    /// The direction to the viewer.
+    pub(crate) v: Vec3,
+}
+
 /// A4 lighting at a surface point: kd·ambient plus, for each light a shadow ray reaches,
 /// (kd·max(0,N·L) + ks·max(0,R·V)^shininess)·I/(c0 + c1·d + c2·d²). `n` faces the viewer;
 /// `v` points to the viewer. An area light is n×n such point lights, one jittered point
@@ -40,37 +54,17 @@ pub fn shade_phong(
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     let phong = phong_at(scene, s);
+    let lit = LitPoint { s: *s, phong, n, v };
     let mut colour = ambient_term(scene, phong);
     let origin = offset_ray(s.p, n, s.magnitude);
     for index in 0..scene.globals.num_lights as usize {
         let light = load_light(scene, index as u32);
         if light.kind == LIGHT_AREA {
-            colour += area_light(
-                scene,
-                s,
-                phong,
-                n,
-                v,
-                origin,
-                media,
-                light,
-                index as u32,
-                seed,
-                counters,
-            );
+            let index = index as u32;
+            colour += area_light(scene, &lit, origin, media, light, index, seed, counters);
         } else {
-            colour += point_light(
-                scene,
-                s,
-                phong,
-                n,
-                v,
-                origin,
-                media,
-                Vec3::from(light.position),
-                light,
-                counters,
-            );
+            let position = Vec3::from(light.position);
+            colour += point_light(scene, &lit, origin, media, position, light, counters);
         }
     }
     colour
@@ -101,13 +95,9 @@ pub(crate) fn ambient_term(scene: &PackedScene, phong: Phong) -> Vec3 {
 /// (dimmed instead by the glass it crosses, in scenes with refraction) before
 /// [`shadow_reach`], just short of the light.
 // Mirror of src/tracer/shading/shade.wgsl::point_light — change both.
-#[allow(clippy::too_many_arguments)]
 fn point_light(
     scene: &PackedScene,
-    s: &Surface,
-    phong: Phong,
-    n: Vec3,
-    v: Vec3,
+    lit: &LitPoint,
     origin: Vec3,
     media: &MediumStack,
     position: Vec3,
@@ -115,9 +105,10 @@ fn point_light(
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
     // Lights behind the surface (as seen from the viewer's side) add nothing.
-    let Some(term) = unshadowed_term(scene, s, phong, n, v, position, light) else {
+    let Some(term) = unshadowed_term(scene, lit, position, light) else {
         return Vec3::ZERO;
     };
+    let s = &lit.s;
     // With dielectrics, light passes through glass, dimmed (see dielectric.rs).
     let transmittance = if scene.features.contains(SceneFeatures::REFRACTION) {
         shadow_transmittance(scene, origin, position, s.magnitude, media, counters)
@@ -136,16 +127,13 @@ fn point_light(
 /// the products are those of `point_light`'s one expression, left to right, so
 /// [`shadowed_term`] finishes them with the same bits.
 // Mirror of src/tracer/shading/shade.wgsl::unshadowed_term — change both.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn unshadowed_term(
     scene: &PackedScene,
-    s: &Surface,
-    phong: Phong,
-    n: Vec3,
-    v: Vec3,
+    lit: &LitPoint,
     position: Vec3,
     light: &PackedLight,
 ) -> Option<Vec3> {
+    let &LitPoint { s, phong, n, v } = lit;
     let m = load_material(scene, s.material);
     let to_light = position - s.p;
     let distance = to_light.length();
@@ -204,10 +192,7 @@ pub fn shadow_blocked(
 #[allow(clippy::too_many_arguments)]
 fn area_light(
     scene: &PackedScene,
-    s: &Surface,
-    phong: Phong,
-    n: Vec3,
-    v: Vec3,
+    lit: &LitPoint,
     origin: Vec3,
     media: &MediumStack,
     light: &PackedLight,
@@ -217,16 +202,14 @@ fn area_light(
 ) -> Vec3 {
     let k = light.samples;
     let mut sum = Vec3::ZERO;
-    let mut lit = 0;
+    let mut lit_strata = 0;
     let stream = shadow_stream(seed, index);
     for stratum in 0..k * k {
         let position = area_light_point(light, &stream, stratum);
-        let c = point_light(
-            scene, s, phong, n, v, origin, media, position, light, counters,
-        );
-        add_stratum(&mut sum, &mut lit, c);
+        let c = point_light(scene, lit, origin, media, position, light, counters);
+        add_stratum(&mut sum, &mut lit_strata, c);
     }
-    if penumbra(seed.depth, lit, k) {
+    if penumbra(seed.depth, lit_strata, k) {
         counters.partial_light();
     }
     area_light_mean(sum, k)

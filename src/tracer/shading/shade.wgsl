@@ -16,6 +16,16 @@ fn phong_power(base: f32, exponent: f32) -> f32 {
     return 0.0;
 }
 
+// A shaded point as its lights see it: the surface, its Phong colours, the normal facing
+// the viewer and the direction to the viewer (what each light point's term reads).
+// Mirror of src/tracer/shading/shade.rs::LitPoint — change both.
+struct LitPoint {
+    s: Surface,
+    phong: Phong,
+    n: vec3<f32>,
+    v: vec3<f32>,
+}
+
 // A4 lighting at a surface point: kd·ambient plus, for each light a shadow ray reaches,
 // (kd·max(0,N·L) + ks·max(0,R·V)^shininess)·I/(c0 + c1·d + c2·d²). n faces the viewer;
 // v points to the viewer. An area light is n×n such point lights, one jittered point per
@@ -27,17 +37,18 @@ fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3
 // #if TEXTURE
     phong = surface_colours(m, s);
 // #endif
+    let lit = LitPoint(s, phong, n, v);
     var colour = phong.kd * globals.ambient;
     let origin = offset_ray(s.p, n, s.magnitude);
     for (var i = 0u; i < globals.num_lights; i++) {
         let light = load_light(i);
 // #if AREA_LIGHT
         if light.kind == LIGHT_AREA {
-            colour += area_light(s, phong, n, v, origin, light, i, seed);
+            colour += area_light(lit, origin, light, i, seed);
             continue;
         }
 // #endif
-        colour += point_light(s, phong, n, v, origin, light.position, light);
+        colour += point_light(lit, origin, light.position, light);
     }
     return colour;
 }
@@ -47,12 +58,13 @@ fn shade_phong(s: Surface, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) -> vec3
 // instead by the glass it crosses, in scenes with refraction) before shadow_reach, just
 // short of the light.
 // Mirror of src/tracer/shading/shade.rs::point_light — change both.
-fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec3<f32> {
+fn point_light(lit: LitPoint, origin: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec3<f32> {
     // Lights behind the surface (as seen from the viewer's side) add nothing.
-    let term = unshadowed_term(s, phong, n, v, position, light);
+    let term = unshadowed_term(lit, position, light);
     if term.w == 0.0 {
         return vec3<f32>(0.0);
     }
+    let s = lit.s;
     // With dielectrics, light passes through glass, dimmed (see dielectric.wgsl).
 // #if REFRACTION
     let transmittance = shadow_transmittance(origin, position, s.magnitude);
@@ -71,7 +83,9 @@ fn point_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec
 // the shadow ray to its shadow pass, which finishes it with shadowed_term as point_light
 // does (their Rust twins say where).
 // Mirror of src/tracer/shading/shade.rs::unshadowed_term — change both.
-fn unshadowed_term(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, position: vec3<f32>, light: PackedLight) -> vec4<f32> {
+fn unshadowed_term(lit: LitPoint, position: vec3<f32>, light: PackedLight) -> vec4<f32> {
+    let s = lit.s;
+    let n = lit.n;
     let m = load_material(s.material);
     let to_light = position - s.p;
     let distance = length(to_light);
@@ -81,12 +95,12 @@ fn unshadowed_term(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, positio
         return vec4<f32>(0.0);
     }
     let r = n * (2.0 * n_dot_l) - l;
-    let specular = phong_power(dot(r, v), m.shininess);
+    let specular = phong_power(dot(r, lit.v), m.shininess);
     let c0 = light.falloff.x;
     let c1 = light.falloff.y;
     let c2 = light.falloff.z;
     let attenuation = 1.0 / (c0 + distance * (c1 + distance * c2));
-    return vec4<f32>((phong.kd * n_dot_l + phong.ks * specular) * light.colour * attenuation, 1.0);
+    return vec4<f32>((lit.phong.kd * n_dot_l + lit.phong.ks * specular) * light.colour * attenuation, 1.0);
 }
 
 // A light point's term once its shadow ray is traced: zero where nothing gets through
@@ -118,21 +132,21 @@ fn shadow_blocked(origin: vec3<f32>, position: vec3<f32>, magnitude: f32) -> boo
 // fine_detail_seen when some of those points light it and others do not, at the first hit of
 // a camera ray only (seed.depth 0; see the twin for why).
 // Mirror of src/tracer/shading/shade.rs::area_light — change both.
-fn area_light(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, origin: vec3<f32>, light: PackedLight, index: u32, seed: SampleSeed) -> vec3<f32> {
+fn area_light(lit: LitPoint, origin: vec3<f32>, light: PackedLight, index: u32, seed: SampleSeed) -> vec3<f32> {
     let k = light.samples;
     let scale = 1.0 / f32(k);
     var sum = vec3<f32>(0.0);
-    var lit = 0u;
+    var lit_strata = 0u;
     let stream = shadow_stream(seed, index);
     for (var stratum = 0u; stratum < k * k; stratum++) {
         let a = (f32(stratum % k) + shadow_random(stream, stratum, 0u)) * scale - 0.5;
         let b = (f32(stratum / k) + shadow_random(stream, stratum, 1u)) * scale - 0.5;
         let position = light.position + light.edge_u * a + light.edge_v * b;
-        let c = point_light(s, phong, n, v, origin, position, light);
-        lit += select(0u, 1u, any(c != vec3<f32>(0.0)));
+        let c = point_light(lit, origin, position, light);
+        lit_strata += select(0u, 1u, any(c != vec3<f32>(0.0)));
         sum += c;
     }
-    if seed.depth == 0u && lit > 0u && lit < k * k {
+    if seed.depth == 0u && lit_strata > 0u && lit_strata < k * k {
         fine_detail_seen = true;
     }
     return sum * (scale * scale);

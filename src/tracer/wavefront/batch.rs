@@ -5,7 +5,7 @@
 //! `wavefront_shadow`, `wavefront_gather`, `wavefront_tree`) reads and writes a batch
 //! through these. The GPU's side (`batch.wgsl`) keeps the queues in its `samples` buffer
 //! and counts their entries in `work_counts` (counters generated from the same
-//! specification: `crate::queues::counters`).
+//! specification: `crate::tracer::wavefront::queues::counters`).
 
 pub use super::queues::{
     CameraVertices, HitQueue, LegQueue, LightSlots, PathQueue, SampleRecords, ShadowQueue,

@@ -4,7 +4,7 @@
 // their records and regions specified once in src/tracer/wavefront/queues.rs: the
 // accessors (path_depth, write_hit, set_sample_flags, …) and the counters of their
 // entries in work_counts (path_counter, shadow_counter, …) are generated from it into the
-// module (src/queues/wgsl.rs), as are their regions (src/queues/layout.rs).
+// module (src/tracer/wavefront/queues/wgsl.rs), as are their regions (src/tracer/wavefront/queues/layout.rs).
 // Mirror of src/tracer/wavefront/batch.rs — change both.
 
 // #if WAVEFRONT

@@ -3,7 +3,8 @@
 //! built on `sampling` and below. Each pass is a file beside its WGSL twin: the batch
 //! and its queues' entries (`batch`), the camera and closest passes and the generation
 //! loop (`wavefront`), the shade, shadow and gather passes, the tree's pieces
-//! (`wavefront_tree`) and adaptive AA's lattice (`wavefront_lattice`).
+//! (`wavefront_tree`) and adaptive AA's lattice (`wavefront_lattice`); the queues'
+//! specification (`queues`), with what is generated from it in `queues/`.
 
 pub mod batch;
 pub mod queues;

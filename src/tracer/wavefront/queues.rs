@@ -1,16 +1,35 @@
-//! The specification of the wavefront's queue records (`crate::queues` says what comes
-//! of it): one line a field, and the regions of the GPU's `samples` buffer they fill.
-//! Lanes are a record's vec4s in the GPU's `samples` buffer (`"2.w 3.x"`: vec4 2's w,
-//! then vec4 3's x); u32 fields are stored bit-cast into f32 lanes.
+//! The specification of the wavefront's queue records (pbrt-v4's `workitems.soa` is the
+//! model): one line a field, the regions of the GPU's `samples` buffer they fill and the
+//! counters of their entries. Lanes are a record's vec4s in the GPU's `samples` buffer
+//! (`"2.w 3.x"`: vec4 2's w, then vec4 3's x); u32 fields are stored bit-cast into f32
+//! lanes. From this one table, through the modules beside it, come
+//! - the CPU wavefront's structures of arrays (one `Vec` a field: `PathQueue`, …), made
+//!   by `queue_records!` ([`record`]);
+//! - the WGSL accessors the wavefront kernels read and write their queues through
+//!   ([`wgsl`]'s `queue_wgsl`, emitted into the render module as the constants' prelude
+//!   is: no `.wgsl` file holds them);
+//! - the regions of `samples` the queues take and the bytes a sample needs ([`layout`],
+//!   which `gpu::plan` sizes its buffers by);
+//! - the counters of their entries in `work_counts` ([`counters`]: the WGSL functions
+//!   naming a generation's word, and the words `gpu::plan` sizes `work_counts` by).
+//!
+//! A new field is one line here. docs/architecture.md, "Queues", describes the layout.
+
+pub mod counters;
+pub mod layout;
+pub mod record;
+pub mod wgsl;
+
+pub use record::{QueueField, QueueRecord, TREE_CONDITION};
 
 use crate::constants::{
     MEDIUM_STACK_SIZE, NO_CHILD, NO_ITEM, VERTEX_LIT, VERTEX_MISS, VERTEX_UNLIT,
 };
-use crate::queues::counters::Counter;
-use crate::queues::layout::{Entries, Region};
 use crate::tracer::shading::dielectric::MediumStack;
 use crate::tracer::traversal::hit::Hit;
+use counters::Counter;
 use glam::{Vec2, Vec3};
+use layout::{Entries, Region};
 
 /// What the gather pass does with a vertex (the GPU's VERTEX_* words).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -116,7 +135,7 @@ crate::queue_records! {
     }
 }
 
-/// The regions of the GPU's `samples` buffer, in buffer order (`crate::queues::layout`).
+/// The regions of the GPU's `samples` buffer, in buffer order ([`layout`]).
 pub const REGIONS: &[Region] = &[
     Region::new("sample", SampleRecords::RECORD, 1, Entries::Samples, false),
     Region::new("path", PathQueue::RECORD, 2, Entries::Paths, false),
@@ -154,7 +173,7 @@ pub const REGIONS: &[Region] = &[
     ),
 ];
 
-/// The counters of the queues' entries in the GPU's `work_counts` (`crate::queues::counters`):
+/// The counters of the queues' entries in the GPU's `work_counts` ([`counters`]):
 /// a generation's paths (read, appended to, cleared: three words) and shadow requests;
 /// in a tree's layout a glass round's legs, a generation's first vertex in the vertex
 /// tree, and the scene's light points (written by the camera pass for the shadow pass
@@ -216,10 +235,10 @@ impl HitQueue {
 
 #[cfg(test)]
 mod tests {
+    use super::layout::{in_layout, lanes, stride, vec4s_per_sample, Form};
+    use super::wgsl::queue_wgsl;
     use super::*;
     use crate::constants::{TREE_PATHS_PER_SAMPLE, TREE_VERTICES_PER_SAMPLE};
-    use crate::queues::layout::{in_layout, lanes, stride, vec4s_per_sample, Form};
-    use crate::queues::wgsl::queue_wgsl;
     use std::collections::BTreeSet;
 
     /// Components of each WGSL type a field may have.
@@ -299,7 +318,7 @@ mod tests {
     /// tree's 11 (the args kernels clear and the plan sizes exactly these).
     #[test]
     fn counters_take_distinct_words() {
-        use crate::queues::counters::counter_words;
+        use super::counters::counter_words;
         for form in [Form::Chain, Form::Tree] {
             let mut words: Vec<u32> = COUNTERS
                 .iter()

@@ -33,7 +33,6 @@
 
 pub use super::batch::Batch;
 use super::batch::{each_path, light_points, start_generation};
-use super::queues::CHAIN_MEDIA;
 pub use super::queues::{
     CameraVertices, HitQueue, LightSlots, PathQueue, SampleRecords, ShadowQueue, VertexKind,
     VertexQueue, VertexTree,
@@ -47,10 +46,10 @@ use crate::constants::{
 use crate::film::Film;
 use crate::pack::{PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{camera_ray, Ray};
-use crate::tracer::path::trace::{camera_medium_stack, StackEntry};
+use crate::tracer::base::rng::SampleSeed;
+use crate::tracer::path::trace::camera_entry;
 use crate::tracer::sampling::sample_source::CameraSample;
 pub use crate::tracer::sampling::sample_source::SampleSource;
-use crate::tracer::shading::texture::camera_cone;
 use crate::tracer::traversal::hit::TraversalCounters;
 use crate::tracer::traversal::traverse::closest_hit;
 use glam::Vec3;
@@ -66,14 +65,11 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
     batch.keeps_tree = scene.features.contains(SceneFeatures::REFRACTION);
     batch.samples.resize(count);
     batch.paths.resize(count);
+    if batch.keeps_tree {
+        batch.camera_vertices.resize(count);
+    }
     for k in 0..count {
         wavefront_camera(scene, source, batch, k);
-    }
-    if batch.keeps_tree {
-        // Camera rays start in the media around the camera (chains keep the placeholder);
-        // sample k's camera ray is path k, vertex k.
-        batch.paths.media.fill(camera_medium_stack(&scene.globals));
-        batch.camera_vertices.index = (0..count as u32).collect();
     }
     start_generation(batch);
 }
@@ -82,22 +78,36 @@ pub fn camera_pass(scene: &PackedScene, source: &SampleSource, batch: &mut Batch
 /// as generation 0's path k.
 // Mirror of src/tracer/wavefront/wavefront.wgsl::wavefront_camera, which takes the Strata and Stratum sources (AA none's, uniform AA's, glint view's) only so far — change both.
 fn wavefront_camera(scene: &PackedScene, source: &SampleSource, batch: &mut Batch, k: usize) {
-    let g = &scene.globals;
     let CameraSample { fx, fy, seed } = source.camera_sample(scene, k);
+    // Path k (a tree's vertex k).
+    start_sample(scene, batch, k, k, fx, fy, seed);
+}
+
+/// Sample `k`'s record (its seed; no colour or items yet) and its camera ray at
+/// (`fx`, `fy`), which starts in the media around the camera (`camera_entry`; a chain's
+/// shading never reads them), as generation 0's path `at` — in a tree also the sample's
+/// camera vertex — with nothing under it on `trace_ray`'s stack.
+// Mirror of src/tracer/wavefront/wavefront.wgsl::start_sample — change both.
+fn start_sample(
+    scene: &PackedScene,
+    batch: &mut Batch,
+    k: usize,
+    at: usize,
+    fx: f32,
+    fy: f32,
+    seed: SampleSeed,
+) {
     let s = &mut batch.samples;
     (s.seed_pixel[k], s.seed_sample[k]) = (seed.pixel, seed.sample);
     if seed.mirrors_corners {
         s.set_flag(k, SAMPLE_MIRRORS_CORNERS);
     }
-    let ray = camera_ray(g, fx, fy);
-    let entry = StackEntry {
-        ray,
-        weight: Vec3::ONE,
-        depth: 0,
-        cone: camera_cone(g, &ray),
-        media: CHAIN_MEDIA,
-    };
-    batch.paths.store_path(k, &entry, 0, k as u32);
+    let g = &scene.globals;
+    let entry = camera_entry(g, &camera_ray(g, fx, fy));
+    if batch.keeps_tree {
+        batch.camera_vertices.index[k] = at as u32;
+    }
+    batch.paths.store_path(at, &entry, 0, k as u32);
 }
 
 /// The closest pass: each path's ray to its closest hit.

@@ -55,20 +55,27 @@ fn wavefront_camera(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_w
         s = k % (n * n);
     }
     let stratum = stratum_position(tile.origin.x + p % tile.size.x, tile.origin.y + p / tile.size.x, s, n, uniform);
-    let seed = stratum.seed;
+    // Path k (a tree's vertex k).
+    start_sample(k, k, stratum.fx, stratum.fy, stratum.seed);
+}
+
+// Sample k's record (its seed; no colour or items yet) and its camera ray at (fx, fy),
+// which starts in the media around the camera (camera_entry), as generation 0's path
+// `at` — in a tree also the sample's camera vertex — with nothing under it on
+// trace_ray's stack. Both camera passes (wavefront_camera, wavefront_lattice_camera)
+// start their samples with it.
+// Mirror of src/tracer/wavefront/wavefront.rs::start_sample — change both.
+fn start_sample(k: u32, at: u32, fx: f32, fy: f32, seed: SampleSeed) {
     var flags = 0u;
     if seed.mirrors_corners {
         flags = SAMPLE_MIRRORS_CORNERS;
     }
     write_sample(k, vec3<f32>(0.0), NO_ITEM, NO_ITEM, flags, seed.pixel, seed.sample);
-    // Camera rays start in the media around the camera (camera_entry).
-    let entry = camera_entry(camera_ray(stratum.fx, stratum.fy));
+    let entry = camera_entry(camera_ray(fx, fy));
 // #if REFRACTION
-    // Path k is vertex k.
-    write_camera_vertex(k, k);
+    write_camera_vertex(k, at);
 // #endif
-    // A camera ray: nothing under it on trace_ray's stack.
-    store_path(0u, k, entry, 0u, k);
+    store_path(0u, at, entry, 0u, k);
 }
 
 // The closest pass's invocation for path idx of generation tile.level: its hit, and the

@@ -77,19 +77,8 @@ fn wavefront_lattice_camera(@builtin(global_invocation_id) id: vec3<u32>, @built
     }
     let position = lattice_position(point.x, point.y);
     let jittered = lattice_jitter(position.x, position.y);
-    let seed = jittered.seed;
-    var flags = 0u;
-    if seed.mirrors_corners {
-        flags = SAMPLE_MIRRORS_CORNERS;
-    }
-    write_sample(idx, vec3<f32>(0.0), NO_ITEM, NO_ITEM, flags, seed.pixel, seed.sample);
-    // Camera rays start in the media around the camera (camera_entry: a tree's).
-    let entry = camera_entry(camera_ray(jittered.fx, jittered.fy));
-    let at = atomicAdd(&work_counts[WAVEFRONT_WORK_BASE], 1u);
-// #if REFRACTION
-    write_camera_vertex(idx, at);
-// #endif
-    store_path(0u, at, entry, 0u, idx);
+    let at = atomicAdd(&work_counts[WAVEFRONT_WORK_BASE + path_counter(0u)], 1u);
+    start_sample(idx, at, jittered.fx, jittered.fy, jittered.seed);
 }
 
 // The store pass of lattice pass tile.level, sample idx: the sample's colour and, in w,
@@ -102,12 +91,11 @@ fn wavefront_lattice_store(@builtin(global_invocation_id) id: vec3<u32>, @builti
     let idx = linear_index(id, groups);
     let lattice_pass = tile.level;
     if idx == 0u {
-        // A chain's five counters; a tree's also its leg counters and vertex bases.
-        var counters = 5u;
-// #if REFRACTION
-        counters = 10u;
-// #endif
-        for (var c = 0u; c < counters; c++) {
+        // Every counter of the layout (generated from the queue specification,
+        // src/tracer/wavefront/queues.rs's COUNTERS): a chain's path and shadow counters; a
+        // tree's also its leg counters, vertex bases and the light points word (which the
+        // next lattice pass's camera pass notes again).
+        for (var c = 0u; c < counter_words(); c++) {
             atomicStore(&work_counts[WAVEFRONT_WORK_BASE + c], 0u);
         }
     }

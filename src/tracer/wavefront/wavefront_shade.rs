@@ -16,9 +16,9 @@ use crate::tracer::path::trace::{
     is_mirror, note_texture_detail, shading_point, ShadedHit, StackEntry,
 };
 use crate::tracer::shading::shade::{
-    ambient_term, area_light_point, background, phong_at, unshadowed_term,
+    ambient_term, area_light_point, background, phong_at, unshadowed_term, LitPoint,
 };
-use crate::tracer::shading::surface::{Phong, Surface};
+use crate::tracer::shading::surface::Surface;
 use crate::tracer::traversal::hit::{Hit, TraversalCounters};
 use glam::Vec3;
 
@@ -65,7 +65,7 @@ fn wavefront_shade(
     batch.vertices.magnitude[i] = s.magnitude;
     let v = -entry.ray.dir;
     let seed = batch.samples.seed(k, entry.depth);
-    ask_light_shadows(scene, batch, i, &s, phong, n, v, seed);
+    ask_light_shadows(scene, batch, i, &LitPoint { s, phong, n, v }, seed);
     let shaded = ShadedHit {
         s,
         facing: point.facing,
@@ -115,15 +115,11 @@ impl<C: TraversalCounters> TraversalCounters for DetailWatch<'_, C> {
 /// Every light point of path `i`'s hit at `s` (an area light's strata from `seed`'s
 /// shadow streams), in slot order, through [`ask_shadow`].
 // Mirror of src/tracer/wavefront/wavefront_shade.wgsl::ask_light_shadows — change both.
-#[allow(clippy::too_many_arguments)]
 fn ask_light_shadows(
     scene: &PackedScene,
     batch: &mut Batch,
     i: usize,
-    s: &Surface,
-    phong: Phong,
-    n: Vec3,
-    v: Vec3,
+    lit: &LitPoint,
     seed: SampleSeed,
 ) {
     let points = light_points(scene);
@@ -134,12 +130,12 @@ fn ask_light_shadows(
             let stream = shadow_stream(seed, index as u32);
             for stratum in 0..light.samples * light.samples {
                 let position = area_light_point(light, &stream, stratum);
-                ask_shadow(scene, batch, s, phong, n, v, position, light, slot, points);
+                ask_shadow(scene, batch, lit, position, light, slot, points);
                 slot += 1;
             }
         } else {
             let position = Vec3::from(light.position);
-            ask_shadow(scene, batch, s, phong, n, v, position, light, slot, points);
+            ask_shadow(scene, batch, lit, position, light, slot, points);
             slot += 1;
         }
     }
@@ -149,21 +145,17 @@ fn ask_light_shadows(
 /// its unshadowed term in the slot and a shadow request (a slot facing away keeps the
 /// zero its generation started with).
 // Mirror of src/tracer/wavefront/wavefront_shade.wgsl::ask_shadow — change both.
-#[allow(clippy::too_many_arguments)]
 fn ask_shadow(
     scene: &PackedScene,
     batch: &mut Batch,
-    s: &Surface,
-    phong: Phong,
-    n: Vec3,
-    v: Vec3,
+    lit: &LitPoint,
     position: Vec3,
     light: &PackedLight,
     slot: u32,
     points: u32,
 ) {
     debug_assert_eq!(points, batch.light_points);
-    if let Some(term) = unshadowed_term(scene, s, phong, n, v, position, light) {
+    if let Some(term) = unshadowed_term(scene, lit, position, light) {
         batch.slots.term[slot as usize] = term;
         batch.shadows.append_request(slot, position);
     }

@@ -9,8 +9,8 @@
 // Light point `slot` (of `points` a vertex) at `position`: its unshadowed term in the slot
 // (zero where it faces away) and, where it faces the point, a shadow request.
 // Mirror of src/tracer/wavefront/wavefront_shade.rs::ask_shadow — change both.
-fn ask_shadow(s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, position: vec3<f32>, light: PackedLight, slot: u32, points: u32) {
-    let term = unshadowed_term(s, phong, n, v, position, light);
+fn ask_shadow(lit: LitPoint, position: vec3<f32>, light: PackedLight, slot: u32, points: u32) {
+    let term = unshadowed_term(lit, position, light);
     write_slot(slot, term.xyz);
     if term.w != 0.0 {
         let r = atomicAdd(&work_counts[shadow_counter(tile.level)], 1u);
@@ -62,7 +62,7 @@ fn wavefront_shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_wo
     set_vertex_shadow_origin_magnitude(i, origin, s.magnitude);
     let v = -entry.ray.dir;
     let seed = SampleSeed(sample_seed_pixel(k), sample_seed_sample(k), entry.depth, (sample_flags(k) & SAMPLE_MIRRORS_CORNERS) != 0u);
-    ask_light_shadows(i, s, phong, n, v, seed);
+    ask_light_shadows(i, LitPoint(s, phong, n, v), seed);
     push_next_paths(i, entry, k, ShadedHit(s, point.facing, n, vec3<f32>(0.0), false), hit);
 }
 
@@ -90,7 +90,7 @@ fn note_sample_hints(k: u32, s: Surface) {
 // streams), in slot order: its unshadowed term and, where it faces the point, a shadow
 // request (ask_shadow).
 // Mirror of src/tracer/wavefront/wavefront_shade.rs::ask_light_shadows — change both.
-fn ask_light_shadows(i: u32, s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32>, seed: SampleSeed) {
+fn ask_light_shadows(i: u32, lit: LitPoint, seed: SampleSeed) {
     let points = light_points();
     var slot = i * points;
     for (var index = 0u; index < globals.num_lights; index++) {
@@ -105,13 +105,13 @@ fn ask_light_shadows(i: u32, s: Surface, phong: Phong, n: vec3<f32>, v: vec3<f32
                 let a = (f32(stratum % kk) + shadow_random(stream, stratum, 0u)) * scale - 0.5;
                 let b = (f32(stratum / kk) + shadow_random(stream, stratum, 1u)) * scale - 0.5;
                 let position = light.position + light.edge_u * a + light.edge_v * b;
-                ask_shadow(s, phong, n, v, position, light, slot, points);
+                ask_shadow(lit, position, light, slot, points);
                 slot += 1u;
             }
             continue;
         }
 // #endif
-        ask_shadow(s, phong, n, v, light.position, light, slot, points);
+        ask_shadow(lit, light.position, light, slot, points);
         slot += 1u;
     }
 }

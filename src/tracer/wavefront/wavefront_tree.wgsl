@@ -24,13 +24,15 @@
 // camera vertex (NO_CHILD: none), then per path L light slots, L shadow requests, two
 // leg queues of L legs and L leg hits. The records and the regions are specified once in
 // src/tracer/wavefront/queues.rs; their accessors (path_pending, write_leg, node_children, …) are
-// generated from it into the module (src/queues/wgsl.rs).
+// generated from it into the module (src/tracer/wavefront/queues/wgsl.rs).
 // Counters in work_counts (generated from src/tracer/wavefront/queues.rs's COUNTERS): as
 // for chains (path_counter, shadow_counter), round r's legs (leg_counter), generation g's
 // vertex base (vertex_base_counter; its path i is vertex base + i), the scene's light
 // points (tree_points_word: written by the camera pass, for the shadow pass and the
 // rounds' kernels, whose regions lie after L-sized ones). Indirect arguments in work_args: round r's
-// legs at 3r (r < 10), generation g's pair (next paths, requests) at 30 + 6g.
+// legs at leg_args(r) = 3r (r < 10), generation g's pair (next paths, requests) at
+// tree_generation_args(g) = 30 + 6g (generated with the counters from
+// src/tracer/wavefront/queues/counters.rs, whose Rust functions of those names the host's plan reads).
 // Overflow: a generation holds at most C paths and the tree TREE_VERTICES_PER_SAMPLE · N
 // vertices. A child that finds no room is not appended and its sample's guard flag is set:
 // the host renders that pixel with the CPU tracer (src/gpu/render.rs::scatter), so no ray
@@ -53,16 +55,6 @@ fn note_tree_points(base: u32) {
 // Batch::light_points, which its camera_pass notes).
 fn tree_points() -> u32 {
     return atomicLoad(&work_counts[tree_points_word()]);
-}
-
-// Where generation g's indirect arguments lie in work_args (words).
-fn tree_generation_args(g: u32) -> u32 {
-    return 30u + 6u * g;
-}
-
-// Where round r's legs' indirect arguments lie in work_args (words).
-fn leg_args(r: u32) -> u32 {
-    return 3u * r;
 }
 
 // The rays the hit of path i (vertex base_g + i, sample k) spawns, pushed as trace_ray

@@ -1,22 +1,7 @@
-//! The machinery of the wavefront's queue records, specified once (pbrt-v4's
-//! `workitems.soa` is the model) in `tracer::wavefront::queues`: each record's fields with their Rust
-//! type, their WGSL type and the vec4 lanes they take in the GPU's `samples` buffer.
-//! From that one table come
-//! - the CPU wavefront's structures of arrays (one `Vec` a field: `PathQueue`, …), made
-//!   by `queue_records!`;
-//! - the WGSL accessors the wavefront kernels read and write their queues through
-//!   (`wgsl::queue_wgsl`, emitted into the render module as the constants' prelude is:
-//!   no `.wgsl` file holds them);
-//! - the regions of `samples` the queues take and the bytes a sample needs
-//!   (`layout`, which `gpu::plan` sizes its buffers by);
-//! - the counters of their entries in `work_counts` (`counters`: the WGSL functions
-//!   naming a generation's word, and the words `gpu::plan` sizes `work_counts` by).
-//!
-//! A new field is one line in `tracer::wavefront::queues`. docs/architecture.md, "Queues", describes the layout.
-
-pub mod counters;
-pub mod layout;
-pub mod wgsl;
+//! A queue record's specification as the generators read it ([`QueueField`],
+//! [`QueueRecord`]), and [`queue_records!`](crate::queue_records), which declares the CPU's
+//! structures of arrays (one `Vec` a field) with their records from the one-line-a-field
+//! table in `tracer::wavefront::queues`.
 
 /// One field of a queue record: its name (the Rust `Vec`'s and, after the record's
 /// region, the WGSL accessors'), its WGSL type, the lanes it takes (`"W.xyz"` groups:
@@ -71,10 +56,10 @@ macro_rules! queue_records {
 
             impl $name {
                 /// The record as the queue specification gives it.
-                pub const RECORD: $crate::queues::QueueRecord = $crate::queues::QueueRecord {
+                pub const RECORD: $crate::tracer::wavefront::queues::QueueRecord = $crate::tracer::wavefront::queues::QueueRecord {
                     rust: stringify!($name),
                     fields: &[$(
-                        $crate::queues::QueueField {
+                        $crate::tracer::wavefront::queues::QueueField {
                             name: stringify!($field),
                             wgsl: $wgsl,
                             lanes: $lanes,
