@@ -244,13 +244,8 @@ pub fn enter_bounds(
 #[inline(always)]
 pub fn enter_scene(g: &PackedGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
     let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE;
-    enter_bounds(
-        Vec3::from(g.grid_min),
-        Vec3::from(g.grid_max),
-        ray,
-        t_max,
-        margin,
-    )
+    let (min, max) = (Vec3::from(g.grid_min), Vec3::from(g.grid_max));
+    enter_bounds(min, max, ray, t_max, margin)
 }
 
 /// The mesh-space ray moved to where it enters the mesh's grid bounds. Its direction is
@@ -262,13 +257,8 @@ pub fn enter_scene(g: &PackedGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRa
 pub fn enter_mesh(mesh: &PackedMesh, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
     let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE
         / ray.dir.abs().max_element().max(F32_MIN_POSITIVE);
-    enter_bounds(
-        Vec3::from(mesh.grid_min),
-        Vec3::from(mesh.grid_max),
-        ray,
-        t_max,
-        margin,
-    )
+    let (min, max) = (Vec3::from(mesh.grid_min), Vec3::from(mesh.grid_max));
+    enter_bounds(min, max, ray, t_max, margin)
 }
 
 #[cfg(test)]
