@@ -66,9 +66,9 @@ struct MeshWalk<'a> {
 /// `mesh_occludes` share. (The WGSL twins each keep these lines: the same set-up as a WGSL
 /// function returning the walk as a struct made naga 30's SPIR-V writer panic, "Expression
 /// is not cached", where a member of the walk went to a function by pointer; with the
-/// walk's DDA and mailbox copied to variables of their own it compiled, but RADV's NAVI21
-/// wave32 traversal kernels then held 112 VGPRs (budget 96) in 13 more feature
-/// combinations of `kernel_budget_combinations`.)
+/// walk's DDA and mailbox copied to variables of their own it compiled, but then 40 rows
+/// of `kernel_budget_combinations` broke RADV's NAVI21 budgets where 33 are known, the
+/// new ones wave32 traversal kernels at 112 VGPRs, budget 96.)
 #[inline(always)]
 fn mesh_walk_start<'a>(
     scene: &'a PackedScene,
