@@ -8,7 +8,7 @@ use crate::constants::{
 use crate::pack::{PackedGlobals, PackedMesh};
 use crate::tracer::base::math::{safe_rcp3, Axis};
 use crate::tracer::base::ray::Ray;
-use glam::{IVec3, Vec3};
+use glam::{IVec3, UVec3, Vec3};
 
 /// A grid's placement: bounds, cell size, cells per axis and its first cell in
 /// `PackedScene::cell_start`.
@@ -25,32 +25,36 @@ pub struct GridView {
 /// The scene grid (its cells come first in `cell_start`).
 // Mirror of src/tracer/traversal/dda.wgsl::scene_grid — change both.
 pub fn scene_grid(g: &PackedGlobals) -> GridView {
-    GridView {
-        min: Vec3::from(g.grid_min),
-        max: Vec3::from(g.grid_max),
-        cell_size: Vec3::from(g.grid_cell_size),
-        dims: IVec3::new(
-            g.grid_dims[0] as i32,
-            g.grid_dims[1] as i32,
-            g.grid_dims[2] as i32,
-        ),
-        first_cell: 0,
-    }
+    grid_view(g.grid_min, g.grid_max, g.grid_cell_size, g.grid_dims, 0)
 }
 
 /// A mesh's own grid, in the mesh's space.
 // Mirror of src/tracer/traversal/dda.wgsl::mesh_grid — change both.
 pub fn mesh_grid(mesh: &PackedMesh) -> GridView {
+    grid_view(
+        mesh.grid_min,
+        mesh.grid_max,
+        mesh.grid_cell_size,
+        mesh.grid_dims,
+        mesh.first_cell,
+    )
+}
+
+/// The `GridView` of a grid's placement as the packed records hold it (the WGSL twins
+/// build it with the struct's constructor).
+fn grid_view(
+    min: [f32; 3],
+    max: [f32; 3],
+    cell_size: [f32; 3],
+    dims: [u32; 3],
+    first_cell: u32,
+) -> GridView {
     GridView {
-        min: Vec3::from(mesh.grid_min),
-        max: Vec3::from(mesh.grid_max),
-        cell_size: Vec3::from(mesh.grid_cell_size),
-        dims: IVec3::new(
-            mesh.grid_dims[0] as i32,
-            mesh.grid_dims[1] as i32,
-            mesh.grid_dims[2] as i32,
-        ),
-        first_cell: mesh.first_cell,
+        min: Vec3::from(min),
+        max: Vec3::from(max),
+        cell_size: Vec3::from(cell_size),
+        dims: UVec3::from(dims).as_ivec3(),
+        first_cell,
     }
 }
 
@@ -244,13 +248,8 @@ pub fn enter_bounds(
 #[inline(always)]
 pub fn enter_scene(g: &PackedGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
     let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE;
-    enter_bounds(
-        Vec3::from(g.grid_min),
-        Vec3::from(g.grid_max),
-        ray,
-        t_max,
-        margin,
-    )
+    let (min, max) = (Vec3::from(g.grid_min), Vec3::from(g.grid_max));
+    enter_bounds(min, max, ray, t_max, margin)
 }
 
 /// The mesh-space ray moved to where it enters the mesh's grid bounds. Its direction is
@@ -262,13 +261,8 @@ pub fn enter_scene(g: &PackedGlobals, ray: &Ray, t_max: f32) -> Option<EnteredRa
 pub fn enter_mesh(mesh: &PackedMesh, ray: &Ray, t_max: f32) -> Option<EnteredRay> {
     let margin = ray.origin.abs().max_element() * ENTER_MARGIN_RELATIVE
         / ray.dir.abs().max_element().max(F32_MIN_POSITIVE);
-    enter_bounds(
-        Vec3::from(mesh.grid_min),
-        Vec3::from(mesh.grid_max),
-        ray,
-        t_max,
-        margin,
-    )
+    let (min, max) = (Vec3::from(mesh.grid_min), Vec3::from(mesh.grid_max));
+    enter_bounds(min, max, ray, t_max, margin)
 }
 
 #[cfg(test)]

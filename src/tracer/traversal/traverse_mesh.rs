@@ -65,7 +65,10 @@ struct MeshWalk<'a> {
 /// None when the ray misses the mesh's grid. The set-up `intersect_mesh` and
 /// `mesh_occludes` share. (The WGSL twins each keep these lines: the same set-up as a WGSL
 /// function returning the walk as a struct made naga 30's SPIR-V writer panic, "Expression
-/// is not cached", in `glint kernels`.)
+/// is not cached", where a member of the walk went to a function by pointer; with the
+/// walk's DDA and mailbox copied to variables of their own it compiled, but then 40 rows
+/// of `kernel_budget_combinations` broke RADV's NAVI21 budgets where 33 are known, the
+/// new ones wave32 traversal kernels at 112 VGPRs, budget 96.)
 #[inline(always)]
 fn mesh_walk_start<'a>(
     scene: &'a PackedScene,
@@ -102,24 +105,67 @@ pub fn intersect_mesh(
     let Some(walk) = mesh_walk_start(scene, inst, ray, t_max) else {
         return hit_miss();
     };
-    // The walk's parts as locals: the loop below keeps its `Dda` in registers only so.
+    let (mesh, t_moved) = (walk.mesh, walk.entered.t_moved);
+    let mut best = NearestTriangle::none(walk.entered.t_max);
+    walk_mesh_cells::<false>(scene, walk, &mut best, counters);
+    if !best.is_hit() {
+        return hit_miss();
+    }
+    Hit {
+        t: best.t + t_moved,
+        item,
+        b1: best.b1,
+        b2: best.b2,
+        part: mesh.first_triangle + best.local,
+    }
+}
+
+/// Tests `batch` (emptying it): with `ANY_HIT`, whether one of its triangles is hit in
+/// (0, best.t), which stops the walk; else keeps its nearest hit below `best.t` in `best`
+/// and says false (a nearer hit may wait in the cell's next batch).
+#[inline(always)]
+fn test_batch<const ANY_HIT: bool>(
+    batch: &mut TriangleBatch,
+    tri_rays: &TriangleRays,
+    triangles: &[PackedTriangle],
+    best: &mut NearestTriangle,
+) -> bool {
+    if ANY_HIT {
+        return batch.any_hit(tri_rays, triangles, best.t);
+    }
+    batch.keep_nearest(tri_rays, triangles, best);
+    false
+}
+
+/// Walks `walk`'s cells, testing each cell's untested triangles in batches of four lanes,
+/// in list order, until a batch stops it (true: `ANY_HIT`, a shadow ray's walk, and a
+/// triangle is hit in (0, best.t)) or the walk ends (false): it leaves the grid, or
+/// leaves a cell past `best.t` (a hit inside a cell is final). Written once for the
+/// nearest-hit and the any-hit walk: `ANY_HIT` is a constant, so each compiles to its own
+/// loop, as when the two were written out (scrabble.lua on the CPU, five alternated pairs:
+/// 1.010 of their CPU time, 0.999–1.016; one walk taking the batch test as a closure had
+/// stayed out of line, at 0.913 of their speed). An any-hit walk's `best.t` stays its t_max, and any step the
+/// walk takes ends before the DDA's t_exit ≤ t_max, so there t_max stops nothing.
+// (The walk's parts are taken apart into locals: the loop keeps its `Dda` in registers
+// only so.)
+#[inline(always)]
+fn walk_mesh_cells<const ANY_HIT: bool>(
+    scene: &PackedScene,
+    walk: MeshWalk,
+    best: &mut NearestTriangle,
+    counters: &mut impl TraversalCounters,
+) -> bool {
     let MeshWalk {
-        mesh,
-        entered,
         mut dda,
         tri_rays,
         triangles,
         mut mailbox,
+        ..
     } = walk;
-    let mut best = NearestTriangle::none(entered.t_max);
     while skip_empty_cells(scene, &mut dda, best.t, counters) {
         let cell = dda.cell;
         counters.cell_visited();
         let next = step_and_prefetch(scene, &mut dda);
-        // The cell's untested triangles in batches of four lanes, in list order. (Written
-        // out here and in mesh_occludes: one function taking the batch's test as a closure
-        // stayed out of line; with it and the walk's parts in a struct, scrabble.lua on the
-        // CPU ran at 0.913 of its earlier speed, written out at 0.949.)
         let mut batch = TriangleBatch::EMPTY;
         for i in cell_start_at(scene, cell)..cell_start_at(scene, cell + 1) {
             let local = cell_item_at(scene, i);
@@ -127,27 +173,20 @@ pub fn intersect_mesh(
                 continue;
             }
             counters.item_tested();
-            if batch.push(local) {
-                batch.keep_nearest(&tri_rays, triangles, &mut best);
+            if batch.push(local) && test_batch::<ANY_HIT>(&mut batch, &tri_rays, triangles, best) {
+                return true;
             }
         }
-        batch.keep_nearest(&tri_rays, triangles, &mut best);
+        if test_batch::<ANY_HIT>(&mut batch, &tri_rays, triangles, best) {
+            return true;
+        }
         // A hit inside this cell is final; so is leaving the grid or passing t_max.
         match next {
             Some(t_cell_exit) if best.t > t_cell_exit => {}
-            _ => break,
+            _ => return false,
         }
     }
-    if !best.is_hit() {
-        return hit_miss();
-    }
-    Hit {
-        t: best.t + entered.t_moved,
-        item,
-        b1: best.b1,
-        b2: best.b2,
-        part: mesh.first_triangle + best.local,
-    }
+    false
 }
 
 /// Steps `dda` on past empty cells, from the cell it stands in, until one lists something
@@ -222,37 +261,6 @@ pub fn mesh_occludes(
     let Some(walk) = mesh_walk_start(scene, inst, ray, t_max) else {
         return false;
     };
-    let MeshWalk {
-        entered,
-        mut dda,
-        tri_rays,
-        triangles,
-        mut mailbox,
-        ..
-    } = walk;
-    let t_max = entered.t_max;
-    // (Any step the walk takes ends before t_exit ≤ t_max: t_max stops nothing.)
-    while skip_empty_cells(scene, &mut dda, t_max, counters) {
-        let cell = dda.cell;
-        counters.cell_visited();
-        let next = step_and_prefetch(scene, &mut dda);
-        let mut batch = TriangleBatch::EMPTY;
-        for i in cell_start_at(scene, cell)..cell_start_at(scene, cell + 1) {
-            let local = cell_item_at(scene, i);
-            if triangle_mailbox_seen(&mut mailbox, local) {
-                continue;
-            }
-            counters.item_tested();
-            if batch.push(local) && batch.any_hit(&tri_rays, triangles, t_max) {
-                return true;
-            }
-        }
-        if batch.any_hit(&tri_rays, triangles, t_max) {
-            return true;
-        }
-        if next.is_none() {
-            return false;
-        }
-    }
-    false
+    let mut best = NearestTriangle::none(walk.entered.t_max);
+    walk_mesh_cells::<true>(scene, walk, &mut best, counters)
 }

@@ -78,7 +78,10 @@ fn skip_empty_cells(dda: ptr<function, Dda>, t_stop: f32) -> bool {
 // triangle as part; hit_miss() (t = T_MISS) when nothing is hit. (Its set-up, the lines up
 // to the mailbox, is mesh_occludes's too; the CPU shares it, traverse_mesh.rs::
 // mesh_walk_start, but the same set-up as a WGSL function returning the walk as a struct
-// made naga 30's SPIR-V writer panic: each keeps its copy.)
+// made naga 30's SPIR-V writer panic, and with the walk's DDA and mailbox then copied to
+// variables of their own 40 rows of the feature combinations' kernels broke RADV's NAVI21
+// budgets where 33 are known (wave32 traversal kernels at 112 VGPRs, budget 96): each
+// keeps its copy.)
 // Mirror of src/tracer/traversal/traverse_mesh.rs::intersect_mesh — change both.
 fn intersect_mesh(inst: PackedInstance, item: u32, ray: Ray, t_max: f32) -> Hit {
     let mesh = instance_mesh(inst);
