@@ -19,7 +19,7 @@ use std::fs::File;
 use std::io;
 use std::os::fd::{AsRawFd, FromRawFd, OwnedFd, RawFd};
 use std::os::unix::ffi::{OsStrExt, OsStringExt};
-use std::path::{Component, Path};
+use std::path::{Component, Path, PathBuf};
 
 /// Most symbolic links one walk follows (the kernel's own bound; past it, ELOOP).
 const MAX_LINKS: usize = 40;
@@ -64,9 +64,41 @@ impl FileId {
         })
     }
 
+    /// The identity of the folder `path` names, opened by a walk ([`open_folder`]).
+    pub fn of_folder(path: &Path) -> io::Result<FileId> {
+        FileId::of_fd(&open_folder(path)?)
+    }
+
     /// A text key for the identity (a Lua table's key for a module loaded once).
     pub fn key(&self) -> String {
         format!("file:{}:{}", self.dev, self.ino)
+    }
+}
+
+/// A folder a rule admits (what a scene may read, or write under): its identity, which
+/// the rule compares ([`lies_within`]), and a path for messages.
+#[derive(Clone, Debug)]
+pub struct Root {
+    pub id: FileId,
+    /// Its canonical path where the system can give one (else the path as given).
+    pub shown: PathBuf,
+}
+
+impl Root {
+    /// The folder `dir` as a root (an error when it cannot be opened as a folder).
+    pub fn open(dir: &Path) -> io::Result<Root> {
+        let id = FileId::of_folder(dir)?;
+        let shown = dir
+            .canonicalize()
+            .ok()
+            .filter(|real| real.is_dir())
+            .unwrap_or_else(|| dir.to_path_buf());
+        Ok(Root { id, shown })
+    }
+
+    /// The identities of `roots`, as [`lies_within`] takes them.
+    pub fn ids(roots: &[Root]) -> Vec<FileId> {
+        roots.iter().map(|root| root.id).collect()
     }
 }
 

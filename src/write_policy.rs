@@ -10,7 +10,7 @@
 //! handles ([`crate::folder_walk`]), never resolved to absolute paths, so an output
 //! folder deeper than PATH_MAX is judged as any other.
 
-use crate::folder_walk::{self, FileId};
+use crate::folder_walk::{self, Root};
 use std::ffi::OsStr;
 use std::io::Read;
 use std::os::fd::OwnedFd;
@@ -30,10 +30,7 @@ pub struct WritePolicy {
     /// as the user gave it (for the names printed).
     base: PathBuf,
     /// Folders an output may lie under: the base, then `--allow-write`'s.
-    roots: Vec<FileId>,
-    /// Those folders' canonical paths where the system can give them (else as given),
-    /// for messages.
-    shown: Vec<PathBuf>,
+    roots: Vec<Root>,
 }
 
 impl WritePolicy {
@@ -41,23 +38,21 @@ impl WritePolicy {
     /// folders; a folder that cannot be opened is an error naming it.
     pub fn new(output_dir: Option<&Path>, allow_write: &[PathBuf]) -> Result<WritePolicy, String> {
         let base = output_dir.map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-        let (mut roots, mut shown) = (Vec::new(), Vec::new());
+        let mut roots = Vec::new();
         for dir in std::iter::once(&base).chain(allow_write) {
-            let cannot = |why: &dyn std::fmt::Display| {
+            let root = Root::open(dir).map_err(|e| {
+                let why = match e.raw_os_error() {
+                    Some(libc::ENOTDIR) => "not a folder".to_string(),
+                    _ => e.to_string(),
+                };
                 format!(
                     "cannot write under '{}': {why}",
                     crate::display_path::shown(dir)
                 )
-            };
-            let folder = folder_walk::open_folder(dir).map_err(|e| match e.raw_os_error() {
-                Some(libc::ENOTDIR) => cannot(&"not a folder"),
-                _ => cannot(&e),
             })?;
-            roots.push(FileId::of_fd(&folder).map_err(|e| cannot(&e))?);
-            let real = dir.canonicalize().ok().filter(|real| real.is_dir());
-            shown.push(real.unwrap_or_else(|| dir.clone()));
+            roots.push(root);
         }
-        Ok(WritePolicy { base, roots, shown })
+        Ok(WritePolicy { base, roots })
     }
 
     /// The path to write for the script-named output `name`, or why the script may not
@@ -82,15 +77,15 @@ impl WritePolicy {
         // The folder the output goes in: the walk's, or, where the name is an existing
         // folder, the one above it.
         let within = match walked.rest.is_empty() {
-            false => folder_walk::lies_within(&walked.folder, &self.roots),
+            false => folder_walk::lies_within(&walked.folder, &Root::ids(&self.roots)),
             true => folder_walk::open_parent(&walked.folder)
-                .is_ok_and(|up| folder_walk::lies_within(&up, &self.roots)),
+                .is_ok_and(|up| folder_walk::lies_within(&up, &Root::ids(&self.roots))),
         };
         if !within {
             let roots: Vec<String> = self
-                .shown
+                .roots
                 .iter()
-                .map(|r| crate::display_path::shown(r))
+                .map(|r| crate::display_path::shown(&r.shown))
                 .collect();
             return Err(refuse(&format!(
                 "it is outside the folders this scene may write ({}); --output-dir DIR or --allow-write DIR allows another folder, -o FILE names the output",
@@ -128,13 +123,12 @@ fn check_replaceable(folder: &OwnedFd, name: &OsStr) -> Result<(), String> {
     }
     let mut head = [0u8; 8];
     // Opened as every reader opens (never blocking: the file may have been replaced by
-    // a FIFO since it was looked at; `open_in` never follows a link swapped in).
-    let flags = libc::O_RDONLY | libc::O_NONBLOCK | libc::O_NOCTTY;
-    let mut file = folder_walk::open_in(folder, name, flags, 0)
-        .map_err(|e| format!("it exists and cannot be examined: {e}"))?;
-    if !file.metadata().is_ok_and(|m| m.is_file()) {
-        return Err("it exists and is not a regular file".to_string());
-    }
+    // a FIFO since it was looked at; a link swapped in is not followed).
+    let (mut file, _) =
+        crate::scene::files::open_checked_in(folder, name, u64::MAX).map_err(|r| match r {
+            crate::scene::files::Refusal::Io(e) => format!("it exists and cannot be examined: {e}"),
+            _ => "it exists and is not a regular file".to_string(),
+        })?;
     let n = file
         .read(&mut head)
         .map_err(|e| format!("it exists and cannot be examined: {e}"))?;

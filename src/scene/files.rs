@@ -13,7 +13,7 @@ use std::os::unix::fs::OpenOptionsExt;
 use std::path::{Path, PathBuf};
 
 use crate::display_path::shown;
-use crate::folder_walk::{self, FileId};
+use crate::folder_walk::{self, FileId, Root};
 
 /// Largest file a scene may read (a mesh, texture or module), in bytes.
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
@@ -35,28 +35,6 @@ pub struct ReadPolicy {
     roots: Vec<Root>,
     /// The flag's wording for messages (`--allow-read DIR`).
     flag: &'static str,
-}
-
-/// A readable folder.
-#[derive(Clone, Debug)]
-struct Root {
-    /// Its canonical path where the system can give one (else the path as given), for
-    /// messages.
-    shown: PathBuf,
-    id: FileId,
-}
-
-impl Root {
-    /// The folder `dir` as a root, if it is a folder that can be opened.
-    fn of(dir: &Path) -> Option<Root> {
-        let id = FileId::of_fd(&folder_walk::open_folder(dir).ok()?).ok()?;
-        let shown = dir
-            .canonicalize()
-            .ok()
-            .filter(|real| real.is_dir())
-            .unwrap_or_else(|| dir.to_path_buf());
-        Some(Root { shown, id })
-    }
 }
 
 /// A file a scene may read, opened: checked to be a regular file; its size is checked
@@ -99,7 +77,7 @@ impl ReadPolicy {
         let roots = [scene_dir, Path::new(GLINT_ASSETS)]
             .into_iter()
             .chain(extra.iter().map(PathBuf::as_path))
-            .filter_map(Root::of)
+            .filter_map(|dir| Root::open(dir).ok())
             .collect();
         ReadPolicy {
             roots,
@@ -110,25 +88,21 @@ impl ReadPolicy {
     /// This policy and the folder `dir` (a prelude reading its own folder's modules).
     pub fn with_root(&self, dir: &Path) -> ReadPolicy {
         let mut wider = self.clone();
-        wider.roots.extend(Root::of(dir));
+        wider.roots.extend(Root::open(dir).ok());
         wider
-    }
-
-    fn ids(&self) -> Vec<FileId> {
-        self.roots.iter().map(|r| r.id).collect()
     }
 
     /// Whether `path` lies inside a folder the scene may read (whether or not it exists).
     pub fn allows(&self, path: &Path) -> bool {
         folder_walk::walk(path, true)
-            .is_ok_and(|w| folder_walk::lies_within(&w.folder, &self.ids()))
+            .is_ok_and(|w| folder_walk::lies_within(&w.folder, &Root::ids(&self.roots)))
     }
 
     /// Whether `path` lies inside a folder the scene may read and names something there
     /// (a file, or anything that stops the walk other than a missing name).
     pub fn present(&self, path: &Path) -> bool {
         folder_walk::walk(path, true).is_ok_and(|w| {
-            folder_walk::lies_within(&w.folder, &self.ids())
+            folder_walk::lies_within(&w.folder, &Root::ids(&self.roots))
                 && w.failed
                     .is_none_or(|e| e.kind() != std::io::ErrorKind::NotFound)
         })
@@ -144,7 +118,7 @@ impl ReadPolicy {
         let cannot =
             |e: &dyn std::fmt::Display| format!("cannot read {what} '{}': {e}", shown(path));
         let walked = folder_walk::walk(path, true).map_err(|e| cannot(&e))?;
-        if !folder_walk::lies_within(&walked.folder, &self.ids()) {
+        if !folder_walk::lies_within(&walked.folder, &Root::ids(&self.roots)) {
             return Err(self.outside(path, what));
         }
         // Inside: watched by `glint view` whether or not it exists (creating it reloads).
@@ -155,11 +129,8 @@ impl ReadPolicy {
         let Some(leaf) = walked.leaf() else {
             return Err(cannot(&"not a regular file"));
         };
-        let flags = libc::O_RDONLY | libc::O_NONBLOCK | libc::O_NOCTTY;
-        let refused = folder_walk::open_in(&walked.folder, leaf, flags, 0)
-            .map_err(Refusal::Io)
-            .and_then(|file| regular(file, u64::MAX));
-        let (file, len) = refused.map_err(|r| match r {
+        let opened = open_checked_in(&walked.folder, leaf, u64::MAX);
+        let (file, len) = opened.map_err(|r| match r {
             Refusal::Io(e) => cannot(&e),
             _ => cannot(&"not a regular file"),
         })?;
@@ -207,6 +178,19 @@ pub fn open_checked(path: &Path, cap: u64) -> Result<(File, u64), Refusal> {
         .custom_flags(libc::O_NONBLOCK | libc::O_NOCTTY)
         .open(path)
         .map_err(Refusal::Io)?;
+    regular(file, cap)
+}
+
+/// [`open_checked`] for the entry `name` of an opened folder (a walk's,
+/// [`crate::folder_walk`]), with `O_NOFOLLOW`: a link swapped in after the walk is
+/// refused, not followed.
+pub fn open_checked_in(
+    folder: &std::os::fd::OwnedFd,
+    name: &std::ffi::OsStr,
+    cap: u64,
+) -> Result<(File, u64), Refusal> {
+    let flags = libc::O_RDONLY | libc::O_NONBLOCK | libc::O_NOCTTY;
+    let file = folder_walk::open_in(folder, name, flags, 0).map_err(Refusal::Io)?;
     regular(file, cap)
 }
 

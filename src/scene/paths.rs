@@ -86,11 +86,7 @@ impl SceneFolders {
 /// file of the user; the course's layout is an assignment folder). Judged by the
 /// folders' identities, not their absolute paths (which may be past PATH_MAX).
 fn start_counts(start: &Path, scene: &Path, home: Option<&Path>) -> bool {
-    let id = |p: &Path| {
-        folder_walk::open_folder(p)
-            .and_then(|fd| FileId::of_fd(&fd))
-            .ok()
-    };
+    let id = |p: &Path| FileId::of_folder(p).ok();
     let (Ok(scene_fd), Some(start_id)) = (folder_walk::open_folder(scene), id(start)) else {
         return false;
     };

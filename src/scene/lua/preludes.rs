@@ -16,7 +16,6 @@ use crate::folder_walk::{self, FileId};
 use crate::scene::files::{read_regular, MAX_FILE_BYTES};
 use mlua::chunk::ChunkMode;
 use mlua::{Lua, Table, Value};
-use std::os::fd::OwnedFd;
 use std::path::{Path, PathBuf};
 
 /// A prelude read before the script starts.
@@ -90,15 +89,15 @@ pub(super) fn readable(config: &ScriptConfig, preludes: &[Prelude]) -> Vec<PathB
 /// every file of the user readable to a downloaded scene). Judged by the folders'
 /// identities ([`folder_walk::lies_within`]), not their absolute paths.
 fn too_wide(folder: &Path, start: &Path, home: Option<&Path>) -> bool {
-    let open = |p: &Path| folder_walk::open_folder(p).ok();
-    let id = |fd: &OwnedFd| FileId::of_fd(fd).ok();
-    let Some(folder_id) = open(folder).as_ref().and_then(id) else {
+    let id = |p: &Path| FileId::of_folder(p).ok();
+    let Some(folder_id) = id(folder) else {
         return false; // Not a folder: nothing under it is readable anyway.
     };
-    let root = open(Path::new("/")).as_ref().and_then(id);
-    let holds =
-        |inner: &Path| open(inner).is_some_and(|fd| folder_walk::lies_within(&fd, &[folder_id]));
-    let start_id = open(start).as_ref().and_then(id);
+    let root = id(Path::new("/"));
+    let holds = |inner: &Path| {
+        folder_walk::open_folder(inner).is_ok_and(|fd| folder_walk::lies_within(&fd, &[folder_id]))
+    };
+    let start_id = id(start);
     Some(folder_id) == root
         || home.is_some_and(holds)
         || (holds(start) && start_id != Some(folder_id))
