@@ -194,8 +194,9 @@ pub struct PackedGlobals {
 
 // The readers of the packed arrays. The GPU reads each array from a table texture
 // (src/gpu/upload/tables.rs) through the WGSL twin of the reader; the CPU indexes the
-// slice (a one-word array through `word_at`, as the WGSL reads a one-word table). Both tracers go through the readers, so a step that reads the scene reads it
-// in the same place on both sides (tests/gpu/twins.rs compares their calls).
+// slice (a one-word array through `word_at`, as the WGSL reads a one-word table). Both
+// tracers go through the readers, so a step that reads the scene reads it in the same
+// place on both sides (tests/gpu/twins.rs compares their calls).
 
 /// A one-word table: the packed arrays of `u32` (`cell_start`, `cell_items`,
 /// `csg_program`, `texels`), which the GPU holds a word a texel (the WGSL's `WordTable`).

@@ -144,8 +144,9 @@ fn test_batch<const ANY_HIT: bool>(
 /// nearest-hit and the any-hit walk: `ANY_HIT` is a constant, so each compiles to its own
 /// loop, as when the two were written out (scrabble.lua on the CPU, five alternated pairs:
 /// 1.010 of their CPU time, 0.999–1.016; one walk taking the batch test as a closure had
-/// stayed out of line, at 0.913 of their speed). An any-hit walk's `best.t` stays its t_max, and any step the
-/// walk takes ends before the DDA's t_exit ≤ t_max, so there t_max stops nothing.
+/// stayed out of line, at 0.913 of their speed). An any-hit walk's `best.t` stays its
+/// t_max, and any step the walk takes ends before the DDA's t_exit ≤ t_max, so there
+/// t_max stops nothing.
 // (The walk's parts are taken apart into locals: the loop keeps its `Dda` in registers
 // only so.)
 #[inline(always)]
