@@ -151,12 +151,27 @@ fn mip_blend(texels: &[u32], texture: u32, footprint: f32) -> MipBlend {
 /// bilinear lookups of the two levels around [`texture_lod`], blended.
 // Mirror of src/tracer/shading/texture.wgsl::sample_texture_filtered — change both.
 pub fn sample_texture_filtered(texels: &[u32], texture: u32, uv: Vec2, footprint: f32) -> Vec3 {
+    blend_mip_levels(texels, texture, footprint, |level| {
+        sample_texture(texels, texture_level(texels, texture, level), uv)
+    })
+}
+
+/// `lookup` of the mip level (a texture number, from [`texture_level`]) around
+/// [`texture_lod`] of `footprint` and, where the footprint falls between two levels, of
+/// the next, blended: the steps [`sample_texture_filtered`] and
+/// [`filtered_height_gradient`] share. (The WGSL writes them out in each: it has no
+/// generics; the same operations in the same order.)
+#[inline(always)]
+fn blend_mip_levels<T>(texels: &[u32], texture: u32, footprint: f32, lookup: impl Fn(u32) -> T) -> T
+where
+    T: std::ops::Mul<f32, Output = T> + std::ops::Add<Output = T>,
+{
     let mip = mip_blend(texels, texture, footprint);
-    let fine = sample_texture(texels, texture_level(texels, texture, mip.level), uv);
+    let fine = lookup(mip.level);
     if mip.blend <= 0.0 {
         return fine;
     }
-    let coarse = sample_texture(texels, texture_level(texels, texture, mip.level + 1), uv);
+    let coarse = lookup(mip.level + 1);
     fine * (1.0 - mip.blend) + coarse * mip.blend
 }
 
@@ -234,13 +249,9 @@ pub fn height_gradient(texels: &[u32], texture: u32, uv: Vec2) -> Vec2 {
 /// `footprint` (each level's differences one of its own texels apart).
 // Mirror of src/tracer/shading/texture.wgsl::filtered_height_gradient — change both.
 fn filtered_height_gradient(texels: &[u32], texture: u32, uv: Vec2, footprint: f32) -> Vec2 {
-    let mip = mip_blend(texels, texture, footprint);
-    let fine = height_gradient(texels, texture_level(texels, texture, mip.level), uv);
-    if mip.blend <= 0.0 {
-        return fine;
-    }
-    let coarse = height_gradient(texels, texture_level(texels, texture, mip.level + 1), uv);
-    fine * (1.0 - mip.blend) + coarse * mip.blend
+    blend_mip_levels(texels, texture, footprint, |level| {
+        height_gradient(texels, texture_level(texels, texture, level), uv)
+    })
 }
 
 /// The bumped normal of `s` for material `m` (`s.normal` tilted by the height gradient,
