@@ -15,3 +15,9 @@ pub(crate) struct MaterialHandle(pub usize);
 /// A light made by `gr.light`; lights live in `gr.render`'s list, not in the graph.
 #[derive(Clone, Debug)]
 pub(crate) struct LightHandle(pub Light);
+
+/// A procedural texture made by `gr.checker`, `gr.noise`, `gr.marble` or `gr.wood`: a
+/// value, accepted wherever a texture file name is (`set_diffuse`, `set_specular`,
+/// `set_bump`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ProceduralHandle(pub crate::scene::Procedural);
