@@ -197,10 +197,17 @@ fn feature_tuples(n: usize, strength: usize) -> Vec<Vec<usize>> {
 mod tests {
     use super::*;
 
-    /// Every possible feature set (2^15 less the impossible ones).
+    /// Every possible feature set (2^15 less the impossible ones; the flags' bits are not
+    /// contiguous, so each subset of the 15 is made flag by flag).
     fn possible_sets() -> Vec<SceneFeatures> {
-        (0u32..1 << SceneFeatures::ALL.len())
-            .map(SceneFeatures)
+        let flags: Vec<u32> = SceneFeatures::ALL.iter().map(|(f, _)| f.0).collect();
+        (0u32..1 << flags.len())
+            .map(|subset| {
+                let bits = (0..flags.len())
+                    .filter(|i| subset & (1 << i) != 0)
+                    .fold(0, |bits, i| bits | flags[i]);
+                SceneFeatures(bits)
+            })
             .filter(|&s| possible(s))
             .collect()
     }
@@ -276,7 +283,8 @@ mod tests {
         assert!(possible(SceneFeatures(
             SceneFeatures::CSG.0 | SceneFeatures::TORUS.0
         )));
-        // Mesh: none, flat, smooth; CSG with 63 of the 64 leaf patterns; 6 free flags.
-        assert_eq!(possible_sets().len(), 3 * 63 * 64);
+        // Mesh: none, flat, smooth; CSG with 63 of the 64 leaf patterns; 4 free flags;
+        // texture, bump and procedural in 7 of their 8 patterns.
+        assert_eq!(possible_sets().len(), 3 * 63 * 16 * 7);
     }
 }

@@ -107,7 +107,7 @@ pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
             } else if ud.is::<LightHandle>() {
                 "a light".into()
             } else if let Ok(p) = ud.borrow::<ProceduralHandle>() {
-                super::procedural::describe_procedural(&p.0)
+                p.describe()
             } else {
                 "a userdata".into()
             }

@@ -21,3 +21,17 @@ pub(crate) struct LightHandle(pub Light);
 /// `set_bump`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ProceduralHandle(pub crate::scene::Procedural);
+
+impl ProceduralHandle {
+    /// What a procedural texture prints as and is described as in errors.
+    pub(crate) fn describe(&self) -> String {
+        use crate::scene::ProceduralKind;
+        let name = match self.0.kind {
+            ProceduralKind::Checker => "gr.checker",
+            ProceduralKind::Noise => "gr.noise",
+            ProceduralKind::Marble => "gr.marble",
+            ProceduralKind::Wood => "gr.wood",
+        };
+        format!("a procedural texture ({name})")
+    }
+}

@@ -87,22 +87,9 @@ fn octaves(a: &Args, n: usize, default: u32) -> mlua::Result<u32> {
     a.positive_int(n, "octaves", PROCEDURAL_MAX_OCTAVES)
 }
 
-/// The name a procedural texture prints and is described by.
-pub(crate) fn describe_procedural(p: &Procedural) -> String {
-    let name = match p.kind {
-        ProceduralKind::Checker => "gr.checker",
-        ProceduralKind::Noise => "gr.noise",
-        ProceduralKind::Marble => "gr.marble",
-        ProceduralKind::Wood => "gr.wood",
-    };
-    format!("a procedural texture ({name})")
-}
-
 impl UserData for ProceduralHandle {
     fn add_methods<M: UserDataMethods<Self>>(methods: &mut M) {
-        methods.add_meta_method(MetaMethod::ToString, |_, this, ()| {
-            Ok(describe_procedural(&this.0))
-        });
+        methods.add_meta_method(MetaMethod::ToString, |_, this, ()| Ok(this.describe()));
         // Without it Lua would report `attempt to index a ProceduralHandle value`.
         methods.add_meta_function(
             MetaMethod::Index,
