@@ -93,6 +93,47 @@ pub const MATERIAL_REFRACTIVE: u32 = 2;
 /// `PackedMaterial::*_texture` meaning "no texture".
 pub const NO_TEXTURE: u32 = u32::MAX;
 
+/// `PackedMaterial::*_texture` bit marking a procedural texture (`gr.checker`, `gr.noise`,
+/// `gr.marble`, `gr.wood`): the bits below are the word offset of its parameter block in
+/// `PackedScene::texels` (see `pack::procedural`). Image texture indices stay below it,
+/// and `NO_TEXTURE` is tested first.
+pub const PROCEDURAL_TEXTURE: u32 = 1 << 31;
+/// The procedural patterns (word 0 of a parameter block).
+pub const PROCEDURAL_CHECKER: u32 = 0;
+pub const PROCEDURAL_NOISE: u32 = 1;
+pub const PROCEDURAL_MARBLE: u32 = 2;
+pub const PROCEDURAL_WOOD: u32 = 3;
+/// Words of one procedural texture's parameter block in `texels` (`pack::procedural`).
+pub const PROCEDURAL_BLOCK_WORDS: u32 = 12;
+/// Most octaves a noise sum takes (`gr.noise`'s `octaves` and the turbulence of
+/// `gr.marble` and `gr.wood`): the 9th would add at most 2⁻⁸ of the first.
+pub const PROCEDURAL_MAX_OCTAVES: u32 = 8;
+/// Footprints (in checker cells) below which the checker is not box-filtered: the
+/// difference of the square wave's integrals would lose its digits.
+pub const PROCEDURAL_CHECKER_MIN_WIDTH: f32 = 1.0 / 64.0;
+/// Words of the permutation table in `texels`: Perlin's 256 entries twice, so that
+/// p[p[x] + y] + z + 1 needs no wrap (his reference code's `p[512]`).
+pub const PERLIN_TABLE_WORDS: u32 = 512;
+/// Ken Perlin's permutation of 0…255 from his reference implementation of improved noise
+/// (2002, `ImprovedNoise.java`): with it and his 12 gradient directions, noise values match
+/// any implementation of it. Packed once into `texels` for scenes with procedural
+/// textures (`pack::procedural`), whence both tracers read it.
+pub const PERLIN_PERMUTATION: [u8; 256] = [
+    151, 160, 137, 91, 90, 15, 131, 13, 201, 95, 96, 53, 194, 233, 7, 225, 140, 36, 103, 30, 69,
+    142, 8, 99, 37, 240, 21, 10, 23, 190, 6, 148, 247, 120, 234, 75, 0, 26, 197, 62, 94, 252, 219,
+    203, 117, 35, 11, 32, 57, 177, 33, 88, 237, 149, 56, 87, 174, 20, 125, 136, 171, 168, 68, 175,
+    74, 165, 71, 134, 139, 48, 27, 166, 77, 146, 158, 231, 83, 111, 229, 122, 60, 211, 133, 230,
+    220, 105, 92, 41, 55, 46, 245, 40, 244, 102, 143, 54, 65, 25, 63, 161, 1, 216, 80, 73, 209, 76,
+    132, 187, 208, 89, 18, 169, 200, 196, 135, 130, 116, 188, 159, 86, 164, 100, 109, 198, 173,
+    186, 3, 64, 52, 217, 226, 250, 124, 123, 5, 202, 38, 147, 118, 126, 255, 82, 85, 212, 207, 206,
+    59, 227, 47, 16, 58, 17, 182, 189, 28, 42, 223, 183, 170, 213, 119, 248, 152, 2, 44, 154, 163,
+    70, 221, 153, 101, 155, 167, 43, 172, 9, 129, 22, 39, 253, 19, 98, 108, 110, 79, 113, 224, 232,
+    178, 185, 112, 104, 218, 246, 97, 228, 251, 34, 242, 193, 238, 210, 144, 12, 191, 179, 162,
+    241, 81, 51, 145, 235, 249, 14, 239, 107, 49, 192, 214, 31, 181, 199, 106, 157, 184, 84, 204,
+    176, 115, 121, 50, 45, 127, 4, 150, 254, 138, 236, 205, 93, 222, 114, 67, 29, 24, 72, 243, 141,
+    128, 195, 78, 66, 215, 61, 156, 180,
+];
+
 /// The texture table at the start of `PackedScene::texels`: header i is the words
 /// The GPU keeps the packed scene's arrays in textures of 2^`TABLE_ROW_BITS` texels a
 /// row, read with `textureLoad` (src/gpu/upload/tables.rs says why). 4 096 texels: every Vulkan, Metal and DX12 device
@@ -262,6 +303,12 @@ const WGSL_U32S: &[(&str, u32)] = by_name![
     MATERIAL_REFRACTIVE,
     NO_TEXTURE,
     TEXTURE_HEADER_WORDS,
+    PROCEDURAL_TEXTURE,
+    PROCEDURAL_CHECKER,
+    PROCEDURAL_NOISE,
+    PROCEDURAL_MARBLE,
+    PROCEDURAL_WOOD,
+    PROCEDURAL_MAX_OCTAVES,
     TABLE_ROW_BITS,
     INSTANCE_TABLE_TEXELS,
     MESH_TABLE_TEXELS,
@@ -310,6 +357,7 @@ const WGSL_F32S: &[(&str, f32)] = by_name![
     F32_MIN_POSITIVE,
     SAFE_RCP_LIMIT,
     TWO_PI,
+    PROCEDURAL_CHECKER_MIN_WIDTH,
     AIR_IOR,
     BUMP_MIN_FRAME_SINE,
     SMOOTH_MIN_REFLECTION_COSINE,

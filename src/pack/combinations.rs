@@ -3,8 +3,8 @@
 //! the register budgets are checked over the combinations a user's scene may have, not
 //! only over the scenes in `scenes/`.
 //!
-//! Every one of the 14 features changes the compiled modules (each is named by some
-//! `// #if` of `shaders/`), so all their combinations are 2^14 (12 096 that a scene can
+//! Every one of the 15 features changes the compiled modules (each is named by some
+//! `// #if` of `shaders/`), so all their combinations are 2^15 (fewer that a scene can
 //! have), at about 5 s of compiling each (every render entry in both wave sizes): days.
 //! [`feature_combinations`] is a covering set instead, COUNT combinations:
 //! - the **largest modules**, where register demand peaks: every feature, and every
@@ -21,7 +21,8 @@
 //!   smallest bits), deterministic, starting from no feature and every feature.
 //!
 //! What a scene can have ([`possible`]): smooth shading only on a mesh, CSG only with a
-//! leaf primitive of its own (a sphere, cube, cylinder, cone or torus).
+//! leaf primitive of its own (a sphere, cube, cylinder, cone or torus), procedural
+//! textures only with the texture or bump slot they fill.
 
 use super::SceneFeatures;
 
@@ -70,8 +71,10 @@ pub fn possible(features: SceneFeatures) -> bool {
     ];
     let smooth = features.contains(SceneFeatures::SMOOTH);
     let csg = features.contains(SceneFeatures::CSG);
+    let procedural = features.contains(SceneFeatures::PROCEDURAL);
     (!smooth || features.contains(SceneFeatures::MESH))
         && (!csg || leaves.iter().any(|&l| features.contains(l)))
+        && (!procedural || features.uses_textures())
 }
 
 /// Every feature.
@@ -194,10 +197,17 @@ fn feature_tuples(n: usize, strength: usize) -> Vec<Vec<usize>> {
 mod tests {
     use super::*;
 
-    /// Every possible feature set (2^14 less the impossible ones).
+    /// Every possible feature set (2^15 less the impossible ones; the flags' bits are not
+    /// contiguous, so each subset of the 15 is made flag by flag).
     fn possible_sets() -> Vec<SceneFeatures> {
-        (0u32..1 << SceneFeatures::ALL.len())
-            .map(SceneFeatures)
+        let flags: Vec<u32> = SceneFeatures::ALL.iter().map(|(f, _)| f.0).collect();
+        (0u32..1 << flags.len())
+            .map(|subset| {
+                let bits = (0..flags.len())
+                    .filter(|i| subset & (1 << i) != 0)
+                    .fold(0, |bits, i| bits | flags[i]);
+                SceneFeatures(bits)
+            })
             .filter(|&s| possible(s))
             .collect()
     }
@@ -266,10 +276,15 @@ mod tests {
     fn possible_sets_follow_what_packing_allows() {
         assert!(!possible(SceneFeatures::SMOOTH));
         assert!(!possible(SceneFeatures::CSG));
+        assert!(!possible(SceneFeatures::PROCEDURAL));
+        assert!(possible(SceneFeatures(
+            SceneFeatures::PROCEDURAL.0 | SceneFeatures::BUMP.0
+        )));
         assert!(possible(SceneFeatures(
             SceneFeatures::CSG.0 | SceneFeatures::TORUS.0
         )));
-        // Mesh: none, flat, smooth; CSG with 63 of the 64 leaf patterns; 6 free flags.
-        assert_eq!(possible_sets().len(), 3 * 63 * 64);
+        // Mesh: none, flat, smooth; CSG with 63 of the 64 leaf patterns; 4 free flags;
+        // texture, bump and procedural in 7 of their 8 patterns.
+        assert_eq!(possible_sets().len(), 3 * 63 * 16 * 7);
     }
 }

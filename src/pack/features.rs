@@ -36,6 +36,10 @@ scene_features! {
     BUMP = 12, "bump";
     /// A mesh triangle with vertex normals (and `shading` not `'flat'`): smooth shading.
     SMOOTH = 13, "smooth";
+    /// A used material with a procedural texture (`gr.checker`, `gr.noise`, `gr.marble`,
+    /// `gr.wood`); it brings TEXTURE (a colour slot) or BUMP (the bump slot) with it, for
+    /// the ray cone and the texels it reads.
+    PROCEDURAL = 16, "procedural";
 }
 
 impl SceneFeatures {

@@ -245,8 +245,9 @@ fn csg_program_at(i: u32) -> u32 {
 }
 // #endif
 
-// #if TEXTURE|BUMP
-// texels[i]: a word of the texture table or of a texture's texels.
+// #if TEXTURE|BUMP|PROCEDURAL
+// texels[i]: a word of the texture table or of a texture's texels (or of the procedural
+// textures' part after them).
 // Mirror of src/pack/layout.rs::texel_word — change both.
 fn texel_word(i: u32) -> u32 {
     return word_at(texel_table, i);

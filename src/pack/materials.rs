@@ -3,16 +3,22 @@
 
 use super::features::SceneFeatures;
 use super::layout::PackedMaterial;
-use crate::constants::{AIR_IOR, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, NO_TEXTURE};
+use crate::constants::{
+    AIR_IOR, MATERIAL_REFLECTIVE, MATERIAL_REFRACTIVE, NO_TEXTURE, PROCEDURAL_TEXTURE,
+};
 use crate::scene::flatten::{CsgStep, FlatScene};
 use crate::scene::DebugView;
 
 /// The scene's materials as the tracers read them.
-pub(super) fn pack_materials(scene: &FlatScene) -> Vec<PackedMaterial> {
+/// Procedural textures' blocks follow the permutation table at word `procedural_base`
+/// of `texels` (`pack::procedural`).
+pub(super) fn pack_materials(scene: &FlatScene, procedural_base: u32) -> Vec<PackedMaterial> {
+    let slots = super::procedural::slot_indices(&scene.materials, procedural_base, NO_TEXTURE);
     scene
         .materials
         .iter()
-        .map(|m| {
+        .zip(slots)
+        .map(|(m, [diffuse_texture, specular_texture, bump_texture])| {
             let reflective = m.reflection.iter().any(|&c| c > 0.0);
             let refractive = if m.ior.is_some() {
                 MATERIAL_REFRACTIVE
@@ -26,9 +32,9 @@ pub(super) fn pack_materials(scene: &FlatScene) -> Vec<PackedMaterial> {
                 flags: if reflective { MATERIAL_REFLECTIVE } else { 0 } | refractive,
                 reflection: m.reflection,
                 ior: m.ior.unwrap_or(AIR_IOR),
-                diffuse_texture: m.diffuse_map.map_or(NO_TEXTURE, |t| t as u32),
-                specular_texture: m.specular_map.map_or(NO_TEXTURE, |t| t as u32),
-                bump_texture: m.bump_map.map_or(NO_TEXTURE, |t| t as u32),
+                diffuse_texture,
+                specular_texture,
+                bump_texture,
                 bump_strength: m.bump_strength,
             }
         })
@@ -83,6 +89,16 @@ pub(super) fn material_features(scene: &FlatScene, materials: &[PackedMaterial])
     }
     if (0..materials.len()).any(|m| materials[m].bump_texture != NO_TEXTURE && used(m)) {
         features.insert(SceneFeatures::BUMP);
+    }
+    let procedural = |t: u32| t != NO_TEXTURE && t & PROCEDURAL_TEXTURE != 0;
+    if (0..materials.len()).any(|m| {
+        let p = &materials[m];
+        used(m)
+            && [p.diffuse_texture, p.specular_texture, p.bump_texture]
+                .into_iter()
+                .any(procedural)
+    }) {
+        features.insert(SceneFeatures::PROCEDURAL);
     }
     features
 }

@@ -9,6 +9,7 @@ pub mod layout;
 mod lights;
 mod materials;
 pub mod meshes;
+pub mod procedural;
 pub mod texture;
 
 use crate::accel::aabb::Aabb;
@@ -201,13 +202,19 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
         Vec::new()
     };
     check_finite(&instances, &triangles)?;
-    let materials = materials::pack_materials(scene);
+    // Procedural textures' words follow the images' in texels.
+    let procedural_base = procedural::image_words(&scene.textures);
+    let materials = materials::pack_materials(scene, procedural_base);
     features.insert(materials::material_features(scene, &materials));
     let (texels, triangle_uvs) = if features.uses_textures() {
-        (
-            texture::pack_texels(&scene.textures),
-            std::mem::take(&mut meshes.triangle_uvs),
-        )
+        let mut texels = texture::pack_texels(&scene.textures);
+        if features.contains(SceneFeatures::PROCEDURAL) {
+            texels.extend(procedural::pack_procedurals(
+                &scene.materials,
+                procedural_base,
+            ));
+        }
+        (texels, std::mem::take(&mut meshes.triangle_uvs))
     } else {
         (Vec::new(), Vec::new())
     };

@@ -36,6 +36,7 @@ pub mod lua;
 pub mod obj;
 pub mod options;
 pub mod paths;
+pub mod procedural;
 pub mod texture;
 pub mod uv;
 
@@ -47,6 +48,7 @@ pub use bounded::{AaDepth, AaSamples, Bounded, ShadowSamples, TraceDepth};
 pub use options::{
     AaMode, Background, DebugView, GridMode, OptionOverrides, RenderOptions, Shading,
 };
+pub use procedural::{Procedural, ProceduralKind, TextureRef};
 pub use texture::{Texture, TextureId};
 
 /// Index of a node in [`SceneGraph::nodes`].
@@ -128,12 +130,13 @@ pub struct Material {
     pub reflection: [f32; 3],
     /// Dielectric with this index of refraction (`set_refraction`), if any.
     pub ior: Option<f32>,
-    /// Texture replacing `kd` (`set_diffuse('img.png')`).
-    pub diffuse_map: Option<TextureId>,
+    /// Texture replacing `kd` (`set_diffuse('img.png')`, `set_diffuse(gr.checker(…))`).
+    pub diffuse_map: Option<TextureRef>,
     /// Texture replacing `ks` (`set_specular('img.png')`).
-    pub specular_map: Option<TextureId>,
-    /// Height field of the bump map (`set_bump('height.png', strength)`).
-    pub bump_map: Option<TextureId>,
+    pub specular_map: Option<TextureRef>,
+    /// Height field of the bump map (`set_bump('height.png', strength)`, or a
+    /// procedural's pattern).
+    pub bump_map: Option<TextureRef>,
     /// Bump strength: the normal tilts by strength × the height's slope per texture unit.
     pub bump_strength: f32,
 }

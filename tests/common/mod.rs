@@ -505,3 +505,37 @@ pub fn smooth_sphere_lua(
         normals.join(", ")
     )
 }
+
+/// A scene of every primitive kind (sphere, cube, cylinder, cone, torus, a mesh quad)
+/// wearing material `m` (Phong, with `set`, Lua that changes `m`, run first), in front
+/// of a mirror that reflects them, 96×96, lit by one light: for the texture and
+/// procedural-texture parity tests.
+pub fn every_primitive_lua(set: &str) -> String {
+    format!(
+        "m = gr.material({{0.7, 0.5, 0.3}}, {{0.5, 0.5, 0.5}}, 30) {set}
+         mirror = gr.material({{0.1, 0.1, 0.1}}, {{0, 0, 0}}, 1)
+         mirror:set_reflection(0.5, 0.5, 0.5)
+         root = gr.node('root')
+         local function add(n, x, y) n:set_material(m) n:translate(x, y, 0) root:add_child(n) end
+         add(gr.sphere('s'), -2.5, 1.2)
+         add(gr.cube('c'), -0.5, 0.7)
+         add(gr.cylinder('y'), 1.5, 0.7)
+         add(gr.cone('k', 0.2, 1.2), -2.5, -1.5)
+         add(gr.torus('t', 0.6, 0.25), 0, -1.2)
+         add(gr.mesh('q', {{{{0,0,0}},{{1,0,0}},{{1,1,0}},{{0,1,0}}}}, {{{{0,1,2,3}}}}), 1.5, -1.5)
+         back = gr.cube('back') back:set_material(mirror) back:scale(9, 9, 0.2)
+         back:translate(-4.5, -4.5, -2) root:add_child(back)
+         l = gr.light({{3, 4, 6}}, {{0.9, 0.9, 0.9}}, {{1, 0, 0}})
+         gr.render(root, 'o.png', 96, 96, {{0, 0, 8}}, {{0, 0, -1}}, {{0, 1, 0}}, 50,
+                   {{0.2, 0.2, 0.2}}, {{l}})"
+    )
+}
+
+/// The error message of running the scene script `source`, written as `dir/bad.lua`.
+pub fn scene_error_in(dir: &Path, source: &str) -> String {
+    let path = dir.join("bad.lua");
+    std::fs::write(&path, source).unwrap();
+    run_scene_file(&path, &ScriptConfig::default(), &mut |_, _| Ok(()))
+        .expect_err("the scene must fail")
+        .to_string()
+}

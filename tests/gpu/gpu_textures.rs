@@ -77,24 +77,7 @@ fn texture_only_and_bump_only_match() {
             SceneFeatures::BUMP,
         ),
     ] {
-        let source = format!(
-            "m = gr.material({{0.7, 0.5, 0.3}}, {{0.5, 0.5, 0.5}}, 30) {set}
-             mirror = gr.material({{0.1, 0.1, 0.1}}, {{0, 0, 0}}, 1)
-             mirror:set_reflection(0.5, 0.5, 0.5)
-             root = gr.node('root')
-             local function add(n, x, y) n:set_material(m) n:translate(x, y, 0) root:add_child(n) end
-             add(gr.sphere('s'), -2.5, 1.2)
-             add(gr.cube('c'), -0.5, 0.7)
-             add(gr.cylinder('y'), 1.5, 0.7)
-             add(gr.cone('k', 0.2, 1.2), -2.5, -1.5)
-             add(gr.torus('t', 0.6, 0.25), 0, -1.2)
-             add(gr.mesh('q', {{{{0,0,0}},{{1,0,0}},{{1,1,0}},{{0,1,0}}}}, {{{{0,1,2,3}}}}), 1.5, -1.5)
-             back = gr.cube('back') back:set_material(mirror) back:scale(9, 9, 0.2)
-             back:translate(-4.5, -4.5, -2) root:add_child(back)
-             l = gr.light({{3, 4, 6}}, {{0.9, 0.9, 0.9}}, {{1, 0, 0}})
-             gr.render(root, 'o.png', 96, 96, {{0, 0, 8}}, {{0, 0, -1}}, {{0, 1, 0}}, 50,
-                       {{0.2, 0.2, 0.2}}, {{l}})"
-        );
+        let source = common::every_primitive_lua(set);
         let path = dir.join(format!("{name}.lua"));
         std::fs::write(&path, source).unwrap();
         let scene = packed_from_file(&path, &OptionOverrides::default()).remove(0);

@@ -97,6 +97,14 @@ const KNOWN_BREAKS: &[(&str, &str, u32, &str)] = &[
         "2 spilled SGPRs",
     ),
     ("all but smooth", "wavefront_leg_closest", 32, VGPRS_112),
+    ("all but procedural", "wavefront_closest", 32, VGPRS_112),
+    (
+        "all but procedural",
+        "wavefront_leg_closest",
+        64,
+        "2 spilled SGPRs",
+    ),
+    ("all but procedural", "wavefront_leg_closest", 32, VGPRS_112),
     (
         "sphere cube mesh grid cylinder torus csg refraction",
         "wavefront_leg_closest",

@@ -21,6 +21,7 @@ mod gpu_layout;
 mod gpu_lists;
 mod gpu_mailboxes;
 mod gpu_probes;
+mod gpu_procedural;
 mod gpu_refraction;
 mod gpu_scrabble;
 mod gpu_textures;

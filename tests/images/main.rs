@@ -15,6 +15,8 @@ mod texture_support;
 
 mod farm_tiles;
 mod golden;
+mod procedural;
+mod procedural_aa;
 mod scrabble;
 mod texture_assets;
 mod textures;

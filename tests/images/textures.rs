@@ -390,6 +390,9 @@ fn flat(dpdu: Vec3, dpdv: Vec3) -> Surface {
         dpdu,
         dpdv,
         footprint: 0.0,
+        p_object: Vec3::ZERO,
+        instance: 0,
+        world_footprint: 0.0,
     }
 }
 
@@ -513,15 +516,7 @@ fn scene_error(source: &str) -> String {
     let dir = temp_dir("textures-errors");
     texture_support::save(&texture_support::bumps(), &dir.join("bumps.png"));
     std::fs::write(dir.join("junk.png"), b"not a png").unwrap();
-    let path = dir.join("bad.lua");
-    std::fs::write(&path, source).unwrap();
-    glint::scene::lua::run_scene_file(
-        &path,
-        &glint::scene::lua::ScriptConfig::default(),
-        &mut |_, _| Ok(()),
-    )
-    .expect_err("the scene must fail")
-    .to_string()
+    common::scene_error_in(&dir, source)
 }
 
 #[test]

@@ -5,7 +5,7 @@
 //! is taken from the nearest Lua frame on the stack, since errors raised by Rust
 //! callbacks get no position from Lua itself.
 
-use super::handle_types::{LightHandle, MaterialHandle, NodeHandle};
+use super::handle_types::{LightHandle, MaterialHandle, NodeHandle, ProceduralHandle};
 use super::with_state;
 use crate::scene::{short_name, Bounded, MaterialId, NodeId};
 use glam::DVec3;
@@ -106,6 +106,8 @@ pub(crate) fn describe(lua: &Lua, v: &Value) -> String {
                 })
             } else if ud.is::<LightHandle>() {
                 "a light".into()
+            } else if let Ok(p) = ud.borrow::<ProceduralHandle>() {
+                p.describe()
             } else {
                 "a userdata".into()
             }

@@ -54,6 +54,10 @@ pub(super) fn install(lua: &Lua) -> mlua::Result<()> {
     def!("mesh", mesh);
     def!("csg", csg);
     def!("material", material);
+    def!("checker", super::procedural::checker);
+    def!("noise", super::procedural::noise);
+    def!("marble", super::procedural::marble);
+    def!("wood", super::procedural::wood);
     def!("light", light);
     def!("area_light", area_light);
     def!("transform_order", transform_order);

@@ -1,14 +1,15 @@
-//! The material methods that take images: `set_diffuse` and `set_specular` (a colour, or
-//! a texture file), and `set_bump('height.png'[, strength])`. Files are resolved against
-//! the scene's directory and decoded in Rust (`scene::texture`); each file is loaded once
-//! per script.
+//! The material methods that take images: `set_diffuse` and `set_specular` (a colour, a
+//! texture file or a procedural texture), and `set_bump('height.png'[, strength])` (or a
+//! procedural texture in place of the file). Files are resolved against the scene's
+//! directory and decoded in Rust (`scene::texture`); each file is loaded once per script.
 
 use super::args::Args;
 use super::budget::{charge, check_file_cost, memory_left};
+use super::handle_types::ProceduralHandle;
 use super::limits::reach_limit;
 use super::with_state;
 use crate::scene::texture::{load_opened_texture, texture_bytes, OVER_BUDGET};
-use crate::scene::{Material, TextureId};
+use crate::scene::{Material, TextureId, TextureRef};
 use mlua::Value;
 use std::sync::Arc;
 
@@ -28,17 +29,22 @@ pub(super) fn set_specular(a: &Args) -> mlua::Result<Edit> {
     colour_or_map(a, |m| &mut m.ks, |m| &mut m.specular_map)
 }
 
-/// A colour's setter: an image file's name sets the material's `map` to the texture
-/// (the colour stays, unused), a colour (numbers, grey or a table) sets `colour` and
-/// clears the map.
+/// A colour's setter: an image file's name or a procedural texture sets the material's
+/// `map` to the texture (the colour stays, unused), a colour (numbers, grey or a table)
+/// sets `colour` and clears the map.
 fn colour_or_map(
     a: &Args,
     colour: fn(&mut Material) -> &mut [f32; 3],
-    map: fn(&mut Material) -> &mut Option<TextureId>,
+    map: fn(&mut Material) -> &mut Option<TextureRef>,
 ) -> mlua::Result<Edit> {
+    if let Some(p) = procedural(a, 1) {
+        return Ok(Box::new(move |m: &mut Material| *map(m) = Some(p)));
+    }
     if let Value::String(_) = a.get(1) {
         let id = texture(a, 1, "file")?;
-        return Ok(Box::new(move |m: &mut Material| *map(m) = Some(id)));
+        return Ok(Box::new(move |m: &mut Material| {
+            *map(m) = Some(TextureRef::Image(id))
+        }));
     }
     let c = a.colour_args(1, true)?;
     Ok(Box::new(move |m: &mut Material| {
@@ -47,11 +53,28 @@ fn colour_or_map(
     }))
 }
 
-/// `m:set_bump('height.png'[, strength])`: strength ≥ 0, default
-/// [`DEFAULT_BUMP_STRENGTH`].
+/// Argument `n` as a procedural texture (`gr.checker`, …), if it is one.
+fn procedural(a: &Args, n: usize) -> Option<TextureRef> {
+    match a.get(n) {
+        Value::UserData(ud) => ud
+            .borrow::<ProceduralHandle>()
+            .ok()
+            .map(|p| TextureRef::Procedural(p.0)),
+        _ => None,
+    }
+}
+
+/// `m:set_bump('height.png'[, strength])` or `m:set_bump(gr.noise(…)[, strength])`:
+/// strength ≥ 0, default [`DEFAULT_BUMP_STRENGTH`]. A procedural texture's height is its
+/// pattern (0 … 1), its slope the pattern's analytic gradient.
 pub(super) fn set_bump(a: &Args) -> mlua::Result<Edit> {
-    if !matches!(a.get(1), Value::String(_)) {
-        return Err(a.bad(1, "file", "the file name of a height map (PNG or JPEG)"));
+    let procedural = procedural(a, 1);
+    if procedural.is_none() && !matches!(a.get(1), Value::String(_)) {
+        return Err(a.bad(
+            1,
+            "file",
+            "the file name of a height map (PNG or JPEG) or a procedural texture",
+        ));
     }
     // Check the strength before reading the file: a cheap error first.
     let strength = if a.is_nil(2) {
@@ -59,9 +82,12 @@ pub(super) fn set_bump(a: &Args) -> mlua::Result<Edit> {
     } else {
         a.non_negative(2, "strength")?
     };
-    let id = texture(a, 1, "file")?;
+    let map = match procedural {
+        Some(p) => p,
+        None => TextureRef::Image(texture(a, 1, "file")?),
+    };
     Ok(Box::new(move |m: &mut Material| {
-        m.bump_map = Some(id);
+        m.bump_map = Some(map);
         m.bump_strength = strength as f32;
     }))
 }

@@ -34,6 +34,7 @@ mod nodes;
 mod notes;
 mod options;
 mod preludes;
+mod procedural;
 mod render_call;
 mod run;
 mod sandbox;

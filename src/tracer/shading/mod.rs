@@ -2,6 +2,7 @@
 //! smooth normals, dielectrics and textures; built on the layers below.
 
 pub mod dielectric;
+pub mod procedural;
 pub mod shade;
 pub mod smooth;
 pub mod surface;

@@ -37,6 +37,15 @@ pub struct Surface {
     /// the texture filter's footprint. `surface_at` leaves it 0 (no filtering); tracing
     /// sets it in scenes with textures or bump maps.
     pub footprint: f32,
+    /// The point in the primitive's own space (before its nodes' transforms: the mesh's
+    /// for a triangle, the leaf's for CSG), where procedural textures are evaluated.
+    pub p_object: Vec3,
+    /// The instance whose object space `p_object` is in.
+    pub instance: u32,
+    /// Width, in world units, of the patch one pixel covers here (the procedural
+    /// textures' footprint, `texture::pixel_footprint`): 0 from `surface_at`; tracing
+    /// sets it in scenes with procedural textures.
+    pub world_footprint: f32,
 }
 
 /// The Phong colours at a shading point (the material's, or its textures' at the UV).
@@ -105,6 +114,9 @@ fn instance_surface(inst: &PackedInstance, ray: &Ray, t: f32) -> Surface {
         dpdu: to_world(s.dpdu),
         dpdv: to_world(s.dpdv),
         footprint: 0.0,
+        p_object: p_obj,
+        instance: 0,
+        world_footprint: 0.0,
     }
 }
 
@@ -118,7 +130,9 @@ pub fn surface_at(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
     if inst.kind == KIND_MESH {
         return mesh_surface(scene, inst, hit);
     }
-    instance_surface(inst, ray, hit.t)
+    let mut s = instance_surface(inst, ray, hit.t);
+    s.instance = hit.item;
+    s
 }
 
 /// Largest world coordinate magnitude an affine map (rows) gives a point whose
@@ -172,6 +186,9 @@ fn mesh_surface(scene: &PackedScene, inst: &PackedInstance, hit: &Hit) -> Surfac
         dpdu: to_world(dpdu),
         dpdv: to_world(dpdv),
         footprint: 0.0,
+        p_object: p_obj,
+        instance: hit.item,
+        world_footprint: 0.0,
     }
 }
 
@@ -182,6 +199,7 @@ fn mesh_surface(scene: &PackedScene, inst: &PackedInstance, hit: &Hit) -> Surfac
 fn csg_surface(scene: &PackedScene, ray: &Ray, hit: &Hit) -> Surface {
     let leaf = load_instance(scene, hit.part & CSG_INDEX_MASK);
     let mut s = instance_surface(leaf, ray, hit.t);
+    s.instance = hit.part & CSG_INDEX_MASK;
     if hit.part & CSG_FLIP != 0 {
         // (When Surface gains uv/dpdu/dpdv, they stay the leaf's; only the normal flips.)
         s.normal = -s.normal;

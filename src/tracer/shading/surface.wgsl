@@ -23,6 +23,16 @@ struct Surface {
     // the texture filter's footprint. surface_at leaves it 0; tracing sets it in scenes
     // with textures or bump maps.
     footprint: f32,
+// #if PROCEDURAL
+    // The point in the primitive's own space (the mesh's for a triangle, the leaf's for
+    // CSG), where procedural textures are evaluated.
+    p_object: vec3<f32>,
+    // The instance whose object space p_object is in.
+    instance: u32,
+    // Width, in world units, of the patch one pixel covers here (texture.wgsl::
+    // pixel_footprint): 0 from surface_at; tracing sets it.
+    world_footprint: f32,
+// #endif
 }
 
 // The Phong colours at a shading point (the material's, or its textures' at the UV).
@@ -94,7 +104,11 @@ fn instance_surface(inst: PackedInstance, ray: Ray, t: f32) -> Surface {
     // Tangents transform like directions: the linear part of object→world.
     let dpdu = vec3<f32>(dot(o2w[0].xyz, s.dpdu), dot(o2w[1].xyz, s.dpdu), dot(o2w[2].xyz, s.dpdu));
     let dpdv = vec3<f32>(dot(o2w[0].xyz, s.dpdv), dot(o2w[1].xyz, s.dpdv), dot(o2w[2].xyz, s.dpdv));
+// #if PROCEDURAL
+    return Surface(p, normal, magnitude, inst.material, s.uv, dpdu, dpdv, 0.0, p_obj, 0u, 0.0);
+// #else
     return Surface(p, normal, magnitude, inst.material, s.uv, dpdu, dpdv, 0.0);
+// #endif
 }
 // #endif
 
@@ -105,6 +119,9 @@ fn instance_surface(inst: PackedInstance, ray: Ray, t: f32) -> Surface {
 // Mirror of src/tracer/shading/surface.rs::csg_surface — change both.
 fn csg_surface(ray: Ray, hit: Hit) -> Surface {
     var s = instance_surface(load_instance(hit.part & CSG_INDEX_MASK), ray, hit.t);
+// #if PROCEDURAL
+    s.instance = hit.part & CSG_INDEX_MASK;
+// #endif
     if (hit.part & CSG_FLIP) != 0u {
         s.normal = -s.normal;
     }
@@ -160,7 +177,11 @@ fn mesh_surface(inst: PackedInstance, hit: Hit) -> Surface {
         + vec3<f32>(o2w[0].w, o2w[1].w, o2w[2].w);
     let world_dpdu = vec3<f32>(dot(o2w[0].xyz, dpdu), dot(o2w[1].xyz, dpdu), dot(o2w[2].xyz, dpdu));
     let world_dpdv = vec3<f32>(dot(o2w[0].xyz, dpdv), dot(o2w[1].xyz, dpdv), dot(o2w[2].xyz, dpdv));
+// #if PROCEDURAL
+    return Surface(p, normal, mapped_magnitude(o2w, magnitude_obj), inst.material, uv, world_dpdu, world_dpdv, 0.0, p_obj, hit.item, 0.0);
+// #else
     return Surface(p, normal, mapped_magnitude(o2w, magnitude_obj), inst.material, uv, world_dpdu, world_dpdv, 0.0);
+// #endif
 }
 // #endif
 
@@ -179,7 +200,13 @@ fn surface_at(ray: Ray, hit: Hit) -> Surface {
         return csg_surface(ray, hit);
     }
 // #endif
+// #if PROCEDURAL
+    var s = instance_surface(inst, ray, hit.t);
+    s.instance = hit.item;
+    return s;
+// #else
     return instance_surface(inst, ray, hit.t);
+// #endif
 // #else
     return Surface();
 // #endif

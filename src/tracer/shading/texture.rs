@@ -37,13 +37,14 @@
 //! component with the u slope; here each slope goes with its own tangent. Scale: s is the
 //! height per unit of texture space, so the look does not change when an object is scaled.
 
+use super::procedural::{is_procedural, procedural_bump_normal, procedural_colour};
 use super::surface::{Phong, Surface};
 use crate::constants::{
     BUMP_MIN_FRAME_SINE, LUMINANCE_B, LUMINANCE_G, LUMINANCE_R, NO_TEXTURE,
     TEXTURE_FOOTPRINT_MIN_COSINE, TEXTURE_HEADER_WORDS,
 };
 use crate::pack::layout::{load_material, texel_word};
-use crate::pack::{texture_levels, PackedGlobals, PackedMaterial, PackedScene};
+use crate::pack::{texture_levels, PackedGlobals, PackedMaterial, PackedScene, SceneFeatures};
 use crate::tracer::base::ray::Ray;
 use glam::{Vec2, Vec3};
 
@@ -200,9 +201,29 @@ pub fn with_footprint(scene: &PackedScene, s: Surface, dir: Vec3, cone: Vec2, t:
     if !scene.features.uses_textures() {
         return s;
     }
-    Surface {
+    let mut filtered = Surface {
         footprint: texture_footprint(&s, dir, cone, t),
         ..s
+    };
+    if scene.features.contains(SceneFeatures::PROCEDURAL) {
+        filtered.world_footprint = pixel_footprint(&s, dir, cone, t);
+    }
+    filtered
+}
+
+/// The width, in world units, of the patch of surface `s` that one pixel covers (see
+/// [`texture_footprint`], before its division by the uv scale): the footprint of
+/// procedural textures, which `tracer::shading::procedural` takes to object units.
+// Mirror of src/tracer/shading/texture.wgsl::pixel_footprint — change both.
+fn pixel_footprint(s: &Surface, dir: Vec3, cone: Vec2, t: f32) -> f32 {
+    let width = cone.x + cone.y * t;
+    let cosine = s.normal.dot(dir).abs().max(TEXTURE_FOOTPRINT_MIN_COSINE);
+    let footprint = width / cosine.sqrt();
+    // The test also rejects NaN and ∞.
+    if footprint < f32::MAX {
+        footprint
+    } else {
+        0.0
     }
 }
 
@@ -290,7 +311,11 @@ pub fn shading_normal(scene: &PackedScene, s: &Surface, n: Vec3) -> Vec3 {
     if m.bump_texture == NO_TEXTURE {
         return n;
     }
-    let bumped = bump_normal(&scene.texels, m, s);
+    let bumped = if is_procedural(m.bump_texture) {
+        procedural_bump_normal(scene, m, s)
+    } else {
+        bump_normal(&scene.texels, m, s)
+    };
     if n.dot(s.normal) < 0.0 {
         -bumped
     } else {
@@ -309,22 +334,35 @@ pub fn texture_detail(scene: &PackedScene, s: &Surface) -> f32 {
         return 0.0;
     }
     let texels = &scene.texels;
+    if is_procedural(m.diffuse_texture) {
+        let at_pixel = procedural_colour(scene, m.diffuse_texture, s, s.world_footprint);
+        let coarser = procedural_colour(scene, m.diffuse_texture, s, 2.0 * s.world_footprint);
+        return (at_pixel - coarser).abs().max_element();
+    }
     let at_pixel = sample_texture_filtered(texels, m.diffuse_texture, s.uv, s.footprint);
     let coarser = sample_texture_filtered(texels, m.diffuse_texture, s.uv, 2.0 * s.footprint);
     (at_pixel - coarser).abs().max_element()
 }
 
-/// (kd, ks) at `s`: the material's colours, or its textures' at the hit's UV, filtered
-/// over the hit's footprint.
+/// (kd, ks) at `s`: the material's colours, or its textures' at the hit's UV (a
+/// procedural's at its object point), filtered over the hit's footprint.
 // Mirror of src/tracer/shading/texture.wgsl::surface_colours — change both.
 pub fn surface_colours(scene: &PackedScene, m: &PackedMaterial, s: &Surface) -> Phong {
     let mut kd = Vec3::from(m.kd);
     let mut ks = Vec3::from(m.ks);
     if m.diffuse_texture != NO_TEXTURE {
-        kd = sample_texture_filtered(&scene.texels, m.diffuse_texture, s.uv, s.footprint);
+        kd = if is_procedural(m.diffuse_texture) {
+            procedural_colour(scene, m.diffuse_texture, s, s.world_footprint)
+        } else {
+            sample_texture_filtered(&scene.texels, m.diffuse_texture, s.uv, s.footprint)
+        };
     }
     if m.specular_texture != NO_TEXTURE {
-        ks = sample_texture_filtered(&scene.texels, m.specular_texture, s.uv, s.footprint);
+        ks = if is_procedural(m.specular_texture) {
+            procedural_colour(scene, m.specular_texture, s, s.world_footprint)
+        } else {
+            sample_texture_filtered(&scene.texels, m.specular_texture, s.uv, s.footprint)
+        };
     }
     Phong { kd, ks }
 }

@@ -132,8 +132,27 @@ fn texture_footprint(s: Surface, dir: vec3<f32>, cone: vec2<f32>, t: f32) -> f32
 fn with_footprint(s: Surface, dir: vec3<f32>, cone: vec2<f32>, t: f32) -> Surface {
     var filtered = s;
     filtered.footprint = texture_footprint(s, dir, cone, t);
+// #if PROCEDURAL
+    filtered.world_footprint = pixel_footprint(s, dir, cone, t);
+// #endif
     return filtered;
 }
+
+// #if PROCEDURAL
+// The width, in world units, of the patch of surface s that one pixel covers: the
+// footprint of procedural textures.
+// Mirror of src/tracer/shading/texture.rs::pixel_footprint — change both.
+fn pixel_footprint(s: Surface, dir: vec3<f32>, cone: vec2<f32>, t: f32) -> f32 {
+    let width = cone.x + cone.y * t;
+    let cosine = max(abs(dot(s.normal, dir)), TEXTURE_FOOTPRINT_MIN_COSINE);
+    let footprint = width / sqrt(cosine);
+    // The test also rejects NaN and infinity.
+    if footprint < F32_MAX {
+        return footprint;
+    }
+    return 0.0;
+}
+// #endif
 
 // The cone t along a ray whose cone is `cone` (width at its origin, spread): what a
 // secondary ray leaving from there starts with.
@@ -223,7 +242,16 @@ fn shading_normal(s: Surface, n: vec3<f32>) -> vec3<f32> {
     if m.bump_texture == NO_TEXTURE {
         return n;
     }
+// #if PROCEDURAL
+    var bumped: vec3<f32>;
+    if is_procedural(m.bump_texture) {
+        bumped = procedural_bump_normal(m, s);
+    } else {
+        bumped = bump_normal(m, s);
+    }
+// #else
     let bumped = bump_normal(m, s);
+// #endif
     if dot(n, s.normal) < 0.0 {
         return -bumped;
     }
@@ -242,6 +270,13 @@ fn texture_detail(s: Surface) -> f32 {
     if m.diffuse_texture == NO_TEXTURE {
         return 0.0;
     }
+// #if PROCEDURAL
+    if is_procedural(m.diffuse_texture) {
+        let at_pixel = procedural_colour(m.diffuse_texture, s, s.world_footprint);
+        let coarser = procedural_colour(m.diffuse_texture, s, 2.0 * s.world_footprint);
+        return max_element(abs(at_pixel - coarser));
+    }
+// #endif
     let at_pixel = sample_texture_filtered(m.diffuse_texture, s.uv, s.footprint);
     let coarser = sample_texture_filtered(m.diffuse_texture, s.uv, 2.0 * s.footprint);
     return max_element(abs(at_pixel - coarser));
@@ -254,10 +289,26 @@ fn surface_colours(m: PackedMaterial, s: Surface) -> Phong {
     var kd = m.kd;
     var ks = m.ks;
     if m.diffuse_texture != NO_TEXTURE {
+// #if PROCEDURAL
+        if is_procedural(m.diffuse_texture) {
+            kd = procedural_colour(m.diffuse_texture, s, s.world_footprint);
+        } else {
+            kd = sample_texture_filtered(m.diffuse_texture, s.uv, s.footprint);
+        }
+// #else
         kd = sample_texture_filtered(m.diffuse_texture, s.uv, s.footprint);
+// #endif
     }
     if m.specular_texture != NO_TEXTURE {
+// #if PROCEDURAL
+        if is_procedural(m.specular_texture) {
+            ks = procedural_colour(m.specular_texture, s, s.world_footprint);
+        } else {
+            ks = sample_texture_filtered(m.specular_texture, s.uv, s.footprint);
+        }
+// #else
         ks = sample_texture_filtered(m.specular_texture, s.uv, s.footprint);
+// #endif
     }
     return Phong(kd, ks);
 }
