@@ -180,7 +180,10 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     let mut features = SceneFeatures::empty();
     let mut instances = analytic_instances(scene, &mut features);
     let (density, mesh_density) = grid_densities(scene.options.grid);
-    let mut meshes = meshes::pack_meshes(scene, mesh_density)?;
+    // Materials first: whether the meshes' UVs are packed depends on their textures.
+    let materials = materials::pack_materials(scene);
+    features.insert(materials::material_features(scene, &materials));
+    let mut meshes = meshes::pack_meshes(scene, mesh_density, features.uses_textures())?;
     // CSG objects and mesh instances are items after the analytic objects; the CSG
     // leaves follow all items.
     let num_items = instances.len() + scene.csg.len() + meshes.instances.len();
@@ -201,8 +204,6 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
         Vec::new()
     };
     check_finite(&instances, &triangles)?;
-    let materials = materials::pack_materials(scene);
-    features.insert(materials::material_features(scene, &materials));
     let (texels, triangle_uvs) = if features.uses_textures() {
         (
             texture::pack_texels(&scene.textures),
@@ -222,7 +223,7 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     // choice traverses such a scene by brute force; an explicit density is obeyed.
     let density =
         density.filter(|_| num_items > 1 || !matches!(scene.options.grid, GridMode::Auto));
-    let grid = Grid::build(&bounds, None, density);
+    let grid = Grid::build(bounds, None, density);
     if grid.enabled {
         features.insert(SceneFeatures::GRID);
     }
