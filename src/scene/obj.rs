@@ -307,6 +307,36 @@ mod tests {
     }
 
     #[test]
+    fn a_file_out_of_range_index_is_located_by_a_second_pass() {
+        let dir = std::env::temp_dir().join(format!("glint-obj-pass-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("fwd.obj");
+        // Line 1 refers forward to vertex 4 (defined on line 6: fine); line 2 to vertex 9,
+        // which never comes; line 3's texture index 2 is also past the end, but later.
+        let text = "f 1 2 4\nf 1 2 9\nf 1/2 2/1 3/1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\n";
+        std::fs::write(&p, text).unwrap();
+        let e = load_obj(&p, "m").unwrap_err().to_string();
+        assert!(
+            e.ends_with("fwd.obj:2: face index 9 out of range (file has 4 vertices)"),
+            "{e}"
+        );
+        assert_eq!(
+            parse_str(text).unwrap_err().to_string(),
+            "test.obj:2: face index 9 out of range (file has 4 vertices)"
+        );
+        // Without line 2, the texture index of line 3.
+        let text = text.replace("f 1 2 9\n", "");
+        assert_eq!(
+            parse_str(&text).unwrap_err().to_string(),
+            "test.obj:2: texture index 2 out of range (file has 1 texture coordinates)"
+        );
+        // A NUL byte anywhere: not an OBJ text file.
+        std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n\0\n").unwrap();
+        assert!(matches!(load_obj(&p, "m"), Err(ObjError::NotText { .. })));
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
     fn bad_number_and_short_faces() {
         let e = parse_str("v 0 x1 0\n").unwrap_err();
         assert_eq!(e.to_string(), "test.obj:1: bad number 'x1'");
