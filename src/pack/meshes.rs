@@ -159,6 +159,17 @@ fn packing_order(source: &MeshSource) -> Vec<u32> {
         .collect()
 }
 
+/// `part` of each triangle `order` of `source`, in order (made one triangle at a time).
+fn per_triangle<'a, T: Send>(
+    source: &'a MeshSource,
+    order: &'a [u32],
+    part: impl Fn(MeshTriangle) -> T + Sync + Send + 'a,
+) -> impl IndexedParallelIterator<Item = T> + 'a {
+    order
+        .par_iter()
+        .map(move |&i| part(source.triangle(i as usize)))
+}
+
 /// A packed triangle's corners.
 fn triangle_vertices(t: &PackedTriangle) -> [Vec3; 3] {
     [t.p0, t.p1, t.p2].map(Vec3::from_array)
@@ -188,14 +199,9 @@ impl PackedMeshes {
         let mesh_bounds = bounds.iter().fold(Aabb::EMPTY, |a, &b| a.union(b));
         let grid = Grid::build(bounds, Some(&|i| triangle_vertices(&packed[i])), density);
         if with_uvs {
-            self.triangle_uvs.par_extend(order.par_iter().map(|&i| {
-                let uvs = source.triangle(i as usize).uvs;
-                PackedTriangleUv {
-                    uv0: uvs[0],
-                    uv1: uvs[1],
-                    uv2: uvs[2],
-                }
-            }));
+            let uvs = per_triangle(source, &order, |t| t.uvs);
+            self.triangle_uvs
+                .par_extend(uvs.map(|[uv0, uv1, uv2]| PackedTriangleUv { uv0, uv1, uv2 }));
         }
         self.push_normals(source, &order, first);
         let item_offset = self.cell_items.len() as u32;
@@ -237,14 +243,9 @@ impl PackedMeshes {
         if has_normals {
             self.triangle_normals
                 .resize(first, PackedTriangleNormals::zeroed());
-            self.triangle_normals.par_extend(order.par_iter().map(|&i| {
-                let n = source.triangle(i as usize).normals;
-                PackedTriangleNormals {
-                    n0: n[0],
-                    n1: n[1],
-                    n2: n[2],
-                }
-            }));
+            let normals = per_triangle(source, order, |t| t.normals);
+            self.triangle_normals
+                .par_extend(normals.map(|[n0, n1, n2]| PackedTriangleNormals { n0, n1, n2 }));
             self.smooth |= self.triangle_normals[first..]
                 .iter()
                 .any(|n| n.n0 != [0.0; 3]);
