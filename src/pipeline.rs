@@ -127,6 +127,8 @@ pub struct RenderedImage {
     pub output: PathBuf,
     pub film: Film,
     pub packed: PackedScene,
+    /// Flattening and packing (the grids included), before the render.
+    pub build_time: Duration,
     pub render_time: Duration,
     pub counters: Option<RenderCounters>,
     /// Set when the GPU rendered it: features compiled in, pipeline compile time.
@@ -234,7 +236,9 @@ pub fn render_aa_samples_map(
     overrides: &OptionOverrides,
     tracer: Tracer,
 ) -> anyhow::Result<RenderedImage> {
+    let build_start = Instant::now();
     let (request, packed) = prepare_request(graph, request, overrides)?;
+    let build_time = build_start.elapsed();
     let mode = request.options.aa;
     if mode != AaMode::Adaptive {
         let mode = if mode == AaMode::None {
@@ -254,6 +258,7 @@ pub fn render_aa_samples_map(
     Ok(RenderedImage {
         output: request.output.clone(),
         film,
+        build_time,
         render_time: start.elapsed(),
         counters: None,
         gpu: None,
@@ -276,7 +281,9 @@ pub fn render_request(
     progress: Option<&dyn ProgressSink>,
     tracer: Tracer,
 ) -> anyhow::Result<RenderedImage> {
+    let build_start = Instant::now();
     let (request, packed) = prepare_request(graph, request, overrides)?;
+    let build_time = build_start.elapsed();
     if let Some(sink) = progress {
         sink.begin(&request.output);
     }
@@ -309,6 +316,7 @@ pub fn render_request(
             output: request.output.clone(),
             film,
             packed,
+            build_time,
             render_time: start.elapsed(),
             counters: None,
             gpu: Some(info),
@@ -327,6 +335,7 @@ pub fn render_request(
         output: request.output.clone(),
         film,
         packed,
+        build_time,
         render_time: start.elapsed(),
         counters,
         gpu: None,

@@ -77,14 +77,23 @@ pub fn grid_resolution(extent: Vec3, items: usize, density: f32) -> [u32; 3] {
     dims
 }
 
+/// Item `i`'s triangle corners, for a grid over triangles: read from wherever the caller
+/// keeps them (packing's own triangles), so the grid holds no copy.
+pub type TriangleCorners<'a> = dyn Fn(usize) -> [Vec3; 3] + Sync + 'a;
+
 impl Grid {
-    /// Builds the grid over items with the given bounds; with `triangles` (parallel to
-    /// `bounds`), each item is that triangle and skips the cells its plane misses. An item
+    /// Builds the grid over items with the given bounds; with `triangles` (item `i`'s
+    /// corners), each item is that triangle and skips the cells its plane misses. An item
     /// with empty bounds is in no cell. `density` None means brute force: one cell that
     /// lists every item.
-    pub fn build(bounds: &[Aabb], triangles: Option<&[[Vec3; 3]]>, density: Option<f32>) -> Grid {
+    pub fn build(
+        mut bounds: Vec<Aabb>,
+        triangles: Option<&TriangleCorners<'_>>,
+        density: Option<f32>,
+    ) -> Grid {
         let start = Instant::now();
-        let bounds: Vec<Aabb> = bounds.par_iter().map(|b| b.padded()).collect();
+        // Padded in place: a big mesh's boxes are not held twice.
+        bounds.par_iter_mut().for_each(|b| *b = b.padded());
         let scene_bounds = bounds.iter().fold(Aabb::EMPTY, |a, &b| a.union(b));
         let item_count = bounds.len();
         // (Items with empty bounds alone: nothing to grid, and nothing to hit.)
@@ -102,41 +111,50 @@ impl Grid {
         let dims = geometry.dims;
         let cell_size = geometry.cell_size;
 
-        // (cell, item) references, produced in parallel chunks kept in item order.
+        // (cell, item) references, produced in parallel chunks kept in item order, each
+        // chunk's list exact (no growth slack) and never joined into one: a big mesh's
+        // references are held once while they are sorted.
         const CHUNK: usize = 1 << 14;
-        let pairs: Vec<(u32, u32)> = bounds
+        let chunks: Vec<Vec<(u32, u32)>> = bounds
             .par_chunks(CHUNK)
             .enumerate()
-            .flat_map_iter(|(chunk, chunk_bounds)| {
+            .map(|(chunk, chunk_bounds)| {
                 let mut out = Vec::new();
                 for (k, b) in chunk_bounds.iter().enumerate() {
                     let item = chunk * CHUNK + k;
                     if b.is_empty() {
                         continue;
                     }
-                    let triangle = triangles.map(|t| &t[item]);
-                    geometry.for_each_cell(b, triangle, |cell| out.push((cell, item as u32)));
+                    let triangle = triangles.map(|t| t(item));
+                    geometry
+                        .for_each_cell(b, triangle.as_ref(), |cell| out.push((cell, item as u32)));
                 }
-                out.into_iter()
+                out.shrink_to_fit();
+                out
             })
             .collect();
+        drop(bounds);
 
-        // Counting sort by cell; stable, so each cell lists its items in ascending order.
+        // Counting sort by cell; stable, so each cell lists its items in ascending order:
+        // `cell_start[c]` first holds cell c's end, and the references, placed from the
+        // last back, move it down to the cell's start (no second array of cursors).
         let cells = dims.iter().map(|&d| d as usize).product::<usize>();
         let mut cell_start = vec![0u32; cells + 1];
-        for &(cell, _) in &pairs {
-            cell_start[cell as usize + 1] += 1;
+        for &(cell, _) in chunks.iter().flatten() {
+            cell_start[cell as usize] += 1;
         }
-        for c in 0..cells {
-            cell_start[c + 1] += cell_start[c];
+        for c in 1..cells {
+            cell_start[c] += cell_start[c - 1];
         }
-        let mut cursor = cell_start.clone();
-        let mut cell_items = vec![0u32; pairs.len()];
-        for &(cell, item) in &pairs {
-            let slot = &mut cursor[cell as usize];
-            cell_items[*slot as usize] = item;
-            *slot += 1;
+        let references = cell_start[cells - 1] as usize;
+        cell_start[cells] = references as u32;
+        let mut cell_items = vec![0u32; references];
+        for &(cell, item) in chunks.iter().rev().flat_map(|c| c.iter().rev()) {
+            let end = &mut cell_start[cell as usize];
+            *end -= 1;
+            cell_items[*end as usize] = item;
         }
+        drop(chunks);
         let empty_cells = (0..cells)
             .filter(|&c| cell_start[c] == cell_start[c + 1])
             .count();

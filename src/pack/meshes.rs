@@ -11,7 +11,8 @@ use super::{affine_rows, PackError};
 use crate::accel::aabb::Aabb;
 use crate::accel::grid::{Grid, GridBuildStats};
 use crate::constants::KIND_MESH;
-use crate::scene::flatten::{FlatScene, MeshTriangle};
+use crate::scene::flatten::{FlatScene, MeshTriangle, SceneMesh};
+use bytemuck::Zeroable;
 use glam::{DMat4, DVec3, Vec3};
 use rayon::prelude::*;
 
@@ -36,33 +37,54 @@ pub struct PackedMeshes {
     pub stats: GridBuildStats,
 }
 
-/// A mesh's triangles in its space, before packing.
-struct MeshSource<'a> {
-    triangles: Vec<&'a MeshTriangle>,
+/// A mesh's triangles in its space, before packing: a stored mesh, read one triangle at
+/// a time, or a group of loose triangles.
+enum MeshSource<'a> {
+    Stored(&'a SceneMesh),
+    Loose(Vec<MeshTriangle>),
+}
+
+impl MeshSource<'_> {
+    fn len(&self) -> usize {
+        match self {
+            MeshSource::Stored(mesh) => mesh.len(),
+            MeshSource::Loose(triangles) => triangles.len(),
+        }
+    }
+
+    fn positions(&self, i: usize) -> [DVec3; 3] {
+        match self {
+            MeshSource::Stored(mesh) => mesh.positions(i),
+            MeshSource::Loose(triangles) => triangles[i].positions,
+        }
+    }
+
+    fn triangle(&self, i: usize) -> MeshTriangle {
+        match self {
+            MeshSource::Stored(mesh) => mesh.triangle(i),
+            MeshSource::Loose(triangles) => triangles[i].clone(),
+        }
+    }
 }
 
 /// Packs the meshes and mesh instances of `scene` (and its loose triangles) with grids of
-/// density `density` (None: brute force, one cell per mesh).
-pub fn pack_meshes(scene: &FlatScene, density: Option<f32>) -> Result<PackedMeshes, PackError> {
-    let mut sources: Vec<MeshSource> = scene
-        .meshes
-        .iter()
-        .map(|m| MeshSource {
-            triangles: m.triangles.iter().collect(),
-        })
-        .collect();
+/// density `density` (None: brute force, one cell per mesh); the triangles' UVs only
+/// `with_uvs` (a scene that uses textures), since nothing else reads them.
+pub fn pack_meshes(
+    scene: &FlatScene,
+    density: Option<f32>,
+    with_uvs: bool,
+) -> Result<PackedMeshes, PackError> {
+    let mut sources: Vec<MeshSource> = scene.meshes.iter().map(MeshSource::Stored).collect();
     // (mesh, object→world, material) of every instance.
     let mut placements: Vec<(usize, DMat4, u32)> = scene
         .mesh_instances
         .iter()
         .map(|i| (i.mesh, i.object_to_world, i.material as u32))
         .collect();
-    let loose = loose_meshes(scene);
-    for (material, triangles) in &loose {
-        sources.push(MeshSource {
-            triangles: triangles.iter().collect(),
-        });
-        placements.push((sources.len() - 1, DMat4::IDENTITY, *material));
+    for (material, triangles) in loose_meshes(scene) {
+        sources.push(MeshSource::Loose(triangles));
+        placements.push((sources.len() - 1, DMat4::IDENTITY, material));
     }
     if sources.len() >= 1 << 24 {
         return Err(PackError::TooManyMeshes(sources.len()));
@@ -81,7 +103,7 @@ pub fn pack_meshes(scene: &FlatScene, density: Option<f32>) -> Result<PackedMesh
     };
     let mut mesh_bounds = Vec::new();
     for source in &sources {
-        mesh_bounds.push(out.push_mesh(source, density));
+        mesh_bounds.push(out.push_mesh(source, density, with_uvs));
     }
     for (mesh, object_to_world, material) in placements {
         let instance = PackedInstance {
@@ -118,45 +140,70 @@ fn loose_meshes(scene: &FlatScene) -> Vec<(u32, Vec<MeshTriangle>)> {
     groups
 }
 
+/// The triangles of `source` in Morton order of their (f64) centroids, degenerate ones
+/// dropped: indices into `source`.
+fn packing_order(source: &MeshSource) -> Vec<u32> {
+    let centroids: Vec<DVec3> = (0..source.len())
+        .into_par_iter()
+        .map(|i| {
+            let p = source.positions(i);
+            (p[0] + p[1] + p[2]) / 3.0
+        })
+        .collect();
+    let order = super::spatial_order(&centroids);
+    drop(centroids);
+    order
+        .into_par_iter()
+        .filter(|&i| !super::is_degenerate(&source.positions(i)))
+        .map(|i| i as u32)
+        .collect()
+}
+
+/// `part` of each triangle `order` of `source`, in order (made one triangle at a time).
+fn per_triangle<'a, T: Send>(
+    source: &'a MeshSource,
+    order: &'a [u32],
+    part: impl Fn(MeshTriangle) -> T + Sync + Send + 'a,
+) -> impl IndexedParallelIterator<Item = T> + 'a {
+    order
+        .par_iter()
+        .map(move |&i| part(source.triangle(i as usize)))
+}
+
+/// A packed triangle's corners.
+fn triangle_vertices(t: &PackedTriangle) -> [Vec3; 3] {
+    [t.p0, t.p1, t.p2].map(Vec3::from_array)
+}
+
 impl PackedMeshes {
     /// Packs one mesh and builds its grid; returns its bounds (empty without triangles).
-    fn push_mesh(&mut self, source: &MeshSource, density: Option<f32>) -> Aabb {
-        let centroids: Vec<DVec3> = source
-            .triangles
-            .iter()
-            .map(|t| (t.positions[0] + t.positions[1] + t.positions[2]) / 3.0)
-            .collect();
-        let order: Vec<&MeshTriangle> = super::spatial_order(&centroids)
-            .into_iter()
-            .map(|i| source.triangles[i])
-            .filter(|t| !super::is_degenerate(&t.positions))
-            .collect();
-        let corners: Vec<[Vec3; 3]> = order
-            .par_iter()
-            .map(|t| t.positions.map(|p| p.as_vec3()))
-            .collect();
-        let bounds: Vec<Aabb> = corners.par_iter().map(Aabb::of_triangle).collect();
-        let grid = Grid::build(&bounds, Some(&corners), density);
-        let first_triangle = self.triangles.len() as u32;
-        self.triangles
-            .extend(corners.iter().map(|&[p0, p1, p2]| PackedTriangle {
+    /// Each triangle is made from `source` as it is packed, straight into the packed
+    /// arrays, and the grid reads the packed corners: no per-triangle copy outlives its
+    /// step.
+    fn push_mesh(&mut self, source: &MeshSource, density: Option<f32>, with_uvs: bool) -> Aabb {
+        let order = packing_order(source);
+        let first = self.triangles.len();
+        self.triangles.par_extend(order.par_iter().map(|&i| {
+            let [p0, p1, p2] = source.positions(i as usize).map(|p| p.as_vec3());
+            PackedTriangle {
                 p0: p0.to_array(),
                 p1: p1.to_array(),
                 p2: p2.to_array(),
-            }));
-        self.triangle_uvs
-            .extend(order.iter().map(|t| PackedTriangleUv {
-                uv0: t.uvs[0],
-                uv1: t.uvs[1],
-                uv2: t.uvs[2],
-            }));
-        self.triangle_normals
-            .extend(order.iter().map(|t| PackedTriangleNormals {
-                n0: t.normals[0],
-                n1: t.normals[1],
-                n2: t.normals[2],
-            }));
-        self.smooth |= order.iter().any(|t| t.normals[0] != [0.0; 3]);
+            }
+        }));
+        let packed = &self.triangles[first..];
+        let bounds: Vec<Aabb> = packed
+            .par_iter()
+            .map(|t| Aabb::of_triangle(&triangle_vertices(t)))
+            .collect();
+        let mesh_bounds = bounds.iter().fold(Aabb::EMPTY, |a, &b| a.union(b));
+        let grid = Grid::build(bounds, Some(&|i| triangle_vertices(&packed[i])), density);
+        if with_uvs {
+            let uvs = per_triangle(source, &order, |t| t.uvs);
+            self.triangle_uvs
+                .par_extend(uvs.map(|[uv0, uv1, uv2]| PackedTriangleUv { uv0, uv1, uv2 }));
+        }
+        self.push_normals(source, &order, first);
         let item_offset = self.cell_items.len() as u32;
         let first_cell = self.cell_start.len() as u32;
         // Cell c's items are cell_start[c]..cell_start[c + 1]: keep one entry per cell
@@ -168,9 +215,9 @@ impl PackedMeshes {
             grid_min: grid.min,
             first_cell,
             grid_max: grid.max,
-            first_triangle,
+            first_triangle: first as u32,
             grid_cell_size: grid.cell_size,
-            num_triangles: corners.len() as u32,
+            num_triangles: order.len() as u32,
             grid_dims: grid.dims,
             _pad0: 0,
         });
@@ -182,7 +229,30 @@ impl PackedMeshes {
         s.max_items_in_cell = s.max_items_in_cell.max(grid.stats.max_items_in_cell);
         s.build_time += grid.stats.build_time;
         s.memory_bytes += grid.stats.memory_bytes;
-        bounds.iter().fold(Aabb::EMPTY, |a, &b| a.union(b))
+        mesh_bounds
+    }
+
+    /// The corner normals of the triangles `order` of `source`, packed from `first` on:
+    /// only once some mesh has normals (the earlier triangles then get zeros, flat), since
+    /// a scene without them drops the array.
+    fn push_normals(&mut self, source: &MeshSource, order: &[u32], first: usize) {
+        let has_normals = match source {
+            MeshSource::Stored(mesh) => mesh.has_normals(),
+            MeshSource::Loose(_) => false,
+        };
+        if has_normals {
+            self.triangle_normals
+                .resize(first, PackedTriangleNormals::zeroed());
+            let normals = per_triangle(source, order, |t| t.normals);
+            self.triangle_normals
+                .par_extend(normals.map(|[n0, n1, n2]| PackedTriangleNormals { n0, n1, n2 }));
+            self.smooth |= self.triangle_normals[first..]
+                .iter()
+                .any(|n| n.n0 != [0.0; 3]);
+        } else if !self.triangle_normals.is_empty() {
+            self.triangle_normals
+                .resize(first + order.len(), PackedTriangleNormals::zeroed());
+        }
     }
 
     /// Moves the meshes' cells behind a scene grid of `scene_cells` entries of

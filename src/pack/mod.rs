@@ -181,7 +181,12 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     let mut features = SceneFeatures::empty();
     let mut instances = analytic_instances(scene, &mut features);
     let (density, mesh_density) = grid_densities(scene.options.grid);
-    let mut meshes = meshes::pack_meshes(scene, mesh_density)?;
+    // Materials first: whether the meshes' UVs are packed depends on their textures.
+    // Procedural textures' words follow the images' in texels.
+    let procedural_base = procedural::image_words(&scene.textures);
+    let materials = materials::pack_materials(scene, procedural_base);
+    features.insert(materials::material_features(scene, &materials));
+    let mut meshes = meshes::pack_meshes(scene, mesh_density, features.uses_textures())?;
     // CSG objects and mesh instances are items after the analytic objects; the CSG
     // leaves follow all items.
     let num_items = instances.len() + scene.csg.len() + meshes.instances.len();
@@ -202,10 +207,6 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
         Vec::new()
     };
     check_finite(&instances, &triangles)?;
-    // Procedural textures' words follow the images' in texels.
-    let procedural_base = procedural::image_words(&scene.textures);
-    let materials = materials::pack_materials(scene, procedural_base);
-    features.insert(materials::material_features(scene, &materials));
     let (texels, triangle_uvs) = if features.uses_textures() {
         let mut texels = texture::pack_texels(&scene.textures);
         if features.contains(SceneFeatures::PROCEDURAL) {
@@ -229,7 +230,7 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     // choice traverses such a scene by brute force; an explicit density is obeyed.
     let density =
         density.filter(|_| num_items > 1 || !matches!(scene.options.grid, GridMode::Auto));
-    let grid = Grid::build(&bounds, None, density);
+    let grid = Grid::build(bounds, None, density);
     if grid.enabled {
         features.insert(SceneFeatures::GRID);
     }

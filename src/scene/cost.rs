@@ -14,9 +14,15 @@ use crate::constants::CSG_MAX_DEPTH;
 /// Bytes per flattened analytic object: `Object` (with its transform), its packed
 /// instance, its grid bounds and cell references, doubled for vector growth.
 pub const OBJECT_BYTES: u64 = 768;
-/// Bytes per flattened triangle: world positions, UVs, packed triangle and UVs, grid
-/// bounds and references, doubled for vector growth.
-pub const TRIANGLE_BYTES: u64 = 512;
+/// Bytes per flattened triangle while it is packed (the graph's mesh, already charged
+/// when it was read, is shared with the flattened scene, not copied): the packed triangle
+/// (36), its UVs (24) and normals (36) when the scene uses them, the packing order (4), its
+/// bounds while the grid is made (24), the grid's cells (λ = 2 per triangle, 4 bytes each)
+/// and references (3 per triangle at 12 bytes while sorted) — 176 — with room for
+/// allocator blocks and large triangles' extra references. Measured: 81 (2×10⁶-triangle
+/// bumpy torus) and 97 (10⁶ random triangles) bytes per triangle over the mesh
+/// (docs/performance-trace.md, "Loading big meshes").
+pub const TRIANGLE_BYTES: u64 = 256;
 /// Bytes per image pixel: the f32 film, the 8-bit copy written out, and adaptive
 /// anti-aliasing's per-pixel bookkeeping.
 pub const PIXEL_BYTES: u64 = 32;

@@ -3,9 +3,10 @@
 //! and the errors flattening reports. Plain data, so `flatten`, `cost` and `instancing`
 //! all depend on it and it on none of them.
 
-use super::{Camera, CsgOp, Light, Material, MaterialId, RenderOptions};
+use super::{Camera, CsgOp, Light, Material, MaterialId, Mesh, RenderOptions};
 use crate::constants::{CSG_EVENT_CAPACITY, CSG_MAX_DEPTH};
-use glam::{DMat4, DVec3};
+use glam::{DMat3, DMat4, DVec3};
+use std::sync::Arc;
 
 /// Deepest node nesting accepted; deeper means a cycle (a node added under itself).
 pub const MAX_NODE_DEPTH: usize = 256;
@@ -128,11 +129,84 @@ pub struct MeshTriangle {
     pub normals: [[f32; 3]; 3],
 }
 
-/// A mesh as the tracers store it: once, however many instances use it.
+/// A mesh as the tracers store it: once, however many instances use it. A view of the
+/// graph's mesh (shared, not copied: a big mesh is held once through flattening and
+/// packing) through the map from its space to the stored space; its triangles are made
+/// one at a time ([`SceneMesh::triangle`]) as packing reads them.
 #[derive(Clone, Debug)]
 pub struct SceneMesh {
     pub name: String,
-    pub triangles: Vec<MeshTriangle>,
+    source: Arc<Mesh>,
+    to_stored: DMat4,
+    /// The normals' map (`scene::instancing::stored_normal_matrix`); None without normals
+    /// or under flat shading.
+    normal_matrix: Option<DMat3>,
+}
+
+impl SceneMesh {
+    /// `source` seen through `to_stored`, its normals through `normal_matrix`.
+    pub fn new(source: Arc<Mesh>, to_stored: DMat4, normal_matrix: Option<DMat3>) -> SceneMesh {
+        SceneMesh {
+            name: source.name.clone(),
+            source,
+            to_stored,
+            normal_matrix,
+        }
+    }
+
+    /// How many triangles it has.
+    pub fn len(&self) -> usize {
+        self.source.triangles.len()
+    }
+
+    /// Whether its triangles carry the mesh's normals (smooth shading).
+    pub fn has_normals(&self) -> bool {
+        self.normal_matrix.is_some()
+    }
+
+    /// Whether it has no triangle.
+    pub fn is_empty(&self) -> bool {
+        self.source.triangles.is_empty()
+    }
+
+    /// Triangle `i`'s corners in the stored space (as [`SceneMesh::triangle`] gives them).
+    pub fn positions(&self, i: usize) -> [DVec3; 3] {
+        let mesh = &*self.source;
+        mesh.triangles[i].map(|v| self.to_stored.transform_point3(mesh.positions[v as usize]))
+    }
+
+    /// Triangle `i` in the stored space: its corners mapped one by one as the mesh's
+    /// vertices would be (the same f64 operations, so the same values however often a
+    /// vertex is shared), the mesh's UVs or the planar projection of its object-space
+    /// corners, and its normals when every corner has one.
+    pub fn triangle(&self, i: usize) -> MeshTriangle {
+        let mesh = &*self.source;
+        let t = mesh.triangles[i];
+        let object = t.map(|v| mesh.positions[v as usize]);
+        MeshTriangle {
+            positions: self.positions(i),
+            uvs: match &mesh.uvs {
+                Some(uvs) => t.map(|v| uvs[v as usize]),
+                None => super::uv::planar_uvs(object),
+            },
+            normals: match (&mesh.normals, self.normal_matrix) {
+                (Some(normals), Some(m)) => {
+                    let corners = t.map(|v| m * normals[v as usize]);
+                    if corners.contains(&DVec3::ZERO) {
+                        [[0.0; 3]; 3]
+                    } else {
+                        corners.map(|n| n.as_vec3().to_array())
+                    }
+                }
+                _ => [[0.0; 3]; 3],
+            },
+        }
+    }
+
+    /// Its triangles in order ([`SceneMesh::triangle`]).
+    pub fn triangles(&self) -> impl ExactSizeIterator<Item = MeshTriangle> + '_ {
+        (0..self.len()).map(|i| self.triangle(i))
+    }
 }
 
 /// One placement of a [`SceneMesh`] (index `mesh` in `FlatScene::meshes`).

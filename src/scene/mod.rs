@@ -34,6 +34,7 @@ pub mod flatten;
 pub mod instancing;
 pub mod lua;
 pub mod obj;
+mod obj_stream;
 pub mod options;
 pub mod paths;
 pub mod procedural;
@@ -229,7 +230,7 @@ impl TransformOrder {
 pub struct SceneGraph {
     pub nodes: Vec<Node>,
     pub materials: Vec<Material>,
-    pub meshes: Vec<Mesh>,
+    pub meshes: Vec<Arc<Mesh>>,
     /// Images of texture and bump maps (shared, not copied, by each render's scene).
     pub textures: Vec<Arc<Texture>>,
 }

@@ -7,76 +7,60 @@
 //! `f` with `a`, `a/b`, `a/b/c`, `a//c` and negative (relative) indices, polygons of 3+
 //! corners (fan-triangulated). Grouping, smoothing groups (`s`), material and line
 //! statements are ignored, as are statements this renderer has no use for.
+//!
+//! The file is read as a stream (`obj_stream`), a line at a time, straight into the
+//! mesh's final arrays: a big file's text is never held whole, and nothing made for a line
+//! outlives it. A file whose faces use texture coordinates or normals is resolved to one
+//! vertex per distinct corner at the end ([`MeshBuilder::finish`]).
 
-use super::files::{excerpt, read_regular, Opened, MAX_FILE_BYTES};
+use super::files::{open_regular_within, Opened, MAX_FILE_BYTES};
+pub use super::obj_stream::ObjError;
+use super::obj_stream::{parse_stream, Corner, Parsed, NONE};
 use super::Mesh;
 use glam::DVec3;
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::fs::File;
+use std::io::{BufRead, BufReader, Read, Seek};
+use std::path::Path;
 
-/// Why an OBJ file could not be loaded. `Display` gives the whole message.
-#[derive(Debug, thiserror::Error)]
-pub enum ObjError {
-    /// The file could not be read (missing, not a regular file, too big); the message
-    /// names the path.
-    #[error("{message}")]
-    Read { message: String },
-    /// The file is not OBJ text (NUL bytes: a binary file, or UTF-16 text).
-    #[error(
-        "mesh file '{}' is not an OBJ text file (it holds NUL bytes: a binary or UTF-16 file?)",
-        crate::display_path::shown(path)
-    )]
-    NotText { path: PathBuf },
-    /// The file parsed but holds no face: there is nothing to render.
-    #[error(
-        "mesh file '{}' has no faces ('f' lines): there is nothing to render",
-        crate::display_path::shown(path)
-    )]
-    NoFaces { path: PathBuf },
-    #[error("{}:{line}: {message}", crate::display_path::shown(path))]
-    Parse {
-        path: PathBuf,
-        line: usize,
-        message: String,
-    },
-}
-
-/// One face corner: 0-based position index and optional 0-based texture and normal
-/// indices.
-type Corner = (u32, Option<u32>, Option<u32>);
-
-/// A parsed, validated OBJ file: every index is checked and 0-based.
-#[derive(Debug, Default)]
-struct ParsedObj {
-    positions: Vec<[f64; 3]>,
-    texcoords: Vec<[f64; 2]>,
-    normals: Vec<[f64; 3]>,
-    faces: Vec<Vec<Corner>>,
-}
-
-/// Most bytes parsing takes per byte of OBJ text: the text and its copy (2), a corner
-/// (`1 `, 2 bytes) as written (24 bytes) and checked (12) at once, 20 in all, and the
-/// allocator's blocks; a vertex line (`v 1 1 1`, 8 bytes) is 24 bytes, doubled while its
-/// vector grows.
-pub const PARSE_BYTES_PER_BYTE: u64 = 24;
+/// Most bytes loading an OBJ file takes per byte of its text, its peak over the file's
+/// size: the least text per triangle is an `f` line of single-digit indices (`f 1 2 3`,
+/// 8 bytes: 12 bytes of triangle, 12 more while `vt`/`vn` corners are resolved) and per
+/// vertex a `v 1 1 1` line (8 bytes: 24 bytes of position, doubled while its vector grows,
+/// and its resolved copy). The Lua `readobj` tables are charged by the Lua heap itself.
+pub const PARSE_BYTES_PER_BYTE: u64 = 8;
 
 /// Reads and parses an OBJ file into a triangle mesh named `name`.
 pub fn load_obj(path: &Path, name: &str) -> Result<Mesh, ObjError> {
-    let bytes = read_regular(path, "mesh file", MAX_FILE_BYTES)
-        .map_err(|message| ObjError::Read { message })?;
-    parse_obj(&text(bytes, path)?, path, name)
+    let (file, _) = open_regular_within(path, "mesh file", MAX_FILE_BYTES, &|len| {
+        format!("it is {len} bytes, over the limit of {MAX_FILE_BYTES} bytes")
+    })
+    .map_err(|message| ObjError::Read { message })?;
+    mesh_from_file(file, path, name)
 }
 
 /// [`load_obj`] for a file the scene's read rule opened ([`ReadPolicy::open`](super::files::ReadPolicy::open)).
 pub fn load_opened_obj(file: Opened, name: &str) -> Result<Mesh, ObjError> {
-    let path = file.path.clone();
-    parse_obj(&opened_text(file)?, &path, name)
+    check_size(&file)?;
+    mesh_from_file(file.file, &file.path, name)
+}
+
+fn mesh_from_file(file: File, path: &Path, name: &str) -> Result<Mesh, ObjError> {
+    let mut builder = MeshBuilder::default();
+    let parsed = parse_file(file, path, &mut |corners: &[Corner]| builder.face(corners))?;
+    Ok(builder.finish(parsed, name))
 }
 
 /// Parses OBJ text; `path` is only used in error messages.
 pub fn parse_obj(text: &str, path: &Path, name: &str) -> Result<Mesh, ObjError> {
-    let parsed = parse(text, path)?;
-    Ok(to_mesh(parsed, name))
+    let mut builder = MeshBuilder::default();
+    let parsed = parse_stream(text.as_bytes(), path, None, &mut |c: &[Corner]| {
+        builder.face(c)
+    })?;
+    if let Err(counts) = parsed.check() {
+        return Err(locate_out_of_range(text.as_bytes(), path, counts));
+    }
+    Ok(builder.finish(parsed, name))
 }
 
 /// An OBJ file as plain tables: vertex positions and 0-based polygons.
@@ -86,271 +70,139 @@ pub type RawObj = (Vec<[f64; 3]>, Vec<Vec<u32>>);
 /// polygons with 0-based position indices (texture and normal indices dropped), exactly
 /// the shape of the inline `gr.mesh(name, verts, faces)` form.
 pub fn read_obj_raw(file: Opened) -> Result<RawObj, ObjError> {
-    let path = file.path.clone();
-    let text = opened_text(file)?;
-    let parsed = parse(&text, &path)?;
-    let faces = parsed
-        .faces
-        .into_iter()
-        .map(|f| f.into_iter().map(|(v, _, _)| v).collect())
-        .collect();
-    Ok((parsed.positions, faces))
+    check_size(&file)?;
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    let positions = parse_file(file.file, &file.path, &mut |corners: &[Corner]| {
+        faces.push(corners.iter().map(|c| c[0]).collect())
+    })?
+    .positions;
+    Ok((positions.iter().map(DVec3::to_array).collect(), faces))
 }
 
-/// Reads an opened mesh file: at most [`MAX_FILE_BYTES`], OBJ text.
-fn opened_text(file: Opened) -> Result<String, ObjError> {
-    let path = file.path.clone();
-    let bytes = file
-        .read("mesh file", MAX_FILE_BYTES)
-        .map_err(|message| ObjError::Read { message })?;
-    text(bytes, &path)
-}
-
-/// A mesh file's bytes as OBJ text (`path` for messages).
-fn text(bytes: Vec<u8>, path: &Path) -> Result<String, ObjError> {
-    if bytes.contains(&0) {
-        return Err(ObjError::NotText {
-            path: path.to_path_buf(),
+/// An opened mesh file is refused over [`MAX_FILE_BYTES`].
+fn check_size(file: &Opened) -> Result<(), ObjError> {
+    if file.len > MAX_FILE_BYTES {
+        return Err(ObjError::Read {
+            message: format!(
+                "cannot read mesh file '{}': it is {} bytes, over the limit of {MAX_FILE_BYTES} bytes",
+                crate::display_path::shown(&file.path),
+                file.len
+            ),
         });
     }
-    // OBJ files in the wild are not always valid UTF-8 (comments in Latin-1); the
-    // statements we read are ASCII, so a lossy conversion is harmless.
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
+    Ok(())
 }
 
-/// A face corner as written, before the end-of-file range check: positive indices are
-/// kept 1-based (checked against the final counts, so forward references work, as in
-/// most loaders); negative ones are resolved against the counts at that line.
-struct RawFace {
-    line: usize,
-    corners: Vec<RawCorner>,
-}
-
-/// One face corner's position, texture and normal indices, 1-based, not yet range-checked.
-type RawCorner = (i64, Option<i64>, Option<i64>);
-
-fn parse(text: &str, path: &Path) -> Result<ParsedObj, ObjError> {
-    let err = |line: usize, message: String| ObjError::Parse {
-        path: path.to_path_buf(),
-        line,
-        message,
-    };
-    let mut out = ParsedObj::default();
-    let mut raw_faces = Vec::new();
-    // A UTF-8 byte-order mark is not part of the first statement.
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-
-    for (i, line) in text.lines().enumerate() {
-        let lineno = i + 1;
-        let line = line.split('#').next().unwrap_or("");
-        let mut words = line.split_whitespace();
-        let Some(keyword) = words.next() else {
-            continue;
-        };
-        match keyword {
-            "v" | "vn" | "vt" => {
-                let mut nums = Vec::with_capacity(4);
-                for w in words {
-                    nums.push(number(w).map_err(|m| err(lineno, m))?);
-                }
-                // `v` may carry w or vertex colours after x y z; `vt` may carry w.
-                let needed = if keyword == "vt" { 1 } else { 3 };
-                if nums.len() < needed {
-                    return Err(err(
-                        lineno,
-                        format!(
-                            "'{keyword}' needs at least {needed} numbers, found {}",
-                            nums.len()
-                        ),
-                    ));
-                }
-                match keyword {
-                    "v" => out.positions.push([nums[0], nums[1], nums[2]]),
-                    "vt" => out
-                        .texcoords
-                        .push([nums[0], nums.get(1).copied().unwrap_or(0.0)]),
-                    _ => out.normals.push([nums[0], nums[1], nums[2]]),
-                }
-            }
-            "f" => {
-                let counts = (out.positions.len(), out.texcoords.len(), out.normals.len());
-                let corners = face_corners(words, counts).map_err(|m| err(lineno, m))?;
-                raw_faces.push(RawFace {
-                    line: lineno,
-                    corners,
-                });
-            }
-            // Grouping, smoothing, materials, lines, points, free-form geometry: not ours.
-            _ => {}
-        }
-    }
-
-    let nv = out.positions.len();
-    let nt = out.texcoords.len();
-    let nn = out.normals.len();
-    for face in raw_faces {
-        let mut corners = Vec::with_capacity(face.corners.len());
-        for (v, t, n) in face.corners {
-            let v = check_index(v, nv, "face index", "vertices").map_err(|m| err(face.line, m))?;
-            let t = t
-                .map(|t| check_index(t, nt, "texture index", "texture coordinates"))
-                .transpose()
-                .map_err(|m| err(face.line, m))?;
-            let n = n
-                .map(|n| check_index(n, nn, "normal index", "normals"))
-                .transpose()
-                .map_err(|m| err(face.line, m))?;
-            corners.push((v, t, n));
-        }
-        out.faces.push(corners);
-    }
-    if out.faces.is_empty() {
-        return Err(ObjError::NoFaces {
-            path: path.to_path_buf(),
-        });
-    }
-    Ok(out)
-}
-
-/// The corners of an `f` line (at least 3), each index resolved against `counts`: the
-/// positions, texture coordinates and normals defined so far (for relative indices).
-fn face_corners<'a>(
-    words: impl Iterator<Item = &'a str>,
-    (nv, nt, nn): (usize, usize, usize),
-) -> Result<Vec<RawCorner>, String> {
-    let mut corners = Vec::new();
-    for w in words {
-        corners.push(corner(w, nv, nt, nn)?);
-    }
-    if corners.len() < 3 {
-        return Err(format!(
-            "face has {} corner{}; a face needs at least 3",
-            corners.len(),
-            if corners.len() == 1 { "" } else { "s" }
-        ));
-    }
-    // Kept until the end of the file: no growth slack (see PARSE_BYTES_PER_BYTE).
-    corners.shrink_to_fit();
-    Ok(corners)
-}
-
-fn number(word: &str) -> Result<f64, String> {
-    match word.parse::<f64>() {
-        Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(format!("bad number '{}'", excerpt(word))),
-    }
-}
-
-/// Parses one `f` corner (`a`, `a/b`, `a/b/c`, `a//c`). Negative indices count back from
-/// the last element defined so far and are resolved here (to 1-based).
-fn corner(
-    word: &str,
-    nv: usize,
-    nt: usize,
-    nn: usize,
-) -> Result<(i64, Option<i64>, Option<i64>), String> {
-    let mut parts = word.split('/');
-    let index = |s: &str, count: usize, what: &str| -> Result<i64, String> {
-        let i: i64 = s.parse().map_err(|_| {
-            format!(
-                "bad {what} index '{}' in face corner '{}'",
-                excerpt(s),
-                excerpt(word)
-            )
+/// Streams a mesh file through the parser, each face to `face`; an index past the end of
+/// the file is located by reading it again.
+fn parse_file(
+    mut file: File,
+    path: &Path,
+    face: &mut dyn FnMut(&[Corner]),
+) -> Result<Parsed, ObjError> {
+    let reader = BufReader::with_capacity(1 << 16, (&mut file).take(MAX_FILE_BYTES + 1));
+    let parsed = parse_stream(reader, path, None, face)?;
+    if let Err(counts) = parsed.check() {
+        file.rewind().map_err(|e| ObjError::Read {
+            message: format!(
+                "cannot read mesh file '{}': {e}",
+                crate::display_path::shown(path)
+            ),
         })?;
-        match i {
-            0 => Err(format!(
-                "{what} index 0 in face corner '{}' (OBJ indices start at 1)",
-                excerpt(word)
-            )),
-            i if i < 0 => {
-                let resolved = count as i64 + i + 1;
-                if resolved < 1 {
-                    Err(format!(
-                        "relative {what} index {i} reaches before the first one ({count} defined so far)"
-                    ))
-                } else {
-                    Ok(resolved)
+        let reader = BufReader::with_capacity(1 << 16, file.take(MAX_FILE_BYTES + 1));
+        return Err(locate_out_of_range(reader, path, counts));
+    }
+    Ok(parsed)
+}
+
+/// The error of the first face corner whose index is past the file's `counts` (positions,
+/// texture coordinates, normals): a second pass over the text, checking every corner.
+fn locate_out_of_range(reader: impl BufRead, path: &Path, counts: [usize; 3]) -> ObjError {
+    match parse_stream(reader, path, Some(counts), &mut |_: &[Corner]| {}) {
+        Err(e) => e,
+        // The file changed between the passes: say what the first pass found.
+        Ok(_) => ObjError::Parse {
+            path: path.to_path_buf(),
+            line: 0,
+            message: "a face index is out of range (the file changed while being read)".to_string(),
+        },
+    }
+}
+
+/// The triangles of an OBJ file's faces as they are parsed (fan-triangulated), with the
+/// texture and normal index of each corner kept only once some corner has one.
+#[derive(Default)]
+struct MeshBuilder {
+    triangles: Vec<[u32; 3]>,
+    /// Per triangle corner: the texture index (or [`NONE`]); empty while no corner has one.
+    corner_uvs: Vec<u32>,
+    /// Per triangle corner: the normal index (or [`NONE`]); empty while no corner has one.
+    corner_normals: Vec<u32>,
+}
+
+impl MeshBuilder {
+    fn face(&mut self, corners: &[Corner]) {
+        for k in 1..corners.len() - 1 {
+            let triangle = [corners[0], corners[k], corners[k + 1]];
+            let before = 3 * self.triangles.len();
+            self.triangles.push(triangle.map(|c| c[0]));
+            for (attribute, list) in [(1, &mut self.corner_uvs), (2, &mut self.corner_normals)] {
+                if list.is_empty() && triangle.iter().all(|c| c[attribute] == NONE) {
+                    continue;
                 }
+                list.resize(before, NONE);
+                list.extend(triangle.map(|c| c[attribute]));
             }
-            i => Ok(i),
-        }
-    };
-    let v = index(parts.next().unwrap_or(""), nv, "vertex")?;
-    let t = match parts.next() {
-        None | Some("") => None,
-        Some(s) => Some(index(s, nt, "texture")?),
-    };
-    let n = match parts.next() {
-        None | Some("") => None,
-        Some(s) => Some(index(s, nn, "normal")?),
-    };
-    if parts.next().is_some() {
-        return Err(format!("bad face corner '{}'", excerpt(word)));
-    }
-    Ok((v, t, n))
-}
-
-/// Checks a resolved 1-based index against the file's count, giving a 0-based index.
-fn check_index(i: i64, count: usize, what: &str, plural: &str) -> Result<u32, String> {
-    if i >= 1 && (i as usize) <= count {
-        Ok((i - 1) as u32)
-    } else {
-        Err(format!(
-            "{what} {i} out of range (file has {count} {plural})"
-        ))
-    }
-}
-
-/// Fan-triangulates the polygons. Without texture coordinates or normals the vertices
-/// are kept as they are; with either, each distinct (position, texcoord, normal) corner
-/// becomes one vertex, since the mesh stores one UV and one normal per vertex.
-fn to_mesh(parsed: ParsedObj, name: &str) -> Mesh {
-    let has_uv = parsed.faces.iter().flatten().any(|c| c.1.is_some());
-    let has_normals = parsed.faces.iter().flatten().any(|c| c.2.is_some());
-    let split = has_uv || has_normals;
-    let mut positions: Vec<DVec3> = Vec::new();
-    let mut uvs: Vec<[f32; 2]> = Vec::new();
-    let mut normals: Vec<DVec3> = Vec::new();
-    let mut remap: HashMap<Corner, u32> = HashMap::new();
-    if !split {
-        positions = parsed
-            .positions
-            .iter()
-            .map(|p| DVec3::from_array(*p))
-            .collect();
-    }
-    let mut triangles = Vec::new();
-    for face in &parsed.faces {
-        let ids: Vec<u32> = face
-            .iter()
-            .map(|&(v, t, n)| {
-                if !split {
-                    return v;
-                }
-                *remap.entry((v, t, n)).or_insert_with(|| {
-                    positions.push(DVec3::from_array(parsed.positions[v as usize]));
-                    uvs.push(t.map_or([0.0, 0.0], |t| {
-                        let [u, v] = parsed.texcoords[t as usize];
-                        [u as f32, v as f32]
-                    }));
-                    normals.push(n.map_or(DVec3::ZERO, |n| {
-                        unit_or_zero(DVec3::from_array(parsed.normals[n as usize]))
-                    }));
-                    (positions.len() - 1) as u32
-                })
-            })
-            .collect();
-        for k in 1..ids.len() - 1 {
-            triangles.push([ids[0], ids[k], ids[k + 1]]);
         }
     }
-    Mesh {
-        name: name.to_string(),
-        positions,
-        triangles,
-        uvs: has_uv.then_some(uvs),
-        normals: has_normals.then_some(normals),
+
+    /// The mesh. Without texture coordinates or normals the vertices are kept as they are;
+    /// with either, each distinct (position, texcoord, normal) corner becomes one vertex,
+    /// in order of first use, since the mesh stores one UV and one normal per vertex.
+    fn finish(mut self, parsed: Parsed, name: &str) -> Mesh {
+        let has_uv = !self.corner_uvs.is_empty();
+        let has_normals = !self.corner_normals.is_empty();
+        if !has_uv && !has_normals {
+            return Mesh {
+                name: name.to_string(),
+                positions: parsed.positions,
+                triangles: self.triangles,
+                uvs: None,
+                normals: None,
+            };
+        }
+        let corners = 3 * self.triangles.len();
+        self.corner_uvs.resize(corners, NONE);
+        self.corner_normals.resize(corners, NONE);
+        let mut positions: Vec<DVec3> = Vec::new();
+        let mut uvs: Vec<[f32; 2]> = Vec::new();
+        let mut normals: Vec<DVec3> = Vec::new();
+        let mut remap: HashMap<Corner, u32> = HashMap::new();
+        for (i, v) in self.triangles.iter_mut().flatten().enumerate() {
+            let (t, n) = (self.corner_uvs[i], self.corner_normals[i]);
+            *v = *remap.entry([*v, t, n]).or_insert_with(|| {
+                positions.push(parsed.positions[*v as usize]);
+                uvs.push(if t == NONE {
+                    [0.0, 0.0]
+                } else {
+                    let [u, v] = parsed.texcoords[t as usize];
+                    [u as f32, v as f32]
+                });
+                normals.push(if n == NONE {
+                    DVec3::ZERO
+                } else {
+                    unit_or_zero(DVec3::from_array(parsed.normals[n as usize]))
+                });
+                (positions.len() - 1) as u32
+            });
+        }
+        Mesh {
+            name: name.to_string(),
+            positions,
+            triangles: self.triangles,
+            uvs: has_uv.then_some(uvs),
+            normals: has_normals.then_some(normals),
+        }
     }
 }
 
@@ -452,6 +304,36 @@ mod tests {
             e.to_string(),
             "test.obj:5: face index 912 out of range (file has 3 vertices)"
         );
+    }
+
+    #[test]
+    fn a_file_out_of_range_index_is_located_by_a_second_pass() {
+        let dir = std::env::temp_dir().join(format!("glint-obj-pass-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("fwd.obj");
+        // Line 1 refers forward to vertex 4 (defined on line 6: fine); line 2 to vertex 9,
+        // which never comes; line 3's texture index 2 is also past the end, but later.
+        let text = "f 1 2 4\nf 1 2 9\nf 1/2 2/1 3/1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\n";
+        std::fs::write(&p, text).unwrap();
+        let e = load_obj(&p, "m").unwrap_err().to_string();
+        assert!(
+            e.ends_with("fwd.obj:2: face index 9 out of range (file has 4 vertices)"),
+            "{e}"
+        );
+        assert_eq!(
+            parse_str(text).unwrap_err().to_string(),
+            "test.obj:2: face index 9 out of range (file has 4 vertices)"
+        );
+        // Without line 2, the texture index of line 3.
+        let text = text.replace("f 1 2 9\n", "");
+        assert_eq!(
+            parse_str(&text).unwrap_err().to_string(),
+            "test.obj:2: texture index 2 out of range (file has 1 texture coordinates)"
+        );
+        // A NUL byte anywhere: not an OBJ text file.
+        std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n\0\n").unwrap();
+        assert!(matches!(load_obj(&p, "m"), Err(ObjError::NotText { .. })));
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]

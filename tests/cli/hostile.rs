@@ -1118,7 +1118,8 @@ fn a_reached_limit_is_final_even_when_caught() {
     }
     // The budget's refusals before reading or decoding are reached limits too.
     let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
-    obj.push_str(&"f 1 2 3\n".repeat(200_000));
+    // 4.8 MB: over 32 MiB at the reader's 8 bytes per byte of OBJ text.
+    obj.push_str(&"f 1 2 3\n".repeat(600_000));
     for (tag, body, file, bytes) in [
         (
             "final-texture",

@@ -30,7 +30,7 @@ fn macho_cows(grid: GridMode) -> FlatScene {
 fn baked(scene: &FlatScene) -> FlatScene {
     let mut out = scene.clone();
     for instance in &scene.mesh_instances {
-        for t in &scene.meshes[instance.mesh].triangles {
+        for t in scene.meshes[instance.mesh].triangles() {
             out.triangles.push(Triangle {
                 positions: t
                     .positions
@@ -73,8 +73,8 @@ fn rays(scene: &FlatScene, packed: &PackedScene, rng: &mut Rng, count: usize) ->
     let radius = (Vec3::from(g.grid_max) - Vec3::from(g.grid_min)).length() as f64;
     for _ in 0..count {
         let instance = &scene.mesh_instances[below(rng, scene.mesh_instances.len())];
-        let triangles = &scene.meshes[instance.mesh].triangles;
-        let t = &triangles[below(rng, triangles.len())];
+        let mesh = &scene.meshes[instance.mesh];
+        let t = mesh.triangle(below(rng, mesh.len()));
         let (b1, b2) = (rng.range(0.2, 0.4), rng.range(0.2, 0.4));
         let object = t.positions[0] * (1.0 - b1 - b2) + t.positions[1] * b1 + t.positions[2] * b2;
         let target = instance.object_to_world.transform_point3(object);
@@ -91,11 +91,11 @@ fn rays(scene: &FlatScene, packed: &PackedScene, rng: &mut Rng, count: usize) ->
 fn an_instanced_mesh_is_stored_once() {
     let scene = macho_cows(GridMode::Auto);
     let packed = pack(&scene).unwrap();
-    let stored: usize = scene.meshes.iter().map(|m| m.triangles.len()).sum();
+    let stored: usize = scene.meshes.iter().map(|m| m.len()).sum();
     let placed: usize = scene
         .mesh_instances
         .iter()
-        .map(|i| scene.meshes[i.mesh].triangles.len())
+        .map(|i| scene.meshes[i.mesh].len())
         .sum();
     assert!(
         scene.mesh_instances.len() > scene.meshes.len(),

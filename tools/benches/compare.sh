@@ -49,7 +49,7 @@ cargo build --release --locked --quiet
 make -C tools/benches/embree --quiet
 glint=target/release/glint
 # tools/benches/scenes/ read their meshes from the CS488 corpus, outside their own folder; the
-# 10⁶-triangle OBJ (195 MiB) needs more than the default 2 GiB scene memory budget.
+# trace rows get --memory-limit 8192 as headroom (the 195 MiB 10⁶-triangle OBJ fits the default).
 corpus=scenes/cs488/a4-2021plus
 embree=target/embree/glint-embree-trace
 

@@ -4,7 +4,10 @@
 each centred at a uniform point, its corners within ±size/2 of the centre, size =
 N^(-1/3), so depth complexity does not grow with N. Deterministic for (N, seed).
 
-Usage: random_triangles.py N SEED > random-triangles.obj
+Usage: random_triangles.py N SEED [DECIMALS] > random-triangles.obj
+
+DECIMALS: write coordinates with that many decimals (6: the 10⁶-triangle file is about
+107 MiB, as a scan exporter writes it) instead of Python's shortest exact form (195 MiB).
 """
 import sys
 
@@ -27,9 +30,11 @@ class SplitMix:
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) not in (3, 4):
         sys.exit(__doc__)
     n, seed = int(sys.argv[1]), int(sys.argv[2])
+    coordinate = "%%.%df" % int(sys.argv[3]) if len(sys.argv) == 4 else "%r"
+    vertex_line = "v %s %s %s\n" % (coordinate, coordinate, coordinate)
     rng = SplitMix(seed)
     size = n ** (-1.0 / 3.0)
     out = sys.stdout
@@ -37,7 +42,7 @@ def main():
         centre = rng.vec()
         for _corner in range(3):
             offset = rng.vec()
-            out.write("v %r %r %r\n" % tuple(c + (o - 0.5) * size for c, o in zip(centre, offset)))
+            out.write(vertex_line % tuple(c + (o - 0.5) * size for c, o in zip(centre, offset)))
     for i in range(n):
         out.write("f %d %d %d\n" % (3 * i + 1, 3 * i + 2, 3 * i + 3))
 

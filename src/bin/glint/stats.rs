@@ -7,6 +7,11 @@ use std::fmt::Write;
 pub fn format_stats(image: &RenderedImage) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "  features: {}", image.packed.features);
+    let _ = writeln!(
+        out,
+        "  build: flatten and pack {:.3} s (grids included)",
+        image.build_time.as_secs_f64()
+    );
     write_gpu(&mut out, image);
     write_items(&mut out, image);
     write_grids(&mut out, image);

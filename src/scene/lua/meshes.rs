@@ -31,7 +31,7 @@ pub(super) fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
                         .map_err(|e| a.error(e))?;
                     charge(a, mesh_bytes(&mesh), &format!("mesh file '{file}'"))?;
                     with_state(a.lua, |s| {
-                        s.graph.meshes.push(mesh);
+                        s.graph.meshes.push(std::sync::Arc::new(mesh));
                         let id = s.graph.meshes.len() - 1;
                         s.mesh_cache.insert(key, id);
                         id
@@ -47,7 +47,7 @@ pub(super) fn mesh(a: &Args) -> mlua::Result<NodeHandle> {
                 inline_mesh_evidence(a);
             }
             with_state(a.lua, |s| {
-                s.graph.meshes.push(mesh);
+                s.graph.meshes.push(std::sync::Arc::new(mesh));
                 s.graph.meshes.len() - 1
             })
         }

@@ -77,7 +77,7 @@ fn trace_all(scene: &PackedScene, rays: &[Ray]) -> Vec<(u32, u32)> {
 fn build_triangle_grid(packed: &PackedScene) -> Grid {
     let corners: Vec<[Vec3; 3]> = packed.triangles.iter().map(triangle_vertices).collect();
     let bounds: Vec<Aabb> = corners.iter().map(Aabb::of_triangle).collect();
-    Grid::build(&bounds, Some(&corners), Some(MESH_DEFAULT_DENSITY))
+    Grid::build(bounds, Some(&|i| corners[i]), Some(MESH_DEFAULT_DENSITY))
 }
 
 fn bench_macho_cows(args: &BenchArgs) -> anyhow::Result<()> {
