@@ -1548,6 +1548,10 @@ fn exit_codes_and_messages_say_what_and_where() {
             vec!["--min-weight", "1e30"],
             "--min-weight",
         ),
+        ("aperture-negative", vec!["--aperture", "-1"], "--aperture"),
+        ("aperture-nan", vec!["--aperture", "NaN"], "--aperture"),
+        ("focus-zero", vec!["--focus", "0"], "--focus"),
+        ("focus-inf", vec!["--focus", "inf"], "--focus"),
     ] {
         check(Case::new(tag, &scene, 2, &[needle]).args(&args));
     }
