@@ -278,7 +278,6 @@ const WGSL_U32S: &[(&str, u32)] = by_name![
     MAX_SHADOW_SAMPLES,
     PIXEL_DIMENSION,
     SHADOW_DIMENSION_BASE,
-    LENS_DIMENSION,
     MATERIAL_REFLECTIVE,
     MATERIAL_REFRACTIVE,
     NO_TEXTURE,
@@ -395,6 +394,13 @@ const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = by_name![
     WAVEFRONT_WORK_BASE,
     ALL_STRATA,
 ];
+
+/// The WGSL constants of the sample dimensions that only a feature's code draws (depth of
+/// field's lens), emitted only in modules with that feature, so that a module without it
+/// declares nothing more than before (naga writes every `const` into the SPIR-V).
+pub fn depth_of_field_wgsl_prelude() -> String {
+    u32_declarations(by_name![LENS_DIMENSION])
+}
 
 /// The WGSL constants of the wavefront kernels.
 pub fn wavefront_wgsl_prelude() -> String {

@@ -47,7 +47,8 @@ fn reference(name: &str) -> Film {
 }
 
 /// Linear rmse against Mitsuba 3 (4 096 spp, box filter, `direct`): the pinhole first
-/// (the same field of view and handedness), then the thin lens, ≤ 0.01.
+/// (the same field of view and handedness: ≤ 0.001, the issue measured 0.0009 on its
+/// scene), then the thin lens, ≤ 0.01.
 #[test]
 fn thin_lens_matches_mitsuba() {
     let pinhole = oracle_scene(0.0);
@@ -57,7 +58,7 @@ fn thin_lens_matches_mitsuba() {
     assert!(lens.features.contains(SceneFeatures::DEPTH_OF_FIELD));
     let lens_rmse = rmse(&render_cpu(&lens), &reference("depth_of_field.exr"));
     eprintln!("rmse against Mitsuba 3: pinhole {pinhole_rmse:.5}, thin lens {lens_rmse:.5}");
-    assert!(pinhole_rmse <= 0.003, "pinhole rmse {pinhole_rmse}");
+    assert!(pinhole_rmse <= 0.001, "pinhole rmse {pinhole_rmse}");
     assert!(lens_rmse <= 0.01, "thin-lens rmse {lens_rmse}");
 }
 
