@@ -18,7 +18,7 @@ use glint::tracer::sampling::sample_source::{lens_position, stratum_position};
 use glint::tracer::traversal::traverse::NoCounters;
 
 /// The oracle scene's thin lens (tools/oracle/depth_of_field.py's APERTURE and FOCUS).
-const APERTURE: f32 = 0.25;
+const APERTURE: f32 = 0.6;
 const FOCUS: f32 = 6.2;
 
 fn rmse(a: &Film, b: &Film) -> f64 {
