@@ -5,6 +5,7 @@
 //! far from the origin, and the stratified lens positions' error against independent ones.
 
 use crate::common::{load_packed, packed_from_source, render_cpu, root};
+use crate::oracle_support::film_rmse as rmse;
 use glam::Vec2;
 use glam::Vec3;
 use glint::constants::LENS_DIMENSION;
@@ -20,17 +21,6 @@ use glint::tracer::traversal::traverse::NoCounters;
 /// The oracle scene's thin lens (tools/oracle/depth_of_field.py's APERTURE and FOCUS).
 const APERTURE: f32 = 0.6;
 const FOCUS: f32 = 6.2;
-
-fn rmse(a: &Film, b: &Film) -> f64 {
-    assert_eq!((a.width, a.height), (b.width, b.height));
-    let (sum, count) = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .flat_map(|(p, q)| (0..3).map(move |c| (p[c] - q[c]) as f64))
-        .fold((0.0, 0usize), |(s, n), d| (s + d * d, n + 1));
-    (sum / count as f64).sqrt()
-}
 
 fn oracle_scene(aperture: f32) -> PackedScene {
     let overrides = OptionOverrides {

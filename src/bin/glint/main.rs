@@ -199,12 +199,12 @@ struct RenderArgs {
     shading: Option<Shading>,
     /// Depth of field (overrides the scene option `aperture`): the thin lens's radius in
     /// scene units; 0 is the pinhole camera.
-    #[arg(long, value_parser = parse_aperture)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_aperture)]
     aperture: Option<f32>,
     /// Depth of field (overrides the scene option `focus`): the distance from the eye,
     /// along the view direction, of the plane in focus (default: the length of the
     /// script's view vector).
-    #[arg(long, value_parser = parse_focus)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_focus)]
     focus: Option<f32>,
     /// Tiles and frames for render farms (docs/farm.md).
     #[command(flatten)]
