@@ -83,8 +83,27 @@ pub const LIGHT_AREA: u32 = 1;
 pub const MAX_SHADOW_SAMPLES: u32 = 64;
 /// Default n of an area light's n×n shadow samples.
 pub const DEFAULT_SHADOW_SAMPLES: u32 = 4;
-/// First random dimension of the shadow samples (0 and 1 jitter the camera sample).
+// The sample dimensions: how one camera sample's random numbers are shared out among
+// its effects. A dimension names one uniform number of a sample; its value comes from a
+// hash of (pixel, sample, dimension), or, for the dimensions drawn as a stratified
+// sequence (`tracer::sampling::sample_source::sequence_pair`), from a point of a
+// per-pixel scrambled (0,2)-sequence picked by the sample's index among its pixel's. Each
+// effect owns the range below; none overlaps another (`sample_dimensions_do_not_overlap`).
+
+/// Dimensions 0 and 1: the camera sample's jitter on the film (x, y).
+pub const PIXEL_DIMENSION: u32 = 0;
+/// First random dimension of the shadow samples: 2 a stratum of an area light's
+/// n×n (n ≤ MAX_SHADOW_SAMPLES), hashed with the light and bounce depth.
 pub const SHADOW_DIMENSION_BASE: u32 = 2;
+/// The lens position of a thin-lens camera (2D: u, v), drawn from the sequence.
+pub const LENS_DIMENSION: u32 = SHADOW_DIMENSION_BASE + 2 * MAX_SHADOW_SAMPLES * MAX_SHADOW_SAMPLES;
+/// Reserved: a camera sample's time in the shutter interval (1D, motion blur).
+pub const TIME_DIMENSION: u32 = LENS_DIMENSION + 2;
+/// Reserved: the lobe direction sampled at each bounce (2D a bounce, bounce d at
+/// LOBE_DIMENSION_BASE + 2d, d < MAX_TRACE_DEPTH: glossy reflection and refraction).
+pub const LOBE_DIMENSION_BASE: u32 = TIME_DIMENSION + 1;
+/// The first dimension no effect owns yet.
+pub const FREE_DIMENSION_BASE: u32 = LOBE_DIMENSION_BASE + 2 * MAX_TRACE_DEPTH;
 
 /// Material flags (`PackedMaterial::flags`).
 pub const MATERIAL_REFLECTIVE: u32 = 1;
@@ -298,6 +317,7 @@ const WGSL_U32S: &[(&str, u32)] = by_name![
     LIGHT_POINT,
     LIGHT_AREA,
     MAX_SHADOW_SAMPLES,
+    PIXEL_DIMENSION,
     SHADOW_DIMENSION_BASE,
     MATERIAL_REFLECTIVE,
     MATERIAL_REFRACTIVE,
@@ -422,6 +442,13 @@ const WAVEFRONT_WGSL_U32S: &[(&str, u32)] = by_name![
     WAVEFRONT_WORK_BASE,
     ALL_STRATA,
 ];
+
+/// The WGSL constants of the sample dimensions that only a feature's code draws (depth of
+/// field's lens), emitted only in modules with that feature, so that a module without it
+/// declares nothing more than before (naga writes every `const` into the SPIR-V).
+pub fn depth_of_field_wgsl_prelude() -> String {
+    u32_declarations(by_name![LENS_DIMENSION])
+}
 
 /// The WGSL constants of the wavefront kernels.
 pub fn wavefront_wgsl_prelude() -> String {
@@ -572,6 +599,29 @@ pub const PROBE_SHADING_NORMAL: u32 = 3;
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
+    /// Each effect's sample dimensions are its own: the ranges follow one another
+    /// without overlap, in the order the allotment lists them.
+    #[test]
+    fn sample_dimensions_do_not_overlap() {
+        let ranges = [
+            (PIXEL_DIMENSION, 2),
+            (
+                SHADOW_DIMENSION_BASE,
+                2 * MAX_SHADOW_SAMPLES * MAX_SHADOW_SAMPLES,
+            ),
+            (LENS_DIMENSION, 2),
+            (TIME_DIMENSION, 1),
+            (LOBE_DIMENSION_BASE, 2 * MAX_TRACE_DEPTH),
+        ];
+        for pair in ranges.windows(2) {
+            assert_eq!(pair[0].0 + pair[0].1, pair[1].0, "{pair:?}");
+        }
+        let (last, width) = ranges[ranges.len() - 1];
+        assert_eq!(last + width, FREE_DIMENSION_BASE);
+    }
+
     /// Two merges once listed a constant twice; WGSL rejects a redeclared `const`.
     #[test]
     fn prelude_declares_each_constant_once() {

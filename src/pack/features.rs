@@ -36,6 +36,8 @@ scene_features! {
     BUMP = 12, "bump";
     /// A mesh triangle with vertex normals (and `shading` not `'flat'`): smooth shading.
     SMOOTH = 13, "smooth";
+    /// A thin-lens camera (`aperture` > 0): depth of field.
+    DEPTH_OF_FIELD = 14, "depth-of-field";
     /// A used material with a procedural texture (`gr.checker`, `gr.noise`, `gr.marble`,
     /// `gr.wood`); it brings TEXTURE (a colour slot) or BUMP (the bump slot) with it, for
     /// the ray cone and the texels it reads.

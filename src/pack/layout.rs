@@ -187,8 +187,11 @@ pub struct PackedGlobals {
     pub camera_media: [f32; MEDIUM_STACK_SIZE as usize],
     /// `DEBUG_VIEW_*` tag (render option `debug`).
     pub debug_view: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
+    /// Thin-lens radius in scene units (render option `aperture`); 0 is the pinhole.
+    pub lens_radius: f32,
+    /// Distance from the eye, along `forward`, of the plane in focus (render option
+    /// `focus`); read only where `lens_radius` > 0.
+    pub focus_distance: f32,
     pub _pad2: u32,
 }
 

@@ -139,8 +139,10 @@ struct PackedGlobals {
     camera_media: vec4<f32>,
     // DEBUG_VIEW_* tag (render option `debug`).
     debug_view: u32,
-    _pad0: u32,
-    _pad1: u32,
+    // Thin-lens radius in scene units (render option `aperture`); 0 is the pinhole.
+    lens_radius: f32,
+    // Distance from the eye, along forward, of the plane in focus (render option `focus`).
+    focus_distance: f32,
     _pad2: u32,
 }
 

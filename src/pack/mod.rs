@@ -222,6 +222,9 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     if scene.lights.iter().any(|l| l.area.is_some()) {
         features.insert(SceneFeatures::AREA_LIGHT);
     }
+    if scene.options.aperture > 0.0 {
+        features.insert(SceneFeatures::DEPTH_OF_FIELD);
+    }
     let lights = lights::pack_lights(scene)?;
     check_limits(num_items)?;
     let bounds = item_bounds(&instances, &csg_program, num_items, &meshes.instance_bounds);
@@ -402,8 +405,8 @@ fn make_globals(
             DebugView::None | DebugView::AaSamples => DEBUG_VIEW_NONE,
             DebugView::Uv => DEBUG_VIEW_UV,
         },
-        _pad0: 0,
-        _pad1: 0,
+        lens_radius: options.aperture,
+        focus_distance: options.focus.unwrap_or(scene.camera.view.length() as f32),
         _pad2: 0,
     }
 }

@@ -135,6 +135,12 @@ pub struct RenderOptions {
     pub grid: GridMode,
     pub debug: DebugView,
     pub shading: Shading,
+    /// Thin-lens radius in scene units (`aperture`); 0 is the pinhole camera.
+    pub aperture: f32,
+    /// Distance from the eye, along the view direction, of the plane in focus (`focus`);
+    /// `None` is the length of `gr.render`'s view vector (the distance to the point it
+    /// looks at when given as that point minus the eye).
+    pub focus: Option<f32>,
 }
 
 impl Default for RenderOptions {
@@ -153,6 +159,8 @@ impl Default for RenderOptions {
             grid: GridMode::Auto,
             debug: DebugView::None,
             shading: Shading::Smooth,
+            aperture: 0.0,
+            focus: None,
         }
     }
 }
@@ -171,6 +179,8 @@ pub struct OptionOverrides {
     pub grid: Option<GridMode>,
     pub debug: Option<DebugView>,
     pub shading: Option<Shading>,
+    pub aperture: Option<f32>,
+    pub focus: Option<f32>,
     pub width: Option<u32>,
     pub height: Option<u32>,
 }
@@ -196,6 +206,28 @@ impl OptionOverrides {
         set(&mut options.grid, &self.grid);
         set(&mut options.debug, &self.debug);
         set(&mut options.shading, &self.shading);
+        set(&mut options.aperture, &self.aperture);
+        if self.focus.is_some() {
+            options.focus = self.focus;
+        }
+    }
+}
+
+/// Parses `--aperture`'s value: a lens radius, finite and not negative.
+pub fn parse_aperture(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err(format!(
+            "aperture must be a non-negative lens radius (0: pinhole), got '{s}'"
+        )),
+    }
+}
+
+/// Parses `--focus`'s value: a distance, finite and positive.
+pub fn parse_focus(s: &str) -> Result<f32, String> {
+    match s.parse::<f32>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("focus must be a positive distance, got '{s}'")),
     }
 }
 

@@ -1549,6 +1549,19 @@ fn exit_codes_and_messages_say_what_and_where() {
             vec!["--min-weight", "1e30"],
             "--min-weight",
         ),
+        (
+            "aperture-negative",
+            vec!["--aperture", "-1"],
+            "aperture must be a non-negative lens radius",
+        ),
+        ("aperture-nan", vec!["--aperture", "NaN"], "--aperture"),
+        ("focus-zero", vec!["--focus", "0"], "--focus"),
+        (
+            "focus-negative",
+            vec!["--focus", "-2"],
+            "focus must be a positive distance",
+        ),
+        ("focus-inf", vec!["--focus", "inf"], "--focus"),
     ] {
         check(Case::new(tag, &scene, 2, &[needle]).args(&args));
     }

@@ -141,8 +141,8 @@ fn wgsl_structs_match_rust_layout() {
             camera_media_count,
             camera_media,
             debug_view,
-            _pad0,
-            _pad1,
+            lens_radius,
+            focus_distance,
             _pad2
         }),
     );

@@ -105,6 +105,29 @@ const KNOWN_BREAKS: &[(&str, &str, u32, &str)] = &[
         "2 spilled SGPRs",
     ),
     ("all but procedural", "wavefront_leg_closest", 32, VGPRS_112),
+    // Every feature but depth of field: the set "all" was before the thin lens, breaking
+    // as "all" does (the lens adds no row).
+    ("all but depth-of-field", "wavefront_closest", 32, VGPRS_112),
+    (
+        "all but depth-of-field",
+        "wavefront_leg_closest",
+        64,
+        "2 spilled SGPRs",
+    ),
+    (
+        "all but depth-of-field",
+        "wavefront_leg_closest",
+        32,
+        VGPRS_112,
+    ),
+    // A set of the covering array over 15 features (not in the one over 14): a mesh, CSG,
+    // a grid and a cone, as every other break.
+    (
+        "cube mesh grid cone torus csg bump smooth",
+        "wavefront_closest",
+        32,
+        VGPRS_112,
+    ),
     (
         "sphere cube mesh grid cylinder torus csg refraction",
         "wavefront_leg_closest",

@@ -13,6 +13,7 @@ mod gpu_bench_torus;
 mod gpu_corpus;
 mod gpu_csg;
 mod gpu_cylinder_cone;
+mod gpu_depth_of_field;
 mod gpu_disk_cache;
 mod gpu_farm_tiles;
 mod gpu_frame;

@@ -14,7 +14,7 @@ use glint::tracer::sampling::render::render_window;
 const W: u32 = 37;
 const H: u32 = 23;
 
-fn packed(aa: AaMode) -> PackedScene {
+fn packed(aa: AaMode, scene: &str) -> PackedScene {
     let overrides = OptionOverrides {
         aa: Some(aa),
         samples: Some(AaSamples::constant(3)),
@@ -23,8 +23,7 @@ fn packed(aa: AaMode) -> PackedScene {
         height: Some(H),
         ..OptionOverrides::default()
     };
-    // Textures, an area light's penumbrae, mirrors and many edges for adaptive AA.
-    common::load_packed(&common::root().join("scenes/demo.lua"), &overrides)
+    common::load_packed(&common::root().join(scene), &overrides)
 }
 
 fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
@@ -52,11 +51,16 @@ fn assert_tilings_match(scene: &PackedScene, full: &Film, threads: usize, label:
 
 #[test]
 fn cpu_tiles_are_the_full_render_bit_for_bit() {
-    for aa in [AaMode::None, AaMode::Uniform, AaMode::Adaptive] {
-        let scene = packed(aa);
-        let full = in_pool(2, || common::render_cpu(&scene));
-        for threads in [1, 3] {
-            assert_tilings_match(&scene, &full, threads, &format!("{aa:?}"));
+    // demo.lua: textures, an area light's penumbrae, mirrors and many edges for adaptive
+    // AA; depth-of-field.lua: a thin lens, whose lens positions come from each pixel's
+    // sequence (and, under adaptive AA, from the lattice point's place in its pixel).
+    for path in ["scenes/demo.lua", "scenes/depth-of-field.lua"] {
+        for aa in [AaMode::None, AaMode::Uniform, AaMode::Adaptive] {
+            let scene = packed(aa, path);
+            let full = in_pool(2, || common::render_cpu(&scene));
+            for threads in [1, 3] {
+                assert_tilings_match(&scene, &full, threads, &format!("{path}, {aa:?}"));
+            }
         }
     }
 }

@@ -13,6 +13,7 @@ mod texture_gen;
 #[path = "../texture_support/mod.rs"]
 mod texture_support;
 
+mod depth_of_field;
 mod farm_tiles;
 mod golden;
 mod procedural;

@@ -4,6 +4,7 @@
 //! (CPU–GPU parity is in `gpu_images.rs`.)
 
 use crate::common;
+use crate::oracle_support::film_rmse as rmse;
 
 use common::{area_lit_floor_source, packed_from_source, render_cpu};
 use glint::constants::{LIGHT_AREA, LIGHT_POINT};
@@ -100,16 +101,6 @@ fn zero_size_area_light_equals_point_light() {
             }
         }
     }
-}
-
-fn rmse(a: &glint::film::Film, b: &glint::film::Film) -> f64 {
-    let (sum, count) = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .flat_map(|(p, q)| (0..3).map(move |c| (p[c] - q[c]) as f64))
-        .fold((0.0, 0usize), |(s, n), d| (s + d * d, n + 1));
-    (sum / count as f64).sqrt()
 }
 
 /// The soft shadow's error against n = 16 falls as n grows (1, 2, 4, 8).

@@ -12,6 +12,7 @@ mod area_lights;
 mod bench_trace;
 mod csg;
 mod cylinder_cone_oracle;
+mod depth_of_field;
 mod grid;
 mod instancing;
 mod intersect_oracle;

@@ -1,7 +1,8 @@
 //! Shared by the f64-oracle stress tests (`intersect_oracle`, `cylinder_cone_oracle`,
 //! `torus_oracle`): a seeded generator, per-case seeds, f32/f64 conversions, the f32
 //! rounding floor, the legality check every traced t must pass, and the oracle answer and
-//! agreement tally the three share.
+//! agreement tally the three share; and the rmse of two films, which the image oracles
+//! (`area_lights`, `depth_of_field`) measure error by.
 #![allow(dead_code)]
 
 use glam::{DQuat, DVec3, Vec3};
@@ -213,4 +214,17 @@ impl Agreement {
             self.examples
         );
     }
+}
+
+/// Root-mean-square difference of two films of one size, over every channel of every
+/// pixel (linear values).
+pub fn film_rmse(a: &glint::film::Film, b: &glint::film::Film) -> f64 {
+    assert_eq!((a.width, a.height), (b.width, b.height));
+    let (sum, count) = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .flat_map(|(p, q)| (0..3).map(move |c| (p[c] - q[c]) as f64))
+        .fold((0.0, 0usize), |(s, n), d| (s + d * d, n + 1));
+    (sum / count as f64).sqrt()
 }

@@ -18,7 +18,9 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use glint::display_path::for_terminal;
 use glint::scene::flatten::MAX_PIXELS;
 use glint::scene::lua::MAX_IMAGE_SIDE;
-use glint::scene::options::{parse_background, parse_debug_view, parse_grid_mode, parse_shading};
+use glint::scene::options::{
+    parse_aperture, parse_background, parse_debug_view, parse_focus, parse_grid_mode, parse_shading,
+};
 use glint::scene::{
     AaDepth, AaMode, AaSamples, Background, DebugView, GridMode, OptionOverrides, Shading,
     ShadowSamples, TraceDepth, TransformOrder,
@@ -195,6 +197,15 @@ struct RenderArgs {
     /// every triangle with its own plane's normal.
     #[arg(long, value_parser = parse_shading)]
     shading: Option<Shading>,
+    /// Depth of field (overrides the scene option `aperture`): the thin lens's radius in
+    /// scene units; 0 is the pinhole camera.
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_aperture)]
+    aperture: Option<f32>,
+    /// Depth of field (overrides the scene option `focus`): the distance from the eye,
+    /// along the view direction, of the plane in focus (default: the length of the
+    /// script's view vector).
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_focus)]
+    focus: Option<f32>,
     /// Tiles and frames for render farms (docs/farm.md).
     #[command(flatten)]
     farm: farm_args::FarmArgs,
@@ -308,6 +319,8 @@ fn render(args: RenderArgs) -> Result<(), (String, u8)> {
             grid: args.grid,
             debug: args.debug,
             shading: args.shading,
+            aperture: args.aperture,
+            focus: args.focus,
             width: args.width.filter(|&w| w > 0),
             height: args.height.filter(|&h| h > 0),
         },

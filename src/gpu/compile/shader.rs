@@ -17,7 +17,9 @@
 //! flag that also depends on the features, since which form traces the camera ray once
 //! depends on whether the scene has secondary rays at all.
 
-use crate::constants::{wavefront_tree_wgsl_prelude, wavefront_wgsl_prelude, wgsl_prelude};
+use crate::constants::{
+    depth_of_field_wgsl_prelude, wavefront_tree_wgsl_prelude, wavefront_wgsl_prelude, wgsl_prelude,
+};
 use crate::gpu::compile::kernel::KernelConfig;
 use crate::gpu::compile::lists::LaneLists;
 use crate::mailboxes::Mailboxes;
@@ -360,7 +362,7 @@ const PROBE: &[(&str, &str)] = &[wgsl!("testing/probe.wgsl")];
 /// outside the tracer, such as the torus benchmark's.
 pub fn assemble_common_with(features: SceneFeatures, extra: (&str, &str)) -> String {
     let kernel = KernelConfig::default();
-    let mut out = wgsl_prelude() + &kernel_prelude(kernel);
+    let mut out = wgsl_prelude() + &kernel_prelude(kernel) + &feature_prelude(features);
     let extra_path = format!("shaders/{}", extra.0);
     for (path, text) in COMMON.iter().chain([&(extra_path.as_str(), extra.1)]) {
         out += &format!("\n// ---- {path} ----\n");
@@ -385,9 +387,18 @@ fn kernel_prelude(kernel: KernelConfig) -> String {
     )
 }
 
+/// The WGSL constants only `features`' code reads (none without them).
+fn feature_prelude(features: SceneFeatures) -> String {
+    if features.contains(SceneFeatures::DEPTH_OF_FIELD) {
+        depth_of_field_wgsl_prelude()
+    } else {
+        String::new()
+    }
+}
+
 /// The full WGSL source for `entry` specialised to `features` and `kernel`.
 pub fn assemble_with(features: SceneFeatures, entry: Entry, kernel: KernelConfig) -> String {
-    let mut out = wgsl_prelude() + &kernel_prelude(kernel);
+    let mut out = wgsl_prelude() + &kernel_prelude(kernel) + &feature_prelude(features);
     out += &LaneLists::of(features, kernel).wgsl_prelude();
     let wavefront = entry.is_render() && wavefront_kernels(kernel, features);
     let tree = wavefront && features.contains(SceneFeatures::REFRACTION);

@@ -8,7 +8,7 @@ use crate::scene::{AaMode, Background, Bounded, DebugView, GridMode, RenderOptio
 use mlua::{Table, Value};
 
 const KEYS: &str = "aa, samples, aa_threshold, aa_depth, shadow_samples, max_depth, \
-                    min_weight, background, grid, debug, shading";
+                    min_weight, background, grid, debug, shading, aperture, focus";
 
 /// Parses argument `n` of `a` (nil gives the defaults).
 pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
@@ -97,6 +97,18 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
             o.min_weight = match finite(v) {
                 Some(x) if (0.0..=1.0).contains(&x) => x as f32,
                 _ => return Err(bad("a number from 0 to 1")),
+            }
+        }
+        "aperture" => {
+            o.aperture = match finite(v) {
+                Some(x) if x >= 0.0 && (x as f32).is_finite() => x as f32,
+                _ => return Err(bad("a non-negative lens radius (0: pinhole)")),
+            }
+        }
+        "focus" => {
+            o.focus = match finite(v) {
+                Some(x) if x > 0.0 && (x as f32).is_finite() && x as f32 > 0.0 => Some(x as f32),
+                _ => return Err(bad("a positive distance")),
             }
         }
         "background" => o.background = background(a, n, v)?,
@@ -264,6 +276,9 @@ mod tests {
             e.ends_with("shading must be 'smooth' or 'flat', got 'phong'"),
             "{e}"
         );
+        let o = options("{aperture=0.5, focus=3}").unwrap();
+        assert_eq!((o.aperture, o.focus), (0.5, Some(3.0)));
+        assert_eq!(options("{}").unwrap().aperture, 0.0);
         assert_eq!(options("{debug='uv'}").unwrap().debug, DebugView::Uv);
         assert_eq!(
             options("{debug='aa-samples'}").unwrap().debug,
@@ -301,6 +316,22 @@ mod tests {
                 "grid.density must be a positive number, got -1",
             ),
             ("{4}", "keys must be option names"),
+            (
+                "{aperture=-0.1}",
+                "aperture must be a non-negative lens radius (0: pinhole), got -0.1",
+            ),
+            (
+                "{aperture=0/0}",
+                "aperture must be a non-negative lens radius",
+            ),
+            (
+                "{aperture=1e39}",
+                "aperture must be a non-negative lens radius",
+            ),
+            ("{focus=0}", "focus must be a positive distance, got 0"),
+            ("{focus=-2}", "focus must be a positive distance, got -2"),
+            ("{focus=1/0}", "focus must be a positive distance"),
+            ("{focus='far'}", "focus must be a positive distance"),
         ] {
             let e = options(opts).unwrap_err();
             assert!(e.contains(part), "{opts}: {e}");

@@ -1,8 +1,8 @@
 //! Rays, camera rays and the self-intersection offset.
 
-use crate::constants::OFFSET_RELATIVE;
+use crate::constants::{OFFSET_RELATIVE, TWO_PI};
 use crate::pack::PackedGlobals;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 // Mirror of src/tracer/base/ray.wgsl::Ray — change both.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,6 +24,42 @@ pub fn camera_ray(g: &PackedGlobals, fx: f32, fy: f32) -> Ray {
     Ray {
         origin: Vec3::from(g.eye),
         dir: dir.normalize(),
+    }
+}
+
+/// The point of the unit disk for `u` in [0, 1)²: Shirley & Chiu's concentric map, which
+/// takes each square about the centre to a circle, so strata of the square stay compact
+/// strata of the disk and keep their areas.
+// Mirror of src/tracer/base/ray.wgsl::concentric_disk — change both.
+pub fn concentric_disk(u: Vec2) -> Vec2 {
+    let a = u * 2.0 - Vec2::ONE;
+    if a.x == 0.0 && a.y == 0.0 {
+        return Vec2::ZERO;
+    }
+    let eighth = TWO_PI / 8.0;
+    let (radius, angle) = if a.x.abs() > a.y.abs() {
+        (a.x, eighth * (a.y / a.x))
+    } else {
+        (a.y, 2.0 * eighth - eighth * (a.x / a.y))
+    };
+    Vec2::new(angle.cos(), angle.sin()) * radius
+}
+
+/// The thin-lens camera ray of the `pinhole` ray (`camera_ray`'s) and lens position
+/// `lens` in [0, 1)²: from the point of the lens disk (radius `lens_radius`, in the
+/// plane of `right` and `up` through the eye) that `lens` maps to, towards where the
+/// pinhole ray meets the plane in focus (perpendicular to `forward`, `focus_distance`
+/// from the eye), so that plane stays sharp and the rest blurs. Its direction is
+/// computed from the eye, not from world positions, so it loses no precision far from
+/// the origin.
+// Mirror of src/tracer/base/ray.wgsl::thin_lens_ray — change both.
+pub fn thin_lens_ray(g: &PackedGlobals, pinhole: &Ray, lens: Vec2) -> Ray {
+    let to_focus = pinhole.dir * (g.focus_distance / pinhole.dir.dot(Vec3::from(g.forward)));
+    let disk = concentric_disk(lens) * g.lens_radius;
+    let offset = Vec3::from(g.right) * disk.x + Vec3::from(g.up) * disk.y;
+    Ray {
+        origin: pinhole.origin + offset,
+        dir: (to_focus - offset).normalize(),
     }
 }
 

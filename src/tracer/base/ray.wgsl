@@ -37,6 +37,38 @@ fn camera_ray(fx: f32, fy: f32) -> Ray {
     return Ray(g.eye, normalize(dir));
 }
 
+// #if DEPTH_OF_FIELD
+// The point of the unit disk for u in [0, 1)²: Shirley & Chiu's concentric map.
+// Mirror of src/tracer/base/ray.rs::concentric_disk — change both.
+fn concentric_disk(u: vec2<f32>) -> vec2<f32> {
+    let a = u * 2.0 - vec2<f32>(1.0);
+    if a.x == 0.0 && a.y == 0.0 {
+        return vec2<f32>(0.0);
+    }
+    let eighth = TWO_PI / 8.0;
+    var radius = a.y;
+    var angle = 2.0 * eighth - eighth * (a.x / a.y);
+    if abs(a.x) > abs(a.y) {
+        radius = a.x;
+        angle = eighth * (a.y / a.x);
+    }
+    return vec2<f32>(cos(angle), sin(angle)) * radius;
+}
+
+// The thin-lens camera ray of the pinhole ray (camera_ray's) and lens position lens in
+// [0, 1)²: from the lens disk's point (radius lens_radius, in the plane of right and up
+// through the eye) towards where the pinhole ray meets the plane in focus, computed from
+// the eye so that it loses no precision far from the origin.
+// Mirror of src/tracer/base/ray.rs::thin_lens_ray — change both.
+fn thin_lens_ray(pinhole: Ray, lens: vec2<f32>) -> Ray {
+    let g = globals;
+    let to_focus = pinhole.dir * (g.focus_distance / dot(pinhole.dir, g.forward));
+    let disk = concentric_disk(lens) * g.lens_radius;
+    let offset = g.right * disk.x + g.up * disk.y;
+    return Ray(pinhole.origin + offset, normalize(to_focus - offset));
+}
+// #endif
+
 // Moves a hit point off its surface along the unit normal n (pointing to the side the new
 // ray leaves towards), by OFFSET_RELATIVE of magnitude, the largest coordinate magnitude
 // that went into computing p.

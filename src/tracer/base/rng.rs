@@ -124,9 +124,91 @@ pub fn shadow_random(stream: &ShadowStream, stratum: u32, axis: u32) -> f32 {
     bits as f32 * RANDOM_UNIT_SCALE
 }
 
+/// Point `index` of the Sobol' (0,2)-sequence in base 2 (its first two dimensions: the
+/// van der Corput sequence and Sobol's second), as 32-bit binary fractions. Its first 2^m
+/// points (and every aligned block of 2^m) put one point in each of the 2^m boxes of
+/// every shape 2^−a × 2^−(m−a): stratified in x, in y and jointly, at once.
+// Mirror of src/tracer/base/rng.wgsl::sobol_02 — change both.
+pub fn sobol_02(index: u32) -> [u32; 2] {
+    // Sobol's second dimension: direction number k is v_{k+1} = v_k ^ (v_k >> 1), from 2^31.
+    let (mut y, mut direction, mut bits) = (0u32, 1u32 << 31, index);
+    while bits != 0 {
+        if bits & 1 != 0 {
+            y ^= direction;
+        }
+        bits >>= 1;
+        direction ^= direction >> 1;
+    }
+    [index.reverse_bits(), y]
+}
+
+/// Element `i` of a permutation of 0..`count` chosen by `key` (i < count): a keyed
+/// bijection of the `bits`-bit integers (`bits` enough for count − 1), applied again
+/// until the value falls below count (cycle walking: it does, as the start does, and in
+/// fewer than two steps on average, since 2^bits < 2·count).
+// Mirror of src/tracer/base/rng.wgsl::shuffled_index — change both.
+pub fn shuffled_index(i: u32, count: u32, key: u32) -> u32 {
+    if count <= 1 {
+        return 0;
+    }
+    let bits = 32 - (count - 1).leading_zeros();
+    let mask = u32::MAX >> (32 - bits);
+    let shift = bits.div_ceil(2);
+    let mixed = pcg_hash(key);
+    let mut j = i;
+    loop {
+        // Each step maps 0..2^bits onto itself one to one: xor with a constant, an odd
+        // multiplier modulo 2^bits, a right xorshift.
+        j = (j ^ key) & mask;
+        j = j.wrapping_mul(mixed | 1) & mask;
+        j ^= j >> shift;
+        j = (j ^ (mixed >> 16)) & mask;
+        j = j.wrapping_mul((key >> 16) | 1) & mask;
+        j ^= j >> shift;
+        if j < count {
+            break;
+        }
+    }
+    j
+}
+
+/// Point `index` of the 2D sequence of dimensions (`dimension`, `dimension` + 1) of the
+/// pixel `key`: [`sobol_02`]'s point with each coordinate's bits xored with a hash of the
+/// pixel and dimension (a random digital shift, which keeps every stratification above),
+/// as floats in [0, 1) from its top 24 bits.
+// Mirror of src/tracer/base/rng.wgsl::sequence_pair — change both.
+pub fn sequence_pair(key: u32, index: u32, dimension: u32) -> [f32; 2] {
+    let [x, y] = sobol_02(index);
+    let shift_x = pcg_hash(key ^ pcg_hash(dimension));
+    let shift_y = pcg_hash(key ^ pcg_hash(dimension + 1));
+    [
+        ((x ^ shift_x) >> 8) as f32 * RANDOM_UNIT_SCALE,
+        ((y ^ shift_y) >> 8) as f32 * RANDOM_UNIT_SCALE,
+    ]
+}
+
+/// The index in its pixel's sequence of the adaptive-AA lattice point at (x, y), its
+/// coordinates within the pixel on the finest lattice (0..2^MAX_AA_DEPTH each): the bits
+/// of each reversed, then interleaved (x's in the even places). A point of level L (its
+/// coordinates multiples of 2^(MAX_AA_DEPTH − L)) then takes an index below 4^L, and the
+/// 4^L points of a pixel split to level L are exactly the sequence's first 4^L: a pixel's
+/// lattice samples are as stratified as its first samples of [`sobol_02`], level by level.
+// Mirror of src/tracer/base/rng.wgsl::lattice_sequence_index — change both.
+pub fn lattice_sequence_index(x: u32, y: u32) -> u32 {
+    let reversed_x = x.reverse_bits() >> (32 - MAX_AA_DEPTH);
+    let reversed_y = y.reverse_bits() >> (32 - MAX_AA_DEPTH);
+    let mut index = 0;
+    for bit in 0..MAX_AA_DEPTH {
+        index |= ((reversed_x >> bit) & 1) << (2 * bit);
+        index |= ((reversed_y >> bit) & 1) << (2 * bit + 1);
+    }
+    index
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::constants::LENS_DIMENSION;
 
     /// The 24-bit jitter of `seed`'s stratum `stratum`, axis `axis`, for light 2.
     fn jitter_bits(seed: SampleSeed, stratum: u32, axis: u32) -> u32 {
@@ -166,5 +248,74 @@ mod tests {
         // Pixel corners are no square's centre.
         assert!(!adaptive_seed(7.0, 9.0).mirrors_corners);
         assert!(!adaptive_seed(0.0, 0.0).mirrors_corners);
+    }
+
+    /// The first 2^m points of the scrambled sequence put one point in each box of every
+    /// shape 2^−a × 2^−(m−a) (a (0, m, 2)-net), for every pixel key and both dimensions'
+    /// shifts; so does the second block of 2^m.
+    #[test]
+    fn sequence_blocks_are_nets() {
+        for key in [0, 1, 77, 123_456] {
+            for m in 0..=8u32 {
+                for block in 0..2u32 {
+                    for a in 0..=m {
+                        let mut boxes = vec![false; 1 << m];
+                        for i in 0..1u32 << m {
+                            let [x, y] = sequence_pair(key, (block << m) + i, LENS_DIMENSION);
+                            let bx = (x * (1u32 << a) as f32) as u32;
+                            let by = (y * (1u32 << (m - a)) as f32) as u32;
+                            let b = (by << a | bx) as usize;
+                            assert!(!boxes[b], "key {key}, m {m}, block {block}, a {a}");
+                            boxes[b] = true;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// `shuffled_index` permutes 0..count, differently for different keys.
+    #[test]
+    fn shuffled_indices_are_permutations() {
+        for count in [1, 2, 3, 4, 5, 9, 16, 17, 100, 4096] {
+            let mut orders = std::collections::HashSet::new();
+            for key in 0..8u32 {
+                let order: Vec<u32> = (0..count)
+                    .map(|i| shuffled_index(i, count, pcg_hash(key)))
+                    .collect();
+                let mut sorted = order.clone();
+                sorted.sort_unstable();
+                assert_eq!(sorted, (0..count).collect::<Vec<_>>(), "count {count}");
+                orders.insert(order);
+            }
+            assert!(
+                orders.len() > 4 || count < 4,
+                "count {count}: {}",
+                orders.len()
+            );
+        }
+    }
+
+    /// A pixel's lattice points of levels 0..=L (its top-left corner, then each level's
+    /// new points) take exactly the sequence indices 0..4^L.
+    #[test]
+    fn lattice_levels_take_sequence_prefixes() {
+        for level in 0..=MAX_AA_DEPTH {
+            let step = 1u32 << (MAX_AA_DEPTH - level);
+            let mut indices: Vec<u32> = (0..1u32 << level)
+                .flat_map(|j| (0..1u32 << level).map(move |i| (i * step, j * step)))
+                .map(|(x, y)| lattice_sequence_index(x, y))
+                .collect();
+            indices.sort_unstable();
+            assert_eq!(
+                indices,
+                (0..1u32 << (2 * level)).collect::<Vec<_>>(),
+                "level {level}"
+            );
+        }
+        // The pixel's centre is the fourth point; its top-left corner the first.
+        let half = 1 << (MAX_AA_DEPTH - 1);
+        assert_eq!(lattice_sequence_index(half, half), 3);
+        assert_eq!(lattice_sequence_index(0, 0), 0);
     }
 }

@@ -95,3 +95,80 @@ fn shadow_random(stream: ShadowStream, stratum: u32, axis: u32) -> f32 {
     return f32(bits) * RANDOM_UNIT_SCALE;
 }
 // #endif
+
+// #if DEPTH_OF_FIELD
+// Point `index` of the Sobol' (0,2)-sequence in base 2 (the van der Corput sequence and
+// Sobol's second dimension), as 32-bit binary fractions: its first 2^m points are
+// stratified in x, in y and jointly.
+// Mirror of src/tracer/base/rng.rs::sobol_02 — change both.
+fn sobol_02(index: u32) -> vec2<u32> {
+    var y = 0u;
+    var direction = 1u << 31u;
+    var bits = index;
+    while bits != 0u {
+        if (bits & 1u) != 0u {
+            y ^= direction;
+        }
+        bits >>= 1u;
+        direction ^= direction >> 1u;
+    }
+    return vec2<u32>(reverseBits(index), y);
+}
+
+// Element i of a permutation of 0..count chosen by key (i < count): a keyed bijection of
+// the bits-bit integers applied again until the value falls below count (cycle walking).
+// Mirror of src/tracer/base/rng.rs::shuffled_index — change both.
+fn shuffled_index(i: u32, count: u32, key: u32) -> u32 {
+    if count <= 1u {
+        return 0u;
+    }
+    let bits = 32u - countLeadingZeros(count - 1u);
+    let mask = 0xffffffffu >> (32u - bits);
+    let shift = (bits + 1u) / 2u;
+    let mixed = pcg_hash(key);
+    var j = i;
+    loop {
+        // Each step maps 0..2^bits onto itself one to one.
+        j = (j ^ key) & mask;
+        j = (j * (mixed | 1u)) & mask;
+        j ^= j >> shift;
+        j = (j ^ (mixed >> 16u)) & mask;
+        j = (j * ((key >> 16u) | 1u)) & mask;
+        j ^= j >> shift;
+        if j < count {
+            break;
+        }
+    }
+    return j;
+}
+
+// Point `index` of the 2D sequence of dimensions (dimension, dimension + 1) of the pixel
+// key: sobol_02's point with each coordinate's bits xored with a hash of the pixel and
+// dimension (a random digital shift), as floats in [0, 1) from its top 24 bits.
+// Mirror of src/tracer/base/rng.rs::sequence_pair — change both.
+fn sequence_pair(key: u32, index: u32, dimension: u32) -> vec2<f32> {
+    let point = sobol_02(index);
+    let shift_x = pcg_hash(key ^ pcg_hash(dimension));
+    let shift_y = pcg_hash(key ^ pcg_hash(dimension + 1u));
+    return vec2<f32>(
+        f32((point.x ^ shift_x) >> 8u) * RANDOM_UNIT_SCALE,
+        f32((point.y ^ shift_y) >> 8u) * RANDOM_UNIT_SCALE,
+    );
+}
+
+// The index in its pixel's sequence of the adaptive-AA lattice point at (x, y), its
+// coordinates within the pixel on the finest lattice: each one's bits reversed, then
+// interleaved (x's in the even places), so a pixel's points of levels 0..L take the
+// sequence's first 4^L indices.
+// Mirror of src/tracer/base/rng.rs::lattice_sequence_index — change both.
+fn lattice_sequence_index(x: u32, y: u32) -> u32 {
+    let reversed_x = reverseBits(x) >> (32u - MAX_AA_DEPTH);
+    let reversed_y = reverseBits(y) >> (32u - MAX_AA_DEPTH);
+    var index = 0u;
+    for (var bit = 0u; bit < MAX_AA_DEPTH; bit++) {
+        index |= ((reversed_x >> bit) & 1u) << (2u * bit);
+        index |= ((reversed_y >> bit) & 1u) << (2u * bit + 1u);
+    }
+    return index;
+}
+// #endif

@@ -2,16 +2,17 @@
 //! both build on: one camera sample's colour, the contrast of a square's corners and
 //! centre, and an unsplit square's colour.
 
-use super::sample_source::lattice_jitter;
+use super::sample_source::{lattice_jitter, lens_position};
 use crate::constants::{AA_CENTRE_WEIGHT, AA_ITEM_KEY_MASK, NO_ITEM};
-use crate::pack::PackedScene;
-use crate::tracer::base::ray::camera_ray;
+use crate::pack::{PackedScene, SceneFeatures};
+use crate::tracer::base::ray::{camera_ray, thin_lens_ray};
 use crate::tracer::base::rng::SampleSeed;
 use crate::tracer::path::trace::trace_ray;
 use crate::tracer::traversal::traverse::TraversalCounters;
 use glam::Vec3;
 
-/// Colour at film position (fx, fy) in pixels; `seed` names the camera sample.
+/// Colour at film position (fx, fy) in pixels; `seed` names the camera sample (and, with
+/// depth of field, its lens position).
 // Mirror of src/tracer/sampling/pixel_sample.wgsl::sample — change both.
 pub(crate) fn sample(
     scene: &PackedScene,
@@ -20,7 +21,12 @@ pub(crate) fn sample(
     seed: SampleSeed,
     counters: &mut impl TraversalCounters,
 ) -> Vec3 {
-    trace_ray(scene, camera_ray(&scene.globals, fx, fy), seed, counters)
+    let g = &scene.globals;
+    let mut ray = camera_ray(g, fx, fy);
+    if scene.features.contains(SceneFeatures::DEPTH_OF_FIELD) {
+        ray = thin_lens_ray(g, &ray, lens_position(g, seed));
+    }
+    trace_ray(scene, ray, seed, counters)
 }
 
 /// What adaptive AA's split decisions read from a lattice sample beside its colour:

@@ -3,10 +3,15 @@
 // reads beside it, the contrast of a square's corners and centre, and an unsplit
 // square's colour.
 
-// Colour at film position (fx, fy) in pixels; seed names the camera sample.
+// Colour at film position (fx, fy) in pixels; seed names the camera sample (and, with
+// depth of field, its lens position).
 // Mirror of src/tracer/sampling/pixel_sample.rs::sample — change both.
 fn sample(fx: f32, fy: f32, seed: SampleSeed) -> vec3<f32> {
+// #if DEPTH_OF_FIELD
+    return trace_ray(thin_lens_ray(camera_ray(fx, fy), lens_position(seed)), seed);
+// #else
     return trace_ray(camera_ray(fx, fy), seed);
+// #endif
 }
 
 // What adaptive AA's split decisions read from a lattice sample beside its colour: whether

@@ -8,9 +8,15 @@
 //! `progressive::view_sample` through it, `pixel_sample::lattice_sample`), the batch forms
 //! (the CPU wavefront) a [`SampleSource`] naming a batch of them.
 
-use crate::constants::AA_LATTICE_JITTER;
+use crate::constants::{
+    AA_ADAPTIVE, AA_LATTICE_JITTER, AA_UNIFORM, LENS_DIMENSION, MAX_AA_DEPTH, PIXEL_DIMENSION,
+};
 use crate::pack::{PackedGlobals, PackedScene};
-use crate::tracer::base::rng::{adaptive_seed, random_unit, SampleSeed};
+use crate::tracer::base::rng::{
+    adaptive_seed, lattice_sequence_index, pcg_hash, random_unit, sequence_pair, shuffled_index,
+    SampleSeed,
+};
+use glam::Vec2;
 
 /// A camera sample: its film position (fx, fy) in pixels and its seed.
 // Mirror of src/tracer/sampling/sample_source.wgsl::CameraSample — change both.
@@ -98,7 +104,10 @@ pub fn stratum_position(
     let pixel = y * g.width + x;
     let (i, j) = (s % n, s / n);
     let (jx, jy) = if uniform {
-        (random_unit(pixel, s, 0), random_unit(pixel, s, 1))
+        (
+            random_unit(pixel, s, PIXEL_DIMENSION),
+            random_unit(pixel, s, PIXEL_DIMENSION + 1),
+        )
     } else {
         (0.5, 0.5)
     };
@@ -125,11 +134,47 @@ pub fn lattice_jitter(g: &PackedGlobals, fx: f32, fy: f32) -> CameraSample {
     // A power of two: the products below are exact, so a fused multiply-add on the GPU
     // rounds the sums as these do.
     let width = AA_LATTICE_JITTER / (1u32 << g.aa_depth) as f32;
-    let jx = (random_unit(seed.pixel, seed.sample, 0) - 0.5) * width;
-    let jy = (random_unit(seed.pixel, seed.sample, 1) - 0.5) * width;
+    let jx = (random_unit(seed.pixel, seed.sample, PIXEL_DIMENSION) - 0.5) * width;
+    let jy = (random_unit(seed.pixel, seed.sample, PIXEL_DIMENSION + 1) - 0.5) * width;
     CameraSample {
         fx: fx + jx,
         fy: fy + jy,
         seed,
     }
+}
+
+/// Where camera sample `seed` lies in its pixel's stratified sequence for the effect of
+/// `dimension` (`constants::*_DIMENSION`): the pixel's key and the sample's index. A
+/// pixel's n×n strata (uniform AA, the view's frames; AA none is n = 1) take the indices
+/// 0..n² shuffled per pixel and dimension ([`shuffled_index`]), so that a sample's
+/// stratum on the film and its strata of each effect are paired at random, not by one
+/// fixed pattern; adaptive AA's lattice points take [`lattice_sequence_index`] of their
+/// place in their pixel (the pixel whose top-left corner is at or above and left of
+/// them), so each level a pixel splits to adds the sequence's next points.
+// Mirror of src/tracer/sampling/sample_source.wgsl::sequence_index — change both.
+pub fn sequence_index(g: &PackedGlobals, seed: SampleSeed, dimension: u32) -> (u32, u32) {
+    if g.aa_mode == AA_ADAPTIVE {
+        let within = (1u32 << MAX_AA_DEPTH) - 1;
+        let (x, y) = (seed.pixel >> MAX_AA_DEPTH, seed.sample >> MAX_AA_DEPTH);
+        let key = y.wrapping_mul(g.width).wrapping_add(x);
+        return (
+            key,
+            lattice_sequence_index(seed.pixel & within, seed.sample & within),
+        );
+    }
+    let n = if g.aa_mode == AA_UNIFORM {
+        g.aa_samples
+    } else {
+        1
+    };
+    let shuffle = pcg_hash(seed.pixel ^ pcg_hash(!dimension));
+    (seed.pixel, shuffled_index(seed.sample, n * n, shuffle))
+}
+
+/// Camera sample `seed`'s position on the lens, in [0, 1)² (the dimensions
+/// LENS_DIMENSION and the next): its point of its pixel's sequence.
+// Mirror of src/tracer/sampling/sample_source.wgsl::lens_position — change both.
+pub fn lens_position(g: &PackedGlobals, seed: SampleSeed) -> Vec2 {
+    let (key, index) = sequence_index(g, seed, LENS_DIMENSION);
+    Vec2::from(sequence_pair(key, index, LENS_DIMENSION))
 }

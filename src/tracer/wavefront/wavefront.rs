@@ -45,11 +45,11 @@ use crate::constants::{
 };
 use crate::film::Film;
 use crate::pack::{PackedScene, SceneFeatures};
-use crate::tracer::base::ray::{camera_ray, Ray};
+use crate::tracer::base::ray::{camera_ray, thin_lens_ray, Ray};
 use crate::tracer::base::rng::SampleSeed;
 use crate::tracer::path::trace::camera_entry;
-use crate::tracer::sampling::sample_source::CameraSample;
 pub use crate::tracer::sampling::sample_source::SampleSource;
+use crate::tracer::sampling::sample_source::{lens_position, CameraSample};
 use crate::tracer::traversal::hit::TraversalCounters;
 use crate::tracer::traversal::traverse::closest_hit;
 use glam::Vec3;
@@ -103,7 +103,11 @@ fn start_sample(
         s.set_flag(k, SAMPLE_MIRRORS_CORNERS);
     }
     let g = &scene.globals;
-    let entry = camera_entry(g, &camera_ray(g, fx, fy));
+    let mut ray = camera_ray(g, fx, fy);
+    if scene.features.contains(SceneFeatures::DEPTH_OF_FIELD) {
+        ray = thin_lens_ray(g, &ray, lens_position(g, seed));
+    }
+    let entry = camera_entry(g, &ray);
     if batch.keeps_tree {
         batch.camera_vertices.index[k] = at as u32;
     }

@@ -71,7 +71,11 @@ fn start_sample(k: u32, at: u32, fx: f32, fy: f32, seed: SampleSeed) {
         flags = SAMPLE_MIRRORS_CORNERS;
     }
     write_sample(k, vec3<f32>(0.0), NO_ITEM, NO_ITEM, flags, seed.pixel, seed.sample);
+// #if DEPTH_OF_FIELD
+    let entry = camera_entry(thin_lens_ray(camera_ray(fx, fy), lens_position(seed)));
+// #else
     let entry = camera_entry(camera_ray(fx, fy));
+// #endif
 // #if REFRACTION
     write_camera_vertex(k, at);
 // #endif
