@@ -36,6 +36,8 @@ scene_features! {
     BUMP = 12, "bump";
     /// A mesh triangle with vertex normals (and `shading` not `'flat'`): smooth shading.
     SMOOTH = 13, "smooth";
+    /// An HDR environment map (render option `environment`) in place of the background.
+    ENVIRONMENT = 15, "environment";
 }
 
 impl SceneFeatures {

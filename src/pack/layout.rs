@@ -187,9 +187,12 @@ pub struct PackedGlobals {
     pub camera_media: [f32; MEDIUM_STACK_SIZE as usize],
     /// `DEBUG_VIEW_*` tag (render option `debug`).
     pub debug_view: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
+    /// With ENVIRONMENT: the word of `texels` where the environment map starts (its
+    /// width, its height, then its texels as f32 bits; `pack::environment`).
+    pub environment: u32,
+    /// With ENVIRONMENT: cos and sin of the map's turn about +y.
+    pub environment_cos: f32,
+    pub environment_sin: f32,
 }
 
 // The readers of the packed arrays. The GPU reads each array from a table texture

@@ -139,9 +139,18 @@ struct PackedGlobals {
     camera_media: vec4<f32>,
     // DEBUG_VIEW_* tag (render option `debug`).
     debug_view: u32,
+// #if ENVIRONMENT
+    // The word of the texel table where the environment map starts (its width, its
+    // height, then its texels as f32 bits; src/pack/environment.rs).
+    environment: u32,
+    // cos and sin of the map's turn about +y.
+    environment_cos: f32,
+    environment_sin: f32,
+// #else
     _pad0: u32,
     _pad1: u32,
     _pad2: u32,
+// #endif
 }
 
 // Mirror of src/gpu/upload/buffers.rs::GpuTile — change both.
@@ -245,8 +254,8 @@ fn csg_program_at(i: u32) -> u32 {
 }
 // #endif
 
-// #if TEXTURE|BUMP
-// texels[i]: a word of the texture table or of a texture's texels.
+// #if TEXTURE|BUMP|ENVIRONMENT
+// texels[i]: a word of the texture table, of a texture's texels or of the environment map.
 // Mirror of src/pack/layout.rs::texel_word — change both.
 fn texel_word(i: u32) -> u32 {
     return word_at(texel_table, i);

@@ -4,6 +4,7 @@
 
 pub mod bounds;
 pub mod combinations;
+pub mod environment;
 pub mod features;
 pub mod layout;
 mod lights;
@@ -211,6 +212,11 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     } else {
         (Vec::new(), Vec::new())
     };
+    let mut texels = texels;
+    let environment = scene.options.environment.as_ref().map(|map| {
+        features.insert(SceneFeatures::ENVIRONMENT);
+        environment::append_environment(&mut texels, map)
+    });
     if scene.lights.iter().any(|l| l.area.is_some()) {
         features.insert(SceneFeatures::AREA_LIGHT);
     }
@@ -227,7 +233,13 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
         features.insert(SceneFeatures::GRID);
     }
     let (cell_start, cell_items) = all_cells(&grid, &mut meshes);
-    let globals = make_globals(scene, num_items, &triangles, &lights, &grid);
+    let mut globals = make_globals(scene, num_items, &triangles, &lights, &grid);
+    if let Some(start) = environment {
+        let (cos, sin) = environment::rotation_cos_sin(scene.options.environment_rotation);
+        globals.environment = start;
+        globals.environment_cos = cos;
+        globals.environment_sin = sin;
+    }
     let packed = PackedScene {
         globals,
         instances,
@@ -394,9 +406,11 @@ fn make_globals(
             DebugView::None | DebugView::AaSamples => DEBUG_VIEW_NONE,
             DebugView::Uv => DEBUG_VIEW_UV,
         },
-        _pad0: 0,
-        _pad1: 0,
-        _pad2: 0,
+        // Set by `pack` when there is an environment map (zero, as the padding these
+        // words were, without one).
+        environment: 0,
+        environment_cos: 0.0,
+        environment_sin: 0.0,
     }
 }
 

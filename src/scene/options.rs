@@ -135,6 +135,10 @@ pub struct RenderOptions {
     pub grid: GridMode,
     pub debug: DebugView,
     pub shading: Shading,
+    /// The HDR environment map rays that escape see instead of the background.
+    pub environment: Option<std::sync::Arc<super::environment::Environment>>,
+    /// The environment map's turn about +y, in degrees (counter-clockwise seen from +y).
+    pub environment_rotation: f32,
 }
 
 impl Default for RenderOptions {
@@ -153,6 +157,8 @@ impl Default for RenderOptions {
             grid: GridMode::Auto,
             debug: DebugView::None,
             shading: Shading::Smooth,
+            environment: None,
+            environment_rotation: 0.0,
         }
     }
 }

@@ -141,9 +141,9 @@ fn wgsl_structs_match_rust_layout() {
             camera_media_count,
             camera_media,
             debug_view,
-            _pad0,
-            _pad1,
-            _pad2
+            environment,
+            environment_cos,
+            environment_sin
         }),
     );
     // GpuTile's last field is the wavefront kernels' only: in modules with them (the

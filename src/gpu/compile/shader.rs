@@ -331,6 +331,7 @@ const COMMON: &[(&str, &str)] = &[
     wgsl!("tracer/shading/smooth.wgsl"),
     wgsl!("tracer/shading/dielectric.wgsl"),
     wgsl!("tracer/shading/texture.wgsl"),
+    wgsl!("tracer/shading/environment.wgsl"),
 ];
 const RENDER: &[(&str, &str)] = &[
     wgsl!("tracer/path/trace.wgsl"),
