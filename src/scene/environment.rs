@@ -102,9 +102,9 @@ fn decode(
             super::texture::OVER_BUDGET
         )
     };
+    // The sides are checked below, by this function, so that a forged size gets the
+    // message about sides rather than the decoder's.
     let mut limits = image::Limits::default();
-    limits.max_image_width = Some(MAX_TEXTURE_SIDE);
-    limits.max_image_height = Some(MAX_TEXTURE_SIDE);
     limits.max_alloc = Some(max_bytes);
     let mut reader = image::ImageReader::with_format(Cursor::new(bytes), format);
     reader.limits(limits);

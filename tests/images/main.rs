@@ -13,6 +13,7 @@ mod texture_gen;
 #[path = "../texture_support/mod.rs"]
 mod texture_support;
 
+mod environment;
 mod farm_tiles;
 mod golden;
 mod scrabble;
