@@ -328,6 +328,9 @@ fn absent_features_are_compiled_out() {
         "cone_surface",
         "nearest_interval_end",
         "cylinder_cone_angle_u",
+        "environment",
+        "environment_uv",
+        "sample_environment",
     ] {
         assert!(
             !source.contains(&format!("fn {absent}(")),

@@ -14,6 +14,7 @@ mod gpu_corpus;
 mod gpu_csg;
 mod gpu_cylinder_cone;
 mod gpu_disk_cache;
+mod gpu_environment;
 mod gpu_farm_tiles;
 mod gpu_frame;
 mod gpu_images;

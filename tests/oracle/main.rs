@@ -12,6 +12,7 @@ mod area_lights;
 mod bench_trace;
 mod csg;
 mod cylinder_cone_oracle;
+mod environment;
 mod grid;
 mod instancing;
 mod intersect_oracle;

@@ -23,7 +23,7 @@ mi.set_variant("scalar_rgb")
 
 OUT = os.path.join("tests", "oracle", "refs", "environment")
 SIZE = 48
-SPP = {"mirror": 1024, "glass": 4096}
+SPP = {"mirror": 16384, "glass": 16384}
 BANDS = [
     (1.0, 0.25, 0.2), (1.0, 0.8, 0.2), (0.3, 1.0, 0.3), (0.2, 0.9, 1.0),
     (0.3, 0.3, 1.0), (0.9, 0.3, 1.0), (1.0, 1.0, 1.0), (0.1, 0.1, 0.1),
@@ -53,7 +53,7 @@ def sky(width=64, height=32):
     return mi.Bitmap(mi.TensorXf(texels, shape=(height, width, 3)))
 
 
-def render(kind, env_path):
+def render(kind, env_path, rotation=30.0):
     bsdf = ({"type": "conductor", "material": "none"} if kind == "mirror"
             else {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0})
     scene = mi.load_dict({
@@ -71,7 +71,7 @@ def render(kind, env_path):
         },
         "sphere": {"type": "sphere", "center": [0, 0, 0], "radius": 1.0, "bsdf": bsdf},
         "env": {"type": "envmap", "filename": env_path,
-                "to_world": mi.ScalarTransform4f().rotate([0, 1, 0], 30)},
+                "to_world": mi.ScalarTransform4f().rotate([0, 1, 0], rotation)},
     })
     return mi.render(scene, seed=7)
 
