@@ -218,10 +218,6 @@ pub const TORUS_ROOT_TOLERANCE: f32 = 1.0 / 4194304.0;
 pub const TORUS_BOUND_MARGIN: f32 = 1.0 / 64.0;
 /// 2π (angles around an axis → u in [0, 1)).
 pub const TWO_PI: f32 = std::f32::consts::TAU;
-/// 1/π and 1/(2π) (½ of it, exactly): an environment map's angles → (u, v) in [0, 1],
-/// multiplied rather than divided, so both tracers round the same way.
-pub const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
-pub const INV_TWO_PI: f32 = 0.5 * std::f32::consts::FRAC_1_PI;
 
 /// `[("NAME", NAME), …]`: constants as the WGSL prelude declares them, under their Rust
 /// names, each name written once.
@@ -314,8 +310,6 @@ const WGSL_F32S: &[(&str, f32)] = by_name![
     F32_MIN_POSITIVE,
     SAFE_RCP_LIMIT,
     TWO_PI,
-    INV_PI,
-    INV_TWO_PI,
     AIR_IOR,
     BUMP_MIN_FRAME_SINE,
     SMOOTH_MIN_REFLECTION_COSINE,

@@ -83,7 +83,16 @@ pub fn load_opened_environment(file: Opened, max_bytes: u64) -> Result<Environme
             }
         ));
     }
-    decode(&path, &bytes, named, max_bytes)
+    decode(&path, &radiance_signature(bytes), named, max_bytes)
+}
+
+/// `bytes` with a `#?RGBE` signature (Mitsuba's and others') spelt `#?RADIANCE`, the one
+/// the decoder accepts: the same format under its other name.
+fn radiance_signature(bytes: Vec<u8>) -> Vec<u8> {
+    match bytes.strip_prefix(b"#?RGBE") {
+        Some(rest) => [b"#?RADIANCE".as_slice(), rest].concat(),
+        None => bytes,
+    }
 }
 
 /// Decodes `bytes`, an image in `format` from `path` (see [`load_opened_environment`]).
@@ -171,5 +180,10 @@ mod tests {
             Some(image::ImageFormat::OpenExr)
         );
         assert_eq!(format_by_content(b"\x89PNG\r\n\x1a\n"), None);
+        assert_eq!(radiance_signature(b"#?RGBE\nX".to_vec()), b"#?RADIANCE\nX");
+        assert_eq!(
+            radiance_signature(b"#?RADIANCE\n".to_vec()),
+            b"#?RADIANCE\n"
+        );
     }
 }

@@ -73,3 +73,52 @@ fn hardware_wavefront_renders_mains_image_in_an_environment() {
     ctx.force_kernel_variant(KernelVariant::Hardware);
     assert_wavefront_matches(&mut ctx, "environment", &spheres(AaMode::None));
 }
+
+/// A ramp map (texel (i, j) = (i, j, 0): the lookup returns the continuous texel
+/// coordinates x, y themselves) seen all round (fov 150° towards +z, away from the seam):
+/// each pixel's difference is the difference in x and y, i.e. in the angles φ = 2π·x/w
+/// and θ = π·y/(h − 1), that the two tracers' atan2 and acos give (the one place their
+/// f32 operations are not specified to the bit). Pixels within a column of the seam, where
+/// the ramp wraps, are left out.
+#[test]
+#[cfg_attr(glint_skip_gpu, ignore = "needs a GPU adapter (GLINT_SKIP_GPU=1)")]
+fn the_tracers_angles_differ_only_by_the_transcendentals() {
+    let Some(ctx) = gpu_context() else { return };
+    let dir = temp_dir("gpu-environment-ramp");
+    let (w, h) = (64u32, 33u32);
+    let mut ramp = glint::film::Film::new(w, h);
+    for (k, p) in ramp.pixels.iter_mut().enumerate() {
+        *p = [(k as u32 % w) as f32, (k as u32 / w) as f32, 0.0];
+    }
+    glint::image_io::write_image(&ramp, &dir.join("ramp.exr")).unwrap();
+    let source = "root = gr.node('root')
+         gr.render(root, 'o.png', 96, 96, {0, 0, 0}, {0.2, 0.3, 1}, {0, 1, 0}, 150,
+                   {0, 0, 0}, {}, {aa = 'none', environment = 'ramp.exr'})";
+    let path = dir.join("ramp.lua");
+    std::fs::write(&path, source).unwrap();
+    let scene = packed_from_file(&path, &OptionOverrides::default()).remove(0);
+    let gpu = glint::gpu::render_gpu(&ctx, &scene, &Default::default())
+        .unwrap()
+        .film;
+    let cpu = glint::tracer::render(&scene, &|_, _| {});
+    let (mut dx, mut dy, mut differing, mut counted) = (0f32, 0f32, 0, 0);
+    for (g, c) in gpu.pixels.iter().zip(&cpu.pixels) {
+        if c[0] < 1.0 || c[0] > (w - 2) as f32 {
+            continue;
+        }
+        counted += 1;
+        differing += usize::from(g != c);
+        dx = dx.max((g[0] - c[0]).abs());
+        dy = dy.max((g[1] - c[1]).abs());
+    }
+    let (phi, theta) = (
+        dx * std::f32::consts::TAU / w as f32,
+        dy * std::f32::consts::PI / (h - 1) as f32,
+    );
+    eprintln!(
+        "atan2/acos, Rust against lavapipe: {differing} of {counted} pixels differ; \
+         at most {dx:e} texels in x ({phi:e} rad of φ), {dy:e} in y ({theta:e} rad of θ)"
+    );
+    // A thousandth of a texel: far below what a lookup can show.
+    assert!(dx <= 1e-3 && dy <= 1e-3, "{dx} {dy}");
+}

@@ -8,6 +8,9 @@ Writes, under tests/oracle/refs/environment/:
               bright sun (HDR, up to 8) north-east above the horizon;
   mirror.exr  a mirror sphere (conductor, material 'none': a perfect mirror) in it;
   glass.exr   a glass sphere (dielectric, ior 1.5, exact Fresnel) in it.
+`python3 tools/oracle/environment.py sky-hdr` writes instead the same sky at 256x128 as
+textures/sky.hdr (Radiance RGBE), the map of scenes/environment.lua.
+
 Each scene is 48x48, fov 40 (square), eye (0, 0.6, 4) looking at the origin, unit sphere at
 the origin, the map turned 30 degrees about +y (glint's environment_rotation = 30), box
 filter, the path integrator (only specular surfaces and the envmap: Whitted's light
@@ -77,6 +80,9 @@ def render(kind, env_path, rotation=30.0):
 
 
 def main():
+    if sys.argv[1:] == ["sky-hdr"]:
+        sky(256, 128).write(os.path.join("textures", "sky.hdr"))
+        return
     os.makedirs(OUT, exist_ok=True)
     env_path = os.path.join(OUT, "sky.exr")
     sky().write(env_path)

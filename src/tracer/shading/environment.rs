@@ -10,11 +10,12 @@
 //! v = j/(h − 1), so the top row is the direction straight up and the bottom row straight
 //! down, and v clamps there. Between them the lookup is bilinear.
 //!
-//! The angles come from `atan2` and `acos`, the one place the twins call transcendental
-//! functions whose results are not specified to the bit: Rust's are the platform libm's,
-//! WGSL's the driver's (docs/environment.md gives what they differ by on lavapipe).
+//! The angles come from `atan2` (θ too: atan2(√(x² + z²), y), which is acos(d.y) for a unit
+//! d), the one place the twins call a transcendental function whose results are not
+//! specified to the bit: Rust's is the platform libm's, WGSL's the driver's
+//! (docs/environment.md gives what they differ by on lavapipe).
 
-use crate::constants::{INV_PI, INV_TWO_PI};
+use crate::constants::TWO_PI;
 use crate::pack::layout::texel_word;
 use crate::pack::PackedGlobals;
 use crate::tracer::shading::texture::wrap_unit;
@@ -32,8 +33,13 @@ fn environment_direction(g: &PackedGlobals, dir: Vec3) -> Vec3 {
 /// The map's (u, v) of the unit direction `d` in its frame (see the module header).
 // Mirror of src/tracer/shading/environment.wgsl::environment_uv — change both.
 fn environment_uv(d: Vec3) -> Vec2 {
-    let u = d.x.atan2(-d.z) * INV_TWO_PI;
-    let v = d.y.clamp(-1.0, 1.0).acos() * INV_PI;
+    // 1/2π and 1/π as constant expressions (rounded once, at compile time, on both
+    // sides): multiplied rather than divided, so both tracers round alike. θ = acos(d.y)
+    // is taken as atan2(√(x² + z²), y), the same angle for a unit d: acos is
+    // ill-conditioned near the poles, and lavapipe's differs from libm's by up to 1.6·10⁻⁴
+    // rad there, where the two atan2 agree to 4·10⁻⁶ (docs/environment.md).
+    let u = d.x.atan2(-d.z) * (1.0 / TWO_PI);
+    let v = (d.x * d.x + d.z * d.z).sqrt().atan2(d.y) * (2.0 / TWO_PI);
     Vec2::new(wrap_unit(u), v)
 }
 

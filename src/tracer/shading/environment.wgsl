@@ -17,8 +17,10 @@ fn environment_direction(dir: vec3<f32>) -> vec3<f32> {
 // The map's (u, v) of the unit direction d in its frame.
 // Mirror of src/tracer/shading/environment.rs::environment_uv — change both.
 fn environment_uv(d: vec3<f32>) -> vec2<f32> {
-    let u = atan2(d.x, -d.z) * INV_TWO_PI;
-    let v = acos(clamp(d.y, -1.0, 1.0)) * INV_PI;
+    // 1/2π and 1/π as constant expressions (rounded once, at compile time); θ = acos(d.y)
+    // as atan2(√(x² + z²), y) (why: the Rust twin).
+    let u = atan2(d.x, -d.z) * (1.0 / TWO_PI);
+    let v = atan2(sqrt(d.x * d.x + d.z * d.z), d.y) * (2.0 / TWO_PI);
     return vec2<f32>(wrap_unit(u), v);
 }
 
