@@ -97,11 +97,31 @@ const KNOWN_BREAKS: &[(&str, &str, u32, &str)] = &[
         "2 spilled SGPRs",
     ),
     ("all but smooth", "wavefront_leg_closest", 32, VGPRS_112),
+    ("all but environment", "wavefront_closest", 32, VGPRS_112),
+    (
+        "all but environment",
+        "wavefront_leg_closest",
+        64,
+        "2 spilled SGPRs",
+    ),
+    (
+        "all but environment",
+        "wavefront_leg_closest",
+        32,
+        VGPRS_112,
+    ),
     (
         "sphere cube mesh grid cylinder torus csg refraction",
         "wavefront_leg_closest",
         64,
         "2 spilled SGPRs",
+    ),
+    // A set of the covering array over 15 features (a mesh, CSG, a grid and a cone).
+    (
+        "cube mesh grid cone torus csg bump smooth",
+        "wavefront_closest",
+        32,
+        VGPRS_112,
     ),
 ];
 
