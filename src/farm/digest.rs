@@ -2,8 +2,9 @@
 //! version, the tracer (the CPU, or the GPU adapter by name: tracers agree closely, not
 //! bit for bit), the scene script's bytes, and the packed scene the render traces, which
 //! holds the render options (size, AA, depths, background) and every file the script read
-//! as it was read (meshes, textures). Not in it: the thread count, the tile or crop, the
-//! output name — nothing that changes a pixel. Tiles with one digest belong together.
+//! as it was read (meshes, textures, the environment map). Not in it: the thread count, the
+//! tile or crop, the output name — nothing that changes a pixel. Tiles with one digest
+//! belong together.
 //!
 //! A tile's record also holds [`tile_digest`]: SHA-256 over the rest of its record and its
 //! pixels, which `glint assemble` recomputes, so a changed pixel, bound, label or render

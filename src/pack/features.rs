@@ -38,6 +38,8 @@ scene_features! {
     SMOOTH = 13, "smooth";
     /// A thin-lens camera (`aperture` > 0): depth of field.
     DEPTH_OF_FIELD = 14, "depth-of-field";
+    /// An HDR environment map (render option `environment`) in place of the background.
+    ENVIRONMENT = 15, "environment";
     /// A used material with a procedural texture (`gr.checker`, `gr.noise`, `gr.marble`,
     /// `gr.wood`); it brings TEXTURE (a colour slot) or BUMP (the bump slot) with it, for
     /// the ray cone and the texels it reads.

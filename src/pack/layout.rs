@@ -192,7 +192,14 @@ pub struct PackedGlobals {
     /// Distance from the eye, along `forward`, of the plane in focus (render option
     /// `focus`); read only where `lens_radius` > 0.
     pub focus_distance: f32,
-    pub _pad2: u32,
+    /// With ENVIRONMENT: the word of `texels` where the environment map starts (its
+    /// width, its height, then its texels as f32 bits; `pack::environment`).
+    pub environment: u32,
+    /// With ENVIRONMENT: cos and sin of the map's turn about +y.
+    pub environment_cos: f32,
+    pub environment_sin: f32,
+    pub _pad0: u32,
+    pub _pad1: u32,
 }
 
 // The readers of the packed arrays. The GPU reads each array from a table texture
@@ -288,6 +295,6 @@ const _: () = assert!(std::mem::size_of::<PackedTriangleNormals>() == 36);
 const _: () = assert!(std::mem::size_of::<PackedMesh>() == 64);
 const _: () = assert!(std::mem::size_of::<PackedMaterial>() == 64);
 const _: () = assert!(std::mem::size_of::<PackedLight>() == 80);
-const _: () = assert!(std::mem::size_of::<PackedGlobals>() == 224);
+const _: () = assert!(std::mem::size_of::<PackedGlobals>() == 240);
 // The WGSL twin holds camera_media as one vec4 (a uniform array would need a 16-byte stride).
 const _: () = assert!(MEDIUM_STACK_SIZE == 4);

@@ -143,7 +143,20 @@ struct PackedGlobals {
     lens_radius: f32,
     // Distance from the eye, along forward, of the plane in focus (render option `focus`).
     focus_distance: f32,
-    _pad2: u32,
+// #if ENVIRONMENT
+    // The word of the texel table where the environment map starts (its width, its
+    // height, then its texels as f32 bits; src/pack/environment.rs).
+    environment: u32,
+    // cos and sin of the map's turn about +y.
+    environment_cos: f32,
+    environment_sin: f32,
+// #else
+    _environment_pad0: u32,
+    _environment_pad1: u32,
+    _environment_pad2: u32,
+// #endif
+    _pad0: u32,
+    _pad1: u32,
 }
 
 // Mirror of src/gpu/upload/buffers.rs::GpuTile — change both.
@@ -247,9 +260,9 @@ fn csg_program_at(i: u32) -> u32 {
 }
 // #endif
 
-// #if TEXTURE|BUMP|PROCEDURAL
-// texels[i]: a word of the texture table or of a texture's texels (or of the procedural
-// textures' part after them).
+// #if TEXTURE|BUMP|PROCEDURAL|ENVIRONMENT
+// texels[i]: a word of the texture table, of a texture's texels, of the procedural
+// textures' part after them or of the environment map.
 // Mirror of src/pack/layout.rs::texel_word — change both.
 fn texel_word(i: u32) -> u32 {
     return word_at(texel_table, i);

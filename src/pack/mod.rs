@@ -4,6 +4,7 @@
 
 pub mod bounds;
 pub mod combinations;
+pub mod environment;
 pub mod features;
 pub mod layout;
 mod lights;
@@ -219,6 +220,11 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     } else {
         (Vec::new(), Vec::new())
     };
+    let mut texels = texels;
+    let environment = scene.options.environment.as_ref().map(|map| {
+        features.insert(SceneFeatures::ENVIRONMENT);
+        environment::append_environment(&mut texels, map)
+    });
     if scene.lights.iter().any(|l| l.area.is_some()) {
         features.insert(SceneFeatures::AREA_LIGHT);
     }
@@ -238,7 +244,13 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
         features.insert(SceneFeatures::GRID);
     }
     let (cell_start, cell_items) = all_cells(&grid, &mut meshes);
-    let globals = make_globals(scene, num_items, &triangles, &lights, &grid);
+    let mut globals = make_globals(scene, num_items, &triangles, &lights, &grid);
+    if let Some(start) = environment {
+        let (cos, sin) = environment::rotation_cos_sin(scene.options.environment_rotation);
+        globals.environment = start;
+        globals.environment_cos = cos;
+        globals.environment_sin = sin;
+    }
     let packed = PackedScene {
         globals,
         instances,
@@ -407,7 +419,13 @@ fn make_globals(
         },
         lens_radius: options.aperture,
         focus_distance: options.focus.unwrap_or(scene.camera.view.length() as f32),
-        _pad2: 0,
+        // Set by `pack` when there is an environment map (zero, as the padding these
+        // words were, without one).
+        environment: 0,
+        environment_cos: 0.0,
+        environment_sin: 0.0,
+        _pad0: 0,
+        _pad1: 0,
     }
 }
 

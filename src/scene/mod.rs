@@ -28,6 +28,7 @@ pub const SHORT_NAME_BYTES: usize = 64;
 
 pub mod bounded;
 pub mod cost;
+pub mod environment;
 pub mod files;
 pub mod flat;
 pub mod flatten;

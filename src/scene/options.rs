@@ -141,6 +141,10 @@ pub struct RenderOptions {
     /// `None` is the length of `gr.render`'s view vector (the distance to the point it
     /// looks at when given as that point minus the eye).
     pub focus: Option<f32>,
+    /// The HDR environment map rays that escape see instead of the background.
+    pub environment: Option<std::sync::Arc<super::environment::Environment>>,
+    /// The environment map's turn about +y, in degrees (counter-clockwise seen from +y).
+    pub environment_rotation: f32,
 }
 
 impl Default for RenderOptions {
@@ -161,6 +165,8 @@ impl Default for RenderOptions {
             shading: Shading::Smooth,
             aperture: 0.0,
             focus: None,
+            environment: None,
+            environment_rotation: 0.0,
         }
     }
 }

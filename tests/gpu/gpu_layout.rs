@@ -143,7 +143,11 @@ fn wgsl_structs_match_rust_layout() {
             debug_view,
             lens_radius,
             focus_distance,
-            _pad2
+            environment,
+            environment_cos,
+            environment_sin,
+            _pad0,
+            _pad1
         }),
     );
     // GpuTile's last field is the wavefront kernels' only: in modules with them (the
@@ -328,6 +332,9 @@ fn absent_features_are_compiled_out() {
         "cone_surface",
         "nearest_interval_end",
         "cylinder_cone_angle_u",
+        "environment",
+        "environment_uv",
+        "sample_environment",
     ] {
         assert!(
             !source.contains(&format!("fn {absent}(")),

@@ -120,6 +120,19 @@ const KNOWN_BREAKS: &[(&str, &str, u32, &str)] = &[
         32,
         VGPRS_112,
     ),
+    ("all but environment", "wavefront_closest", 32, VGPRS_112),
+    (
+        "all but environment",
+        "wavefront_leg_closest",
+        64,
+        "2 spilled SGPRs",
+    ),
+    (
+        "all but environment",
+        "wavefront_leg_closest",
+        32,
+        VGPRS_112,
+    ),
     // A set of the covering array over 15 features (not in the one over 14): a mesh, CSG,
     // a grid and a cone, as every other break.
     (

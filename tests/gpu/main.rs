@@ -15,6 +15,7 @@ mod gpu_csg;
 mod gpu_cylinder_cone;
 mod gpu_depth_of_field;
 mod gpu_disk_cache;
+mod gpu_environment;
 mod gpu_farm_tiles;
 mod gpu_frame;
 mod gpu_images;

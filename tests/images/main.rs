@@ -14,6 +14,7 @@ mod texture_gen;
 mod texture_support;
 
 mod depth_of_field;
+mod environment;
 mod farm_tiles;
 mod golden;
 mod procedural;

@@ -13,6 +13,7 @@ mod bench_trace;
 mod csg;
 mod cylinder_cone_oracle;
 mod depth_of_field;
+mod environment;
 mod grid;
 mod instancing;
 mod intersect_oracle;

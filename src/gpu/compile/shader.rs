@@ -334,6 +334,7 @@ const COMMON: &[(&str, &str)] = &[
     wgsl!("tracer/shading/dielectric.wgsl"),
     wgsl!("tracer/shading/texture.wgsl"),
     wgsl!("tracer/shading/procedural.wgsl"),
+    wgsl!("tracer/shading/environment.wgsl"),
 ];
 const RENDER: &[(&str, &str)] = &[
     wgsl!("tracer/path/trace.wgsl"),

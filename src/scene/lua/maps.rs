@@ -1,13 +1,16 @@
-//! The material methods that take images: `set_diffuse` and `set_specular` (a colour, a
-//! texture file or a procedural texture), and `set_bump('height.png'[, strength])` (or a
-//! procedural texture in place of the file). Files are resolved against the scene's
-//! directory and decoded in Rust (`scene::texture`); each file is loaded once per script.
+//! The calls that take images: the material methods `set_diffuse` and `set_specular` (a
+//! colour, a texture file or a procedural texture) and `set_bump('height.png'[,
+//! strength])` (or a procedural texture in place of the file), and `gr.render`'s
+//! `environment` option (an HDR map). Files are resolved against the scene's directory
+//! and decoded in Rust (`scene::texture`, `scene::environment`); each texture file is
+//! loaded once per script.
 
 use super::args::Args;
 use super::budget::{charge, check_file_cost, memory_left};
 use super::handle_types::ProceduralHandle;
 use super::limits::reach_limit;
 use super::with_state;
+use crate::scene::environment::{environment_bytes, load_opened_environment, Environment};
 use crate::scene::texture::{load_opened_texture, texture_bytes, OVER_BUDGET};
 use crate::scene::{Material, TextureId, TextureRef};
 use mlua::Value;
@@ -126,4 +129,45 @@ fn texture(a: &Args, n: usize, name: &str) -> mlua::Result<TextureId> {
         s.texture_cache.insert(key, id);
         id
     }))
+}
+
+/// The `environment` option of the options table (argument `n`): `v`, a file name, read
+/// and decoded as an [`Environment`], its texels charged to the memory budget (counted
+/// from the image's header before it is decoded).
+pub(super) fn environment(a: &Args, n: usize, v: &Value) -> mlua::Result<Arc<Environment>> {
+    let bad = |detail: String| a.bad_in(n, "options", format!("environment: {detail}"));
+    let file = match v {
+        Value::String(s) if s.as_bytes().len() <= super::args::MAX_TEXT_ARG => s
+            .to_str()
+            .map(|s| s.to_string())
+            .ok()
+            .filter(|s| !s.contains('\0')),
+        _ => None,
+    }
+    .ok_or_else(|| {
+        bad(format!(
+            "must be the file name of an OpenEXR or Radiance HDR image, got {}",
+            super::args::describe(a.lua, v)
+        ))
+    })?;
+    let found = with_state(a.lua, |s| {
+        s.folders.find(&s.read_policy, &file, "environment")
+    });
+    let opened = found.map_err(bad)?;
+    check_file_cost(a, &opened, 1, "environment")?;
+    // The file is held while it is decoded; the decoder counts the rest itself.
+    let left = memory_left(a.lua).saturating_sub(opened.len);
+    let environment = load_opened_environment(opened, left).map_err(|e| {
+        if e.contains(OVER_BUDGET) {
+            reach_limit(a, format!("argument {n} (options): environment: {e}"))
+        } else {
+            bad(e)
+        }
+    })?;
+    charge(
+        a,
+        environment_bytes(environment.width, environment.height),
+        &format!("environment '{file}'"),
+    )?;
+    Ok(Arc::new(environment))
 }

@@ -8,7 +8,8 @@ use crate::scene::{AaMode, Background, Bounded, DebugView, GridMode, RenderOptio
 use mlua::{Table, Value};
 
 const KEYS: &str = "aa, samples, aa_threshold, aa_depth, shadow_samples, max_depth, \
-                    min_weight, background, grid, debug, shading, aperture, focus";
+                    min_weight, background, environment, environment_rotation, grid, debug, \
+                    shading, aperture, focus";
 
 /// Parses argument `n` of `a` (nil gives the defaults).
 pub(super) fn parse(a: &Args, n: usize) -> mlua::Result<RenderOptions> {
@@ -112,6 +113,13 @@ fn set_option(a: &Args, n: usize, o: &mut RenderOptions, key: &str, v: &Value) -
             }
         }
         "background" => o.background = background(a, n, v)?,
+        "environment" => o.environment = Some(super::maps::environment(a, n, v)?),
+        "environment_rotation" => {
+            o.environment_rotation = match finite(v) {
+                Some(x) => x as f32,
+                None => return Err(bad("a number of degrees")),
+            }
+        }
         "debug" => {
             o.debug = match v {
                 Value::String(s) => DebugView::parse(&super::args::lossy_prefix(s, 64)),

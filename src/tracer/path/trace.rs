@@ -78,7 +78,7 @@ pub fn trace_ray(
     let first_hit = closest_hit(scene, &primary, T_MISS, counters);
     counters.camera_hit(first_hit.item);
     if !first_hit.is_hit() {
-        return background(g, primary.dir);
+        return background(scene, primary.dir);
     }
     let first_shaded = shade_hit(scene, &first, &first_hit, seed, counters);
     note_texture_detail(scene, &first_shaded.s, counters);
@@ -108,7 +108,7 @@ pub fn trace_ray(
             counters.mirror_hit(hit.item);
         }
         if !hit.is_hit() {
-            colour += entry.weight * background(g, entry.ray.dir);
+            colour += entry.weight * background(scene, entry.ray.dir);
             continue;
         }
         let shaded = shade_hit(scene, &entry, &hit, seed, counters);

@@ -1,11 +1,12 @@
-//! A4 Phong shading with shadow rays, and the background.
+//! A4 Phong shading with shadow rays, and the background (or the environment map).
 
 use super::dielectric::{shadow_transmittance, MediumStack};
+use super::environment::environment;
 use super::surface::{Phong, Surface};
 use super::texture::surface_colours;
 use crate::constants::LIGHT_AREA;
 use crate::pack::layout::{load_light, load_material};
-use crate::pack::{PackedGlobals, PackedLight, PackedScene, SceneFeatures};
+use crate::pack::{PackedLight, PackedScene, SceneFeatures};
 use crate::tracer::base::ray::{offset_ray, shadow_reach, Ray};
 use crate::tracer::base::rng::{shadow_random, shadow_stream, SampleSeed, ShadowStream};
 use crate::tracer::traversal::traverse::{any_hit, TraversalCounters};
@@ -250,10 +251,15 @@ pub(crate) fn area_light_mean(sum: Vec3, k: u32) -> Vec3 {
     sum * (scale * scale)
 }
 
-/// Colour of a ray that hits nothing: the vertical gradient by direction (solid when
+/// Colour of a ray that hits nothing: the environment map where the scene has one
+/// (`SceneFeatures::ENVIRONMENT`), else the vertical gradient by direction (solid when
 /// top = bottom), "up" being the camera's up.
 // Mirror of src/tracer/shading/shade.wgsl::background — change both.
-pub fn background(g: &PackedGlobals, dir: Vec3) -> Vec3 {
+pub fn background(scene: &PackedScene, dir: Vec3) -> Vec3 {
+    let g = &scene.globals;
+    if scene.features.contains(SceneFeatures::ENVIRONMENT) {
+        return environment(&scene.texels, g, dir);
+    }
     let t = 0.5 * (dir.dot(Vec3::from(g.up)) + 1.0);
     Vec3::from(g.background_bottom) * (1.0 - t) + Vec3::from(g.background_top) * t
 }

@@ -1,5 +1,5 @@
-// shade.wgsl — A4 Phong shading with shadow rays, and the background (the surfaces it
-// shades come from surface.wgsl).
+// shade.wgsl — A4 Phong shading with shadow rays, and the background or the environment
+// map (the surfaces it shades come from surface.wgsl).
 
 // Set when an area light reaches a shaded point through some of its shadow samples but
 // not all (a penumbra; the CPU's TraversalCounters::partial_light); pixel_sample.wgsl's
@@ -153,10 +153,15 @@ fn area_light(lit: LitPoint, origin: vec3<f32>, light: PackedLight, index: u32, 
 }
 // #endif
 
-// Colour of a ray that hits nothing: the vertical gradient by direction (solid when
-// top = bottom), "up" being the camera's up.
+// Colour of a ray that hits nothing: the environment map where the scene has one,
+// else the vertical gradient by direction (solid when top = bottom), "up" being the
+// camera's up.
 // Mirror of src/tracer/shading/shade.rs::background — change both.
 fn background(dir: vec3<f32>) -> vec3<f32> {
+// #if ENVIRONMENT
+    return environment(dir);
+// #else
     let t = 0.5 * (dot(dir, globals.up) + 1.0);
     return globals.background_bottom * (1.0 - t) + globals.background_top * t;
+// #endif
 }

@@ -66,7 +66,7 @@ fn texel(texels: &[u32], texture: u32, x: u32, y: u32) -> Vec3 {
 /// `t − floor(t)`, the position within one period, with anything that is not a finite
 /// number (or rounds up to 1) mapped to 0, so lookups never index out of range.
 // Mirror of src/tracer/shading/texture.wgsl::wrap_unit — change both.
-fn wrap_unit(t: f32) -> f32 {
+pub(crate) fn wrap_unit(t: f32) -> f32 {
     let f = t - t.floor();
     if (0.0..1.0).contains(&f) {
         f

@@ -15,9 +15,12 @@ fn texel(texture: u32, x: u32, y: u32) -> vec3<f32> {
     let word = texel_word(offset + y * width + x);
     return vec3<f32>(f32(word & 0xffu), f32((word >> 8u) & 0xffu), f32((word >> 16u) & 0xffu)) / 255.0;
 }
+// #endif
 
+// #if TEXTURE|BUMP|ENVIRONMENT
 // t − floor(t), the position within one period, with anything that is not a finite
-// number (or rounds up to 1) mapped to 0, so lookups never index out of range.
+// number (or rounds up to 1) mapped to 0, so lookups never index out of range (the
+// environment map's u too).
 // Mirror of src/tracer/shading/texture.rs::wrap_unit — change both.
 fn wrap_unit(t: f32) -> f32 {
     let f = t - floor(t);
@@ -26,7 +29,9 @@ fn wrap_unit(t: f32) -> f32 {
     }
     return 0.0;
 }
+// #endif
 
+// #if TEXTURE|BUMP
 // Bilinear lookup of `texture` at uv, repeating.
 // Mirror of src/tracer/shading/texture.rs::sample_texture — change both.
 fn sample_texture(texture: u32, uv: vec2<f32>) -> vec3<f32> {

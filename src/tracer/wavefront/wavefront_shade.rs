@@ -38,13 +38,12 @@ fn wavefront_shade(
     i: usize,
     counters: &mut impl TraversalCounters,
 ) {
-    let g = &scene.globals;
     let entry = batch.paths.load_path(i);
     let hit = batch.hits.load_hit(i);
     let k = batch.paths.sample[i] as usize;
     if !Hit::is_hit(&hit) {
         batch.vertices.kind[i] = VertexKind::Miss;
-        batch.vertices.own[i] = background(g, entry.ray.dir);
+        batch.vertices.own[i] = background(scene, entry.ray.dir);
         return;
     }
     let point = shading_point(scene, &entry, &hit);
