@@ -133,10 +133,11 @@ const KNOWN_BREAKS: &[(&str, &str, u32, &str)] = &[
         32,
         VGPRS_112,
     ),
-    // A set of the covering array over 15 features (not in the one over 14): a mesh, CSG,
-    // a grid and a cone, as every other break.
+    // A set of the covering array over 17 features (not in the ones over 14 or 15): a
+    // mesh, CSG, a grid and a cone, as every other break; none of the three newest
+    // features (depth of field, environment, procedural) is in it.
     (
-        "cube mesh grid cone torus csg bump smooth",
+        "mesh reflection grid cylinder cone area-light csg smooth",
         "wavefront_closest",
         32,
         VGPRS_112,

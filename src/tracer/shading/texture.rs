@@ -351,18 +351,21 @@ pub fn surface_colours(scene: &PackedScene, m: &PackedMaterial, s: &Surface) -> 
     let mut kd = Vec3::from(m.kd);
     let mut ks = Vec3::from(m.ks);
     if m.diffuse_texture != NO_TEXTURE {
-        kd = if is_procedural(m.diffuse_texture) {
-            procedural_colour(scene, m.diffuse_texture, s, s.world_footprint)
-        } else {
-            sample_texture_filtered(&scene.texels, m.diffuse_texture, s.uv, s.footprint)
-        };
+        kd = texture_colour(scene, m.diffuse_texture, s);
     }
     if m.specular_texture != NO_TEXTURE {
-        ks = if is_procedural(m.specular_texture) {
-            procedural_colour(scene, m.specular_texture, s, s.world_footprint)
-        } else {
-            sample_texture_filtered(&scene.texels, m.specular_texture, s.uv, s.footprint)
-        };
+        ks = texture_colour(scene, m.specular_texture, s);
     }
     Phong { kd, ks }
+}
+
+/// The colour texture `texture` gives at `s`: a procedural's at the hit's object point,
+/// filtered over its footprint in object units; an image's at the hit's UV, filtered over
+/// its footprint in uv.
+// Mirror of src/tracer/shading/texture.wgsl::texture_colour — change both.
+fn texture_colour(scene: &PackedScene, texture: u32, s: &Surface) -> Vec3 {
+    if is_procedural(texture) {
+        return procedural_colour(scene, texture, s, s.world_footprint);
+    }
+    sample_texture_filtered(&scene.texels, texture, s.uv, s.footprint)
 }

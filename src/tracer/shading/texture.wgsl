@@ -294,27 +294,24 @@ fn surface_colours(m: PackedMaterial, s: Surface) -> Phong {
     var kd = m.kd;
     var ks = m.ks;
     if m.diffuse_texture != NO_TEXTURE {
-// #if PROCEDURAL
-        if is_procedural(m.diffuse_texture) {
-            kd = procedural_colour(m.diffuse_texture, s, s.world_footprint);
-        } else {
-            kd = sample_texture_filtered(m.diffuse_texture, s.uv, s.footprint);
-        }
-// #else
-        kd = sample_texture_filtered(m.diffuse_texture, s.uv, s.footprint);
-// #endif
+        kd = texture_colour(m.diffuse_texture, s);
     }
     if m.specular_texture != NO_TEXTURE {
-// #if PROCEDURAL
-        if is_procedural(m.specular_texture) {
-            ks = procedural_colour(m.specular_texture, s, s.world_footprint);
-        } else {
-            ks = sample_texture_filtered(m.specular_texture, s.uv, s.footprint);
-        }
-// #else
-        ks = sample_texture_filtered(m.specular_texture, s.uv, s.footprint);
-// #endif
+        ks = texture_colour(m.specular_texture, s);
     }
     return Phong(kd, ks);
+}
+
+// The colour texture `texture` gives at s: a procedural's at the hit's object point,
+// filtered over its footprint in object units; an image's at the hit's UV, filtered over
+// its footprint in uv.
+// Mirror of src/tracer/shading/texture.rs::texture_colour — change both.
+fn texture_colour(texture: u32, s: Surface) -> vec3<f32> {
+// #if PROCEDURAL
+    if is_procedural(texture) {
+        return procedural_colour(texture, s, s.world_footprint);
+    }
+// #endif
+    return sample_texture_filtered(texture, s.uv, s.footprint);
 }
 // #endif
