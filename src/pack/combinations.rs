@@ -6,9 +6,9 @@
 //! Every one of the 17 features changes the compiled modules (each is named by some
 //! `// #if` of `shaders/`), so all their combinations are 2^17 (84 672 that a scene can
 //! have), at about 5 s of compiling each (every render entry in both wave sizes): days.
-//! [`feature_combinations`] is a covering set instead, COUNT combinations:
+//! [`feature_combinations`] is a covering set instead, 42 combinations:
 //! - the **largest modules**, where register demand peaks: every feature, and every
-//!   feature but one (without the mesh, without smooth shading too: 16 sets), which
+//!   feature but one (without the mesh, without smooth shading too: 18 sets), which
 //!   hold each combination of features that a smaller set would hold together with
 //!   everything else;
 //! - a **user's scene** that broke the budgets while both other groups met them
