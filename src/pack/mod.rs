@@ -208,7 +208,7 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
         Vec::new()
     };
     check_finite(&instances, &triangles)?;
-    let (texels, triangle_uvs) = if features.uses_textures() {
+    let (mut texels, triangle_uvs) = if features.uses_textures() {
         let mut texels = texture::pack_texels(&scene.textures);
         if features.contains(SceneFeatures::PROCEDURAL) {
             texels.extend(procedural::pack_procedurals(
@@ -220,7 +220,6 @@ pub fn pack(scene: &FlatScene) -> Result<PackedScene, PackError> {
     } else {
         (Vec::new(), Vec::new())
     };
-    let mut texels = texels;
     let environment = scene.options.environment.as_ref().map(|map| {
         features.insert(SceneFeatures::ENVIRONMENT);
         environment::append_environment(&mut texels, map)
